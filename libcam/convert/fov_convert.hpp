@@ -1,0 +1,69 @@
+#pragma once
+// FOV camera <-> calibrated camera.
+//
+// Forward (exact): K = [W/(2 tan_x), 0, (W-1)/2; 0, H/(2 tan_y), (H-1)/2; 0, 0, 1],
+// R has rows (u, -v, gaze) (OpenCV axes: x right, y down, z forward), t = -R eye.
+// Then R^T K^-1 [x, H-1-y, 1] is the seed's d for seed pixel (x, y) exactly.
+//
+// Back: eye = -R^T t, gaze = third row of R, up = minus the second row (the camera's
+// own up, orthogonal to the gaze: the original up is not recoverable, only the plane
+// it spans with the gaze), fov on every axis. A camera is a FOV camera only with a
+// pinhole lens, no skew, the principal point at the image centre, and pixels that
+// fit the axis: square pixels (fx = fy) for horizontal/vertical/diagonal, equal half
+// tangents (W/fx = H/fy) for the seed's "both". Anything else is reported, not dropped.
+
+#include <string>
+#include <vector>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/fov/fov_camera.hpp"
+
+namespace libcam {
+
+// Relative tolerance for "is a FOV camera": principal point offset against the image
+// side, skew against fx, pixel-shape mismatch against fx.
+inline constexpr double kFovCameraTolerance = 1e-9;
+
+Camera to_camera(const FovCamera& fov_camera);
+
+// Full angles in degrees. For a centred principal point, 2 atan(W / (2 fx)) and so on;
+// in general the angle spanned across the image through the principal point, and for
+// the diagonal the larger of the two corner-to-corner angles.
+struct FovAngles {
+    double horizontal = 0.0;
+    double vertical = 0.0;
+    double diagonal = 0.0;
+    double on_axis(FovAxis axis) const;  // Both -> horizontal (equal to vertical when valid)
+};
+
+// The image's extent on the plane z = 1 in front of the camera, y up (glFrustum's
+// left, right, bottom, top at near = 1); asymmetric when the principal point is off centre.
+struct Frustum {
+    double left = 0.0;
+    double right = 0.0;
+    double bottom = 0.0;
+    double top = 0.0;
+};
+
+struct FovDescription {
+    FovAngles fov_deg;
+    Frustum frustum;
+    Vec3 eye = Vec3::Zero();
+    Vec3 gaze = Vec3::Zero();  // unit
+    Vec3 up = Vec3::Zero();    // unit, orthogonal to the gaze
+    // Axes on which the camera is a FOV camera (empty when it is none).
+    std::vector<FovAxis> fov_axes;
+    // Why it is not a FOV camera on some axis (empty when every axis works).
+    std::vector<std::string> deviations;
+
+    bool is_fov_camera() const { return !fov_axes.empty(); }
+    bool fits_axis(FovAxis axis) const;
+};
+
+FovDescription describe_fov(const Camera& camera);
+
+// The FOV camera on `axis`; throws NotRepresentable with the reasons when the camera
+// is not one on that axis.
+FovCamera to_fov_camera(const Camera& camera, FovAxis axis);
+
+}  // namespace libcam

@@ -1,0 +1,55 @@
+#pragma once
+// libcam reports misuse and bad data by exceptions of its own types, each with a
+// message that names the field and the value, so a caller (or the CLI) can show
+// one clear line without knowing where the check happened.
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace libcam {
+
+// Base of every libcam exception.
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// A value that is out of range, not finite, or inconsistent with another value.
+class InvalidArgument : public Error {
+public:
+    using Error::Error;
+};
+
+// A camera file that cannot be read, parsed or written.
+class FileError : public Error {
+public:
+    using Error::Error;
+};
+
+// A camera that cannot be expressed in the requested form (e.g. an off-centre
+// principal point asked for as a FOV camera, skew asked for in mrcal's format).
+class NotRepresentable : public Error {
+public:
+    using Error::Error;
+};
+
+// Formats a double so that it reads back to the same value.
+std::string format_number(double value);
+
+// Throws InvalidArgument("<field>: must be finite, got <value>") unless value is finite.
+void require_finite(const char* field, double value);
+
+template <class Vector>
+void require_finite_all(const char* field, const Vector& v) {
+    for (long i = 0; i < static_cast<long>(v.size()); ++i) {
+        const double value = v.data()[i];
+        if (!std::isfinite(value)) {
+            throw InvalidArgument(std::string(field) + ": component " + std::to_string(i) +
+                                  " must be finite, got " + format_number(value));
+        }
+    }
+}
+
+}  // namespace libcam

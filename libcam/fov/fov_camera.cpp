@@ -1,0 +1,128 @@
+#include "libcam/fov/fov_camera.hpp"
+
+#include <string>
+
+#include "libcam/error.hpp"
+
+namespace libcam {
+
+std::string_view to_string(FovAxis axis) {
+    switch (axis) {
+        case FovAxis::Horizontal: return "horizontal";
+        case FovAxis::Vertical: return "vertical";
+        case FovAxis::Diagonal: return "diagonal";
+        case FovAxis::Both: return "both";
+    }
+    return "?";
+}
+
+std::string_view to_string(PixelOrigin origin) {
+    return origin == PixelOrigin::BottomLeft ? "bottom-left" : "top-left";
+}
+
+FovAxis fov_axis_from_string(std::string_view text) {
+    for (FovAxis axis : {FovAxis::Horizontal, FovAxis::Vertical, FovAxis::Diagonal, FovAxis::Both}) {
+        if (text == to_string(axis)) return axis;
+    }
+    throw InvalidArgument("fov_axis: must be horizontal, vertical, diagonal or both, got '" +
+                          std::string(text) + "'");
+}
+
+PixelOrigin pixel_origin_from_string(std::string_view text) {
+    if (text == "bottom-left") return PixelOrigin::BottomLeft;
+    if (text == "top-left") return PixelOrigin::TopLeft;
+    throw InvalidArgument("pixel_origin: must be bottom-left or top-left, got '" + std::string(text) + "'");
+}
+
+Vec2 opencv_pixel(const Vec2& pixel, PixelOrigin origin, const ImageSize& size) {
+    return origin == PixelOrigin::TopLeft ? pixel : Vec2(pixel.x(), flip_row(pixel.y(), size));
+}
+
+Vec2 user_pixel(const Vec2& opencv, PixelOrigin origin, const ImageSize& size) {
+    return opencv_pixel(opencv, origin, size);  // the flip is its own inverse
+}
+
+FovCamera FovCamera::look_at(const Vec3& eye, const Vec3& target, const Vec3& up, double fov_deg,
+                             FovAxis fov_axis, ImageSize size) {
+    require_finite_all("eye", eye);
+    require_finite_all("target", target);
+    if (target == eye) {
+        throw InvalidArgument("target: equals eye (" + format_number(eye.x()) + ", " + format_number(eye.y()) +
+                              ", " + format_number(eye.z()) + "), so there is no gaze direction");
+    }
+    // When eye and target are close, target - eye is exact (Sterbenz), so no digits are lost here.
+    return FovCamera{eye, target - eye, up, fov_deg, fov_axis, size};
+}
+
+void FovCamera::validate() const {
+    require_finite_all("eye", eye);
+    require_finite_all("gaze", gaze);
+    require_finite_all("up", up);
+    require_finite("fov", fov_deg);
+    if (!(fov_deg > 0.0 && fov_deg < 180.0)) {
+        throw InvalidArgument("fov: must be in (0, 180) degrees, got " + format_number(fov_deg));
+    }
+    size.validate("size");
+    if (gaze.isZero(0.0)) throw InvalidArgument("gaze: must not be the zero vector");
+    if (up.isZero(0.0)) throw InvalidArgument("up: must not be the zero vector");
+    const double angle = angle_between(gaze, up);
+    if (angle < kMinUpGazeAngleRad || angle > std::numbers::pi - kMinUpGazeAngleRad) {
+        throw InvalidArgument("up: parallel to the gaze (angle " + format_number(angle) +
+                              " rad from the gaze line, minimum " + format_number(kMinUpGazeAngleRad) +
+                              " rad), so the camera's roll is undefined");
+    }
+}
+
+Basis FovCamera::basis(Handedness handedness) const {
+    // u = gaze x up for both handednesses (the seed's w x up with w along the gaze,
+    // or up x w with w against it). The accurate cross product of the raw inputs keeps
+    // u right to a few ulps even when up is within a small angle of the gaze.
+    const Vec3 u = accurate_cross(gaze, up).normalized();
+    const Vec3 along_gaze = gaze.normalized();
+    const Vec3 v = accurate_cross(u, along_gaze);
+    return {u, v, handedness == Handedness::Left ? along_gaze : Vec3(-along_gaze), handedness};
+}
+
+double tan_half_angle_deg(double angle_deg) {
+    // Near 180 degrees, tan(angle/2) = 1 / tan((180 - angle)/2), and 180 - angle is
+    // exact there (Sterbenz), so the small complement keeps its digits.
+    if (angle_deg > 90.0) return 1.0 / std::tan(radians_from_degrees(0.5 * (180.0 - angle_deg)));
+    return std::tan(radians_from_degrees(0.5 * angle_deg));
+}
+
+double angle_deg_from_half_tangent(double tangent) {
+    if (tangent > 1.0) return 180.0 - 2.0 * degrees_from_radians(std::atan(1.0 / tangent));
+    return 2.0 * degrees_from_radians(std::atan(tangent));
+}
+
+Vec2 FovCamera::half_tangents() const {
+    const double tangent = tan_half_angle_deg(fov_deg);
+    const double width = static_cast<double>(size.width);
+    const double height = static_cast<double>(size.height);
+    switch (fov_axis) {
+        case FovAxis::Both: return {tangent, tangent};
+        case FovAxis::Horizontal: return {tangent, tangent * height / width};
+        case FovAxis::Vertical: return {tangent * width / height, tangent};
+        case FovAxis::Diagonal: {
+            const double diagonal = std::hypot(width, height);
+            return {tangent * (width / diagonal), tangent * (height / diagonal)};
+        }
+    }
+    return {tangent, tangent};
+}
+
+Vec3 FovCamera::seed_ray(const Vec2& pixel, PixelOrigin origin) const {
+    // The seed counts rows upward; a top-left pixel is flipped into its convention.
+    const Vec2 seed_pixel = origin == PixelOrigin::BottomLeft ? pixel : Vec2(pixel.x(), flip_row(pixel.y(), size));
+    const double width = static_cast<double>(size.width);
+    const double height = static_cast<double>(size.height);
+    return field_ray((2.0 * seed_pixel.x() - width + 1.0) / width, (2.0 * seed_pixel.y() - height + 1.0) / height);
+}
+
+Vec3 FovCamera::field_ray(double sx, double sy) const {
+    const Vec2 tangents = half_tangents();
+    const Basis b = basis(Handedness::Left);
+    return tangents.x() * sx * b.u + tangents.y() * sy * b.v + b.w;
+}
+
+}  // namespace libcam

@@ -1,0 +1,92 @@
+#pragma once
+// The graphics camera of the seed (shared/seed): an eye, a gaze (or a target), an
+// up vector, a field-of-view angle and an image size. The ray through pixel (x, y) is
+//
+//     d = alpha u + beta v + w_gaze,
+//     alpha = tan_x (2x - W + 1) / W,    beta = tan_y (2y - H + 1) / H,
+//
+// where tan_x, tan_y are the tangents of half the field of view on each image axis
+// and the seed counts rows upward from the bottom-left pixel.
+//
+// The seed's own fov (FovAxis::Both) puts the same angle on both axes, each normalised
+// by its own side, so tan_x = tan_y and the pixels are not square when W != H. The
+// other axes give square pixels: the angle spans the width (Horizontal), the height
+// (Vertical) or the diagonal (Diagonal) of the image, and the other tangent follows
+// from the aspect ratio.
+
+#include <string_view>
+
+#include "libcam/geometry/image_size.hpp"
+#include "libcam/geometry/vector_math.hpp"
+
+namespace libcam {
+
+enum class FovAxis { Horizontal, Vertical, Diagonal, Both };
+
+// Where the user's pixel row 0 is. Every calibrated camera (K, files) is top-left;
+// this only says how pixel coordinates given to or returned by libcam are counted.
+enum class PixelOrigin { BottomLeft, TopLeft };
+
+// The seed's two bases: w along the gaze (left-handed, the seed's choice) or
+// against it (right-handed). u and v are the same in both.
+enum class Handedness { Left, Right };
+
+std::string_view to_string(FovAxis axis);
+std::string_view to_string(PixelOrigin origin);
+FovAxis fov_axis_from_string(std::string_view text);          // throws InvalidArgument
+PixelOrigin pixel_origin_from_string(std::string_view text);  // throws InvalidArgument
+
+// A pixel's row in the other origin convention: y' = (H - 1) - y (its own inverse).
+inline double flip_row(double y, const ImageSize& size) { return static_cast<double>(size.height - 1) - y; }
+// The OpenCV (top-left) pixel of a pixel given in `origin`'s convention, and back.
+Vec2 opencv_pixel(const Vec2& pixel, PixelOrigin origin, const ImageSize& size);
+Vec2 user_pixel(const Vec2& opencv, PixelOrigin origin, const ImageSize& size);
+
+// Smallest angle between up and the gaze: below it the camera's roll is undefined
+// (a one-ulp change of up turns u by more than 1e-7 rad) and validate() refuses it.
+inline constexpr double kMinUpGazeAngleRad = 1e-9;
+
+struct Basis {
+    Vec3 u;  // right
+    Vec3 v;  // up
+    Vec3 w;  // along the gaze (Left) or against it (Right)
+    Handedness handedness = Handedness::Left;
+
+    Vec3 gaze() const { return handedness == Handedness::Left ? w : Vec3(-w); }
+};
+
+struct FovCamera {
+    Vec3 eye = Vec3::Zero();
+    Vec3 gaze = Vec3(0, 0, -1);  // any positive length
+    Vec3 up = Vec3(0, 1, 0);     // need not be orthogonal to the gaze
+    double fov_deg = 90.0;
+    FovAxis fov_axis = FovAxis::Both;
+    ImageSize size{1, 1};
+
+    static FovCamera look_at(const Vec3& eye, const Vec3& target, const Vec3& up, double fov_deg,
+                             FovAxis fov_axis, ImageSize size);
+
+    // Throws InvalidArgument naming the field unless: every number is finite,
+    // 0 < fov_deg < 180, the size is valid, the gaze and up are non-zero and at
+    // least kMinUpGazeAngleRad apart.
+    void validate() const;
+
+    Basis basis(Handedness handedness = Handedness::Left) const;
+
+    // (tan_x, tan_y): tangents of half the field of view across the width and height.
+    Vec2 half_tangents() const;
+
+    // The seed's ray d = alpha u + beta v + w_gaze through pixel (x, y), not normalised.
+    Vec3 seed_ray(const Vec2& pixel, PixelOrigin origin = PixelOrigin::BottomLeft) const;
+
+    // The ray through a point of the field of view given as fractions (sx, sy) of its
+    // half-extent, y up: (-1, -1) is the lower-left corner, (0, 1) the top centre.
+    Vec3 field_ray(double sx, double sy) const;
+};
+
+// tan(angle/2) for an angle in degrees in (0, 180), accurate near 180 too.
+double tan_half_angle_deg(double angle_deg);
+// The inverse: 2 atan(tangent) in degrees.
+double angle_deg_from_half_tangent(double tangent);
+
+}  // namespace libcam

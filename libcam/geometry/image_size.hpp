@@ -1,0 +1,23 @@
+#pragma once
+// The size of an image in pixels. Pixel centres are at integer coordinates (OpenCV's
+// convention): the image spans [-0.5, width - 0.5] x [-0.5, height - 0.5].
+
+namespace libcam {
+
+// Largest accepted image side; larger sizes are rejected as a likely unit mistake.
+inline constexpr long kMaxImageSide = 1'000'000;
+
+struct ImageSize {
+    long width = 0;
+    long height = 0;
+
+    // Throws InvalidArgument naming `field` unless 1 <= width, height <= kMaxImageSide.
+    void validate(const char* field = "image_size") const;
+
+    double centre_x() const { return 0.5 * static_cast<double>(width - 1); }
+    double centre_y() const { return 0.5 * static_cast<double>(height - 1); }
+
+    bool operator==(const ImageSize&) const = default;
+};
+
+}  // namespace libcam

@@ -1,0 +1,45 @@
+#pragma once
+// The intrinsic matrix K of a calibrated camera, in OpenCV's convention:
+//
+//     [fx  skew  cx]        pixel = K [x/z, y/z, 1]^T for a camera point (x, y, z),
+// K = [ 0   fy   cy]        x right, y down, z forward, pixel centres at integers,
+//     [ 0    0    1]        row 0 at the top of the image.
+//
+// Lens distortion, when present, acts between the camera point and K
+// (see libcam/lens/), exactly as in OpenCV and mrcal.
+
+#include <Eigen/Core>
+
+#include "libcam/geometry/vector_math.hpp"
+
+namespace libcam {
+
+struct Intrinsics {
+    double fx = 1.0;
+    double fy = 1.0;
+    double cx = 0.0;
+    double cy = 0.0;
+    double skew = 0.0;
+
+    Mat3 K() const;
+
+    // Reads K; throws InvalidArgument naming `field` unless the bottom row is (0 0 1),
+    // K(1,0) is 0, every entry is finite, and fx, fy > 0.
+    static Intrinsics from_K(const Mat3& K, const char* field = "K");
+
+    // Throws InvalidArgument unless every value is finite and fx, fy > 0.
+    void validate(const char* field = "K") const;
+
+    // K^-1 [x, y, 1]: the normalised image point (x/z, y/z) of a pixel.
+    Vec2 normalized_from_pixel(const Vec2& pixel) const {
+        const double yn = (pixel.y() - cy) / fy;
+        return {(pixel.x() - cx - skew * yn) / fx, yn};
+    }
+
+    // K [xn, yn, 1]: the pixel of a normalised image point.
+    Vec2 pixel_from_normalized(const Vec2& normalized) const {
+        return {fx * normalized.x() + skew * normalized.y() + cx, fy * normalized.y() + cy};
+    }
+};
+
+}  // namespace libcam

@@ -1,0 +1,45 @@
+#pragma once
+// Extrinsics in OpenCV's and mrcal's direction: world to camera,
+//     X_cam = R X_world + t,
+// with the camera frame x right, y down, z forward. The rows of R are the camera
+// axes in world coordinates and the camera centre is C = -R^T t. The rotation
+// vector rvec is Rodrigues' (axis times angle), as cv::Rodrigues and mrcal's
+// rt_cam_ref use it.
+
+#include <Eigen/Core>
+
+#include "libcam/geometry/vector_math.hpp"
+
+namespace libcam {
+
+using Mat34 = Eigen::Matrix<double, 3, 4>;
+
+// Rodrigues' formula both ways, through a quaternion so that angles near 0 and near pi
+// keep their accuracy.
+Vec3 rvec_from_rotation(const Mat3& R);
+Mat3 rotation_from_rvec(const Vec3& rvec);
+
+// Largest |R^T R - I| and |det R - 1| accepted for a rotation read from outside.
+inline constexpr double kRotationTolerance = 1e-9;
+
+struct Pose {
+    Mat3 R = Mat3::Identity();
+    Vec3 t = Vec3::Zero();
+
+    static Pose from_rvec(const Vec3& rvec, const Vec3& t) { return {rotation_from_rvec(rvec), t}; }
+    // A camera at `centre` whose axes (rows of R) are `R`.
+    static Pose from_centre(const Mat3& R, const Vec3& centre) { return {R, -(R * centre)}; }
+
+    Vec3 rvec() const { return rvec_from_rotation(R); }
+    Vec3 centre() const { return -(R.transpose() * t); }
+    Mat34 matrix() const;  // [R | t]
+
+    Vec3 camera_from_world(const Vec3& world) const { return R * world + t; }
+    Vec3 world_direction_from_camera(const Vec3& direction) const { return R.transpose() * direction; }
+
+    // Throws InvalidArgument naming `field` unless R is a finite proper rotation
+    // (within kRotationTolerance) and t is finite.
+    void validate(const char* field = "R") const;
+};
+
+}  // namespace libcam

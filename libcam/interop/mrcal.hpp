@@ -1,0 +1,36 @@
+#pragma once
+// The bridge to mrcal (libmrcal, C): its .cameramodel files, and its projection and
+// unprojection as a reference for libcam's own.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "libcam/camera/camera.hpp"
+
+namespace libcam {
+
+// mrcal's name for the lens, "LENSMODEL_..."; throws NotRepresentable for a lens that
+// mrcal does not model.
+std::string mrcal_lensmodel_name(const Lens& lens);
+
+// The .cameramodel text for a camera. libmrcal's own writer prints numbers with "%f"
+// (six decimals), which would silently round fx, the pose and every coefficient, so
+// libcam prints the same layout with every digit and then parses the text with
+// libmrcal's parser and checks it reads back bit for bit. Throws NotRepresentable for
+// what .cameramodel cannot hold (skew, a lens mrcal lacks).
+std::string format_cameramodel(const Camera& camera);
+
+// Parses .cameramodel text with libmrcal's parser; the parser's own diagnostic (it
+// prints to stderr) is captured into the FileError message.
+Camera parse_cameramodel(std::string_view text, const std::string& source);
+
+// Projects camera-frame points with mrcal_project. mrcal does not flag points behind
+// the camera; every result here is marked valid and the caller compares.
+std::vector<Vec2> mrcal_project_points(const Camera& camera, const std::vector<Vec3>& camera_points);
+
+// Unprojects OpenCV pixels with mrcal_unproject: camera-frame directions, not normalised.
+std::vector<Vec3> mrcal_unproject_pixels(const Camera& camera, const std::vector<Vec2>& pixels);
+
+}  // namespace libcam

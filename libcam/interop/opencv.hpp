@@ -1,0 +1,28 @@
+#pragma once
+// The bridge to OpenCV: libcam cameras as the cv::Mat arguments of calib3d, and
+// OpenCV's camera files as cv::FileStorage writes them.
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <string_view>
+
+#include "libcam/camera/camera.hpp"
+
+namespace libcam {
+
+cv::Mat opencv_camera_matrix(const Intrinsics& intrinsics);  // 3x3 CV_64F
+cv::Mat opencv_distortion(const Lens& lens);                 // 1xN CV_64F (N = 0 for PINHOLE)
+cv::Mat opencv_vector(const Vec3& v);                        // 3x1 CV_64F (rvec, tvec)
+
+enum class OpenCvStorage { Yaml, Xml };
+
+// The text cv::FileStorage writes: image_width, image_height, camera_matrix,
+// distortion_coefficients (OpenCV's calibration sample's names), rvec, tvec.
+// A PINHOLE lens is written as five zero coefficients, as cv::calibrateCamera does.
+std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage);
+
+// Reads such a file. rvec and tvec may be absent (identity pose). Distortion
+// coefficients that are all zero are read as PINHOLE, which they equal exactly.
+Camera parse_opencv_storage(std::string_view text, const std::string& source);
+
+}  // namespace libcam

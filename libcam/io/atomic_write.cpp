@@ -1,0 +1,92 @@
+#include "libcam/io/atomic_write.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "libcam/error.hpp"
+
+namespace libcam {
+
+namespace {
+
+std::string reason() { return std::strerror(errno); }
+
+// Writes all of `contents` to fd; false on any short or failed write.
+bool write_all(int fd, std::string_view contents) {
+    while (!contents.empty()) {
+        const ssize_t written = ::write(fd, contents.data(), contents.size());
+        if (written < 0) {
+            if (errno == EINTR) continue;
+            return false;
+        }
+        contents.remove_prefix(static_cast<std::size_t>(written));
+    }
+    return true;
+}
+
+// Creates a new temporary file beside `path`, mode 0666 less the umask (as any new
+// file); returns its descriptor and fills `temporary`.
+int create_temporary(const std::filesystem::path& path, std::string& temporary) {
+    const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
+    static thread_local std::mt19937_64 random{std::random_device{}()};
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        temporary = (folder / ("." + path.filename().string() + ".tmp-" + std::to_string(random()))).string();
+        const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd >= 0 || errno != EEXIST) return fd;
+    }
+    return -1;
+}
+
+}  // namespace
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
+    std::string temporary;
+    const int fd = create_temporary(path, temporary);
+    if (fd < 0) throw FileError(path.string() + ": cannot create a temporary file beside it: " + reason());
+
+    auto fail = [&](const std::string& what) {
+        const std::string why = reason();
+        ::close(fd);
+        ::unlink(temporary.c_str());
+        throw FileError(path.string() + ": " + what + ": " + why);
+    };
+    // Replacing a file keeps its permissions.
+    struct stat existing {};
+    if (::stat(path.c_str(), &existing) == 0 && ::fchmod(fd, existing.st_mode & 07777) != 0) {
+        fail("cannot copy the permissions of the existing file");
+    }
+    if (!write_all(fd, contents)) fail("write failed");
+    if (::fsync(fd) != 0) fail("flush to disk failed");
+    if (::close(fd) != 0) {
+        const std::string why = reason();
+        ::unlink(temporary.c_str());
+        throw FileError(path.string() + ": close failed: " + why);
+    }
+    if (::rename(temporary.c_str(), path.c_str()) != 0) {
+        const std::string why = reason();
+        ::unlink(temporary.c_str());
+        throw FileError(path.string() + ": cannot replace the file: " + why);
+    }
+}
+
+std::string read_text_file(const std::filesystem::path& path) {
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error)) throw FileError(path.string() + ": is a directory");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw FileError(path.string() + ": cannot open: " + reason());
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw FileError(path.string() + ": read failed");
+    return text.str();
+}
+
+}  // namespace libcam

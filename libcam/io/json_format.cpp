@@ -1,0 +1,273 @@
+#include "libcam/io/json_format.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "libcam/convert/fov_convert.hpp"
+#include "libcam/error.hpp"
+
+namespace libcam {
+
+using nlohmann::json;
+
+namespace {
+
+// Tolerance for derived keys that must agree with the primary ones (rvec with R, P with K[R|t]).
+constexpr double kConsistencyTolerance = 1e-9;
+
+template <class Matrix>
+json matrix_json(const Matrix& m) {
+    json rows = json::array();
+    for (Eigen::Index r = 0; r < m.rows(); ++r) {
+        json row = json::array();
+        for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+template <class Vector>
+json vector_json(const Vector& v) {
+    json values = json::array();
+    for (Eigen::Index i = 0; i < v.size(); ++i) values.push_back(v(i));
+    return values;
+}
+
+// Reading: every accessor names the file and the key in its error.
+class Reader {
+public:
+    Reader(const json& root, std::string source) : root_(root), source_(std::move(source)) {}
+
+    bool has(const char* key) const { return root_.contains(key) && !root_.at(key).is_null(); }
+
+    const json& at(const char* key) const {
+        if (!has(key)) fail(key, "missing");
+        return root_.at(key);
+    }
+
+    double number(const json& value, const std::string& key) const {
+        if (!value.is_number()) fail(key, "expected a number, got " + value.dump());
+        const double x = value.get<double>();
+        if (!std::isfinite(x)) fail(key, "must be finite, got " + value.dump());
+        return x;
+    }
+
+    double number(const char* key) const { return number(at(key), key); }
+
+    Eigen::VectorXd vector(const char* key, long expected = -1) const {
+        const json& value = at(key);
+        if (!value.is_array()) fail(key, "expected an array of numbers, got " + value.dump());
+        if (expected >= 0 && static_cast<long>(value.size()) != expected) {
+            fail(key, "expected " + std::to_string(expected) + " numbers, got " + std::to_string(value.size()));
+        }
+        Eigen::VectorXd v(static_cast<Eigen::Index>(value.size()));
+        for (std::size_t i = 0; i < value.size(); ++i) {
+            v(static_cast<Eigen::Index>(i)) = number(value[i], std::string(key) + "[" + std::to_string(i) + "]");
+        }
+        return v;
+    }
+
+    Eigen::MatrixXd matrix(const char* key, long rows, long cols) const {
+        const json& value = at(key);
+        const std::string shape = std::to_string(rows) + "x" + std::to_string(cols);
+        if (!value.is_array() || static_cast<long>(value.size()) != rows) {
+            fail(key, "expected " + shape + " nested arrays of numbers");
+        }
+        Eigen::MatrixXd m(rows, cols);
+        for (long r = 0; r < rows; ++r) {
+            const json& row = value[static_cast<std::size_t>(r)];
+            if (!row.is_array() || static_cast<long>(row.size()) != cols) {
+                fail(key, "expected " + shape + " nested arrays of numbers; row " + std::to_string(r) + " is " +
+                              row.dump());
+            }
+            for (long c = 0; c < cols; ++c) {
+                m(r, c) = number(row[static_cast<std::size_t>(c)],
+                                 std::string(key) + "[" + std::to_string(r) + "][" + std::to_string(c) + "]");
+            }
+        }
+        return m;
+    }
+
+    ImageSize image_size(const char* key) const {
+        const Eigen::VectorXd v = vector(key, 2);
+        for (int i = 0; i < 2; ++i) {
+            if (v(i) != std::floor(v(i)) || v(i) < 1 || v(i) > static_cast<double>(kMaxImageSide)) {
+                fail(key, "expected two integers in [1, " + std::to_string(kMaxImageSide) + "], got " +
+                              at(key).dump());
+            }
+        }
+        return {static_cast<long>(v(0)), static_cast<long>(v(1))};
+    }
+
+    std::string string(const char* key) const {
+        const json& value = at(key);
+        if (!value.is_string()) fail(key, "expected a string, got " + value.dump());
+        return value.get<std::string>();
+    }
+
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+        throw FileError(source_ + ": \"" + key + "\": " + what);
+    }
+
+private:
+    const json& root_;
+    std::string source_;
+};
+
+// Runs a core validation and re-raises its message with the file name in front.
+template <class F>
+void validated(const std::string& source, F&& check) {
+    try {
+        check();
+    } catch (const InvalidArgument& error) {
+        throw FileError(source + ": " + error.what());
+    }
+}
+
+Pose read_pose(const Reader& in, const std::string& source) {
+    const Vec3 t = in.vector("t", 3);
+    if (!in.has("R") && !in.has("rvec")) in.fail("R", "missing (give \"R\" or \"rvec\")");
+    Pose pose;
+    if (in.has("R")) {
+        pose = Pose{in.matrix("R", 3, 3), t};
+        validated(source, [&] { pose.validate("R"); });
+        if (in.has("rvec")) {
+            const Mat3 from_rvec = rotation_from_rvec(in.vector("rvec", 3));
+            const double difference = (from_rvec - pose.R).cwiseAbs().maxCoeff();
+            if (difference > kConsistencyTolerance) {
+                in.fail("rvec", "disagrees with \"R\" (max difference " + format_number(difference) + ")");
+            }
+        }
+    } else {
+        pose = Pose::from_rvec(in.vector("rvec", 3), t);
+    }
+    return pose;
+}
+
+Camera read_calibrated(const Reader& in, const std::string& source) {
+    Camera camera;
+    const std::string model = in.string("model");
+    const std::optional<LensType> type = lens_type_from_name(model);
+    if (!type) in.fail("model", "unknown lens model '" + model + "'");
+    camera.lens.type = *type;
+    camera.size = in.image_size("image_size");
+    const Mat3 K = in.matrix("K", 3, 3);
+    validated(source, [&] { camera.intrinsics = Intrinsics::from_K(K, "K"); });
+    if (in.has("dist")) {
+        const Eigen::VectorXd dist = in.vector("dist");
+        camera.lens.coefficients.assign(dist.data(), dist.data() + dist.size());
+    }
+    validated(source, [&] { camera.lens.validate("dist"); });
+    camera.pose = read_pose(in, source);
+    if (in.has("P")) {
+        const Mat34 P = in.matrix("P", 3, 4);
+        const Mat34 expected = camera.P();
+        const double difference = (P - expected).cwiseAbs().maxCoeff() / expected.cwiseAbs().maxCoeff();
+        if (difference > kConsistencyTolerance) {
+            in.fail("P", "disagrees with K [R | t] (max relative difference " + format_number(difference) + ")");
+        }
+    }
+    validated(source, [&] { camera.validate(); });
+    return camera;
+}
+
+CameraFile read_gl(const Reader& in, const std::string& source) {
+    const Eigen::VectorXd viewport = in.vector("viewport", 4);
+    if (viewport(0) != 0.0 || viewport(1) != 0.0) {
+        in.fail("viewport", "must start at (0, 0) to describe a whole image, got " + in.at("viewport").dump());
+    }
+    DepthRange depth_range = DepthRange::MinusOneToOne;
+    if (in.has("depth_range")) {
+        const std::string name = in.string("depth_range");
+        if (name == "zero-to-one") depth_range = DepthRange::ZeroToOne;
+        else if (name != "minus-one-to-one") in.fail("depth_range", "must be minus-one-to-one or zero-to-one, got '" + name + "'");
+    }
+    Camera camera;
+    for (int i = 2; i < 4; ++i) {
+        if (viewport(i) != std::floor(viewport(i)) || viewport(i) < 1 || viewport(i) > static_cast<double>(kMaxImageSide)) {
+            in.fail("viewport", "width and height must be integers in [1, " + std::to_string(kMaxImageSide) + "]");
+        }
+    }
+    camera.size = {static_cast<long>(viewport(2)), static_cast<long>(viewport(3))};
+    const Mat4 projection = in.matrix("projection", 4, 4);
+    const Mat4 view = in.matrix("view", 4, 4);
+    validated(source, [&] { camera.intrinsics = intrinsics_from_opengl(projection, camera.size, depth_range).intrinsics; });
+    if (view.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) in.fail("view", "last row must be 0 0 0 1");
+    // view = diag(1, -1, -1) [R | t]
+    const Eigen::Vector3d flip(1.0, -1.0, -1.0);
+    camera.pose = Pose{flip.asDiagonal() * view.topLeftCorner<3, 3>(), flip.asDiagonal() * view.topRightCorner<3, 1>()};
+    validated(source, [&] { camera.validate(); });
+    return {camera, std::nullopt};
+}
+
+}  // namespace
+
+std::string format_json(const Camera& camera, const std::optional<FovCamera>& fov_camera) {
+    const FovDescription fov = describe_fov(camera);
+    json out;
+    out["model"] = lens_info(camera.lens.type).name;
+    out["image_size"] = {camera.size.width, camera.size.height};
+    out["K"] = matrix_json(camera.intrinsics.K());
+    out["dist"] = camera.lens.coefficients;
+    out["R"] = matrix_json(camera.pose.R);
+    out["t"] = vector_json(camera.pose.t);
+    out["rvec"] = vector_json(camera.pose.rvec());
+    out["P"] = matrix_json(camera.P());
+    out["camera_center"] = vector_json(fov.eye);
+    out["fov_deg"] = {{"horizontal", fov.fov_deg.horizontal},
+                      {"vertical", fov.fov_deg.vertical},
+                      {"diagonal", fov.fov_deg.diagonal}};
+    out["frustum"] = {{"left", fov.frustum.left},
+                      {"right", fov.frustum.right},
+                      {"bottom", fov.frustum.bottom},
+                      {"top", fov.frustum.top}};
+    out["eye"] = vector_json(fov.eye);
+    out["gaze"] = vector_json(fov.gaze);
+    out["up"] = vector_json(fov.up);
+    if (fov_camera) out["fov_axis"] = to_string(fov_camera->fov_axis);
+    json axes = json::array();
+    for (FovAxis axis : fov.fov_axes) axes.push_back(to_string(axis));
+    out["fov_axes"] = axes;
+    out["not_fov_because"] = fov.deviations;
+    return out.dump(2) + "\n";
+}
+
+std::string format_gl_json(const GlCamera& gl, const ImageSize& size) {
+    json out;
+    out["format"] = "opengl";
+    out["image_size"] = {size.width, size.height};
+    out["projection"] = matrix_json(gl.projection);
+    out["view"] = matrix_json(gl.view);
+    out["viewport"] = gl.viewport;
+    out["near"] = gl.near;
+    out["far"] = gl.far;
+    out["depth_range"] = gl.depth_range == DepthRange::ZeroToOne ? "zero-to-one" : "minus-one-to-one";
+    out["layout"] = "row-major: upload with transpose = GL_TRUE; window origin bottom-left, pixel centres at +0.5";
+    return out.dump(2) + "\n";
+}
+
+CameraFile parse_json_camera(std::string_view text, const std::string& source) {
+    json root;
+    try {
+        // Depth-limited by nlohmann's own recursion; comments and trailing data are errors.
+        root = json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& error) {
+        throw FileError(source + ": not valid JSON: " + error.what());
+    }
+    if (!root.is_object()) throw FileError(source + ": expected a JSON object at the top level");
+    const Reader in(root, source);
+    if (in.has("projection")) return read_gl(in, source);
+
+    CameraFile file{read_calibrated(in, source), std::nullopt};
+    if (in.has("fov_axis")) {
+        FovAxis axis{};
+        validated(source, [&] { axis = fov_axis_from_string(in.string("fov_axis")); });
+        try {
+            file.fov_camera = to_fov_camera(file.camera, axis);
+        } catch (const NotRepresentable& error) {
+            in.fail("fov_axis", error.what());
+        }
+    }
+    return file;
+}
+
+}  // namespace libcam

@@ -1,0 +1,52 @@
+#pragma once
+// The table of lens models, one place to add a model (as mrcal's
+// MRCAL_LENSMODEL_LIST). A lens model maps a point in the camera frame
+// (OpenCV axes: x right, y down, z forward) to a normalised image point m; the
+// intrinsic matrix K then maps m to a pixel. Each model lives in its own header
+// as a stateless struct templated on the scalar type (see pinhole.hpp).
+//
+// Columns: enum name, name in files (mrcal's, without "LENSMODEL_"),
+// number of distortion coefficients, can it see points with z <= 0.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#define LIBCAM_LENS_MODEL_LIST(_) _(Pinhole, "PINHOLE", 0, false)
+
+namespace libcam {
+
+enum class LensType {
+#define LIBCAM_LENS_ENUM(id, name, n, behind) id,
+    LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_ENUM)
+#undef LIBCAM_LENS_ENUM
+};
+
+struct LensInfo {
+    LensType type;
+    std::string_view name;
+    int num_coefficients;
+    bool sees_behind_camera;
+};
+
+// Every model, in the order of the table.
+std::span<const LensInfo> lens_models();
+const LensInfo& lens_info(LensType type);
+// Accepts "PINHOLE" and mrcal's "LENSMODEL_PINHOLE"; nullopt for an unknown name.
+std::optional<LensType> lens_type_from_name(std::string_view name);
+
+// A lens: which model, and its distortion coefficients in the model's order
+// (OpenCV's order for OpenCV's models).
+struct Lens {
+    LensType type = LensType::Pinhole;
+    std::vector<double> coefficients;
+
+    // Throws InvalidArgument naming `field` unless the count matches the model and
+    // every coefficient is finite.
+    void validate(const char* field = "dist") const;
+    bool operator==(const Lens&) const = default;
+};
+
+}  // namespace libcam

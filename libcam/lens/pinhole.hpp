@@ -1,0 +1,47 @@
+#pragma once
+// PINHOLE: the ideal perspective lens, no distortion.
+//
+//   project:   (x, y, z) -> m = (x/z, y/z)
+//   unproject: m -> ray (mx, my, 1)
+//
+// Valid domain: z > 0. A point on or behind the camera plane has no image (OpenCV's
+// projectPoints mirrors it into the image instead; libcam flags it).
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <type_traits>
+
+#include "libcam/lens/lens_model.hpp"
+
+namespace libcam {
+
+template <class Scalar>
+struct PinholeLens {
+    static constexpr LensType type = LensType::Pinhole;
+    static constexpr int num_coefficients = 0;
+    using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
+    using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
+    using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
+
+    // Returns false (and leaves m untouched) for z <= 0. When d_m_d_point is a
+    // Jacobian23 pointer it receives dm/d(x, y, z); passing nothing costs nothing.
+    template <class JacobianPtr = std::nullptr_t>
+    static bool project(const Vec3T& point, Vec2T& m, JacobianPtr d_m_d_point = nullptr) {
+        if (!(point.z() > Scalar(0))) return false;
+        const Scalar inv_z = Scalar(1) / point.z();
+        m = Vec2T(point.x() * inv_z, point.y() * inv_z);
+        if constexpr (!std::is_same_v<JacobianPtr, std::nullptr_t>) {
+            *d_m_d_point << inv_z, Scalar(0), -m.x() * inv_z,  //
+                Scalar(0), inv_z, -m.y() * inv_z;
+        }
+        return true;
+    }
+
+    // Every normalised point has a ray; its z is 1.
+    static bool unproject(const Vec2T& m, Vec3T& ray) {
+        ray = Vec3T(m.x(), m.y(), Scalar(1));
+        return true;
+    }
+};
+
+}  // namespace libcam

@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages libcam needs, only those that are missing.
+# Idempotent: a second run installs nothing and exits 0.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev          # core math
+  libopencv-dev          # reference + OpenCV YAML/XML files
+  libmrcal-dev mrcal python3-mrcal   # reference + .cameramodel files
+  catch2                 # tests (2.13)
+  libcli11-dev           # command-line parsing
+  nlohmann-json3-dev     # JSON camera files
+  libbenchmark-dev       # micro-benchmarks
+  libceres-dev           # model fitting
+  libboost-dev           # multiprecision reference
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,58 @@
+#include "camera_options.hpp"
+
+#include "libcam/convert/fov_convert.hpp"
+#include "parse.hpp"
+
+namespace libcam::cli {
+
+void CameraOptions::add_to(CLI::App& command) {
+    auto* from_option = command.add_option("--from", from, "Camera file (.json, .yaml/.yml/.xml, .cameramodel)");
+    std::vector<CLI::Option*> fov_flags = {
+        command.add_option("--fov", fov, "Field of view in degrees, in (0, 180)"),
+        command.add_option("--fov-axis", fov_axis,
+                           "Axis the fov spans: horizontal, vertical, diagonal, or both (the seed's: the same "
+                           "angle on each axis, each normalised by its own side)")
+            ->capture_default_str(),
+        command.add_option("--size", size, "Image size WIDTHxHEIGHT in pixels"),
+        command.add_option("--eye", eye, "Eye position x,y,z")->capture_default_str(),
+        command.add_option("--target", target, "Point looked at x,y,z"),
+        command.add_option("--gaze", gaze, "Gaze direction x,y,z (instead of --target; default 0,0,-1)"),
+        command.add_option("--up", up, "Up vector x,y,z")->capture_default_str(),
+    };
+    for (CLI::Option* flag : fov_flags) from_option->excludes(flag);
+    fov_flags[4]->excludes(fov_flags[5]);
+    command.add_option("--pixel-origin", pixel_origin,
+                       "How pixel rows are counted: bottom-left (the seed's) or top-left (OpenCV's)")
+        ->capture_default_str();
+}
+
+PixelOrigin CameraOptions::origin() const {
+    if (pixel_origin != "bottom-left" && pixel_origin != "top-left") {
+        throw UsageError("--pixel-origin: expected bottom-left or top-left, got '" + pixel_origin + "'");
+    }
+    return pixel_origin_from_string(pixel_origin);
+}
+
+CameraFile CameraOptions::camera() const {
+    if (!from.empty()) return read_camera_file(from);
+    if (fov.empty()) throw UsageError("--fov: required (or give a camera file with --from)");
+    if (size.empty()) throw UsageError("--size: required (or give a camera file with --from)");
+    if (fov_axis != "horizontal" && fov_axis != "vertical" && fov_axis != "diagonal" && fov_axis != "both") {
+        throw UsageError("--fov-axis: expected horizontal, vertical, diagonal or both, got '" + fov_axis + "'");
+    }
+    FovCamera fov_camera;
+    fov_camera.fov_deg = parse_number("--fov", fov);
+    fov_camera.fov_axis = fov_axis_from_string(fov_axis);
+    fov_camera.size = parse_size("--size", size);
+    fov_camera.eye = parse_vec3("--eye", eye);
+    fov_camera.up = parse_vec3("--up", up);
+    if (!target.empty()) {
+        fov_camera = FovCamera::look_at(fov_camera.eye, parse_vec3("--target", target), fov_camera.up,
+                                        fov_camera.fov_deg, fov_camera.fov_axis, fov_camera.size);
+    } else if (!gaze.empty()) {
+        fov_camera.gaze = parse_vec3("--gaze", gaze);
+    }
+    return {to_camera(fov_camera), fov_camera};
+}
+
+}  // namespace libcam::cli

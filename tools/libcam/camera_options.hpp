@@ -1,0 +1,32 @@
+#pragma once
+// The camera flags shared by `convert` and `rays`: a FOV camera given by flags, or a
+// camera file given by --from.
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+#include "libcam/io/camera_file.hpp"
+
+namespace libcam::cli {
+
+struct CameraOptions {
+    std::string from;
+    std::string fov;
+    std::string fov_axis = "both";
+    std::string size;
+    std::string eye = "0,0,0";
+    std::string target;
+    std::string gaze;
+    std::string up = "0,1,0";
+    std::string pixel_origin = "top-left";
+
+    void add_to(CLI::App& command);
+
+    // The camera the flags describe; throws UsageError for malformed flags and
+    // libcam::Error for values out of range or unreadable files.
+    CameraFile camera() const;
+    PixelOrigin origin() const;
+};
+
+}  // namespace libcam::cli

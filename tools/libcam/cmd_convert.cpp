@@ -1,0 +1,55 @@
+// libcam convert: a FOV camera (flags) or a camera file, written in any format.
+
+#include "camera_options.hpp"
+#include "commands.hpp"
+#include "libcam/error.hpp"
+#include "parse.hpp"
+
+namespace libcam::cli {
+
+Runner add_convert(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "convert", "Convert a FOV camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file");
+    struct Flags {
+        CameraOptions camera;
+        std::string to = "json";
+        std::string output;
+        std::string near = "0.1";
+        std::string far = "1000";
+        std::string depth_range = "minus-one-to-one";
+    };
+    auto flags = std::make_shared<Flags>();
+    flags->camera.add_to(*command);
+    command->add_option("--to", flags->to, "Output format: json, opencv-yaml, opencv-xml, cameramodel, gl")
+        ->capture_default_str();
+    command->add_option("-o,--output", flags->output, "Output file (written atomically); default stdout");
+    command->add_option("--near", flags->near, "gl: near plane distance")->capture_default_str();
+    command->add_option("--far", flags->far, "gl: far plane distance")->capture_default_str();
+    command->add_option("--depth-range", flags->depth_range,
+                        "gl: NDC depth range, minus-one-to-one (OpenGL) or zero-to-one (Direct3D/Vulkan)")
+        ->capture_default_str();
+
+    return [flags] {
+        const CameraFormat format = [&] {
+            try {
+                return camera_format_from_string(flags->to);
+            } catch (const InvalidArgument& error) {
+                throw UsageError(std::string("--to: ") + error.what());
+            }
+        }();
+        if (flags->depth_range != "minus-one-to-one" && flags->depth_range != "zero-to-one") {
+            throw UsageError("--depth-range: expected minus-one-to-one or zero-to-one, got '" + flags->depth_range + "'");
+        }
+        WriteOptions options;
+        options.gl_near = parse_number("--near", flags->near);
+        options.gl_far = parse_number("--far", flags->far);
+        options.gl_depth_range =
+            flags->depth_range == "zero-to-one" ? DepthRange::ZeroToOne : DepthRange::MinusOneToOne;
+        const CameraFile file = flags->camera.camera();
+        options.fov_camera = file.fov_camera;
+        emit(format_camera(file.camera, format, options), flags->output);
+        return 0;
+    };
+}
+
+}  // namespace libcam::cli

@@ -1,0 +1,112 @@
+// libcam rays: the ray through each pixel, by the calibrated path R^T K^-1 [x, y, 1]
+// and, for a FOV camera, by the seed's formula, with the angle between them.
+
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "camera_options.hpp"
+#include "commands.hpp"
+#include "libcam/convert/fov_convert.hpp"
+#include "parse.hpp"
+
+namespace libcam::cli {
+
+namespace {
+
+struct RayRow {
+    Vec2 pixel;  // as the user gave it
+    Ray ray;
+    std::optional<Vec3> seed_direction;  // unit
+};
+
+// The FOV camera to run the seed's formula on: the file's own, or any axis on which the
+// calibrated camera is one.
+std::optional<FovCamera> seed_camera(const CameraFile& file) {
+    if (file.fov_camera) return file.fov_camera;
+    const FovDescription description = describe_fov(file.camera);
+    if (!description.is_fov_camera()) return std::nullopt;
+    return to_fov_camera(file.camera, description.fov_axes.front());
+}
+
+nlohmann::json vec_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+std::string format_json(const std::vector<RayRow>& rows) {
+    nlohmann::json out;
+    out["rays"] = nlohmann::json::array();
+    for (const RayRow& row : rows) {
+        nlohmann::json entry;
+        entry["pixel"] = {row.pixel.x(), row.pixel.y()};
+        entry["valid"] = row.ray.valid;
+        entry["origin"] = vec_json(row.ray.origin);
+        entry["direction"] = row.ray.valid ? vec_json(row.ray.direction) : nlohmann::json(nullptr);
+        entry["direction_seed"] = row.seed_direction ? vec_json(*row.seed_direction) : nlohmann::json(nullptr);
+        entry["angle_rad"] = row.ray.valid && row.seed_direction
+                                 ? nlohmann::json(angle_between(row.ray.direction, *row.seed_direction))
+                                 : nlohmann::json(nullptr);
+        out["rays"].push_back(entry);
+    }
+    return out.dump(2) + "\n";
+}
+
+std::string format_table(const std::vector<RayRow>& rows) {
+    std::ostringstream out;
+    out << std::setprecision(10);
+    auto vec = [&](const Vec3& v) {
+        std::ostringstream s;
+        s << std::setprecision(10) << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+        return s.str();
+    };
+    for (const RayRow& row : rows) {
+        out << "pixel (" << row.pixel.x() << ", " << row.pixel.y() << ")\n";
+        out << "  origin          " << vec(row.ray.origin) << "\n";
+        out << "  direction       " << (row.ray.valid ? vec(row.ray.direction) : "none (outside the lens model's domain)")
+            << "\n";
+        if (row.seed_direction) {
+            out << "  direction_seed  " << vec(*row.seed_direction) << "\n";
+            if (row.ray.valid) out << "  angle_rad       " << angle_between(row.ray.direction, *row.seed_direction) << "\n";
+        }
+    }
+    out << "directions are unit vectors in world coordinates; direction = R^T K^-1 [x, y, 1], "
+           "direction_seed = alpha u + beta v + w (the seed's formula)\n";
+    return out.str();
+}
+
+}  // namespace
+
+Runner add_rays(CLI::App& app) {
+    CLI::App* command = app.add_subcommand("rays", "World rays through pixels, by K^-1 and by the seed's formula");
+    struct Flags {
+        CameraOptions camera;
+        std::vector<std::string> pixels;
+        bool json = false;
+    };
+    auto flags = std::make_shared<Flags>();
+    flags->camera.add_to(*command);
+    command
+        ->add_option("--pixels", flags->pixels,
+                     "Pixels x,y (centres at integers; the image edges are at -0.5 and W-0.5)")
+        ->required()
+        ->expected(1, -1);
+    command->add_flag("--json", flags->json, "Print JSON");
+
+    return [flags] {
+        std::vector<Vec2> pixels;
+        for (const std::string& text : flags->pixels) pixels.push_back(parse_vec2("--pixels", text));
+        const PixelOrigin origin = flags->camera.origin();
+        const CameraFile file = flags->camera.camera();
+        const std::optional<FovCamera> fov_camera = seed_camera(file);
+
+        std::vector<RayRow> rows;
+        for (const Vec2& pixel : pixels) {
+            RayRow row{pixel, file.camera.ray(opencv_pixel(pixel, origin, file.camera.size)), std::nullopt};
+            if (fov_camera) row.seed_direction = fov_camera->seed_ray(pixel, origin).normalized();
+            rows.push_back(row);
+        }
+        emit(flags->json ? format_json(rows) : format_table(rows), "");
+        return 0;
+    };
+}
+
+}  // namespace libcam::cli

@@ -1,0 +1,20 @@
+#pragma once
+// The subcommands of the `libcam` program. Each registers its flags on the app and
+// returns the function that runs it; the runner returns the exit code.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+
+namespace libcam::cli {
+
+using Runner = std::function<int()>;
+
+Runner add_convert(CLI::App& app);
+Runner add_rays(CLI::App& app);
+Runner add_demo(CLI::App& app);
+
+// Writes text to stdout, or atomically to `path` when it is not empty.
+void emit(const std::string& text, const std::string& path);
+
+}  // namespace libcam::cli
