@@ -111,18 +111,4 @@ Vec2 FovCamera::half_tangents() const {
     return {tangent, tangent};
 }
 
-Vec3 FovCamera::seed_ray(const Vec2& pixel, PixelOrigin origin) const {
-    // The seed counts rows upward; a top-left pixel is flipped into its convention.
-    const Vec2 seed_pixel = origin == PixelOrigin::BottomLeft ? pixel : Vec2(pixel.x(), flip_row(pixel.y(), size));
-    const double width = static_cast<double>(size.width);
-    const double height = static_cast<double>(size.height);
-    return field_ray((2.0 * seed_pixel.x() - width + 1.0) / width, (2.0 * seed_pixel.y() - height + 1.0) / height);
-}
-
-Vec3 FovCamera::field_ray(double sx, double sy) const {
-    const Vec2 tangents = half_tangents();
-    const Basis b = basis(Handedness::Left);
-    return tangents.x() * sx * b.u + tangents.y() * sy * b.v + b.w;
-}
-
 }  // namespace libcam

@@ -55,6 +55,26 @@ struct Basis {
     Vec3 gaze() const { return handedness == Handedness::Left ? w : Vec3(-w); }
 };
 
+// The seed's formula with everything per camera computed once, for generating many rays.
+struct SeedRayFormula {
+    Basis basis;      // left-handed: w along the gaze
+    Vec2 tangents;    // (tan_x, tan_y)
+    ImageSize size;
+
+    // d = alpha u + beta v + w_gaze through pixel (x, y), not normalised.
+    Vec3 ray(const Vec2& pixel, PixelOrigin origin) const {
+        const double width = static_cast<double>(size.width);
+        const double height = static_cast<double>(size.height);
+        const double y = origin == PixelOrigin::BottomLeft ? pixel.y() : flip_row(pixel.y(), size);
+        return field_ray((2.0 * pixel.x() - width + 1.0) / width, (2.0 * y - height + 1.0) / height);
+    }
+
+    // (sx, sy): fractions of the half field of view, y up.
+    Vec3 field_ray(double sx, double sy) const {
+        return (tangents.x() * sx) * basis.u + (tangents.y() * sy) * basis.v + basis.w;
+    }
+};
+
 struct FovCamera {
     Vec3 eye = Vec3::Zero();
     Vec3 gaze = Vec3(0, 0, -1);  // any positive length
@@ -76,12 +96,16 @@ struct FovCamera {
     // (tan_x, tan_y): tangents of half the field of view across the width and height.
     Vec2 half_tangents() const;
 
+    SeedRayFormula seed_formula() const { return {basis(Handedness::Left), half_tangents(), size}; }
+
     // The seed's ray d = alpha u + beta v + w_gaze through pixel (x, y), not normalised.
-    Vec3 seed_ray(const Vec2& pixel, PixelOrigin origin = PixelOrigin::BottomLeft) const;
+    Vec3 seed_ray(const Vec2& pixel, PixelOrigin origin = PixelOrigin::BottomLeft) const {
+        return seed_formula().ray(pixel, origin);
+    }
 
     // The ray through a point of the field of view given as fractions (sx, sy) of its
     // half-extent, y up: (-1, -1) is the lower-left corner, (0, 1) the top centre.
-    Vec3 field_ray(double sx, double sy) const;
+    Vec3 field_ray(double sx, double sy) const { return seed_formula().field_ray(sx, sy); }
 };
 
 // tan(angle/2) for an angle in degrees in (0, 180), accurate near 180 too.
