@@ -83,16 +83,25 @@ Basis FovCamera::basis(Handedness handedness) const {
     return {u, v, handedness == Handedness::Left ? along_gaze : Vec3(-along_gaze), handedness};
 }
 
+// Both conversions work in long double (64-bit significand) and round once at the
+// end, so exact cases stay exact (tan 45 deg = 1) and the degree-to-radian factor adds
+// no error of its own.
+namespace {
+constexpr long double kRadiansPerDegree = 3.141592653589793238462643383279502884L / 180.0L;
+}
+
 double tan_half_angle_deg(double angle_deg) {
-    // Near 180 degrees, tan(angle/2) = 1 / tan((180 - angle)/2), and 180 - angle is
-    // exact there (Sterbenz), so the small complement keeps its digits.
-    if (angle_deg > 90.0) return 1.0 / std::tan(radians_from_degrees(0.5 * (180.0 - angle_deg)));
-    return std::tan(radians_from_degrees(0.5 * angle_deg));
+    const long double half = 0.5L * static_cast<long double>(angle_deg);
+    // Near 180 degrees, tan(angle/2) = 1 / tan(90 - angle/2), and 90 - angle/2 is exact,
+    // so the small complement keeps its digits.
+    if (half > 45.0L) return static_cast<double>(1.0L / std::tan((90.0L - half) * kRadiansPerDegree));
+    return static_cast<double>(std::tan(half * kRadiansPerDegree));
 }
 
 double angle_deg_from_half_tangent(double tangent) {
-    if (tangent > 1.0) return 180.0 - 2.0 * degrees_from_radians(std::atan(1.0 / tangent));
-    return 2.0 * degrees_from_radians(std::atan(tangent));
+    const long double t = tangent;
+    if (t > 1.0L) return static_cast<double>(180.0L - 2.0L * std::atan(1.0L / t) / kRadiansPerDegree);
+    return static_cast<double>(2.0L * std::atan(t) / kRadiansPerDegree);
 }
 
 Vec2 FovCamera::half_tangents() const {

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -101,7 +102,8 @@ CameramodelPtr parse_with_mrcal(std::string_view text, const std::string& source
 
 std::string number_list(const double* values, int count) {
     std::string out = "[";
-    for (int i = 0; i < count; ++i) out += (i ? ", " : " ") + format_number(values[i]);
+    // + 0.0 prints a zero as 0, not -0.
+    for (int i = 0; i < count; ++i) out += (i ? ", " : " ") + format_number(values[i] + 0.0);
     return out + " ]";
 }
 

@@ -8,28 +8,54 @@
 namespace libcam {
 
 using nlohmann::json;
+using ordered = nlohmann::ordered_json;  // output keeps the documented key order
 
 namespace {
 
 // Tolerance for derived keys that must agree with the primary ones (rvec with R, P with K[R|t]).
 constexpr double kConsistencyTolerance = 1e-9;
 
+// x + 0.0 turns -0 into +0, so files do not show "-0.0" for zero entries.
+double tidy(double x) { return x + 0.0; }
+
 template <class Matrix>
-json matrix_json(const Matrix& m) {
-    json rows = json::array();
+ordered matrix_json(const Matrix& m) {
+    ordered rows = ordered::array();
     for (Eigen::Index r = 0; r < m.rows(); ++r) {
-        json row = json::array();
-        for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(m(r, c));
+        ordered row = ordered::array();
+        for (Eigen::Index c = 0; c < m.cols(); ++c) row.push_back(tidy(m(r, c)));
         rows.push_back(row);
     }
     return rows;
 }
 
 template <class Vector>
-json vector_json(const Vector& v) {
-    json values = json::array();
-    for (Eigen::Index i = 0; i < v.size(); ++i) values.push_back(v(i));
+ordered vector_json(const Vector& v) {
+    ordered values = ordered::array();
+    for (Eigen::Index i = 0; i < v.size(); ++i) values.push_back(tidy(v(i)));
     return values;
+}
+
+// Top-level keys one per line, matrices one row per line, everything else compact:
+// readable, and still plain JSON.
+std::string layout(const ordered& object) {
+    std::string out = "{\n";
+    std::size_t index = 0;
+    for (const auto& [key, value] : object.items()) {
+        out += "  " + ordered(key).dump() + ": ";
+        const bool matrix = value.is_array() && !value.empty() && value.front().is_array();
+        if (matrix) {
+            out += "[\n";
+            for (std::size_t r = 0; r < value.size(); ++r) {
+                out += "    " + value[r].dump(-1, ' ', false) + (r + 1 < value.size() ? ",\n" : "\n");
+            }
+            out += "  ]";
+        } else {
+            out += value.dump();
+        }
+        out += ++index < object.size() ? ",\n" : "\n";
+    }
+    return out + "}\n";
 }
 
 // Reading: every accessor names the file and the key in its error.
@@ -199,11 +225,57 @@ CameraFile read_gl(const Reader& in, const std::string& source) {
     return {camera, std::nullopt};
 }
 
+// The FOV camera a file records with "fov_axis". Its eye, gaze, up and fov are taken
+// from the file when they agree with K, R, t (so JSON -> JSON is exact), refused when
+// they do not.
+FovCamera read_fov_camera(const Reader& in, const Camera& camera, const std::string& source) {
+    FovAxis axis{};
+    validated(source, [&] { axis = fov_axis_from_string(in.string("fov_axis")); });
+    FovCamera fov;
+    try {
+        fov = to_fov_camera(camera, axis);
+    } catch (const NotRepresentable& error) {
+        in.fail("fov_axis", error.what());
+    }
+    const Basis basis = fov.basis();
+    if (in.has("eye")) {
+        const Vec3 eye = in.vector("eye", 3);
+        if ((eye - fov.eye).norm() > kConsistencyTolerance * std::max(1.0, eye.norm())) {
+            in.fail("eye", "disagrees with the camera centre -R^T t");
+        }
+        fov.eye = eye;
+    }
+    for (const char* key : {"gaze", "up"}) {
+        if (!in.has(key)) continue;
+        FovCamera candidate = fov;
+        (key == std::string("gaze") ? candidate.gaze : candidate.up) = in.vector(key, 3);
+        validated(source, [&] { candidate.validate(); });
+        const Basis b = candidate.basis();
+        if ((b.u - basis.u).norm() > kConsistencyTolerance || (b.v - basis.v).norm() > kConsistencyTolerance) {
+            in.fail(key, "disagrees with R");
+        }
+        fov = candidate;
+    }
+    if (in.has("fov_deg") && in.at("fov_deg").is_object()) {
+        const json& angles = in.at("fov_deg");
+        const char* name = axis == FovAxis::Both ? "horizontal" : to_string(axis).data();
+        if (angles.contains(name)) {
+            const double stored = in.number(angles.at(name), std::string("fov_deg.") + name);
+            if (std::abs(stored - fov.fov_deg) > kConsistencyTolerance * fov.fov_deg) {
+                in.fail("fov_deg", std::string(name) + " " + format_number(stored) + " disagrees with K (" +
+                                       format_number(fov.fov_deg) + ")");
+            }
+            fov.fov_deg = stored;
+        }
+    }
+    return fov;
+}
+
 }  // namespace
 
 std::string format_json(const Camera& camera, const std::optional<FovCamera>& fov_camera) {
     const FovDescription fov = describe_fov(camera);
-    json out;
+    ordered out;
     out["model"] = lens_info(camera.lens.type).name;
     out["image_size"] = {camera.size.width, camera.size.height};
     out["K"] = matrix_json(camera.intrinsics.K());
@@ -213,26 +285,28 @@ std::string format_json(const Camera& camera, const std::optional<FovCamera>& fo
     out["rvec"] = vector_json(camera.pose.rvec());
     out["P"] = matrix_json(camera.P());
     out["camera_center"] = vector_json(fov.eye);
-    out["fov_deg"] = {{"horizontal", fov.fov_deg.horizontal},
-                      {"vertical", fov.fov_deg.vertical},
-                      {"diagonal", fov.fov_deg.diagonal}};
-    out["frustum"] = {{"left", fov.frustum.left},
-                      {"right", fov.frustum.right},
-                      {"bottom", fov.frustum.bottom},
-                      {"top", fov.frustum.top}};
-    out["eye"] = vector_json(fov.eye);
-    out["gaze"] = vector_json(fov.gaze);
-    out["up"] = vector_json(fov.up);
+    out["fov_deg"] = ordered{{"horizontal", fov.fov_deg.horizontal},
+                             {"vertical", fov.fov_deg.vertical},
+                             {"diagonal", fov.fov_deg.diagonal}};
+    out["frustum"] = ordered{{"left", tidy(fov.frustum.left)},
+                             {"right", tidy(fov.frustum.right)},
+                             {"bottom", tidy(fov.frustum.bottom)},
+                             {"top", tidy(fov.frustum.top)}};
+    // A FOV camera's own eye and up as the user gave them (the centre -R^T t carries
+    // the rounding of R and t); otherwise the camera's centre and its own up.
+    out["eye"] = vector_json(fov_camera ? fov_camera->eye : fov.eye);
+    out["gaze"] = vector_json(fov_camera ? Vec3(fov_camera->gaze.normalized()) : fov.gaze);
+    out["up"] = vector_json(fov_camera ? fov_camera->up : fov.up);
     if (fov_camera) out["fov_axis"] = to_string(fov_camera->fov_axis);
-    json axes = json::array();
+    ordered axes = ordered::array();
     for (FovAxis axis : fov.fov_axes) axes.push_back(to_string(axis));
     out["fov_axes"] = axes;
     out["not_fov_because"] = fov.deviations;
-    return out.dump(2) + "\n";
+    return layout(out);
 }
 
 std::string format_gl_json(const GlCamera& gl, const ImageSize& size) {
-    json out;
+    ordered out;
     out["format"] = "opengl";
     out["image_size"] = {size.width, size.height};
     out["projection"] = matrix_json(gl.projection);
@@ -242,7 +316,7 @@ std::string format_gl_json(const GlCamera& gl, const ImageSize& size) {
     out["far"] = gl.far;
     out["depth_range"] = gl.depth_range == DepthRange::ZeroToOne ? "zero-to-one" : "minus-one-to-one";
     out["layout"] = "row-major: upload with transpose = GL_TRUE; window origin bottom-left, pixel centres at +0.5";
-    return out.dump(2) + "\n";
+    return layout(out);
 }
 
 CameraFile parse_json_camera(std::string_view text, const std::string& source) {
@@ -258,15 +332,7 @@ CameraFile parse_json_camera(std::string_view text, const std::string& source) {
     if (in.has("projection")) return read_gl(in, source);
 
     CameraFile file{read_calibrated(in, source), std::nullopt};
-    if (in.has("fov_axis")) {
-        FovAxis axis{};
-        validated(source, [&] { axis = fov_axis_from_string(in.string("fov_axis")); });
-        try {
-            file.fov_camera = to_fov_camera(file.camera, axis);
-        } catch (const NotRepresentable& error) {
-            in.fail("fov_axis", error.what());
-        }
-    }
+    if (in.has("fov_axis")) file.fov_camera = read_fov_camera(in, file.camera, source);
     return file;
 }
 

@@ -11,7 +11,8 @@
 //   "camera_center": [3],
 //   "fov_deg": {"horizontal": h, "vertical": v, "diagonal": d},
 //   "frustum": {"left", "right", "bottom", "top"}   at z = 1, y up
-//   "eye", "gaze", "up": [3]            the FOV camera's (up: the camera's own)
+//   "eye", "gaze", "up": [3]            the FOV camera's as given (gaze normalised); for
+//                                       another camera its centre, axis and own up
 //   "fov_axis": "both",                 when written from a FOV camera
 //   "fov_axes": [...], "not_fov_because": [...]
 // }
