@@ -30,7 +30,8 @@ std::optional<FovCamera> seed_camera(const CameraFile& file) {
     return to_fov_camera(file.camera, description.fov_axes.front());
 }
 
-nlohmann::json vec_json(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+// + 0.0 prints zeros as 0, not -0.
+nlohmann::json vec_json(const Vec3& v) { return {v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}; }
 
 std::string format_json(const std::vector<RayRow>& rows) {
     nlohmann::json out;
@@ -55,7 +56,7 @@ std::string format_table(const std::vector<RayRow>& rows) {
     out << std::setprecision(10);
     auto vec = [&](const Vec3& v) {
         std::ostringstream s;
-        s << std::setprecision(10) << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+        s << std::setprecision(10) << "(" << v.x() + 0.0 << ", " << v.y() + 0.0 << ", " << v.z() + 0.0 << ")";
         return s.str();
     };
     for (const RayRow& row : rows) {
