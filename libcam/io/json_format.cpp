@@ -196,6 +196,69 @@ Camera read_calibrated(const Reader& in, const std::string& source) {
     return camera;
 }
 
+// Walks the text again with nlohmann's SAX interface to find the key path at which
+// parsing stopped, e.g. "t"[1]: , so an overflowing number names its key like every
+// other bad value does. Empty when the error is outside any key.
+class KeyPathSax : public nlohmann::json_sax<json> {
+public:
+    std::string path() const {
+        std::string out;
+        for (const Frame& frame : frames_) {
+            if (frame.in_array) {
+                out += "[" + std::to_string(frame.index) + "]";
+            } else if (!frame.key.empty()) {
+                out += out.empty() ? "\"" + frame.key + "\"" : "." + frame.key;
+            }
+        }
+        return out.empty() ? "" : out + ": ";
+    }
+
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override { return open(false); }
+    bool key(string_t& name) override {
+        frames_.back().key = name;
+        return true;
+    }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return open(true); }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+private:
+    struct Frame {
+        bool in_array = false;
+        long index = -1;
+        std::string key;
+    };
+    // A value (or a container) starts: an array moves to its next element.
+    bool value() {
+        if (!frames_.empty() && frames_.back().in_array) ++frames_.back().index;
+        return true;
+    }
+    bool open(bool array) {
+        value();
+        frames_.push_back({array, -1, {}});
+        return true;
+    }
+    bool close() {
+        frames_.pop_back();
+        return true;
+    }
+    std::vector<Frame> frames_;
+};
+
+std::string locate_json_error(std::string_view text) {
+    KeyPathSax sax;
+    json::sax_parse(text.begin(), text.end(), &sax, nlohmann::detail::input_format_t::json, false);
+    return sax.path();
+}
+
 CameraFile read_gl(const Reader& in, const std::string& source) {
     const Eigen::VectorXd viewport = in.vector("viewport", 4);
     if (viewport(0) != 0.0 || viewport(1) != 0.0) {
@@ -322,10 +385,11 @@ std::string format_gl_json(const GlCamera& gl, const ImageSize& size) {
 CameraFile parse_json_camera(std::string_view text, const std::string& source) {
     json root;
     try {
-        // Depth-limited by nlohmann's own recursion; comments and trailing data are errors.
+        // Comments and trailing data are errors.
         root = json::parse(text.begin(), text.end());
-    } catch (const json::parse_error& error) {
-        throw FileError(source + ": not valid JSON: " + error.what());
+    } catch (const json::exception& error) {
+        // Parse errors, and numbers that overflow a double (1e999): name where.
+        throw FileError(source + ": " + locate_json_error(text) + error.what());
     }
     if (!root.is_object()) throw FileError(source + ": expected a JSON object at the top level");
     const Reader in(root, source);
