@@ -51,7 +51,11 @@ FovCamera FovCamera::look_at(const Vec3& eye, const Vec3& target, const Vec3& up
                               ", " + format_number(eye.z()) + "), so there is no gaze direction");
     }
     // When eye and target are close, target - eye is exact (Sterbenz), so no digits are lost here.
-    return FovCamera{eye, target - eye, up, fov_deg, fov_axis, size};
+    const Vec3 gaze = target - eye;
+    if (!gaze.allFinite()) {
+        throw InvalidArgument("target: target - eye overflows (eye and target more than ~1.8e308 apart)");
+    }
+    return FovCamera{eye, gaze, up, fov_deg, fov_axis, size};
 }
 
 void FovCamera::validate() const {
@@ -77,8 +81,9 @@ Basis FovCamera::basis(Handedness handedness) const {
     // u = gaze x up for both handednesses (the seed's w x up with w along the gaze,
     // or up x w with w against it). The accurate cross product of the raw inputs keeps
     // u right to a few ulps even when up is within a small angle of the gaze.
-    const Vec3 u = accurate_cross(gaze, up).normalized();
-    const Vec3 along_gaze = gaze.normalized();
+    const Vec3 gaze_scaled = scaled_to_unit_range(gaze);
+    const Vec3 u = accurate_cross(gaze_scaled, scaled_to_unit_range(up)).normalized();
+    const Vec3 along_gaze = gaze_scaled.normalized();
     const Vec3 v = accurate_cross(u, along_gaze);
     return {u, v, handedness == Handedness::Left ? along_gaze : Vec3(-along_gaze), handedness};
 }

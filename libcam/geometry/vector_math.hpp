@@ -28,10 +28,22 @@ inline Vec3 accurate_cross(const Vec3& a, const Vec3& b) {
             difference_of_products(a.x(), b.y(), a.y(), b.x())};
 }
 
+// v times a power of two (exact) that brings its largest component into [1, 2), so
+// products of tiny (1e-320) or huge (1e300) vectors neither underflow nor overflow.
+// The zero vector stays zero.
+inline Vec3 scaled_to_unit_range(const Vec3& v) {
+    const double largest = v.cwiseAbs().maxCoeff();
+    if (largest == 0.0 || !std::isfinite(largest)) return v;
+    const int exponent = std::ilogb(largest);
+    return {std::ldexp(v.x(), -exponent), std::ldexp(v.y(), -exponent), std::ldexp(v.z(), -exponent)};
+}
+
 // Angle between two vectors in radians, accurate for tiny and near-pi angles
-// (acos of the dot product loses half the digits near 0).
+// (acos of the dot product loses half the digits near 0), at any magnitude.
 inline double angle_between(const Vec3& a, const Vec3& b) {
-    return std::atan2(accurate_cross(a, b).norm(), a.dot(b));
+    const Vec3 sa = scaled_to_unit_range(a);
+    const Vec3 sb = scaled_to_unit_range(b);
+    return std::atan2(accurate_cross(sa, sb).norm(), sa.dot(sb));
 }
 
 inline double degrees_from_radians(double angle) { return angle * (180.0 / std::numbers::pi); }
