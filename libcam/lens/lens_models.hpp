@@ -28,6 +28,21 @@ namespace libcam {
 LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_CHECK)
 #undef LIBCAM_LENS_CHECK
 
+// The same model in another scalar type: LensInScalar<OpenCvLens<double, 8>, long double>
+// is OpenCvLens<long double, 8>.
+template <class Model, class Scalar>
+struct RebindLens;
+template <template <class> class ModelTemplate, class Old, class Scalar>
+struct RebindLens<ModelTemplate<Old>, Scalar> {
+    using type = ModelTemplate<Scalar>;
+};
+template <class Old, int N, class Scalar>
+struct RebindLens<OpenCvLens<Old, N>, Scalar> {
+    using type = OpenCvLens<Scalar, N>;
+};
+template <class Model, class Scalar>
+using LensInScalar = typename RebindLens<Model, Scalar>::type;
+
 // Calls visitor.template operator()<Model>() with the implementation of `type` in
 // Scalar, e.g.  visit_lens_model<double>(lens.type, [&]<class Model>() { ... });
 template <class Scalar, class Visitor>
