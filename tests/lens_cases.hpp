@@ -42,7 +42,7 @@ inline std::vector<LensCase> lens_cases() {
     std::vector<LensCase> cases{
         {"PINHOLE", lens_camera(LensType::Pinhole, {})},
         {"OPENCV4 mild", lens_camera(LensType::Opencv4, {-0.05, 0.01, 2e-4, -3e-4})},
-        {"OPENCV4 strong", lens_camera(LensType::Opencv4, {-0.32, 0.09, 1.5e-3, -1e-3})},
+        {"OPENCV4 strong", lens_camera(LensType::Opencv4, {-0.45, 0.05, 1.5e-3, -1e-3})},
         {"OPENCV5 mild", lens_camera(LensType::Opencv5, {0.03, -0.01, -1e-4, 2e-4, 0.002})},
         {"OPENCV5 strong", lens_camera(LensType::Opencv5, {-0.28, 0.07, 8e-4, -6e-4, -0.008})},
         {"OPENCV8 mild", lens_camera(LensType::Opencv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005})},

@@ -43,7 +43,14 @@ bool solve_radial(const Parameters& lens, Scalar target, Scalar& r) {
     using std::abs;
     constexpr int kMaxIterations = 200;
     Scalar low(0), high = lens.valid_radius, slope(0);
-    if (!(high < std::numeric_limits<Scalar>::infinity())) {
+    if (high < std::numeric_limits<Scalar>::infinity()) {
+        if (!(Model::radial_distortion(lens, high, slope) > target)) {
+            // Past the radial part's maximum: only the tangential terms can still bring
+            // the pixel in. Start step 2 well inside the fold, where its Jacobian is sound.
+            r = high * Scalar(0.9);
+            return true;
+        }
+    } else {
         high = std::max(target, Scalar(1));
         for (int i = 0; Model::radial_distortion(lens, high, slope) < target; ++i) {
             if (i == 64) return false;
