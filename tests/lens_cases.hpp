@@ -3,10 +3,13 @@
 // the real wide lens of issue 3. Inputs only; expected values come from OpenCV, mrcal or
 // formulas worked by hand in the tests.
 
+#include <opencv2/calib3d.hpp>
 #include <string>
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/interop/opencv.hpp"
+#include "libcam/lens/lens_models.hpp"
 
 namespace libcam::test {
 
@@ -75,6 +78,35 @@ inline std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) {
         }
     }
     return pixels;
+}
+
+// Which reference library has a model (by hand: OpenCV lacks mrcal's three, mrcal lacks
+// FISHEYE and the tilted OPENCV14).
+inline bool in_opencv(LensType type) {
+    return type != LensType::Stereographic && type != LensType::Lonlat && type != LensType::Latlon;
+}
+inline bool in_mrcal(LensType type) { return type != LensType::Fisheye && type != LensType::Opencv14; }
+
+// Pixels by cv::projectPoints, or cv::fisheye::projectPoints for FISHEYE.
+inline std::vector<Vec2> opencv_project(const Camera& camera, const std::vector<Vec3>& points) {
+    std::vector<cv::Point3d> object;
+    for (const Vec3& p : points) object.emplace_back(p.x(), p.y(), p.z());
+    std::vector<cv::Point2d> image;
+    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), dist = opencv_distortion(camera.lens);
+    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
+    if (camera.lens.type == LensType::Fisheye) {
+        cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
+    } else {
+        cv::projectPoints(object, zero, zero, K, dist, image);
+    }
+    std::vector<Vec2> out;
+    for (const cv::Point2d& q : image) out.emplace_back(q.x, q.y);
+    return out;
+}
+
+// The lens's valid_radius (lens/model_support.hpp), an input the tests sample within.
+inline double valid_radius_of(const Lens& lens) {
+    return visit_lens_model<double>(lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
 }
 
 }  // namespace libcam::test

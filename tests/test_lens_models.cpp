@@ -30,12 +30,6 @@ bool mrcal_has(LensType type) {
     return mrcal_lensmodel_from_name(&model, name.c_str());
 }
 
-bool opencv_has(LensType type) { return type != LensType::Stereographic && type != LensType::Lonlat && type != LensType::Latlon; }
-
-double valid_radius_of(const Lens& lens) {
-    return visit_lens_model<double>(lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
-}
-
 // Points spread over the model's valid domain (well inside the fold-over radius), at
 // several depths, on a grid and at random. For OpenCV's models z > 0; for the others
 // every direction but the model's singular axis.
@@ -73,22 +67,6 @@ std::vector<Vec3> sample_points(const Camera& camera, double max_degrees) {
     return points;
 }
 
-std::vector<Vec2> opencv_project(const Camera& camera, const std::vector<Vec3>& points) {
-    std::vector<cv::Point3d> object;
-    for (const Vec3& p : points) object.emplace_back(p.x(), p.y(), p.z());
-    std::vector<cv::Point2d> image;
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), dist = opencv_distortion(camera.lens);
-    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    if (camera.lens.type == LensType::Fisheye) {
-        cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
-    } else {
-        cv::projectPoints(object, zero, zero, K, dist, image);
-    }
-    std::vector<Vec2> out;
-    for (const cv::Point2d& q : image) out.emplace_back(q.x, q.y);
-    return out;
-}
-
 }  // namespace
 
 TEST_CASE("The model table agrees with mrcal's metadata for every model both have") {
@@ -112,11 +90,11 @@ TEST_CASE("Projection agrees with cv::projectPoints / cv::fisheye::projectPoints
         const std::vector<Projection> ours = c.camera.project_camera_points(front);
         for (const Projection& p : ours) REQUIRE(p.valid);
         double worst_cv = 0, worst_mrcal = 0;
-        if (opencv_has(c.camera.lens.type)) {
+        if (in_opencv(c.camera.lens.type)) {
             const std::vector<Vec2> cv_pixels = opencv_project(c.camera, front);
             for (std::size_t i = 0; i < front.size(); ++i) worst_cv = std::max(worst_cv, (ours[i].pixel - cv_pixels[i]).norm());
         }
-        if (mrcal_has(c.camera.lens.type)) {
+        if (in_mrcal(c.camera.lens.type)) {
             // mrcal's own models also behind the camera, to 150 degrees: further out mrcal's
             // stereographic |p| + z cancels (libcam's does not; checked by hand below).
             const bool behind = lens_info(c.camera.lens.type).sees_behind_camera;

@@ -21,27 +21,6 @@ namespace {
 
 constexpr double kPixelTolerance = 1e-9;
 
-bool in_opencv(LensType type) {
-    return type != LensType::Stereographic && type != LensType::Lonlat && type != LensType::Latlon;
-}
-bool in_mrcal(LensType type) { return type != LensType::Fisheye && type != LensType::Opencv14; }
-
-std::vector<Vec2> opencv_project(const Camera& camera, const std::vector<Vec3>& points) {
-    std::vector<cv::Point3d> object;
-    for (const Vec3& p : points) object.emplace_back(p.x(), p.y(), p.z());
-    std::vector<cv::Point2d> image;
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), dist = opencv_distortion(camera.lens);
-    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    if (camera.lens.type == LensType::Fisheye) {
-        cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
-    } else {
-        cv::projectPoints(object, zero, zero, K, dist, image);
-    }
-    std::vector<Vec2> out;
-    for (const cv::Point2d& q : image) out.emplace_back(q.x, q.y);
-    return out;
-}
-
 // The pixels of camera-frame rays by the reference library that has the model: OpenCV
 // for its models (z > 0), mrcal for its own. FISHEYE rays past 90 degrees, which
 // cv::fisheye cannot take, go through libcam's projection (itself checked against
@@ -88,10 +67,6 @@ GridResult unproject_grid(const Camera& camera, int nx, int ny) {
 double undistorted_radius(LensType type, const Vec3& ray) {
     if (type == LensType::Fisheye) return std::atan2(std::hypot(ray.x(), ray.y()), ray.z());
     return std::hypot(ray.x(), ray.y()) / ray.z();
-}
-
-double valid_radius_of(const Lens& lens) {
-    return visit_lens_model<double>(lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
 }
 
 // Rays by a solver independent of libcam: mrcal_unproject, or for what mrcal lacks
@@ -213,4 +188,24 @@ TEST_CASE("Closed forms: STEREOGRAPHIC, LONLAT and LATLON against their formulas
             CHECK(grid.rays[i].valid == (std::abs(lon) <= std::numbers::pi && std::abs(lat) <= std::numbers::pi / 2));
         }
     }
+}
+
+TEST_CASE("The one solver runs in float and long double too") {
+    const Camera camera = wide_reference_camera();
+    const auto check = [&]<class Scalar>(Scalar tolerance) {
+        using Model = OpenCv8Lens<Scalar>;
+        const auto lens = Model::parameters(camera.lens.coefficients);
+        double worst = 0;
+        for (const Vec2& pixel : pixel_grid(camera.size, 31, 21)) {
+            const Eigen::Matrix<Scalar, 2, 1> m = camera.intrinsics.normalized_from_pixel(pixel).template cast<Scalar>();
+            Eigen::Matrix<Scalar, 3, 1> ray = Eigen::Matrix<Scalar, 3, 1>::Zero();
+            Eigen::Matrix<Scalar, 2, 1> back = Eigen::Matrix<Scalar, 2, 1>::Zero();
+            REQUIRE(Model::unproject(lens, m, ray));
+            REQUIRE(Model::project(lens, ray, back));
+            worst = std::max(worst, double((back - m).norm()));
+        }
+        CHECK(worst <= double(tolerance));
+    };
+    check(2e-6f);     // about 64 float roundings of |m| ~ 3
+    check(1e-17L);    // long double: a thousand times below double's result
 }
