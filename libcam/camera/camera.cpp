@@ -1,6 +1,6 @@
 #include "libcam/camera/camera.hpp"
 
-#include "libcam/lens/pinhole.hpp"
+#include "libcam/lens/lens_models.hpp"
 
 namespace libcam {
 
@@ -11,22 +11,40 @@ void Camera::validate() const {
     pose.validate("R");
 }
 
+std::vector<Projection> Camera::project_camera_points(std::span<const Vec3> camera_points) const {
+    return visit_lens_model<double>(lens.type, [&]<class Model>() {
+        const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+        std::vector<Projection> projections(camera_points.size());
+        for (std::size_t i = 0; i < camera_points.size(); ++i) {
+            Vec2 normalized;
+            projections[i].valid = Model::project(parameters, camera_points[i], normalized);
+            if (projections[i].valid) projections[i].pixel = intrinsics.pixel_from_normalized(normalized);
+        }
+        return projections;
+    });
+}
+
 Projection Camera::project_camera_point(const Vec3& camera_point) const {
-    Projection result;
-    Vec2 normalized;
-    switch (lens.type) {
-        case LensType::Pinhole: result.valid = PinholeLens<double>::project(camera_point, normalized); break;
-    }
-    if (result.valid) result.pixel = intrinsics.pixel_from_normalized(normalized);
-    return result;
+    return project_camera_points(std::span(&camera_point, 1)).front();
+}
+
+std::vector<Unprojection> Camera::unproject_pixels(std::span<const Vec2> pixels) const {
+    return visit_lens_model<double>(lens.type, [&]<class Model>() {
+        const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+        std::vector<Unprojection> directions(pixels.size());
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            Unprojection& out = directions[i];
+            out.valid = Model::unproject(parameters, intrinsics.normalized_from_pixel(pixels[i]), out.direction);
+            if (!out.valid) out.direction = Vec3::Zero();
+        }
+        return directions;
+    });
 }
 
 bool Camera::unproject(const Vec2& pixel, Vec3& camera_direction) const {
-    const Vec2 normalized = intrinsics.normalized_from_pixel(pixel);
-    switch (lens.type) {
-        case LensType::Pinhole: return PinholeLens<double>::unproject(normalized, camera_direction);
-    }
-    return false;
+    const Unprojection result = unproject_pixels(std::span(&pixel, 1)).front();
+    if (result.valid) camera_direction = result.direction;
+    return result.valid;
 }
 
 Ray Camera::ray(const Vec2& pixel) const {

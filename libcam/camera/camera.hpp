@@ -6,6 +6,9 @@
 //
 // Pixels here are OpenCV pixels (row 0 at the top, centres at integers).
 
+#include <span>
+#include <vector>
+
 #include "libcam/geometry/image_size.hpp"
 #include "libcam/geometry/intrinsics.hpp"
 #include "libcam/geometry/pose.hpp"
@@ -16,6 +19,11 @@ namespace libcam {
 struct Projection {
     Vec2 pixel = Vec2::Zero();
     bool valid = false;  // false: outside the lens model's domain (e.g. behind the camera)
+};
+
+struct Unprojection {
+    Vec3 direction = Vec3::Zero();  // camera frame, not normalised (see Camera::unproject)
+    bool valid = false;             // false: the pixel has no ray under this lens
 };
 
 struct Ray {
@@ -36,14 +44,22 @@ struct Camera {
     // P = K [R | t] (pinhole part only: distortion is not linear).
     Mat34 P() const { return intrinsics.K() * pose.matrix(); }
 
+    // The pixel of a camera-frame point; invalid outside the lens model's domain
+    // (behind the camera, past the radius where the distortion folds over, ...).
     Projection project_camera_point(const Vec3& camera_point) const;
     Projection project(const Vec3& world_point) const {
         return project_camera_point(pose.camera_from_world(world_point));
     }
+    // Many points at once: the lens's valid domain is worked out once, not per point.
+    std::vector<Projection> project_camera_points(std::span<const Vec3> camera_points) const;
 
-    // The direction, in the camera frame, of the ray through an OpenCV pixel; for a
-    // pinhole lens K^-1 [x, y, 1] (z = 1, not normalised).
+    // The direction, in the camera frame, of the ray through an OpenCV pixel, not
+    // normalised: for PINHOLE and OpenCV's models K^-1 [x, y, 1] undistorted (z = 1).
+    // False where the pixel has no ray, or none that reprojects to it to rounding
+    // accuracy (see lens/undistort.hpp).
     bool unproject(const Vec2& pixel, Vec3& camera_direction) const;
+    // Many pixels at once, the lens's domain worked out once.
+    std::vector<Unprojection> unproject_pixels(std::span<const Vec2> pixels) const;
 
     // The world-frame ray through an OpenCV pixel: origin at the camera centre,
     // direction R^T K^-1 [x, y, 1] normalised.

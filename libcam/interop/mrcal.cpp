@@ -15,25 +15,24 @@ namespace libcam {
 
 namespace {
 
+// libcam's table uses mrcal's names, so the mapping both ways goes by name: a model
+// mrcal lacks (FISHEYE, OPENCV14) has no mrcal type of that name.
 mrcal_lensmodel_t mrcal_lensmodel(const Lens& lens) {
     mrcal_lensmodel_t model{};
-    switch (lens.type) {
-        case LensType::Pinhole: model.type = MRCAL_LENSMODEL_PINHOLE; return model;
+    const std::string name = "LENSMODEL_" + std::string(lens_info(lens.type).name);
+    if (!mrcal_lensmodel_from_name(&model, name.c_str()) || model.type < 0) {
+        throw NotRepresentable("lens: model " + std::string(lens_info(lens.type).name) +
+                               " has no mrcal equivalent (mrcal models PINHOLE, OPENCV4/5/8/12, STEREOGRAPHIC, "
+                               "LONLAT, LATLON among those libcam supports)");
     }
-    throw NotRepresentable("lens: model " + std::string(lens_info(lens.type).name) + " has no mrcal equivalent");
+    return model;
 }
 
-LensType lens_type_from_mrcal(mrcal_lensmodel_type_t type, const std::string& source) {
-    switch (type) {
-        case MRCAL_LENSMODEL_PINHOLE: return LensType::Pinhole;
-        default: break;
-    }
-    const char* const* names = mrcal_supported_lensmodel_names();
-    std::string name = "#" + std::to_string(static_cast<int>(type));
-    for (int i = 0; names[i] != nullptr; ++i) {
-        if (i == static_cast<int>(type)) name = names[i];
-    }
-    throw NotRepresentable(source + ": \"lensmodel\": " + name + " is not a lens model libcam supports");
+LensType lens_type_from_mrcal(const mrcal_lensmodel_t& model, const std::string& source) {
+    const char* name = mrcal_lensmodel_name_unconfigured(&model);
+    const std::string mrcal_name = name != nullptr ? name : "#" + std::to_string(static_cast<int>(model.type));
+    if (const std::optional<LensType> type = lens_type_from_name(mrcal_name)) return *type;
+    throw NotRepresentable(source + ": \"lensmodel\": " + mrcal_name + " is not a lens model libcam supports");
 }
 
 // The camera's mrcal intrinsics vector: fx, fy, cx, cy, then the distortion.
@@ -110,6 +109,7 @@ std::string number_list(const double* values, int count) {
 }  // namespace
 
 std::string mrcal_lensmodel_name(const Lens& lens) {
+    mrcal_lensmodel(lens);  // throws for a lens mrcal lacks
     return "LENSMODEL_" + std::string(lens_info(lens.type).name);
 }
 
@@ -142,7 +142,7 @@ std::string format_cameramodel(const Camera& camera) {
 Camera parse_cameramodel(std::string_view text, const std::string& source) {
     const CameramodelPtr model = parse_with_mrcal(text, source);
     Camera camera;
-    camera.lens.type = lens_type_from_mrcal(model->lensmodel.type, source);
+    camera.lens.type = lens_type_from_mrcal(model->lensmodel, source);
     const int num_intrinsics = mrcal_lensmodel_num_params(&model->lensmodel);
     const double* values = model->intrinsics;
     camera.intrinsics = Intrinsics{values[0], values[1], values[2], values[3], 0.0};

@@ -1,6 +1,7 @@
 #include "libcam/interop/opencv.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "libcam/error.hpp"
 
@@ -10,7 +11,24 @@ cv::Mat opencv_camera_matrix(const Intrinsics& k) {
     return (cv::Mat_<double>(3, 3) << k.fx, k.skew, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0);
 }
 
+namespace {
+
+// OpenCV's radial-tangential models, told apart by their number of coefficients.
+bool is_opencv_model(LensType type) { return lens_info(type).name.starts_with("OPENCV"); }
+
+std::optional<LensType> opencv_model_with(std::size_t count) {
+    for (const LensInfo& info : lens_models()) {
+        if (is_opencv_model(info.type) && static_cast<std::size_t>(info.num_coefficients) == count) return info.type;
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
 cv::Mat opencv_distortion(const Lens& lens) {
+    if (lens.type != LensType::Pinhole && lens.type != LensType::Fisheye && !is_opencv_model(lens.type)) {
+        throw NotRepresentable("lens: OpenCV has no model " + std::string(lens_info(lens.type).name));
+    }
     cv::Mat dist(1, static_cast<int>(lens.coefficients.size()), CV_64F);
     std::copy(lens.coefficients.begin(), lens.coefficients.end(), dist.ptr<double>());
     return dist;
@@ -26,6 +44,11 @@ std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
     fs << "image_width" << static_cast<int>(camera.size.width);
     fs << "image_height" << static_cast<int>(camera.size.height);
     fs << "camera_matrix" << opencv_camera_matrix(camera.intrinsics);
+    if (camera.lens.type != LensType::Pinhole && !is_opencv_model(camera.lens.type)) {
+        // FISHEYE's four coefficients would read back as OPENCV4: refuse, never convert silently.
+        throw NotRepresentable("lens: OpenCV's camera file holds only OpenCV's radial-tangential models, not " +
+                               std::string(lens_info(camera.lens.type).name));
+    }
     const cv::Mat dist = camera.lens.type == LensType::Pinhole ? cv::Mat::zeros(5, 1, CV_64F)
                                                                : opencv_distortion(camera.lens).t();
     fs << "distortion_coefficients" << dist;
@@ -111,8 +134,18 @@ Camera parse_opencv_storage(std::string_view text, const std::string& source) {
             const cv::Mat dist = read_matrix(dist_node, "distortion_coefficients", source, -1, -1);
             const bool all_zero = dist.empty() || cv::countNonZero(dist) == 0;
             if (!all_zero) {
-                throw NotRepresentable(source + ": \"distortion_coefficients\": " + std::to_string(dist.total()) +
-                                       " non-zero coefficients; this build of libcam models only PINHOLE lenses");
+                if (dist.rows != 1 && dist.cols != 1) {
+                    throw FileError(source + ": \"distortion_coefficients\": expected a vector, got a " +
+                                    std::to_string(dist.rows) + "x" + std::to_string(dist.cols) + " matrix");
+                }
+                const std::optional<LensType> type = opencv_model_with(dist.total());
+                if (!type) {
+                    throw FileError(source + ": \"distortion_coefficients\": expected 4, 5, 8, 12 or 14 coefficients, got " +
+                                    std::to_string(dist.total()));
+                }
+                camera.lens.type = *type;
+                const cv::Mat values = dist.reshape(1, 1);
+                camera.lens.coefficients.assign(values.ptr<double>(), values.ptr<double>() + values.total());
             }
         }
         const cv::FileNode rvec = fs["rvec"];

@@ -8,7 +8,7 @@ namespace libcam {
 
 namespace {
 constexpr std::array kLensModels = {
-#define LIBCAM_LENS_INFO(id, name, n, behind) LensInfo{LensType::id, name, n, behind},
+#define LIBCAM_LENS_INFO(id, name, n, behind, model) LensInfo{LensType::id, name, n, behind},
     LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_INFO)
 #undef LIBCAM_LENS_INFO
 };

@@ -6,7 +6,9 @@
 // as a stateless struct templated on the scalar type (see pinhole.hpp).
 //
 // Columns: enum name, name in files (mrcal's, without "LENSMODEL_"),
-// number of distortion coefficients, can it see points with z <= 0.
+// number of distortion coefficients, can it see points with z <= 0 (as mrcal's
+// can_project_behind_camera, and FISHEYE, whose angle theta goes on past 90 degrees),
+// the struct template implementing it (see lens_models.hpp, which checks the count).
 
 #include <optional>
 #include <span>
@@ -14,12 +16,22 @@
 #include <string_view>
 #include <vector>
 
-#define LIBCAM_LENS_MODEL_LIST(_) _(Pinhole, "PINHOLE", 0, false)
+#define LIBCAM_LENS_MODEL_LIST(_)                                   \
+    _(Pinhole, "PINHOLE", 0, false, PinholeLens)                    \
+    _(Opencv4, "OPENCV4", 4, false, OpenCv4Lens)                    \
+    _(Opencv5, "OPENCV5", 5, false, OpenCv5Lens)                    \
+    _(Opencv8, "OPENCV8", 8, false, OpenCv8Lens)                    \
+    _(Opencv12, "OPENCV12", 12, false, OpenCv12Lens)                \
+    _(Opencv14, "OPENCV14", 14, false, OpenCv14Lens)                \
+    _(Fisheye, "FISHEYE", 4, true, FisheyeLens)                     \
+    _(Stereographic, "STEREOGRAPHIC", 0, true, StereographicLens)   \
+    _(Lonlat, "LONLAT", 0, true, LonlatLens)                        \
+    _(Latlon, "LATLON", 0, true, LatlonLens)
 
 namespace libcam {
 
 enum class LensType {
-#define LIBCAM_LENS_ENUM(id, name, n, behind) id,
+#define LIBCAM_LENS_ENUM(id, name, n, behind, model) id,
     LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_ENUM)
 #undef LIBCAM_LENS_ENUM
 };

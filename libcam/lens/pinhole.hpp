@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/lens/model_support.hpp"
 
 namespace libcam {
 
@@ -42,6 +43,17 @@ struct PinholeLens {
         ray = Vec3T(m.x(), m.y(), Scalar(1));
         return true;
     }
+
+    // The interface every model shares (see lens_models.hpp); PINHOLE has no
+    // coefficients and no bound beyond z > 0.
+    using Parameters = LensParameters<Scalar, 0>;
+    static Parameters parameters(std::span<const double>) { return {}; }
+    template <class JacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
+    static bool project(const Parameters&, const Vec3T& point, Vec2T& m, JacobianPtr d_m_d_point = nullptr,
+                        CoefficientJacobianPtr = nullptr) {
+        return project(point, m, d_m_d_point);
+    }
+    static bool unproject(const Parameters&, const Vec2T& m, Vec3T& ray) { return unproject(m, ray); }
 };
 
 }  // namespace libcam

@@ -1,0 +1,264 @@
+#pragma once
+// OPENCV4, OPENCV5, OPENCV8, OPENCV12, OPENCV14: OpenCV's radial-tangential family,
+// exactly as cv::projectPoints evaluates it (mrcal's LENSMODEL_OPENCV4/5/8/12 are the
+// same). Coefficients in OpenCV's order, the missing ones zero:
+//
+//     k1 k2 p1 p2 [k3 [k4 k5 k6 [s1 s2 s3 s4 [tauX tauY]]]]
+//
+//   u = (x, y) = (X/Z, Y/Z),   r2 = x^2 + y^2,
+//   R = (1 + k1 r2 + k2 r2^2 + k3 r2^3) / (1 + k4 r2 + k5 r2^2 + k6 r2^3)
+//   d = ( x R + 2 p1 x y + p2 (r2 + 2 x^2) + s1 r2 + s2 r2^2,
+//         y R + p1 (r2 + 2 y^2) + 2 p2 x y + s3 r2 + s4 r2^2 )
+//   m = (v0 / v2, v1 / v2),  v = T(tauX, tauY) [d; 1]       (OPENCV14; else m = d)
+//
+// T is OpenCV's tilted-sensor matrix (computeTiltProjectionMatrix):
+//   Rxy = Ry(tauY) Rx(tauX),  T = [Rxy22 0 -Rxy02; 0 Rxy22 -Rxy12; 0 0 1] Rxy.
+//
+// Valid domain: Z > 0 (cv::projectPoints takes Z = 0 as Z = 1 and mirrors Z < 0 into
+// the image; libcam flags both); r below valid_radius(), where the radial part r R(r)
+// folds over or its denominator reaches 0 (from k1..k6: the tangential, prism and tilt
+// terms are taken to be small, as in the WACV 2022 analysis); and v2 > 0.
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <span>
+
+#include "libcam/lens/lens_model.hpp"
+#include "libcam/lens/model_support.hpp"
+#include "libcam/lens/pinhole.hpp"
+#include "libcam/lens/undistort.hpp"
+#include "libcam/lens/valid_radius.hpp"
+
+namespace libcam {
+
+namespace detail {
+
+template <class Scalar>
+using Mat33T = Eigen::Matrix<Scalar, 3, 3>;
+
+// OpenCV's "projection onto z" of a rotation: [m22 0 -m02; 0 m22 -m12; 0 0 corner].
+template <class Scalar>
+Mat33T<Scalar> tilt_projection(const Mat33T<Scalar>& rotation, const Scalar& corner) {
+    Mat33T<Scalar> out;
+    out << rotation(2, 2), Scalar(0), -rotation(0, 2),  //
+        Scalar(0), rotation(2, 2), -rotation(1, 2),     //
+        Scalar(0), Scalar(0), corner;
+    return out;
+}
+
+// The tilt matrix T(tauX, tauY), and when asked its derivatives by the product rule.
+template <class Scalar>
+struct TiltMatrix {
+    Mat33T<Scalar> matrix, d_tau_x, d_tau_y;
+
+    TiltMatrix(const Scalar& tau_x, const Scalar& tau_y, bool with_derivatives) {
+        using std::cos;
+        using std::sin;
+        const Scalar cx = cos(tau_x), sx = sin(tau_x), cy = cos(tau_y), sy = sin(tau_y);
+        const Scalar zero(0), one(1);
+        Mat33T<Scalar> rot_x, rot_y;
+        rot_x << one, zero, zero, zero, cx, sx, zero, -sx, cx;
+        rot_y << cy, zero, -sy, zero, one, zero, sy, zero, cy;
+        const Mat33T<Scalar> rot_xy = rot_y * rot_x;
+        const Mat33T<Scalar> projection = tilt_projection(rot_xy, one);
+        matrix = projection * rot_xy;
+        if (!with_derivatives) return;
+        Mat33T<Scalar> d_rot_x, d_rot_y;
+        d_rot_x << zero, zero, zero, zero, -sx, cx, zero, -cx, -sx;
+        d_rot_y << -sy, zero, -cy, zero, zero, zero, cy, zero, -sy;
+        const Mat33T<Scalar> d_rot_xy_x = rot_y * d_rot_x;
+        const Mat33T<Scalar> d_rot_xy_y = d_rot_y * rot_x;
+        d_tau_x = tilt_projection(d_rot_xy_x, zero) * rot_xy + projection * d_rot_xy_x;
+        d_tau_y = tilt_projection(d_rot_xy_y, zero) * rot_xy + projection * d_rot_xy_y;
+    }
+};
+
+constexpr LensType opencv_lens_type(int n) {
+    switch (n) {
+        case 4: return LensType::Opencv4;
+        case 5: return LensType::Opencv5;
+        case 8: return LensType::Opencv8;
+        case 12: return LensType::Opencv12;
+        default: return LensType::Opencv14;
+    }
+}
+
+}  // namespace detail
+
+template <class Scalar, int N>
+struct OpenCvLens {
+    static_assert(N == 4 || N == 5 || N == 8 || N == 12 || N == 14, "OpenCV takes 4, 5, 8, 12 or 14 coefficients");
+    static constexpr LensType type = detail::opencv_lens_type(N);
+    static constexpr int num_coefficients = N;
+    using Parameters = LensParameters<Scalar, N>;
+    using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
+    using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
+    using Jacobian22 = Eigen::Matrix<Scalar, 2, 2>;
+    using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
+    using CoefficientJacobian = Eigen::Matrix<Scalar, 2, N>;
+
+    // The normalised radius r past which the radial part folds over (or its denominator
+    // reaches 0); +infinity if it never does.
+    static double valid_radius(std::span<const double> k) {
+        const auto at = [&](std::size_t i) { return i < k.size() ? k[i] : 0.0; };
+        const double numerator[] = {1.0, at(0), at(1), at(4)};
+        const double denominator[] = {1.0, at(5), at(6), at(7)};
+        return radial_valid_radius(numerator, denominator);
+    }
+
+    static Parameters parameters(std::span<const double> k) {
+        return {coefficients_as<Scalar, N>(k), Scalar(valid_radius(k))};
+    }
+
+    // m for a camera point; false outside the valid domain (m untouched). Jacobians
+    // dm/d(X, Y, Z) (Jacobian23*) and dm/d(coefficients) (CoefficientJacobian*) on request.
+    template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
+    static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
+                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
+        Vec2T u;
+        Jacobian23 d_u_d_point;
+        if (!PinholeLens<Scalar>::project(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
+        Jacobian22 d_m_d_u;
+        if (!distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients)) return false;
+        if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
+        return true;
+    }
+
+    // The ray (x, y, 1) through m, by the shared iterative solver; false where no
+    // accurate solution lies inside the valid domain.
+    static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
+        Vec2T u;
+        if (!solve_undistorted<OpenCvLens>(lens, m, u)) return false;
+        ray = Vec3T(u.x(), u.y(), Scalar(1));
+        return true;
+    }
+
+    // m = distort(u) for the pinhole-normalised point u = (X/Z, Y/Z).
+    template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
+    static bool distort(const Parameters& lens, const Vec2T& u, Vec2T& m, UJacobianPtr d_m_d_u = nullptr,
+                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
+        const Scalar x = u.x(), y = u.y();
+        const Scalar r2 = x * x + y * y;
+        if (!(r2 < lens.valid_radius * lens.valid_radius)) return false;
+        const Radial radial = radial_factor(lens, r2);
+        if (!(radial.denominator > Scalar(0))) return false;
+        const Scalar p1 = c<2>(lens), p2 = c<3>(lens);
+        const Scalar s1 = c<8>(lens), s2 = c<9>(lens), s3 = c<10>(lens), s4 = c<11>(lens);
+        const Scalar two(2), r4 = r2 * r2, xy2 = two * x * y;
+        const Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x) + s1 * r2 + s2 * r4,
+                      y * radial.value + p1 * (r2 + two * y * y) + p2 * xy2 + s3 * r2 + s4 * r4);
+
+        Jacobian22 d_d_d_u;
+        if constexpr (is_requested<UJacobianPtr>) {
+            const Scalar prism_x = two * (s1 + two * s2 * r2), prism_y = two * (s3 + two * s4 * r2);
+            const Scalar mixed = xy2 * radial.d_r2 + two * (p1 * x + p2 * y);
+            d_d_d_u << radial.value + two * x * x * radial.d_r2 + two * p1 * y + Scalar(6) * p2 * x + x * prism_x,
+                mixed + y * prism_x,  //
+                mixed + x * prism_y,
+                radial.value + two * y * y * radial.d_r2 + Scalar(6) * p1 * y + two * p2 * x + y * prism_y;
+        }
+        Eigen::Matrix<Scalar, 2, 12> d_d_d_k;
+        if constexpr (is_requested<CoefficientJacobianPtr>) {
+            const Scalar zero(0), r6 = r4 * r2, inv_q = Scalar(1) / radial.denominator;
+            const Scalar minus_rq = -radial.value * inv_q;
+            const Scalar powers[3] = {r2, r4, r6};
+            const int numerator_columns[3] = {0, 1, 4};  // k1 k2 k3
+            for (int i = 0; i < 3; ++i) {
+                d_d_d_k.col(numerator_columns[i]) = u * (powers[i] * inv_q);
+                d_d_d_k.col(5 + i) = u * (powers[i] * minus_rq);  // k4 k5 k6
+            }
+            d_d_d_k.col(2) << xy2, r2 + two * y * y;  // p1
+            d_d_d_k.col(3) << r2 + two * x * x, xy2;  // p2
+            d_d_d_k.col(8) << r2, zero;
+            d_d_d_k.col(9) << r4, zero;
+            d_d_d_k.col(10) << zero, r2;
+            d_d_d_k.col(11) << zero, r4;
+        }
+
+        if constexpr (N < 14) {
+            m = d;
+            if constexpr (is_requested<UJacobianPtr>) *d_m_d_u = d_d_d_u;
+            if constexpr (is_requested<CoefficientJacobianPtr>) *d_m_d_coefficients = d_d_d_k.template leftCols<N>();
+            return true;
+        } else {
+            return apply_tilt(lens, d, m, d_d_d_u, d_d_d_k, d_m_d_u, d_m_d_coefficients);
+        }
+    }
+
+    // The radial part alone, d(r) = r R(r^2), and its slope: the 1-D start of unproject.
+    static Scalar radial_distortion(const Parameters& lens, const Scalar& r, Scalar& slope) {
+        const Scalar r2 = r * r;
+        const Radial radial = radial_factor(lens, r2);
+        slope = radial.value + Scalar(2) * r2 * radial.d_r2;
+        return r * radial.value;
+    }
+
+private:
+    // Coefficient i, or 0 for a model with fewer: the shorter models are the longer with zeros.
+    template <int i>
+    static Scalar c(const Parameters& lens) {
+        if constexpr (i < N) {
+            return lens.coefficients(i);
+        } else {
+            return Scalar(0);
+        }
+    }
+
+    struct Radial {
+        Scalar value;        // R = P / Q
+        Scalar d_r2;         // dR / d(r^2)
+        Scalar denominator;  // Q
+    };
+
+    static Radial radial_factor(const Parameters& lens, const Scalar& r2) {
+        const Scalar k1 = c<0>(lens), k2 = c<1>(lens), k3 = c<4>(lens);
+        const Scalar k4 = c<5>(lens), k5 = c<6>(lens), k6 = c<7>(lens);
+        const Scalar one(1), two(2), three(3);
+        const Scalar p = one + r2 * (k1 + r2 * (k2 + r2 * k3));
+        const Scalar q = one + r2 * (k4 + r2 * (k5 + r2 * k6));
+        const Scalar dp = k1 + r2 * (two * k2 + three * k3 * r2);
+        const Scalar dq = k4 + r2 * (two * k5 + three * k6 * r2);
+        const Scalar value = p / q;
+        return {value, (dp - value * dq) / q, q};
+    }
+
+    // OPENCV14's tilted sensor: m = (v0, v1) / v2 with v = T [d; 1], chained onto the
+    // Jacobians of d.
+    template <class UJacobianPtr, class CoefficientJacobianPtr>
+    static bool apply_tilt(const Parameters& lens, const Vec2T& d, Vec2T& m, const Jacobian22& d_d_d_u,
+                           const Eigen::Matrix<Scalar, 2, 12>& d_d_d_k, UJacobianPtr d_m_d_u,
+                           CoefficientJacobianPtr d_m_d_coefficients) {
+        const detail::TiltMatrix<Scalar> tilt(c<12>(lens), c<13>(lens), is_requested<CoefficientJacobianPtr>);
+        const Vec3T d1(d.x(), d.y(), Scalar(1));
+        const Vec3T v = tilt.matrix * d1;
+        if (!(v.z() > Scalar(0))) return false;
+        const Scalar inv_z = Scalar(1) / v.z();
+        m = Vec2T(v.x() * inv_z, v.y() * inv_z);
+        if constexpr (is_requested<UJacobianPtr> || is_requested<CoefficientJacobianPtr>) {
+            Jacobian23 d_m_d_v;
+            d_m_d_v << inv_z, Scalar(0), -m.x() * inv_z,  //
+                Scalar(0), inv_z, -m.y() * inv_z;
+            const Jacobian22 d_m_d_d = d_m_d_v * tilt.matrix.template leftCols<2>();
+            if constexpr (is_requested<UJacobianPtr>) *d_m_d_u = d_m_d_d * d_d_d_u;
+            if constexpr (is_requested<CoefficientJacobianPtr>) {
+                d_m_d_coefficients->template leftCols<12>() = d_m_d_d * d_d_d_k;
+                d_m_d_coefficients->col(12) = d_m_d_v * (tilt.d_tau_x * d1);
+                d_m_d_coefficients->col(13) = d_m_d_v * (tilt.d_tau_y * d1);
+            }
+        }
+        return true;
+    }
+};
+
+template <class Scalar>
+using OpenCv4Lens = OpenCvLens<Scalar, 4>;
+template <class Scalar>
+using OpenCv5Lens = OpenCvLens<Scalar, 5>;
+template <class Scalar>
+using OpenCv8Lens = OpenCvLens<Scalar, 8>;
+template <class Scalar>
+using OpenCv12Lens = OpenCvLens<Scalar, 12>;
+template <class Scalar>
+using OpenCv14Lens = OpenCvLens<Scalar, 14>;
+
+}  // namespace libcam

@@ -1,0 +1,112 @@
+#pragma once
+// The cameras the lens-model tests run on: for each model a mild and a strong lens, and
+// the real wide lens of issue 3. Inputs only; expected values come from OpenCV, mrcal or
+// formulas worked by hand in the tests.
+
+#include <opencv2/calib3d.hpp>
+#include <string>
+#include <vector>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/interop/opencv.hpp"
+#include "libcam/lens/lens_models.hpp"
+
+namespace libcam::test {
+
+struct LensCase {
+    std::string name;
+    Camera camera;
+};
+
+inline Camera lens_camera(LensType type, std::vector<double> coefficients, ImageSize size = {1600, 1200},
+                          double fx = 900.0, double fy = 910.0) {
+    Camera camera;
+    camera.size = size;
+    camera.intrinsics = {fx, fy, 0.5 * static_cast<double>(size.width - 1) + 13.0,
+                         0.5 * static_cast<double>(size.height - 1) - 7.0, 0.0};
+    camera.lens = {type, std::move(coefficients)};
+    return camera;
+}
+
+// Issue 3's real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767.
+inline Camera wide_reference_camera() {
+    Camera camera;
+    camera.size = {6016, 4016};
+    camera.intrinsics = {2073.872915, 2077.452267, 3004.686823, 1997.377253, 0.0};
+    camera.lens = {LensType::Opencv8,
+                   {0.4791613797, 0.0266824914, 4.398264387e-05, -1.180073913e-05, 8.959722542e-05, 0.7666912469,
+                    0.09633561231, 0.001407513313}};
+    return camera;
+}
+
+// Every model at mild and strong distortion (the strong ones fold over inside or near
+// the image: the valid domain matters).
+inline std::vector<LensCase> lens_cases() {
+    std::vector<LensCase> cases{
+        {"PINHOLE", lens_camera(LensType::Pinhole, {})},
+        {"OPENCV4 mild", lens_camera(LensType::Opencv4, {-0.05, 0.01, 2e-4, -3e-4})},
+        {"OPENCV4 strong", lens_camera(LensType::Opencv4, {-0.45, 0.05, 1.5e-3, -1e-3})},
+        {"OPENCV5 mild", lens_camera(LensType::Opencv5, {0.03, -0.01, -1e-4, 2e-4, 0.002})},
+        {"OPENCV5 strong", lens_camera(LensType::Opencv5, {-0.28, 0.07, 8e-4, -6e-4, -0.008})},
+        {"OPENCV8 mild", lens_camera(LensType::Opencv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005})},
+        {"OPENCV8 wide", wide_reference_camera()},
+        {"OPENCV12 mild", lens_camera(LensType::Opencv12, {-0.04, 0.008, 1e-4, 1e-4, 0.0, 0.01, 0.0, 0.0, 1e-3, -2e-4,
+                                                            -5e-4, 1e-4})},
+        {"OPENCV12 strong", lens_camera(LensType::Opencv12, {0.6, 0.05, 5e-4, -4e-4, 2e-4, 0.95, 0.15, 0.003, 4e-3,
+                                                              -1e-3, -3e-3, 8e-4})},
+        {"OPENCV14 mild", lens_camera(LensType::Opencv14, {-0.04, 0.008, 1e-4, 1e-4, 0.0, 0.01, 0.0, 0.0, 1e-3, -2e-4,
+                                                            -5e-4, 1e-4, 0.01, -0.02})},
+        {"OPENCV14 strong", lens_camera(LensType::Opencv14, {0.6, 0.05, 5e-4, -4e-4, 2e-4, 0.95, 0.15, 0.003, 4e-3,
+                                                              -1e-3, -3e-3, 8e-4, -0.05, 0.04})},
+        {"FISHEYE mild", lens_camera(LensType::Fisheye, {-0.013, -0.0057, 0.0023, -0.0009}, {1600, 1200}, 420, 421)},
+        {"FISHEYE strong", lens_camera(LensType::Fisheye, {0.08, -0.06, 0.012, -0.002}, {1600, 1200}, 300, 300)},
+        {"STEREOGRAPHIC", lens_camera(LensType::Stereographic, {}, {1600, 1200}, 300, 310)},
+        {"LONLAT", lens_camera(LensType::Lonlat, {}, {2000, 1000}, 318, 318)},
+        {"LATLON", lens_camera(LensType::Latlon, {}, {1000, 2000}, 318, 318)},
+    };
+    return cases;
+}
+
+// A grid of nx by ny OpenCV pixels spanning the whole image, corners included.
+inline std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) {
+    std::vector<Vec2> pixels;
+    pixels.reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+    for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) {
+            pixels.emplace_back(static_cast<double>(size.width - 1) * i / (nx - 1),
+                                static_cast<double>(size.height - 1) * j / (ny - 1));
+        }
+    }
+    return pixels;
+}
+
+// Which reference library has a model (by hand: OpenCV lacks mrcal's three, mrcal lacks
+// FISHEYE and the tilted OPENCV14).
+inline bool in_opencv(LensType type) {
+    return type != LensType::Stereographic && type != LensType::Lonlat && type != LensType::Latlon;
+}
+inline bool in_mrcal(LensType type) { return type != LensType::Fisheye && type != LensType::Opencv14; }
+
+// Pixels by cv::projectPoints, or cv::fisheye::projectPoints for FISHEYE.
+inline std::vector<Vec2> opencv_project(const Camera& camera, const std::vector<Vec3>& points) {
+    std::vector<cv::Point3d> object;
+    for (const Vec3& p : points) object.emplace_back(p.x(), p.y(), p.z());
+    std::vector<cv::Point2d> image;
+    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), dist = opencv_distortion(camera.lens);
+    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
+    if (camera.lens.type == LensType::Fisheye) {
+        cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
+    } else {
+        cv::projectPoints(object, zero, zero, K, dist, image);
+    }
+    std::vector<Vec2> out;
+    for (const cv::Point2d& q : image) out.emplace_back(q.x, q.y);
+    return out;
+}
+
+// The lens's valid_radius (lens/model_support.hpp), an input the tests sample within.
+inline double valid_radius_of(const Lens& lens) {
+    return visit_lens_model<double>(lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
+}
+
+}  // namespace libcam::test

@@ -1,0 +1,320 @@
+// Lens models: projection against cv::projectPoints, cv::fisheye::projectPoints and
+// mrcal_project; Jacobians against central differences in long double and against
+// ceres::Jet; the valid domain (behind the camera, fold-over radius) against formulas
+// worked by hand.
+
+#include <ceres/jet.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+#include <opencv2/calib3d.hpp>
+
+#include "lens_cases.hpp"
+#include "libcam/interop/mrcal.hpp"
+#include "libcam/interop/mrcal_c.hpp"
+#include "libcam/interop/opencv.hpp"
+#include "libcam/lens/lens_models.hpp"
+#include "support.hpp"
+
+using namespace libcam;
+using namespace libcam::test;
+
+namespace {
+
+constexpr double kPixelTolerance = 1e-9;
+
+bool mrcal_has(LensType type) {
+    mrcal_lensmodel_t model;
+    const std::string name = "LENSMODEL_" + std::string(lens_info(type).name);
+    return mrcal_lensmodel_from_name(&model, name.c_str());
+}
+
+// Points spread over the model's valid domain (well inside the fold-over radius), at
+// several depths, on a grid and at random. For OpenCV's models z > 0; for the others
+// every direction but the model's singular axis.
+// max_degrees bounds the angle from the optical axis for the models that see behind.
+std::vector<Vec3> sample_points(const Camera& camera, double max_degrees) {
+    const LensType type = camera.lens.type;
+    const double limit = valid_radius_of(camera.lens);
+    std::vector<Vec3> directions;
+    if (type == LensType::Fisheye || type == LensType::Stereographic || type == LensType::Lonlat ||
+        type == LensType::Latlon) {
+        // By angle from the optical axis (short of the fold-over angle).
+        const double max_theta = std::min(radians_from_degrees(max_degrees), 0.98 * limit);
+        for (int i = 0; i <= 40; ++i) {
+            for (int j = 0; j < 36; ++j) {
+                const double theta = max_theta * i / 40.0, phi = 2 * std::numbers::pi * (j + 0.25) / 36.0;
+                directions.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+            }
+        }
+        for (int i = 0; i < 300; ++i) {
+            const Vec3 d = random_unit();
+            if (std::atan2(std::hypot(d.x(), d.y()), d.z()) < max_theta) directions.push_back(d);
+        }
+    } else {
+        const double reach = std::min(1.6, 0.98 * limit / std::sqrt(2.0));
+        for (int i = 0; i <= 40; ++i)
+            for (int j = 0; j <= 40; ++j) directions.emplace_back(reach * (i / 20.0 - 1), reach * (j / 20.0 - 1), 1.0);
+        for (int i = 0; i < 300; ++i) directions.emplace_back(uniform(-reach, reach), uniform(-reach, reach), 1.0);
+    }
+    std::vector<Vec3> points;
+    for (const Vec3& d : directions) {
+        if (type == LensType::Lonlat && std::hypot(d.x(), d.z()) < 1e-3) continue;  // the poles
+        if (type == LensType::Latlon && std::hypot(d.y(), d.z()) < 1e-3) continue;
+        points.push_back(d * uniform(0.2, 50.0));
+    }
+    return points;
+}
+
+}  // namespace
+
+TEST_CASE("The model table agrees with mrcal's metadata for every model both have") {
+    for (const LensInfo& info : lens_models()) {
+        if (!mrcal_has(info.type)) continue;
+        mrcal_lensmodel_t model;
+        REQUIRE(mrcal_lensmodel_from_name(&model, ("LENSMODEL_" + std::string(info.name)).c_str()));
+        INFO(info.name);
+        CHECK(mrcal_lensmodel_num_params(&model) == 4 + info.num_coefficients);
+        CHECK(mrcal_lensmodel_metadata(&model).can_project_behind_camera == info.sees_behind_camera);
+    }
+    CHECK_FALSE(mrcal_has(LensType::Fisheye));
+    CHECK_FALSE(mrcal_has(LensType::Opencv14));
+    CHECK(lens_info(LensType::Fisheye).sees_behind_camera);
+}
+
+TEST_CASE("Projection agrees with cv::projectPoints / cv::fisheye::projectPoints and mrcal_project to 1e-9 px") {
+    for (const LensCase& c : lens_cases()) {
+        INFO(c.name);
+        const std::vector<Vec3> front = sample_points(c.camera, 89.5);
+        const std::vector<Projection> ours = c.camera.project_camera_points(front);
+        for (const Projection& p : ours) REQUIRE(p.valid);
+        double worst_cv = 0, worst_mrcal = 0;
+        if (in_opencv(c.camera.lens.type)) {
+            const std::vector<Vec2> cv_pixels = opencv_project(c.camera, front);
+            for (std::size_t i = 0; i < front.size(); ++i) worst_cv = std::max(worst_cv, (ours[i].pixel - cv_pixels[i]).norm());
+        }
+        if (in_mrcal(c.camera.lens.type)) {
+            // mrcal's own models also behind the camera, to 150 degrees: further out mrcal's
+            // stereographic |p| + z cancels (libcam's does not; checked by hand below).
+            const bool behind = lens_info(c.camera.lens.type).sees_behind_camera;
+            const std::vector<Vec3> points = behind ? sample_points(c.camera, 150.0) : front;
+            const std::vector<Projection> ours_all = c.camera.project_camera_points(points);
+            const std::vector<Vec2> mrcal_pixels = mrcal_project_points(c.camera, points);
+            for (std::size_t i = 0; i < points.size(); ++i) {
+                REQUIRE(ours_all[i].valid);
+                worst_mrcal = std::max(worst_mrcal, (ours_all[i].pixel - mrcal_pixels[i]).norm());
+            }
+        }
+        CHECK(worst_cv <= kPixelTolerance);
+        CHECK(worst_mrcal <= kPixelTolerance);
+    }
+}
+
+TEST_CASE("FISHEYE beyond 90 degrees follows theta_d = theta (1 + k1 theta^2 + ... + k4 theta^8)") {
+    const std::vector<double> k{0.01, -0.002, 0.0003, -0.00002};  // theta_d' > 0 up to pi
+    const auto parameters = FisheyeLens<double>::parameters(k);
+    REQUIRE(parameters.valid_radius == std::numbers::pi);
+    for (double degrees : {60.0, 90.0, 100.0, 135.0, 170.0}) {
+        const double theta = radians_from_degrees(degrees), phi = 0.7;
+        const Vec3 point = 3.0 * Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+        const double t2 = theta * theta;
+        const double theta_d = theta * (1 + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3]))));
+        Vec2 m = Vec2::Zero();
+        INFO(degrees);
+        REQUIRE(FisheyeLens<double>::project(parameters, point, m));
+        CHECK(std::abs(m.x() - theta_d * std::cos(phi)) < 1e-14);
+        CHECK(std::abs(m.y() - theta_d * std::sin(phi)) < 1e-14);
+    }
+}
+
+TEST_CASE("STEREOGRAPHIC stays accurate near the backward axis: m = 2 tan(theta / 2)") {
+    const StereographicLens<double>::Parameters none;
+    for (double degrees : {10.0, 120.0, 179.0, 179.999}) {
+        const long double theta = static_cast<long double>(radians_from_degrees(degrees));
+        const Vec3 point(double(std::sin(theta) * 0.6L), double(std::sin(theta) * -0.8L), double(std::cos(theta)));
+        // The hand formula in long double, from the point as rounded to double.
+        const long double rho = std::hypot(static_cast<long double>(point.x()), static_cast<long double>(point.y()));
+        const long double half_tan = std::tan(std::atan2(rho, static_cast<long double>(point.z())) / 2);
+        Vec2 m = Vec2::Zero();
+        INFO(degrees);
+        REQUIRE(StereographicLens<double>::project(none, point, m));
+        CHECK(std::abs(m.x() / double(2 * half_tan * point.x() / rho) - 1) < 1e-15);
+        CHECK(std::abs(m.y() / double(2 * half_tan * point.y() / rho) - 1) < 1e-15);
+    }
+}
+
+TEST_CASE("Points behind the camera and on its plane are flagged, not mirrored as cv::projectPoints does") {
+    const Camera camera = lens_camera(LensType::Opencv5, {-0.05, 0.01, 2e-4, -3e-4, 0.001});
+    const std::vector<Vec3> points{{0.3, -0.2, 0.0}, {0.3, -0.2, -1.0}, {0.0, 0.0, -2.0}, {0.0, 0.0, 0.0}};
+    for (const Projection& p : camera.project_camera_points(points)) CHECK_FALSE(p.valid);
+    // What OpenCV does instead: (x, y, -1) lands where (-x, -y, 1) does.
+    const std::vector<Vec2> cv_pixels = opencv_project(camera, {{0.3, -0.2, -1.0}, {-0.3, 0.2, 1.0}});
+    CHECK((cv_pixels[0] - cv_pixels[1]).norm() < 1e-9);
+
+    for (const LensInfo& info : lens_models()) {
+        if (!info.sees_behind_camera) {
+            const Camera c = lens_camera(info.type, std::vector<double>(static_cast<std::size_t>(info.num_coefficients), 0.0));
+            INFO(info.name);
+            for (const Projection& p : c.project_camera_points(points)) CHECK_FALSE(p.valid);
+        }
+    }
+    struct Expectation {
+        LensType type;
+        Vec3 point;
+        bool valid;
+    };
+    const Expectation expectations[] = {
+        {LensType::Fisheye, {0, 0, -1}, false},          {LensType::Fisheye, {0, 0, 0}, false},
+        {LensType::Fisheye, {1, 0.5, 0}, true},          {LensType::Fisheye, {1, 0.5, -0.4}, true},
+        {LensType::Stereographic, {0, 0, -1}, false},    {LensType::Stereographic, {0, 0, 0}, false},
+        {LensType::Stereographic, {1e-3, 0, -1}, true},  {LensType::Lonlat, {0, 1, 0}, false},
+        {LensType::Lonlat, {0, 0, -1}, true},            {LensType::Lonlat, {0.2, -1, -0.3}, true},
+        {LensType::Latlon, {-1, 0, 0}, false},           {LensType::Latlon, {0, 0, -1}, true},
+    };
+    for (const Expectation& e : expectations) {
+        const Camera c = lens_camera(e.type, std::vector<double>(static_cast<std::size_t>(lens_info(e.type).num_coefficients), 0.0));
+        INFO(lens_info(e.type).name << " " << e.point.transpose());
+        CHECK(c.project_camera_point(e.point).valid == e.valid);
+    }
+}
+
+TEST_CASE("The fold-over radius matches the roots worked by hand") {
+    const auto opencv8 = [](std::vector<double> k) { return OpenCv8Lens<double>::valid_radius(k); };
+    // d = r (1 + k1 r^2): d' = 1 + 3 k1 r^2 = 0.
+    CHECK(OpenCv4Lens<double>::valid_radius(std::vector<double>{-0.5, 0, 0, 0}) == Approx(std::sqrt(1 / 1.5)).epsilon(1e-14));
+    // d' = 1 + 3 k1 s + 5 k2 s^2: the smaller root.
+    const double k1 = -0.3, k2 = 0.02;
+    const double s = (-3 * k1 - std::sqrt(9 * k1 * k1 - 20 * k2)) / (10 * k2);
+    CHECK(OpenCv4Lens<double>::valid_radius(std::vector<double>{k1, k2, 1e-3, 1e-3}) == Approx(std::sqrt(s)).epsilon(1e-14));
+    // d = r / (1 + k4 r^2): d' = (1 - k4 s) / Q^2 = 0 at s = 1 / k4.
+    CHECK(opencv8({0, 0, 0, 0, 0, 0.5, 0, 0}) == Approx(std::sqrt(2.0)).epsilon(1e-14));
+    // k4 < 0: d' > 0 throughout, but Q = 1 + k4 s reaches 0 at s = -1 / k4.
+    CHECK(opencv8({0, 0, 0, 0, 0, -0.25, 0, 0}) == Approx(2.0).epsilon(1e-14));
+    // Barrel-free lenses never fold over.
+    CHECK(std::isinf(OpenCv5Lens<double>::valid_radius(std::vector<double>{0.1, 0.01, 0, 0, 0.001})));
+    // FISHEYE: 1 + 3 k1 theta^2 = 0, and never beyond pi.
+    CHECK(FisheyeLens<double>::valid_radius(std::vector<double>{-0.2, 0, 0, 0}) == Approx(std::sqrt(1 / 0.6)).epsilon(1e-14));
+    CHECK(FisheyeLens<double>::valid_radius(std::vector<double>{0, 0, 0, 0}) == std::numbers::pi);
+
+    // Projection flags the points past the radius.
+    const auto lens = OpenCv4Lens<double>::parameters(std::vector<double>{-0.5, 0, 0, 0});
+    Vec2 m = Vec2::Zero();
+    CHECK(OpenCv4Lens<double>::project(lens, Vec3(0.81, 0, 1), m));
+    CHECK_FALSE(OpenCv4Lens<double>::project(lens, Vec3(0.82, 0, 1), m));
+    CHECK_FALSE(OpenCv4Lens<double>::project(lens, Vec3(0, -5, 1), m));
+}
+
+namespace {
+
+// dm/d(coefficients) against central differences in long double; the worst error,
+// relative to each column's size, into `worst`.
+template <class ModelLong, class Parameters, class Jacobian>
+void check_coefficient_jacobian(const Parameters& lens_long, const Vec3& point, const Jacobian& d_coefficients, double& worst) {
+    const long double h = 1e-7L;
+    for (int j = 0; j < ModelLong::num_coefficients; ++j) {
+        Parameters plus = lens_long, minus = lens_long;
+        plus.coefficients(j) += h;
+        minus.coefficients(j) -= h;
+        Eigen::Matrix<long double, 2, 1> m_plus = Eigen::Matrix<long double, 2, 1>::Zero(), m_minus = m_plus;
+        REQUIRE(ModelLong::project(plus, point.template cast<long double>(), m_plus));
+        REQUIRE(ModelLong::project(minus, point.template cast<long double>(), m_minus));
+        const Eigen::Matrix<long double, 2, 1> numeric = (m_plus - m_minus) / (2 * h);
+        const double column_scale = std::max(1.0, d_coefficients.col(j).cwiseAbs().maxCoeff());
+        const long double difference = (numeric - d_coefficients.col(j).template cast<long double>()).cwiseAbs().maxCoeff();
+        worst = std::max(worst, double(difference) / column_scale);
+    }
+}
+
+// Analytic Jacobians in double against central differences of the same model in long double.
+template <class Model, class ModelLong>
+void check_jacobians(const Camera& camera, const std::vector<Vec3>& points) {
+    constexpr int N = Model::num_coefficients;
+    const auto lens = Model::parameters(camera.lens.coefficients);
+    const auto lens_long = ModelLong::parameters(camera.lens.coefficients);
+    using Vec3L = Eigen::Matrix<long double, 3, 1>;
+    using Vec2L = Eigen::Matrix<long double, 2, 1>;
+    const long double h = 1e-7L;
+    double worst_point = 0, worst_coefficient = 0;
+    for (const Vec3& point : points) {
+        Vec2 m = Vec2::Zero();
+        Eigen::Matrix<double, 2, 3> d_point;
+        Eigen::Matrix<double, 2, N> d_coefficients;
+        REQUIRE(Model::project(lens, point, m, &d_point, &d_coefficients));
+        const double scale = std::max(1.0, d_point.cwiseAbs().maxCoeff());
+        for (int j = 0; j < 3; ++j) {
+            Vec3L plus = point.template cast<long double>(), minus = plus;
+            const long double step = h * std::max(1.0L, std::abs(plus(j)));
+            plus(j) += step;
+            minus(j) -= step;
+            Vec2L m_plus = Vec2L::Zero(), m_minus = Vec2L::Zero();
+            REQUIRE(ModelLong::project(lens_long, plus, m_plus));
+            REQUIRE(ModelLong::project(lens_long, minus, m_minus));
+            const Vec2L numeric = (m_plus - m_minus) / (2 * step);
+            worst_point = std::max(worst_point, double((numeric - d_point.col(j).template cast<long double>()).cwiseAbs().maxCoeff()) / scale);
+        }
+        if constexpr (N > 0) check_coefficient_jacobian<ModelLong>(lens_long, point, d_coefficients, worst_coefficient);
+    }
+    CHECK(worst_point < 1e-8);
+    CHECK(worst_coefficient < 1e-8);
+}
+
+// The same Jacobian by forward-mode automatic differentiation through the model's own
+// formula, evaluated in ceres::Jet.
+template <class Model, class ModelJet>
+void check_against_jet(const Camera& camera, const std::vector<Vec3>& points) {
+    using Jet = ceres::Jet<double, 3>;
+    const auto lens = Model::parameters(camera.lens.coefficients);
+    const auto lens_jet = ModelJet::parameters(camera.lens.coefficients);
+    double worst = 0;
+    for (const Vec3& point : points) {
+        Vec2 m = Vec2::Zero();
+        Eigen::Matrix<double, 2, 3> d_point;
+        REQUIRE(Model::project(lens, point, m, &d_point));
+        const Eigen::Matrix<Jet, 3, 1> point_jet(Jet(point.x(), 0), Jet(point.y(), 1), Jet(point.z(), 2));
+        Eigen::Matrix<Jet, 2, 1> m_jet = Eigen::Matrix<Jet, 2, 1>::Zero();
+        REQUIRE(ModelJet::project(lens_jet, point_jet, m_jet));
+        for (int i = 0; i < 2; ++i) {
+            CHECK(std::abs(m_jet(i).a - m(i)) <= 1e-15 * std::max(1.0, std::abs(m(i))));
+            worst = std::max(worst, (m_jet(i).v.transpose() - d_point.row(i)).cwiseAbs().maxCoeff() /
+                                        std::max(1.0, d_point.cwiseAbs().maxCoeff()));
+        }
+    }
+    CHECK(worst < 1e-13);
+}
+
+}  // namespace
+
+TEST_CASE("Jacobians match central differences in long double and ceres::Jet") {
+    for (const LensCase& c : lens_cases()) {
+        INFO(c.name);
+        std::vector<Vec3> points = sample_points(c.camera, lens_info(c.camera.lens.type).sees_behind_camera ? 170.0 : 89.5);
+        points.resize(std::min<std::size_t>(points.size(), 400));
+        if (c.camera.lens.type == LensType::Fisheye) points.emplace_back(1e-5, -2e-5, 1.0);  // the series near the axis
+        visit_lens_model<double>(c.camera.lens.type, [&]<class Model>() {
+            check_jacobians<Model, LensInScalar<Model, long double>>(c.camera, points);
+            check_against_jet<Model, LensInScalar<Model, ceres::Jet<double, 3>>>(c.camera, points);
+        });
+    }
+}
+
+TEST_CASE("Every model compiles and agrees in float") {
+    for (const LensCase& c : lens_cases()) {
+        INFO(c.name);
+        const std::vector<Vec3> points = sample_points(c.camera, 89.5);
+        visit_lens_model<double>(c.camera.lens.type, [&]<class Model>() {
+            using ModelFloat = LensInScalar<Model, float>;
+            {
+                const auto lens = Model::parameters(c.camera.lens.coefficients);
+                const auto lens_float = ModelFloat::parameters(c.camera.lens.coefficients);
+                for (std::size_t i = 0; i < points.size(); i += 7) {
+                    Vec2 m = Vec2::Zero();
+                    Eigen::Vector2f m_float = Eigen::Vector2f::Zero();
+                    REQUIRE(Model::project(lens, points[i], m));
+                    if (!ModelFloat::project(lens_float, points[i].template cast<float>(), m_float)) continue;  // at the domain's edge in float
+                    CHECK((m_float.template cast<double>() - m).norm() <= 1e-5 * std::max(1.0, m.norm()));
+                }
+            }
+        });
+    }
+}

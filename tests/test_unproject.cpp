@@ -1,0 +1,211 @@
+// Unprojection: every valid pixel reprojects, through OpenCV or mrcal, to within 1e-9 px;
+// every pixel that an independent solver (mrcal_unproject, cv::undistortPoints) shows
+// to have a ray inside the valid domain is valid; where the lens folds over inside the
+// image, exactly the pixels past the fold (worked by hand) are flagged.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+#include <opencv2/calib3d.hpp>
+
+#include "lens_cases.hpp"
+#include "libcam/interop/mrcal.hpp"
+#include "libcam/interop/opencv.hpp"
+#include "libcam/lens/lens_models.hpp"
+#include "support.hpp"
+
+using namespace libcam;
+using namespace libcam::test;
+
+namespace {
+
+constexpr double kPixelTolerance = 1e-9;
+
+// The pixels of camera-frame rays by the reference library that has the model: OpenCV
+// for its models (z > 0), mrcal for its own. FISHEYE rays past 90 degrees, which
+// cv::fisheye cannot take, go through libcam's projection (itself checked against
+// theta_d's formula in test_lens_models).
+std::vector<Vec2> reference_project(const Camera& camera, const std::vector<Vec3>& rays) {
+    if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
+    std::vector<Vec2> pixels = opencv_project(camera, rays);
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        if (rays[i].z() <= 0) {
+            const Projection p = camera.project_camera_point(rays[i]);
+            pixels[i] = p.valid ? p.pixel : Vec2::Constant(std::numeric_limits<double>::infinity());
+        }
+    }
+    return pixels;
+}
+
+struct GridResult {
+    std::vector<Vec2> pixels;
+    std::vector<Unprojection> rays;
+    std::vector<double> residuals;  // reprojection error of each valid pixel, px; NaN if invalid
+    double worst = 0;
+    std::size_t valid = 0;
+};
+
+GridResult unproject_grid(const Camera& camera, int nx, int ny) {
+    GridResult result;
+    result.pixels = pixel_grid(camera.size, nx, ny);
+    result.rays = camera.unproject_pixels(result.pixels);
+    std::vector<Vec3> directions;
+    for (const Unprojection& u : result.rays) directions.push_back(u.valid ? u.direction : Vec3(0, 0, 1));
+    const std::vector<Vec2> reprojected = reference_project(camera, directions);
+    result.residuals.assign(result.pixels.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < result.pixels.size(); ++i) {
+        if (!result.rays[i].valid) continue;
+        ++result.valid;
+        result.residuals[i] = (reprojected[i] - result.pixels[i]).norm();
+        result.worst = std::max(result.worst, result.residuals[i]);
+    }
+    return result;
+}
+
+// The radius of the undistorted point of a ray, in the units of the model's
+// valid_radius: |(x/z, y/z)| for OpenCV's models, the angle for FISHEYE.
+double undistorted_radius(LensType type, const Vec3& ray) {
+    if (type == LensType::Fisheye) return std::atan2(std::hypot(ray.x(), ray.y()), ray.z());
+    return std::hypot(ray.x(), ray.y()) / ray.z();
+}
+
+// Rays by a solver independent of libcam: mrcal_unproject, or for what mrcal lacks
+// cv::undistortPoints (cv::fisheye::undistortPoints) at many iterations.
+std::vector<Vec3> independent_unproject(const Camera& camera, const std::vector<Vec2>& pixels) {
+    if (in_mrcal(camera.lens.type)) return mrcal_unproject_pixels(camera, pixels);
+    std::vector<cv::Point2d> in, out;
+    for (const Vec2& p : pixels) in.emplace_back(p.x(), p.y());
+    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), dist = opencv_distortion(camera.lens);
+    const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-15);
+    if (camera.lens.type == LensType::Fisheye) {
+        cv::fisheye::undistortPoints(in, out, K, dist, cv::noArray(), cv::noArray(), criteria);
+    } else {
+        cv::undistortPoints(in, out, K, dist, cv::noArray(), cv::noArray(), criteria);
+    }
+    std::vector<Vec3> rays;
+    for (const cv::Point2d& q : out) rays.emplace_back(q.x, q.y, 1.0);
+    return rays;
+}
+
+}  // namespace
+
+TEST_CASE("Issue 3's wide lens: every pixel of a 601x401 grid unprojects to within 1e-9 px") {
+    const Camera camera = wide_reference_camera();
+    const GridResult grid = unproject_grid(camera, 601, 401);
+    CHECK(grid.valid == grid.pixels.size());
+    CHECK(grid.worst <= kPixelTolerance);
+    WARN("wide lens, 601x401 pixels: " << grid.valid << " valid, worst reprojection residual through cv::projectPoints "
+                                       << grid.worst << " px");
+}
+
+TEST_CASE("Unprojection agrees with mrcal_unproject and cv::undistortPoints wherever they converge inside the domain") {
+    std::vector<LensCase> cases = lens_cases();
+    for (const LensCase& c : cases) {
+        INFO(c.name);
+        const GridResult grid = unproject_grid(c.camera, 121, 91);
+        CHECK(grid.worst <= kPixelTolerance);
+        const std::vector<Vec3> theirs = independent_unproject(c.camera, grid.pixels);
+        std::vector<Vec3> their_rays;
+        for (const Vec3& ray : theirs) their_rays.push_back(ray.allFinite() ? ray : Vec3(0, 0, 1));
+        const std::vector<Vec2> their_reprojected = reference_project(c.camera, their_rays);
+        const double limit = valid_radius_of(c.camera.lens);
+        const bool radial_domain = c.camera.lens.type != LensType::Pinhole && c.camera.lens.type != LensType::Stereographic &&
+                                   c.camera.lens.type != LensType::Lonlat && c.camera.lens.type != LensType::Latlon;
+        std::size_t compared = 0;
+        double worst_angle = 0;
+        for (std::size_t i = 0; i < grid.pixels.size(); ++i) {
+            const bool they_converged = theirs[i].allFinite() && (their_reprojected[i] - grid.pixels[i]).norm() < 1e-6;
+            if (!they_converged) continue;
+            const double radius = radial_domain ? undistorted_radius(c.camera.lens.type, theirs[i]) / limit : 0.0;
+            if (!(radius < 0.999)) continue;
+            INFO("pixel " << grid.pixels[i].transpose());
+            REQUIRE(grid.rays[i].valid);
+            ++compared;
+            // Right at the fold a ray is ill-conditioned in its pixel (their 1e-6 px moves it
+            // far); compare directions where that does not swamp the comparison.
+            if (radius < 0.9) worst_angle = std::max(worst_angle, angle_between(grid.rays[i].direction, theirs[i]));
+        }
+        CHECK(compared > grid.pixels.size() / 4);
+        CHECK(worst_angle < 1e-8);
+    }
+}
+
+TEST_CASE("A lens that folds over inside the image: pixels past the fold are flagged, the others exact") {
+    // Radial-only lenses whose fold is worked by hand: d(r) has its maximum d_max at r_max,
+    // and a pixel has a ray in the valid domain exactly when |m| < d_max.
+    struct Fold {
+        const char* name;
+        Camera camera;
+        double d_max;
+    };
+    const double r4 = std::sqrt(1 / 1.5), theta = std::sqrt(1 / 0.6);
+    const Fold folds[] = {
+        // d = r (1 - 0.5 r^2): r_max = sqrt(1/1.5), d_max = r_max (1 - 0.5 r_max^2) = 2/3 r_max.
+        {"OPENCV4 k1 = -0.5", lens_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1600, 1200}, 900, 900), r4 * 2 / 3},
+        // d = r / (1 + 0.5 r^2): r_max = sqrt 2, d_max = sqrt(2) / 2.
+        {"OPENCV8 k4 = 0.5", lens_camera(LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}, {1600, 1200}, 900, 900),
+         std::sqrt(2.0) / 2},
+        // theta_d = theta (1 - 0.2 theta^2): theta_max = sqrt(1/0.6), d_max = 2/3 theta_max.
+        {"FISHEYE k1 = -0.2", lens_camera(LensType::Fisheye, {-0.2, 0, 0, 0}, {1600, 1200}, 700, 700), theta * 2 / 3},
+    };
+    for (const Fold& fold : folds) {
+        INFO(fold.name);
+        const GridResult grid = unproject_grid(fold.camera, 161, 121);
+        CHECK(grid.worst <= kPixelTolerance);
+        std::size_t flagged = 0;
+        for (std::size_t i = 0; i < grid.pixels.size(); ++i) {
+            const double radius = fold.camera.intrinsics.normalized_from_pixel(grid.pixels[i]).norm();
+            INFO("pixel " << grid.pixels[i].transpose() << " |m| " << radius);
+            if (radius < fold.d_max * (1 - 1e-9)) CHECK(grid.rays[i].valid);
+            if (radius > fold.d_max * (1 + 1e-9)) CHECK_FALSE(grid.rays[i].valid);
+            flagged += grid.rays[i].valid ? 0 : 1;
+        }
+        CHECK(flagged > grid.pixels.size() / 10);  // the fold is inside the image
+    }
+}
+
+TEST_CASE("Closed forms: STEREOGRAPHIC, LONLAT and LATLON against their formulas") {
+    // STEREOGRAPHIC: the ray through m makes the angle 2 atan(|m| / 2) with the axis.
+    const Camera stereo = lens_camera(LensType::Stereographic, {}, {1600, 1200}, 200, 200);
+    for (const Vec2& pixel : pixel_grid(stereo.size, 41, 31)) {
+        Vec3 ray = Vec3::Zero();
+        REQUIRE(stereo.unproject(pixel, ray));
+        const double m = stereo.intrinsics.normalized_from_pixel(pixel).norm();
+        CHECK(std::abs(angle_between(ray, Vec3::UnitZ()) - 2 * std::atan(m / 2)) < 1e-14);
+    }
+    // LONLAT with a field wider than the sphere: a pixel has a ray exactly when
+    // |lon| <= pi and |lat| <= pi/2, lon = (x - cx) / fx, lat = (y - cy) / fy.
+    const Camera lonlat = lens_camera(LensType::Lonlat, {}, {2000, 1000}, 240, 240);
+    const Camera latlon = lens_camera(LensType::Latlon, {}, {1000, 2000}, 240, 240);
+    for (const Camera* camera : {&lonlat, &latlon}) {
+        const bool swapped = camera == &latlon;
+        INFO(lens_info(camera->lens.type).name);
+        const GridResult grid = unproject_grid(*camera, 161, 121);
+        CHECK(grid.worst <= kPixelTolerance);
+        for (std::size_t i = 0; i < grid.pixels.size(); ++i) {
+            const Vec2 m = camera->intrinsics.normalized_from_pixel(grid.pixels[i]);
+            const double lon = swapped ? m.y() : m.x(), lat = swapped ? m.x() : m.y();
+            CHECK(grid.rays[i].valid == (std::abs(lon) <= std::numbers::pi && std::abs(lat) <= std::numbers::pi / 2));
+        }
+    }
+}
+
+TEST_CASE("The one solver runs in float and long double too") {
+    const Camera camera = wide_reference_camera();
+    const auto check = [&]<class Scalar>(Scalar tolerance) {
+        using Model = OpenCv8Lens<Scalar>;
+        const auto lens = Model::parameters(camera.lens.coefficients);
+        double worst = 0;
+        for (const Vec2& pixel : pixel_grid(camera.size, 31, 21)) {
+            const Eigen::Matrix<Scalar, 2, 1> m = camera.intrinsics.normalized_from_pixel(pixel).template cast<Scalar>();
+            Eigen::Matrix<Scalar, 3, 1> ray = Eigen::Matrix<Scalar, 3, 1>::Zero();
+            Eigen::Matrix<Scalar, 2, 1> back = Eigen::Matrix<Scalar, 2, 1>::Zero();
+            REQUIRE(Model::unproject(lens, m, ray));
+            REQUIRE(Model::project(lens, ray, back));
+            worst = std::max(worst, double((back - m).norm()));
+        }
+        CHECK(worst <= double(tolerance));
+    };
+    check(2e-6f);     // about 64 float roundings of |m| ~ 3
+    check(1e-17L);    // long double: a thousand times below double's result
+}
