@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
+#include "libcam/version.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
@@ -38,9 +39,10 @@ int main(int argc, char** argv) {
     cv::redirectError(quiet_opencv_errors);
 
     CLI::App app{"libcam: graphics cameras <-> calibrated cameras, checked against OpenCV and mrcal"};
+    app.set_version_flag("--version", std::string("libcam ") + LIBCAM_VERSION);
     app.require_subcommand(1);
     std::map<CLI::App*, Runner> runners;
-    for (auto add : {add_convert, add_rays, add_demo}) {
+    for (auto add : {add_convert, add_rays, add_demo, add_verify}) {
         Runner run = add(app);
         runners[app.get_subcommands({}).back()] = std::move(run);
     }
@@ -51,6 +53,8 @@ int main(int argc, char** argv) {
         return app.exit(help);
     } catch (const CLI::CallForAllHelp& help) {
         return app.exit(help);
+    } catch (const CLI::CallForVersion& version) {
+        return app.exit(version);
     } catch (const CLI::ParseError& error) {
         std::cerr << "libcam: usage error: " << error.what() << " (see --help)\n";
         return 2;
