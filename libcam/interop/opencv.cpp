@@ -1,6 +1,8 @@
 #include "libcam/interop/opencv.hpp"
 
 #include <algorithm>
+#include <vector>
+#include <cctype>
 #include <optional>
 
 #include "libcam/error.hpp"
@@ -59,10 +61,35 @@ std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
 
 namespace {
 
+// The most elements a camera matrix or coefficient vector can have. A file that
+// declares more (rows: 2000000000) is refused before OpenCV allocates it.
+constexpr int kMaxMatrixElements = 64;
+
+void check_matrix_size(const cv::FileNode& node, const char* key, const std::string& source) {
+    const auto refuse = [&](const std::string& what) {
+        throw FileError(source + ": \"" + key + "\": " + what + " (at most " + std::to_string(kMaxMatrixElements) +
+                        " elements)");
+    };
+    if (node.isSeq() && node.size() > static_cast<std::size_t>(kMaxMatrixElements)) {
+        refuse("too many elements: " + std::to_string(node.size()));
+    }
+    if (!node.isMap()) return;
+    const cv::FileNode rows = node["rows"], cols = node["cols"], data = node["data"];
+    if (!rows.isInt() || !cols.isInt()) refuse("rows and cols must be integers");
+    const long long count = static_cast<long long>(static_cast<int>(rows)) * static_cast<int>(cols);
+    if (static_cast<int>(rows) < 0 || static_cast<int>(cols) < 0 || count > kMaxMatrixElements) {
+        refuse("declares " + std::to_string(static_cast<int>(rows)) + "x" + std::to_string(static_cast<int>(cols)));
+    }
+    if (data.isSeq() && data.size() > static_cast<std::size_t>(kMaxMatrixElements)) {
+        refuse("too many data elements: " + std::to_string(data.size()));
+    }
+}
+
 // A node as a CV_64F matrix; FileError naming the key unless it is a matrix of `count`
 // finite numbers (count < 0: any count).
 cv::Mat read_matrix(const cv::FileNode& node, const char* key, const std::string& source, int rows, int cols) {
     if (node.empty() || node.isNone()) throw FileError(source + ": \"" + key + "\": missing");
+    check_matrix_size(node, key, source);
     cv::Mat m;
     try {
         node >> m;
@@ -104,9 +131,145 @@ Vec3 read_vector3(const cv::FileNode& node, const char* key, const std::string& 
     return {m.at<double>(0), m.at<double>(1), m.at<double>(2)};
 }
 
+// OpenCV 4.6's YAML parser loops forever on some malformed documents (found by
+// fuzzing: "%YAML:1.0\n----m\nm\nm"), so YAML is checked line by line against the
+// shape cv::FileStorage writes before OpenCV sees it: the %YAML header, "---", then
+// "key: value" lines (indented with spaces for matrix fields), comments, "- item" lines,
+// and flow sequences [ ... ] that may span lines. Anything else is refused here.
+void check_opencv_yaml_shape(std::string_view text, const std::string& source) {
+    std::size_t start = 0;
+    int line_number = 0;
+    int open_brackets = 0;
+    auto is_key_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; };
+    while (start < text.size()) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        std::string_view line = text.substr(start, end - start);
+        start = end + 1;
+        ++line_number;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        const auto refuse = [&](const std::string& what) {
+            throw FileError(source + ": line " + std::to_string(line_number) + ": " + what +
+                            " (not the YAML cv::FileStorage writes)");
+        };
+        if (line_number == 1) {
+            if (!line.starts_with("%YAML")) refuse("expected the %YAML header");
+            continue;
+        }
+        if (line_number == 2) {
+            if (line != "---") refuse("expected '---'");
+            continue;
+        }
+        const std::size_t indent = line.find_first_not_of(' ');
+        if (indent == std::string_view::npos || line[indent] == '#') continue;  // blank or comment
+        if (line.find('\t') != std::string_view::npos) refuse("tab character");
+        std::string_view rest = line.substr(indent);
+        if (open_brackets == 0) {
+            if (rest.starts_with("- ") || rest == "-") {
+                rest.remove_prefix(1);
+            } else {
+                std::size_t key_end = 0;
+                while (key_end < rest.size() && is_key_char(rest[key_end])) ++key_end;
+                if (key_end == 0 || key_end >= rest.size() || rest[key_end] != ':') refuse("expected 'key: value'");
+                rest.remove_prefix(key_end + 1);
+            }
+        }
+        for (std::size_t i = 0; i < rest.size(); ++i) {
+            const char c = rest[i];
+            if (c == '"' || c == '\'') {
+                const std::size_t close = rest.find(c, i + 1);
+                if (close == std::string_view::npos) refuse("unterminated string");
+                i = close;
+            } else if (c == '[' || c == '{') {
+                if (++open_brackets > 4) refuse("nested too deep");
+            } else if (c == ']' || c == '}') {
+                if (--open_brackets < 0) refuse("unbalanced '" + std::string(1, c) + "'");
+            } else if (c == '#' && open_brackets == 0) {
+                break;
+            }
+        }
+    }
+    if (open_brackets != 0) throw FileError(source + ": unclosed '[' (truncated file?)");
+}
+
+// OpenCV 4.6's XML parser reads past the end of its input on a truncated tag such as
+// "<im rn=" (found by fuzzing), so XML is checked first: every tag closed with '>',
+// attribute values quoted and closed, comments and declarations closed, elements
+// nested and balanced. Text between tags goes to OpenCV unchecked.
+void check_opencv_xml_shape(std::string_view text, const std::string& source) {
+    constexpr int kMaxDepth = 8;
+    std::vector<std::string_view> open_elements;
+    const auto refuse = [&](std::size_t at, const std::string& what) {
+        throw FileError(source + ": byte " + std::to_string(at) + ": " + what + " (not the XML cv::FileStorage writes)");
+    };
+    auto is_name_char = [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == ':';
+    };
+    std::size_t i = 0;
+    while ((i = text.find('<', i)) != std::string_view::npos) {
+        const std::size_t tag = i;
+        for (std::string_view closer : {"<!--", "<?"}) {
+            if (text.substr(i).starts_with(closer)) {
+                const std::string_view end = closer == "<?" ? "?>" : "-->";
+                const std::size_t close = text.find(end, i + closer.size());
+                if (close == std::string_view::npos) refuse(tag, "unclosed '" + std::string(closer) + "'");
+                i = close + end.size();
+                break;
+            }
+        }
+        if (i != tag) continue;
+        const bool closing = i + 1 < text.size() && text[i + 1] == '/';
+        std::size_t name_end = i + (closing ? 2 : 1);
+        const std::size_t name_start = name_end;
+        while (name_end < text.size() && is_name_char(text[name_end])) ++name_end;
+        if (name_end == name_start) refuse(tag, "a tag without a name");
+        const std::string_view name = text.substr(name_start, name_end - name_start);
+        // Attributes: name="value" pairs up to '>' or '/>'.
+        i = name_end;
+        bool self_closing = false;
+        while (true) {
+            while (i < text.size() && std::isspace(static_cast<unsigned char>(text[i]))) ++i;
+            if (i >= text.size()) refuse(tag, "unclosed tag <" + std::string(name));
+            if (text[i] == '>') break;
+            if (!closing && text.substr(i).starts_with("/>")) {
+                self_closing = true;
+                ++i;
+                break;
+            }
+            const std::size_t attribute = i;
+            while (i < text.size() && is_name_char(text[i])) ++i;
+            if (closing || i == attribute || i + 1 >= text.size() || text[i] != '=' ||
+                (text[i + 1] != '"' && text[i + 1] != '\'')) {
+                refuse(attribute, "malformed attribute in <" + std::string(name) + ">");
+            }
+            const std::size_t close = text.find(text[i + 1], i + 2);
+            if (close == std::string_view::npos) refuse(attribute, "unterminated attribute value");
+            i = close + 1;
+        }
+        ++i;  // past '>'
+        if (closing) {
+            if (open_elements.empty() || open_elements.back() != name) refuse(tag, "unbalanced </" + std::string(name) + ">");
+            open_elements.pop_back();
+        } else if (!self_closing) {
+            open_elements.push_back(name);
+            if (static_cast<int>(open_elements.size()) > kMaxDepth) refuse(tag, "nested too deep");
+        }
+    }
+    if (!open_elements.empty()) {
+        throw FileError(source + ": <" + std::string(open_elements.back()) + "> is never closed (truncated file?)");
+    }
+}
+
 }  // namespace
 
 Camera parse_opencv_storage(std::string_view text, const std::string& source) {
+    // XML or else the YAML cv::FileStorage writes, checked before OpenCV parses it.
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    if (first == std::string_view::npos) throw FileError(source + ": file is empty");
+    if (text[first] == '<') {
+        check_opencv_xml_shape(text, source);
+    } else {
+        check_opencv_yaml_shape(text.substr(first), source);
+    }
     cv::FileStorage fs;
     try {
         if (!fs.open(std::string(text), cv::FileStorage::READ | cv::FileStorage::MEMORY)) {
@@ -114,6 +277,10 @@ Camera parse_opencv_storage(std::string_view text, const std::string& source) {
         }
     } catch (const cv::Exception& error) {
         throw FileError(source + ": not a valid OpenCV YAML/XML file: " + error.err);
+    } catch (const std::exception& error) {
+        // OpenCV's parser also lets standard exceptions out (std::length_error on some
+        // malformed YAML, found by fuzzing).
+        throw FileError(source + ": not a valid OpenCV YAML/XML file: " + error.what());
     }
     try {
         Camera camera;
@@ -156,6 +323,12 @@ Camera parse_opencv_storage(std::string_view text, const std::string& source) {
         return camera;
     } catch (const cv::Exception& error) {
         throw FileError(source + ": malformed OpenCV file: " + error.err);
+    } catch (const InvalidArgument& error) {
+        throw FileError(source + ": " + error.what());
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& error) {
+        throw FileError(source + ": malformed OpenCV file: " + error.what());
     }
 }
 

@@ -1,6 +1,7 @@
 #include "libcam/io/camera_file.hpp"
 
 #include <array>
+#include <cstdint>
 #include <utility>
 
 #include "libcam/error.hpp"
@@ -59,7 +60,39 @@ std::string format_camera(const Camera& camera, CameraFormat format, const Write
     throw InvalidArgument("format: unknown");
 }
 
+namespace {
+
+// Camera files are text: UTF-8 without NUL bytes. Checked before any parser sees the
+// bytes, because OpenCV's XML parser and libmrcal's parser crash on some binary input
+// (found by fuzzing).
+void check_text(std::string_view text, const std::string& source) {
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const auto byte = static_cast<unsigned char>(text[i]);
+        const std::string where = source + ": byte " + std::to_string(i) + ": ";
+        if (byte == 0) throw FileError(where + "NUL byte: not a text file");
+        // The length of the UTF-8 sequence this byte starts, and its smallest code point
+        // (so overlong encodings are refused too).
+        const int length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
+        if (length == 0 || i + static_cast<std::size_t>(length) > text.size()) throw FileError(where + "not UTF-8");
+        std::uint32_t code = length == 1 ? byte : byte & (0x7F >> length);
+        for (int k = 1; k < length; ++k) {
+            const auto next = static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]);
+            if ((next >> 6) != 0x2) throw FileError(where + "not UTF-8");
+            code = (code << 6) | (next & 0x3F);
+        }
+        constexpr std::uint32_t kSmallest[] = {0, 0, 0x80, 0x800, 0x10000};
+        if (code < kSmallest[length] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) {
+            throw FileError(where + "not UTF-8");
+        }
+        i += static_cast<std::size_t>(length);
+    }
+}
+
+}  // namespace
+
 CameraFile parse_camera(std::string_view text, CameraFormat format, const std::string& source) {
+    check_text(text, source);
     switch (format) {
         case CameraFormat::Json:
         case CameraFormat::Gl: return parse_json_camera(text, source);  // the keys tell which
