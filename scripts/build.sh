@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Configures and builds libcam into ./build (Release with assertions of its own tests).
+# Configures and builds libcam.
+# Usage: scripts/build.sh [BUILD_DIR [extra cmake arguments...]]   (default BUILD_DIR: ./build)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${LIBCAM_BUILD_DIR:-$root/build}"
+build="${1:-${LIBCAM_BUILD_DIR:-$root/build}}"
+shift || true
 generator=()
 if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE="${LIBCAM_BUILD_TYPE:-RelWithDebInfo}"
+  cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE="${LIBCAM_BUILD_TYPE:-RelWithDebInfo}" "$@"
 fi
 cmake --build "$build" --parallel "$(nproc)"

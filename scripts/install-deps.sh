@@ -14,6 +14,7 @@ packages=(
   libbenchmark-dev       # micro-benchmarks
   libceres-dev           # model fitting
   libboost-dev           # multiprecision reference
+  clang libclang-rt-14-dev   # libFuzzer and its sanitizer runtimes
 )
 
 missing=()

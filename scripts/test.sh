@@ -1,8 +1,30 @@
 #!/usr/bin/env bash
-# The whole test suite from a fresh clone: install what is missing, build, run every test through ctest.
+# The whole test suite from a fresh clone: install what is missing, then
+#   1. build and run every test (ctest) in build/;
+#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer in
+#      build-asan/ (any report fails the test that hit it);
+#   3. every libFuzzer target for a bounded time (LIBCAM_FUZZ_SECONDS each, default 12)
+#      in build-fuzz/, built with clang.
+# LIBCAM_QUICK=1 runs step 1 only.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
+jobs="$(nproc)"
 bash "$root/scripts/install-deps.sh"
-bash "$root/scripts/build.sh"
-cd "${LIBCAM_BUILD_DIR:-$root/build}"
-ctest --output-on-failure --parallel "$(nproc)" --timeout 600
+
+echo "== 1/3: build and test"
+bash "$root/scripts/build.sh" "$root/build"
+(cd "$root/build" && ctest --output-on-failure --parallel "$jobs" --timeout 900)
+[ "${LIBCAM_QUICK:-0}" = 1 ] && exit 0
+
+echo "== 2/3: the tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
+bash "$root/scripts/build.sh" "$root/build-asan" -DLIBCAM_SANITIZE=ON
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# The installed-package test links a consumer against the instrumented static libraries
+# without the sanitizer runtime; it runs in step 1.
+(cd "$root/build-asan" && ctest --output-on-failure --parallel "$jobs" --timeout 1800 -E install_consumer)
+
+echo "== 3/3: fuzzing every reader and the number parser"
+CXX=clang++ bash "$root/scripts/build.sh" "$root/build-fuzz" -DLIBCAM_FUZZ=ON -DLIBCAM_BUILD_TESTS=OFF \
+  -DLIBCAM_BUILD_TOOLS=OFF -DLIBCAM_FUZZ_SECONDS="${LIBCAM_FUZZ_SECONDS:-12}"
+(cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz --timeout 600)
