@@ -87,23 +87,6 @@ inline bool in_opencv(LensType type) {
 }
 inline bool in_mrcal(LensType type) { return type != LensType::Fisheye && type != LensType::Opencv14; }
 
-// Pixels by cv::projectPoints, or cv::fisheye::projectPoints for FISHEYE.
-inline std::vector<Vec2> opencv_project(const Camera& camera, const std::vector<Vec3>& points) {
-    std::vector<cv::Point3d> object;
-    for (const Vec3& p : points) object.emplace_back(p.x(), p.y(), p.z());
-    std::vector<cv::Point2d> image;
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), dist = opencv_distortion(camera.lens);
-    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    if (camera.lens.type == LensType::Fisheye) {
-        cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
-    } else {
-        cv::projectPoints(object, zero, zero, K, dist, image);
-    }
-    std::vector<Vec2> out;
-    for (const cv::Point2d& q : image) out.emplace_back(q.x, q.y);
-    return out;
-}
-
 // The lens's valid_radius (lens/model_support.hpp), an input the tests sample within.
 inline double valid_radius_of(const Lens& lens) {
     return visit_lens_model<double>(lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });

@@ -91,7 +91,7 @@ TEST_CASE("Projection agrees with cv::projectPoints / cv::fisheye::projectPoints
         for (const Projection& p : ours) REQUIRE(p.valid);
         double worst_cv = 0, worst_mrcal = 0;
         if (in_opencv(c.camera.lens.type)) {
-            const std::vector<Vec2> cv_pixels = opencv_project(c.camera, front);
+            const std::vector<Vec2> cv_pixels = opencv_project_points(c.camera, front);
             for (std::size_t i = 0; i < front.size(); ++i) worst_cv = std::max(worst_cv, (ours[i].pixel - cv_pixels[i]).norm());
         }
         if (in_mrcal(c.camera.lens.type)) {
@@ -149,7 +149,7 @@ TEST_CASE("Points behind the camera and on its plane are flagged, not mirrored a
     const std::vector<Vec3> points{{0.3, -0.2, 0.0}, {0.3, -0.2, -1.0}, {0.0, 0.0, -2.0}, {0.0, 0.0, 0.0}};
     for (const Projection& p : camera.project_camera_points(points)) CHECK_FALSE(p.valid);
     // What OpenCV does instead: (x, y, -1) lands where (-x, -y, 1) does.
-    const std::vector<Vec2> cv_pixels = opencv_project(camera, {{0.3, -0.2, -1.0}, {-0.3, 0.2, 1.0}});
+    const std::vector<Vec2> cv_pixels = opencv_project_points(camera, {{0.3, -0.2, -1.0}, {-0.3, 0.2, 1.0}});
     CHECK((cv_pixels[0] - cv_pixels[1]).norm() < 1e-9);
 
     for (const LensInfo& info : lens_models()) {

@@ -27,7 +27,7 @@ constexpr double kPixelTolerance = 1e-9;
 // theta_d's formula in test_lens_models).
 std::vector<Vec2> reference_project(const Camera& camera, const std::vector<Vec3>& rays) {
     if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
-    std::vector<Vec2> pixels = opencv_project(camera, rays);
+    std::vector<Vec2> pixels = opencv_project_points(camera, rays);
     for (std::size_t i = 0; i < rays.size(); ++i) {
         if (rays[i].z() <= 0) {
             const Projection p = camera.project_camera_point(rays[i]);

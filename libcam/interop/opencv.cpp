@@ -1,5 +1,7 @@
 #include "libcam/interop/opencv.hpp"
 
+#include <opencv2/calib3d.hpp>
+
 #include <algorithm>
 #include <vector>
 #include <cctype>
@@ -37,6 +39,24 @@ cv::Mat opencv_distortion(const Lens& lens) {
 }
 
 cv::Mat opencv_vector(const Vec3& v) { return (cv::Mat_<double>(3, 1) << v.x(), v.y(), v.z()); }
+
+std::vector<Vec2> opencv_project_points(const Camera& camera, const std::vector<Vec3>& camera_points) {
+    if (camera_points.empty()) return {};
+    std::vector<cv::Point3d> object;
+    for (const Vec3& p : camera_points) object.emplace_back(p.x(), p.y(), p.z());
+    std::vector<cv::Point2d> image;
+    const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
+    const cv::Mat dist = opencv_distortion(camera.lens);
+    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
+    if (camera.lens.type == LensType::Fisheye) {
+        cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
+    } else {
+        cv::projectPoints(object, zero, zero, K, dist, image);
+    }
+    std::vector<Vec2> pixels;
+    for (const cv::Point2d& q : image) pixels.emplace_back(q.x, q.y);
+    return pixels;
+}
 
 std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
     camera.validate();

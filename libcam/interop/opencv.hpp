@@ -5,6 +5,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "libcam/camera/camera.hpp"
 
@@ -15,6 +16,11 @@ cv::Mat opencv_camera_matrix(const Intrinsics& intrinsics);  // 3x3 CV_64F
 // models) or cv::fisheye (FISHEYE); NotRepresentable for a model OpenCV lacks.
 cv::Mat opencv_distortion(const Lens& lens);
 cv::Mat opencv_vector(const Vec3& v);                        // 3x1 CV_64F (rvec, tvec)
+
+// Camera-frame points projected by OpenCV itself: cv::projectPoints, or
+// cv::fisheye::projectPoints for FISHEYE, with R = I and t = 0. OpenCV does not flag
+// points behind the camera (it mirrors them); the caller decides what to compare.
+std::vector<Vec2> opencv_project_points(const Camera& camera, const std::vector<Vec3>& camera_points);
 
 enum class OpenCvStorage { Yaml, Xml };
 

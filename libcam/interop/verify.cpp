@@ -124,26 +124,6 @@ std::string opencv_undistort_name(const Camera& camera) {
     return is_fisheye(camera) ? "cv::fisheye::undistortPoints" : "cv::undistortPoints";
 }
 
-// Pixels by cv::projectPoints (cv::fisheye::projectPoints for FISHEYE). Both take any
-// z: points behind the camera come out mirrored or folded, so callers pass z > 0 only.
-std::vector<Vec2> opencv_project(const Camera& camera, const std::vector<Vec3>& points) {
-    if (points.empty()) return {};
-    std::vector<cv::Point3d> object;
-    for (const Vec3& p : points) object.emplace_back(p.x(), p.y(), p.z());
-    std::vector<cv::Point2d> image;
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
-    const cv::Mat dist = opencv_distortion(camera.lens);
-    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    if (is_fisheye(camera)) {
-        cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
-    } else {
-        cv::projectPoints(object, zero, zero, K, dist, image);
-    }
-    std::vector<Vec2> out;
-    for (const cv::Point2d& q : image) out.emplace_back(q.x, q.y);
-    return out;
-}
-
 // Rays (x, y, 1) by cv::undistortPoints (cv::fisheye::undistortPoints for FISHEYE), at
 // the function's default stopping rule when `criteria` is empty.
 std::vector<Vec3> opencv_undistort(const Camera& camera, const std::vector<Vec2>& pixels,
@@ -269,7 +249,7 @@ VerifyCheck check_project_opencv(const Camera& camera, const Samples& s, const s
     // cv::fisheye::projectPoints folds them forward: only points in front are comparable.
     return compare_projection(
         std::move(check), s, [](const Vec3& p) { return p.z() > 0.0; },
-        [&](const std::vector<Vec3>& points) { return opencv_project(camera, points); },
+        [&](const std::vector<Vec3>& points) { return opencv_project_points(camera, points); },
         "behind the camera, or outside libcam's domain");
 }
 
@@ -305,7 +285,7 @@ VerifyCheck check_unproject_libcam_opencv(const Camera& camera, const Samples& s
         pixels.push_back(s.pixels[i]);
         rays.push_back(s.rays[i].direction);
     }
-    VerifyCheck out = reprojection_errors(s.pixels.size(), in_front, pixels, opencv_project(camera, rays))
+    VerifyCheck out = reprojection_errors(s.pixels.size(), in_front, pixels, opencv_project_points(camera, rays))
                           .finish(std::move(check));
     out.note = count_note(s.with_ray.size() - in_front.size(), "rays behind the camera not compared");
     return out;
@@ -370,7 +350,7 @@ VerifyCheck check_undistort(const Camera& camera, const Samples& s, std::string_
     for (Vec3& ray : rays) {
         if (!ray.allFinite()) ray = Vec3::Constant(kNaN);
     }
-    VerifyCheck out = reprojection_errors(s.pixels.size(), s.with_ray, pixels, opencv_project(camera, rays))
+    VerifyCheck out = reprojection_errors(s.pixels.size(), s.with_ray, pixels, opencv_project_points(camera, rays))
                           .finish(std::move(check));
     const auto behind = static_cast<std::size_t>(std::count_if(
         s.with_ray.begin(), s.with_ray.end(), [&](std::size_t i) { return !(s.rays[i].direction.z() > 0.0); }));
