@@ -3,9 +3,11 @@
 // tolerance no candidate meets, with nothing on stdout).
 
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <sstream>
 
 #include "cli_runner.hpp"
 #include "libcam/io/camera_file.hpp"
@@ -105,7 +107,7 @@ TEST_CASE("fit --json: chosen {model, params, rms_px, max_px}, candidates with t
     }
 }
 
-TEST_CASE("fit prints the table and the choice; a FOV camera as fov on each axis and size") {
+TEST_CASE("fit prints the table and the choice, a FOV camera as fov on each axis and size") {
     Files files;
     const auto result = fit({files.fov, "--tolerance", "0.01"});
     INFO(result.describe());
@@ -116,7 +118,7 @@ TEST_CASE("fit prints the table and the choice; a FOV camera as fov on each axis
     }
 }
 
-TEST_CASE("fit -o writes the chosen camera; an independent check finds it within the tolerance in the scene") {
+TEST_CASE("fit -o writes the chosen camera, and an independent check finds it within the tolerance in the scene") {
     Files files;
     const std::string out = (files.dir / "chosen.yaml").string();
     const json report = fit_json({files.mild, "--radius", "300", "--center", "700,500", "--tolerance", "0.02", "-o", out});
@@ -140,7 +142,7 @@ TEST_CASE("fit -o writes the chosen camera; an independent check finds it within
     CHECK(worst <= 0.02);
 }
 
-TEST_CASE("fit --heatmap writes a PNG; --to picks the -o format") {
+TEST_CASE("fit --heatmap writes a PNG and --to picks the -o format") {
     Files files;
     const std::string png = (files.dir / "error.png").string();
     const std::string model = (files.dir / "chosen.txt").string();
@@ -178,5 +180,31 @@ TEST_CASE("fit refuses bad scenes and flags, and says when no model meets the to
     check_refused({files.mild, "--grid", "1x5"}, 2, "--grid");
     check_refused({files.mild, "-o", (files.dir / "x").string(), "--to", "png"}, 2, "--to");
     // No candidate: not even OPENCV4, the lens itself, comes closer than rounding.
-    check_refused({files.mild, "--tolerance", "1e-300"}, 1, "no candidate model meets the tolerance 1e-300 px");
+    check_refused({files.mild, "--radius", "200", "--tolerance", "1e-300"}, 1, "no candidate model meets the tolerance 1e-300 px");
+}
+
+TEST_CASE("a fit that runs past a second reports its progress on stderr") {
+    // Issue 3's wide lens over the whole image on a fine lattice: a few seconds of fitting.
+    TempDir dir;
+    const std::string wide = (dir / "wide.json").string();
+    write_whole_file(wide, R"({
+  "model": "OPENCV8", "image_size": [6016, 4016],
+  "K": [[2073.872915, 0, 3004.686823], [0, 2077.452267, 1997.377253], [0, 0, 1]],
+  "dist": [0.4791613797, 0.0266824914, 4.398264387e-05, -1.180073913e-05, 8.959722542e-05, 0.7666912469,
+           0.09633561231, 0.001407513313],
+  "R": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "t": [0, 0, 0]
+})");
+    const auto start = std::chrono::steady_clock::now();
+    const auto result = fit({wide, "--grid", "120x80", "--tolerance", "3"});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    INFO(result.describe());
+    REQUIRE(result.exit_code == 0);
+    CHECK_THAT(result.out, Contains("chosen: OPENCV8"));
+    std::istringstream lines(result.err);
+    for (std::string line; std::getline(lines, line);) CHECK_THAT(line, Catch::Matchers::StartsWith("libcam fit: "));
+    if (seconds > 1.5) {
+        CHECK_THAT(result.err, Contains(" of 8), iteration "));
+    } else {
+        WARN("the fit took only " << seconds << " s here: no progress to expect");
+    }
 }

@@ -249,7 +249,7 @@ TEST_CASE("candidates: simplest first, FISHEYE and STEREOGRAPHIC only for wide s
     for (std::size_t i = 0; i < counts.size(); ++i) CHECK(candidates_for(60.0)[i].num_params() == counts[i]);
 }
 
-TEST_CASE("scene samples: the lattice inside the scene and its boundary; the check set is denser") {
+TEST_CASE("scene samples: the lattice inside the scene and its boundary, and a denser check set") {
     const Camera source = mildly_distorted();
     const Vec2 centre(700.0, 500.0);
     const double radius = 300.0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <tuple>
 
@@ -18,6 +19,11 @@ constexpr double kBoundarySlack = 1e-9;
 constexpr int kMinCurvePoints = 16;
 // Directions used to find how long the field-angle curve is before sampling it.
 constexpr int kConeProbeCount = 64;
+// Most points on a curve: a cone near 90 degrees through a perspective lens projects
+// to a curve far larger than the image, nearly all of it outside.
+constexpr double kMaxCurvePoints = 65536.0;
+// Margin around the probes' box, as a fraction of its size.
+constexpr double kConeBoxMargin = 0.05;
 // A default lattice puts at least this many samples across the scene's narrow side.
 constexpr double kMinSamplesAcross = 8.0;
 // Finest default lattice spacing: finer adds nothing for a smooth error.
@@ -119,8 +125,12 @@ Lattice denser(const Lattice& lattice, int factor) {
 double lattice_spacing(const ImageSize& size, const Lattice& lattice) {
     const double step_x = static_cast<double>(size.width - 1) / static_cast<double>(lattice.columns - 1);
     const double step_y = static_cast<double>(size.height - 1) / static_cast<double>(lattice.rows - 1);
-    const double step = std::min(step_x, step_y);
-    return step > 0.0 ? step : std::max(step_x, step_y) > 0.0 ? std::max(step_x, step_y) : 1.0;
+    // A side of one pixel has a step of 0 and does not count.
+    double step = std::numeric_limits<double>::infinity();
+    for (const double axis_step : {step_x, step_y}) {
+        if (axis_step > 0.0) step = std::min(step, axis_step);
+    }
+    return std::isfinite(step) ? step : 1.0;
 }
 
 bool pixel_less(const Vec2& a, const Vec2& b) { return std::tie(a.x(), a.y()) < std::tie(b.x(), b.y()); }
@@ -279,7 +289,9 @@ PixelBox Scene::bounds(const Camera& source) const {
                 box.min = box.min.cwiseMin(p);
                 box.max = box.max.cwiseMax(p);
             }
-            return clamp_to_image(box);
+            // The curve bulges a little between the probes.
+            const Vec2 margin = (box.max - box.min) * kConeBoxMargin;
+            return clamp_to_image({box.min - margin, box.max + margin});
         }
     }
     return image;
@@ -292,14 +304,16 @@ std::vector<Vec2> Scene::boundary(const Camera& source, double spacing) const {
         case Shape::WholeImage: return polygon_points(box_corners(image), spacing);
         case Shape::Rectangle: return polygon_points(box_corners({corner0_, corner1_}), spacing);
         case Shape::Circle: {
-            const int count = std::max(kMinCurvePoints, static_cast<int>(std::ceil(2.0 * std::numbers::pi * radius_ / spacing)));
+            const double wanted = std::ceil(2.0 * std::numbers::pi * radius_ / spacing);
+            const int count = std::max(kMinCurvePoints, static_cast<int>(std::min(wanted, kMaxCurvePoints)));
             edge = circle_points(center_, radius_, count);
             break;
         }
         case Shape::FieldAngle: {
             std::vector<Vec2> probe = cone_pixels(source, kConeProbeCount);
             const double length = polyline_length(probe);
-            edge = cone_pixels(source, std::max(kConeProbeCount, static_cast<int>(std::ceil(length / spacing))));
+            const double wanted = std::ceil(length / spacing);
+            edge = cone_pixels(source, std::max(kConeProbeCount, static_cast<int>(std::min(wanted, kMaxCurvePoints))));
             break;
         }
     }
@@ -313,7 +327,7 @@ std::vector<Vec2> Scene::boundary(const Camera& source, double spacing) const {
     return edge;
 }
 
-std::vector<std::vector<Vec2>> Scene::outline(const Camera& source) const {
+std::vector<Vec2> Scene::outline(const Camera& source) const {
     constexpr int kOutlinePoints = 256;
     std::vector<Vec2> curve;
     switch (shape_) {
@@ -323,7 +337,7 @@ std::vector<std::vector<Vec2>> Scene::outline(const Camera& source) const {
         case Shape::FieldAngle: curve = cone_pixels(source, kOutlinePoints); break;
     }
     if (!curve.empty()) curve.push_back(curve.front());
-    return {curve};
+    return curve;
 }
 
 SceneSampling sample_scene(const Camera& source, const Scene& scene, std::optional<Lattice> lattice) {

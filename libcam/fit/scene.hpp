@@ -59,8 +59,9 @@ public:
     // angles the stretches of the image border inside the scene).
     std::vector<Vec2> boundary(const Camera& source, double spacing) const;
 
-    // The scene's own edge as closed polylines for drawing; may leave the image.
-    std::vector<std::vector<Vec2>> outline(const Camera& source) const;
+    // The scene's own edge as a closed polyline (last point = first) for drawing; may
+    // leave the image.
+    std::vector<Vec2> outline(const Camera& source) const;
 
 private:
     Scene() = default;

@@ -78,11 +78,14 @@ cv::Mat colour_errors(const std::vector<double>& errors, const cv::Size& size, d
 }
 
 void draw_outline(cv::Mat& image, const Scene& scene, const Camera& source, double scale) {
-    for (const std::vector<Vec2>& curve : scene.outline(source)) {
-        std::vector<cv::Point> points;
-        for (const Vec2& p : curve) points.emplace_back(cvRound((p.x() + 0.5) / scale - 0.5), cvRound((p.y() + 0.5) / scale - 0.5));
-        cv::polylines(image, std::vector<std::vector<cv::Point>>{points}, false, kWhite, 2, cv::LINE_AA);
+    // Far outside the picture a point only has to keep its direction; clamping keeps it an int.
+    const double reach = 10.0 * std::max(image.cols, image.rows);
+    std::vector<cv::Point> points;
+    for (const Vec2& p : scene.outline(source)) {
+        const Vec2 q = (((p.array() + 0.5) / scale - 0.5).max(-reach).min(reach)).matrix();
+        points.emplace_back(cvRound(q.x()), cvRound(q.y()));
     }
+    cv::polylines(image, std::vector<std::vector<cv::Point>>{points}, false, kWhite, 2, cv::LINE_AA);
 }
 
 void draw_text(cv::Mat& image, const std::string& text, cv::Point at, double size = 0.45) {
