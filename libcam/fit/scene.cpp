@@ -310,7 +310,7 @@ std::vector<Vec2> Scene::boundary(const Camera& source, double spacing) const {
             break;
         }
         case Shape::FieldAngle: {
-            std::vector<Vec2> probe = cone_pixels(source, kConeProbeCount);
+            const std::vector<Vec2> probe = cone_pixels(source, kConeProbeCount);
             const double length = polyline_length(probe);
             const double wanted = std::ceil(length / spacing);
             edge = cone_pixels(source, std::max(kConeProbeCount, static_cast<int>(std::min(wanted, kMaxCurvePoints))));

@@ -144,7 +144,8 @@ std::string fov_text(const Camera& camera) {
     return out.str();
 }
 
-std::string format_table(const std::string& source_name, const Camera& source, const Scene& scene,
+// What was fitted: the source, the scene and its samples, the motion, the tolerance.
+std::string format_setup(const std::string& source_name, const Camera& source, const Scene& scene,
                          const FitOptions& options, const FitReport& report) {
     std::ostringstream out;
     out << "source     " << source_name << ": " << lens_info(source.lens.type).name << ", " << source.size.width << "x"
@@ -155,7 +156,12 @@ std::string format_table(const std::string& source_name, const Camera& source, c
         << " on the boundary), " << report.sampling.check.pixels.size() << " to check the error on; "
         << report.sampling.check.skipped << " scene pixels have no ray through the source (skipped)\n";
     out << "fit        " << motion_text(options) << "\n";
-    out << "tolerance  " << format_number(options.tolerance_px) << " px\n\n";
+    out << "tolerance  " << format_number(options.tolerance_px) << " px\n";
+    return out.str();
+}
+
+std::string format_candidates(const FitReport& report) {
+    std::ostringstream out;
     out << std::left << std::setw(15) << "model" << std::right << std::setw(7) << "params" << std::setw(12) << "rms_px"
         << std::setw(12) << "max_px" << std::setw(8) << "covers" << std::setw(6) << "pass" << "\n";
     for (const CandidateReport& entry : report.candidates) {
@@ -165,14 +171,24 @@ std::string format_table(const std::string& source_name, const Camera& source, c
             << (entry.pass ? "yes" : "no") << "\n";
     }
     out << "(rms over the fitting samples, max over the check samples; " << report.fit_observations << " and "
-        << report.check_observations << " observations)\n\n";
-    const CandidateReport& chosen = report.candidates[*report.chosen];
-    out << "chosen: " << chosen.fit.candidate.name << " (" << chosen.fit.candidate.num_params()
-        << (chosen.fit.candidate.num_params() == 1 ? " parameter" : " parameters") << "), max error "
-        << short_number(chosen.max_px) << " px <= " << format_number(options.tolerance_px) << " px\n";
-    const Camera camera = camera_in_world(chosen.fit, source);
-    if (chosen.fit.candidate.fov_camera) out << fov_text(camera);
+        << report.check_observations << " observations)\n";
     return out.str();
+}
+
+std::string format_choice(const Camera& source, const FitOptions& options, const FitReport& report) {
+    const CandidateReport& chosen = report.candidates[*report.chosen];
+    const int params = chosen.fit.candidate.num_params();
+    std::ostringstream out;
+    out << "chosen: " << chosen.fit.candidate.name << " (" << params << (params == 1 ? " parameter" : " parameters")
+        << "), max error " << short_number(chosen.max_px) << " px <= " << format_number(options.tolerance_px) << " px\n";
+    if (chosen.fit.candidate.fov_camera) out << fov_text(camera_in_world(chosen.fit, source));
+    return out.str();
+}
+
+std::string format_table(const std::string& source_name, const Camera& source, const Scene& scene,
+                         const FitOptions& options, const FitReport& report) {
+    return format_setup(source_name, source, scene, options, report) + "\n" + format_candidates(report) + "\n" +
+           format_choice(source, options, report);
 }
 
 using Json = nlohmann::ordered_json;  // keys in the documented order
