@@ -1,5 +1,5 @@
 # Installs headers, libraries, the `libcam` program, the CMake package
-# (find_package(libcam CONFIG) -> libcam::core, libcam::interop) and pkg-config files.
+# (find_package(libcam CONFIG) -> libcam::core, libcam::interop, libcam::fit) and pkg-config files.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -9,6 +9,9 @@ install(TARGETS libcam_core EXPORT libcamCoreTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS libcam_interop EXPORT libcamInteropTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS libcam_fit EXPORT libcamFitTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 if(TARGET libcam_cli)
@@ -21,6 +24,7 @@ install(FILES "${LIBCAM_GENERATED_DIR}/libcam/version.hpp" DESTINATION "${CMAKE_
 
 install(EXPORT libcamCoreTargets NAMESPACE libcam:: DESTINATION ${LIBCAM_CMAKE_DIR})
 install(EXPORT libcamInteropTargets NAMESPACE libcam:: DESTINATION ${LIBCAM_CMAKE_DIR})
+install(EXPORT libcamFitTargets NAMESPACE libcam:: DESTINATION ${LIBCAM_CMAKE_DIR})
 configure_package_config_file(cmake/libcamConfig.cmake.in "${PROJECT_BINARY_DIR}/libcamConfig.cmake"
   INSTALL_DESTINATION ${LIBCAM_CMAKE_DIR})
 write_basic_package_version_file("${PROJECT_BINARY_DIR}/libcamConfigVersion.cmake"

@@ -1,0 +1,304 @@
+#include "libcam/fit/fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "libcam/error.hpp"
+#include "libcam/fit/least_squares.hpp"
+
+namespace libcam {
+
+namespace {
+
+// A fit whose RMS error is below this fraction of the tolerance stops: its largest
+// error, a few times its RMS, is far inside the tolerance, so no decision can change.
+constexpr double kNegligibleFraction = 1e-3;
+
+// The perspective chain, simplest first: each model contains the ones before it
+// (OpenCV's shorter coefficient lists are prefixes of the longer ones, PINHOLE has
+// none). -1 for a model outside it.
+int perspective_rank(LensType lens) {
+    switch (lens) {
+        case LensType::Pinhole: return 0;
+        case LensType::Opencv4: return 1;
+        case LensType::Opencv5: return 2;
+        case LensType::Opencv8: return 3;
+        case LensType::Opencv12: return 4;
+        default: return -1;
+    }
+}
+
+// Can the candidate's model express every camera of `lens` exactly (up to skew)?
+bool contains_model(const Candidate& candidate, LensType lens) {
+    if (candidate.fov_camera) return false;
+    const int rank = perspective_rank(candidate.lens), other = perspective_rank(lens);
+    return candidate.lens == lens || (rank >= 0 && other >= 0 && rank >= other);
+}
+
+Vec2 image_centre(const ImageSize& size) { return {size.centre_x(), size.centre_y()}; }
+
+// The camera that `params` describe, in the source camera's frame moved by `motion`.
+Camera camera_from_params(const Candidate& candidate, const ImageSize& size, const std::vector<double>& params,
+                          const Pose& motion) {
+    Camera camera;
+    camera.size = size;
+    camera.pose = motion;
+    if (candidate.fov_camera) {
+        camera.intrinsics = {params[0], params[0], size.centre_x(), size.centre_y(), 0.0};
+        camera.lens = {LensType::Pinhole, {}};
+    } else {
+        camera.intrinsics = {params[0], params[1], params[2], params[3], 0.0};
+        camera.lens = {candidate.lens, std::vector<double>(params.begin() + 4, params.end())};
+    }
+    return camera;
+}
+
+Camera camera_from_state(const Candidate& candidate, const ImageSize& size, const detail::LeastSquaresState& state) {
+    return camera_from_params(candidate, size, state.params, Pose::from_rvec(state.rotation, state.shift));
+}
+
+// `base` as a start for `candidate`, with its motion (pose) and the coefficients it
+// has (the candidate's further ones 0): exact when the candidate contains base's model.
+detail::LeastSquaresState start_from(const Candidate& candidate, const Camera& base) {
+    detail::LeastSquaresState start;
+    const Intrinsics& k = base.intrinsics;
+    start.rotation = base.pose.rvec();
+    start.shift = base.pose.t;
+    if (candidate.fov_camera) {
+        start.params = {std::sqrt(k.fx * k.fy)};
+        return start;
+    }
+    start.params = {k.fx, k.fy, k.cx, k.cy};
+    if (contains_model(candidate, base.lens.type)) {
+        start.params.insert(start.params.end(), base.lens.coefficients.begin(), base.lens.coefficients.end());
+    }
+    start.params.resize(static_cast<std::size_t>(candidate.num_params()), 0.0);
+    return start;
+}
+
+// Where a candidate's fit starts, the better result kept: the previous candidate's
+// solution when the candidate contains that model (the FOV camera is a PINHOLE), so it
+// never fits worse than the simpler model; and the source, exactly when the candidate
+// contains the source's model, else its K undistorted. Both are needed: over wide
+// scenes a simpler model's solution can lie in a poor basin for the richer one (a
+// pinhole fitted to a 70 degree field has a focal length far from the lens's).
+std::vector<detail::LeastSquaresState> starts_for(const Candidate& candidate, const Camera& source,
+                                                  const FittedModel* previous) {
+    std::vector<detail::LeastSquaresState> starts;
+    if (previous != nullptr && contains_model(candidate, previous->camera.lens.type)) {
+        starts.push_back(start_from(candidate, previous->camera));
+    }
+    Camera source_in_own_frame = source;
+    source_in_own_frame.pose = Pose{};
+    starts.push_back(start_from(candidate, source_in_own_frame));
+    return starts;
+}
+
+// The observations the starting camera projects (the solver needs every residual at
+// the start); the others this model cannot represent at all.
+std::vector<Observation> representable(const Camera& start, const std::vector<Observation>& observations) {
+    const std::vector<double> errors = reprojection_errors(start, observations);
+    std::vector<Observation> kept;
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+        if (std::isfinite(errors[i])) kept.push_back(observations[i]);
+    }
+    return kept;
+}
+
+// One solve from one start, and how good it is: fewer observations left out first,
+// then a smaller RMS error.
+struct Attempt {
+    detail::LeastSquaresState state;
+    std::size_t unrepresentable = 0;
+    double rms_px = std::numeric_limits<double>::infinity();
+
+    bool better_than(const Attempt& other) const {
+        return unrepresentable < other.unrepresentable ||
+               (unrepresentable == other.unrepresentable && rms_px < other.rms_px);
+    }
+};
+
+Attempt attempt(const Candidate& candidate, const Camera& source, const std::vector<Observation>& observations,
+                detail::LeastSquaresState start, const SolveOptions& options, const detail::IterationHook& hook) {
+    const Camera start_camera = camera_from_state(candidate, source.size, start);
+    const std::vector<Observation> kept = representable(start_camera, observations);
+    Attempt result{std::move(start), observations.size() - kept.size()};
+    if (kept.empty()) return result;
+    // A guard the start cannot project could never be met; the check reports it.
+    SolveOptions guarded = options;
+    guarded.must_project = representable(start_camera, options.must_project);
+    result.state = detail::solve_least_squares(candidate, image_centre(source.size), kept, result.state, guarded, hook);
+    result.rms_px = measure(camera_from_state(candidate, source.size, result.state), kept).rms_px;
+    return result;
+}
+
+FittedModel fit_one(const Candidate& candidate, const Camera& source, const std::vector<Observation>& observations,
+                    const FittedModel* previous, const SolveOptions& options, const detail::IterationHook& hook) {
+    std::optional<Attempt> best;
+    for (detail::LeastSquaresState& start : starts_for(candidate, source, previous)) {
+        Attempt next = attempt(candidate, source, observations, std::move(start), options, hook);
+        if (!best || next.better_than(*best)) best = std::move(next);
+    }
+    FittedModel fitted;
+    fitted.candidate = candidate;
+    fitted.unrepresentable = best->unrepresentable;
+    fitted.params = best->state.params;
+    fitted.iterations = best->state.iterations;
+    fitted.camera = camera_from_state(candidate, source.size, best->state);
+    return fitted;
+}
+
+ScenePixels boundary_of(const ScenePixels& pixels) {
+    ScenePixels boundary;
+    boundary.pixels.assign(pixels.pixels.begin(), pixels.pixels.begin() + static_cast<long>(pixels.boundary_count));
+    boundary.directions.assign(pixels.directions.begin(), pixels.directions.begin() + static_cast<long>(pixels.boundary_count));
+    boundary.boundary_count = pixels.boundary_count;
+    return boundary;
+}
+
+double largest_angle_deg(const ScenePixels& pixels) {
+    double largest = 0.0;
+    for (const Vec3& direction : pixels.directions) largest = std::max(largest, angle_between(direction, Vec3::UnitZ()));
+    return degrees_from_radians(largest);
+}
+
+void validate_options(const FitOptions& options) {
+    require_finite("tolerance", options.tolerance_px);
+    if (!(options.tolerance_px > 0.0)) {
+        throw InvalidArgument("tolerance: must be > 0 px, got " + format_number(options.tolerance_px));
+    }
+    for (const double depth : options.depths) {
+        require_finite("depth", depth);
+        if (!(depth > 0.0)) throw InvalidArgument("depth: must be > 0, got " + format_number(depth));
+    }
+    if (options.motion == CameraMotion::RotationAndShift && options.depths.empty()) {
+        throw InvalidArgument("depths: a fit that may shift the camera needs points at finite depths");
+    }
+}
+
+// The candidate with the fewest parameters that passes; among equals, the smaller error.
+std::optional<std::size_t> choose(const std::vector<CandidateReport>& reports) {
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < reports.size(); ++i) {
+        if (!reports[i].pass) continue;
+        if (!best) {
+            best = i;
+            continue;
+        }
+        const CandidateReport& current = reports[*best];
+        const int params = reports[i].fit.candidate.num_params(), best_params = current.fit.candidate.num_params();
+        if (params < best_params || (params == best_params && reports[i].max_px < current.max_px)) best = i;
+    }
+    return best;
+}
+
+}  // namespace
+
+int Candidate::num_params() const { return fov_camera ? 1 : 4 + lens_info(lens).num_coefficients; }
+
+std::vector<Candidate> candidates_for(double largest_angle_deg) {
+    std::vector<Candidate> list = {
+        {"FOV", LensType::Pinhole, true},  {"PINHOLE", LensType::Pinhole},   {"OPENCV4", LensType::Opencv4},
+        {"OPENCV5", LensType::Opencv5},    {"OPENCV8", LensType::Opencv8},   {"OPENCV12", LensType::Opencv12},
+    };
+    if (largest_angle_deg >= kWideSceneAngleDeg) {
+        list.push_back({"FISHEYE", LensType::Fisheye});
+        list.push_back({"STEREOGRAPHIC", LensType::Stereographic});
+    }
+    return list;
+}
+
+std::vector<Observation> observations_of(const ScenePixels& pixels, const std::vector<double>& depths) {
+    std::vector<Observation> observations;
+    const std::vector<double> unit = {1.0};
+    for (const double depth : depths.empty() ? unit : depths) {
+        for (std::size_t i = 0; i < pixels.pixels.size(); ++i) {
+            observations.push_back({pixels.directions[i] * depth, pixels.pixels[i]});
+        }
+    }
+    return observations;
+}
+
+Camera camera_in_world(const FittedModel& fitted, const Camera& source) {
+    // world -> source camera -> fitted camera: R = R_fit R_src, t = R_fit t_src + t_fit.
+    Camera camera = fitted.camera;
+    camera.pose = {fitted.camera.pose.R * source.pose.R, fitted.camera.pose.R * source.pose.t + fitted.camera.pose.t};
+    return camera;
+}
+
+std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<Observation>& observations,
+                                        const std::vector<Candidate>& candidates, const SolveOptions& options) {
+    if (observations.empty()) throw InvalidArgument("fit: no observations to fit");
+    std::vector<FittedModel> fitted;
+    fitted.reserve(candidates.size());
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+        const auto hook = [&](int iteration) {
+            if (options.progress) {
+                options.progress({candidates[i].name, static_cast<int>(i), static_cast<int>(candidates.size()), iteration});
+            }
+        };
+        fitted.push_back(fit_one(candidates[i], source, observations, fitted.empty() ? nullptr : &fitted.back(), options, hook));
+    }
+    return fitted;
+}
+
+std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<Observation>& observations) {
+    std::vector<Vec3> moved;
+    moved.reserve(observations.size());
+    for (const Observation& observation : observations) moved.push_back(fitted.pose.camera_from_world(observation.point));
+    const std::vector<Projection> projections = fitted.project_camera_points(moved);
+    std::vector<double> errors(observations.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+        if (projections[i].valid) errors[i] = (projections[i].pixel - observations[i].pixel).norm();
+    }
+    return errors;
+}
+
+ModelError measure(const Camera& fitted, const std::vector<Observation>& observations) {
+    ModelError error;
+    double sum_squares = 0.0;
+    for (const double e : reprojection_errors(fitted, observations)) {
+        if (std::isinf(e)) {
+            ++error.unprojected;
+            continue;
+        }
+        sum_squares += e * e;
+        error.max_px = std::max(error.max_px, e);
+    }
+    const std::size_t projected = observations.size() - error.unprojected;
+    error.rms_px = projected > 0 ? std::sqrt(sum_squares / static_cast<double>(projected))
+                                 : std::numeric_limits<double>::infinity();
+    if (!error.covers()) error.max_px = std::numeric_limits<double>::infinity();
+    return error;
+}
+
+FitReport fit_scene(const Camera& source, const Scene& scene, const FitOptions& options) {
+    validate_options(options);
+    FitReport report;
+    report.sampling = sample_scene(source, scene, options.lattice);
+    const std::vector<Observation> fit_set = observations_of(report.sampling.fit, options.depths);
+    const std::vector<Observation> check_set = observations_of(report.sampling.check, options.depths);
+    report.fit_observations = fit_set.size();
+    report.check_observations = check_set.size();
+    report.largest_angle_deg = largest_angle_deg(report.sampling.check);
+
+    const SolveOptions solve{options.motion, kNegligibleFraction * options.tolerance_px, options.progress,
+                             observations_of(boundary_of(report.sampling.check), options.depths)};
+    const std::vector<FittedModel> fitted =
+        fit_candidates(source, fit_set, candidates_for(report.largest_angle_deg), solve);
+    for (const FittedModel& model : fitted) {
+        CandidateReport entry;
+        entry.fit = model;
+        entry.rms_px = measure(model.camera, fit_set).rms_px;
+        const ModelError check = measure(model.camera, check_set);
+        entry.max_px = check.max_px;
+        entry.covers_scene = check.covers() && model.unrepresentable == 0;
+        entry.pass = entry.covers_scene && entry.max_px <= options.tolerance_px;
+        report.candidates.push_back(entry);
+    }
+    report.chosen = choose(report.candidates);
+    return report;
+}
+
+}  // namespace libcam

@@ -1,0 +1,195 @@
+#include "libcam/fit/least_squares.hpp"
+
+#include <ceres/ceres.h>
+#include <ceres/rotation.h>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include "libcam/error.hpp"
+#include "libcam/lens/lens_models.hpp"
+
+namespace libcam::detail {
+
+namespace {
+
+double scalar_part(double value) { return value; }
+template <int N>
+double scalar_part(const ceres::Jet<double, N>& value) {
+    return value.a;
+}
+
+// The lens parameters of Model in the solver's scalar T. The valid radius (where the
+// distortion folds over) is worked out from the coefficients' values and held fixed
+// while differentiating: it bounds the domain, it is not part of any residual.
+template <class Model, class T>
+typename LensInScalar<Model, T>::Parameters lens_parameters(const T* coefficients) {
+    constexpr int kCount = Model::num_coefficients;
+    std::array<double, kCount> values{};
+    typename LensInScalar<Model, T>::Parameters lens;
+    for (int i = 0; i < kCount; ++i) {
+        values[static_cast<std::size_t>(i)] = scalar_part(coefficients[i]);
+        lens.coefficients(i) = coefficients[i];
+    }
+    lens.valid_radius = T(static_cast<double>(Model::parameters(values).valid_radius));
+    return lens;
+}
+
+// K without skew (geometry/intrinsics.hpp), in the solver's scalar: the FOV camera's
+// fx = fy = f with the principal point fixed at the image centre, or fx fy cx cy.
+template <bool kFovCore, class T>
+Eigen::Matrix<T, 2, 1> pixel_from_normalized(const T* core, const Vec2& image_centre, const Eigen::Matrix<T, 2, 1>& m) {
+    if constexpr (kFovCore) {
+        return {core[0] * m.x() + T(image_centre.x()), core[0] * m.y() + T(image_centre.y())};
+    } else {
+        return {core[0] * m.x() + core[2], core[1] * m.y() + core[3]};
+    }
+}
+
+// Every observation's reprojection error at once (one residual block), so that the
+// lens's valid radius is worked out once per evaluation, not once per observation.
+template <class Model, bool kFovCore>
+class ReprojectionResiduals {
+public:
+    static constexpr int kCoreParams = kFovCore ? 1 : 4;
+    static constexpr int kParams = kCoreParams + Model::num_coefficients;
+
+    ReprojectionResiduals(const std::vector<Observation>& observations, const std::vector<Observation>& must_project,
+                          const Vec2& image_centre)
+        : observations_(observations), must_project_(must_project), image_centre_(image_centre) {}
+
+    // False when a point leaves the model's valid domain: Ceres then rejects the step.
+    template <class T>
+    bool operator()(const T* intrinsics, const T* rotation, const T* shift, T* residuals) const {
+        if (!all_project(intrinsics, rotation, shift)) return false;
+        const typename LensInScalar<Model, T>::Parameters lens = lens_parameters<Model>(intrinsics + kCoreParams);
+        for (std::size_t i = 0; i < observations_.size(); ++i) {
+            Eigen::Matrix<T, 2, 1> m;
+            if (!project(lens, observations_[i].point, rotation, shift, m)) return false;
+            const Eigen::Matrix<T, 2, 1> pixel = pixel_from_normalized<kFovCore>(intrinsics, image_centre_, m);
+            residuals[2 * i] = pixel.x() - T(observations_[i].pixel.x());
+            residuals[2 * i + 1] = pixel.y() - T(observations_[i].pixel.y());
+        }
+        return true;
+    }
+
+private:
+    // m of a source-frame point, after the camera's motion.
+    template <class T>
+    static bool project(const typename LensInScalar<Model, T>::Parameters& lens, const Vec3& source_point,
+                        const T* rotation, const T* shift, Eigen::Matrix<T, 2, 1>& m) {
+        const T point[3] = {T(source_point.x()), T(source_point.y()), T(source_point.z())};
+        T turned[3];
+        ceres::AngleAxisRotatePoint(rotation, point, turned);
+        const Eigen::Matrix<T, 3, 1> camera_point(turned[0] + shift[0], turned[1] + shift[1], turned[2] + shift[2]);
+        return LensInScalar<Model, T>::project(lens, camera_point, m);
+    }
+
+    // Do the must_project points project? Only their validity matters, so in double.
+    template <class T>
+    bool all_project(const T* intrinsics, const T* rotation, const T* shift) const {
+        if (must_project_.empty()) return true;
+        std::array<double, kParams> values{};
+        for (int i = 0; i < kParams; ++i) values[static_cast<std::size_t>(i)] = scalar_part(intrinsics[i]);
+        const double turn[3] = {scalar_part(rotation[0]), scalar_part(rotation[1]), scalar_part(rotation[2])};
+        const double move[3] = {scalar_part(shift[0]), scalar_part(shift[1]), scalar_part(shift[2])};
+        const typename Model::Parameters lens = lens_parameters<Model>(values.data() + kCoreParams);
+        Vec2 m;
+        for (const Observation& guard : must_project_) {
+            if (!project<double>(lens, guard.point, turn, move, m)) return false;
+        }
+        return true;
+    }
+
+    const std::vector<Observation>& observations_;
+    const std::vector<Observation>& must_project_;
+    Vec2 image_centre_;
+};
+
+// Reports each iteration, and ends the solve once the RMS error is negligible.
+class IterationWatch : public ceres::IterationCallback {
+public:
+    IterationWatch(const IterationHook& hook, std::size_t observations, double negligible_rms_px)
+        : hook_(hook), observations_(static_cast<double>(observations)), negligible_rms_px_(negligible_rms_px) {}
+
+    ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+        if (hook_) hook_(summary.iteration);
+        // Ceres's cost is half the sum of squared residuals: sum |error|^2 = 2 cost.
+        const double rms_px = std::sqrt(2.0 * summary.cost / observations_);
+        return rms_px < negligible_rms_px_ ? ceres::SOLVER_TERMINATE_SUCCESSFULLY : ceres::SOLVER_CONTINUE;
+    }
+
+private:
+    const IterationHook& hook_;
+    double observations_;
+    double negligible_rms_px_;
+};
+
+// Levenberg-Marquardt, converged to rounding: the fit's error is what `libcam fit`
+// reports, and it has to be the model's best, not the solver's first acceptable one.
+ceres::Solver::Options solver_options() {
+    ceres::Solver::Options options;
+    options.minimizer_type = ceres::TRUST_REGION;
+    options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+    options.linear_solver_type = ceres::DENSE_QR;
+    options.max_num_iterations = 500;
+    options.function_tolerance = 1e-15;
+    options.gradient_tolerance = 1e-15;
+    options.parameter_tolerance = 1e-15;
+    options.num_threads = 1;
+    options.logging_type = ceres::SILENT;
+    return options;
+}
+
+template <class Model, bool kFovCore>
+LeastSquaresState solve_with(const Vec2& image_centre, const std::vector<Observation>& observations,
+                             LeastSquaresState state, const SolveOptions& settings, const IterationHook& hook) {
+    using Residuals = ReprojectionResiduals<Model, kFovCore>;
+    if (state.params.size() != static_cast<std::size_t>(Residuals::kParams)) {
+        throw InvalidArgument("fit: a start with " + std::to_string(state.params.size()) + " parameters for a model with " +
+                              std::to_string(Residuals::kParams));
+    }
+    auto* cost = new ceres::AutoDiffCostFunction<Residuals, ceres::DYNAMIC, Residuals::kParams, 3, 3>(
+        new Residuals(observations, settings.must_project, image_centre), static_cast<int>(2 * observations.size()));
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, nullptr, state.params.data(), state.rotation.data(), state.shift.data());
+    if (settings.motion == CameraMotion::None) problem.SetParameterBlockConstant(state.rotation.data());
+    if (settings.motion != CameraMotion::RotationAndShift) problem.SetParameterBlockConstant(state.shift.data());
+
+    ceres::Solver::Options options = solver_options();
+    IterationWatch watch(hook, observations.size(), settings.negligible_rms_px);
+    options.callbacks.push_back(&watch);
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    if (summary.termination_type == ceres::FAILURE) {
+        throw InvalidArgument("fit: the solver failed for " + std::string(lens_info(Model::type).name) + ": " +
+                              summary.message);
+    }
+    state.iterations = static_cast<int>(summary.iterations.size());
+    return state;
+}
+
+}  // namespace
+
+LeastSquaresState solve_least_squares(const Candidate& candidate, const Vec2& image_centre,
+                                      const std::vector<Observation>& observations, LeastSquaresState start,
+                                      const SolveOptions& options, const IterationHook& hook) {
+    const auto solve = [&]<class Model, bool kFovCore>() {
+        return solve_with<Model, kFovCore>(image_centre, observations, std::move(start), options, hook);
+    };
+    if (candidate.fov_camera) return solve.template operator()<PinholeLens<double>, true>();
+    switch (candidate.lens) {
+        case LensType::Pinhole: return solve.template operator()<PinholeLens<double>, false>();
+        case LensType::Opencv4: return solve.template operator()<OpenCv4Lens<double>, false>();
+        case LensType::Opencv5: return solve.template operator()<OpenCv5Lens<double>, false>();
+        case LensType::Opencv8: return solve.template operator()<OpenCv8Lens<double>, false>();
+        case LensType::Opencv12: return solve.template operator()<OpenCv12Lens<double>, false>();
+        case LensType::Fisheye: return solve.template operator()<FisheyeLens<double>, false>();
+        case LensType::Stereographic: return solve.template operator()<StereographicLens<double>, false>();
+        default:
+            throw InvalidArgument("fit: " + std::string(lens_info(candidate.lens).name) + " is not a fit candidate");
+    }
+}
+
+}  // namespace libcam::detail

@@ -1,0 +1,210 @@
+// `libcam fit` run as a user runs it: the JSON keys, the table, -o and --heatmap files,
+// and the refusals (exit 2 for a malformed command line, 1 for values and for a
+// tolerance no candidate meets, with nothing on stdout).
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+#include "cli_runner.hpp"
+#include "libcam/io/camera_file.hpp"
+
+using libcam::test::read_whole_file;
+using libcam::test::run_libcam;
+using libcam::test::TempDir;
+using libcam::test::write_whole_file;
+using nlohmann::json;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// A FOV camera: 1280x720, horizontal fov 70 deg (fx = fy = 640 / tan 35 deg),
+// centred principal point, no distortion, at the origin.
+std::string fov_json() {
+    const double f = 640.0 / std::tan(35.0 * std::numbers::pi / 180.0);
+    char text[512];
+    std::snprintf(text, sizeof text, R"({
+  "model": "PINHOLE", "image_size": [1280, 720],
+  "K": [[%.17g, 0, 639.5], [0, %.17g, 359.5], [0, 0, 1]], "dist": [],
+  "R": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "t": [0, 0, 0]
+})",
+                  f, f);
+    return text;
+}
+
+// 1600x1200, f 1200, centred, mild barrel: OPENCV4 over the whole image (see test_fit).
+const char* kMildJson = R"({
+  "model": "OPENCV4", "image_size": [1600, 1200],
+  "K": [[1200, 0, 799.5], [0, 1200, 599.5], [0, 0, 1]], "dist": [-0.02, 0.004, 1e-4, -5e-5],
+  "R": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "t": [0, 0, 0]
+})";
+
+struct Files {
+    TempDir dir;
+    std::string fov = (dir / "fov.json").string();
+    std::string mild = (dir / "mild.json").string();
+    Files() {
+        write_whole_file(fov, fov_json());
+        write_whole_file(mild, kMildJson);
+    }
+};
+
+libcam::test::CliResult fit(const std::vector<std::string>& args) {
+    std::vector<std::string> all = {"fit"};
+    all.insert(all.end(), args.begin(), args.end());
+    return run_libcam(all);
+}
+
+json fit_json(const std::vector<std::string>& args, std::string* err = nullptr) {
+    std::vector<std::string> all = args;
+    all.push_back("--json");
+    const auto result = fit(all);
+    INFO(result.describe());
+    REQUIRE(result.exit_code == 0);
+    if (err != nullptr) *err = result.err;
+    return json::parse(result.out);
+}
+
+void check_refused(const std::vector<std::string>& args, int exit_code, const std::string& words) {
+    const auto result = fit(args);
+    INFO(result.describe());
+    CHECK(result.exit_code == exit_code);
+    CHECK(result.out.empty());
+    CHECK_THAT(result.err, Contains(words));
+}
+
+}  // namespace
+
+TEST_CASE("fit --json: chosen {model, params, rms_px, max_px}, candidates with their keys") {
+    Files files;
+    std::string err;
+    const json out = fit_json({files.fov, "--tolerance", "0.01"}, &err);
+    CHECK(err.empty());  // a fit this quick shows no progress
+    const json& chosen = out.at("chosen");
+    CHECK(chosen.at("model") == "FOV");
+    REQUIRE(chosen.at("params").size() == 1);
+    CHECK(chosen.at("params")[0].get<double>() == Approx(640.0 / std::tan(35.0 * std::numbers::pi / 180.0)).epsilon(1e-12));
+    CHECK(chosen.at("rms_px").get<double>() < 1e-9);
+    CHECK(chosen.at("max_px").get<double>() < 1e-9);
+    CHECK(chosen.at("fov_deg").at("horizontal").get<double>() == Approx(70.0).epsilon(1e-12));
+    CHECK(chosen.at("image_size") == json::array({1280, 720}));
+
+    const json& candidates = out.at("candidates");
+    REQUIRE(candidates.size() == 6);  // 35 deg off the axis at most: not a wide scene
+    const std::vector<std::pair<std::string, int>> expected = {{"FOV", 1},     {"PINHOLE", 4}, {"OPENCV4", 8},
+                                                               {"OPENCV5", 9}, {"OPENCV8", 12}, {"OPENCV12", 16}};
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        const json& entry = candidates[i];
+        CHECK(entry.at("model") == expected[i].first);
+        CHECK(entry.at("n_params") == expected[i].second);
+        CHECK(entry.at("rms_px").is_number());
+        CHECK(entry.at("max_px").is_number());
+        CHECK(entry.at("covers_scene") == true);
+        CHECK(entry.at("pass") == true);  // every model contains the pinhole
+    }
+}
+
+TEST_CASE("fit prints the table and the choice, a FOV camera as fov on each axis and size") {
+    Files files;
+    const auto result = fit({files.fov, "--tolerance", "0.01"});
+    INFO(result.describe());
+    REQUIRE(result.exit_code == 0);
+    for (const std::string words : {"model", "params", "rms_px", "max_px", "covers", "pass", "OPENCV12", "chosen: FOV",
+                                    "fov horizontal 70 deg", "size 1280x720", "--fov 70 --fov-axis horizontal --size 1280x720"}) {
+        CHECK_THAT(result.out, Contains(words));
+    }
+}
+
+TEST_CASE("fit -o writes the chosen camera, and an independent check finds it within the tolerance in the scene") {
+    Files files;
+    const std::string out = (files.dir / "chosen.yaml").string();
+    const json report = fit_json({files.mild, "--radius", "300", "--center", "700,500", "--tolerance", "0.02", "-o", out});
+    const libcam::Camera source = libcam::read_camera_file(files.mild).camera;
+    const libcam::Camera chosen = libcam::read_camera_file(out).camera;
+    const std::string model = report.at("chosen").at("model");
+    CHECK(libcam::lens_info(chosen.lens.type).name == (model == "FOV" ? "PINHOLE" : model));
+
+    double worst = 0.0;
+    for (double y = 200.0; y <= 800.0; y += 3.0) {
+        for (double x = 400.0; x <= 1000.0; x += 3.0) {
+            const libcam::Vec2 pixel(x, y);
+            if ((pixel - libcam::Vec2(700, 500)).norm() > 300.0) continue;
+            libcam::Vec3 ray;
+            REQUIRE(source.unproject(pixel, ray));
+            const libcam::Projection back = chosen.project(ray);
+            REQUIRE(back.valid);
+            worst = std::max(worst, (back.pixel - pixel).norm());
+        }
+    }
+    CHECK(worst <= 0.02);
+}
+
+TEST_CASE("fit --heatmap writes a PNG and --to picks the -o format") {
+    Files files;
+    const std::string png = (files.dir / "error.png").string();
+    const std::string model = (files.dir / "chosen.txt").string();
+    fit_json({files.mild, "--roi", "100,100,900,700", "--heatmap", png, "-o", model, "--to", "cameramodel"});
+    CHECK(read_whole_file(png).substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8));
+    CHECK_THAT(read_whole_file(model), Contains("'lensmodel'"));
+}
+
+TEST_CASE("fit --with-rotation --depth: the chosen camera reports its motion") {
+    Files files;
+    const json out = fit_json({files.mild, "--max-angle", "20", "--with-rotation", "--depth", "1,100", "--tolerance", "0.05"});
+    CHECK(out.at("chosen").at("motion").at("rvec").size() == 3);
+    CHECK(out.at("chosen").at("motion").at("shift").size() == 3);
+    CHECK_THAT(out.at("scene").at("description").get<std::string>(), Contains("within 20 deg"));
+}
+
+TEST_CASE("fit refuses bad scenes and flags, and says when no model meets the tolerance") {
+    Files files;
+    // Values: exit 1.
+    check_refused({files.mild, "--radius", "0"}, 1, "radius: must be > 0");
+    check_refused({files.mild, "--radius", "50", "--center", "1700,10"}, 1, "outside the image");
+    check_refused({files.mild, "--roi", "500,100,400,300"}, 1, "empty");
+    check_refused({files.mild, "--roi", "0,0,1600,1200"}, 1, "outside the image's pixel centres [0, 1599] x [0, 1199]");
+    check_refused({files.mild, "--max-angle", "190"}, 1, "max angle: must be in (0, 180)");
+    check_refused({files.mild, "--tolerance", "0"}, 1, "tolerance: must be > 0");
+    check_refused({files.mild, "--tolerance", "-2"}, 1, "tolerance: must be > 0");
+    check_refused({files.mild, "--with-rotation", "--depth", "10,5"}, 1, "0 < NEAR < FAR");
+    check_refused({(files.dir / "missing.json").string()}, 1, "missing.json");
+    // Malformed: exit 2.
+    check_refused({files.mild, "--tolerance", "abc"}, 2, "--tolerance");
+    check_refused({files.mild, "--roi", "1,2,3"}, 2, "--roi");
+    check_refused({files.mild, "--radius", "10", "--roi", "1,2,3,4"}, 2, "excludes");
+    check_refused({files.mild, "--center", "1,2"}, 2, "--center");
+    check_refused({files.mild, "--depth", "1,10"}, 2, "--depth");
+    check_refused({files.mild, "--grid", "1x5"}, 2, "--grid");
+    check_refused({files.mild, "-o", (files.dir / "x").string(), "--to", "png"}, 2, "--to");
+    // No candidate: not even OPENCV4, the lens itself, comes closer than rounding.
+    check_refused({files.mild, "--radius", "200", "--tolerance", "1e-300"}, 1, "no candidate model meets the tolerance 1e-300 px");
+}
+
+TEST_CASE("a fit that runs past a second reports its progress on stderr") {
+    // Issue 3's wide lens over the whole image on a fine lattice: a few seconds of fitting.
+    TempDir dir;
+    const std::string wide = (dir / "wide.json").string();
+    write_whole_file(wide, R"({
+  "model": "OPENCV8", "image_size": [6016, 4016],
+  "K": [[2073.872915, 0, 3004.686823], [0, 2077.452267, 1997.377253], [0, 0, 1]],
+  "dist": [0.4791613797, 0.0266824914, 4.398264387e-05, -1.180073913e-05, 8.959722542e-05, 0.7666912469,
+           0.09633561231, 0.001407513313],
+  "R": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "t": [0, 0, 0]
+})");
+    const auto start = std::chrono::steady_clock::now();
+    const auto result = fit({wide, "--grid", "120x80", "--tolerance", "3"});
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    INFO(result.describe());
+    REQUIRE(result.exit_code == 0);
+    CHECK_THAT(result.out, Contains("chosen: OPENCV8"));
+    std::istringstream lines(result.err);
+    for (std::string line; std::getline(lines, line);) CHECK_THAT(line, Catch::Matchers::StartsWith("libcam fit: "));
+    if (seconds > 1.5) {
+        CHECK_THAT(result.err, Contains(" of 8), iteration "));
+    } else {
+        WARN("the fit took only " << seconds << " s here: no progress to expect");
+    }
+}

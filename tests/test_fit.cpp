@@ -1,0 +1,342 @@
+// libcam::fit: scenes and their samples, the candidates, and the choice.
+//
+// Expected answers come from how each source camera is built (a camera made as a FOV
+// camera is one; a lens whose distortion displaces no pixel of a region by more than a
+// bound worked out by hand needs no distortion there) and from evaluations written
+// here, through libcam's Camera, independent of the fit's own measurements.
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "lens_cases.hpp"
+#include "libcam/convert/fov_convert.hpp"
+#include "libcam/error.hpp"
+#include "libcam/fit/fit.hpp"
+#include "support.hpp"
+
+using namespace libcam;
+using Catch::Matchers::Contains;
+
+namespace {
+
+Vec2 centre_of(const ImageSize& size) { return {size.centre_x(), size.centre_y()}; }
+
+// 1600x1200, f = 1200, centred, mild barrel with a little decentring:
+// k1 = -0.02, k2 = 0.004, p1 = 1e-4, p2 = -5e-5. Its corners are 39.8 deg off the axis.
+Camera mildly_distorted() {
+    Camera camera;
+    camera.size = {1600, 1200};
+    camera.intrinsics = {1200.0, 1200.0, camera.size.centre_x(), camera.size.centre_y(), 0.0};
+    camera.lens = {LensType::Opencv4, {-0.02, 0.004, 1e-4, -5e-5}};
+    return camera;
+}
+
+const CandidateReport& chosen(const FitReport& report) {
+    REQUIRE(report.chosen.has_value());
+    return report.candidates[*report.chosen];
+}
+
+const CandidateReport& candidate(const FitReport& report, std::string_view name) {
+    for (const CandidateReport& entry : report.candidates) {
+        if (entry.fit.candidate.name == name) return entry;
+    }
+    FAIL("no candidate " << name);
+    throw std::logic_error("unreachable");
+}
+
+// Which pixels the test regards as in the scene, written here from the scene's definition.
+struct SceneTruth {
+    enum { Whole, Circle, Rectangle, Angle } kind = Whole;
+    Vec2 centre = Vec2::Zero();
+    double radius = 0.0;
+    Vec2 low = Vec2::Zero(), high = Vec2::Zero();
+    double max_angle_rad = 0.0;
+
+    bool contains(const Vec2& pixel, const Vec3& ray) const {
+        switch (kind) {
+            case Whole: return true;
+            case Circle: return (pixel - centre).norm() <= radius;
+            case Rectangle: return (pixel.array() >= low.array()).all() && (pixel.array() <= high.array()).all();
+            case Angle: return std::atan2(ray.head<2>().norm(), ray.z()) <= max_angle_rad;
+        }
+        return false;
+    }
+
+    // A box around the scene, to spare the dense check the rest of the image.
+    std::pair<Vec2, Vec2> box(const ImageSize& size) const {
+        switch (kind) {
+            case Circle: return {centre.array() - radius, centre.array() + radius};
+            case Rectangle: return {low, high};
+            default: return {Vec2::Zero(), Vec2(size.width - 1, size.height - 1)};
+        }
+    }
+};
+
+// The pixels of a lattice over the image `density` times denser than `lattice`, inside `box`.
+std::vector<Vec2> dense_pixels(const ImageSize& size, const Lattice& lattice, int density, const std::pair<Vec2, Vec2>& box) {
+    const double step_x = static_cast<double>(size.width - 1) / static_cast<double>((lattice.columns - 1) * density);
+    const double step_y = static_cast<double>(size.height - 1) / static_cast<double>((lattice.rows - 1) * density);
+    std::vector<Vec2> pixels;
+    for (double y = std::ceil(box.first.y() / step_y) * step_y; y <= box.second.y(); y += step_y) {
+        for (double x = std::ceil(box.first.x() / step_x) * step_x; x <= box.second.x(); x += step_x) pixels.emplace_back(x, y);
+    }
+    return pixels;
+}
+
+// The largest error of `fitted` (a world camera) against `source` over the scene's pixels
+// on a lattice `density` times denser than the fit's, at each depth along the source's
+// rays (far away when none). Every scene pixel with a ray must project through `fitted`.
+double independent_max_error(const Camera& source, const Camera& fitted, const SceneTruth& truth,
+                             const Lattice& fit_lattice, int density, const std::vector<double>& depths) {
+    const std::vector<Vec2> pixels = dense_pixels(source.size, fit_lattice, density, truth.box(source.size));
+    const std::vector<Unprojection> rays = source.unproject_pixels(pixels);
+    std::vector<Vec3> points;  // in the fitted camera's frame
+    std::vector<Vec2> expected;
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+        if (!rays[i].valid || !truth.contains(pixels[i], rays[i].direction)) continue;
+        const Vec3 world_direction = source.pose.world_direction_from_camera(rays[i].direction.normalized());
+        for (const double depth : depths.empty() ? std::vector<double>{1e9} : depths) {
+            points.push_back(fitted.pose.camera_from_world(source.pose.centre() + depth * world_direction));
+            expected.push_back(pixels[i]);
+        }
+    }
+    REQUIRE(points.size() > 1000);
+    const std::vector<Projection> projections = fitted.project_camera_points(points);
+    double worst = 0.0;
+    std::size_t invalid = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (!projections[i].valid) ++invalid;
+        else worst = std::max(worst, (projections[i].pixel - expected[i]).norm());
+    }
+    CHECK(invalid == 0);
+    return worst;
+}
+
+}  // namespace
+
+TEST_CASE("a camera made as a FOV camera is found to be one, with no error") {
+    const FovCamera made = FovCamera::look_at({1, 2, 3}, {4, -1, 9}, {0, 1, 0}, 70.0, FovAxis::Horizontal, {1280, 720});
+    const Camera source = to_camera(made);
+    FitOptions options;
+    options.tolerance_px = 0.01;
+    const FitReport report = fit_scene(source, Scene::whole_image(), options);
+
+    const CandidateReport& best = chosen(report);
+    CHECK(best.fit.candidate.name == "FOV");
+    CHECK(best.fit.candidate.num_params() == 1);
+    CHECK(best.max_px < 1e-9);
+    REQUIRE(best.fit.params.size() == 1);
+    // f = (W/2) / tan(fov/2) for a horizontal fov.
+    CHECK(best.fit.params[0] == Approx(640.0 / std::tan(35.0 * std::numbers::pi / 180.0)).epsilon(1e-12));
+    const Camera world = camera_in_world(best.fit, source);
+    CHECK(describe_fov(world).fov_deg.horizontal == Approx(70.0).epsilon(1e-12));
+    CHECK((world.pose.R - source.pose.R).norm() < 1e-15);
+    CHECK(world.pose.centre().isApprox(made.eye, 1e-12));
+}
+
+TEST_CASE("a mildly distorted lens needs OPENCV4 over the whole image but is a FOV camera in a small central region") {
+    const Camera source = mildly_distorted();
+    FitOptions options;
+    options.tolerance_px = 0.05;
+
+    // Whole image: the barrel moves the corners by ~12 px (1200 (k1 r^3 + k2 r^5) at
+    // r = 0.83), which no focal length or principal point takes back; OPENCV4 is the lens.
+    const FitReport whole = fit_scene(source, Scene::whole_image(), options);
+    CHECK(chosen(whole).fit.candidate.name == "OPENCV4");
+    CHECK_FALSE(candidate(whole, "FOV").pass);
+    CHECK_FALSE(candidate(whole, "PINHOLE").pass);
+    CHECK(candidate(whole, "PINHOLE").max_px > 1.0);
+
+    // Within 40 px of the centre (r = 1/30) the distortion moves no pixel by more than
+    // 1200 (0.02 r^3 + 3.5e-4 r^2) = 1.4e-3 px, far inside 0.05 px: the FOV camera serves.
+    // (A least-squares fit may trade some of its largest error for a smaller RMS: 2x.)
+    const FitReport centre = fit_scene(source, Scene::circle(40.0, centre_of(source.size)), options);
+    CHECK(chosen(centre).fit.candidate.name == "FOV");
+    CHECK(chosen(centre).max_px < 2 * 1.4e-3);
+}
+
+TEST_CASE("the chosen model is within the tolerance everywhere in the scene, by an independent denser check") {
+    struct Case {
+        std::string name;
+        Camera source;
+        Scene scene;
+        SceneTruth truth;
+        double tolerance_px;
+        CameraMotion motion;
+        std::vector<double> depths;
+    };
+    const Camera wide = libcam::test::wide_reference_camera();
+    const Camera mild = mildly_distorted();
+    const double fifty_deg = 50.0 * std::numbers::pi / 180.0;
+    const std::vector<Case> cases = {
+        {"wide lens, r 1500", wide, Scene::circle(1500, centre_of(wide.size)),
+         {SceneTruth::Circle, centre_of(wide.size), 1500}, 0.5, CameraMotion::None, {}},
+        {"wide lens, off-centre circle, rotation and shift", wide, Scene::circle(900, {1500, 1200}),
+         {SceneTruth::Circle, {1500, 1200}, 900}, 0.2, CameraMotion::RotationAndShift, {10.0, 1000.0}},
+        {"wide lens, rectangle", wide, Scene::rectangle({3500, 500}, {5800, 3900}),
+         {SceneTruth::Rectangle, {}, 0, {3500, 500}, {5800, 3900}}, 1.0, CameraMotion::None, {}},
+        {"wide lens, 50 degrees, rotation", wide, Scene::field_angle(50.0),
+         {SceneTruth::Angle, {}, 0, {}, {}, fifty_deg}, 0.5, CameraMotion::Rotation, {}},
+        {"mild lens, whole image", mild, Scene::whole_image(), {}, 0.01, CameraMotion::None, {}},
+    };
+    for (const Case& c : cases) {
+        INFO(c.name);
+        FitOptions options;
+        options.tolerance_px = c.tolerance_px;
+        options.motion = c.motion;
+        options.depths = c.depths;
+        const FitReport report = fit_scene(c.source, c.scene, options);
+        const CandidateReport& best = chosen(report);
+        INFO("chosen " << best.fit.candidate.name << ", its own max " << best.max_px);
+        const double worst = independent_max_error(c.source, camera_in_world(best.fit, c.source), c.truth,
+                                                   report.sampling.fit_lattice, 6, c.depths);
+        CHECK(worst <= c.tolerance_px);
+    }
+}
+
+TEST_CASE("the fitted camera may rotate: an off-centre principal point is a rotated FOV camera") {
+    // f = 2500 on a 1000x800 image (tan of the half width 0.2), principal point 2 px right
+    // and 1.5 px up of the centre. Without motion a centred camera is off by ~2.5 px
+    // everywhere; turned by ~(2, 1.5)/2500 rad, it is off by at most about
+    // 2.5 tan^2 = 0.1 px at the edge.
+    Camera source;
+    source.size = {1000, 800};
+    source.intrinsics = {2500.0, 2500.0, source.size.centre_x() + 2.0, source.size.centre_y() - 1.5, 0.0};
+    FitOptions options;
+    options.tolerance_px = 0.2;
+
+    const FitReport still = fit_scene(source, Scene::whole_image(), options);
+    CHECK(candidate(still, "FOV").max_px > 2.0);
+    CHECK(chosen(still).fit.candidate.name == "PINHOLE");
+
+    options.motion = CameraMotion::Rotation;
+    const FitReport turned = fit_scene(source, Scene::whole_image(), options);
+    CHECK(chosen(turned).fit.candidate.name == "FOV");
+    const double angle = camera_in_world(chosen(turned).fit, source).pose.rvec().norm();
+    CHECK(angle == Approx(std::hypot(2.0, 1.5) / 2500.0).epsilon(0.05));
+}
+
+TEST_CASE("a fisheye view past 90 degrees: perspective models cannot cover it, FISHEYE can") {
+    // f = 420 on 1600x1200: the corners are ~2.4 rad (137 deg) off the axis.
+    const Camera source = libcam::test::lens_camera(LensType::Fisheye, {-0.013, -0.0057, 0.0023, -0.0009}, {1600, 1200}, 420, 421);
+    FitOptions options;
+    options.tolerance_px = 0.01;
+    const FitReport report = fit_scene(source, Scene::whole_image(), options);
+    CHECK(report.largest_angle_deg > 90.0);
+    for (const std::string_view name : {"FOV", "PINHOLE", "OPENCV4", "OPENCV5", "OPENCV8", "OPENCV12"}) {
+        INFO(name);
+        CHECK_FALSE(candidate(report, name).covers_scene);
+        CHECK(std::isinf(candidate(report, name).max_px));
+    }
+    CHECK(candidate(report, "STEREOGRAPHIC").covers_scene);
+    CHECK(chosen(report).fit.candidate.name == "FISHEYE");
+}
+
+TEST_CASE("candidates: simplest first, FISHEYE and STEREOGRAPHIC only for wide scenes") {
+    const auto names = [](double angle) {
+        std::vector<std::string> out;
+        for (const Candidate& c : candidates_for(angle)) out.emplace_back(c.name);
+        return out;
+    };
+    const std::vector<std::string> narrow = {"FOV", "PINHOLE", "OPENCV4", "OPENCV5", "OPENCV8", "OPENCV12"};
+    CHECK(names(44.9) == narrow);
+    std::vector<std::string> wide = narrow;
+    wide.insert(wide.end(), {"FISHEYE", "STEREOGRAPHIC"});
+    CHECK(names(45.0) == wide);
+    const std::vector<int> counts = {1, 4, 8, 9, 12, 16, 8, 4};
+    for (std::size_t i = 0; i < counts.size(); ++i) CHECK(candidates_for(60.0)[i].num_params() == counts[i]);
+}
+
+TEST_CASE("scene samples: the lattice inside the scene and its boundary, and a denser check set") {
+    const Camera source = mildly_distorted();
+    const Vec2 centre(700.0, 500.0);
+    const double radius = 300.0;
+    const Lattice lattice{33, 25};  // steps of 1599/32 and 1199/24 px
+    const SceneSampling sampling = sample_scene(source, Scene::circle(radius, centre), lattice);
+
+    const ScenePixels& fit = sampling.fit;
+    REQUIRE(fit.boundary_count > 0);
+    const double step_x = 1599.0 / 32, step_y = 1199.0 / 24;
+    for (std::size_t i = 0; i < fit.pixels.size(); ++i) {
+        const Vec2& p = fit.pixels[i];
+        CHECK((p - centre).norm() <= radius * (1 + 1e-9));
+        if (i < fit.boundary_count) {
+            CHECK((p - centre).norm() == Approx(radius).epsilon(1e-12));
+        } else {
+            CHECK(std::abs(p.x() / step_x - std::round(p.x() / step_x)) < 1e-9);
+            CHECK(std::abs(p.y() / step_y - std::round(p.y() / step_y)) < 1e-9);
+        }
+        Vec3 expected;
+        REQUIRE(source.unproject(p, expected));
+        CHECK(fit.directions[i].isApprox(expected.normalized(), 1e-15));
+    }
+    // Lattice points inside the disc: about its area over a cell's.
+    const double interior = static_cast<double>(fit.pixels.size() - fit.boundary_count);
+    CHECK(interior == Approx(std::numbers::pi * radius * radius / (step_x * step_y)).epsilon(0.1));
+    CHECK(sampling.check_lattice.columns == 32 * kCheckDensity + 1);
+    CHECK(sampling.check.pixels.size() > 10 * fit.pixels.size());
+    CHECK(sampling.check.boundary_count > 3 * fit.boundary_count);
+}
+
+TEST_CASE("a field-angle scene holds the pixels whose rays are within the angle, its edge at the angle") {
+    const Camera source = libcam::test::wide_reference_camera();
+    const SceneSampling sampling = sample_scene(source, Scene::field_angle(30.0));
+    const ScenePixels& fit = sampling.fit;
+    REQUIRE(fit.boundary_count > 16);
+    for (std::size_t i = 0; i < fit.pixels.size(); ++i) {
+        Vec3 ray;
+        REQUIRE(source.unproject(fit.pixels[i], ray));
+        const double angle_deg = std::atan2(ray.head<2>().norm(), ray.z()) * 180.0 / std::numbers::pi;
+        CHECK(angle_deg <= 30.0 + 1e-7);
+        if (i < fit.boundary_count) CHECK(angle_deg == Approx(30.0).epsilon(1e-9));
+    }
+}
+
+TEST_CASE("bad scenes and options are refused with a clear message") {
+    const Camera source = mildly_distorted();
+    const auto fails = [&](const Scene& scene, const std::string& words, FitOptions options = {}) {
+        INFO(words);
+        CHECK_THROWS_WITH(fit_scene(source, scene, options), Contains(words));
+    };
+    fails(Scene::circle(0.0, centre_of(source.size)), "radius: must be > 0");
+    fails(Scene::circle(-5.0, centre_of(source.size)), "radius: must be > 0");
+    fails(Scene::circle(10.0, {2000.0, 10.0}), "outside the image's pixel centres [0, 1599] x [0, 1199]");
+    fails(Scene::rectangle({100, 100}, {100, 300}), "empty");
+    fails(Scene::rectangle({300, 100}, {200, 300}), "empty");
+    fails(Scene::rectangle({100, 100}, {1700, 300}), "outside the image");
+    fails(Scene::rectangle({-1, 100}, {300, 300}), "outside the image");
+    fails(Scene::field_angle(0.0), "max angle: must be in (0, 180)");
+    fails(Scene::field_angle(180.0), "max angle: must be in (0, 180)");
+    fails(Scene::circle(std::nan(""), centre_of(source.size)), "radius: must be finite");
+
+    FitOptions options;
+    options.tolerance_px = 0.0;
+    fails(Scene::whole_image(), "tolerance: must be > 0", options);
+    options.tolerance_px = -1.0;
+    fails(Scene::whole_image(), "tolerance: must be > 0", options);
+    options.tolerance_px = 1.0;
+    options.depths = {-1.0, 10.0};
+    fails(Scene::whole_image(), "depth: must be > 0", options);
+    options.depths = {};
+    options.motion = CameraMotion::RotationAndShift;
+    fails(Scene::whole_image(), "needs points at finite depths", options);
+}
+
+TEST_CASE("a scene with no pixel that has a ray is refused") {
+    // OPENCV4 k1 = -0.5 folds at r = sqrt(2/3) (distorted radius 0.5443, 272 px at f = 500):
+    // a rectangle in the corner of the 1000x750 image, 400+ px from the centre, has no rays.
+    Camera source;
+    source.size = {1000, 750};
+    source.intrinsics = {500.0, 500.0, 499.5, 374.5, 0.0};
+    source.lens = {LensType::Opencv4, {-0.5, 0.0, 0.0, 0.0}};
+    CHECK_THROWS_WITH(fit_scene(source, Scene::rectangle({900, 650}, {999, 749}), {}), Contains("no pixel of it has a ray"));
+    // The whole image: the corners are skipped and counted; the middle is fitted.
+    FitOptions options;
+    options.tolerance_px = 1e-6;
+    const FitReport report = fit_scene(source, Scene::whole_image(), options);
+    CHECK(report.sampling.check.skipped > 0);
+    CHECK(report.sampling.fit.skipped > 0);
+    CHECK(chosen(report).fit.candidate.name == "OPENCV4");
+}
