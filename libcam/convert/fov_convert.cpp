@@ -9,20 +9,12 @@ namespace libcam {
 
 Camera to_camera(const FovCamera& fov_camera) {
     fov_camera.validate();
-    const Vec2 tangents = fov_camera.half_tangents();
-    const double width = static_cast<double>(fov_camera.size.width);
-    const double height = static_cast<double>(fov_camera.size.height);
-
+    const FovPinholeT<double> pinhole = pinhole_from_fov<double>(fov_camera);
     Camera camera;
     camera.size = fov_camera.size;
-    camera.intrinsics = Intrinsics{width / (2.0 * tangents.x()), height / (2.0 * tangents.y()),
-                                   fov_camera.size.centre_x(), fov_camera.size.centre_y(), 0.0};
-    const Basis basis = fov_camera.basis(Handedness::Left);
-    Mat3 R;
-    R.row(0) = basis.u.transpose();
-    R.row(1) = -basis.v.transpose();
-    R.row(2) = basis.w.transpose();
-    camera.pose = Pose::from_centre(R, fov_camera.eye);
+    camera.intrinsics = Intrinsics{pinhole.focal.x(), pinhole.focal.y(), pinhole.principal_point.x(),
+                                   pinhole.principal_point.y(), 0.0};
+    camera.pose = Pose{pinhole.R, pinhole.t};
     return camera;
 }
 
