@@ -60,7 +60,7 @@ struct FovCamera {
     // (tan_x, tan_y): tangents of half the field of view across the width and height.
     Vec2 half_tangents() const;
 
-    SeedRayFormula seed_formula() const { return {basis(Handedness::Left), half_tangents(), size}; }
+    SeedRayFormula seed_formula() const;
 
     // The seed's ray d = alpha u + beta v + w_gaze through pixel (x, y), not normalised.
     Vec3 seed_ray(const Vec2& pixel, PixelOrigin origin = PixelOrigin::BottomLeft) const {
@@ -71,6 +71,15 @@ struct FovCamera {
     // half-extent, y up: (-1, -1) is the lower-left corner, (0, 1) the top centre.
     Vec3 field_ray(double sx, double sy) const { return seed_formula().field_ray(sx, sy); }
 };
+
+// The seed's formula of a FOV camera in Scalar: seed_formula() in double, and the tests'
+// reference in 113 bits from the same inputs.
+template <class Scalar>
+SeedRayFormulaT<Scalar> seed_formula_in(const FovCamera& camera) {
+    return {basis_from_gaze_up<Scalar>(camera.gaze.cast<Scalar>(), camera.up.cast<Scalar>(), Handedness::Left),
+            half_tangents_of_fov<Scalar>(Scalar(camera.fov_deg), camera.fov_axis, camera.size), camera.size};
+}
+inline SeedRayFormula FovCamera::seed_formula() const { return seed_formula_in<double>(*this); }
 
 // tan(angle/2) for an angle in degrees in (0, 180), accurate near 180 too; evaluated in
 // long double and rounded once.
