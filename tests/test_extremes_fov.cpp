@@ -329,6 +329,36 @@ std::vector<Row> up_near_gaze_rows() {
     };
 }
 
+// K -> fov angles of a camera whose principal point is off centre, up to 10000 image
+// sides away (not a FOV camera: the way back reports its angles and frustum). The
+// reference: atan(high) - atan(low) in Quad, the edges' tangents from the same K.
+std::vector<Row> off_centre_rows() {
+    Worst worst;
+    const auto spanned_deg = [](const Quad& centre, const Quad& f, long side) {
+        const Quad low = (Quad(-0.5) - centre) / f, high = (Quad(side) - Quad(0.5) - centre) / f;
+        return (atan(high) - atan(low)) * 180 / pi_in<Quad>();
+    };
+    for (double fov : fov_sweep()) {
+        for (double offset : {0.1, 10.0, 1e4}) {
+            for (const ImageSize size : {ImageSize{100, 50}, ImageSize{1920, 1080}, ImageSize{100000, 10}}) {
+                Camera camera;
+                camera.size = size;
+                const double w = static_cast<double>(size.width), h = static_cast<double>(size.height);
+                const double f = 0.5 * w / tan_half_angle_deg(fov);
+                camera.intrinsics = {f, f, size.centre_x() + offset * w, size.centre_y() - offset * h, 0.0};
+                const FovDescription description = describe_fov(camera);
+                const auto where = [&] { return "fov " + std::to_string(fov) + " offset " + std::to_string(offset) + " width " + std::to_string(size.width); };
+                const Intrinsics& k = camera.intrinsics;
+                worst.update(ulps(description.fov_deg.horizontal, spanned_deg(k.cx, k.fx, size.width)), where);
+                worst.update(ulps(description.fov_deg.vertical, spanned_deg(k.cy, k.fy, size.height)), where);
+            }
+        }
+    }
+    return {{"principal point 0.1 to 10000 image sides off centre, fov 1e-6 to 179.999 deg", "K -> horizontal, vertical fov [ulp]",
+             worst.value, kNotApplicable, 4, kNotApplicable,
+             "atan2(W / fx, 1 + low high) for atan(high) - atan(low)", worst.where}};
+}
+
 }  // namespace
 
 TEST_CASE("extremes: the float-rounded inputs are floats") {
@@ -344,6 +374,7 @@ TEST_CASE("extremes: fov 1e-6 degrees on every axis and size") { check_rows(tiny
 TEST_CASE("extremes: fov 179.999 degrees on every axis and size") { check_rows(wide_fov_rows()); }
 TEST_CASE("extremes: fov from 1e-6 to 179.999 degrees on every axis and size") { check_rows(fov_sweep_rows()); }
 TEST_CASE("extremes: eye 1e7 from the origin, target 1 away") { check_rows(far_eye_rows()); }
+TEST_CASE("extremes: fov angles of a camera with its principal point far off centre") { check_rows(off_centre_rows()); }
 TEST_CASE("extremes: target 1e-9 from the eye") {
     check_rows(near_target_rows());
     // At 1e7 from the origin, 1e-9 is below the eye's ulp (1.9e-9): the target rounds to
@@ -366,7 +397,7 @@ namespace libcam::test {
 
 std::vector<Row> fov_rows() {
     std::vector<Row> rows;
-    for (const auto& group : {tiny_fov_rows, wide_fov_rows, fov_sweep_rows, far_eye_rows, near_target_rows, up_near_gaze_rows}) {
+    for (const auto& group : {tiny_fov_rows, wide_fov_rows, fov_sweep_rows, far_eye_rows, near_target_rows, up_near_gaze_rows, off_centre_rows}) {
         const std::vector<Row> more = group();
         rows.insert(rows.end(), more.begin(), more.end());
     }
