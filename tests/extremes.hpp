@@ -16,8 +16,8 @@ namespace libcam::test {
 inline constexpr double kNotApplicable = std::numeric_limits<double>::quiet_NaN();
 
 struct Row {
-    std::string extreme;      // the inputs swept
-    std::string quantity;     // what is compared with what, and the unit
+    std::string extreme;                // the inputs swept
+    std::string quantity;               // what is compared with what, and the unit
     double in_double = kNotApplicable;  // worst measured
     double in_float = kNotApplicable;
     double bound_double = kNotApplicable;  // asserted: in_double <= bound_double

@@ -5,7 +5,7 @@
 // `test_extremes "[table]"` prints the measured values.
 
 #include <catch2/catch.hpp>
-#include <functional>
+#include <iomanip>
 #include <sstream>
 
 #include "extremes.hpp"
@@ -28,8 +28,8 @@ constexpr FovAxis kAxes[] = {FovAxis::Horizontal, FovAxis::Vertical, FovAxis::Di
 
 // 1x1 to 100000x100000 and aspect ratios to 1:10000 both ways.
 const std::vector<ImageSize>& extreme_sizes() {
-    static const std::vector<ImageSize> sizes{{1, 1},        {3, 3},         {1920, 1080},   {100000, 100000},
-                                              {1, 10000},    {10000, 1},     {10, 100000},   {100000, 10}};
+    static const std::vector<ImageSize> sizes{{1, 1},     {3, 3},     {1920, 1080}, {100000, 100000},
+                                              {1, 10000}, {10000, 1}, {10, 100000}, {100000, 10}};
     return sizes;
 }
 
@@ -64,8 +64,8 @@ FovCamera rounded_to_float(const FovCamera& camera) {
 // corner, edge-centre and centre pixels.
 std::vector<Vec2> probe_pixels(const ImageSize& size) {
     const double w = static_cast<double>(size.width), h = static_cast<double>(size.height);
-    return {{-0.5, -0.5}, {w - 0.5, h - 0.5}, {-0.5, h - 0.5}, {0, 0},           {w - 1, h - 1},
-            {w - 1, 0},   {0, h - 1},         {(w - 1) / 2, (h - 1) / 2}, {w - 1, (h - 1) / 2}, {(w - 1) / 2, 0}};
+    return {{-0.5, -0.5}, {w - 0.5, h - 0.5},         {-0.5, h - 0.5},      {0, 0},          {w - 1, h - 1}, {w - 1, 0},
+            {0, h - 1},   {(w - 1) / 2, (h - 1) / 2}, {w - 1, (h - 1) / 2}, {(w - 1) / 2, 0}};
 }
 
 std::string describe(const FovCamera& camera) {
@@ -109,11 +109,11 @@ std::pair<double, double> ray_errors(const Vec3T<Scalar>& ray, const FovPinholeT
 // ------------------------------------------------------------------ one fov extreme
 
 struct FovSweepWorst {
-    Worst focal_double, focal_float;        // fx, fy, ulps of their own type
-    Worst seed_rad_double, seed_rad_float;  // seed ray, angle
-    Worst seed_px_double, seed_px_float;    // seed ray, pixels
-    Worst calibrated_rad, calibrated_px;    // Camera::ray (double only)
-    Worst fov_back;                         // K -> fov, ulps of double against the input fov
+    Worst focal_double, focal_float;                 // fx, fy, ulps of their own type
+    Worst seed_rad_double, seed_rad_float;           // seed ray, angle
+    Worst seed_px_double, seed_px_float;             // seed ray, pixels
+    Worst calibrated_rad, calibrated_px;             // Camera::ray (double only)
+    Worst fov_back;                                  // K -> fov, ulps of double against the input fov
     double px_scale_double = 0, px_scale_float = 0;  // the largest pixel_conditioning seen
 };
 
@@ -128,7 +128,9 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
     const Camera calibrated = to_camera(camera);
     const SeedRayFormula seed_d = camera.seed_formula();
     for (const Vec2& pixel : probe_pixels(camera.size)) {
-        const auto at = [&] { return where() + " pixel (" + std::to_string(pixel.x()) + ", " + std::to_string(pixel.y()) + ")"; };
+        const auto at = [&] {
+            return where() + " pixel (" + std::to_string(pixel.x()) + ", " + std::to_string(pixel.y()) + ")";
+        };
         const auto [rad, px] = ray_errors<double>(seed_d.ray(pixel, PixelOrigin::TopLeft), pinhole_q, seed_q, pixel);
         worst.px_scale_double = std::max(worst.px_scale_double, pixel_conditioning(pinhole_q, pixel, kEpsDouble));
         worst.seed_rad_double.update(rad, at);
@@ -148,8 +150,11 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
     for (int i = 0; i < 2; ++i) worst.focal_float.update(ulps(pinhole_f.focal(i), pinhole_fq.focal(i)), where);
     const SeedRayFormulaT<float> seed_f = seed_formula_in<float>(camera_f);
     for (const Vec2& pixel : probe_pixels(camera.size)) {
-        const auto at = [&] { return where() + " pixel (" + std::to_string(pixel.x()) + ", " + std::to_string(pixel.y()) + ")"; };
-        const auto [rad, px] = ray_errors<float>(seed_f.ray(pixel.cast<float>(), PixelOrigin::TopLeft), pinhole_fq, seed_fq, pixel);
+        const auto at = [&] {
+            return where() + " pixel (" + std::to_string(pixel.x()) + ", " + std::to_string(pixel.y()) + ")";
+        };
+        const auto [rad, px] =
+            ray_errors<float>(seed_f.ray(pixel.cast<float>(), PixelOrigin::TopLeft), pinhole_fq, seed_fq, pixel);
         worst.px_scale_float = std::max(worst.px_scale_float, pixel_conditioning(pinhole_fq, pixel, kEpsFloat));
         worst.seed_rad_float.update(rad, at);
         worst.seed_px_float.update(px, at);
@@ -173,18 +178,21 @@ std::vector<Row> fov_extreme_rows(const std::string& extreme, const std::vector<
     for (const FovCamera& camera : cameras) sweep_camera(camera, worst);
     const std::string tangent = "tan(fov/2) in long double, by its complement above 90 deg; one rounding to the type";
     return {
-        {extreme, "fx, fy vs reference [ulp]", worst.focal_double.value, worst.focal_float.value, kFocalUlps, kFocalUlps, tangent + "; fx = W / (2 tan_x)", worst.focal_double.where + "; float: " + worst.focal_float.where},
+        {extreme, "fx, fy vs reference [ulp]", worst.focal_double.value, worst.focal_float.value, kFocalUlps,
+         kFocalUlps, tangent + "; fx = W / (2 tan_x)",
+         worst.focal_double.where + "; float: " + worst.focal_float.where},
         {extreme, "seed ray alpha u + beta v + w [rad]", worst.seed_rad_double.value, worst.seed_rad_float.value,
-         kRayEps * kEpsDouble, kRayEps * kEpsFloat, "alpha = tan_x (2x - W + 1) / W: 2x - W + 1 exact", worst.seed_rad_double.where},
+         kRayEps * kEpsDouble, kRayEps * kEpsFloat, "alpha = tan_x (2x - W + 1) / W: 2x - W + 1 exact",
+         worst.seed_rad_double.where},
         {extreme, "seed ray, where it lands [px]", worst.seed_px_double.value, worst.seed_px_float.value,
-         kPixelConditionings * worst.px_scale_double, kPixelConditionings * worst.px_scale_float, "bound: 4 eps f / cos^2(angle off axis), the pixel's own conditioning",
-         worst.seed_px_double.where},
-        {extreme, "calibrated ray R^T K^-1 [x y 1] [rad]", worst.calibrated_rad.value, kNotApplicable, kRayEps * kEpsDouble,
-         kNotApplicable, "K^-1: (x - cx) / fx, x - cx exact", worst.calibrated_rad.where},
+         kPixelConditionings * worst.px_scale_double, kPixelConditionings * worst.px_scale_float,
+         "bound: 4 eps f / cos^2(angle off axis), the pixel's own conditioning", worst.seed_px_double.where},
+        {extreme, "calibrated ray R^T K^-1 [x y 1] [rad]", worst.calibrated_rad.value, kNotApplicable,
+         kRayEps * kEpsDouble, kNotApplicable, "K^-1: (x - cx) / fx, x - cx exact", worst.calibrated_rad.where},
         {extreme, "calibrated ray, where it lands [px]", worst.calibrated_px.value, kNotApplicable,
          kPixelConditionings * worst.px_scale_double, kNotApplicable, "as above", worst.calibrated_px.where},
-        {extreme, "fov -> K -> fov round trip [ulp]", worst.fov_back.value, kNotApplicable, kFovBackUlps, kNotApplicable,
-         "2 atan(W / (2 fx)) in long double, by the complement above 90 deg", worst.fov_back.where},
+        {extreme, "fov -> K -> fov round trip [ulp]", worst.fov_back.value, kNotApplicable, kFovBackUlps,
+         kNotApplicable, "2 atan(W / (2 fx)) in long double, by the complement above 90 deg", worst.fov_back.where},
     };
 }
 
@@ -199,15 +207,18 @@ std::vector<FovCamera> cameras_at(const std::vector<double>& fovs, const std::ve
 }
 
 std::vector<Row> tiny_fov_rows() {
-    return fov_extreme_rows("fov 1e-6 deg, every axis, 1x1 to 100000x100000, aspect to 1:10000", cameras_at({1e-6}, extreme_sizes()));
+    return fov_extreme_rows("fov 1e-6 deg, every axis, 1x1 to 100000x100000, aspect to 1:10000",
+                            cameras_at({1e-6}, extreme_sizes()));
 }
 
 std::vector<Row> wide_fov_rows() {
-    return fov_extreme_rows("fov 179.999 deg, every axis, 1x1 to 100000x100000, aspect to 1:10000", cameras_at({179.999}, extreme_sizes()));
+    return fov_extreme_rows("fov 179.999 deg, every axis, 1x1 to 100000x100000, aspect to 1:10000",
+                            cameras_at({179.999}, extreme_sizes()));
 }
 
 std::vector<Row> fov_sweep_rows() {
-    return fov_extreme_rows("fov 1e-6 to 179.999 deg (11 values), every axis, every size above", cameras_at(fov_sweep(), extreme_sizes()));
+    return fov_extreme_rows("fov 1e-6 to 179.999 deg (11 values), every axis, every size above",
+                            cameras_at(fov_sweep(), extreme_sizes()));
 }
 
 // ------------------------------------------------- far eye, near target, up near gaze
@@ -215,8 +226,8 @@ std::vector<Row> fov_sweep_rows() {
 // The basis vectors' angle errors against the reference, the worst of u, v, w.
 template <class Scalar>
 double basis_error(const BasisT<Scalar>& basis, const BasisT<Quad>& reference) {
-    return std::max({angle_error(basis.u, reference.u), angle_error(basis.v, reference.v),
-                     angle_error(basis.w, reference.w)});
+    return std::max(
+        {angle_error(basis.u, reference.u), angle_error(basis.v, reference.v), angle_error(basis.w, reference.w)});
 }
 
 // A FOV camera through look_at, for the pose extremes (fov and size are ordinary).
@@ -226,42 +237,62 @@ FovCamera posed_camera(const Vec3& eye, const Vec3& target, const Vec3& up) {
 
 // Eye 1e7 units from the origin, target 1 unit away. t = -R eye is ~1e7 long, so its
 // ulp is 1.9e-9: that is all R|t can say about where the camera is, and about a point
-// 1 unit in front of it (whose camera-frame position is R X + t, a difference of two
+// 1 unit in front of it (whose camera-frame position R X + t is a difference of two
 // 1e7-long vectors). Double keeps 16 - 7 = 9 digits of such a point; float keeps none.
+// The reference for a point X is R (X - eye) in Quad, which has no such cancellation.
 std::vector<Row> far_eye_rows() {
     rng().seed(7);
-    Worst t_ulps_d, t_ulps_f, eye_d, eye_f, target_d, target_f, pixel_d;
+    Worst t_ulps_d, t_ulps_f, eye_d, eye_f, target_d, target_float, pixel_d;
     for (int i = 0; i < 200; ++i) {
         const Vec3 eye = random_unit() * 1e7;
-        const FovCamera camera = posed_camera(eye, eye + random_unit(), random_unit());
-        const Vec3 target = camera.eye + camera.gaze;  // exactly on the optical axis
-        const auto where = [&] { return "eye " + std::to_string(eye.x()) + ", " + std::to_string(eye.y()) + ", " + std::to_string(eye.z()); };
-        // Double: t against the reference, the eye back from R|t, the target in the camera frame.
+        const Vec3 target = eye + random_unit();
+        const FovCamera camera = posed_camera(eye, target, random_unit());
+        const auto where = [&] {
+            return "eye (" + std::to_string(eye.x()) + ", " + std::to_string(eye.y()) + ", " + std::to_string(eye.z()) +
+                   ")";
+        };
+        // Double: t, the eye back from R|t, the target in the camera frame and its pixel.
         const FovPinholeT<Quad> q = pinhole_from_fov<Quad>(camera);
         const Camera calibrated = to_camera(camera);
         t_ulps_d.update(ulps(calibrated.pose.t, q.t), where);
         eye_d.update((calibrated.pose.centre() - camera.eye).norm(), where);
-        // The target is at (0, 0, |gaze|) in the camera frame, exactly (by hand).
-        const Vec3Q on_axis(0, 0, camera.gaze.cast<Quad>().norm());
-        target_d.update(static_cast<double>((calibrated.pose.camera_from_world(target).cast<Quad>() - on_axis).norm()), where);
-        const Vec2 principal(calibrated.intrinsics.cx, calibrated.intrinsics.cy);
-        pixel_d.update((calibrated.project(target).pixel - principal).norm(), where);
+        const Vec3Q target_q = q.R * (target.cast<Quad>() - camera.eye.cast<Quad>());
+        target_d.update(static_cast<double>((calibrated.pose.camera_from_world(target).cast<Quad>() - target_q).norm()),
+                        where);
+        const Vec2Q pixel_q(q.focal.x() * target_q.x() / target_q.z() + q.principal_point.x(),
+                            q.focal.y() * target_q.y() / target_q.z() + q.principal_point.y());
+        pixel_d.update(static_cast<double>((calibrated.project(target).pixel.cast<Quad>() - pixel_q).norm()), where);
         // Float, from the float-rounded inputs.
         const FovCamera camera_f = rounded_to_float(camera);
+        const Vec3 target_f = target.cast<float>().cast<double>();
         const FovPinholeT<Quad> qf = pinhole_from_fov<Quad>(camera_f);
         const FovPinholeT<float> pf = pinhole_from_fov<float>(camera_f);
         t_ulps_f.update(ulps(pf.t, qf.t), where);
-        eye_f.update(static_cast<double>((centre_from_translation<float>(pf.R, pf.t).cast<Quad>() - camera_f.eye.cast<Quad>()).norm()), where);
-        const Vec3T<float> target_in_camera = pf.R * (camera_f.eye + camera_f.gaze).cast<float>() + pf.t;
-        const Vec3Q on_axis_f(0, 0, camera_f.gaze.cast<Quad>().norm());
-        target_f.update(static_cast<double>((target_in_camera.cast<Quad>() - on_axis_f).norm()), where);
+        const Vec3T<float> eye_back_f = centre_from_translation<float>(pf.R, pf.t);
+        eye_f.update(static_cast<double>((eye_back_f.cast<Quad>() - camera_f.eye.cast<Quad>()).norm()), where);
+        const Vec3T<float> target_in_camera_f = pf.R * target_f.cast<float>() + pf.t;
+        const Vec3Q target_fq = qf.R * (target_f.cast<Quad>() - camera_f.eye.cast<Quad>());
+        target_float.update(static_cast<double>((target_in_camera_f.cast<Quad>() - target_fq).norm()), where);
     }
     const std::string extreme = "eye 1e7 from the origin, target 1 away";
+    std::ostringstream digits;
+    digits << "R X + t: 1e7-long terms cancel to 1 (" << std::setprecision(2)
+           << std::max(0.0, digits_from_relative(target_d.value))
+           << " digits of the 1-unit distance survive in double, "
+           << std::max(0.0, digits_from_relative(target_float.value)) << " in float)";
+    // Bounds: t within 4 ulps (R's own error of ~eps per entry times |eye|, plus three
+    // roundings); the eye and the target within 4 eps |eye|; the target's pixel is
+    // f = 1663 px times its camera-frame error.
+    const double far_double = 4 * 1e7 * kEpsDouble, far_float = 4 * 1e7 * kEpsFloat;
     return {
-        {extreme, "t = -R eye vs reference [ulp of |t|]", t_ulps_d.value, t_ulps_f.value, 2, 2, "-(R * eye): three roundings per component", t_ulps_d.where},
-        {extreme, "eye back = -R^T t [units]", eye_d.value, eye_f.value, 4 * 1e7 * kEpsDouble, 4 * 1e7 * kEpsFloat, "-(R^T t)", eye_d.where},
-        {extreme, "target in the camera frame R X + t [units]", target_d.value, target_f.value, 4 * 1e7 * kEpsDouble, 4 * 1e7 * kEpsFloat, "R X + t: 1e7-long terms cancel to 1", target_d.where},
-        {extreme, "target's pixel (on axis, so the principal point) [px]", pixel_d.value, kNotApplicable, 4 * 1e7 * kEpsDouble * 1663, kNotApplicable, "f = 1663 px times the line above", pixel_d.where},
+        {extreme, "t = -R eye vs reference [ulp of |t|]", t_ulps_d.value, t_ulps_f.value, 4, 4,
+         "-(R * eye): three roundings per component", t_ulps_d.where},
+        {extreme, "eye back = -R^T t [units]", eye_d.value, eye_f.value, far_double, far_float, "-(R^T t)",
+         eye_d.where},
+        {extreme, "target in the camera frame [units]", target_d.value, target_float.value, far_double, far_float,
+         digits.str(), target_d.where},
+        {extreme, "target's pixel [px]", pixel_d.value, kNotApplicable, 1663 * far_double, kNotApplicable,
+         "f = 1663 px times the line above", pixel_d.where},
     };
 }
 
@@ -278,16 +309,25 @@ std::vector<Row> near_target_rows() {
         const Vec3 eye = random_vector(100.0);
         const FovCamera camera = posed_camera(eye, eye + 1e-9 * random_unit(), random_unit());
         const auto where = [&] { return "gaze " + std::to_string(camera.gaze.norm()); };
-        basis_d.update(basis_error(camera.basis(), basis_from_gaze_up<Quad>(camera.gaze.cast<Quad>(), camera.up.cast<Quad>(), Handedness::Left)), where);
+        basis_d.update(basis_error(camera.basis(), basis_from_gaze_up<Quad>(camera.gaze.cast<Quad>(),
+                                                                            camera.up.cast<Quad>(), Handedness::Left)),
+                       where);
         const FovCamera camera_f = rounded_to_float(camera);
-        basis_f.update(basis_error(basis_from_gaze_up<float>(camera_f.gaze.cast<float>(), camera_f.up.cast<float>(), Handedness::Left),
-                                   basis_from_gaze_up<Quad>(camera_f.gaze.cast<Quad>(), camera_f.up.cast<Quad>(), Handedness::Left)), where);
-        input_limit.update(static_cast<double>(ulp_of<double>(Quad(camera.eye.cwiseAbs().maxCoeff())) / Quad(camera.gaze.norm())), where);
+        basis_f.update(
+            basis_error(
+                basis_from_gaze_up<float>(camera_f.gaze.cast<float>(), camera_f.up.cast<float>(), Handedness::Left),
+                basis_from_gaze_up<Quad>(camera_f.gaze.cast<Quad>(), camera_f.up.cast<Quad>(), Handedness::Left)),
+            where);
+        input_limit.update(
+            static_cast<double>(ulp_of<double>(Quad(camera.eye.cwiseAbs().maxCoeff())) / Quad(camera.gaze.norm())),
+            where);
     }
     const std::string extreme = "target 1e-9 from the eye (eye within 100 of the origin)";
     return {
-        {extreme, "basis u, v, w [rad]", basis_d.value, basis_f.value, kRayEps * kEpsDouble, kRayEps * kEpsFloat, "target - eye exact; basis from powers-of-two-scaled gaze", basis_d.where},
-        {extreme, "input limit: ulp(eye) / |target - eye| [rad]", input_limit.value, kNotApplicable, kNotApplicable, kNotApplicable, "(the target's own rounding, not libcam's)", input_limit.where},
+        {extreme, "basis u, v, w [rad]", basis_d.value, basis_f.value, kRayEps * kEpsDouble, kRayEps * kEpsFloat,
+         "target - eye exact; basis from powers-of-two-scaled gaze", basis_d.where},
+        {extreme, "input limit: ulp(eye) / |target - eye| [rad]", input_limit.value, kNotApplicable, kNotApplicable,
+         kNotApplicable, "(the target's own rounding, not libcam's)", input_limit.where},
     };
 }
 
@@ -295,7 +335,8 @@ std::vector<Row> near_target_rows() {
 FovCamera up_near_gaze(double angle) {
     const Vec3 gaze = random_unit() * uniform(0.1, 10.0);
     const Vec3 across = gaze.unitOrthogonal();
-    return posed_camera(Vec3::Zero(), gaze, (std::cos(angle) * gaze.normalized() + std::sin(angle) * across) * uniform(0.1, 10.0));
+    return posed_camera(Vec3::Zero(), gaze,
+                        (std::cos(angle) * gaze.normalized() + std::sin(angle) * across) * uniform(0.1, 10.0));
 }
 
 // Up 1e-6 rad (and down to just above the threshold, 1.1e-9 rad) from the gaze: u =
@@ -309,23 +350,31 @@ std::vector<Row> up_near_gaze_rows() {
         for (int i = 0; i < 100; ++i) {
             const FovCamera camera = up_near_gaze(angle);
             const auto where = [&] { return "angle " + std::to_string(angle); };
-            const BasisT<Quad> reference = basis_from_gaze_up<Quad>(camera.gaze.cast<Quad>(), camera.up.cast<Quad>(), Handedness::Left);
+            const BasisT<Quad> reference =
+                basis_from_gaze_up<Quad>(camera.gaze.cast<Quad>(), camera.up.cast<Quad>(), Handedness::Left);
             const double error = basis_error(camera.basis(), reference);
             sweep_d.update(error, where);
             // K, R, t -> look-at -> basis: the way back returns the camera's own up (v).
-            round_trip_d.update(basis_error(to_fov_camera(to_camera(camera), FovAxis::Horizontal).basis(), reference), where);
+            round_trip_d.update(basis_error(to_fov_camera(to_camera(camera), FovAxis::Horizontal).basis(), reference),
+                                where);
             if (angle != 1e-6) continue;
             at_1e6_d.update(error, where);
             const FovCamera camera_f = rounded_to_float(camera);
-            at_1e6_f.update(basis_error(basis_from_gaze_up<float>(camera_f.gaze.cast<float>(), camera_f.up.cast<float>(), Handedness::Left),
-                                        basis_from_gaze_up<Quad>(camera_f.gaze.cast<Quad>(), camera_f.up.cast<Quad>(), Handedness::Left)), where);
+            at_1e6_f.update(
+                basis_error(
+                    basis_from_gaze_up<float>(camera_f.gaze.cast<float>(), camera_f.up.cast<float>(), Handedness::Left),
+                    basis_from_gaze_up<Quad>(camera_f.gaze.cast<Quad>(), camera_f.up.cast<Quad>(), Handedness::Left)),
+                where);
         }
     }
     const std::string formulation = "u = gaze x up by Kahan's fma difference of products";
     return {
-        {"up 1e-6 rad from the gaze", "basis u, v, w [rad]", at_1e6_d.value, at_1e6_f.value, kRayEps * kEpsDouble, kRayEps * kEpsFloat, formulation, at_1e6_d.where},
-        {"up 1.1e-9 to 1e-6 rad from the gaze", "basis u, v, w [rad]", sweep_d.value, kNotApplicable, kRayEps * kEpsDouble, kNotApplicable, formulation, sweep_d.where},
-        {"up 1.1e-9 to 1e-6 rad from the gaze", "K, R, t -> look-at -> basis [rad]", round_trip_d.value, kNotApplicable, kRayEps * kEpsDouble, kNotApplicable, "gaze, up = rows of R", round_trip_d.where},
+        {"up 1e-6 rad from the gaze", "basis u, v, w [rad]", at_1e6_d.value, at_1e6_f.value, kRayEps * kEpsDouble,
+         kRayEps * kEpsFloat, formulation, at_1e6_d.where},
+        {"up 1.1e-9 to 1e-6 rad from the gaze", "basis u, v, w [rad]", sweep_d.value, kNotApplicable,
+         kRayEps * kEpsDouble, kNotApplicable, formulation, sweep_d.where},
+        {"up 1.1e-9 to 1e-6 rad from the gaze", "K, R, t -> look-at -> basis [rad]", round_trip_d.value, kNotApplicable,
+         kRayEps * kEpsDouble, kNotApplicable, "gaze, up = rows of R", round_trip_d.where},
     };
 }
 
@@ -347,15 +396,18 @@ std::vector<Row> off_centre_rows() {
                 const double f = 0.5 * w / tan_half_angle_deg(fov);
                 camera.intrinsics = {f, f, size.centre_x() + offset * w, size.centre_y() - offset * h, 0.0};
                 const FovDescription description = describe_fov(camera);
-                const auto where = [&] { return "fov " + std::to_string(fov) + " offset " + std::to_string(offset) + " width " + std::to_string(size.width); };
+                const auto where = [&] {
+                    return "fov " + std::to_string(fov) + " offset " + std::to_string(offset) + " width " +
+                           std::to_string(size.width);
+                };
                 const Intrinsics& k = camera.intrinsics;
                 worst.update(ulps(description.fov_deg.horizontal, spanned_deg(k.cx, k.fx, size.width)), where);
                 worst.update(ulps(description.fov_deg.vertical, spanned_deg(k.cy, k.fy, size.height)), where);
             }
         }
     }
-    return {{"principal point 0.1 to 10000 image sides off centre, fov 1e-6 to 179.999 deg", "K -> horizontal, vertical fov [ulp]",
-             worst.value, kNotApplicable, 4, kNotApplicable,
+    return {{"principal point 0.1 to 10000 image sides off centre, fov 1e-6 to 179.999 deg",
+             "K -> horizontal, vertical fov [ulp]", worst.value, kNotApplicable, 4, kNotApplicable,
              "atan2(W / fx, 1 + low high) for atan(high) - atan(low)", worst.where}};
 }
 
@@ -389,7 +441,7 @@ TEST_CASE("extremes: up near the gaze, a correct basis above kMinUpGazeAngleRad 
     for (double angle : {1e-12, 5e-10}) {
         INFO("angle " << angle);
         REQUIRE_THROWS_WITH(to_camera(up_near_gaze(angle)), Catch::Matchers::Contains("up: parallel to the gaze") &&
-                                                                 Catch::Matchers::Contains("minimum 1e-09 rad"));
+                                                                Catch::Matchers::Contains("minimum 1e-09 rad"));
     }
 }
 
@@ -397,7 +449,8 @@ namespace libcam::test {
 
 std::vector<Row> fov_rows() {
     std::vector<Row> rows;
-    for (const auto& group : {tiny_fov_rows, wide_fov_rows, fov_sweep_rows, far_eye_rows, near_target_rows, up_near_gaze_rows, off_centre_rows}) {
+    for (const auto& group : {tiny_fov_rows, wide_fov_rows, fov_sweep_rows, far_eye_rows, near_target_rows,
+                              up_near_gaze_rows, off_centre_rows}) {
         const std::vector<Row> more = group();
         rows.insert(rows.end(), more.begin(), more.end());
     }

@@ -12,10 +12,9 @@
 #include <catch2/catch.hpp>
 #include <sstream>
 
-#include "libcam/error.hpp"
-
 #include "extremes.hpp"
 #include "lens_cases.hpp"
+#include "libcam/error.hpp"
 #include "libcam/lens/lens_models.hpp"
 #include "reference.hpp"
 #include "support.hpp"
@@ -49,7 +48,8 @@ std::vector<Unprojected<Scalar>> unproject_all(const Lens& lens, const std::vect
     return visit_lens_model<Scalar>(lens.type, [&]<class Model>() {
         const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
         std::vector<Unprojected<Scalar>> out(points.size());
-        for (std::size_t i = 0; i < points.size(); ++i) out[i].valid = Model::unproject(parameters, points[i], out[i].ray);
+        for (std::size_t i = 0; i < points.size(); ++i)
+            out[i].valid = Model::unproject(parameters, points[i], out[i].ray);
         return out;
     });
 }
@@ -100,7 +100,8 @@ struct UnprojectionWorst {
 
 // Double, through Camera::unproject_pixels; the reference from the exact pixel. The
 // pixel error is where the computed ray lands in the reference camera.
-void unproject_double(const std::string& name, const Camera& camera, const std::vector<Vec2>& pixels, UnprojectionWorst& worst) {
+void unproject_double(const std::string& name, const Camera& camera, const std::vector<Vec2>& pixels,
+                      UnprojectionWorst& worst) {
     const std::vector<Unprojection> rays = camera.unproject_pixels(pixels);
     std::vector<Vec2Q> normalized;
     for (const Vec2& pixel : pixels) normalized.push_back(normalized_q(camera.intrinsics, pixel));
@@ -120,12 +121,14 @@ void unproject_double(const std::string& name, const Camera& camera, const std::
         }
         const auto where = [&] { return at_pixel(name, pixels[i]); };
         worst.rad_double.update(angle_error(rays[i].direction, reference[i].ray), where);
-        worst.px_double.update(static_cast<double>((pixel_q(camera.intrinsics, landed[i].m) - pixels[i].cast<Quad>()).norm()), where);
+        worst.px_double.update(
+            static_cast<double>((pixel_q(camera.intrinsics, landed[i].m) - pixels[i].cast<Quad>()).norm()), where);
     }
 }
 
 // Float, through Model<float>; the reference from the same float normalised point.
-void unproject_float(const std::string& name, const Camera& camera, const std::vector<Vec2>& pixels, UnprojectionWorst& worst) {
+void unproject_float(const std::string& name, const Camera& camera, const std::vector<Vec2>& pixels,
+                     UnprojectionWorst& worst) {
     std::vector<Vec2T<float>> normalized;
     for (const Vec2& pixel : pixels) normalized.push_back(camera.intrinsics.normalized_from_pixel(pixel).cast<float>());
     const std::vector<Unprojected<float>> rays = unproject_all<float>(camera.lens, normalized);
@@ -142,7 +145,8 @@ void unproject_float(const std::string& name, const Camera& camera, const std::v
     }
 }
 
-void unproject_both(const std::string& name, const Camera& camera, const std::vector<Vec2>& pixels, UnprojectionWorst& worst) {
+void unproject_both(const std::string& name, const Camera& camera, const std::vector<Vec2>& pixels,
+                    UnprojectionWorst& worst) {
     unproject_double(name, camera, pixels, worst);
     unproject_float(name, camera, pixels, worst);
 }
@@ -152,16 +156,16 @@ void unproject_both(const std::string& name, const Camera& camera, const std::ve
 // px of its pixel: 1e-9 px in double is the issue's target; in float that is
 // 64 * 1.2e-7 * f * (1 + |m|), given per extreme. The angle follows through the lens's
 // slope, bounded per extreme.
-std::vector<Row> unprojection_rows(const std::string& extreme, const UnprojectionWorst& worst, double rad_double, double rad_float,
-                                   double px_float, const std::string& formulation) {
+std::vector<Row> unprojection_rows(const std::string& extreme, const UnprojectionWorst& worst, double rad_double,
+                                   double rad_float, double px_float, const std::string& formulation) {
     return {
-        {extreme, "unproject: ray vs reference [rad]", worst.rad_double.value, worst.rad_float.value, rad_double, rad_float,
-         formulation, worst.rad_double.where},
-        {extreme, "unproject: where the ray lands [px]", worst.px_double.value, worst.px_float.value, 1e-9, px_float, formulation,
-         worst.px_double.where},
-        {extreme, "unproject: valid where the reference has no ray [count]", static_cast<double>(worst.valid_not_in_reference),
-         kNotApplicable, 0, kNotApplicable, "valid only inside the fold radius with a converged residual",
-         std::to_string(worst.valid) + " valid"},
+        {extreme, "unproject: ray vs reference [rad]", worst.rad_double.value, worst.rad_float.value, rad_double,
+         rad_float, formulation, worst.rad_double.where},
+        {extreme, "unproject: where the ray lands [px]", worst.px_double.value, worst.px_float.value, 1e-9, px_float,
+         formulation, worst.px_double.where},
+        {extreme, "unproject: valid where the reference has no ray [count]",
+         static_cast<double>(worst.valid_not_in_reference), kNotApplicable, 0, kNotApplicable,
+         "valid only inside the fold radius with a converged residual", std::to_string(worst.valid) + " valid"},
     };
 }
 
@@ -177,7 +181,8 @@ std::vector<Vec2> corner_pixels(const ImageSize& size) {
 // The same camera on a sensor `scale` times as large (f, c and the size scaled):
 // the same normalised points, at pixel coordinates up to 1e5.
 Camera scaled_camera(Camera camera, double scale) {
-    camera.size = {std::lround(static_cast<double>(camera.size.width) * scale), std::lround(static_cast<double>(camera.size.height) * scale)};
+    camera.size = {std::lround(static_cast<double>(camera.size.width) * scale),
+                   std::lround(static_cast<double>(camera.size.height) * scale)};
     Intrinsics& k = camera.intrinsics;
     k = {k.fx * scale, k.fy * scale, (k.cx + 0.5) * scale - 0.5, (k.cy + 0.5) * scale - 0.5, k.skew * scale};
     return camera;
@@ -192,8 +197,8 @@ std::vector<Row> large_image_rows() {
         const Camera camera = scaled_camera(c.camera, 100000.0 / static_cast<double>(c.camera.size.width));
         unproject_both(c.name, camera, corner_pixels(camera.size), worst);
     }
-    return unprojection_rows("corners of a 100000-px-wide image, every model, mild and strong", worst, 1e-12, 1e-3, 2000,
-                             "Newton from the radial 1-D root, bracketed; residual <= 64 eps (1 + |m|)");
+    return unprojection_rows("corners of a 100000-px-wide image, every model, mild and strong", worst, 1e-12, 1e-3,
+                             2000, "Newton from the radial 1-D root, bracketed; residual <= 64 eps (1 + |m|)");
 }
 
 // Issue 3's wide lens, a 601x401 grid with the corners.
@@ -201,8 +206,8 @@ std::vector<Row> wide_lens_rows() {
     UnprojectionWorst worst;
     const Camera camera = wide_reference_camera();
     unproject_both("wide lens", camera, pixel_grid(camera.size, 151, 101), worst);
-    return unprojection_rows("the real wide lens (6016x4016 OPENCV8), 151x101 grid with the corners", worst, 1e-13, 1e-5, 0.1,
-                             "as above");
+    return unprojection_rows("the real wide lens (6016x4016 OPENCV8), 151x101 grid with the corners", worst, 1e-13,
+                             1e-5, 0.1, "as above");
 }
 
 // ----------------------------------------------------------------- the fold-over radius
@@ -218,7 +223,9 @@ struct HandFold {
 
 std::vector<HandFold> hand_folds() {
     using boost::multiprecision::pow;
-    const auto lens = [](LensType type, std::vector<double> k) { return lens_camera(type, std::move(k), {1600, 1200}, 900, 900); };
+    const auto lens = [](LensType type, std::vector<double> k) {
+        return lens_camera(type, std::move(k), {1600, 1200}, 900, 900);
+    };
     const Quad k_half(0.5), k_tenth(0.1), k_fifth(0.2), k_quarter(0.25);
     std::vector<HandFold> folds;
     // d = r - 0.5 r^3: d' = 1 - 1.5 r^2.
@@ -226,10 +233,12 @@ std::vector<HandFold> hand_folds() {
     folds.push_back({"OPENCV4 k1 = -0.5", lens(LensType::Opencv4, {-0.5, 0, 0, 0}), r4, r4 * (1 - k_half * r4 * r4)});
     // d = r (1 - 0.1 r^6): d' = 1 - 0.7 r^6.
     const Quad r5 = pow(Quad(1) / (7 * k_tenth), Quad(1) / 6);
-    folds.push_back({"OPENCV5 k3 = -0.1", lens(LensType::Opencv5, {0, 0, 0, 0, -0.1}), r5, r5 * (1 - k_tenth * pow(r5, 6))});
+    folds.push_back(
+        {"OPENCV5 k3 = -0.1", lens(LensType::Opencv5, {0, 0, 0, 0, -0.1}), r5, r5 * (1 - k_tenth * pow(r5, 6))});
     // d = r / (1 + 0.5 r^2): d' = (1 - 0.5 r^2) / (1 + 0.5 r^2)^2.
     const Quad r8 = sqrt(Quad(1) / k_half);
-    folds.push_back({"OPENCV8 k4 = 0.5", lens(LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}), r8, r8 / (1 + k_half * r8 * r8)});
+    folds.push_back(
+        {"OPENCV8 k4 = 0.5", lens(LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}), r8, r8 / (1 + k_half * r8 * r8)});
     // d = r (1 - 0.2 r^4): d' = 1 - r^4.
     const Quad r12 = pow(Quad(1) / (5 * k_fifth), Quad(1) / 4);
     folds.push_back({"OPENCV12 k2 = -0.2", lens(LensType::Opencv12, {0, -0.2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}), r12,
@@ -318,10 +327,13 @@ std::vector<Row> fold_rows() {
         }
         std::ostringstream extreme;
         extreme << "fold radius: |m| = d_max (1 -+ " << delta << "), 6 lenses x 16 directions";
-        std::vector<Row> more = unprojection_rows(extreme.str(), inside, 8 * conditioning, 8 * conditioning * kEpsFloat / kEpsDouble,
-                                                  2, "the solver's bracket stops at valid_radius; the angle's bound is 8 eps |m| / d'(r)");
-        more.push_back({extreme.str(), "just outside: valid (should be flagged) [count of " + std::to_string(outside_total) + "]",
-                        static_cast<double>(outside_valid), kNotApplicable, 0, kNotApplicable, "no root inside the valid disc: flagged", ""});
+        std::vector<Row> more =
+            unprojection_rows(extreme.str(), inside, 8 * conditioning, 8 * conditioning * kEpsFloat / kEpsDouble, 2,
+                              "the solver's bracket stops at valid_radius; the angle's bound is 8 eps |m| / d'(r)");
+        more.push_back({extreme.str(),
+                        "just outside: valid (should be flagged) [count of " + std::to_string(outside_total) + "]",
+                        static_cast<double>(outside_valid), kNotApplicable, 0, kNotApplicable,
+                        "no root inside the valid disc: flagged", ""});
         more.push_back({extreme.str(), "just inside: flagged [count of " + std::to_string(6 * 16) + "]",
                         static_cast<double>(6 * 16 - inside.valid), kNotApplicable, 0, kNotApplicable, "", ""});
         rows.insert(rows.end(), more.begin(), more.end());
@@ -379,18 +391,20 @@ enum class Expect { Valid, Flagged, Either };
 template <class Scalar>
 Expect expected(const Projected<Quad>& reference, const Lens& lens, const Vec3Q& point) {
     if (at_domain_edge<Scalar>(lens, point)) return Expect::Either;
-    const bool fits = reference.valid && reference.m.cwiseAbs().maxCoeff() <= Quad(std::numeric_limits<Scalar>::max()) &&
+    const bool fits = reference.valid &&
+                      reference.m.cwiseAbs().maxCoeff() <= Quad(std::numeric_limits<Scalar>::max()) &&
                       !intermediate_overflows<Scalar>(lens.type, point);
     return fits ? Expect::Valid : Expect::Flagged;
 }
 
 // One projection against the reference: a wrong flag is counted, a right value measured.
 template <class Scalar, class Describe>
-void compare(const Projected<Scalar>& computed, const Projected<Quad>& reference, Expect expect, int type_index, Worst& ulps_worst,
-             ProjectionWorst& worst, Describe&& where) {
+void compare(const Projected<Scalar>& computed, const Projected<Quad>& reference, Expect expect, int type_index,
+             Worst& ulps_worst, ProjectionWorst& worst, Describe&& where) {
     if (expect == Expect::Flagged && computed.valid) ++worst.valid_without_reference[type_index];
     if (expect == Expect::Valid && !computed.valid) ++worst.flagged_with_reference[type_index];
-    if (expect != Expect::Flagged && computed.valid && reference.valid) ulps_worst.update(ulps(computed.m, reference.m), where);
+    if (expect != Expect::Flagged && computed.valid && reference.valid)
+        ulps_worst.update(ulps(computed.m, reference.m), where);
 }
 
 // Double and float projection of camera points (the float points rounded from these).
@@ -406,21 +420,24 @@ void project_both(const Lens& lens, const std::vector<Vec3>& points, ProjectionW
             out << name << " point (" << points[i].transpose() << ")";
             return out.str();
         };
-        compare(in_double[i], reference[i], expected<double>(reference[i], lens, points[i].cast<Quad>()), 0, worst.ulps_double, worst, where);
-        compare(in_float[i], reference_f[i], expected<float>(reference_f[i], lens, points_f[i].cast<Quad>()), 1, worst.ulps_float, worst, where);
+        compare(in_double[i], reference[i], expected<double>(reference[i], lens, points[i].cast<Quad>()), 0,
+                worst.ulps_double, worst, where);
+        compare(in_float[i], reference_f[i], expected<float>(reference_f[i], lens, points_f[i].cast<Quad>()), 1,
+                worst.ulps_float, worst, where);
     }
 }
 
-std::vector<Row> projection_rows(const std::string& extreme, const ProjectionWorst& worst, double ulps_double, double ulps_float,
-                                 const std::string& formulation) {
+std::vector<Row> projection_rows(const std::string& extreme, const ProjectionWorst& worst, double ulps_double,
+                                 double ulps_float, const std::string& formulation) {
     return {
-        {extreme, "project: m vs reference [ulp]", worst.ulps_double.value, worst.ulps_float.value, ulps_double, ulps_float,
-         formulation, worst.ulps_double.where},
+        {extreme, "project: m vs reference [ulp]", worst.ulps_double.value, worst.ulps_float.value, ulps_double,
+         ulps_float, formulation, worst.ulps_double.where},
         {extreme, "project: valid where the reference is not, or m overflows [count]",
-         static_cast<double>(worst.valid_without_reference[0]), static_cast<double>(worst.valid_without_reference[1]), 0, 0,
-         "valid only if the result is finite", ""},
-        {extreme, "project: flagged where the reference projects [count]", static_cast<double>(worst.flagged_with_reference[0]),
-         static_cast<double>(worst.flagged_with_reference[1]), 0, 0, "", ""},
+         static_cast<double>(worst.valid_without_reference[0]), static_cast<double>(worst.valid_without_reference[1]),
+         0, 0, "valid only if the result is finite", ""},
+        {extreme, "project: flagged where the reference projects [count]",
+         static_cast<double>(worst.flagged_with_reference[0]), static_cast<double>(worst.flagged_with_reference[1]), 0,
+         0, "", ""},
     };
 }
 
@@ -449,7 +466,9 @@ std::vector<Row> fisheye_axis_rows() {
         for (int e = 1; e <= 300; e += 1) {
             const double phi = 0.37 * e;
             points.push_back(direction_at(pow(Quad(10), -e), phi));
-            if (e <= 30) pixels.push_back(c.camera.intrinsics.pixel_from_normalized(Vec2::Zero()) + std::pow(10.0, -e) * Vec2(std::cos(phi), std::sin(phi)));
+            if (e <= 30)
+                pixels.push_back(c.camera.intrinsics.pixel_from_normalized(Vec2::Zero()) +
+                                 std::pow(10.0, -e) * Vec2(std::cos(phi), std::sin(phi)));
         }
         points.emplace_back(0, 0, 1);
         pixels.push_back(c.camera.intrinsics.pixel_from_normalized(Vec2::Zero()));
@@ -458,8 +477,9 @@ std::vector<Row> fisheye_axis_rows() {
     }
     std::vector<Row> rows = projection_rows("FISHEYE theta = 1e-300 to 0.1 rad, and 0", projected, 4, 4,
                                             "theta / rho = atan(t)/t by its series for t < 1e-3");
-    const std::vector<Row> more = unprojection_rows("FISHEYE 1e-30 to 0.1 px from the principal point", unprojected, 4 * kEpsDouble,
-                                                    4 * kEpsFloat, 0.1, "sin(theta) / theta, theta = 0 on the axis exactly");
+    const std::vector<Row> more =
+        unprojection_rows("FISHEYE 1e-30 to 0.1 px from the principal point", unprojected, 4 * kEpsDouble,
+                          4 * kEpsFloat, 0.1, "sin(theta) / theta, theta = 0 on the axis exactly");
     rows.insert(rows.end(), more.begin(), more.end());
     return rows;
 }
@@ -476,7 +496,8 @@ std::vector<Row> fisheye_wide_rows() {
         std::vector<Vec3> points;
         for (int e = 1; e <= 15; ++e) {
             const Quad small = pow(Quad(10), -e);
-            for (const Quad& theta : {pi / 2 - small, pi / 2 + small, pi - small}) points.push_back(direction_at(theta, 0.3 * e));
+            for (const Quad& theta : {pi / 2 - small, pi / 2 + small, pi - small})
+                points.push_back(direction_at(theta, 0.3 * e));
         }
         points.emplace_back(1, 0, 0);
         points.emplace_back(0, -1e-300, -1);
@@ -490,11 +511,11 @@ std::vector<Row> fisheye_wide_rows() {
         unproject_both(c.name, c.camera, pixels, unprojected);
         conditioning = std::max(conditioning, unprojection_conditioning(c.camera, pixels, kEpsDouble));
     }
-    std::vector<Row> rows = projection_rows("FISHEYE theta = 90 -+ 1e-15..1e-1 rad and 180 - 1e-15..1e-1 rad", projected, 4, 4,
-                                            "theta = atan2(rho, z)");
-    const std::vector<Row> more = unprojection_rows("FISHEYE pixels of those rays", unprojected, 8 * conditioning,
-                                                    8 * conditioning * kEpsFloat / kEpsDouble, 0.1,
-                                                    "unit ray (sin(theta) u / theta, cos(theta)); angle bound 8 eps |m| / d'(theta)");
+    std::vector<Row> rows = projection_rows("FISHEYE theta = 90 -+ 1e-15..1e-1 rad and 180 - 1e-15..1e-1 rad",
+                                            projected, 4, 4, "theta = atan2(rho, z)");
+    const std::vector<Row> more = unprojection_rows(
+        "FISHEYE pixels of those rays", unprojected, 8 * conditioning, 8 * conditioning * kEpsFloat / kEpsDouble, 0.1,
+        "unit ray (sin(theta) u / theta, cos(theta)); angle bound 8 eps |m| / d'(theta)");
     rows.insert(rows.end(), more.begin(), more.end());
     return rows;
 }
@@ -530,13 +551,15 @@ std::vector<Row> camera_plane_rows() {
     // 16 ulps: at r = |(x/z, y/z)| ~ 1e3..1e4 (z = 1e-4 here) the OpenCV model's own terms
     // (x R, p2 r^2, s2 r^4, the tilt's projection) cancel by up to ~10x: that is the
     // model's conditioning there, not the formula's; below r = 10 it is 4 ulps.
-    std::vector<Row> rows = projection_rows("points at z = 1e-320 to 1, PINHOLE and OPENCV*", perspective, 16, 16,
-                                            "x / z (not x * (1/z)); R in 1/r^2 where P or Q overflows; no 0 * r^4 prism");
+    std::vector<Row> rows =
+        projection_rows("points at z = 1e-320 to 1, PINHOLE and OPENCV*", perspective, 16, 16,
+                        "x / z (not x * (1/z)); R in 1/r^2 where P or Q overflows; no 0 * r^4 prism");
     rows.push_back({"points at z = 0 and behind, PINHOLE and OPENCV*", "project: valid [count]",
                     static_cast<double>(perspective_behind_valid), kNotApplicable, 0, kNotApplicable,
                     "z > 0 required (OpenCV takes z = 0 as 1 and mirrors z < 0)", ""});
-    const std::vector<Row> more = projection_rows("points at z = +-1e-320 to +-1, FISHEYE, STEREOGRAPHIC, LONLAT, LATLON", behind,
-                                                  4, 4, "atan2; |p| + z as rho^2 / (|p| - z) for z < 0");
+    const std::vector<Row> more =
+        projection_rows("points at z = +-1e-320 to +-1, FISHEYE, STEREOGRAPHIC, LONLAT, LATLON", behind, 4, 4,
+                        "atan2; |p| + z as rho^2 / (|p| - z) for z < 0");
     rows.insert(rows.end(), more.begin(), more.end());
     return rows;
 }
@@ -559,10 +582,14 @@ std::vector<LensCase> coefficient_extremes() {
         }
     }
     cases.push_back({"OPENCV4 k = -2, 1.5", lens_camera(LensType::Opencv4, {-2, 1.5, 0.01, -0.01})});
-    cases.push_back({"OPENCV8 k = 5, 3, .., 6, 4, 2", lens_camera(LensType::Opencv8, {5, 3, 0.001, 0.001, 1, 6, 4, 2})});
-    cases.push_back({"OPENCV12 prism 0.1", lens_camera(LensType::Opencv12, {0.1, 0, 0, 0, 0, 0, 0, 0, 0.1, -0.1, 0.05, 0.05})});
-    cases.push_back({"OPENCV14 tilt 0.3 rad", lens_camera(LensType::Opencv14, {0.1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.3, -0.3})});
-    cases.push_back({"FISHEYE k = 0.5, -0.3, 0.2, -0.05", lens_camera(LensType::Fisheye, {0.5, -0.3, 0.2, -0.05}, {1600, 1200}, 300, 300)});
+    cases.push_back(
+        {"OPENCV8 k = 5, 3, .., 6, 4, 2", lens_camera(LensType::Opencv8, {5, 3, 0.001, 0.001, 1, 6, 4, 2})});
+    cases.push_back(
+        {"OPENCV12 prism 0.1", lens_camera(LensType::Opencv12, {0.1, 0, 0, 0, 0, 0, 0, 0, 0.1, -0.1, 0.05, 0.05})});
+    cases.push_back(
+        {"OPENCV14 tilt 0.3 rad", lens_camera(LensType::Opencv14, {0.1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.3, -0.3})});
+    cases.push_back({"FISHEYE k = 0.5, -0.3, 0.2, -0.05",
+                     lens_camera(LensType::Fisheye, {0.5, -0.3, 0.2, -0.05}, {1600, 1200}, 300, 300)});
     return cases;
 }
 
@@ -573,11 +600,14 @@ std::vector<Row> coefficient_rows() {
         std::vector<Vec2> pixels = pixel_grid(c.camera.size, 21, 16);
         unproject_both(c.name, c.camera, pixels, worst);
         std::vector<Vec3> points;
-        for (const Vec2& pixel : pixels) points.emplace_back(c.camera.intrinsics.normalized_from_pixel(pixel).x(), c.camera.intrinsics.normalized_from_pixel(pixel).y(), 1.0);
+        for (const Vec2& pixel : pixels)
+            points.emplace_back(c.camera.intrinsics.normalized_from_pixel(pixel).x(),
+                                c.camera.intrinsics.normalized_from_pixel(pixel).y(), 1.0);
         project_both(c.camera.lens, points, projected, c.name);
     }
-    std::vector<Row> rows = unprojection_rows("coefficients x 1e-8 .. 4.9e-324 (mild lenses) and strong (k to 6, prism 0.1, tilt 0.3)",
-                                              worst, 1e-12, 1e-3, 0.1, "Horner in r^2; the fold radius from the polynomial's roots");
+    std::vector<Row> rows =
+        unprojection_rows("coefficients x 1e-8 .. 4.9e-324 (mild lenses) and strong (k to 6, prism 0.1, tilt 0.3)",
+                          worst, 1e-12, 1e-3, 0.1, "Horner in r^2; the fold radius from the polynomial's roots");
     const std::vector<Row> more = projection_rows("the same lenses, 21x16 grids", projected, 8, 8, "Horner in r^2");
     rows.insert(rows.end(), more.begin(), more.end());
     return rows;
@@ -590,8 +620,9 @@ std::vector<Row> coefficient_rows() {
 std::vector<Vec3> points_at_every_scale() {
     std::vector<Vec3> points;
     for (double scale : {4.9e-324, 1e-310, 1e-300, 1e-170, 1e-100, 1.0, 1e100, 1e170, 1e300, 1.7e308}) {
-        for (const Vec3& d : {Vec3(1, 1, 1), Vec3(1, 0, 0), Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(-1, 2, -3), Vec3(3, -2, 1e-20),
-                              Vec3(1e-20, 0, 1), Vec3(1e-20, 1e-20, -1), Vec3(0, 1, 0), Vec3(0.2, -0.1, 1)}) {
+        for (const Vec3& d :
+             {Vec3(1, 1, 1), Vec3(1, 0, 0), Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(-1, 2, -3), Vec3(3, -2, 1e-20),
+              Vec3(1e-20, 0, 1), Vec3(1e-20, 1e-20, -1), Vec3(0, 1, 0), Vec3(0.2, -0.1, 1)}) {
             points.push_back(d.normalized() * scale);
         }
     }
@@ -611,7 +642,8 @@ std::vector<Row> scale_rows() {
         for (std::size_t i = 0; i < points.size(); ++i) {
             const Vec2Q expected_pixel = pixel_q(c.camera.intrinsics, reference[i].m);
             Expect expect = expected<double>(reference[i], c.camera.lens, points[i].cast<Quad>());
-            if (expect == Expect::Valid && expected_pixel.cwiseAbs().maxCoeff() > Quad(std::numeric_limits<double>::max())) {
+            if (expect == Expect::Valid &&
+                expected_pixel.cwiseAbs().maxCoeff() > Quad(std::numeric_limits<double>::max())) {
                 expect = Expect::Flagged;
             }
             if (expect == Expect::Flagged && projections[i].valid) ++valid_without_reference;
@@ -628,10 +660,10 @@ std::vector<Row> scale_rows() {
     return {
         {extreme, "pixel vs reference [ulp of |pixel|]", px.value, kNotApplicable, 16, kNotApplicable,
          "the point scaled by a power of two into [1, 2) first (exact)", px.where},
-        {extreme, "valid where the reference is not, or the pixel overflows [count]", static_cast<double>(valid_without_reference),
+        {extreme, "valid where the reference is not, or the pixel overflows [count]",
+         static_cast<double>(valid_without_reference), kNotApplicable, 0, kNotApplicable, "", ""},
+        {extreme, "flagged where the reference projects [count]", static_cast<double>(flagged_with_reference),
          kNotApplicable, 0, kNotApplicable, "", ""},
-        {extreme, "flagged where the reference projects [count]", static_cast<double>(flagged_with_reference), kNotApplicable, 0,
-         kNotApplicable, "", ""},
     };
 }
 
@@ -664,7 +696,8 @@ std::vector<Vec2> sweep_pixels(const Camera& camera) {
     const Vec2 centre(camera.intrinsics.cx, camera.intrinsics.cy);
     pixels.push_back(centre);
     for (double distance : {1e-300, 1e-10, 1e4, 1e6, 1e15, 1e150, 1e300}) {
-        for (double phi : {0.0, 1.0, 2.5, 4.0}) pixels.push_back(centre + distance * Vec2(std::cos(phi), std::sin(phi)));
+        for (double phi : {0.0, 1.0, 2.5, 4.0})
+            pixels.push_back(centre + distance * Vec2(std::cos(phi), std::sin(phi)));
     }
     return pixels;
 }
@@ -706,7 +739,8 @@ void sweep_lens(const Camera& camera, SweepCount& in_double, SweepCount& in_floa
     const std::vector<Vec3> points = sweep_points();
     const std::vector<Projection> projections = camera.project_camera_points(points);
     for (std::size_t i = 0; i < points.size(); ++i) {
-        in_double.add(projections[i].valid, projections[i].pixel.allFinite(), describe_camera(camera) + " project " + show(points[i]));
+        in_double.add(projections[i].valid, projections[i].pixel.allFinite(),
+                      describe_camera(camera) + " project " + show(points[i]));
     }
     const std::vector<Vec2> pixels = sweep_pixels(camera);
     const std::vector<Unprojection> rays = camera.unproject_pixels(pixels);
@@ -714,17 +748,20 @@ void sweep_lens(const Camera& camera, SweepCount& in_double, SweepCount& in_floa
         const bool finite = rays[i].direction.allFinite() && !rays[i].direction.isZero(0.0);
         in_double.add(rays[i].valid, finite, describe_camera(camera) + " unproject " + show(pixels[i]));
         const Ray ray = camera.ray(pixels[i]);
-        in_double.add(ray.valid, ray.direction.allFinite() && ray.origin.allFinite(), describe_camera(camera) + " ray " + show(pixels[i]));
+        in_double.add(ray.valid, ray.direction.allFinite() && ray.origin.allFinite(),
+                      describe_camera(camera) + " ray " + show(pixels[i]));
     }
     const std::vector<Projected<float>> projected_f = project_all<float>(camera.lens, cast_all<float>(points));
     for (std::size_t i = 0; i < points.size(); ++i) {
-        in_float.add(projected_f[i].valid, projected_f[i].m.allFinite(), "float " + describe_camera(camera) + " project " + show(points[i]));
+        in_float.add(projected_f[i].valid, projected_f[i].m.allFinite(),
+                     "float " + describe_camera(camera) + " project " + show(points[i]));
     }
     std::vector<Vec2T<float>> normalized;
     for (const Vec2& pixel : pixels) normalized.push_back(camera.intrinsics.normalized_from_pixel(pixel).cast<float>());
     const std::vector<Unprojected<float>> rays_f = unproject_all<float>(camera.lens, normalized);
     for (std::size_t i = 0; i < pixels.size(); ++i) {
-        in_float.add(rays_f[i].valid, rays_f[i].ray.allFinite(), "float " + describe_camera(camera) + " unproject " + show(pixels[i]));
+        in_float.add(rays_f[i].valid, rays_f[i].ray.allFinite(),
+                     "float " + describe_camera(camera) + " unproject " + show(pixels[i]));
     }
 }
 
@@ -733,7 +770,8 @@ void sweep_lens(const Camera& camera, SweepCount& in_double, SweepCount& in_floa
 void sweep_fov(SweepCount& in_double) {
     rng().seed(17);
     for (double fov : {1e-6, 1e-3, 1.0, 90.0, 179.0, 179.999}) {
-        for (const ImageSize size : {ImageSize{1, 1}, ImageSize{100000, 100000}, ImageSize{1, 10000}, ImageSize{100000, 10}}) {
+        for (const ImageSize size :
+             {ImageSize{1, 1}, ImageSize{100000, 100000}, ImageSize{1, 10000}, ImageSize{100000, 10}}) {
             for (FovAxis axis : {FovAxis::Horizontal, FovAxis::Vertical, FovAxis::Diagonal, FovAxis::Both}) {
                 for (double eye_scale : {0.0, 1e7, 1e300}) {
                     FovCamera fov_camera = random_fov_camera(size, axis);
@@ -746,11 +784,14 @@ void sweep_fov(SweepCount& in_double) {
                         in_double.add(false, false, "");
                         continue;
                     }
-                    const bool finite = camera.intrinsics.K().allFinite() && camera.pose.R.allFinite() && camera.pose.t.allFinite();
-                    in_double.add(true, finite, "FOV camera fov " + std::to_string(fov) + " eye " + std::to_string(eye_scale));
+                    const bool finite =
+                        camera.intrinsics.K().allFinite() && camera.pose.R.allFinite() && camera.pose.t.allFinite();
+                    in_double.add(true, finite,
+                                  "FOV camera fov " + std::to_string(fov) + " eye " + std::to_string(eye_scale));
                     for (const Vec2& pixel : corner_pixels(size)) {
                         const Ray ray = camera.ray(pixel);
-                        in_double.add(ray.valid, ray.direction.allFinite() && ray.origin.allFinite(), "FOV camera ray " + show(pixel));
+                        in_double.add(ray.valid, ray.direction.allFinite() && ray.origin.allFinite(),
+                                      "FOV camera ray " + show(pixel));
                         const Vec3 seed = fov_camera.seed_ray(pixel, PixelOrigin::TopLeft);
                         in_double.add(true, seed.allFinite(), "FOV seed ray " + show(pixel));
                     }
@@ -764,18 +805,23 @@ std::vector<Row> sweep_rows() {
     SweepCount in_double, in_float;
     for (const Camera& camera : sweep_cameras()) sweep_lens(camera, in_double, in_float);
     sweep_fov(in_double);
-    const std::string extreme = "sweep: every model and extreme above, points at scales 5e-324 to 1.7e308, pixels to 1e300 px away, FOV cameras with eye to 1e300";
+    const std::string extreme =
+        "sweep: every model and extreme above, points at scales 5e-324 to 1.7e308, pixels to 1e300 px away, FOV "
+        "cameras with eye to 1e300";
     return {{extreme,
-             "valid but NaN or infinite [count of " + std::to_string(in_double.results) + " double, " + std::to_string(in_float.results) + " float]",
-             static_cast<double>(in_double.unflagged_non_finite), static_cast<double>(in_float.unflagged_non_finite), 0, 0,
-             "a result is valid only if finite", in_double.first + "; float: " + in_float.first}};
+             "valid but NaN or infinite [count of " + std::to_string(in_double.results) + " double, " +
+                 std::to_string(in_float.results) + " float]",
+             static_cast<double>(in_double.unflagged_non_finite), static_cast<double>(in_float.unflagged_non_finite), 0,
+             0, "a result is valid only if finite", in_double.first + "; float: " + in_float.first}};
 }
 
 }  // namespace
 
 TEST_CASE("extremes: lens corners of a 100000-pixel-wide image") { check_rows(large_image_rows()); }
 TEST_CASE("extremes: the real wide lens") { check_rows(wide_lens_rows()); }
-TEST_CASE("extremes: the fold-over radius of each OpenCV model and FISHEYE, just inside and just outside") { check_rows(fold_rows()); }
+TEST_CASE("extremes: the fold-over radius of each OpenCV model and FISHEYE, just inside and just outside") {
+    check_rows(fold_rows());
+}
 TEST_CASE("extremes: FISHEYE at theta -> 0") { check_rows(fisheye_axis_rows()); }
 TEST_CASE("extremes: FISHEYE near 90 and 180 degrees") { check_rows(fisheye_wide_rows()); }
 TEST_CASE("extremes: points at z -> 0+ and behind the camera") { check_rows(camera_plane_rows()); }
@@ -787,8 +833,8 @@ namespace libcam::test {
 
 std::vector<Row> lens_rows() {
     std::vector<Row> rows;
-    for (const auto& group : {large_image_rows, wide_lens_rows, fold_rows, fisheye_axis_rows, fisheye_wide_rows, camera_plane_rows,
-                              coefficient_rows, scale_rows, sweep_rows}) {
+    for (const auto& group : {large_image_rows, wide_lens_rows, fold_rows, fisheye_axis_rows, fisheye_wide_rows,
+                              camera_plane_rows, coefficient_rows, scale_rows, sweep_rows}) {
         const std::vector<Row> more = group();
         rows.insert(rows.end(), more.begin(), more.end());
     }

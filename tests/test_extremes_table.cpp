@@ -17,7 +17,8 @@ namespace {
 std::string number(double value) {
     if (std::isnan(value)) return "n/a";
     char buffer[32];
-    std::snprintf(buffer, sizeof buffer, value == 0 || (std::abs(value) >= 0.01 && std::abs(value) < 1e4) ? "%.3g" : "%.2g", value);
+    std::snprintf(buffer, sizeof buffer,
+                  value == 0 || (std::abs(value) >= 0.01 && std::abs(value) < 1e4) ? "%.3g" : "%.2g", value);
     return buffer;
 }
 
@@ -27,8 +28,8 @@ void print_table(const std::vector<Row>& rows) {
     std::string previous;
     for (const Row& row : rows) {
         std::cout << "| " << (row.extreme == previous ? "" : row.extreme) << " | " << row.quantity << " | "
-                  << number(row.in_double) << " | " << number(row.in_float) << " | " << number(row.bound_double) << " / "
-                  << number(row.bound_float) << " | " << row.formulation << " |\n";
+                  << number(row.in_double) << " | " << number(row.in_float) << " | " << number(row.bound_double)
+                  << " / " << number(row.bound_float) << " | " << row.formulation << " |\n";
         previous = row.extreme;
     }
 }
