@@ -44,9 +44,9 @@ Scalar tan_half_angle_deg(const Scalar& angle_deg) {
 template <class Scalar>
 Scalar angle_deg_from_half_tangent(const Scalar& tangent) {
     using std::atan;
-    const Scalar degrees_per_radian = Scalar(180) / pi_in<Scalar>();
-    if (tangent > Scalar(1)) return Scalar(180) - Scalar(2) * atan(Scalar(1) / tangent) * degrees_per_radian;
-    return Scalar(2) * atan(tangent) * degrees_per_radian;
+    const Scalar radians_per_degree = pi_in<Scalar>() / Scalar(180);
+    if (tangent > Scalar(1)) return Scalar(180) - Scalar(2) * atan(Scalar(1) / tangent) / radians_per_degree;
+    return Scalar(2) * atan(tangent) / radians_per_degree;
 }
 
 // (tan_x, tan_y), the tangents of half the field of view across the width and height,
