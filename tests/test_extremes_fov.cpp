@@ -339,6 +339,36 @@ FovCamera up_near_gaze(double angle) {
                         (std::cos(angle) * gaze.normalized() + std::sin(angle) * across) * uniform(0.1, 10.0));
 }
 
+// Up 1e-12 and 5e-10 rad from the gaze, below kMinUpGazeAngleRad: to_camera refuses
+// each with InvalidArgument naming up and the threshold; the row counts those it
+// did not refuse so.
+Row refused_up_row() {
+    rng().seed(13);
+    std::size_t accepted = 0, cameras = 0;
+    for (double angle : {1e-12, 5e-10}) {
+        for (int i = 0; i < 100; ++i, ++cameras) {
+            try {
+                to_camera(up_near_gaze(angle));
+                ++accepted;
+            } catch (const InvalidArgument& error) {
+                const std::string message = error.what();
+                const bool clear = message.find("up: parallel to the gaze") != std::string::npos &&
+                                   message.find("minimum 1e-09 rad") != std::string::npos;
+                accepted += clear ? 0 : 1;
+            }
+        }
+    }
+    return {
+        "up 1e-12 and 5e-10 rad from the gaze",
+        "not refused with 'up: parallel to the gaze ... minimum 1e-09 rad' [count of " + std::to_string(cameras) + "]",
+        static_cast<double>(accepted),
+        kNotApplicable,
+        0,
+        kNotApplicable,
+        "angle_between by atan2(|a x b|, a.b) against kMinUpGazeAngleRad = 1e-9",
+        ""};
+}
+
 // Up 1e-6 rad (and down to just above the threshold, 1.1e-9 rad) from the gaze: u =
 // gaze x up is a small vector; the accurate cross product keeps its direction to a few
 // ulps, so the basis is right to eps, though u then moves by eps / angle when up moves
@@ -375,6 +405,7 @@ std::vector<Row> up_near_gaze_rows() {
          kRayEps * kEpsDouble, kNotApplicable, formulation, sweep_d.where},
         {"up 1.1e-9 to 1e-6 rad from the gaze", "K, R, t -> look-at -> basis [rad]", round_trip_d.value, kNotApplicable,
          kRayEps * kEpsDouble, kNotApplicable, "gaze, up = rows of R", round_trip_d.where},
+        refused_up_row(),
     };
 }
 
@@ -437,12 +468,9 @@ TEST_CASE("extremes: target 1e-9 from the eye") {
 }
 TEST_CASE("extremes: up near the gaze, a correct basis above kMinUpGazeAngleRad and a clear error below") {
     check_rows(up_near_gaze_rows());
-    rng().seed(13);
-    for (double angle : {1e-12, 5e-10}) {
-        INFO("angle " << angle);
-        REQUIRE_THROWS_WITH(to_camera(up_near_gaze(angle)), Catch::Matchers::Contains("up: parallel to the gaze") &&
-                                                                Catch::Matchers::Contains("minimum 1e-09 rad"));
-    }
+    REQUIRE_THROWS_WITH(
+        to_camera(posed_camera({0, 0, 0}, {0, 0, -1}, {0, 1e-12, -1})),
+        Catch::Matchers::Contains("up: parallel to the gaze") && Catch::Matchers::Contains("minimum 1e-09 rad"));
 }
 
 namespace libcam::test {

@@ -14,12 +14,20 @@ namespace libcam::test {
 
 namespace {
 
-std::string number(double value) {
-    if (std::isnan(value)) return "n/a";
+// A measured value; NaN is "n/a" where nothing is asserted, else a measured NaN.
+std::string number(double value, double bound) {
+    if (std::isnan(value)) return std::isnan(bound) ? "n/a" : "NaN";
     char buffer[32];
     std::snprintf(buffer, sizeof buffer,
                   value == 0 || (std::abs(value) >= 0.01 && std::abs(value) < 1e4) ? "%.3g" : "%.2g", value);
     return buffer;
+}
+
+// Markdown: a '|' inside a cell (|m|, R|t) must be escaped.
+std::string cell(const std::string& text) {
+    std::string out;
+    for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+    return out;
 }
 
 void print_table(const std::vector<Row>& rows) {
@@ -27,9 +35,10 @@ void print_table(const std::vector<Row>& rows) {
               << "|---|---|---|---|---|---|\n";
     std::string previous;
     for (const Row& row : rows) {
-        std::cout << "| " << (row.extreme == previous ? "" : row.extreme) << " | " << row.quantity << " | "
-                  << number(row.in_double) << " | " << number(row.in_float) << " | " << number(row.bound_double)
-                  << " / " << number(row.bound_float) << " | " << row.formulation << " |\n";
+        std::cout << "| " << (row.extreme == previous ? "" : cell(row.extreme)) << " | " << cell(row.quantity) << " | "
+                  << number(row.in_double, row.bound_double) << " | " << number(row.in_float, row.bound_float) << " | "
+                  << number(row.bound_double, row.bound_double) << " / " << number(row.bound_float, row.bound_float)
+                  << " | " << cell(row.formulation) << " |\n";
         previous = row.extreme;
     }
 }

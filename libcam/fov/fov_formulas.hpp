@@ -2,7 +2,8 @@
 // The FOV camera's formulas (the seed's ray, the basis, the half-angle tangents, K
 // from the fov), each written once as a template on the scalar type. The double API
 // (FovCamera, to_camera) calls them in double; the tests call the very same code in a
-// 113-bit type and use it as the reference (tests/reference.hpp).
+// 113-bit type and use it as the reference (tests/reference.hpp). Where a double overload
+// of the same name exists, the template's scalar is never deduced (std::type_identity_t).
 
 #include <cmath>
 #include <type_traits>
@@ -32,7 +33,7 @@ using TangentScalar = std::conditional_t<std::is_floating_point_v<Scalar>, long 
 // degrees tan(angle/2) = 1 / tan(90 - angle/2), and 90 - angle/2 is exact, so the small
 // complement keeps its digits.
 template <class Scalar>
-Scalar tan_half_angle_deg(const Scalar& angle_deg) {
+Scalar tan_half_angle_deg(const std::type_identity_t<Scalar>& angle_deg) {
     using std::tan;
     const Scalar half = angle_deg / Scalar(2);
     const Scalar radians_per_degree = pi_in<Scalar>() / Scalar(180);
@@ -42,7 +43,7 @@ Scalar tan_half_angle_deg(const Scalar& angle_deg) {
 
 // The inverse: 2 atan(tangent) in degrees, through the complement above 90 degrees.
 template <class Scalar>
-Scalar angle_deg_from_half_tangent(const Scalar& tangent) {
+Scalar angle_deg_from_half_tangent(const std::type_identity_t<Scalar>& tangent) {
     using std::atan;
     const Scalar radians_per_degree = pi_in<Scalar>() / Scalar(180);
     if (tangent > Scalar(1)) return Scalar(180) - Scalar(2) * atan(Scalar(1) / tangent) / radians_per_degree;
@@ -100,7 +101,7 @@ BasisT<Scalar> basis_from_gaze_up(const Vec3T<Scalar>& gaze, const Vec3T<Scalar>
 
 // A pixel's row in the other origin convention: y' = (H - 1) - y (its own inverse).
 template <class Scalar>
-Scalar flip_row(const Scalar& y, const ImageSize& size) {
+Scalar flip_row(const std::type_identity_t<Scalar>& y, const ImageSize& size) {
     return Scalar(size.height - 1) - y;
 }
 inline double flip_row(double y, const ImageSize& size) { return flip_row<double>(y, size); }

@@ -2,7 +2,9 @@
 // Small vector formulas that must stay accurate when their inputs are nearly
 // parallel or their results nearly zero. Each exists once, as a template on the scalar
 // type (so the same formula runs in float, double, long double and the 113-bit
-// reference of the tests); the double overloads are the API everyone else calls.
+// reference of the tests); the double overloads are the API everyone else calls. The
+// templates take their scalar explicitly (std::type_identity_t: never deduced), so a
+// call without one, even with ints or floats, always means the double overload.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -37,7 +39,8 @@ Scalar pi_in() {
 // a*b - c*d with one rounding error (Kahan's algorithm with fused multiply-add):
 // the plain formula cancels catastrophically when a*b ~ c*d.
 template <class Scalar>
-Scalar difference_of_products(const Scalar& a, const Scalar& b, const Scalar& c, const Scalar& d) {
+Scalar difference_of_products(const std::type_identity_t<Scalar>& a, const std::type_identity_t<Scalar>& b,
+                              const std::type_identity_t<Scalar>& c, const std::type_identity_t<Scalar>& d) {
     using std::fma;
     const Scalar cd = c * d;
     const Scalar error = fma(-c, d, cd);  // exactly cd - c*d
@@ -50,7 +53,7 @@ inline double difference_of_products(double a, double b, double c, double d) {
 // Cross product with every component accurate to a few ulps even when a and b are
 // nearly parallel (where a.cross(b) loses all relative accuracy).
 template <class Scalar>
-Vec3T<Scalar> accurate_cross(const Vec3T<Scalar>& a, const Vec3T<Scalar>& b) {
+Vec3T<Scalar> accurate_cross(const std::type_identity_t<Vec3T<Scalar>>& a, const std::type_identity_t<Vec3T<Scalar>>& b) {
     return {difference_of_products<Scalar>(a.y(), b.z(), a.z(), b.y()),
             difference_of_products<Scalar>(a.z(), b.x(), a.x(), b.z()),
             difference_of_products<Scalar>(a.x(), b.y(), a.y(), b.x())};
@@ -61,7 +64,7 @@ inline Vec3 accurate_cross(const Vec3& a, const Vec3& b) { return accurate_cross
 // products of tiny (1e-320) or huge (1e300) vectors neither underflow nor overflow.
 // The zero vector stays zero.
 template <class Scalar>
-Vec3T<Scalar> scaled_to_unit_range(const Vec3T<Scalar>& v) {
+Vec3T<Scalar> scaled_to_unit_range(const std::type_identity_t<Vec3T<Scalar>>& v) {
     using std::isfinite;
     using std::ilogb;
     using std::ldexp;
@@ -75,7 +78,7 @@ inline Vec3 scaled_to_unit_range(const Vec3& v) { return scaled_to_unit_range<do
 // Angle between two vectors in radians, accurate for tiny and near-pi angles
 // (acos of the dot product loses half the digits near 0), at any magnitude.
 template <class Scalar>
-Scalar angle_between(const Vec3T<Scalar>& a, const Vec3T<Scalar>& b) {
+Scalar angle_between(const std::type_identity_t<Vec3T<Scalar>>& a, const std::type_identity_t<Vec3T<Scalar>>& b) {
     using std::atan2;
     const Vec3T<Scalar> sa = scaled_to_unit_range<Scalar>(a);
     const Vec3T<Scalar> sb = scaled_to_unit_range<Scalar>(b);
