@@ -48,11 +48,6 @@ double angle_error(const Vec3T<Scalar>& value, const Vec3Q& reference) {
     return static_cast<double>(angle_between<Quad>(value.template cast<Quad>(), reference));
 }
 
-template <class Scalar>
-double relative_to(const Scalar& value, const Quad& reference) {
-    return static_cast<double>(abs(Quad(value) - reference) / abs(reference));
-}
-
 // -log10 of a relative error: the decimal digits that survive (16 for a correctly rounded double).
 inline double digits_from_relative(double relative) {
     return relative > 0 ? -std::log10(relative) : std::numeric_limits<double>::infinity();

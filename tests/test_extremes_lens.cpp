@@ -836,3 +836,32 @@ std::vector<Row> lens_rows() {
 }
 
 }  // namespace libcam::test
+
+TEST_CASE("extremes: OPENCV Jacobians where R = P/Q is evaluated in 1/r^2") {
+    // At r = 1e60 P and Q overflow double, so R and its derivatives come from the 1/r^2
+    // form; in Quad (range to 1e4932) the same point takes the plain form. Both agree.
+    const Camera camera = lens_camera(LensType::Opencv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005});
+    using Model = OpenCv8Lens<double>;
+    using ModelQ = OpenCv8Lens<Quad>;
+    const auto lens = Model::parameters(camera.lens.coefficients);
+    const auto lens_q = ModelQ::parameters(camera.lens.coefficients);
+    for (double z : {1e-40, 1e-60, 1e-100}) {
+        const Vec3 point(0.3, -0.2, z);
+        Vec2 m;
+        Model::Jacobian23 d_point;
+        Model::CoefficientJacobian d_coefficients;
+        REQUIRE(Model::project(lens, point, m, &d_point, &d_coefficients));
+        Vec2Q m_q;
+        ModelQ::Jacobian23 d_point_q;
+        ModelQ::CoefficientJacobian d_coefficients_q;
+        REQUIRE(ModelQ::project(lens_q, point.cast<Quad>(), m_q, &d_point_q, &d_coefficients_q));
+        INFO("z " << z);
+        CHECK(ulps(m, m_q) <= 4);
+        for (int row = 0; row < 2; ++row) {
+            const Eigen::Matrix<double, 3, 1> d_point_row = d_point.row(row).transpose();
+            CHECK(ulps(d_point_row, Eigen::Matrix<Quad, 3, 1>(d_point_q.row(row).transpose())) <= 4);
+            const Eigen::Matrix<double, 8, 1> d_coefficients_row = d_coefficients.row(row).transpose();
+            CHECK(ulps(d_coefficients_row, Eigen::Matrix<Quad, 8, 1>(d_coefficients_q.row(row).transpose())) <= 4);
+        }
+    }
+}

@@ -20,6 +20,7 @@
 // terms are taken to be small, as in the WACV 2022 analysis); and v2 > 0.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstddef>
 #include <span>
 
