@@ -16,9 +16,14 @@ std::vector<Projection> Camera::project_camera_points(std::span<const Vec3> came
         const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
         std::vector<Projection> projections(camera_points.size());
         for (std::size_t i = 0; i < camera_points.size(); ++i) {
+            // Every model projects a direction, so a power-of-two scaling (exact) changes
+            // nothing but keeps x^2 + y^2, |p| and the like from under- or overflowing
+            // for points at 1e-300 or 1e300.
             Vec2 normalized;
-            projections[i].valid = Model::project(parameters, camera_points[i], normalized);
-            if (projections[i].valid) projections[i].pixel = intrinsics.pixel_from_normalized(normalized);
+            Projection& out = projections[i];
+            out.valid = Model::project(parameters, scaled_to_unit_range(camera_points[i]), normalized);
+            if (out.valid) out.pixel = intrinsics.pixel_from_normalized(normalized);
+            out.valid = out.valid && out.pixel.allFinite();  // K m can overflow too
         }
         return projections;
     });
@@ -34,7 +39,8 @@ std::vector<Unprojection> Camera::unproject_pixels(std::span<const Vec2> pixels)
         std::vector<Unprojection> directions(pixels.size());
         for (std::size_t i = 0; i < pixels.size(); ++i) {
             Unprojection& out = directions[i];
-            out.valid = Model::unproject(parameters, intrinsics.normalized_from_pixel(pixels[i]), out.direction);
+            out.valid = Model::unproject(parameters, intrinsics.normalized_from_pixel(pixels[i]), out.direction) &&
+                        out.direction.allFinite();
             if (!out.valid) out.direction = Vec3::Zero();
         }
         return directions;

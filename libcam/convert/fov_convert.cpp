@@ -9,20 +9,12 @@ namespace libcam {
 
 Camera to_camera(const FovCamera& fov_camera) {
     fov_camera.validate();
-    const Vec2 tangents = fov_camera.half_tangents();
-    const double width = static_cast<double>(fov_camera.size.width);
-    const double height = static_cast<double>(fov_camera.size.height);
-
+    const FovPinholeT<double> pinhole = pinhole_from_fov<double>(fov_camera);
     Camera camera;
     camera.size = fov_camera.size;
-    camera.intrinsics = Intrinsics{width / (2.0 * tangents.x()), height / (2.0 * tangents.y()),
-                                   fov_camera.size.centre_x(), fov_camera.size.centre_y(), 0.0};
-    const Basis basis = fov_camera.basis(Handedness::Left);
-    Mat3 R;
-    R.row(0) = basis.u.transpose();
-    R.row(1) = -basis.v.transpose();
-    R.row(2) = basis.w.transpose();
-    camera.pose = Pose::from_centre(R, fov_camera.eye);
+    camera.intrinsics = Intrinsics{pinhole.focal.x(), pinhole.focal.y(), pinhole.principal_point.x(),
+                                   pinhole.principal_point.y(), 0.0};
+    camera.pose = Pose{pinhole.R, pinhole.t};
     return camera;
 }
 
@@ -51,17 +43,22 @@ Frustum frustum_of(const Camera& camera) {
             (k.cy + 0.5) / k.fy};
 }
 
-// The half-angle tangent on the near side and far side of the principal point, summed
-// as angles; for a centred principal point this is 2 atan(side / (2 f)).
-double spanned_angle_deg(double low, double high) {
+// The angle between the rays through two opposite image edges, at tangents low < high
+// on the plane z = 1, with span = high - low given exactly (side / f). Centred: 2 atan of
+// the half tangent. Off centre: atan2(span, 1 + low high), which is atan(high) - atan(low)
+// without the cancellation of two nearly equal arctangents (a narrow field far off centre
+// lost up to 13 digits that way), and lands in (0, pi) by itself.
+double spanned_angle_deg(double low, double high, double span) {
     if (low == -high) return angle_deg_from_half_tangent(high);
-    return degrees_from_radians(std::atan(high) - std::atan(low));
+    return degrees_from_radians(std::atan2(span, std::fma(low, high, 1.0)));
 }
 
-FovAngles angles_of(const Frustum& f) {
+FovAngles angles_of(const Frustum& f, const Camera& camera) {
+    const double width = static_cast<double>(camera.size.width);
+    const double height = static_cast<double>(camera.size.height);
     FovAngles angles;
-    angles.horizontal = spanned_angle_deg(f.left, f.right);
-    angles.vertical = spanned_angle_deg(f.bottom, f.top);
+    angles.horizontal = spanned_angle_deg(f.left, f.right, width / camera.intrinsics.fx);
+    angles.vertical = spanned_angle_deg(f.bottom, f.top, height / camera.intrinsics.fy);
     if (f.left == -f.right && f.bottom == -f.top) {
         angles.diagonal = angle_deg_from_half_tangent(std::hypot(f.right, f.top));
     } else {
@@ -84,7 +81,7 @@ FovDescription describe_fov(const Camera& camera) {
 
     FovDescription description;
     description.frustum = frustum_of(camera);
-    description.fov_deg = angles_of(description.frustum);
+    description.fov_deg = angles_of(description.frustum, camera);
     description.eye = camera.pose.centre();
     description.gaze = camera.pose.R.row(2).transpose();
     description.up = -camera.pose.R.row(1).transpose();

@@ -24,6 +24,29 @@ namespace libcam {
 // side, skew against fx, pixel-shape mismatch against fx.
 inline constexpr double kFovCameraTolerance = 1e-9;
 
+// The pinhole camera of a FOV camera, in Scalar: the one implementation behind
+// to_camera (in double), and the tests' reference (in 113 bits, from the same inputs).
+template <class Scalar>
+struct FovPinholeT {
+    Vec2T<Scalar> focal;            // fx, fy
+    Vec2T<Scalar> principal_point;  // cx, cy: the image centre
+    Mat3T<Scalar> R;                // rows u, -v, gaze
+    Vec3T<Scalar> t;                // -R eye
+};
+
+template <class Scalar>
+FovPinholeT<Scalar> pinhole_from_fov(const FovCamera& fov_camera) {
+    const ImageSize& size = fov_camera.size;
+    const Vec2T<Scalar> tangents = half_tangents_of_fov<Scalar>(Scalar(fov_camera.fov_deg), fov_camera.fov_axis, size);
+    const BasisT<Scalar> basis = basis_from_gaze_up<Scalar>(fov_camera.gaze.template cast<Scalar>(),
+                                                            fov_camera.up.template cast<Scalar>(), Handedness::Left);
+    const Mat3T<Scalar> R = rotation_from_basis<Scalar>(basis);
+    return {focal_lengths_from_half_tangents<Scalar>(tangents, size),
+            Vec2T<Scalar>(Scalar(size.width - 1) / Scalar(2), Scalar(size.height - 1) / Scalar(2)), R,
+            translation_from_centre<Scalar>(R, fov_camera.eye.template cast<Scalar>())};
+}
+
+// Validates the FOV camera and returns its calibrated camera (PINHOLE lens).
 Camera to_camera(const FovCamera& fov_camera);
 
 // Full angles in degrees. For a centred principal point, 2 atan(W / (2 fx)) and so on;

@@ -77,52 +77,8 @@ void FovCamera::validate() const {
     }
 }
 
-Basis FovCamera::basis(Handedness handedness) const {
-    // u = gaze x up for both handednesses (the seed's w x up with w along the gaze,
-    // or up x w with w against it). The accurate cross product of the raw inputs keeps
-    // u right to a few ulps even when up is within a small angle of the gaze.
-    const Vec3 gaze_scaled = scaled_to_unit_range(gaze);
-    const Vec3 u = accurate_cross(gaze_scaled, scaled_to_unit_range(up)).normalized();
-    const Vec3 along_gaze = gaze_scaled.normalized();
-    const Vec3 v = accurate_cross(u, along_gaze);
-    return {u, v, handedness == Handedness::Left ? along_gaze : Vec3(-along_gaze), handedness};
-}
+Basis FovCamera::basis(Handedness handedness) const { return basis_from_gaze_up<double>(gaze, up, handedness); }
 
-// Both conversions work in long double (64-bit significand) and round once at the
-// end, so exact cases stay exact (tan 45 deg = 1) and the degree-to-radian factor adds
-// no error of its own.
-namespace {
-constexpr long double kRadiansPerDegree = 3.141592653589793238462643383279502884L / 180.0L;
-}
-
-double tan_half_angle_deg(double angle_deg) {
-    const long double half = 0.5L * static_cast<long double>(angle_deg);
-    // Near 180 degrees, tan(angle/2) = 1 / tan(90 - angle/2), and 90 - angle/2 is exact,
-    // so the small complement keeps its digits.
-    if (half > 45.0L) return static_cast<double>(1.0L / std::tan((90.0L - half) * kRadiansPerDegree));
-    return static_cast<double>(std::tan(half * kRadiansPerDegree));
-}
-
-double angle_deg_from_half_tangent(double tangent) {
-    const long double t = tangent;
-    if (t > 1.0L) return static_cast<double>(180.0L - 2.0L * std::atan(1.0L / t) / kRadiansPerDegree);
-    return static_cast<double>(2.0L * std::atan(t) / kRadiansPerDegree);
-}
-
-Vec2 FovCamera::half_tangents() const {
-    const double tangent = tan_half_angle_deg(fov_deg);
-    const double width = static_cast<double>(size.width);
-    const double height = static_cast<double>(size.height);
-    switch (fov_axis) {
-        case FovAxis::Both: return {tangent, tangent};
-        case FovAxis::Horizontal: return {tangent, tangent * height / width};
-        case FovAxis::Vertical: return {tangent * width / height, tangent};
-        case FovAxis::Diagonal: {
-            const double diagonal = std::hypot(width, height);
-            return {tangent * (width / diagonal), tangent * (height / diagonal)};
-        }
-    }
-    return {tangent, tangent};
-}
+Vec2 FovCamera::half_tangents() const { return half_tangents_of_fov<double>(fov_deg, fov_axis, size); }
 
 }  // namespace libcam

@@ -16,28 +16,17 @@
 
 #include <string_view>
 
+#include "libcam/fov/fov_formulas.hpp"
 #include "libcam/geometry/image_size.hpp"
 #include "libcam/geometry/vector_math.hpp"
 
 namespace libcam {
-
-enum class FovAxis { Horizontal, Vertical, Diagonal, Both };
-
-// Where the user's pixel row 0 is. Every calibrated camera (K, files) is top-left;
-// this only says how pixel coordinates given to or returned by libcam are counted.
-enum class PixelOrigin { BottomLeft, TopLeft };
-
-// The seed's two bases: w along the gaze (left-handed, the seed's choice) or
-// against it (right-handed). u and v are the same in both.
-enum class Handedness { Left, Right };
 
 std::string_view to_string(FovAxis axis);
 std::string_view to_string(PixelOrigin origin);
 FovAxis fov_axis_from_string(std::string_view text);          // throws InvalidArgument
 PixelOrigin pixel_origin_from_string(std::string_view text);  // throws InvalidArgument
 
-// A pixel's row in the other origin convention: y' = (H - 1) - y (its own inverse).
-inline double flip_row(double y, const ImageSize& size) { return static_cast<double>(size.height - 1) - y; }
 // The OpenCV (top-left) pixel of a pixel given in `origin`'s convention, and back.
 Vec2 opencv_pixel(const Vec2& pixel, PixelOrigin origin, const ImageSize& size);
 Vec2 user_pixel(const Vec2& opencv, PixelOrigin origin, const ImageSize& size);
@@ -46,34 +35,9 @@ Vec2 user_pixel(const Vec2& opencv, PixelOrigin origin, const ImageSize& size);
 // (a one-ulp change of up turns u by more than 1e-7 rad) and validate() refuses it.
 inline constexpr double kMinUpGazeAngleRad = 1e-9;
 
-struct Basis {
-    Vec3 u;  // right
-    Vec3 v;  // up
-    Vec3 w;  // along the gaze (Left) or against it (Right)
-    Handedness handedness = Handedness::Left;
-
-    Vec3 gaze() const { return handedness == Handedness::Left ? w : Vec3(-w); }
-};
-
-// The seed's formula with everything per camera computed once, for generating many rays.
-struct SeedRayFormula {
-    Basis basis;      // left-handed: w along the gaze
-    Vec2 tangents;    // (tan_x, tan_y)
-    ImageSize size;
-
-    // d = alpha u + beta v + w_gaze through pixel (x, y), not normalised.
-    Vec3 ray(const Vec2& pixel, PixelOrigin origin) const {
-        const double width = static_cast<double>(size.width);
-        const double height = static_cast<double>(size.height);
-        const double y = origin == PixelOrigin::BottomLeft ? pixel.y() : flip_row(pixel.y(), size);
-        return field_ray((2.0 * pixel.x() - width + 1.0) / width, (2.0 * y - height + 1.0) / height);
-    }
-
-    // (sx, sy): fractions of the half field of view, y up.
-    Vec3 field_ray(double sx, double sy) const {
-        return (tangents.x() * sx) * basis.u + (tangents.y() * sy) * basis.v + basis.w;
-    }
-};
+// The double instances of the formulas in fov_formulas.hpp.
+using Basis = BasisT<double>;
+using SeedRayFormula = SeedRayFormulaT<double>;
 
 struct FovCamera {
     Vec3 eye = Vec3::Zero();
@@ -96,7 +60,7 @@ struct FovCamera {
     // (tan_x, tan_y): tangents of half the field of view across the width and height.
     Vec2 half_tangents() const;
 
-    SeedRayFormula seed_formula() const { return {basis(Handedness::Left), half_tangents(), size}; }
+    SeedRayFormula seed_formula() const;
 
     // The seed's ray d = alpha u + beta v + w_gaze through pixel (x, y), not normalised.
     Vec3 seed_ray(const Vec2& pixel, PixelOrigin origin = PixelOrigin::BottomLeft) const {
@@ -108,9 +72,23 @@ struct FovCamera {
     Vec3 field_ray(double sx, double sy) const { return seed_formula().field_ray(sx, sy); }
 };
 
-// tan(angle/2) for an angle in degrees in (0, 180), accurate near 180 too.
-double tan_half_angle_deg(double angle_deg);
-// The inverse: 2 atan(tangent) in degrees.
-double angle_deg_from_half_tangent(double tangent);
+// The seed's formula of a FOV camera in Scalar: seed_formula() in double, and the tests'
+// reference in 113 bits from the same inputs.
+template <class Scalar>
+SeedRayFormulaT<Scalar> seed_formula_in(const FovCamera& camera) {
+    return {basis_from_gaze_up<Scalar>(camera.gaze.cast<Scalar>(), camera.up.cast<Scalar>(), Handedness::Left),
+            half_tangents_of_fov<Scalar>(Scalar(camera.fov_deg), camera.fov_axis, camera.size), camera.size};
+}
+inline SeedRayFormula FovCamera::seed_formula() const { return seed_formula_in<double>(*this); }
+
+// tan(angle/2) for an angle in degrees in (0, 180), accurate near 180 too; evaluated in
+// long double and rounded once.
+inline double tan_half_angle_deg(double angle_deg) {
+    return static_cast<double>(tan_half_angle_deg<long double>(angle_deg));
+}
+// The inverse: 2 atan(tangent) in degrees, likewise.
+inline double angle_deg_from_half_tangent(double tangent) {
+    return static_cast<double>(angle_deg_from_half_tangent<long double>(tangent));
+}
 
 }  // namespace libcam

@@ -22,16 +22,26 @@ Mat3 rotation_from_rvec(const Vec3& rvec);
 // Largest |R^T R - I| and |det R - 1| accepted for a rotation read from outside.
 inline constexpr double kRotationTolerance = 1e-9;
 
+// t = -R C for a camera at centre C, and back C = -R^T t.
+template <class Scalar>
+Vec3T<Scalar> translation_from_centre(const Mat3T<Scalar>& R, const Vec3T<Scalar>& centre) {
+    return -(R * centre);
+}
+template <class Scalar>
+Vec3T<Scalar> centre_from_translation(const Mat3T<Scalar>& R, const Vec3T<Scalar>& t) {
+    return -(R.transpose() * t);
+}
+
 struct Pose {
     Mat3 R = Mat3::Identity();
     Vec3 t = Vec3::Zero();
 
     static Pose from_rvec(const Vec3& rvec, const Vec3& t) { return {rotation_from_rvec(rvec), t}; }
     // A camera at `centre` whose axes (rows of R) are `R`.
-    static Pose from_centre(const Mat3& R, const Vec3& centre) { return {R, -(R * centre)}; }
+    static Pose from_centre(const Mat3& R, const Vec3& centre) { return {R, translation_from_centre<double>(R, centre)}; }
 
     Vec3 rvec() const { return rvec_from_rotation(R); }
-    Vec3 centre() const { return -(R.transpose() * t); }
+    Vec3 centre() const { return centre_from_translation<double>(R, t); }
     Mat34 matrix() const;  // [R | t]
 
     Vec3 camera_from_world(const Vec3& world) const { return R * world + t; }

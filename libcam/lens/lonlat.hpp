@@ -17,6 +17,7 @@
 #include <numbers>
 #include <span>
 
+#include "libcam/geometry/vector_math.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 
@@ -48,14 +49,14 @@ struct LonlatLens {
             *d_m_d_point << z * inv_h2, Scalar(0), -x * inv_h2,  //
                 x * lat_across, h * inv_n2, z * lat_across;
         }
-        return true;
+        return m.allFinite();  // false for a NaN coordinate
     }
 
     static bool unproject(const Parameters&, const Vec2T& m, Vec3T& ray) {
         using std::abs;
         using std::cos;
         using std::sin;
-        const Scalar pi(std::numbers::pi_v<long double>);
+        const Scalar pi = pi_in<Scalar>();
         const Scalar lon = m.x(), lat = m.y();
         if (!(abs(lon) <= pi && abs(lat) <= pi / Scalar(2))) return false;
         const Scalar cos_lat = cos(lat);

@@ -20,6 +20,7 @@
 // terms are taken to be small, as in the WACV 2022 analysis); and v2 > 0.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstddef>
 #include <span>
 
@@ -121,7 +122,7 @@ struct OpenCvLens {
         Jacobian22 d_m_d_u;
         if (!distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients)) return false;
         if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
-        return true;
+        return m.allFinite();  // false where m overflows (the thin prism's r^4 past r ~ 1e77)
     }
 
     // The ray (x, y, 1) through m, by the shared iterative solver; false where no
@@ -145,8 +146,9 @@ struct OpenCvLens {
         const Scalar p1 = c<2>(lens), p2 = c<3>(lens);
         const Scalar s1 = c<8>(lens), s2 = c<9>(lens), s3 = c<10>(lens), s4 = c<11>(lens);
         const Scalar two(2), r4 = r2 * r2, xy2 = two * x * y;
-        const Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x) + s1 * r2 + s2 * r4,
-                      y * radial.value + p1 * (r2 + two * y * y) + p2 * xy2 + s3 * r2 + s4 * r4);
+        Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x), y * radial.value + p1 * (r2 + two * y * y) + p2 * xy2);
+        // The thin prism only where there is one: 0 * r^4 would be NaN once r^4 overflows.
+        if constexpr (N >= 12) d += Vec2T(s1 * r2 + s2 * r4, s3 * r2 + s4 * r4);
 
         Jacobian22 d_d_d_u;
         if constexpr (is_requested<UJacobianPtr>) {
@@ -159,13 +161,12 @@ struct OpenCvLens {
         }
         Eigen::Matrix<Scalar, 2, 12> d_d_d_k;
         if constexpr (is_requested<CoefficientJacobianPtr>) {
-            const Scalar zero(0), r6 = r4 * r2, inv_q = Scalar(1) / radial.denominator;
-            const Scalar minus_rq = -radial.value * inv_q;
-            const Scalar powers[3] = {r2, r4, r6};
+            const Scalar zero(0);
+            const Vec3T powers_over_q = powers_over_denominator(r2, radial);  // s^i / Q
             const int numerator_columns[3] = {0, 1, 4};  // k1 k2 k3
             for (int i = 0; i < 3; ++i) {
-                d_d_d_k.col(numerator_columns[i]) = u * (powers[i] * inv_q);
-                d_d_d_k.col(5 + i) = u * (powers[i] * minus_rq);  // k4 k5 k6
+                d_d_d_k.col(numerator_columns[i]) = u * powers_over_q(i);
+                d_d_d_k.col(5 + i) = u * (-radial.value * powers_over_q(i));  // k4 k5 k6
             }
             d_d_d_k.col(2) << xy2, r2 + two * y * y;  // p1
             d_d_d_k.col(3) << r2 + two * x * x, xy2;  // p2
@@ -207,19 +208,43 @@ private:
     struct Radial {
         Scalar value;        // R = P / Q
         Scalar d_r2;         // dR / d(r^2)
-        Scalar denominator;  // Q
+        Scalar denominator;  // Q, or Q / s^3 when inverted: the same sign
+        bool inverted;       // evaluated in t = 1 / s
     };
 
+    // R = P(s) / Q(s), s = r^2, by Horner in s; where P or Q overflows (s^3 past the
+    // largest number: r ~ 1e51 in double, 2.6e6 in float) by Horner in t = 1 / s, with P
+    // and Q divided by s^3 first: P(s)/s^3 = t^3 + k1 t^2 + k2 t + k3. In s alone R would
+    // be inf/inf = NaN there, though R itself is finite.
     static Radial radial_factor(const Parameters& lens, const Scalar& r2) {
+        using std::isfinite;
         const Scalar k1 = c<0>(lens), k2 = c<1>(lens), k3 = c<4>(lens);
         const Scalar k4 = c<5>(lens), k5 = c<6>(lens), k6 = c<7>(lens);
         const Scalar one(1), two(2), three(3);
         const Scalar p = one + r2 * (k1 + r2 * (k2 + r2 * k3));
         const Scalar q = one + r2 * (k4 + r2 * (k5 + r2 * k6));
-        const Scalar dp = k1 + r2 * (two * k2 + three * k3 * r2);
-        const Scalar dq = k4 + r2 * (two * k5 + three * k6 * r2);
-        const Scalar value = p / q;
-        return {value, (dp - value * dq) / q, q};
+        if (isfinite(p) && isfinite(q)) {
+            const Scalar dp = k1 + r2 * (two * k2 + three * k3 * r2);
+            const Scalar dq = k4 + r2 * (two * k5 + three * k6 * r2);
+            const Scalar value = p / q;
+            return {value, (dp - value * dq) / q, q, false};
+        }
+        // R(t) = P~(t) / Q~(t); dR/ds = -t^2 dR/dt = -t^2 (P~' - R Q~') / Q~.
+        const Scalar t = one / r2;
+        const Scalar p_t = k3 + t * (k2 + t * (k1 + t));
+        const Scalar q_t = k6 + t * (k5 + t * (k4 + t));
+        const Scalar dp_t = k2 + t * (two * k1 + three * t);
+        const Scalar dq_t = k5 + t * (two * k4 + three * t);
+        const Scalar value = p_t / q_t;
+        return {value, -t * t * (dp_t - value * dq_t) / q_t, q_t, true};
+    }
+
+    // (s, s^2, s^3) / Q for the coefficient Jacobian, in t = 1 / s where R was.
+    static Vec3T powers_over_denominator(const Scalar& r2, const Radial& radial) {
+        const Scalar inv_q = Scalar(1) / radial.denominator;
+        if (!radial.inverted) return Vec3T(r2, r2 * r2, r2 * r2 * r2) * inv_q;
+        const Scalar t = Scalar(1) / r2;
+        return Vec3T(t * t, t, Scalar(1)) * inv_q;
     }
 
     // OPENCV14's tilted sensor: m = (v0, v1) / v2 with v = T [d; 1], chained onto the

@@ -24,24 +24,26 @@ struct PinholeLens {
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
     using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
 
-    // Returns false (and leaves m untouched) for z <= 0. When d_m_d_point is a
-    // Jacobian23 pointer it receives dm/d(x, y, z); passing nothing costs nothing.
+    // Returns false for z <= 0, and where x/z or y/z overflows (m then unspecified). When
+    // d_m_d_point is a Jacobian23 pointer it receives dm/d(x, y, z); passing nothing
+    // costs nothing. m is x / z, not x * (1 / z): 1 / z overflows for a subnormal z
+    // (and (0, 0, 5e-324) would give 0 * inf = NaN) where x / z is exact.
     template <class JacobianPtr = std::nullptr_t>
     static bool project(const Vec3T& point, Vec2T& m, JacobianPtr d_m_d_point = nullptr) {
         if (!(point.z() > Scalar(0))) return false;
-        const Scalar inv_z = Scalar(1) / point.z();
-        m = Vec2T(point.x() * inv_z, point.y() * inv_z);
+        m = Vec2T(point.x() / point.z(), point.y() / point.z());
         if constexpr (!std::is_same_v<JacobianPtr, std::nullptr_t>) {
+            const Scalar inv_z = Scalar(1) / point.z();
             *d_m_d_point << inv_z, Scalar(0), -m.x() * inv_z,  //
                 Scalar(0), inv_z, -m.y() * inv_z;
         }
-        return true;
+        return m.allFinite();
     }
 
-    // Every normalised point has a ray; its z is 1.
+    // Every finite normalised point has a ray; its z is 1.
     static bool unproject(const Vec2T& m, Vec3T& ray) {
         ray = Vec3T(m.x(), m.y(), Scalar(1));
-        return true;
+        return m.allFinite();
     }
 
     // The interface every model shares (see lens_models.hpp); PINHOLE has no

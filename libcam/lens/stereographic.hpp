@@ -49,12 +49,13 @@ struct StereographicLens {
             (*d_m_d_point)(0, 0) += scale;
             (*d_m_d_point)(1, 1) += scale;
         }
-        return true;
+        return m.allFinite();  // false within ~1e-308 rad of the backward axis, where m overflows
     }
 
+    // False where |m|^2 overflows (a ray within ~1e-154 rad of the backward axis).
     static bool unproject(const Parameters&, const Vec2T& m, Vec3T& ray) {
         ray = Vec3T(m.x(), m.y(), Scalar(1) - m.squaredNorm() / Scalar(4));
-        return true;
+        return ray.allFinite();
     }
 };
 
