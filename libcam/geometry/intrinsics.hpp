@@ -30,15 +30,19 @@ struct Intrinsics {
     // Throws InvalidArgument unless every value is finite and fx, fy > 0.
     void validate(const char* field = "K") const;
 
-    // K^-1 [x, y, 1]: the normalised image point (x/z, y/z) of a pixel.
-    Vec2 normalized_from_pixel(const Vec2& pixel) const {
-        const double yn = (pixel.y() - cy) / fy;
-        return {(pixel.x() - cx - skew * yn) / fx, yn};
+    // K^-1 [x, y, 1]: the normalised image point (x/z, y/z) of a pixel. In any scalar
+    // type (float, double, Lane<double> for the batch paths), evaluated in that type.
+    template <class Scalar>
+    Eigen::Matrix<Scalar, 2, 1> normalized_from_pixel(const Eigen::Matrix<Scalar, 2, 1>& pixel) const {
+        const Scalar yn = (pixel.y() - Scalar(cy)) / Scalar(fy);
+        return {(pixel.x() - Scalar(cx) - Scalar(skew) * yn) / Scalar(fx), yn};
     }
 
     // K [xn, yn, 1]: the pixel of a normalised image point.
-    Vec2 pixel_from_normalized(const Vec2& normalized) const {
-        return {fx * normalized.x() + skew * normalized.y() + cx, fy * normalized.y() + cy};
+    template <class Scalar>
+    Eigen::Matrix<Scalar, 2, 1> pixel_from_normalized(const Eigen::Matrix<Scalar, 2, 1>& normalized) const {
+        return {Scalar(fx) * normalized.x() + Scalar(skew) * normalized.y() + Scalar(cx),
+                Scalar(fy) * normalized.y() + Scalar(cy)};
     }
 };
 

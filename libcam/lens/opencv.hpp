@@ -107,21 +107,21 @@ struct OpenCvLens {
     }
 
     static Parameters parameters(std::span<const double> k) {
-        return {coefficients_as<Scalar, N>(k), Scalar(valid_radius(k))};
+        return lens_parameters<Scalar, N>(k, valid_radius(k));
     }
 
-    // m for a camera point; false outside the valid domain (m untouched). Jacobians
+    // m for a camera point; false outside the valid domain (m then meaningless). Jacobians
     // dm/d(X, Y, Z) (Jacobian23*) and dm/d(coefficients) (CoefficientJacobian*) on request.
     template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
     static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         Vec2T u;
         Jacobian23 d_u_d_point;
-        if (!PinholeLens<Scalar>::project(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
+        const bool in_front = PinholeLens<Scalar>::project(point, u, pass_request<PointJacobianPtr>(&d_u_d_point));
         Jacobian22 d_m_d_u;
-        if (!distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients)) return false;
+        const bool in_domain = distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
         if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
-        return true;
+        return in_front && in_domain;
     }
 
     // The ray (x, y, 1) through m, by the shared iterative solver; false where no
@@ -129,19 +129,22 @@ struct OpenCvLens {
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
         Vec2T u;
         if (!solve_undistorted<OpenCvLens>(lens, m, u)) return false;
-        ray = Vec3T(u.x(), u.y(), Scalar(1));
+        ray = ray_from_undistorted(u);
         return true;
     }
 
-    // m = distort(u) for the pinhole-normalised point u = (X/Z, Y/Z).
+    // The ray through the undistorted point u: (x, y, 1).
+    static Vec3T ray_from_undistorted(const Vec2T& u) { return Vec3T(u.x(), u.y(), Scalar(1)); }
+
+    // m = distort(u) for the pinhole-normalised point u = (X/Z, Y/Z); false outside the
+    // valid domain (m then meaningless; evaluated without branches, see pinhole.hpp).
     template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
     static bool distort(const Parameters& lens, const Vec2T& u, Vec2T& m, UJacobianPtr d_m_d_u = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         const Scalar x = u.x(), y = u.y();
         const Scalar r2 = x * x + y * y;
-        if (!(r2 < lens.valid_radius * lens.valid_radius)) return false;
         const Radial radial = radial_factor(lens, r2);
-        if (!(radial.denominator > Scalar(0))) return false;
+        const bool in_domain = r2 < lens.valid_radius * lens.valid_radius && radial.denominator > Scalar(0);
         const Scalar p1 = c<2>(lens), p2 = c<3>(lens);
         const Scalar s1 = c<8>(lens), s2 = c<9>(lens), s3 = c<10>(lens), s4 = c<11>(lens);
         const Scalar two(2), r4 = r2 * r2, xy2 = two * x * y;
@@ -179,9 +182,10 @@ struct OpenCvLens {
             m = d;
             if constexpr (is_requested<UJacobianPtr>) *d_m_d_u = d_d_d_u;
             if constexpr (is_requested<CoefficientJacobianPtr>) *d_m_d_coefficients = d_d_d_k.template leftCols<N>();
-            return true;
+            return in_domain;
         } else {
-            return apply_tilt(lens, d, m, d_d_d_u, d_d_d_k, d_m_d_u, d_m_d_coefficients);
+            const bool tilt_in_front = apply_tilt(lens, d, m, d_d_d_u, d_d_d_k, d_m_d_u, d_m_d_coefficients);
+            return in_domain && tilt_in_front;
         }
     }
 
@@ -231,7 +235,7 @@ private:
         const detail::TiltMatrix<Scalar> tilt(c<12>(lens), c<13>(lens), is_requested<CoefficientJacobianPtr>);
         const Vec3T d1(d.x(), d.y(), Scalar(1));
         const Vec3T v = tilt.matrix * d1;
-        if (!(v.z() > Scalar(0))) return false;
+        const bool in_front = v.z() > Scalar(0);
         const Scalar inv_z = Scalar(1) / v.z();
         m = Vec2T(v.x() * inv_z, v.y() * inv_z);
         if constexpr (is_requested<UJacobianPtr> || is_requested<CoefficientJacobianPtr>) {
@@ -246,7 +250,7 @@ private:
                 d_m_d_coefficients->col(13) = d_m_d_v * (tilt.d_tau_y * d1);
             }
         }
-        return true;
+        return in_front;
     }
 };
 

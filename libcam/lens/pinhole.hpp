@@ -24,18 +24,20 @@ struct PinholeLens {
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
     using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
 
-    // Returns false (and leaves m untouched) for z <= 0. When d_m_d_point is a
+    // Returns false for z <= 0, and m is then meaningless. When d_m_d_point is a
     // Jacobian23 pointer it receives dm/d(x, y, z); passing nothing costs nothing.
+    // Computed without branches (the flag is returned, not acted on) so that a loop
+    // over many points vectorises; the same holds for every model's distort().
     template <class JacobianPtr = std::nullptr_t>
     static bool project(const Vec3T& point, Vec2T& m, JacobianPtr d_m_d_point = nullptr) {
-        if (!(point.z() > Scalar(0))) return false;
+        const bool in_front = point.z() > Scalar(0);
         const Scalar inv_z = Scalar(1) / point.z();
         m = Vec2T(point.x() * inv_z, point.y() * inv_z);
         if constexpr (!std::is_same_v<JacobianPtr, std::nullptr_t>) {
             *d_m_d_point << inv_z, Scalar(0), -m.x() * inv_z,  //
                 Scalar(0), inv_z, -m.y() * inv_z;
         }
-        return true;
+        return in_front;
     }
 
     // Every normalised point has a ray; its z is 1.

@@ -13,6 +13,7 @@ using Runner = std::function<int()>;
 Runner add_convert(CLI::App& app);
 Runner add_rays(CLI::App& app);
 Runner add_demo(CLI::App& app);
+Runner add_bench(CLI::App& app);
 
 // Writes text to stdout, or atomically to `path` when it is not empty.
 void emit(const std::string& text, const std::string& path);

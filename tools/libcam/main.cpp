@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     CLI::App app{"libcam: graphics cameras <-> calibrated cameras, checked against OpenCV and mrcal"};
     app.require_subcommand(1);
     std::map<CLI::App*, Runner> runners;
-    for (auto add : {add_convert, add_rays, add_demo}) {
+    for (auto add : {add_convert, add_rays, add_demo, add_bench}) {
         Runner run = add(app);
         runners[app.get_subcommands({}).back()] = std::move(run);
     }

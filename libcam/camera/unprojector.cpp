@@ -1,0 +1,498 @@
+#include "libcam/camera/unprojector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "libcam/camera/batch_kernels.hpp"
+#include "libcam/camera/parallel.hpp"
+#include "libcam/error.hpp"
+#include "libcam/lens/undistort.hpp"
+
+namespace libcam {
+
+namespace {
+
+using batch::kBlock;
+
+// Models without a closed-form inverse, solved through their distort() (lens/undistort.hpp).
+template <class Model>
+concept SolvedIteratively = requires(const typename Model::Parameters& lens, const typename Model::Vec2T& u,
+                                     typename Model::Vec2T& m) {
+    Model::distort(lens, u, m);
+    Model::ray_from_undistorted(u);
+};
+
+constexpr int kFastNewtonSteps = 1;
+// From the bilinear start two steps reach rounding level on the lenses measured (issue
+// 3's wide lens: 0.2 px, then 5e-5 px, then 4e-12 px); the residual check sends any
+// pixel they do not bring there to the full solver.
+constexpr int kExactNewtonSteps = 2;
+
+// ---------------------------------------------------------------------------------
+// Per camera: the certified disc and the table (in double, by the full solver).
+
+// The largest |m| of the image's corners.
+double largest_corner_radius(const Camera& camera) {
+    const double right = static_cast<double>(camera.size.width) - 0.5;
+    const double bottom = static_cast<double>(camera.size.height) - 0.5;
+    double largest = 0;
+    for (const Vec2& corner : {Vec2(-0.5, -0.5), Vec2(right, -0.5), Vec2(-0.5, bottom), Vec2(right, bottom)}) {
+        largest = std::max(largest, camera.intrinsics.normalized_from_pixel(corner).norm());
+    }
+    return largest;
+}
+
+// The radius R of the disc of undistorted points to certify: just inside the valid
+// radius, or where that is unbounded, far enough for the radial part to reach twice the
+// largest |m| in the image.
+template <class Model>
+double disc_to_certify(const Camera& camera, const typename Model::Parameters& lens) {
+    if (std::isfinite(lens.valid_radius)) return lens.valid_radius * (1 - 1e-9);
+    const double target = 2 * largest_corner_radius(camera);
+    double radius = 1, slope = 0;
+    for (int i = 0; i < 64 && Model::radial_distortion(lens, radius, slope) < target; ++i) radius *= 2;
+    return radius;
+}
+
+// min |distort(u)| over the circle |u| = radius, provided distort is defined on the
+// whole disc (checked on 64 rings of 4096 points); nullopt otherwise.
+template <class Model>
+std::optional<double> smallest_image_of_circle(const typename Model::Parameters& lens, double radius) {
+    constexpr int kRings = 64, kAngles = 4096;
+    double smallest = std::numeric_limits<double>::infinity();
+    for (int ring = 1; ring <= kRings; ++ring) {
+        const double r = radius * ring / kRings;
+        for (int a = 0; a < kAngles; ++a) {
+            const double angle = 2 * std::numbers::pi * a / kAngles;
+            Vec2 m;
+            if (!Model::distort(lens, Vec2(r * std::cos(angle), r * std::sin(angle)), m)) return std::nullopt;
+            if (ring == kRings) smallest = std::min(smallest, m.norm());
+        }
+    }
+    return smallest;
+}
+
+// A radius rho such that every normalised point m with |m| < rho has a ray in the valid
+// domain. Why: distort is continuous on the disc |u| <= R and maps 0 to 0; the image C of
+// the circle |u| = R winds once around 0 (the model's own premise that the terms beyond
+// the radial one are small) and keeps a distance min |C| from it, so the disc
+// |m| < min |C| lies inside C, and each of its points has a preimage with |u| < R (the
+// degree of the map). rho is 0.1 % below the sampled minimum, which covers C between
+// samples many times over. Returns 0 if no disc can be certified.
+template <class Model>
+double certified_disc_radius(const Camera& camera, const typename Model::Parameters& lens) {
+    double radius = disc_to_certify<Model>(camera, lens);
+    for (int attempt = 0; attempt < 64; ++attempt, radius *= 0.9) {
+        if (const std::optional<double> smallest = smallest_image_of_circle<Model>(lens, radius)) {
+            return *smallest * (1 - 1e-3);
+        }
+    }
+    return 0;
+}
+
+// The exact undistorted point of a grid of pixels: the image and one ring of nodes
+// beyond each edge, so that the bicubic stencil of every pixel in the image lies inside.
+template <class Model, class Scalar>
+UnprojectionTable<Scalar> build_table(const Camera& camera, const typename Model::Parameters& lens, int nodes) {
+    UnprojectionTable<Scalar> table;
+    const double width = static_cast<double>(camera.size.width), height = static_cast<double>(camera.size.height);
+    table.step = std::max(width, height) / (nodes - 1);
+    // Pixel p sits at grid coordinate (p + 0.5) / step + 1: the image spans [1, 1 + W / step],
+    // strictly below nodes - 2, the last start of a bicubic stencil.
+    table.nodes_x = static_cast<int>(std::floor(width / table.step)) + 4;
+    table.nodes_y = static_cast<int>(std::floor(height / table.step)) + 4;
+    table.origin_x = table.origin_y = -0.5 - table.step;
+    const std::size_t count = static_cast<std::size_t>(table.nodes_x) * static_cast<std::size_t>(table.nodes_y);
+    table.u_x.resize(count);
+    table.u_y.resize(count);
+    for (int j = 0; j < table.nodes_y; ++j) {
+        for (int i = 0; i < table.nodes_x; ++i) {
+            const Vec2 pixel(table.origin_x + i * table.step, table.origin_y + j * table.step);
+            Vec2 u;
+            const bool solved = solve_undistorted<Model>(lens, camera.intrinsics.normalized_from_pixel(pixel), u);
+            const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(table.nodes_x) + static_cast<std::size_t>(i);
+            table.u_x[k] = solved ? Scalar(u.x()) : std::numeric_limits<Scalar>::quiet_NaN();
+            table.u_y[k] = solved ? Scalar(u.y()) : std::numeric_limits<Scalar>::quiet_NaN();
+        }
+    }
+    return table;
+}
+
+// ---------------------------------------------------------------------------------
+// Per block of pixels: each step is one loop over the block's arrays. The steps that
+// vectorise read the camera's constants from local copies (see batch_kernels.hpp).
+
+template <class Scalar>
+struct Block {
+    std::size_t count = 0;
+    Scalar pixel_x[kBlock], pixel_y[kBlock];
+    Scalar m_x[kBlock], m_y[kBlock];  // K^-1 [x, y, 1]
+    Scalar u_x[kBlock], u_y[kBlock];  // undistorted point
+    Scalar ok[kBlock];                // 1: u (then the ray) is the answer; 0: not yet, or no ray
+    Scalar ray_x[kBlock], ray_y[kBlock], ray_z[kBlock];
+    int cell[kBlock];                             // table node at the top-left of the pixel's cell
+    Scalar fraction_x[kBlock], fraction_y[kBlock];  // position within that cell
+};
+
+template <class Scalar>
+struct TableView;
+
+template <class Scalar>
+struct Context {
+    const Intrinsics& intrinsics;
+    const TableView<Scalar>& table;
+    Scalar certified_radius_squared;
+    Scalar valid_radius_squared;
+};
+
+template <class Scalar>
+using Vec2L = Eigen::Matrix<Lane<Scalar>, 2, 1>;
+template <class Scalar>
+using Vec3L = Eigen::Matrix<Lane<Scalar>, 3, 1>;
+
+template <class Scalar>
+void normalize(const Intrinsics& camera_intrinsics, Block<Scalar>& b) {
+    const Intrinsics intrinsics = camera_intrinsics;
+    for (std::size_t i = 0; i < b.count; ++i) {
+        const Vec2L<Scalar> m = intrinsics.normalized_from_pixel(Vec2L<Scalar>(b.pixel_x[i], b.pixel_y[i]));
+        b.m_x[i] = lane_value(m.x());
+        b.m_y[i] = lane_value(m.y());
+    }
+}
+
+enum class Interpolation { Bilinear, Bicubic };
+
+// The table as the loops read it (copied before each loop, see above).
+template <class Scalar>
+struct TableView {
+    const Scalar* u_x;
+    const Scalar* u_y;
+    int stride;  // nodes per row
+    Scalar origin_x, origin_y, inv_step;
+    Scalar end_x, end_y;  // a pixel's grid coordinates must lie in [1, end) for its bicubic stencil to fit
+
+    explicit TableView(const UnprojectionTable<Scalar>& table)
+        : u_x(table.u_x.data()),
+          u_y(table.u_y.data()),
+          stride(table.nodes_x),
+          origin_x(Scalar(table.origin_x)),
+          origin_y(Scalar(table.origin_y)),
+          inv_step(table.step > 0 ? Scalar(1 / table.step) : Scalar(0)),
+          end_x(Scalar(table.nodes_x - 2)),
+          end_y(Scalar(table.nodes_y - 2)) {}
+};
+
+// The table cell of each pixel: the index of its top-left node and the fractions within
+// it; ok = 0 for a pixel whose stencil would leave the table (it reads a harmless cell
+// inside instead, so that every read stays in bounds).
+template <class Scalar>
+void locate_in_table(const TableView<Scalar>& table_view, Block<Scalar>& b) {
+    const TableView<Scalar> table = table_view;
+    for (std::size_t i = 0; i < b.count; ++i) {
+        const Scalar gx = (b.pixel_x[i] - table.origin_x) * table.inv_step;
+        const Scalar gy = (b.pixel_y[i] - table.origin_y) * table.inv_step;
+        const bool inside = gx >= Scalar(1) && gx < table.end_x && gy >= Scalar(1) && gy < table.end_y;
+        const Scalar x = inside ? gx : Scalar(1), y = inside ? gy : Scalar(1);
+        const int column = static_cast<int>(x), row = static_cast<int>(y);
+        b.cell[i] = row * table.stride + column;
+        b.fraction_x[i] = x - Scalar(column);
+        b.fraction_y[i] = y - Scalar(row);
+        b.ok[i] = batch::flag<Scalar>(inside);
+    }
+}
+
+template <class Scalar>
+Scalar bilinear(const Scalar* values, int k, int stride, Scalar fx, Scalar fy) {
+    const Scalar upper = values[k] + fx * (values[k + 1] - values[k]);
+    const Scalar lower = values[k + stride] + fx * (values[k + stride + 1] - values[k + stride]);
+    return upper + fy * (lower - upper);
+}
+
+// Catmull-Rom weights of the nodes at -1, 0, 1, 2 for the fraction t in [0, 1).
+template <class Scalar>
+void catmull_rom_weights(Scalar t, Scalar w[4]) {
+    const Scalar half(0.5);
+    w[0] = half * t * ((Scalar(2) - t) * t - Scalar(1));
+    w[1] = half * ((Scalar(3) * t - Scalar(5)) * t * t + Scalar(2));
+    w[2] = half * t * ((Scalar(4) - Scalar(3) * t) * t + Scalar(1));
+    w[3] = half * (t - Scalar(1)) * t * t;
+}
+
+template <class Scalar>
+Scalar bicubic(const Scalar* values, int k, int stride, const Scalar wx[4], const Scalar wy[4]) {
+    Scalar sum(0);
+    for (int r = 0; r < 4; ++r) {
+        const int row = k + (r - 1) * stride - 1;
+        sum += wy[r] * (wx[0] * values[row] + wx[1] * values[row + 1] + wx[2] * values[row + 2] +
+                        wx[3] * values[row + 3]);
+    }
+    return sum;
+}
+
+// u interpolated from the table at each located pixel; ok stays 1 only where every
+// node used has a ray (a node without one is NaN and makes the sum NaN).
+template <Interpolation kind, class Scalar>
+void interpolate(const TableView<Scalar>& table_view, Block<Scalar>& b) {
+    const TableView<Scalar> table = table_view;
+    for (std::size_t i = 0; i < b.count; ++i) {
+        const int k = b.cell[i];
+        Scalar x, y;
+        if constexpr (kind == Interpolation::Bilinear) {
+            x = bilinear(table.u_x, k, table.stride, b.fraction_x[i], b.fraction_y[i]);
+            y = bilinear(table.u_y, k, table.stride, b.fraction_x[i], b.fraction_y[i]);
+        } else {
+            Scalar wx[4], wy[4];
+            catmull_rom_weights(b.fraction_x[i], wx);
+            catmull_rom_weights(b.fraction_y[i], wy);
+            x = bicubic(table.u_x, k, table.stride, wx, wy);
+            y = bicubic(table.u_y, k, table.stride, wx, wy);
+        }
+        b.u_x[i] = x;
+        b.u_y[i] = y;
+        b.ok[i] = b.ok[i] != Scalar(0) && x == x && y == y ? Scalar(1) : Scalar(0);  // x == x: not NaN
+    }
+}
+
+template <Interpolation kind, class Scalar>
+void start_from_table(const TableView<Scalar>& table, Block<Scalar>& b) {
+    locate_in_table(table, b);
+    interpolate<kind>(table, b);
+}
+
+// Without the full solver, only a pixel inside the certified disc may be called valid.
+template <class Scalar>
+void require_certified_disc(Scalar radius_squared, Block<Scalar>& b) {
+    for (std::size_t i = 0; i < b.count; ++i) {
+        const bool inside = b.m_x[i] * b.m_x[i] + b.m_y[i] * b.m_y[i] < radius_squared;
+        b.ok[i] = inside ? b.ok[i] : Scalar(0);
+    }
+}
+
+// The answer must lie inside the valid domain itself.
+template <class Scalar>
+void require_valid_radius(Scalar radius_squared, Block<Scalar>& b) {
+    for (std::size_t i = 0; i < b.count; ++i) {
+        const bool inside = b.u_x[i] * b.u_x[i] + b.u_y[i] * b.u_y[i] < radius_squared;
+        b.ok[i] = inside ? b.ok[i] : Scalar(0);
+    }
+}
+
+template <class Model, class Scalar>
+void newton_steps(const typename Model::Parameters& lens_parameters, int steps, Block<Scalar>& b) {
+    const typename Model::Parameters lens = lens_parameters;
+    for (int step = 0; step < steps; ++step) {
+        for (std::size_t i = 0; i < b.count; ++i) {
+            const Vec2L<Scalar> u(b.u_x[i], b.u_y[i]);
+            Vec2L<Scalar> m_u;
+            Eigen::Matrix<Lane<Scalar>, 2, 2> d_m_d_u;
+            const bool in_domain = Model::distort(lens, u, m_u, &d_m_d_u);
+            const Vec2L<Scalar> next = u - newton_step(d_m_d_u, Vec2L<Scalar>(m_u - Vec2L<Scalar>(b.m_x[i], b.m_y[i])));
+            b.u_x[i] = lane_value(next.x());
+            b.u_y[i] = lane_value(next.y());
+            b.ok[i] = in_domain ? b.ok[i] : Scalar(0);
+        }
+    }
+}
+
+// Keeps ok only where u is inside the domain and reprojects to m within the tolerance
+// the full solver accepts.
+template <class Model, class Scalar>
+void certify(const typename Model::Parameters& lens_parameters, Block<Scalar>& b) {
+    const typename Model::Parameters lens = lens_parameters;
+    for (std::size_t i = 0; i < b.count; ++i) {
+        const Vec2L<Scalar> u(b.u_x[i], b.u_y[i]), m(b.m_x[i], b.m_y[i]);
+        Vec2L<Scalar> m_u;
+        const bool in_domain = Model::distort(lens, u, m_u);
+        const bool converged = (m_u - m).norm() <= unprojection_tolerance(m.norm());
+        b.ok[i] = in_domain && converged ? b.ok[i] : Scalar(0);
+    }
+}
+
+// The full solver for every pixel not settled yet: its answer, or no ray.
+template <class Model, class Scalar>
+void solve_remaining(const typename Model::Parameters& lens, Block<Scalar>& b) {
+    for (std::size_t i = 0; i < b.count; ++i) {
+        if (b.ok[i] != Scalar(0)) continue;
+        Vec2L<Scalar> u;
+        const bool solved = solve_undistorted<Model>(lens, Vec2L<Scalar>(b.m_x[i], b.m_y[i]), u);
+        b.u_x[i] = solved ? lane_value(u.x()) : Scalar(0);
+        b.u_y[i] = solved ? lane_value(u.y()) : Scalar(0);
+        b.ok[i] = batch::flag<Scalar>(solved);
+    }
+}
+
+template <class Scalar>
+void set_ray(Block<Scalar>& b, std::size_t i, bool ok, const Vec3L<Scalar>& ray) {
+    b.ray_x[i] = ok ? lane_value(ray.x()) : Scalar(0);
+    b.ray_y[i] = ok ? lane_value(ray.y()) : Scalar(0);
+    b.ray_z[i] = ok ? lane_value(ray.z()) : Scalar(0);
+}
+
+template <class Model, class Scalar>
+void rays_from_undistorted(Block<Scalar>& b) {
+    for (std::size_t i = 0; i < b.count; ++i) {
+        set_ray(b, i, b.ok[i] != Scalar(0), Model::ray_from_undistorted(Vec2L<Scalar>(b.u_x[i], b.u_y[i])));
+    }
+}
+
+template <class Model, class Scalar>
+void unproject_closed_form(const typename Model::Parameters& lens_parameters, Block<Scalar>& b) {
+    const typename Model::Parameters lens = lens_parameters;
+    for (std::size_t i = 0; i < b.count; ++i) {
+        Vec3L<Scalar> ray = Vec3L<Scalar>::Zero();
+        const bool ok = Model::unproject(lens, Vec2L<Scalar>(b.m_x[i], b.m_y[i]), ray);
+        set_ray(b, i, ok, ray);
+        b.ok[i] = batch::flag<Scalar>(ok);
+    }
+}
+
+// u for every pixel by `method`, with ok = 1 where that settles it.
+template <class Model, class Scalar>
+void approximate(const Context<Scalar>& context, const typename Model::Parameters& lens, UnprojectMethod method,
+                 Block<Scalar>& b) {
+    switch (method) {
+        case UnprojectMethod::Lut:
+            start_from_table<Interpolation::Bicubic>(context.table, b);
+            require_certified_disc(context.certified_radius_squared, b);
+            require_valid_radius(context.valid_radius_squared, b);
+            return;
+        case UnprojectMethod::Fast:
+            start_from_table<Interpolation::Bilinear>(context.table, b);
+            require_certified_disc(context.certified_radius_squared, b);
+            newton_steps<Model>(lens, kFastNewtonSteps, b);
+            require_valid_radius(context.valid_radius_squared, b);
+            return;
+        case UnprojectMethod::Exact:
+            start_from_table<Interpolation::Bilinear>(context.table, b);
+            newton_steps<Model>(lens, kExactNewtonSteps, b);
+            certify<Model>(lens, b);
+            return;
+    }
+}
+
+template <class Model, class Scalar>
+void unproject_block(const Context<Scalar>& context, const typename Model::Parameters& lens, UnprojectMethod method,
+                     Block<Scalar>& b) {
+    normalize(context.intrinsics, b);
+    if constexpr (SolvedIteratively<Model>) {
+        approximate<Model>(context, lens, method, b);
+        solve_remaining<Model>(lens, b);
+        rays_from_undistorted<Model>(b);
+    } else {
+        unproject_closed_form<Model>(lens, b);
+    }
+}
+
+}  // namespace
+
+template <class Scalar>
+Unprojector<Scalar>::Unprojector(const Camera& camera, UnprojectorOptions options) : camera_(camera) {
+    camera_.validate();
+    if (options.table_nodes < 4 || options.table_nodes > 100'000) {
+        throw InvalidArgument("table_nodes: must be in [4, 100000], got " + std::to_string(options.table_nodes));
+    }
+    valid_radius_ = batch::lens_valid_radius(camera_.lens);
+    visit_lens_model<double>(camera_.lens.type, [&]<class Model>() {
+        if constexpr (SolvedIteratively<Model>) {
+            const auto lens = batch::model_parameters<Model>(camera_.lens, valid_radius_);
+            certified_radius_ = certified_disc_radius<Model>(camera_, lens);
+            table_ = build_table<Model, Scalar>(camera_, lens, options.table_nodes);
+        }
+    });
+}
+
+template <class Scalar>
+template <class FillPixels, class Sink>
+void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads, FillPixels&& fill,
+                              Sink&& sink) const {
+    const TableView<Scalar> table(table_);
+    const Context<Scalar> context{camera_.intrinsics, table, Scalar(certified_radius_ * certified_radius_),
+                                  Scalar(valid_radius_ * valid_radius_)};
+    visit_lens_model<Lane<Scalar>>(camera_.lens.type, [&]<class Model>() {
+        const auto lens = batch::model_parameters<Model>(camera_.lens, valid_radius_);
+        parallel_chunks(n, threads, kBlock, [&](std::size_t begin, std::size_t end) {
+            Block<Scalar> block;
+            for (std::size_t first = begin; first < end; first += kBlock) {
+                block.count = std::min(kBlock, end - first);
+                fill(first, block);
+                unproject_block<Model>(context, lens, method, block);
+                sink(first, block);
+            }
+        });
+    });
+}
+
+namespace {
+
+// A sink that copies a block's rays into the outputs.
+template <class Scalar>
+auto write_into(Points3<Scalar>& directions, ValidFlags& valid) {
+    return [&directions, &valid](std::size_t first, const Block<Scalar>& b) {
+        std::copy_n(b.ray_x, b.count, directions.x.data() + first);
+        std::copy_n(b.ray_y, b.count, directions.y.data() + first);
+        std::copy_n(b.ray_z, b.count, directions.z.data() + first);
+        batch::store_flags<Scalar>({b.ok, b.count}, valid.data() + first);
+    };
+}
+
+}  // namespace
+
+template <class Scalar>
+void Unprojector<Scalar>::unproject(const Points2<Scalar>& pixels, UnprojectMethod method, Points3<Scalar>& directions,
+                                    ValidFlags& valid, int threads) const {
+    const std::size_t n = pixels.size();
+    batch::require_same_sizes("pixels", n, {pixels.y.size()});
+    directions.resize(n);
+    valid.resize(n);
+    const auto copy_pixels = [&pixels](std::size_t first, Block<Scalar>& b) {
+        std::copy_n(pixels.x.data() + first, b.count, b.pixel_x);
+        std::copy_n(pixels.y.data() + first, b.count, b.pixel_y);
+    };
+    run(n, method, threads, copy_pixels, write_into(directions, valid));
+}
+
+template <class Scalar>
+void Unprojector<Scalar>::unproject_image(UnprojectMethod method, Points3<Scalar>& directions, ValidFlags& valid,
+                                          int threads) const {
+    const std::size_t width = static_cast<std::size_t>(camera_.size.width);
+    const std::size_t n = width * static_cast<std::size_t>(camera_.size.height);
+    directions.resize(n);
+    valid.resize(n);
+    // Pixel index k is (k % width, k / width); each block is filled row segment by row segment.
+    const auto image_pixels = [width](std::size_t first, Block<Scalar>& b) {
+        int x = static_cast<int>(first % width), y = static_cast<int>(first / width);
+        for (std::size_t i = 0; i < b.count; x = 0, ++y) {
+            const std::size_t run = std::min(b.count - i, width - static_cast<std::size_t>(x));
+            for (std::size_t j = 0; j < run; ++j) {
+                b.pixel_x[i + j] = Scalar(x + static_cast<int>(j));
+                b.pixel_y[i + j] = Scalar(y);
+            }
+            i += run;
+        }
+    };
+    run(n, method, threads, image_pixels, write_into(directions, valid));
+}
+
+template <class Scalar>
+bool Unprojector<Scalar>::unproject(const Vec2T& pixel, UnprojectMethod method, Vec3T& direction) const {
+    bool valid = false;
+    const auto one_pixel = [&pixel](std::size_t, Block<Scalar>& b) {
+        b.pixel_x[0] = pixel.x();
+        b.pixel_y[0] = pixel.y();
+    };
+    const auto read_ray = [&](std::size_t, const Block<Scalar>& b) {
+        valid = b.ok[0] != Scalar(0);
+        if (valid) direction = Vec3T(b.ray_x[0], b.ray_y[0], b.ray_z[0]);
+    };
+    run(1, method, 1, one_pixel, read_ray);
+    return valid;
+}
+
+template class Unprojector<float>;
+template class Unprojector<double>;
+
+}  // namespace libcam
