@@ -33,6 +33,37 @@ constexpr int kFastNewtonSteps = 1;
 constexpr int kExactNewtonSteps = 2;
 
 // ---------------------------------------------------------------------------------
+// Interpolation in the table, used to build it and to read it.
+
+template <class Scalar>
+Scalar bilinear(const Scalar* values, int k, int stride, Scalar fx, Scalar fy) {
+    const Scalar upper = values[k] + fx * (values[k + 1] - values[k]);
+    const Scalar lower = values[k + stride] + fx * (values[k + stride + 1] - values[k + stride]);
+    return upper + fy * (lower - upper);
+}
+
+// Catmull-Rom weights of the nodes at -1, 0, 1, 2 for the fraction t in [0, 1).
+template <class Scalar>
+void catmull_rom_weights(Scalar t, Scalar w[4]) {
+    const Scalar half(0.5);
+    w[0] = half * t * ((Scalar(2) - t) * t - Scalar(1));
+    w[1] = half * ((Scalar(3) * t - Scalar(5)) * t * t + Scalar(2));
+    w[2] = half * t * ((Scalar(4) - Scalar(3) * t) * t + Scalar(1));
+    w[3] = half * (t - Scalar(1)) * t * t;
+}
+
+template <class Scalar>
+Scalar bicubic(const Scalar* values, int k, int stride, const Scalar wx[4], const Scalar wy[4]) {
+    Scalar sum(0);
+    for (int r = 0; r < 4; ++r) {
+        const int row = k + (r - 1) * stride - 1;
+        sum += wy[r] * (wx[0] * values[row] + wx[1] * values[row + 1] + wx[2] * values[row + 2] +
+                        wx[3] * values[row + 3]);
+    }
+    return sum;
+}
+
+// ---------------------------------------------------------------------------------
 // Per camera: the certified disc and the table (in double, by the full solver).
 
 // The largest |m| of the image's corners.
@@ -94,12 +125,13 @@ double certified_disc_radius(const Camera& camera, const typename Model::Paramet
     return 0;
 }
 
-// The exact undistorted point of a grid of pixels: the image and one ring of nodes
-// beyond each edge, so that the bicubic stencil of every pixel in the image lies inside.
-template <class Model, class Scalar>
-UnprojectionTable<Scalar> build_table(const Camera& camera, const typename Model::Parameters& lens, int nodes) {
+// The table's nodes for an image: every `step` pixels, from one node beyond the
+// top-left corner to one beyond the bottom-right, so that the bicubic stencil of every
+// pixel in the image lies inside.
+template <class Scalar>
+UnprojectionTable<Scalar> table_layout(const ImageSize& size, int nodes) {
     UnprojectionTable<Scalar> table;
-    const double width = static_cast<double>(camera.size.width), height = static_cast<double>(camera.size.height);
+    const double width = static_cast<double>(size.width), height = static_cast<double>(size.height);
     table.step = std::max(width, height) / (nodes - 1);
     // Pixel p sits at grid coordinate (p + 0.5) / step + 1: the image spans [1, 1 + W / step],
     // strictly below nodes - 2, the last start of a bicubic stencil.
@@ -107,19 +139,98 @@ UnprojectionTable<Scalar> build_table(const Camera& camera, const typename Model
     table.nodes_y = static_cast<int>(std::floor(height / table.step)) + 4;
     table.origin_x = table.origin_y = -0.5 - table.step;
     const std::size_t count = static_cast<std::size_t>(table.nodes_x) * static_cast<std::size_t>(table.nodes_y);
-    table.u_x.resize(count);
-    table.u_y.resize(count);
-    for (int j = 0; j < table.nodes_y; ++j) {
-        for (int i = 0; i < table.nodes_x; ++i) {
-            const Vec2 pixel(table.origin_x + i * table.step, table.origin_y + j * table.step);
+    for (std::vector<Scalar>* v : {&table.u_x, &table.u_y, &table.fast_ok, &table.lut_ok}) v->assign(count, Scalar(0));
+    return table;
+}
+
+template <class Scalar>
+Vec2 node_pixel(const UnprojectionTable<Scalar>& table, double i, double j) {
+    return {table.origin_x + i * table.step, table.origin_y + j * table.step};
+}
+
+// Every node's exact u, by the full solver; NaN where the pixel has no ray.
+template <class Model>
+void solve_nodes(const Camera& camera, const typename Model::Parameters& lens, UnprojectionTable<double>& table) {
+    for (int j = 0, k = 0; j < table.nodes_y; ++j) {
+        for (int i = 0; i < table.nodes_x; ++i, ++k) {
             Vec2 u;
-            const bool solved = solve_undistorted<Model>(lens, camera.intrinsics.normalized_from_pixel(pixel), u);
-            const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(table.nodes_x) + static_cast<std::size_t>(i);
-            table.u_x[k] = solved ? Scalar(u.x()) : std::numeric_limits<Scalar>::quiet_NaN();
-            table.u_y[k] = solved ? Scalar(u.y()) : std::numeric_limits<Scalar>::quiet_NaN();
+            const bool solved = solve_undistorted<Model>(lens, camera.intrinsics.normalized_from_pixel(node_pixel(table, i, j)), u);
+            table.u_x[static_cast<std::size_t>(k)] = solved ? u.x() : std::numeric_limits<double>::quiet_NaN();
+            table.u_y[static_cast<std::size_t>(k)] = solved ? u.y() : std::numeric_limits<double>::quiet_NaN();
         }
     }
-    return table;
+}
+
+// How far from `pixel` the estimate u reprojects, in px; infinity outside the domain.
+template <class Model>
+double reprojection_px(const Camera& camera, const typename Model::Parameters& lens, const Vec2& u, const Vec2& pixel) {
+    Vec2 m;
+    if (!Model::distort(lens, u, m)) return std::numeric_limits<double>::infinity();
+    const double error = (camera.intrinsics.pixel_from_normalized(m) - pixel).norm();
+    return std::isnan(error) ? std::numeric_limits<double>::infinity() : error;
+}
+
+// The fast and lut estimates' reprojection errors at a point (fractions fx, fy) of the
+// cell whose top-left node is k.
+template <class Model>
+std::pair<double, double> estimate_errors(const Camera& camera, const typename Model::Parameters& lens,
+                                          const UnprojectionTable<double>& table, int i, int j, double fx, double fy) {
+    const int k = j * table.nodes_x + i;
+    const Vec2 pixel = node_pixel(table, i + fx, j + fy);
+    const Vec2 m = camera.intrinsics.normalized_from_pixel(pixel);
+    const Vec2 start(bilinear(table.u_x.data(), k, table.nodes_x, fx, fy), bilinear(table.u_y.data(), k, table.nodes_x, fx, fy));
+    Vec2 m_start;
+    Eigen::Matrix2d d_m_d_u;
+    Model::distort(lens, start, m_start, &d_m_d_u);
+    const Vec2 fast = start - newton_step(d_m_d_u, Vec2(m_start - m));
+    double wx[4], wy[4];
+    catmull_rom_weights(fx, wx);
+    catmull_rom_weights(fy, wy);
+    const Vec2 lut(bicubic(table.u_x.data(), k, table.nodes_x, wx, wy), bicubic(table.u_y.data(), k, table.nodes_x, wx, wy));
+    return {reprojection_px<Model>(camera, lens, fast, pixel), reprojection_px<Model>(camera, lens, lut, pixel)};
+}
+
+// Marks the cells where fast and lut stay within the budget: checked at the cell's
+// centre (where bilinear interpolation errs most) and at its four quarter points (near
+// where bicubic does). Near a fold the inverse steepens and they do not; such cells go
+// to the full solver.
+template <class Model>
+void check_cells(const Camera& camera, const typename Model::Parameters& lens, double budget_px,
+                 UnprojectionTable<double>& table) {
+    constexpr double kCheckpoints[5][2] = {{0.5, 0.5}, {0.25, 0.25}, {0.75, 0.25}, {0.25, 0.75}, {0.75, 0.75}};
+    // Only cells whose bicubic stencil fits are ever used (locate_in_table).
+    for (int j = 1; j + 2 < table.nodes_y; ++j) {
+        for (int i = 1; i + 2 < table.nodes_x; ++i) {
+            double fast = 0, lut = 0;
+            for (const auto& [fx, fy] : kCheckpoints) {
+                const auto [fast_error, lut_error] = estimate_errors<Model>(camera, lens, table, i, j, fx, fy);
+                fast = std::max(fast, fast_error);
+                lut = std::max(lut, lut_error);
+            }
+            const std::size_t k = static_cast<std::size_t>(j * table.nodes_x + i);
+            table.fast_ok[k] = fast <= budget_px ? 1.0 : 0.0;
+            table.lut_ok[k] = lut <= budget_px ? 1.0 : 0.0;
+        }
+    }
+}
+
+template <class Scalar>
+UnprojectionTable<Scalar> in_scalar(const UnprojectionTable<double>& table) {
+    UnprojectionTable<Scalar> out{table.origin_x, table.origin_y, table.step, table.nodes_x, table.nodes_y, {}, {}, {}, {}};
+    out.u_x.assign(table.u_x.begin(), table.u_x.end());
+    out.u_y.assign(table.u_y.begin(), table.u_y.end());
+    out.fast_ok.assign(table.fast_ok.begin(), table.fast_ok.end());
+    out.lut_ok.assign(table.lut_ok.begin(), table.lut_ok.end());
+    return out;
+}
+
+template <class Model, class Scalar>
+UnprojectionTable<Scalar> build_table(const Camera& camera, const typename Model::Parameters& lens,
+                                      const UnprojectorOptions& options) {
+    UnprojectionTable<double> table = table_layout<double>(camera.size, options.table_nodes);
+    solve_nodes<Model>(camera, lens, table);
+    check_cells<Model>(camera, lens, options.approximation_budget_px, table);
+    return in_scalar<Scalar>(table);
 }
 
 // ---------------------------------------------------------------------------------
@@ -171,6 +282,8 @@ template <class Scalar>
 struct TableView {
     const Scalar* u_x;
     const Scalar* u_y;
+    const Scalar* fast_ok;  // per cell
+    const Scalar* lut_ok;
     int stride;  // nodes per row
     Scalar origin_x, origin_y, inv_step;
     Scalar end_x, end_y;  // a pixel's grid coordinates must lie in [1, end) for its bicubic stencil to fit
@@ -178,6 +291,8 @@ struct TableView {
     explicit TableView(const UnprojectionTable<Scalar>& table)
         : u_x(table.u_x.data()),
           u_y(table.u_y.data()),
+          fast_ok(table.fast_ok.data()),
+          lut_ok(table.lut_ok.data()),
           stride(table.nodes_x),
           origin_x(Scalar(table.origin_x)),
           origin_y(Scalar(table.origin_y)),
@@ -203,34 +318,6 @@ void locate_in_table(const TableView<Scalar>& table_view, Block<Scalar>& b) {
         b.fraction_y[i] = y - Scalar(row);
         b.ok[i] = batch::flag<Scalar>(inside);
     }
-}
-
-template <class Scalar>
-Scalar bilinear(const Scalar* values, int k, int stride, Scalar fx, Scalar fy) {
-    const Scalar upper = values[k] + fx * (values[k + 1] - values[k]);
-    const Scalar lower = values[k + stride] + fx * (values[k + stride + 1] - values[k + stride]);
-    return upper + fy * (lower - upper);
-}
-
-// Catmull-Rom weights of the nodes at -1, 0, 1, 2 for the fraction t in [0, 1).
-template <class Scalar>
-void catmull_rom_weights(Scalar t, Scalar w[4]) {
-    const Scalar half(0.5);
-    w[0] = half * t * ((Scalar(2) - t) * t - Scalar(1));
-    w[1] = half * ((Scalar(3) * t - Scalar(5)) * t * t + Scalar(2));
-    w[2] = half * t * ((Scalar(4) - Scalar(3) * t) * t + Scalar(1));
-    w[3] = half * (t - Scalar(1)) * t * t;
-}
-
-template <class Scalar>
-Scalar bicubic(const Scalar* values, int k, int stride, const Scalar wx[4], const Scalar wy[4]) {
-    Scalar sum(0);
-    for (int r = 0; r < 4; ++r) {
-        const int row = k + (r - 1) * stride - 1;
-        sum += wy[r] * (wx[0] * values[row] + wx[1] * values[row + 1] + wx[2] * values[row + 2] +
-                        wx[3] * values[row + 3]);
-    }
-    return sum;
 }
 
 // u interpolated from the table at each located pixel; ok stays 1 only where every
@@ -261,6 +348,13 @@ template <Interpolation kind, class Scalar>
 void start_from_table(const TableView<Scalar>& table, Block<Scalar>& b) {
     locate_in_table(table, b);
     interpolate<kind>(table, b);
+}
+
+// Keeps ok only in the cells where the method's estimate was checked to be within the
+// budget (check_cells).
+template <class Scalar>
+void require_accurate_cell(const Scalar* cell_ok, Block<Scalar>& b) {
+    for (std::size_t i = 0; i < b.count; ++i) b.ok[i] = cell_ok[b.cell[i]] != Scalar(0) ? b.ok[i] : Scalar(0);
 }
 
 // Without the full solver, only a pixel inside the certified disc may be called valid.
@@ -312,15 +406,18 @@ void certify(const typename Model::Parameters& lens_parameters, Block<Scalar>& b
     }
 }
 
-// The full solver for every pixel not settled yet: its answer, or no ray.
-template <class Model, class Scalar>
-void solve_remaining(const typename Model::Parameters& lens, Block<Scalar>& b) {
+// The full solver, in double whatever the scalar type, for every pixel not settled yet:
+// its answer, or no ray. In double, so that the float methods flag exactly the pixels
+// the double solver flags (a float residual test would accept pixels just past a fold).
+template <class ModelDouble, class Scalar>
+void solve_remaining(const Intrinsics& intrinsics, const typename ModelDouble::Parameters& lens, Block<Scalar>& b) {
     for (std::size_t i = 0; i < b.count; ++i) {
         if (b.ok[i] != Scalar(0)) continue;
-        Vec2L<Scalar> u;
-        const bool solved = solve_undistorted<Model>(lens, Vec2L<Scalar>(b.m_x[i], b.m_y[i]), u);
-        b.u_x[i] = solved ? lane_value(u.x()) : Scalar(0);
-        b.u_y[i] = solved ? lane_value(u.y()) : Scalar(0);
+        const Vec2 m = intrinsics.normalized_from_pixel(Vec2(double(b.pixel_x[i]), double(b.pixel_y[i])));
+        Vec2 u;
+        const bool solved = solve_undistorted<ModelDouble>(lens, m, u);
+        b.u_x[i] = solved ? Scalar(u.x()) : Scalar(0);
+        b.u_y[i] = solved ? Scalar(u.y()) : Scalar(0);
         b.ok[i] = batch::flag<Scalar>(solved);
     }
 }
@@ -350,7 +447,9 @@ void unproject_closed_form(const typename Model::Parameters& lens_parameters, Bl
     }
 }
 
-// u for every pixel by `method`, with ok = 1 where that settles it.
+// u for every pixel by `method`, with ok = 1 where that settles it: only inside the
+// certified disc, whose pixels all have a ray, so that the validity never depends on
+// the approximation (the full solver decides the others).
 template <class Model, class Scalar>
 void approximate(const Context<Scalar>& context, const typename Model::Parameters& lens, UnprojectMethod method,
                  Block<Scalar>& b) {
@@ -358,32 +457,43 @@ void approximate(const Context<Scalar>& context, const typename Model::Parameter
         case UnprojectMethod::Lut:
             start_from_table<Interpolation::Bicubic>(context.table, b);
             require_certified_disc(context.certified_radius_squared, b);
+            require_accurate_cell(context.table.lut_ok, b);
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Fast:
             start_from_table<Interpolation::Bilinear>(context.table, b);
             require_certified_disc(context.certified_radius_squared, b);
+            require_accurate_cell(context.table.fast_ok, b);
             newton_steps<Model>(lens, kFastNewtonSteps, b);
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Exact:
             start_from_table<Interpolation::Bilinear>(context.table, b);
+            require_certified_disc(context.certified_radius_squared, b);
             newton_steps<Model>(lens, kExactNewtonSteps, b);
             certify<Model>(lens, b);
             return;
     }
 }
 
+// The model in Lane<Scalar> for the vectorised steps, and in double for the full solver.
+template <class Model>
+struct LensPair {
+    using ModelDouble = LensInScalar<Model, double>;
+    typename Model::Parameters lanes;
+    typename ModelDouble::Parameters full;
+};
+
 template <class Model, class Scalar>
-void unproject_block(const Context<Scalar>& context, const typename Model::Parameters& lens, UnprojectMethod method,
+void unproject_block(const Context<Scalar>& context, const LensPair<Model>& lens, UnprojectMethod method,
                      Block<Scalar>& b) {
     normalize(context.intrinsics, b);
     if constexpr (SolvedIteratively<Model>) {
-        approximate<Model>(context, lens, method, b);
-        solve_remaining<Model>(lens, b);
+        approximate<Model>(context, lens.lanes, method, b);
+        solve_remaining<typename LensPair<Model>::ModelDouble>(context.intrinsics, lens.full, b);
         rays_from_undistorted<Model>(b);
     } else {
-        unproject_closed_form<Model>(lens, b);
+        unproject_closed_form<Model>(lens.lanes, b);
     }
 }
 
@@ -395,12 +505,15 @@ Unprojector<Scalar>::Unprojector(const Camera& camera, UnprojectorOptions option
     if (options.table_nodes < 4 || options.table_nodes > 100'000) {
         throw InvalidArgument("table_nodes: must be in [4, 100000], got " + std::to_string(options.table_nodes));
     }
+    if (!(options.approximation_budget_px > 0)) {
+        throw InvalidArgument("approximation_budget_px: must be > 0, got " + format_number(options.approximation_budget_px));
+    }
     valid_radius_ = batch::lens_valid_radius(camera_.lens);
     visit_lens_model<double>(camera_.lens.type, [&]<class Model>() {
         if constexpr (SolvedIteratively<Model>) {
             const auto lens = batch::model_parameters<Model>(camera_.lens, valid_radius_);
             certified_radius_ = certified_disc_radius<Model>(camera_, lens);
-            table_ = build_table<Model, Scalar>(camera_, lens, options.table_nodes);
+            table_ = build_table<Model, Scalar>(camera_, lens, options);
         }
     });
 }
@@ -413,7 +526,8 @@ void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads
     const Context<Scalar> context{camera_.intrinsics, table, Scalar(certified_radius_ * certified_radius_),
                                   Scalar(valid_radius_ * valid_radius_)};
     visit_lens_model<Lane<Scalar>>(camera_.lens.type, [&]<class Model>() {
-        const auto lens = batch::model_parameters<Model>(camera_.lens, valid_radius_);
+        const LensPair<Model> lens{batch::model_parameters<Model>(camera_.lens, valid_radius_),
+                                   batch::model_parameters<LensInScalar<Model, double>>(camera_.lens, valid_radius_)};
         parallel_chunks(n, threads, kBlock, [&](std::size_t begin, std::size_t end) {
             Block<Scalar> block;
             for (std::size_t first = begin; first < end; first += kBlock) {

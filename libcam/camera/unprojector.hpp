@@ -13,10 +13,13 @@
 //          against unprojection_tolerance(); a pixel that fails goes to the full solver;
 //   fast:  u from the table (bilinear) and one Newton step, no check;
 //   lut:   u from the table (bicubic, Catmull-Rom), no model evaluation.
-// Validity never depends on the approximation: fast and lut call a pixel valid only when
-// it lies inside the certified disc (certified_radius()), whose every pixel has a ray in
-// the lens's valid domain; any other pixel (past it, outside the table, next to a table
-// node without a ray) is decided by the full solver, for every method.
+// Validity never depends on the approximation: a method settles a pixel only inside the
+// certified disc (certified_radius()), whose every pixel has a ray in the lens's valid
+// domain; any other pixel (past it, outside the table, next to a table node without a
+// ray) goes to the full solver, in double for both scalar types. So every method, in
+// float and in double, flags exactly the pixels Camera::unproject flags. Nor does the
+// accuracy of fast and lut depend on the lens: they answer only in the cells where they
+// were checked to reproject within UnprojectorOptions::approximation_budget_px.
 //
 // Directions are in the camera frame, as Camera::unproject gives them (z = 1 for PINHOLE
 // and OpenCV's models, unit length for the others), and 0 where invalid. The result of
@@ -36,6 +39,10 @@ struct UnprojectorOptions {
     // interpolation error falls with the square (bilinear) or the cube (bicubic) of the
     // spacing; 384 puts the lut method within 0.01 px on issue 3's wide lens.
     int table_nodes = 384;
+    // fast and lut answer only in the table cells where their estimate reprojects within
+    // this many pixels at five checkpoints (the centre and the quarter points); the other
+    // cells (next to a fold, where the inverse steepens) go to the full solver.
+    double approximation_budget_px = 0.005;
 };
 
 // The table of exact undistorted points (used by the models solved iteratively).
@@ -45,6 +52,8 @@ struct UnprojectionTable {
     double step = 0;                    // pixels between nodes; 0: no table
     int nodes_x = 0, nodes_y = 0;
     std::vector<Scalar> u_x, u_y;  // row-major, NaN where the pixel has no ray
+    // Per cell, indexed by its top-left node: 1 where fast (lut) keeps within the budget.
+    std::vector<Scalar> fast_ok, lut_ok;
 };
 
 template <class Scalar>

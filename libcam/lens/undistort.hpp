@@ -85,27 +85,23 @@ bool solve_radial(const Parameters& lens, Scalar target, Scalar& r) {
 
 }  // namespace detail
 
-// Solves Model::distort(lens, u) = m for u, as described above. Returns false, and
-// leaves u unspecified, when there is no accurate solution inside the valid domain.
+// Step 2 alone: from the start u, Newton's method on distort(u) = m with step halving,
+// until the residual stops decreasing. True when it ends inside the valid domain with
+// a residual within unprojection_tolerance(|m|); u is then the solution.
 template <class Model, class Parameters, class Scalar>
-bool solve_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>& m, Eigen::Matrix<Scalar, 2, 1>& u) {
+bool polish_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>& m, Eigen::Matrix<Scalar, 2, 1>& u) {
     using std::abs;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Jacobian22 = Eigen::Matrix<Scalar, 2, 2>;
     constexpr int kMaxIterations = 30;
     constexpr int kMaxHalvings = 30;
 
-    const Scalar distorted_radius = m.norm();
-    Scalar r(0);
-    if (!detail::solve_radial<Model>(lens, distorted_radius, r)) return false;
-    u = distorted_radius > Scalar(0) ? Vec2T(m * (r / distorted_radius)) : Vec2T::Zero();
-
     Vec2T m_u;
     Jacobian22 d_m_d_u;
     if (!Model::distort(lens, u, m_u, &d_m_d_u)) return false;
     Vec2T residual = m_u - m;
     Scalar error = residual.norm();
-    const Scalar tolerance = unprojection_tolerance(distorted_radius);
+    const Scalar tolerance = unprojection_tolerance(m.norm());
     for (int iteration = 0; iteration < kMaxIterations && error > Scalar(0); ++iteration) {
         const Vec2T step = newton_step(d_m_d_u, residual);
         if (!(abs(step.x()) < std::numeric_limits<Scalar>::infinity() && abs(step.y()) < std::numeric_limits<Scalar>::infinity())) break;
@@ -131,6 +127,18 @@ bool solve_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>
         if (!improved) break;
     }
     return error <= tolerance;
+}
+
+// Solves Model::distort(lens, u) = m for u, as described above. Returns false, and
+// leaves u unspecified, when there is no accurate solution inside the valid domain.
+template <class Model, class Parameters, class Scalar>
+bool solve_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>& m, Eigen::Matrix<Scalar, 2, 1>& u) {
+    using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
+    const Scalar distorted_radius = m.norm();
+    Scalar r(0);
+    if (!detail::solve_radial<Model>(lens, distorted_radius, r)) return false;
+    u = distorted_radius > Scalar(0) ? Vec2T(m * (r / distorted_radius)) : Vec2T::Zero();
+    return polish_undistorted<Model>(lens, m, u);
 }
 
 }  // namespace libcam
