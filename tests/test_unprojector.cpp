@@ -218,7 +218,7 @@ TEST_CASE("fast and lut on every lens of the test set, folds inside the image in
 TEMPLATE_TEST_CASE("Batch paths: the same bits on 1, 2 and 3 threads, one pixel at a time, and for the whole image", "",
                    float, double) {
     using Scalar = TestType;
-    for (const char* name : {"OPENCV8 wide", "FISHEYE strong", "LONLAT"}) {
+    for (const char* name : {"PINHOLE", "OPENCV8 wide", "FISHEYE strong", "LONLAT"}) {
         const Camera camera = scaled_to_width(lens_case(name).camera, 320);  // the whole image in milliseconds
         INFO(name << " " << scalar_name<Scalar>());
         const Unprojector<Scalar> unprojector(camera);

@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "libcam/camera/batch.hpp"
@@ -56,6 +57,19 @@ struct UnprojectionTable {
     std::vector<Scalar> fast_ok, lut_ok;
 };
 
+namespace detail {
+// Where the rays and flags of a run go (unprojector.cpp).
+template <class Scalar>
+struct RayOutput {
+    Scalar* x;
+    Scalar* y;
+    Scalar* z;
+    std::uint8_t* valid;
+
+    RayOutput at(std::size_t first) const { return {x + first, y + first, z + first, valid + first}; }
+};
+}  // namespace detail
+
 template <class Scalar>
 class Unprojector {
 public:
@@ -83,8 +97,9 @@ public:
     const UnprojectionTable<Scalar>& table() const { return table_; }
 
 private:
-    template <class FillPixels, class Sink>
-    void run(std::size_t n, UnprojectMethod method, int threads, FillPixels&& fill, Sink&& sink) const;
+    template <class FillPixels>
+    void run(std::size_t n, UnprojectMethod method, int threads, FillPixels&& fill,
+             const detail::RayOutput<Scalar>& out) const;
 
     Camera camera_;
     double valid_radius_ = 0;

@@ -222,8 +222,10 @@ private:
         const Scalar q = one + r2 * (k4 + r2 * (k5 + r2 * k6));
         const Scalar dp = k1 + r2 * (two * k2 + three * k3 * r2);
         const Scalar dq = k4 + r2 * (two * k5 + three * k6 * r2);
-        const Scalar value = p / q;
-        return {value, (dp - value * dq) / q, q};
+        // One division, as cv::projectPoints (icdist2 = 1 / q): the Jacobian needs 1/q twice.
+        const Scalar inverse_q = one / q;
+        const Scalar value = p * inverse_q;
+        return {value, (dp - value * dq) * inverse_q, q};
     }
 
     // OPENCV14's tilted sensor: m = (v0, v1) / v2 with v = T [d; 1], chained onto the
