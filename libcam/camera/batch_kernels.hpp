@@ -58,9 +58,10 @@ constexpr Scalar flag(bool value) {
     return value ? Scalar(1) : Scalar(0);
 }
 
+// Bytes 1 where the flag is positive (1 valid; 0 and -1 are the ways of being invalid).
 template <class Scalar>
 void store_flags(std::span<const Scalar> flags, std::uint8_t* out) {
-    for (std::size_t i = 0; i < flags.size(); ++i) out[i] = flags[i] != Scalar(0) ? 1 : 0;
+    for (std::size_t i = 0; i < flags.size(); ++i) out[i] = flags[i] > Scalar(0) ? 1 : 0;
 }
 
 }  // namespace libcam::batch

@@ -89,40 +89,60 @@ double disc_to_certify(const Camera& camera, const typename Model::Parameters& l
     return radius;
 }
 
-// min |distort(u)| over the circle |u| = radius, provided distort is defined on the
-// whole disc (checked on 64 rings of 4096 points); nullopt otherwise.
+// The image of the disc |u| <= radius under distort, sampled on 64 rings of 4096 points:
+// the smallest |m| on its rim and the largest anywhere. nullopt where distort is not
+// defined on the whole disc.
+struct DiscImage {
+    double rim_inner = std::numeric_limits<double>::infinity();
+    double outer = 0;
+};
+
 template <class Model>
-std::optional<double> smallest_image_of_circle(const typename Model::Parameters& lens, double radius) {
+std::optional<DiscImage> image_of_disc(const typename Model::Parameters& lens, double radius) {
     constexpr int kRings = 64, kAngles = 4096;
-    double smallest = std::numeric_limits<double>::infinity();
+    DiscImage image;
     for (int ring = 1; ring <= kRings; ++ring) {
         const double r = radius * ring / kRings;
         for (int a = 0; a < kAngles; ++a) {
             const double angle = 2 * std::numbers::pi * a / kAngles;
             Vec2 m;
             if (!Model::distort(lens, Vec2(r * std::cos(angle), r * std::sin(angle)), m)) return std::nullopt;
-            if (ring == kRings) smallest = std::min(smallest, m.norm());
+            if (ring == kRings) image.rim_inner = std::min(image.rim_inner, m.norm());
+            image.outer = std::max(image.outer, m.norm());
         }
     }
-    return smallest;
+    return image;
 }
 
-// A radius rho such that every normalised point m with |m| < rho has a ray in the valid
-// domain. Why: distort is continuous on the disc |u| <= R and maps 0 to 0; the image C of
-// the circle |u| = R winds once around 0 (the model's own premise that the terms beyond
-// the radial one are small) and keeps a distance min |C| from it, so the disc
-// |m| < min |C| lies inside C, and each of its points has a preimage with |u| < R (the
-// degree of the map). rho is 0.1 % below the sampled minimum, which covers C between
-// samples many times over. Returns 0 if no disc can be certified.
+// Radii of normalised points that settle validity without the full solver:
+//  - every m with |m| < certified has a ray in the valid domain. Why: distort is
+//    continuous on a disc |u| <= R inside the domain and maps 0 to 0; the image C of
+//    the circle |u| = R winds once around 0 (the model's own premise that the terms
+//    beyond the radial one are small) and keeps a distance min |C| from it, so the disc
+//    |m| < min |C| lies inside C, and each of its points has a preimage with |u| < R
+//    (the degree of the map);
+//  - no m with |m| > no_ray has one: the whole valid domain maps inside |m| <= no_ray
+//    (known only for a bounded domain; infinite otherwise).
+// Both are 0.1 % inside the sampled extremes, which covers the map between samples many
+// times over. certified is 0 if no disc can be certified.
+struct DomainBounds {
+    double certified = 0;
+    double no_ray = std::numeric_limits<double>::infinity();
+};
+
 template <class Model>
-double certified_disc_radius(const Camera& camera, const typename Model::Parameters& lens) {
+DomainBounds domain_bounds(const Camera& camera, const typename Model::Parameters& lens) {
+    DomainBounds bounds;
     double radius = disc_to_certify<Model>(camera, lens);
     for (int attempt = 0; attempt < 64; ++attempt, radius *= 0.9) {
-        if (const std::optional<double> smallest = smallest_image_of_circle<Model>(lens, radius)) {
-            return *smallest * (1 - 1e-3);
+        if (const std::optional<DiscImage> image = image_of_disc<Model>(lens, radius)) {
+            bounds.certified = image->rim_inner * (1 - 1e-3);
+            // The disc is the whole domain only if it is the valid radius itself.
+            if (attempt == 0 && std::isfinite(lens.valid_radius)) bounds.no_ray = image->outer * (1 + 1e-3);
+            return bounds;
         }
     }
-    return 0;
+    return bounds;
 }
 
 // The table's nodes for an image: every `step` pixels, from one node beyond the
@@ -243,7 +263,7 @@ struct Block {
     Scalar pixel_x[kBlock], pixel_y[kBlock];
     Scalar m_x[kBlock], m_y[kBlock];  // K^-1 [x, y, 1]
     Scalar u_x[kBlock], u_y[kBlock];  // undistorted point
-    Scalar ok[kBlock];                // 1: u (then the ray) is the answer; 0: not yet, or no ray
+    Scalar ok[kBlock];  // 1: u (then the ray) is the answer; -1: settled, no ray; 0: for the full solver
     detail::RayOutput<Scalar> rays;           // where the block's rays and flags go
     int cell[kBlock];                             // table node at the top-left of the pixel's cell
     Scalar fraction_x[kBlock], fraction_y[kBlock];  // position within that cell
@@ -257,6 +277,7 @@ struct Context {
     const Intrinsics& intrinsics;
     const TableView<Scalar>& table;
     Scalar certified_radius_squared;
+    Scalar no_ray_radius_squared;
     Scalar valid_radius_squared;
 };
 
@@ -407,6 +428,15 @@ void certify(const typename Model::Parameters& lens_parameters, Block<Scalar>& b
     }
 }
 
+// Settles as having no ray every pixel beyond the image of the whole domain.
+template <class Scalar>
+void reject_beyond_domain(Scalar no_ray_radius_squared, Block<Scalar>& b) {
+    for (std::size_t i = 0; i < b.count; ++i) {
+        const bool beyond = b.m_x[i] * b.m_x[i] + b.m_y[i] * b.m_y[i] > no_ray_radius_squared;
+        b.ok[i] = beyond ? Scalar(-1) : b.ok[i];
+    }
+}
+
 // The full solver, in double whatever the scalar type, for every pixel not settled yet:
 // its answer, or no ray. In double, so that the float methods flag exactly the pixels
 // the double solver flags (a float residual test would accept pixels just past a fold).
@@ -433,7 +463,7 @@ void set_ray(Block<Scalar>& b, std::size_t i, bool ok, const Vec3L<Scalar>& ray)
 template <class Model, class Scalar>
 void rays_from_undistorted(Block<Scalar>& b) {
     for (std::size_t i = 0; i < b.count; ++i) {
-        set_ray(b, i, b.ok[i] != Scalar(0), Model::ray_from_undistorted(Vec2L<Scalar>(b.u_x[i], b.u_y[i])));
+        set_ray(b, i, b.ok[i] > Scalar(0), Model::ray_from_undistorted(Vec2L<Scalar>(b.u_x[i], b.u_y[i])));
     }
 }
 
@@ -448,12 +478,10 @@ void unproject_closed_form(const typename Model::Parameters& lens_parameters, Bl
     }
 }
 
-// u for every pixel by `method`, with ok = 1 where that settles it: only inside the
-// certified disc, whose pixels all have a ray, so that the validity never depends on
-// the approximation (the full solver decides the others).
+// u by `method`, with ok = 1 where that settles it (see approximate).
 template <class Model, class Scalar>
-void approximate(const Context<Scalar>& context, const typename Model::Parameters& lens, UnprojectMethod method,
-                 Block<Scalar>& b) {
+void estimate(const Context<Scalar>& context, const typename Model::Parameters& lens, UnprojectMethod method,
+              Block<Scalar>& b) {
     switch (method) {
         case UnprojectMethod::Lut:
             start_from_table<Interpolation::Bicubic>(context.table, b);
@@ -475,6 +503,17 @@ void approximate(const Context<Scalar>& context, const typename Model::Parameter
             certify<Model>(lens, b);
             return;
     }
+}
+
+// u for every pixel by `method`, with ok = 1 where that settles it: only inside the
+// certified disc, whose pixels all have a ray, so that the validity never depends on
+// the approximation. Pixels beyond the domain's image are settled as having none; the
+// full solver decides the others.
+template <class Model, class Scalar>
+void approximate(const Context<Scalar>& context, const typename Model::Parameters& lens, UnprojectMethod method,
+                 Block<Scalar>& b) {
+    estimate<Model>(context, lens, method, b);
+    reject_beyond_domain(context.no_ray_radius_squared, b);
 }
 
 // The model in Lane<Scalar> for the vectorised steps, and in double for the full solver.
@@ -513,7 +552,9 @@ Unprojector<Scalar>::Unprojector(const Camera& camera, UnprojectorOptions option
     visit_lens_model<double>(camera_.lens.type, [&]<class Model>() {
         if constexpr (SolvedIteratively<Model>) {
             const auto lens = batch::model_parameters<Model>(camera_.lens, valid_radius_);
-            certified_radius_ = certified_disc_radius<Model>(camera_, lens);
+            const DomainBounds bounds = domain_bounds<Model>(camera_, lens);
+            certified_radius_ = bounds.certified;
+            no_ray_radius_ = bounds.no_ray;
             table_ = build_table<Model, Scalar>(camera_, lens, options);
         }
     });
@@ -525,7 +566,7 @@ void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads
                               const detail::RayOutput<Scalar>& out) const {
     const TableView<Scalar> table(table_);
     const Context<Scalar> context{camera_.intrinsics, table, Scalar(certified_radius_ * certified_radius_),
-                                  Scalar(valid_radius_ * valid_radius_)};
+                                  Scalar(no_ray_radius_ * no_ray_radius_), Scalar(valid_radius_ * valid_radius_)};
     visit_lens_model<Lane<Scalar>>(camera_.lens.type, [&]<class Model>() {
         const LensPair<Model> lens{batch::model_parameters<Model>(camera_.lens, valid_radius_),
                                    batch::model_parameters<LensInScalar<Model, double>>(camera_.lens, valid_radius_)};

@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "libcam/camera/batch.hpp"
@@ -94,6 +95,8 @@ public:
     const Camera& camera() const { return camera_; }
     // Every pixel whose normalised point m has |m| below this has a ray (0 without a table).
     double certified_radius() const { return certified_radius_; }
+    // No pixel whose m has |m| above this has a ray (infinity if the domain is unbounded).
+    double no_ray_radius() const { return no_ray_radius_; }
     const UnprojectionTable<Scalar>& table() const { return table_; }
 
 private:
@@ -104,6 +107,7 @@ private:
     Camera camera_;
     double valid_radius_ = 0;
     double certified_radius_ = 0;
+    double no_ray_radius_ = std::numeric_limits<double>::infinity();
     UnprojectionTable<Scalar> table_;
 };
 
