@@ -95,6 +95,7 @@ double disc_to_certify(const Camera& camera, const typename Model::Parameters& l
 struct DiscImage {
     double rim_inner = std::numeric_limits<double>::infinity();
     double outer = 0;
+    std::vector<Vec2> rim;  // the image of the circle itself, in the order of the angle
 };
 
 template <class Model>
@@ -107,7 +108,10 @@ std::optional<DiscImage> image_of_disc(const typename Model::Parameters& lens, d
             const double angle = 2 * std::numbers::pi * a / kAngles;
             Vec2 m;
             if (!Model::distort(lens, Vec2(r * std::cos(angle), r * std::sin(angle)), m)) return std::nullopt;
-            if (ring == kRings) image.rim_inner = std::min(image.rim_inner, m.norm());
+            if (ring == kRings) {
+                image.rim_inner = std::min(image.rim_inner, m.norm());
+                image.rim.push_back(m);
+            }
             image.outer = std::max(image.outer, m.norm());
         }
     }
@@ -122,13 +126,55 @@ std::optional<DiscImage> image_of_disc(const typename Model::Parameters& lens, d
 //    |m| < min |C| lies inside C, and each of its points has a preimage with |u| < R
 //    (the degree of the map);
 //  - no m with |m| > no_ray has one: the whole valid domain maps inside |m| <= no_ray
-//    (known only for a bounded domain; infinite otherwise).
-// Both are 0.1 % inside the sampled extremes, which covers the map between samples many
-// times over. certified is 0 if no disc can be certified.
+//    (known only for a bounded domain; infinite otherwise);
+//  - no m past the rim (the image of the domain's edge, when it is star-shaped) has one.
+// The radii are 0.1 % inside the sampled extremes, which covers the map between samples
+// many times over. certified is 0 if no disc can be certified.
 struct DomainBounds {
     double certified = 0;
     double no_ray = std::numeric_limits<double>::infinity();
+    detail::DomainRim rim;
 };
+
+// The rim as its radius against its polar angle, if every ray from the centre crosses it
+// once (its angle increases all the way round); empty otherwise. Sorted by angle, with
+// the last sample repeated before the first and the first after the last, 2 pi apart.
+detail::DomainRim rim_by_angle(const std::vector<Vec2>& rim) {
+    const std::size_t n = rim.size();
+    double turned = 0;
+    std::size_t first = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec2& a = rim[k];
+        const Vec2& b = rim[(k + 1) % n];
+        const double step = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));  // angle from a to b
+        if (!(step > 0)) return {};
+        turned += step;
+        if (std::atan2(b.y(), b.x()) < std::atan2(rim[first].y(), rim[first].x())) first = (k + 1) % n;
+    }
+    if (std::abs(turned - 2 * std::numbers::pi) > 1e-6) return {};
+    detail::DomainRim out;
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec2& m = rim[(first + k) % n];
+        out.angle.push_back(std::atan2(m.y(), m.x()));
+        out.radius.push_back(m.norm());
+    }
+    out.angle.insert(out.angle.begin(), out.angle.back() - 2 * std::numbers::pi);
+    out.radius.insert(out.radius.begin(), out.radius.back());
+    out.angle.push_back(out.angle[1] + 2 * std::numbers::pi);
+    out.radius.push_back(out.radius[1]);
+    return out;
+}
+
+// True when m lies past the rim by more than 0.01 % of its radius there.
+bool beyond_rim(const detail::DomainRim& rim, const Vec2& m) {
+    if (rim.angle.empty()) return false;
+    const double angle = std::atan2(m.y(), m.x());
+    const std::size_t i = static_cast<std::size_t>(std::upper_bound(rim.angle.begin(), rim.angle.end(), angle) - rim.angle.begin());
+    if (i == 0 || i >= rim.angle.size()) return false;
+    const double t = (angle - rim.angle[i - 1]) / (rim.angle[i] - rim.angle[i - 1]);
+    const double radius = rim.radius[i - 1] + t * (rim.radius[i] - rim.radius[i - 1]);
+    return m.norm() > radius * (1 + 1e-4);
+}
 
 template <class Model>
 DomainBounds domain_bounds(const Camera& camera, const typename Model::Parameters& lens) {
@@ -138,7 +184,10 @@ DomainBounds domain_bounds(const Camera& camera, const typename Model::Parameter
         if (const std::optional<DiscImage> image = image_of_disc<Model>(lens, radius)) {
             bounds.certified = image->rim_inner * (1 - 1e-3);
             // The disc is the whole domain only if it is the valid radius itself.
-            if (attempt == 0 && std::isfinite(lens.valid_radius)) bounds.no_ray = image->outer * (1 + 1e-3);
+            if (attempt == 0 && std::isfinite(lens.valid_radius)) {
+                bounds.no_ray = image->outer * (1 + 1e-3);
+                bounds.rim = rim_by_angle(image->rim);
+            }
             return bounds;
         }
     }
@@ -278,6 +327,7 @@ struct Context {
     const TableView<Scalar>& table;
     Scalar certified_radius_squared;
     Scalar no_ray_radius_squared;
+    const detail::DomainRim& rim;
     Scalar valid_radius_squared;
 };
 
@@ -440,13 +490,14 @@ void reject_beyond_domain(Scalar no_ray_radius_squared, Block<Scalar>& b) {
 // The full solver, in double whatever the scalar type, for every pixel not settled yet:
 // its answer, or no ray. In double, so that the float methods flag exactly the pixels
 // the double solver flags (a float residual test would accept pixels just past a fold).
+// A pixel past the rim has no ray; it is not sent to the solver, whose failures are slow.
 template <class ModelDouble, class Scalar>
-void solve_remaining(const Intrinsics& intrinsics, const typename ModelDouble::Parameters& lens, Block<Scalar>& b) {
+void solve_remaining(const Context<Scalar>& context, const typename ModelDouble::Parameters& lens, Block<Scalar>& b) {
     for (std::size_t i = 0; i < b.count; ++i) {
         if (b.ok[i] != Scalar(0)) continue;
-        const Vec2 m = intrinsics.normalized_from_pixel(Vec2(double(b.pixel_x[i]), double(b.pixel_y[i])));
+        const Vec2 m = context.intrinsics.normalized_from_pixel(Vec2(double(b.pixel_x[i]), double(b.pixel_y[i])));
         Vec2 u;
-        const bool solved = solve_undistorted<ModelDouble>(lens, m, u);
+        const bool solved = !beyond_rim(context.rim, m) && solve_undistorted<ModelDouble>(lens, m, u);
         b.u_x[i] = solved ? Scalar(u.x()) : Scalar(0);
         b.u_y[i] = solved ? Scalar(u.y()) : Scalar(0);
         b.ok[i] = batch::flag<Scalar>(solved);
@@ -530,7 +581,7 @@ void unproject_block(const Context<Scalar>& context, const LensPair<Model>& lens
     normalize(context.intrinsics, b);
     if constexpr (SolvedIteratively<Model>) {
         approximate<Model>(context, lens.lanes, method, b);
-        solve_remaining<typename LensPair<Model>::ModelDouble>(context.intrinsics, lens.full, b);
+        solve_remaining<typename LensPair<Model>::ModelDouble>(context, lens.full, b);
         rays_from_undistorted<Model>(b);
     } else {
         unproject_closed_form<Model>(lens.lanes, b);
@@ -555,6 +606,7 @@ Unprojector<Scalar>::Unprojector(const Camera& camera, UnprojectorOptions option
             const DomainBounds bounds = domain_bounds<Model>(camera_, lens);
             certified_radius_ = bounds.certified;
             no_ray_radius_ = bounds.no_ray;
+            rim_ = bounds.rim;
             table_ = build_table<Model, Scalar>(camera_, lens, options);
         }
     });
@@ -566,7 +618,7 @@ void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads
                               const detail::RayOutput<Scalar>& out) const {
     const TableView<Scalar> table(table_);
     const Context<Scalar> context{camera_.intrinsics, table, Scalar(certified_radius_ * certified_radius_),
-                                  Scalar(no_ray_radius_ * no_ray_radius_), Scalar(valid_radius_ * valid_radius_)};
+                                  Scalar(no_ray_radius_ * no_ray_radius_), rim_, Scalar(valid_radius_ * valid_radius_)};
     visit_lens_model<Lane<Scalar>>(camera_.lens.type, [&]<class Model>() {
         const LensPair<Model> lens{batch::model_parameters<Model>(camera_.lens, valid_radius_),
                                    batch::model_parameters<LensInScalar<Model, double>>(camera_.lens, valid_radius_)};

@@ -69,6 +69,11 @@ struct RayOutput {
 
     RayOutput at(std::size_t first) const { return {x + first, y + first, z + first, valid + first}; }
 };
+
+// The rim of the valid domain's image: its radius against its polar angle (unprojector.cpp).
+struct DomainRim {
+    std::vector<double> angle, radius;
+};
 }  // namespace detail
 
 template <class Scalar>
@@ -108,6 +113,7 @@ private:
     double valid_radius_ = 0;
     double certified_radius_ = 0;
     double no_ray_radius_ = std::numeric_limits<double>::infinity();
+    detail::DomainRim rim_;
     UnprojectionTable<Scalar> table_;
 };
 
