@@ -73,18 +73,22 @@ TEST_CASE("bench on a FISHEYE lens: OpenCV's fisheye functions, no mrcal rows (m
     for (const std::string& name : names) CHECK(name.find("mrcal") == std::string::npos);
 }
 
-TEST_CASE("bench --plot writes a PNG, and --from reads a camera file") {
+TEST_CASE("bench --plot writes a PNG and --save-json the JSON beside the table, for a camera read with --from") {
     TempDir dir;
     const std::string camera = (dir / "camera.yaml").string();
     REQUIRE(run_libcam({"convert", "--fov", "70", "--size", "64x48", "--to", "opencv-yaml", "-o", camera}).exit_code == 0);
-    const std::string png = (dir / "speed.png").string();
-    const CliResult result = run_libcam({"bench", "--from", camera, "--grid", "5x4", "--threads", "1", "--plot", png});
+    const std::string png = (dir / "speed.png").string(), saved = (dir / "speed.json").string();
+    const CliResult result =
+        run_libcam({"bench", "--from", camera, "--grid", "5x4", "--threads", "1", "--plot", png, "--save-json", saved});
     INFO(result.describe());
     REQUIRE(result.exit_code == 0);
     CHECK(result.out.find("ns/point") != std::string::npos);
     const std::string bytes = read_whole_file(png);
     REQUIRE(bytes.size() > 8);
     CHECK(bytes.substr(1, 3) == "PNG");
+    const json out = json::parse(read_whole_file(saved));
+    CHECK(out["rows"].size() > 5);
+    CHECK(out["rows"][0]["model"] == "PINHOLE");
 }
 
 TEST_CASE("bench usage errors exit 2 with one line on stderr and nothing on stdout") {

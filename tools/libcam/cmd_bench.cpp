@@ -27,6 +27,7 @@ struct BenchFlags {
     std::string threads = "1,2";
     bool full_frame = false;
     bool json = false;
+    std::string json_file;
     std::string plot;
 };
 
@@ -157,6 +158,7 @@ Runner add_bench(CLI::App& app) {
     command->add_flag("--full-frame", flags->full_frame,
                       "Also time every pixel's ray for the lens and for a pinhole with the same K, against memset");
     command->add_flag("--json", flags->json, "Print JSON: {\"rows\": [...], \"cameras\": [...]}");
+    command->add_option("--save-json", flags->json_file, "Also write the JSON to this file (the table still goes to stdout)");
     command->add_option("--plot", flags->plot, "Write a PNG: time per point against worst error, per camera");
 
     return [flags] {
@@ -171,6 +173,7 @@ Runner add_bench(CLI::App& app) {
             const std::vector<unsigned char> png = plot_speed_accuracy(rows);
             write_file_atomically(flags->plot, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
         }
+        if (!flags->json_file.empty()) write_file_atomically(flags->json_file, format_json(results, settings));
         emit(flags->json ? format_json(results, settings) : format_table(results, settings), "");
         return 0;
     };
