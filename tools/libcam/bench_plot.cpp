@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -63,7 +64,7 @@ void draw_axes(cv::Mat& panel, const Axes& axes, const std::string& title) {
     cv::rectangle(panel, axes.area, kBlack);
     put_text(panel, "time per point, ns (log)", {axes.area.x + axes.area.width / 2 - 100, kPanelHeight - 18}, 0.6, kBlack);
     put_text(panel, "worst error, px (log)", {8, kTop - 14}, 0.55, kBlack);
-    put_text(panel, title, {kLeft + 150, 30}, 0.65, kBlack);
+    put_text(panel, title, {kLeft + 100, 28}, 0.65, kBlack);
 }
 
 std::string point_label(const BenchRow& row) {
@@ -75,37 +76,84 @@ std::string point_label(const BenchRow& row) {
     return label;
 }
 
-// Labels right of their point, moved down past any label already placed.
+// Labels placed next to their point where they overlap no other label and no marker:
+// right, left, above or below it, then further down with a leader line back to it.
 class LabelPlacer {
 public:
-    cv::Point place(const std::string& text, cv::Point point, const cv::Rect& bounds) {
+    LabelPlacer(std::vector<cv::Point> markers, cv::Rect bounds) : markers_(std::move(markers)), bounds_(bounds) {}
+
+    // The text's bottom-left origin; `leader` is set when it had to move away.
+    cv::Point place(const std::string& text, cv::Point point, bool& leader) {
         int baseline = 0;
-        const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, &baseline);
-        cv::Rect box(point.x + 8, point.y - size.height / 2, size.width, size.height + baseline);
-        if (box.x + box.width > bounds.x + bounds.width) box.x = point.x - 8 - size.width;  // no room on the right
-        for (int tries = 0; tries < 40 && overlaps(box); ++tries) box.y += size.height + 2;
+        const cv::Size size = cv::getTextSize(text, cv::FONT_HERSHEY_SIMPLEX, kTextScale, 1, &baseline);
+        const int h = size.height + baseline;
+        const cv::Point offsets[] = {{10, -h / 2}, {-10 - size.width, -h / 2}, {-size.width / 2, -h - 8},
+                                     {-size.width / 2, 10}, {10, -h - 6}, {10, 6}, {-10 - size.width, -h - 6},
+                                     {-10 - size.width, 6}};
+        leader = false;
+        for (const cv::Point& offset : offsets) {
+            const cv::Rect box(point + offset, cv::Size(size.width, h));
+            if (fits(box)) return keep(box, size);
+        }
+        leader = true;
+        cv::Rect box(point + offsets[0], cv::Size(size.width, h));
+        for (int tries = 0; tries < 60 && !fits(box); ++tries) box.y += h + 2;
+        return keep(box, size);
+    }
+
+    static constexpr double kTextScale = 0.45;
+
+private:
+    bool fits(const cv::Rect& box) const {
+        if ((box & bounds_) != box) return false;
+        const auto hits = [&](const cv::Rect& r) { return (r & box).area() > 0; };
+        const auto on_marker = [&](const cv::Point& m) { return hits(cv::Rect(m.x - 7, m.y - 7, 14, 14)); };
+        return std::none_of(placed_.begin(), placed_.end(), hits) && std::none_of(markers_.begin(), markers_.end(), on_marker);
+    }
+    cv::Point keep(const cv::Rect& box, const cv::Size& size) {
         placed_.push_back(box);
         return {box.x, box.y + size.height};
     }
 
-private:
-    bool overlaps(const cv::Rect& box) const {
-        return std::any_of(placed_.begin(), placed_.end(), [&](const cv::Rect& r) { return (r & box).area() > 0; });
-    }
+    std::vector<cv::Point> markers_;
+    cv::Rect bounds_;
     std::vector<cv::Rect> placed_;
 };
 
+void draw_marker(cv::Mat& panel, const BenchRow& row, cv::Point p) {
+    const cv::Scalar colour = library_colour(row.library);
+    if (row.scalar == "float") {
+        cv::rectangle(panel, {p.x - 5, p.y - 5}, {p.x + 5, p.y + 5}, colour, cv::FILLED);
+    } else {
+        cv::circle(panel, p, 6, colour, cv::FILLED, cv::LINE_AA);
+    }
+}
+
+// One line in the top margin, right-aligned: markers for the scalar, colours for the library.
+void draw_legend(cv::Mat& panel, const Axes& axes) {
+    const int x = axes.area.x + axes.area.width - 330, y = kTop - 12;
+    const double scale = LabelPlacer::kTextScale;
+    cv::circle(panel, {x + 4, y - 5}, 6, kBlack, cv::FILLED, cv::LINE_AA);
+    put_text(panel, "double", {x + 14, y}, scale, kBlack);
+    cv::rectangle(panel, {x + 74, y - 10}, {x + 84, y}, kBlack, cv::FILLED);
+    put_text(panel, "float", {x + 90, y}, scale, kBlack);
+    put_text(panel, "libcam", {x + 145, y}, scale, library_colour("libcam"));
+    put_text(panel, "OpenCV", {x + 205, y}, scale, library_colour("opencv"));
+    put_text(panel, "mrcal", {x + 275, y}, scale, library_colour("mrcal"));
+}
+
 void draw_points(cv::Mat& panel, const Axes& axes, const std::vector<const BenchRow*>& rows) {
-    LabelPlacer labels;
-    for (const BenchRow* row : rows) {
-        const cv::Point p = axes.at(row->ns_per_point, row->error->max_px);
-        const cv::Scalar colour = library_colour(row->library);
-        if (row->scalar == "float") {
-            cv::rectangle(panel, {p.x - 5, p.y - 5}, {p.x + 5, p.y + 5}, colour, cv::FILLED);
-        } else {
-            cv::circle(panel, p, 6, colour, cv::FILLED, cv::LINE_AA);
-        }
-        put_text(panel, point_label(*row), labels.place(point_label(*row), p, axes.area), 0.45, colour);
+    std::vector<cv::Point> markers;
+    for (const BenchRow* row : rows) markers.push_back(axes.at(row->ns_per_point, row->error->max_px));
+    for (std::size_t i = 0; i < rows.size(); ++i) draw_marker(panel, *rows[i], markers[i]);
+    LabelPlacer labels(markers, axes.area);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const std::string text = point_label(*rows[i]);
+        bool leader = false;
+        const cv::Point origin = labels.place(text, markers[i], leader);
+        const cv::Scalar colour = library_colour(rows[i]->library);
+        if (leader) cv::line(panel, markers[i], {origin.x - 2, origin.y - 4}, colour, 1, cv::LINE_AA);
+        put_text(panel, text, origin, LabelPlacer::kTextScale, colour);
     }
 }
 
@@ -122,6 +170,7 @@ cv::Mat draw_panel(const std::string& camera, const std::vector<const BenchRow*>
     const Axes axes{cv::Rect(kLeft, kTop, kPanelWidth - kLeft - kRight, kPanelHeight - kTop - kBottom),
                     decades_around(ns_low, ns_high * 8), decades_around(px_low, px_high)};
     draw_axes(panel, axes, camera + " (" + rows.front()->model + "): unprojection, 1 thread");
+    draw_legend(panel, axes);
     draw_points(panel, axes, rows);
     return panel;
 }
