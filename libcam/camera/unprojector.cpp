@@ -206,7 +206,8 @@ void certify(const typename Model::Parameters& lens_parameters, Block<Scalar>& b
         const Vec2L<Scalar> u(b.u_x[i], b.u_y[i]), m(b.m_x[i], b.m_y[i]);
         Vec2L<Scalar> m_u;
         const bool in_domain = Model::distort(lens, u, m_u);
-        const bool converged = (m_u - m).norm() <= unprojection_tolerance(m.norm());
+        const Lane<Scalar> tolerance = unprojection_tolerance(m.norm());
+        const bool converged = (m_u - m).squaredNorm() <= tolerance * tolerance;  // one square root, not two
         b.ok[i] = in_domain && converged ? b.ok[i] : Scalar(0);
     }
 }
