@@ -10,8 +10,8 @@
 #include <opencv2/calib3d.hpp>
 
 #include "libcam/camera/projector.hpp"
-#include "libcam/error.hpp"
 #include "libcam/camera/unprojector.hpp"
+#include "libcam/error.hpp"
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/lens/lens_models.hpp"
@@ -38,8 +38,10 @@ struct Candidate {
 // ---------------------------------------------------------------------------------
 // Timing and statistics.
 
+// Median, 99th percentile and maximum; not numbers when no point had a result.
 ErrorStats error_stats(std::vector<double> errors) {
-    if (errors.empty()) return {};
+    constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+    if (errors.empty()) return {kNone, kNone, kNone};
     const auto at_fraction = [&](double fraction) {
         const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(fraction * static_cast<double>(errors.size())));
         std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());

@@ -180,7 +180,10 @@ std::vector<std::vector<const BenchRow*>> panels_of(const std::vector<BenchRow>&
     std::vector<std::vector<const BenchRow*>> panels;
     std::vector<std::string> cameras;
     for (const BenchRow& row : rows) {
-        if (row.op != "unproject" || row.threads != 1 || !row.error || !(row.ns_per_point > 0)) continue;
+        if (row.op != "unproject" || row.threads != 1 || !row.error || !std::isfinite(row.error->max_px) ||
+            !(row.ns_per_point > 0)) {
+            continue;
+        }
         const auto found = std::find(cameras.begin(), cameras.end(), row.camera);
         if (found == cameras.end()) {
             cameras.push_back(row.camera);
