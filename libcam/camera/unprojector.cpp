@@ -9,6 +9,7 @@
 
 #include "libcam/camera/batch_kernels.hpp"
 #include "libcam/camera/parallel.hpp"
+#include "libcam/camera/streaming_store.hpp"
 #include "libcam/camera/unprojector_domain.hpp"
 #include "libcam/camera/unprojector_table.hpp"
 #include "libcam/error.hpp"
@@ -397,25 +398,40 @@ namespace {
 // Every pixel's ray through a pinhole without skew, row by row. The ray's x depends on
 // the column alone and its y on the row alone, so a row is a copy and three fills, at
 // the speed of writing the bytes. The numbers are those of the general path, which
-// evaluates K^-1 [x, y, 1] per pixel: there the skew term adds an exact 0.
+// evaluates K^-1 [x, y, 1] per pixel: there the skew term adds an exact 0. A frame much
+// larger than the cache is written with stores that bypass it (streaming_store.hpp).
 template <class Scalar>
 void pinhole_image(const Intrinsics& intrinsics, const ImageSize& size, const detail::RayOutput<Scalar>& out,
                    int threads) {
-    const std::size_t width = static_cast<std::size_t>(size.width);
+    constexpr std::size_t kStreamAbove = std::size_t{16} << 20;  // bytes per output array
+    const std::size_t width = static_cast<std::size_t>(size.width), height = static_cast<std::size_t>(size.height);
+    const bool stream = width * height * sizeof(Scalar) > kStreamAbove;
     std::vector<Scalar> column_x(width);
     for (std::size_t x = 0; x < width; ++x) {
         column_x[x] = lane_value(intrinsics.normalized_from_pixel(Vec2L<Scalar>(Scalar(static_cast<int>(x)), Scalar(0))).x());
     }
-    parallel_chunks(static_cast<std::size_t>(size.height), threads, 1, [&](std::size_t begin, std::size_t end) {
+    // Each array of a chunk of rows in one pass: one long stream of stores at a time.
+    parallel_chunks(height, threads, 1, [&](std::size_t begin, std::size_t end) {
+        const detail::RayOutput<Scalar> rays = out.at(begin * width);
+        const std::size_t count = (end - begin) * width;
+        if (stream) {
+            detail::stream_fill(rays.valid, count, std::uint8_t{1});
+            detail::stream_fill(rays.z, count, Scalar(1));
+        } else {
+            std::fill_n(rays.valid, count, std::uint8_t{1});
+            std::fill_n(rays.z, count, Scalar(1));
+        }
         for (std::size_t row = begin; row < end; ++row) {
             const Vec2L<Scalar> start(Scalar(0), Scalar(static_cast<int>(row)));
             const Scalar row_y = lane_value(intrinsics.normalized_from_pixel(start).y());
-            const detail::RayOutput<Scalar> rays = out.at(row * width);
-            std::copy_n(column_x.data(), width, rays.x);
-            std::fill_n(rays.y, width, row_y);
-            std::fill_n(rays.z, width, Scalar(1));
-            std::fill_n(rays.valid, width, std::uint8_t{1});
+            Scalar* y = out.y + row * width;
+            stream ? detail::stream_fill(y, width, row_y) : static_cast<void>(std::fill_n(y, width, row_y));
         }
+        for (std::size_t row = begin; row < end; ++row) {
+            Scalar* x = out.x + row * width;
+            stream ? detail::stream_copy(x, column_x.data(), width) : static_cast<void>(std::copy_n(column_x.data(), width, x));
+        }
+        if (stream) detail::stream_fence();
     });
 }
 
