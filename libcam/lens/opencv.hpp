@@ -146,19 +146,21 @@ struct OpenCvLens {
         const Radial radial = radial_factor(lens, r2);
         const bool in_domain = r2 < lens.valid_radius * lens.valid_radius && radial.denominator > Scalar(0);
         const Scalar p1 = c<2>(lens), p2 = c<3>(lens);
-        const Scalar s1 = c<8>(lens), s2 = c<9>(lens), s3 = c<10>(lens), s4 = c<11>(lens);
         const Scalar two(2), r4 = r2 * r2, xy2 = two * x * y;
-        const Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x) + s1 * r2 + s2 * r4,
-                      y * radial.value + p1 * (r2 + two * y * y) + p2 * xy2 + s3 * r2 + s4 * r4);
+        Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x),
+                y * radial.value + p1 * (r2 + two * y * y) + p2 * xy2);
+        if constexpr (kThinPrism) d += Vec2T(c<8>(lens) * r2 + c<9>(lens) * r4, c<10>(lens) * r2 + c<11>(lens) * r4);
 
         Jacobian22 d_d_d_u;
         if constexpr (is_requested<UJacobianPtr>) {
-            const Scalar prism_x = two * (s1 + two * s2 * r2), prism_y = two * (s3 + two * s4 * r2);
             const Scalar mixed = xy2 * radial.d_r2 + two * (p1 * x + p2 * y);
-            d_d_d_u << radial.value + two * x * x * radial.d_r2 + two * p1 * y + Scalar(6) * p2 * x + x * prism_x,
-                mixed + y * prism_x,  //
-                mixed + x * prism_y,
-                radial.value + two * y * y * radial.d_r2 + Scalar(6) * p1 * y + two * p2 * x + y * prism_y;
+            d_d_d_u << radial.value + two * x * x * radial.d_r2 + two * p1 * y + Scalar(6) * p2 * x, mixed,  //
+                mixed, radial.value + two * y * y * radial.d_r2 + Scalar(6) * p1 * y + two * p2 * x;
+            if constexpr (kThinPrism) {
+                const Scalar prism_x = two * (c<8>(lens) + two * c<9>(lens) * r2);
+                const Scalar prism_y = two * (c<10>(lens) + two * c<11>(lens) * r2);
+                d_d_d_u += (Jacobian22() << x * prism_x, y * prism_x, x * prism_y, y * prism_y).finished();
+            }
         }
         Eigen::Matrix<Scalar, 2, 12> d_d_d_k;
         if constexpr (is_requested<CoefficientJacobianPtr>) {
@@ -198,6 +200,13 @@ struct OpenCvLens {
     }
 
 private:
+    // The terms a model has: the shorter models are the longer with zeros, but the zeros
+    // are not multiplied in (the compiler may not drop 0 * r2, which is not 0 for every
+    // r2, and the batch paths would pay for them on every point).
+    static constexpr bool kHasK3 = N >= 5;
+    static constexpr bool kRational = N >= 8;    // k4 k5 k6: the denominator
+    static constexpr bool kThinPrism = N >= 12;  // s1 s2 s3 s4
+
     // Coefficient i, or 0 for a model with fewer: the shorter models are the longer with zeros.
     template <int i>
     static Scalar c(const Parameters& lens) {
@@ -215,17 +224,27 @@ private:
     };
 
     static Radial radial_factor(const Parameters& lens, const Scalar& r2) {
-        const Scalar k1 = c<0>(lens), k2 = c<1>(lens), k3 = c<4>(lens);
-        const Scalar k4 = c<5>(lens), k5 = c<6>(lens), k6 = c<7>(lens);
+        const Scalar k1 = c<0>(lens), k2 = c<1>(lens);
         const Scalar one(1), two(2), three(3);
-        const Scalar p = one + r2 * (k1 + r2 * (k2 + r2 * k3));
-        const Scalar q = one + r2 * (k4 + r2 * (k5 + r2 * k6));
-        const Scalar dp = k1 + r2 * (two * k2 + three * k3 * r2);
-        const Scalar dq = k4 + r2 * (two * k5 + three * k6 * r2);
-        // One division, as cv::projectPoints (icdist2 = 1 / q): the Jacobian needs 1/q twice.
-        const Scalar inverse_q = one / q;
-        const Scalar value = p * inverse_q;
-        return {value, (dp - value * dq) * inverse_q, q};
+        Scalar from_k2 = k2, d_from_k2 = two * k2;  // k2 + k3 r2 and its derivative's part, when there is a k3
+        if constexpr (kHasK3) {
+            const Scalar k3 = c<4>(lens);
+            from_k2 = k2 + r2 * k3;
+            d_from_k2 = two * k2 + three * k3 * r2;
+        }
+        const Scalar p = one + r2 * (k1 + r2 * from_k2);
+        const Scalar dp = k1 + r2 * d_from_k2;
+        if constexpr (!kRational) {
+            return {p, dp, one};
+        } else {
+            const Scalar k4 = c<5>(lens), k5 = c<6>(lens), k6 = c<7>(lens);
+            const Scalar q = one + r2 * (k4 + r2 * (k5 + r2 * k6));
+            const Scalar dq = k4 + r2 * (two * k5 + three * k6 * r2);
+            // One division, as cv::projectPoints (icdist2 = 1 / q): the Jacobian needs 1/q twice.
+            const Scalar inverse_q = one / q;
+            const Scalar value = p * inverse_q;
+            return {value, (dp - value * dq) * inverse_q, q};
+        }
     }
 
     // OPENCV14's tilted sensor: m = (v0, v1) / v2 with v = T [d; 1], chained onto the
