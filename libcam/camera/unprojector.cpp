@@ -8,6 +8,7 @@
 #include <string>
 
 #include "libcam/camera/batch_kernels.hpp"
+#include "libcam/camera/fill_values.hpp"
 #include "libcam/camera/parallel.hpp"
 #include "libcam/camera/streaming_store.hpp"
 #include "libcam/camera/unprojector_domain.hpp"
@@ -419,13 +420,13 @@ void pinhole_image(const Intrinsics& intrinsics, const ImageSize& size, const de
             detail::stream_fill(rays.z, count, Scalar(1));
         } else {
             std::fill_n(rays.valid, count, std::uint8_t{1});
-            std::fill_n(rays.z, count, Scalar(1));
+            detail::fill_values(rays.z, count, Scalar(1));
         }
         for (std::size_t row = begin; row < end; ++row) {
             const Vec2L<Scalar> start(Scalar(0), Scalar(static_cast<int>(row)));
             const Scalar row_y = lane_value(intrinsics.normalized_from_pixel(start).y());
             Scalar* y = out.y + row * width;
-            stream ? detail::stream_fill(y, width, row_y) : static_cast<void>(std::fill_n(y, width, row_y));
+            stream ? detail::stream_fill(y, width, row_y) : detail::fill_values(y, width, row_y);
         }
         for (std::size_t row = begin; row < end; ++row) {
             Scalar* x = out.x + row * width;
