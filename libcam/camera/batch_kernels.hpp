@@ -59,9 +59,14 @@ constexpr Scalar flag(bool value) {
 }
 
 // Bytes 1 where the flag is positive (1 valid; 0 and -1 are the ways of being invalid).
+// Through int: a byte from a double comparison does not vectorise with SSE2, a byte
+// from an int does.
 template <class Scalar>
 void store_flags(std::span<const Scalar> flags, std::uint8_t* out) {
-    for (std::size_t i = 0; i < flags.size(); ++i) out[i] = flags[i] > Scalar(0) ? 1 : 0;
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+        const int flag = static_cast<int>(flags[i]);
+        out[i] = static_cast<std::uint8_t>(flag > 0 ? flag : 0);
+    }
 }
 
 }  // namespace libcam::batch

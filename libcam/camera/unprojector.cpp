@@ -44,7 +44,9 @@ constexpr int kExactNewtonSteps = 2;
 template <class Scalar>
 struct Block {
     std::size_t count = 0;
-    Scalar pixel_x[kBlock], pixel_y[kBlock];
+    const Scalar* pixel_x;  // the block's pixels: the caller's arrays, or made_x, made_y
+    const Scalar* pixel_y;
+    Scalar made_x[kBlock], made_y[kBlock];  // pixels made here (the whole image, one pixel)
     Scalar m_x[kBlock], m_y[kBlock];  // K^-1 [x, y, 1]
     Scalar u_x[kBlock], u_y[kBlock];  // undistorted point
     Scalar ok[kBlock];  // 1: u (then the ray) is the answer; -1: settled, no ray; 0: for the full solver
@@ -388,8 +390,8 @@ void Unprojector<Scalar>::unproject(const Points2<Scalar>& pixels, UnprojectMeth
     directions.resize(n);
     valid.resize(n);
     const auto copy_pixels = [&pixels](std::size_t first, Block<Scalar>& b) {
-        std::copy_n(pixels.x.data() + first, b.count, b.pixel_x);
-        std::copy_n(pixels.y.data() + first, b.count, b.pixel_y);
+        b.pixel_x = pixels.x.data() + first;
+        b.pixel_y = pixels.y.data() + first;
     };
     run(n, method, threads, copy_pixels, output_into(directions, valid));
 }
@@ -455,11 +457,13 @@ void Unprojector<Scalar>::unproject_image(UnprojectMethod method, Points3<Scalar
         for (std::size_t i = 0; i < b.count; x = 0, ++y) {
             const std::size_t run = std::min(b.count - i, width - static_cast<std::size_t>(x));
             for (std::size_t j = 0; j < run; ++j) {
-                b.pixel_x[i + j] = Scalar(x + static_cast<int>(j));
-                b.pixel_y[i + j] = Scalar(y);
+                b.made_x[i + j] = Scalar(x + static_cast<int>(j));
+                b.made_y[i + j] = Scalar(y);
             }
             i += run;
         }
+        b.pixel_x = b.made_x;
+        b.pixel_y = b.made_y;
     };
     run(n, method, threads, image_pixels, output_into(directions, valid));
 }
@@ -467,8 +471,10 @@ void Unprojector<Scalar>::unproject_image(UnprojectMethod method, Points3<Scalar
 template <class Scalar>
 bool Unprojector<Scalar>::unproject(const Vec2T& pixel, UnprojectMethod method, Vec3T& direction) const {
     const auto one_pixel = [&pixel](std::size_t, Block<Scalar>& b) {
-        b.pixel_x[0] = pixel.x();
-        b.pixel_y[0] = pixel.y();
+        b.made_x[0] = pixel.x();
+        b.made_y[0] = pixel.y();
+        b.pixel_x = b.made_x;
+        b.pixel_y = b.made_y;
     };
     Vec3T ray;
     std::uint8_t valid = 0;
