@@ -3,11 +3,14 @@
 // the real wide lens of issue 3. Inputs only; expected values come from OpenCV, mrcal or
 // formulas worked by hand in the tests.
 
+#include <cmath>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <string>
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/lens/lens_models.hpp"
 
@@ -67,6 +70,28 @@ inline std::vector<LensCase> lens_cases() {
     return cases;
 }
 
+// Radial-only lenses that fold over inside the image, the fold worked by hand: d(r) has
+// its maximum d_max at r_max, and a pixel has a ray in the valid domain exactly when
+// |m| < d_max (m its normalised point).
+struct FoldCase {
+    const char* name;
+    Camera camera;
+    double d_max;
+};
+
+inline std::vector<FoldCase> fold_cases() {
+    const double r4 = std::sqrt(1 / 1.5), theta = std::sqrt(1 / 0.6);
+    return {
+        // d = r (1 - 0.5 r^2): r_max = sqrt(1/1.5), d_max = r_max (1 - 0.5 r_max^2) = 2/3 r_max.
+        {"OPENCV4 k1 = -0.5", lens_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1600, 1200}, 900, 900), r4 * 2 / 3},
+        // d = r / (1 + 0.5 r^2): r_max = sqrt 2, d_max = sqrt(2) / 2.
+        {"OPENCV8 k4 = 0.5", lens_camera(LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}, {1600, 1200}, 900, 900),
+         std::sqrt(2.0) / 2},
+        // theta_d = theta (1 - 0.2 theta^2): theta_max = sqrt(1/0.6), d_max = 2/3 theta_max.
+        {"FISHEYE k1 = -0.2", lens_camera(LensType::Fisheye, {-0.2, 0, 0, 0}, {1600, 1200}, 700, 700), theta * 2 / 3},
+    };
+}
+
 // A grid of nx by ny OpenCV pixels spanning the whole image, corners included.
 inline std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) {
     std::vector<Vec2> pixels;
@@ -86,6 +111,22 @@ inline bool in_opencv(LensType type) {
     return type != LensType::Stereographic && type != LensType::Lonlat && type != LensType::Latlon;
 }
 inline bool in_mrcal(LensType type) { return type != LensType::Fisheye && type != LensType::Opencv14; }
+
+// The pixels of camera-frame rays by the reference library that has the model: OpenCV
+// for its models (z > 0), mrcal for its own. FISHEYE rays past 90 degrees, which
+// cv::fisheye cannot take, go through libcam's projection (itself checked against
+// theta_d's formula in test_lens_models).
+inline std::vector<Vec2> reference_project(const Camera& camera, const std::vector<Vec3>& rays) {
+    if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
+    std::vector<Vec2> pixels = opencv_project_points(camera, rays);
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        if (rays[i].z() <= 0) {
+            const Projection p = camera.project_camera_point(rays[i]);
+            pixels[i] = p.valid ? p.pixel : Vec2::Constant(std::numeric_limits<double>::infinity());
+        }
+    }
+    return pixels;
+}
 
 // The lens's valid_radius (lens/model_support.hpp), an input the tests sample within.
 inline double valid_radius_of(const Lens& lens) {

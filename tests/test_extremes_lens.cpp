@@ -465,11 +465,11 @@ std::vector<Row> fisheye_axis_rows() {
             const double phi = 0.37 * e;
             points.push_back(direction_at(pow(Quad(10), -e), phi));
             if (e <= 30)
-                pixels.push_back(c.camera.intrinsics.pixel_from_normalized(Vec2::Zero()) +
+                pixels.push_back(c.camera.intrinsics.pixel_from_normalized(Vec2(Vec2::Zero())) +
                                  std::pow(10.0, -e) * Vec2(std::cos(phi), std::sin(phi)));
         }
         points.emplace_back(0, 0, 1);
-        pixels.push_back(c.camera.intrinsics.pixel_from_normalized(Vec2::Zero()));
+        pixels.push_back(c.camera.intrinsics.pixel_from_normalized(Vec2(Vec2::Zero())));
         project_both(c.camera.lens, points, projected, c.name);
         unproject_both(c.name, c.camera, pixels, unprojected);
     }

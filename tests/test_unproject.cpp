@@ -21,22 +21,6 @@ namespace {
 
 constexpr double kPixelTolerance = 1e-9;
 
-// The pixels of camera-frame rays by the reference library that has the model: OpenCV
-// for its models (z > 0), mrcal for its own. FISHEYE rays past 90 degrees, which
-// cv::fisheye cannot take, go through libcam's projection (itself checked against
-// theta_d's formula in test_lens_models).
-std::vector<Vec2> reference_project(const Camera& camera, const std::vector<Vec3>& rays) {
-    if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
-    std::vector<Vec2> pixels = opencv_project_points(camera, rays);
-    for (std::size_t i = 0; i < rays.size(); ++i) {
-        if (rays[i].z() <= 0) {
-            const Projection p = camera.project_camera_point(rays[i]);
-            pixels[i] = p.valid ? p.pixel : Vec2::Constant(std::numeric_limits<double>::infinity());
-        }
-    }
-    return pixels;
-}
-
 struct GridResult {
     std::vector<Vec2> pixels;
     std::vector<Unprojection> rays;
@@ -131,24 +115,7 @@ TEST_CASE("Unprojection agrees with mrcal_unproject and cv::undistortPoints wher
 }
 
 TEST_CASE("A lens that folds over inside the image: pixels past the fold are flagged, the others exact") {
-    // Radial-only lenses whose fold is worked by hand: d(r) has its maximum d_max at r_max,
-    // and a pixel has a ray in the valid domain exactly when |m| < d_max.
-    struct Fold {
-        const char* name;
-        Camera camera;
-        double d_max;
-    };
-    const double r4 = std::sqrt(1 / 1.5), theta = std::sqrt(1 / 0.6);
-    const Fold folds[] = {
-        // d = r (1 - 0.5 r^2): r_max = sqrt(1/1.5), d_max = r_max (1 - 0.5 r_max^2) = 2/3 r_max.
-        {"OPENCV4 k1 = -0.5", lens_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1600, 1200}, 900, 900), r4 * 2 / 3},
-        // d = r / (1 + 0.5 r^2): r_max = sqrt 2, d_max = sqrt(2) / 2.
-        {"OPENCV8 k4 = 0.5", lens_camera(LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}, {1600, 1200}, 900, 900),
-         std::sqrt(2.0) / 2},
-        // theta_d = theta (1 - 0.2 theta^2): theta_max = sqrt(1/0.6), d_max = 2/3 theta_max.
-        {"FISHEYE k1 = -0.2", lens_camera(LensType::Fisheye, {-0.2, 0, 0, 0}, {1600, 1200}, 700, 700), theta * 2 / 3},
-    };
-    for (const Fold& fold : folds) {
+    for (const FoldCase& fold : fold_cases()) {
         INFO(fold.name);
         const GridResult grid = unproject_grid(fold.camera, 161, 121);
         CHECK(grid.worst <= kPixelTolerance);

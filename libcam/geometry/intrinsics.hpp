@@ -30,15 +30,22 @@ struct Intrinsics {
     // Throws InvalidArgument unless every value is finite and fx, fy > 0.
     void validate(const char* field = "K") const;
 
-    // K^-1 [x, y, 1]: the normalised image point (x/z, y/z) of a pixel.
-    Vec2 normalized_from_pixel(const Vec2& pixel) const {
-        const double yn = (pixel.y() - cy) / fy;
-        return {(pixel.x() - cx - skew * yn) / fx, yn};
+    // K^-1 [x, y, 1]: the normalised image point (x/z, y/z) of a pixel. In any scalar
+    // type (float, double, Lane<double> for the batch paths), evaluated in that type.
+    // Multiplied by 1/fx and 1/fy: in a loop over pixels those two divisions are made
+    // once, not per pixel (the result is within an ulp of dividing).
+    template <class Scalar>
+    Eigen::Matrix<Scalar, 2, 1> normalized_from_pixel(const Eigen::Matrix<Scalar, 2, 1>& pixel) const {
+        const Scalar one(1);
+        const Scalar yn = (pixel.y() - Scalar(cy)) * (one / Scalar(fy));
+        return {(pixel.x() - Scalar(cx) - Scalar(skew) * yn) * (one / Scalar(fx)), yn};
     }
 
     // K [xn, yn, 1]: the pixel of a normalised image point.
-    Vec2 pixel_from_normalized(const Vec2& normalized) const {
-        return {fx * normalized.x() + skew * normalized.y() + cx, fy * normalized.y() + cy};
+    template <class Scalar>
+    Eigen::Matrix<Scalar, 2, 1> pixel_from_normalized(const Eigen::Matrix<Scalar, 2, 1>& normalized) const {
+        return {Scalar(fx) * normalized.x() + Scalar(skew) * normalized.y() + Scalar(cx),
+                Scalar(fy) * normalized.y() + Scalar(cy)};
     }
 };
 

@@ -30,7 +30,9 @@ mrcal_lensmodel_t mrcal_lensmodel(const Lens& lens) {
 
 LensType lens_type_from_mrcal(const mrcal_lensmodel_t& model, const std::string& source) {
     const char* name = mrcal_lensmodel_name_unconfigured(&model);
-    const std::string mrcal_name = name != nullptr ? name : "#" + std::to_string(static_cast<int>(model.type));
+    // (Appending, not "#" + std::to_string(...): GCC 12 at -O3 raises a false -Wrestrict on that.)
+    const std::string mrcal_name =
+        name != nullptr ? std::string(name) : std::string("#").append(std::to_string(static_cast<int>(model.type)));
     if (const std::optional<LensType> type = lens_type_from_name(mrcal_name)) return *type;
     throw NotRepresentable(source + ": \"lensmodel\": " + mrcal_name + " is not a lens model libcam supports");
 }
@@ -191,31 +193,48 @@ Camera parse_cameramodel(std::string_view text, const std::string& source) {
     return camera;
 }
 
-std::vector<Vec2> mrcal_project_points(const Camera& camera, const std::vector<Vec3>& camera_points) {
+void mrcal_project_packed(const Camera& camera, std::span<const double> points_xyz, std::span<double> pixels_xy) {
     const mrcal_lensmodel_t model = mrcal_lensmodel(camera.lens);
     const std::vector<double> intrinsics = mrcal_intrinsics(camera);
-    std::vector<mrcal_point3_t> in(camera_points.size());
-    for (std::size_t i = 0; i < in.size(); ++i) in[i] = {{camera_points[i].x(), camera_points[i].y(), camera_points[i].z()}};
-    std::vector<mrcal_point2_t> out(in.size());
-    if (!mrcal_project(out.data(), nullptr, nullptr, in.data(), static_cast<int>(in.size()), &model, intrinsics.data())) {
+    const int n = static_cast<int>(points_xyz.size() / 3);
+    if (pixels_xy.size() != 2 * points_xyz.size() / 3) throw InvalidArgument("mrcal_project_packed: output size");
+    // mrcal_point3_t and mrcal_point2_t are unions of x, y[, z] with double[3] / double[2].
+    if (!mrcal_project(reinterpret_cast<mrcal_point2_t*>(pixels_xy.data()), nullptr, nullptr,
+                       reinterpret_cast<const mrcal_point3_t*>(points_xyz.data()), n, &model, intrinsics.data())) {
         throw Error("mrcal_project failed");
     }
-    std::vector<Vec2> pixels(out.size());
-    for (std::size_t i = 0; i < out.size(); ++i) pixels[i] = {out[i].x, out[i].y};
+}
+
+void mrcal_unproject_packed(const Camera& camera, std::span<const double> pixels_xy, std::span<double> directions_xyz) {
+    const mrcal_lensmodel_t model = mrcal_lensmodel(camera.lens);
+    const std::vector<double> intrinsics = mrcal_intrinsics(camera);
+    const int n = static_cast<int>(pixels_xy.size() / 2);
+    if (directions_xyz.size() != 3 * pixels_xy.size() / 2) throw InvalidArgument("mrcal_unproject_packed: output size");
+    if (!mrcal_unproject(reinterpret_cast<mrcal_point3_t*>(directions_xyz.data()),
+                         reinterpret_cast<const mrcal_point2_t*>(pixels_xy.data()), n, &model, intrinsics.data())) {
+        throw Error("mrcal_unproject failed");
+    }
+}
+
+std::vector<Vec2> mrcal_project_points(const Camera& camera, const std::vector<Vec3>& camera_points) {
+    std::vector<double> in;
+    in.reserve(3 * camera_points.size());
+    for (const Vec3& p : camera_points) in.insert(in.end(), {p.x(), p.y(), p.z()});
+    std::vector<double> out(2 * camera_points.size());
+    mrcal_project_packed(camera, in, out);
+    std::vector<Vec2> pixels(camera_points.size());
+    for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = {out[2 * i], out[2 * i + 1]};
     return pixels;
 }
 
 std::vector<Vec3> mrcal_unproject_pixels(const Camera& camera, const std::vector<Vec2>& pixels) {
-    const mrcal_lensmodel_t model = mrcal_lensmodel(camera.lens);
-    const std::vector<double> intrinsics = mrcal_intrinsics(camera);
-    std::vector<mrcal_point2_t> in(pixels.size());
-    for (std::size_t i = 0; i < in.size(); ++i) in[i] = {{pixels[i].x(), pixels[i].y()}};
-    std::vector<mrcal_point3_t> out(in.size());
-    if (!mrcal_unproject(out.data(), in.data(), static_cast<int>(in.size()), &model, intrinsics.data())) {
-        throw Error("mrcal_unproject failed");
-    }
-    std::vector<Vec3> directions(out.size());
-    for (std::size_t i = 0; i < out.size(); ++i) directions[i] = {out[i].x, out[i].y, out[i].z};
+    std::vector<double> in;
+    in.reserve(2 * pixels.size());
+    for (const Vec2& q : pixels) in.insert(in.end(), {q.x(), q.y()});
+    std::vector<double> out(3 * pixels.size());
+    mrcal_unproject_packed(camera, in, out);
+    std::vector<Vec3> directions(pixels.size());
+    for (std::size_t i = 0; i < directions.size(); ++i) directions[i] = {out[3 * i], out[3 * i + 1], out[3 * i + 2]};
     return directions;
 }
 

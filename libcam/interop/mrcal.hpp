@@ -3,6 +3,7 @@
 // unprojection as a reference for libcam's own.
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -25,6 +26,12 @@ std::string format_cameramodel(const Camera& camera);
 // Parses .cameramodel text with libmrcal's parser; the parser's own diagnostic (it
 // prints to stderr) is captured into the FileError message.
 Camera parse_cameramodel(std::string_view text, const std::string& source);
+
+// mrcal_project and mrcal_unproject on points packed as mrcal stores them (x, y[, z]
+// doubles one point after the other), with no conversion: what `libcam bench` times.
+// Throw NotRepresentable for a lens mrcal lacks, Error if mrcal fails.
+void mrcal_project_packed(const Camera& camera, std::span<const double> points_xyz, std::span<double> pixels_xy);
+void mrcal_unproject_packed(const Camera& camera, std::span<const double> pixels_xy, std::span<double> directions_xyz);
 
 // Projects camera-frame points with mrcal_project. mrcal does not flag points behind
 // the camera; every result here is marked valid and the caller compares.

@@ -49,7 +49,7 @@ struct FisheyeLens {
     }
 
     static Parameters parameters(std::span<const double> k) {
-        return {coefficients_as<Scalar, 4>(k), Scalar(valid_radius(k))};
+        return lens_parameters<Scalar, 4>(k, valid_radius(k));
     }
 
     template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
@@ -66,18 +66,20 @@ struct FisheyeLens {
 
     // A ray through m (unit length), by the shared iterative solver.
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        using std::cos;
-        using std::sin;
         Vec2T u;
         if (!solve_undistorted<FisheyeLens>(lens, m, u)) return false;
-        const Scalar theta = u.norm();
-        if (!(theta > Scalar(0))) {
-            ray = Vec3T(Scalar(0), Scalar(0), Scalar(1));
-            return true;
-        }
-        const Scalar scale = sin(theta) / theta;
-        ray = Vec3T(u.x() * scale, u.y() * scale, cos(theta));
+        ray = ray_from_undistorted(u);
         return true;
+    }
+
+    // The unit ray at the angle theta = |u| from the axis, towards u.
+    static Vec3T ray_from_undistorted(const Vec2T& u) {
+        using std::cos;
+        using std::sin;
+        const Scalar theta = u.norm();
+        if (!(theta > Scalar(0))) return Vec3T(Scalar(0), Scalar(0), Scalar(1));
+        const Scalar scale = sin(theta) / theta;
+        return Vec3T(u.x() * scale, u.y() * scale, cos(theta));
     }
 
     // u = theta (X, Y) / |(X, Y)|; false for the origin and the backward axis, where the
@@ -111,12 +113,13 @@ struct FisheyeLens {
         return true;
     }
 
-    // m = D(theta^2) u for the equidistant point u (|u| = theta).
+    // m = D(theta^2) u for the equidistant point u (|u| = theta); false outside the
+    // valid domain (m then meaningless; evaluated without branches, see pinhole.hpp).
     template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
     static bool distort(const Parameters& lens, const Vec2T& u, Vec2T& m, UJacobianPtr d_m_d_u = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         const Scalar s = u.squaredNorm();
-        if (!(s < lens.valid_radius * lens.valid_radius)) return false;
+        const bool in_domain = s < lens.valid_radius * lens.valid_radius;
         const Scalar factor = stretch(lens, s);
         m = u * factor;
         if constexpr (is_requested<UJacobianPtr>) {
@@ -126,7 +129,7 @@ struct FisheyeLens {
             Scalar power = s;
             for (int i = 0; i < 4; ++i, power *= s) d_m_d_coefficients->col(i) = u * power;
         }
-        return true;
+        return in_domain;
     }
 
     // theta_d(theta) = theta D(theta^2) and its slope: the 1-D start of unproject.

@@ -22,6 +22,17 @@ struct LensParameters {
     Scalar valid_radius = Scalar(std::numeric_limits<double>::infinity());
 };
 
+// The parameters from the coefficients and a valid radius worked out before: what
+// Model::parameters() returns, and what a batch path keeps per camera (the radius costs
+// a polynomial root search, the rest is a copy).
+template <class Scalar, int N>
+LensParameters<Scalar, N> lens_parameters(std::span<const double> coefficients, double valid_radius) {
+    LensParameters<Scalar, N> parameters;
+    for (int i = 0; i < N; ++i) parameters.coefficients(i) = Scalar(coefficients[static_cast<std::size_t>(i)]);
+    parameters.valid_radius = Scalar(valid_radius);
+    return parameters;
+}
+
 // True when a Jacobian output pointer of type Ptr was passed (not the nullptr default).
 template <class Ptr>
 inline constexpr bool is_requested = !std::is_same_v<Ptr, std::nullptr_t>;
@@ -35,15 +46,6 @@ constexpr auto pass_request(T* target) {
     } else {
         return nullptr;
     }
-}
-
-// The coefficients of a model with N of them, cast to Scalar; the caller has checked
-// the count (Lens::validate).
-template <class Scalar, int N>
-Eigen::Matrix<Scalar, N, 1> coefficients_as(std::span<const double> values) {
-    Eigen::Matrix<Scalar, N, 1> out;
-    for (int i = 0; i < N; ++i) out(i) = Scalar(values[static_cast<std::size_t>(i)]);
-    return out;
 }
 
 }  // namespace libcam

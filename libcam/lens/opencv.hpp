@@ -108,21 +108,22 @@ struct OpenCvLens {
     }
 
     static Parameters parameters(std::span<const double> k) {
-        return {coefficients_as<Scalar, N>(k), Scalar(valid_radius(k))};
+        return lens_parameters<Scalar, N>(k, valid_radius(k));
     }
 
-    // m for a camera point; false outside the valid domain (m untouched). Jacobians
+    // m for a camera point; false outside the valid domain (m then meaningless). Jacobians
     // dm/d(X, Y, Z) (Jacobian23*) and dm/d(coefficients) (CoefficientJacobian*) on request.
     template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
     static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         Vec2T u;
         Jacobian23 d_u_d_point;
-        if (!PinholeLens<Scalar>::project(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
+        const bool in_front = PinholeLens<Scalar>::project(point, u, pass_request<PointJacobianPtr>(&d_u_d_point));
         Jacobian22 d_m_d_u;
-        if (!distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients)) return false;
+        const bool in_domain = distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
         if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
-        return m.allFinite();  // false where m overflows (the thin prism's r^4 past r ~ 1e77)
+        // Also false where m overflows (the thin prism's r^4 past r ~ 1e77).
+        return in_front && in_domain && m.allFinite();
     }
 
     // The ray (x, y, 1) through m, by the shared iterative solver; false where no
@@ -130,34 +131,38 @@ struct OpenCvLens {
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
         Vec2T u;
         if (!solve_undistorted<OpenCvLens>(lens, m, u)) return false;
-        ray = Vec3T(u.x(), u.y(), Scalar(1));
+        ray = ray_from_undistorted(u);
         return true;
     }
 
-    // m = distort(u) for the pinhole-normalised point u = (X/Z, Y/Z).
+    // The ray through the undistorted point u: (x, y, 1).
+    static Vec3T ray_from_undistorted(const Vec2T& u) { return Vec3T(u.x(), u.y(), Scalar(1)); }
+
+    // m = distort(u) for the pinhole-normalised point u = (X/Z, Y/Z); false outside the
+    // valid domain (m then meaningless; evaluated without branches, see pinhole.hpp).
     template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
     static bool distort(const Parameters& lens, const Vec2T& u, Vec2T& m, UJacobianPtr d_m_d_u = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         const Scalar x = u.x(), y = u.y();
         const Scalar r2 = x * x + y * y;
-        if (!(r2 < lens.valid_radius * lens.valid_radius)) return false;
         const Radial radial = radial_factor(lens, r2);
-        if (!(radial.denominator > Scalar(0))) return false;
+        const bool in_domain = r2 < lens.valid_radius * lens.valid_radius && radial.denominator > Scalar(0);
         const Scalar p1 = c<2>(lens), p2 = c<3>(lens);
-        const Scalar s1 = c<8>(lens), s2 = c<9>(lens), s3 = c<10>(lens), s4 = c<11>(lens);
         const Scalar two(2), r4 = r2 * r2, xy2 = two * x * y;
-        Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x), y * radial.value + p1 * (r2 + two * y * y) + p2 * xy2);
-        // The thin prism only where there is one: 0 * r^4 would be NaN once r^4 overflows.
-        if constexpr (N >= 12) d += Vec2T(s1 * r2 + s2 * r4, s3 * r2 + s4 * r4);
+        Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x),
+                y * radial.value + p1 * (r2 + two * y * y) + p2 * xy2);
+        if constexpr (kThinPrism) d += Vec2T(c<8>(lens) * r2 + c<9>(lens) * r4, c<10>(lens) * r2 + c<11>(lens) * r4);
 
         Jacobian22 d_d_d_u;
         if constexpr (is_requested<UJacobianPtr>) {
-            const Scalar prism_x = two * (s1 + two * s2 * r2), prism_y = two * (s3 + two * s4 * r2);
             const Scalar mixed = xy2 * radial.d_r2 + two * (p1 * x + p2 * y);
-            d_d_d_u << radial.value + two * x * x * radial.d_r2 + two * p1 * y + Scalar(6) * p2 * x + x * prism_x,
-                mixed + y * prism_x,  //
-                mixed + x * prism_y,
-                radial.value + two * y * y * radial.d_r2 + Scalar(6) * p1 * y + two * p2 * x + y * prism_y;
+            d_d_d_u << radial.value + two * x * x * radial.d_r2 + two * p1 * y + Scalar(6) * p2 * x, mixed,  //
+                mixed, radial.value + two * y * y * radial.d_r2 + Scalar(6) * p1 * y + two * p2 * x;
+            if constexpr (kThinPrism) {
+                const Scalar prism_x = two * (c<8>(lens) + two * c<9>(lens) * r2);
+                const Scalar prism_y = two * (c<10>(lens) + two * c<11>(lens) * r2);
+                d_d_d_u += (Jacobian22() << x * prism_x, y * prism_x, x * prism_y, y * prism_y).finished();
+            }
         }
         Eigen::Matrix<Scalar, 2, 12> d_d_d_k;
         if constexpr (is_requested<CoefficientJacobianPtr>) {
@@ -180,9 +185,10 @@ struct OpenCvLens {
             m = d;
             if constexpr (is_requested<UJacobianPtr>) *d_m_d_u = d_d_d_u;
             if constexpr (is_requested<CoefficientJacobianPtr>) *d_m_d_coefficients = d_d_d_k.template leftCols<N>();
-            return true;
+            return in_domain;
         } else {
-            return apply_tilt(lens, d, m, d_d_d_u, d_d_d_k, d_m_d_u, d_m_d_coefficients);
+            const bool tilt_in_front = apply_tilt(lens, d, m, d_d_d_u, d_d_d_k, d_m_d_u, d_m_d_coefficients);
+            return in_domain && tilt_in_front;
         }
     }
 
@@ -195,6 +201,13 @@ struct OpenCvLens {
     }
 
 private:
+    // The terms a model has: the shorter models are the longer with zeros, but the zeros
+    // are not multiplied in (the compiler may not drop 0 * r2, which is not 0 for every
+    // r2, and the batch paths would pay for them on every point).
+    static constexpr bool kHasK3 = N >= 5;
+    static constexpr bool kRational = N >= 8;    // k4 k5 k6: the denominator
+    static constexpr bool kThinPrism = N >= 12;  // s1 s2 s3 s4
+
     // Coefficient i, or 0 for a model with fewer: the shorter models are the longer with zeros.
     template <int i>
     static Scalar c(const Parameters& lens) {
@@ -217,19 +230,38 @@ private:
     // and Q divided by s^3 first: P(s)/s^3 = t^3 + k1 t^2 + k2 t + k3. In s alone R would
     // be inf/inf = NaN there, though R itself is finite.
     static Radial radial_factor(const Parameters& lens, const Scalar& r2) {
-        using std::isfinite;
-        const Scalar k1 = c<0>(lens), k2 = c<1>(lens), k3 = c<4>(lens);
-        const Scalar k4 = c<5>(lens), k5 = c<6>(lens), k6 = c<7>(lens);
+        const Scalar k1 = c<0>(lens), k2 = c<1>(lens);
         const Scalar one(1), two(2), three(3);
-        const Scalar p = one + r2 * (k1 + r2 * (k2 + r2 * k3));
-        const Scalar q = one + r2 * (k4 + r2 * (k5 + r2 * k6));
-        if (isfinite(p) && isfinite(q)) {
-            const Scalar dp = k1 + r2 * (two * k2 + three * k3 * r2);
+        Scalar from_k2 = k2, d_from_k2 = two * k2;  // k2 + k3 r2 and its derivative's part, when there is a k3
+        if constexpr (kHasK3) {
+            const Scalar k3 = c<4>(lens);
+            from_k2 = k2 + r2 * k3;
+            d_from_k2 = two * k2 + three * k3 * r2;
+        }
+        const Scalar p = one + r2 * (k1 + r2 * from_k2);
+        const Scalar dp = k1 + r2 * d_from_k2;
+        if constexpr (!kRational) {
+            // A polynomial that overflows has an image that overflows: m comes out
+            // non-finite and project() flags it.
+            return {p, dp, one, false};
+        } else {
+            using std::isfinite;
+            const Scalar k4 = c<5>(lens), k5 = c<6>(lens), k6 = c<7>(lens);
+            const Scalar q = one + r2 * (k4 + r2 * (k5 + r2 * k6));
+            if (!(isfinite(p) && isfinite(q))) return inverted_radial_factor(lens, r2);
             const Scalar dq = k4 + r2 * (two * k5 + three * k6 * r2);
+            // p / q, not p * (1 / q): the reciprocal's extra rounding cost up to 20 ulps in
+            // float near the camera plane (test_extremes "points at z -> 0+").
             const Scalar value = p / q;
             return {value, (dp - value * dq) / q, q, false};
         }
-        // R(t) = P~(t) / Q~(t); dR/ds = -t^2 dR/dt = -t^2 (P~' - R Q~') / Q~.
+    }
+
+    // R(t) = P~(t) / Q~(t) with t = 1 / s; dR/ds = -t^2 dR/dt = -t^2 (P~' - R Q~') / Q~.
+    static Radial inverted_radial_factor(const Parameters& lens, const Scalar& r2) {
+        const Scalar k1 = c<0>(lens), k2 = c<1>(lens), k3 = c<4>(lens);
+        const Scalar k4 = c<5>(lens), k5 = c<6>(lens), k6 = c<7>(lens);
+        const Scalar one(1), two(2), three(3);
         const Scalar t = one / r2;
         const Scalar p_t = k3 + t * (k2 + t * (k1 + t));
         const Scalar q_t = k6 + t * (k5 + t * (k4 + t));
@@ -256,7 +288,7 @@ private:
         const detail::TiltMatrix<Scalar> tilt(c<12>(lens), c<13>(lens), is_requested<CoefficientJacobianPtr>);
         const Vec3T d1(d.x(), d.y(), Scalar(1));
         const Vec3T v = tilt.matrix * d1;
-        if (!(v.z() > Scalar(0))) return false;
+        const bool in_front = v.z() > Scalar(0);
         const Scalar inv_z = Scalar(1) / v.z();
         m = Vec2T(v.x() * inv_z, v.y() * inv_z);
         if constexpr (is_requested<UJacobianPtr> || is_requested<CoefficientJacobianPtr>) {
@@ -271,7 +303,7 @@ private:
                 d_m_d_coefficients->col(13) = d_m_d_v * (tilt.d_tau_y * d1);
             }
         }
-        return true;
+        return in_front;
     }
 };
 

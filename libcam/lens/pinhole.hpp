@@ -24,20 +24,22 @@ struct PinholeLens {
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
     using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
 
-    // Returns false for z <= 0, and where x/z or y/z overflows (m then unspecified). When
+    // Returns false for z <= 0 and where x/z or y/z overflows (m then meaningless). When
     // d_m_d_point is a Jacobian23 pointer it receives dm/d(x, y, z); passing nothing
-    // costs nothing. m is x / z, not x * (1 / z): 1 / z overflows for a subnormal z
-    // (and (0, 0, 5e-324) would give 0 * inf = NaN) where x / z is exact.
+    // costs nothing. Computed without branches (the flag is returned, not acted on) so
+    // that a loop over many points vectorises; the same holds for every model's
+    // distort(). m is x / z, not x * (1 / z): 1 / z overflows for a subnormal z (and
+    // (0, 0, 5e-324) would give 0 * inf = NaN) where x / z is exact.
     template <class JacobianPtr = std::nullptr_t>
     static bool project(const Vec3T& point, Vec2T& m, JacobianPtr d_m_d_point = nullptr) {
-        if (!(point.z() > Scalar(0))) return false;
+        const bool in_front = point.z() > Scalar(0);
         m = Vec2T(point.x() / point.z(), point.y() / point.z());
         if constexpr (!std::is_same_v<JacobianPtr, std::nullptr_t>) {
             const Scalar inv_z = Scalar(1) / point.z();
             *d_m_d_point << inv_z, Scalar(0), -m.x() * inv_z,  //
                 Scalar(0), inv_z, -m.y() * inv_z;
         }
-        return m.allFinite();
+        return in_front && m.allFinite();
     }
 
     // Every finite normalised point has a ray; its z is 1.

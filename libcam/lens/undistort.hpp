@@ -34,6 +34,15 @@ Scalar unprojection_tolerance(const Scalar& distorted_radius) {
     return Scalar(64) * std::numeric_limits<Scalar>::epsilon() * (Scalar(1) + distorted_radius);
 }
 
+// The Newton step J^-1 residual for the 2x2 Jacobian J, by its adjugate. Not finite
+// when J is singular.
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> newton_step(const Eigen::Matrix<Scalar, 2, 2>& J, const Eigen::Matrix<Scalar, 2, 1>& residual) {
+    const Scalar inverse_determinant = Scalar(1) / (J(0, 0) * J(1, 1) - J(0, 1) * J(1, 0));
+    return {(J(1, 1) * residual.x() - J(0, 1) * residual.y()) * inverse_determinant,
+            (J(0, 0) * residual.y() - J(1, 0) * residual.x()) * inverse_determinant};
+}
+
 namespace detail {
 
 // Solves d(r) = target for r in [0, valid_radius) (d increasing there); false when no
@@ -76,32 +85,26 @@ bool solve_radial(const Parameters& lens, Scalar target, Scalar& r) {
 
 }  // namespace detail
 
-// Solves Model::distort(lens, u) = m for u, as described above. Returns false, and
-// leaves u unspecified, when there is no accurate solution inside the valid domain.
+// Step 2 alone: from the start u, Newton's method on distort(u) = m with step halving,
+// until the residual stops decreasing. True when it ends inside the valid domain with
+// a residual within unprojection_tolerance(|m|); u is then the solution.
 template <class Model, class Parameters, class Scalar>
-bool solve_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>& m, Eigen::Matrix<Scalar, 2, 1>& u) {
+bool polish_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>& m, Eigen::Matrix<Scalar, 2, 1>& u) {
+    using std::abs;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Jacobian22 = Eigen::Matrix<Scalar, 2, 2>;
     constexpr int kMaxIterations = 30;
     constexpr int kMaxHalvings = 30;
-
-    const Scalar distorted_radius = m.norm();
-    Scalar r(0);
-    if (!detail::solve_radial<Model>(lens, distorted_radius, r)) return false;
-    u = distorted_radius > Scalar(0) ? Vec2T(m * (r / distorted_radius)) : Vec2T::Zero();
 
     Vec2T m_u;
     Jacobian22 d_m_d_u;
     if (!Model::distort(lens, u, m_u, &d_m_d_u)) return false;
     Vec2T residual = m_u - m;
     Scalar error = residual.norm();
-    const Scalar tolerance = unprojection_tolerance(distorted_radius);
+    const Scalar tolerance = unprojection_tolerance(m.norm());
     for (int iteration = 0; iteration < kMaxIterations && error > Scalar(0); ++iteration) {
-        const Scalar determinant = d_m_d_u(0, 0) * d_m_d_u(1, 1) - d_m_d_u(0, 1) * d_m_d_u(1, 0);
-        if (!(determinant != Scalar(0))) break;
-        const Vec2T step(
-            (d_m_d_u(1, 1) * residual.x() - d_m_d_u(0, 1) * residual.y()) / determinant,
-            (d_m_d_u(0, 0) * residual.y() - d_m_d_u(1, 0) * residual.x()) / determinant);  // J^-1 residual
+        const Vec2T step = newton_step(d_m_d_u, residual);
+        if (!(abs(step.x()) < std::numeric_limits<Scalar>::infinity() && abs(step.y()) < std::numeric_limits<Scalar>::infinity())) break;
         // Once converged, only a full step that still lowers the residual is worth taking.
         const int halvings = error > tolerance ? kMaxHalvings : 0;
         bool improved = false;
@@ -124,6 +127,18 @@ bool solve_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>
         if (!improved) break;
     }
     return error <= tolerance;
+}
+
+// Solves Model::distort(lens, u) = m for u, as described above. Returns false, and
+// leaves u unspecified, when there is no accurate solution inside the valid domain.
+template <class Model, class Parameters, class Scalar>
+bool solve_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>& m, Eigen::Matrix<Scalar, 2, 1>& u) {
+    using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
+    const Scalar distorted_radius = m.norm();
+    Scalar r(0);
+    if (!detail::solve_radial<Model>(lens, distorted_radius, r)) return false;
+    u = distorted_radius > Scalar(0) ? Vec2T(m * (r / distorted_radius)) : Vec2T::Zero();
+    return polish_undistorted<Model>(lens, m, u);
 }
 
 }  // namespace libcam

@@ -1,0 +1,72 @@
+#pragma once
+// What the batch paths (projector.cpp, unprojector.cpp) share; internal to libcam.
+//
+// The loops run in blocks of kBlock points. Within a block every step is its own
+// simple loop over arrays, with the model evaluated in Lane<Scalar> (lens/lane.hpp) and
+// the per-point validity kept as a Scalar 0 or 1 in the loop (a byte written from a
+// double comparison does not vectorise with SSE2), narrowed to bytes at the end.
+//
+// A loop reads the camera's constants (lens parameters, K, the table's geometry) from
+// local copies made just before it: the compiler cannot tell that a store to an output
+// array does not change a constant read through a reference (or even a by-value
+// parameter, which the ABI passes in memory), so it would reload them on every point,
+// under the point's branch, and a load under a branch is what stops the vectoriser.
+
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <span>
+#include <string>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/error.hpp"
+#include "libcam/lens/lane.hpp"
+#include "libcam/lens/lens_models.hpp"
+
+namespace libcam::batch {
+
+// Points per block: a block's scratch arrays (a few kB) stay in the L1 cache. Chunks
+// given to threads are multiples of it.
+inline constexpr std::size_t kBlock = 128;
+
+// The model's parameters in its scalar type, from the camera's coefficients and the
+// valid radius worked out once per camera.
+template <class Model>
+typename Model::Parameters model_parameters(const Lens& lens, double valid_radius) {
+    using Scalar = typename Model::Vec2T::Scalar;
+    return lens_parameters<Scalar, Model::num_coefficients>(lens.coefficients, valid_radius);
+}
+
+// The lens's valid radius (lens/model_support.hpp), found once (a polynomial root search).
+inline double lens_valid_radius(const Lens& lens) {
+    return visit_lens_model<double>(
+        lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
+}
+
+// Throws InvalidArgument unless every coordinate array of a batch has n entries.
+inline void require_same_sizes(const char* field, std::size_t n, std::initializer_list<std::size_t> others) {
+    for (std::size_t size : others) {
+        if (size != n) {
+            throw InvalidArgument(std::string(field) + ": coordinate arrays of different lengths (" + std::to_string(n) +
+                                  " and " + std::to_string(size) + ")");
+        }
+    }
+}
+
+template <class Scalar>
+constexpr Scalar flag(bool value) {
+    return value ? Scalar(1) : Scalar(0);
+}
+
+// Bytes 1 where the flag is positive (1 valid; 0 and -1 are the ways of being invalid).
+// Through int: a byte from a double comparison does not vectorise with SSE2, a byte
+// from an int does.
+template <class Scalar>
+void store_flags(std::span<const Scalar> flags, std::uint8_t* out) {
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+        const int flag = static_cast<int>(flags[i]);
+        out[i] = static_cast<std::uint8_t>(flag > 0 ? flag : 0);
+    }
+}
+
+}  // namespace libcam::batch

@@ -1,0 +1,39 @@
+#pragma once
+// Projection of many points at once, in float or double: the lens's constants are
+// worked out once per camera, the points come and go as structure-of-arrays
+// (batch.hpp), the loop over points is vectorised, and it can be split over threads.
+//
+//   Projector<double> projector(camera);
+//   projector.project(camera_points, pixels, valid, /*threads=*/2);
+//
+// The result of each point is bit for bit the same for any number of threads, and
+// (in double) equal to Camera::project_camera_point's to rounding.
+
+#include "libcam/camera/batch.hpp"
+#include "libcam/camera/camera.hpp"
+
+namespace libcam {
+
+template <class Scalar>
+class Projector {
+public:
+    // Throws InvalidArgument for an invalid camera.
+    explicit Projector(const Camera& camera);
+
+    // The pixel of each camera-frame point; valid[i] = 0, and pixel (0, 0), outside the
+    // lens's domain (behind the camera, past the fold-over radius, ...). Resizes the
+    // outputs (no allocation when they already have the size).
+    void project(const Points3<Scalar>& camera_points, Points2<Scalar>& pixels, ValidFlags& valid,
+                 int threads = 1) const;
+
+    const Camera& camera() const { return camera_; }
+
+private:
+    Camera camera_;
+    double valid_radius_;
+};
+
+extern template class Projector<float>;
+extern template class Projector<double>;
+
+}  // namespace libcam

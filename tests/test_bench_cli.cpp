@@ -1,0 +1,107 @@
+// `libcam bench`, run as a user runs it, on a tiny grid (seconds, not minutes): valid
+// JSON with the documented keys, a row for every method and library, a PNG, and usage
+// errors. Times are printed, never asserted.
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <algorithm>
+#include <set>
+#include <string>
+
+#include "cli_runner.hpp"
+
+using namespace libcam::test;
+using nlohmann::json;
+
+namespace {
+
+const std::vector<std::string> kRowKeys = {"op",       "library", "method",  "scalar", "model",
+                                           "ns_per_point", "median_px", "p99_px", "max_px", "invalid_fraction"};
+
+json bench_json(const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"bench", "--grid", "9x7", "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult result = run_libcam(args);
+    INFO(result.describe());
+    REQUIRE(result.exit_code == 0);
+    return json::parse(result.out);
+}
+
+// "op library method scalar" of every row.
+std::set<std::string> row_names(const json& out) {
+    std::set<std::string> names;
+    for (const json& row : out["rows"]) {
+        names.insert(row["op"].get<std::string>() + " " + row["library"].get<std::string>() + " " +
+                     row["method"].get<std::string>() + " " + row["scalar"].get<std::string>());
+    }
+    return names;
+}
+
+}  // namespace
+
+TEST_CASE("bench --json: every row has the documented keys, and every method and library has a row") {
+    const json out = bench_json({"--case", "mild"});
+    REQUIRE(out.contains("rows"));
+    REQUIRE(out["rows"].is_array());
+    for (const json& row : out["rows"]) {
+        for (const std::string& key : kRowKeys) {
+            INFO(row.dump() << " key " << key);
+            CHECK(row.contains(key));
+        }
+        CHECK(row["ns_per_point"].is_number());
+        CHECK(row["ns_per_point"].get<double>() > 0);
+        CHECK(row["model"] == "OPENCV8");
+        CHECK(row["max_px"].is_number());
+    }
+    const std::set<std::string> names = row_names(out);
+    for (const char* expected : {"unproject libcam exact double", "unproject libcam fast double", "unproject libcam lut double",
+                                 "unproject libcam exact float", "unproject libcam fast float", "unproject libcam lut float",
+                                 "unproject opencv default double", "unproject opencv 100it-eps1e-14 double",
+                                 "unproject mrcal mrcal_unproject double", "project libcam batch double",
+                                 "project libcam batch float", "project opencv projectPoints double",
+                                 "project mrcal mrcal_project double"}) {
+        INFO(expected);
+        CHECK(names.count(expected) == 1);
+    }
+}
+
+TEST_CASE("bench on a FISHEYE lens: OpenCV's fisheye functions, no mrcal rows (mrcal lacks the model)") {
+    const json out = bench_json({"--case", "fisheye", "--threads", "1"});
+    const std::set<std::string> names = row_names(out);
+    CHECK(names.count("unproject opencv default double") == 1);
+    CHECK(names.count("project opencv fisheye::projectPoints double") == 1);
+    for (const std::string& name : names) CHECK(name.find("mrcal") == std::string::npos);
+}
+
+TEST_CASE("bench --plot writes a PNG and --save-json the JSON beside the table, for a camera read with --from") {
+    TempDir dir;
+    const std::string camera = (dir / "camera.yaml").string();
+    REQUIRE(run_libcam({"convert", "--fov", "70", "--size", "64x48", "--to", "opencv-yaml", "-o", camera}).exit_code == 0);
+    const std::string png = (dir / "speed.png").string(), saved = (dir / "speed.json").string();
+    const CliResult result =
+        run_libcam({"bench", "--from", camera, "--grid", "5x4", "--threads", "1", "--plot", png, "--save-json", saved});
+    INFO(result.describe());
+    REQUIRE(result.exit_code == 0);
+    CHECK(result.out.find("ns/point") != std::string::npos);
+    const std::string bytes = read_whole_file(png);
+    REQUIRE(bytes.size() > 8);
+    CHECK(bytes.substr(1, 3) == "PNG");
+    const json out = json::parse(read_whole_file(saved));
+    CHECK(out["rows"].size() > 5);
+    CHECK(out["rows"][0]["model"] == "PINHOLE");
+}
+
+TEST_CASE("bench usage errors exit 2 with one line on stderr and nothing on stdout") {
+    for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+             {"bench", "--repeat", "2"},
+             {"bench", "--grid", "1x5"},
+             {"bench", "--case", "nonesuch"},
+             {"bench", "--threads", "0"},
+         }) {
+        const CliResult result = run_libcam(args);
+        INFO(result.describe());
+        CHECK(result.exit_code == 2);
+        CHECK(result.out.empty());
+        CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
+    }
+}

@@ -1,0 +1,563 @@
+#include "bench_measure.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <opencv2/calib3d.hpp>
+
+#include "libcam/camera/projector.hpp"
+#include "libcam/camera/unprojector.hpp"
+#include "libcam/error.hpp"
+#include "libcam/interop/mrcal.hpp"
+#include "libcam/interop/opencv.hpp"
+#include "libcam/lens/lens_models.hpp"
+
+namespace libcam::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// What one candidate's last run produced, for its error statistics.
+struct Outcome {
+    std::vector<double> errors_px;  // one per point with a result
+    std::size_t total = 0;          // points attempted
+};
+
+struct Candidate {
+    BenchRow row;
+    std::size_t points = 0;             // per run, for the time per point
+    std::function<void()> run;          // the timed work
+    std::function<Outcome()> outcome;   // read right after the last run; empty: no error statistics
+};
+
+// ---------------------------------------------------------------------------------
+// Timing and statistics.
+
+// Median, 99th percentile and maximum; not numbers when no point had a result.
+ErrorStats error_stats(std::vector<double> errors) {
+    constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+    if (errors.empty()) return {kNone, kNone, kNone};
+    const auto at_fraction = [&](double fraction) {
+        const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(fraction * static_cast<double>(errors.size())));
+        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
+        return errors[k];
+    };
+    const double median = at_fraction(0.5), p99 = at_fraction(0.99);
+    return {median, p99, *std::max_element(errors.begin(), errors.end())};
+}
+
+double median_of(std::vector<double> values) {
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
+    return values[values.size() / 2];
+}
+
+// Every candidate run once to warm up (page faults, caches), then `repeat` rounds in
+// which each runs once, so that a slow spell of the machine spreads over all of them.
+// Candidates share output buffers: each outcome is read right after its last run.
+std::vector<BenchRow> measure(std::vector<Candidate>& candidates, int repeat) {
+    for (Candidate& c : candidates) c.run();
+    std::vector<std::vector<double>> seconds(candidates.size());
+    for (int round = 0; round < repeat; ++round) {
+        for (std::size_t i = 0; i < candidates.size(); ++i) {
+            Candidate& c = candidates[i];
+            const Clock::time_point start = Clock::now();
+            c.run();
+            seconds[i].push_back(std::chrono::duration<double>(Clock::now() - start).count());
+            if (round + 1 == repeat && c.outcome) {
+                const Outcome outcome = c.outcome();
+                c.row.error = error_stats(outcome.errors_px);
+                c.row.invalid_fraction =
+                    outcome.total ? 1.0 - static_cast<double>(outcome.errors_px.size()) / static_cast<double>(outcome.total) : 0.0;
+            }
+        }
+    }
+    std::vector<BenchRow> rows;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+        candidates[i].row.ns_per_point = median_of(seconds[i]) * 1e9 / static_cast<double>(std::max<std::size_t>(candidates[i].points, 1));
+        rows.push_back(candidates[i].row);
+    }
+    return rows;
+}
+
+// ---------------------------------------------------------------------------------
+// The points: a grid of pixels, and the rays through them.
+
+std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) {
+    std::vector<Vec2> pixels;
+    pixels.reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+    for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) {
+            pixels.emplace_back(static_cast<double>(size.width - 1) * i / std::max(nx - 1, 1),
+                                static_cast<double>(size.height - 1) * j / std::max(ny - 1, 1));
+        }
+    }
+    return pixels;
+}
+
+// Camera points for the projection rows: the rays of the grid's pixels that have one,
+// by the full solver in long double, and the pixel each came from.
+struct RayPoints {
+    std::vector<Vec3> points;
+    std::vector<Vec2> pixels;
+};
+
+RayPoints rays_of(const Camera& camera, const std::vector<Vec2>& grid) {
+    RayPoints out;
+    visit_lens_model<long double>(camera.lens.type, [&]<class Model>() {
+        const auto lens = Model::parameters(camera.lens.coefficients);
+        for (const Vec2& pixel : grid) {
+            const Eigen::Matrix<long double, 2, 1> m =
+                camera.intrinsics.normalized_from_pixel(Eigen::Matrix<long double, 2, 1>(pixel.cast<long double>()));
+            Eigen::Matrix<long double, 3, 1> ray;
+            if (!Model::unproject(lens, m, ray)) continue;
+            out.points.push_back(ray.cast<double>());
+            out.pixels.push_back(pixel);
+        }
+    });
+    return out;
+}
+
+// How far each direction's projection (libcam's, which the tests check against OpenCV
+// and mrcal) lands from its pixel; a direction flagged, not finite or outside the lens's
+// domain counts as no result.
+Outcome reprojection_outcome(const Camera& camera, const std::vector<Vec2>& pixels, const std::vector<Vec3>& directions,
+                             const std::vector<char>& has_result) {
+    std::vector<Vec3> usable(directions.size(), Vec3::UnitZ());
+    for (std::size_t i = 0; i < directions.size(); ++i) {
+        if (has_result[i] && directions[i].allFinite()) usable[i] = directions[i];
+    }
+    const std::vector<Projection> projected = camera.project_camera_points(usable);
+    Outcome outcome;
+    outcome.total = pixels.size();
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+        if (has_result[i] && directions[i].allFinite() && projected[i].valid) {
+            outcome.errors_px.push_back((projected[i].pixel - pixels[i]).norm());
+        }
+    }
+    return outcome;
+}
+
+Outcome pixel_outcome(const std::vector<Vec2>& expected, const std::vector<Vec2>& pixels, const std::vector<char>& has_result) {
+    Outcome outcome;
+    outcome.total = expected.size();
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        if (has_result[i] && pixels[i].allFinite()) outcome.errors_px.push_back((pixels[i] - expected[i]).norm());
+    }
+    return outcome;
+}
+
+template <class Scalar>
+Points2<Scalar> as_points2(const std::vector<Vec2>& pixels) {
+    Points2<Scalar> out;
+    for (const Vec2& p : pixels) {
+        out.x.push_back(Scalar(p.x()));
+        out.y.push_back(Scalar(p.y()));
+    }
+    return out;
+}
+
+template <class Scalar>
+Points3<Scalar> as_points3(const std::vector<Vec3>& points) {
+    Points3<Scalar> out;
+    for (const Vec3& p : points) {
+        out.x.push_back(Scalar(p.x()));
+        out.y.push_back(Scalar(p.y()));
+        out.z.push_back(Scalar(p.z()));
+    }
+    return out;
+}
+
+// The pixels as the scalar type holds them: the float rows are measured against the
+// pixel they were given (the grid rounded to float), not against a pixel they never saw.
+template <class Scalar>
+std::vector<Vec2> as_given(const Points2<Scalar>& pixels) {
+    std::vector<Vec2> out;
+    for (std::size_t i = 0; i < pixels.size(); ++i) out.emplace_back(double(pixels.x[i]), double(pixels.y[i]));
+    return out;
+}
+
+template <class Scalar>
+std::vector<Vec3> as_vec3(const Points3<Scalar>& points) {
+    std::vector<Vec3> out;
+    for (std::size_t i = 0; i < points.size(); ++i) out.emplace_back(double(points.x[i]), double(points.y[i]), double(points.z[i]));
+    return out;
+}
+
+template <class Scalar>
+const char* scalar_name() {
+    return sizeof(Scalar) == sizeof(float) ? "float" : "double";
+}
+
+// Which reference library has the lens's model: the bridges refuse the others.
+bool opencv_has(const Lens& lens) {
+    try {
+        opencv_distortion(lens);
+        return true;
+    } catch (const NotRepresentable&) {
+        return false;
+    }
+}
+
+bool mrcal_has(const Lens& lens) {
+    try {
+        mrcal_lensmodel_name(lens);
+        return true;
+    } catch (const NotRepresentable&) {
+        return false;
+    }
+}
+
+// ---------------------------------------------------------------------------------
+// The candidates. Each builder adds its rows; the buffers they write live in the
+// Workspace, which outlives the measurement.
+
+struct Workspace {
+    Points3<double> directions_double;  // the grid's rays
+    Points3<float> directions_float;
+    ValidFlags unprojected_valid;
+    Points2<double> pixels_double;  // the rays' pixels
+    Points2<float> pixels_float;
+    ValidFlags projected_valid;
+    std::vector<Unprojection> unprojections;
+    std::vector<Projection> projections;
+    cv::Mat cv_unprojected, cv_projected;
+    std::vector<double> mrcal_unprojected, mrcal_projected;
+    Points3<double> frame_double;  // every pixel's ray
+    Points3<float> frame_float;
+    ValidFlags frame_valid;
+};
+
+struct Setup {
+    const BenchCase& bench_case;
+    const BenchSettings& settings;
+    std::string model;
+    std::vector<Vec2> grid;
+    RayPoints rays;
+};
+
+BenchRow row(const Setup& setup, const char* op, const char* library, std::string method, const char* scalar, int threads = 1) {
+    BenchRow r;
+    r.camera = setup.bench_case.name;
+    r.op = op;
+    r.library = library;
+    r.method = std::move(method);
+    r.scalar = scalar;
+    r.model = setup.model;
+    r.threads = threads;
+    return r;
+}
+
+template <class Scalar>
+void add_libcam_unprojection(std::vector<Candidate>& out, const Setup& setup, const Unprojector<Scalar>& unprojector,
+                             const Points2<Scalar>& pixels, Workspace& work, Points3<Scalar>& directions) {
+    const std::vector<Vec2> given = as_given(pixels);
+    for (UnprojectMethod method : kUnprojectMethods) {
+        for (int threads : setup.settings.threads) {
+            Candidate c{row(setup, "unproject", "libcam", std::string(method_name(method)), scalar_name<Scalar>(), threads),
+                        pixels.size(), nullptr, nullptr};
+            c.run = [&, method, threads] { unprojector.unproject(pixels, method, directions, work.unprojected_valid, threads); };
+            c.outcome = [&, given] {
+                return reprojection_outcome(setup.bench_case.camera, given, as_vec3(directions),
+                                            std::vector<char>(work.unprojected_valid.begin(), work.unprojected_valid.end()));
+            };
+            out.push_back(std::move(c));
+        }
+    }
+}
+
+void add_robust_unprojection(std::vector<Candidate>& out, const Setup& setup, Workspace& work) {
+    Candidate c{row(setup, "unproject", "libcam", "robust", "double"), setup.grid.size(), nullptr, nullptr};
+    c.run = [&] { work.unprojections = setup.bench_case.camera.unproject_pixels(setup.grid); };
+    c.outcome = [&] {
+        std::vector<Vec3> directions;
+        std::vector<char> valid;
+        for (const Unprojection& u : work.unprojections) {
+            directions.push_back(u.direction);
+            valid.push_back(u.valid);
+        }
+        return reprojection_outcome(setup.bench_case.camera, setup.grid, directions, valid);
+    };
+    out.push_back(std::move(c));
+}
+
+cv::Mat as_cv_points(const std::vector<Vec2>& pixels) {
+    cv::Mat out(static_cast<int>(pixels.size()), 1, CV_64FC2);
+    for (std::size_t i = 0; i < pixels.size(); ++i) out.at<cv::Vec2d>(static_cast<int>(i)) = {pixels[i].x(), pixels[i].y()};
+    return out;
+}
+
+// cv::undistortPoints (cv::fisheye::undistortPoints for FISHEYE) at its default and at
+// 100 iterations with eps 1e-14. Its normalised point (x, y) is the ray (x, y, 1).
+void add_opencv_unprojection(std::vector<Candidate>& out, const Setup& setup, const cv::Mat& cv_pixels, Workspace& work) {
+    const Camera& camera = setup.bench_case.camera;
+    if (!opencv_has(camera.lens)) return;
+    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
+    const bool fisheye = camera.lens.type == LensType::Fisheye;
+    const cv::TermCriteria many(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-14);
+    for (const bool iterate : {false, true}) {
+        Candidate c{row(setup, "unproject", "opencv", iterate ? "100it-eps1e-14" : "default", "double"), setup.grid.size(),
+                    nullptr, nullptr};
+        c.run = [&, K, D, fisheye, iterate, many] {
+            if (fisheye) {
+                if (iterate) cv::fisheye::undistortPoints(cv_pixels, work.cv_unprojected, K, D, cv::noArray(), cv::noArray(), many);
+                else cv::fisheye::undistortPoints(cv_pixels, work.cv_unprojected, K, D);
+            } else {
+                if (iterate) cv::undistortPoints(cv_pixels, work.cv_unprojected, K, D, cv::noArray(), cv::noArray(), many);
+                else cv::undistortPoints(cv_pixels, work.cv_unprojected, K, D);
+            }
+        };
+        c.outcome = [&] {
+            std::vector<Vec3> directions;
+            for (int i = 0; i < work.cv_unprojected.rows; ++i) {
+                const cv::Vec2d m = work.cv_unprojected.at<cv::Vec2d>(i);
+                directions.emplace_back(m[0], m[1], 1.0);
+            }
+            return reprojection_outcome(camera, setup.grid, directions, std::vector<char>(directions.size(), 1));
+        };
+        out.push_back(std::move(c));
+    }
+}
+
+void add_mrcal_unprojection(std::vector<Candidate>& out, const Setup& setup, const std::vector<double>& packed, Workspace& work) {
+    const Camera& camera = setup.bench_case.camera;
+    if (!mrcal_has(camera.lens)) return;
+    Candidate c{row(setup, "unproject", "mrcal", "mrcal_unproject", "double"), setup.grid.size(), nullptr, nullptr};
+    c.run = [&] {
+        mrcal_unproject_packed(camera, packed, work.mrcal_unprojected);
+    };
+    c.outcome = [&] {
+        std::vector<Vec3> directions;
+        for (std::size_t i = 0; i < setup.grid.size(); ++i) {
+            directions.emplace_back(work.mrcal_unprojected[3 * i], work.mrcal_unprojected[3 * i + 1],
+                                    work.mrcal_unprojected[3 * i + 2]);
+        }
+        return reprojection_outcome(camera, setup.grid, directions, std::vector<char>(directions.size(), 1));
+    };
+    out.push_back(std::move(c));
+}
+
+template <class Scalar>
+void add_libcam_projection(std::vector<Candidate>& out, const Setup& setup, const Projector<Scalar>& projector,
+                           const Points3<Scalar>& points, Workspace& work, Points2<Scalar>& pixels) {
+    for (int threads : setup.settings.threads) {
+        Candidate c{row(setup, "project", "libcam", "batch", scalar_name<Scalar>(), threads), points.size(), nullptr, nullptr};
+        c.run = [&, threads] { projector.project(points, pixels, work.projected_valid, threads); };
+        c.outcome = [&] {
+            return pixel_outcome(setup.rays.pixels, as_given(pixels),
+                                 std::vector<char>(work.projected_valid.begin(), work.projected_valid.end()));
+        };
+        out.push_back(std::move(c));
+    }
+}
+
+void add_per_point_projection(std::vector<Candidate>& out, const Setup& setup, Workspace& work) {
+    Candidate c{row(setup, "project", "libcam", "per-point", "double"), setup.rays.points.size(), nullptr, nullptr};
+    c.run = [&] { work.projections = setup.bench_case.camera.project_camera_points(setup.rays.points); };
+    c.outcome = [&] {
+        std::vector<Vec2> pixels;
+        std::vector<char> valid;
+        for (const Projection& p : work.projections) {
+            pixels.push_back(p.pixel);
+            valid.push_back(p.valid);
+        }
+        return pixel_outcome(setup.rays.pixels, pixels, valid);
+    };
+    out.push_back(std::move(c));
+}
+
+void add_opencv_projection(std::vector<Candidate>& out, const Setup& setup, const cv::Mat& cv_points, Workspace& work) {
+    const Camera& camera = setup.bench_case.camera;
+    if (!opencv_has(camera.lens)) return;
+    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
+    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
+    const bool fisheye = camera.lens.type == LensType::Fisheye;
+    Candidate c{row(setup, "project", "opencv", fisheye ? "fisheye::projectPoints" : "projectPoints", "double"),
+                setup.rays.points.size(), nullptr, nullptr};
+    c.run = [&, K, D, zero, fisheye] {
+        if (fisheye) cv::fisheye::projectPoints(cv_points, work.cv_projected, zero, zero, K, D);
+        else cv::projectPoints(cv_points, zero, zero, K, D, work.cv_projected);
+    };
+    c.outcome = [&] {
+        std::vector<Vec2> pixels;
+        for (int i = 0; i < work.cv_projected.rows; ++i) {
+            const cv::Vec2d q = work.cv_projected.at<cv::Vec2d>(i);
+            pixels.emplace_back(q[0], q[1]);
+        }
+        return pixel_outcome(setup.rays.pixels, pixels, std::vector<char>(pixels.size(), 1));
+    };
+    out.push_back(std::move(c));
+}
+
+void add_mrcal_projection(std::vector<Candidate>& out, const Setup& setup, const std::vector<double>& packed, Workspace& work) {
+    const Camera& camera = setup.bench_case.camera;
+    if (!mrcal_has(camera.lens)) return;
+    const std::size_t n = setup.rays.points.size();
+    Candidate c{row(setup, "project", "mrcal", "mrcal_project", "double"), n, nullptr, nullptr};
+    c.run = [&] { mrcal_project_packed(camera, packed, work.mrcal_projected); };
+    c.outcome = [&, n] {
+        std::vector<Vec2> pixels;
+        for (std::size_t i = 0; i < n; ++i) pixels.emplace_back(work.mrcal_projected[2 * i], work.mrcal_projected[2 * i + 1]);
+        return pixel_outcome(setup.rays.pixels, pixels, std::vector<char>(n, 1));
+    };
+    out.push_back(std::move(c));
+}
+
+
+// Every pixel's ray (unproject_image), and the time to write the same bytes once.
+template <class Scalar>
+void add_full_frame(std::vector<Candidate>& out, const Setup& setup, const Unprojector<Scalar>& unprojector,
+                    Points3<Scalar>& directions, ValidFlags& valid) {
+    const Camera& camera = unprojector.camera();
+    const std::size_t width = static_cast<std::size_t>(camera.size.width);
+    const std::size_t n = width * static_cast<std::size_t>(camera.size.height);
+    const bool closed_form = unprojector.table().step == 0;
+    const std::string model(lens_info(camera.lens.type).name);
+    for (UnprojectMethod method : kUnprojectMethods) {
+        if (closed_form && method != UnprojectMethod::Exact) continue;  // one closed form for every method
+        for (int threads : setup.settings.threads) {
+            Candidate c{row(setup, "rays_full_frame", "libcam", closed_form ? "closed-form" : std::string(method_name(method)),
+                            scalar_name<Scalar>(), threads),
+                        n, nullptr, nullptr};
+            c.row.model = model;
+            c.run = [&, method, threads] { unprojector.unproject_image(method, directions, valid, threads); };
+            // The accuracy on a sample of about 100,000 pixels spread over the frame.
+            c.outcome = [&, width, n] {
+                const std::size_t stride = std::max<std::size_t>(1, n / 100'000) | 1;  // odd: not aligned with rows
+                std::vector<Vec2> pixels;
+                std::vector<Vec3> rays;
+                std::vector<char> has_result;
+                for (std::size_t k = 0; k < n; k += stride) {
+                    pixels.emplace_back(double(k % width), double(k / width));
+                    rays.emplace_back(double(directions.x[k]), double(directions.y[k]), double(directions.z[k]));
+                    has_result.push_back(valid[k]);
+                }
+                return reprojection_outcome(camera, pixels, rays, has_result);
+            };
+            out.push_back(std::move(c));
+        }
+    }
+}
+
+// The time to write the bytes of a frame's rays once: memset of the three coordinate
+// arrays and the flags. Twice: with zeros, and with a byte that is not zero, as the rays'
+// bytes are not (z is 1, every flag 1). On the machine of the README zeros are written
+// 2.4 times as fast as any other byte, which would make zeros no reference for them.
+template <class Scalar>
+void add_memset(std::vector<Candidate>& out, const Setup& setup, std::size_t n, Points3<Scalar>& directions,
+                ValidFlags& valid) {
+    for (const int byte : {0, 0x3f}) {
+        Candidate c{row(setup, "rays_full_frame", "memset", byte == 0 ? "zeros" : "non-zero-bytes", scalar_name<Scalar>()), n,
+                    nullptr, nullptr};
+        c.row.model = "-";
+        c.run = [&, n, byte] {
+            directions.resize(n);
+            valid.resize(n);
+            for (std::vector<Scalar>* v : {&directions.x, &directions.y, &directions.z}) std::memset(v->data(), byte, n * sizeof(Scalar));
+            std::memset(valid.data(), byte, n);
+        };
+        out.push_back(std::move(c));
+    }
+}
+
+std::vector<double> packed_pixels(const std::vector<Vec2>& pixels) {
+    std::vector<double> out;
+    for (const Vec2& p : pixels) out.insert(out.end(), {p.x(), p.y()});
+    return out;
+}
+
+std::vector<double> packed_points(const std::vector<Vec3>& points) {
+    std::vector<double> out;
+    for (const Vec3& p : points) out.insert(out.end(), {p.x(), p.y(), p.z()});
+    return out;
+}
+
+cv::Mat as_cv_points3(const std::vector<Vec3>& points) {
+    cv::Mat out(static_cast<int>(points.size()), 1, CV_64FC3);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        out.at<cv::Vec3d>(static_cast<int>(i)) = {points[i].x(), points[i].y(), points[i].z()};
+    }
+    return out;
+}
+
+template <class T>
+double milliseconds_to_build(std::optional<T>& target, const Camera& camera) {
+    const Clock::time_point start = Clock::now();
+    target.emplace(camera);
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The grid's rows: unprojection and projection by every library.
+std::vector<BenchRow> grid_rows(const Setup& setup, const Unprojector<double>& unprojector_double,
+                                const Unprojector<float>& unprojector_float, Workspace& work) {
+    const Camera& camera = setup.bench_case.camera;
+    const Points2<double> pixels_double = as_points2<double>(setup.grid);
+    const Points2<float> pixels_float = as_points2<float>(setup.grid);
+    const cv::Mat cv_pixels = as_cv_points(setup.grid);
+    const std::vector<double> mrcal_pixels = packed_pixels(setup.grid);
+    const Points3<double> points_double = as_points3<double>(setup.rays.points);
+    const Points3<float> points_float = as_points3<float>(setup.rays.points);
+    const cv::Mat cv_points = as_cv_points3(setup.rays.points);
+    const std::vector<double> mrcal_points = packed_points(setup.rays.points);
+    work.mrcal_unprojected.resize(3 * setup.grid.size());
+    work.mrcal_projected.resize(2 * setup.rays.points.size());
+    const Projector<double> projector_double(camera);
+    const Projector<float> projector_float(camera);
+
+    std::vector<Candidate> candidates;
+    add_libcam_unprojection(candidates, setup, unprojector_double, pixels_double, work, work.directions_double);
+    add_libcam_unprojection(candidates, setup, unprojector_float, pixels_float, work, work.directions_float);
+    add_robust_unprojection(candidates, setup, work);
+    add_opencv_unprojection(candidates, setup, cv_pixels, work);
+    add_mrcal_unprojection(candidates, setup, mrcal_pixels, work);
+    add_libcam_projection(candidates, setup, projector_double, points_double, work, work.pixels_double);
+    add_libcam_projection(candidates, setup, projector_float, points_float, work, work.pixels_float);
+    add_per_point_projection(candidates, setup, work);
+    add_opencv_projection(candidates, setup, cv_points, work);
+    add_mrcal_projection(candidates, setup, mrcal_points, work);
+    return measure(candidates, setup.settings.repeat);
+}
+
+// Every pixel's ray through the lens and through a pinhole with the same K.
+std::vector<BenchRow> full_frame_rows(const Setup& setup, const Unprojector<double>& unprojector_double,
+                                      const Unprojector<float>& unprojector_float, Workspace& work) {
+    Camera pinhole = setup.bench_case.camera;
+    pinhole.lens = Lens{};
+    const Unprojector<double> pinhole_double(pinhole);
+    const Unprojector<float> pinhole_float(pinhole);
+    const std::size_t n = static_cast<std::size_t>(pinhole.size.width) * static_cast<std::size_t>(pinhole.size.height);
+    std::vector<Candidate> candidates;
+    add_full_frame(candidates, setup, pinhole_double, work.frame_double, work.frame_valid);
+    add_memset(candidates, setup, n, work.frame_double, work.frame_valid);
+    add_full_frame(candidates, setup, pinhole_float, work.frame_float, work.frame_valid);
+    add_memset(candidates, setup, n, work.frame_float, work.frame_valid);
+    add_full_frame(candidates, setup, unprojector_double, work.frame_double, work.frame_valid);
+    add_full_frame(candidates, setup, unprojector_float, work.frame_float, work.frame_valid);
+    return measure(candidates, setup.settings.repeat);
+}
+
+}  // namespace
+
+BenchResult run_bench(const BenchCase& bench_case, const BenchSettings& settings) {
+    const std::vector<Vec2> grid = pixel_grid(bench_case.camera.size, settings.grid_x, settings.grid_y);
+    const Setup setup{bench_case, settings, std::string(lens_info(bench_case.camera.lens.type).name), grid,
+                      rays_of(bench_case.camera, grid)};
+    BenchResult result;
+    std::optional<Unprojector<double>> unprojector_double;
+    std::optional<Unprojector<float>> unprojector_float;
+    result.table_build_ms_double = milliseconds_to_build(unprojector_double, bench_case.camera);
+    result.table_build_ms_float = milliseconds_to_build(unprojector_float, bench_case.camera);
+    Workspace work;
+    result.rows = grid_rows(setup, *unprojector_double, *unprojector_float, work);
+    if (settings.full_frame) {
+        std::vector<BenchRow> frame = full_frame_rows(setup, *unprojector_double, *unprojector_float, work);
+        result.rows.insert(result.rows.end(), frame.begin(), frame.end());
+    }
+    return result;
+}
+
+}  // namespace libcam::cli

@@ -1,0 +1,44 @@
+#pragma once
+// `libcam bench`: the time per point and the accuracy of every way libcam, OpenCV and
+// mrcal project and unproject, measured on the same pixels in one process.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bench_cases.hpp"
+
+namespace libcam::cli {
+
+struct ErrorStats {
+    double median_px = 0, p99_px = 0, max_px = 0;
+};
+
+struct BenchRow {
+    std::string camera;   // the case's name
+    std::string op;       // "unproject", "project", "rays_full_frame"
+    std::string library;  // "libcam", "opencv", "mrcal", "memset"
+    std::string method;
+    std::string scalar;  // "double", "float"
+    std::string model;   // the lens model, e.g. "OPENCV8"
+    int threads = 1;
+    double ns_per_point = 0;        // median over the repetitions
+    std::optional<ErrorStats> error;  // none for the memset reference
+    double invalid_fraction = 0;    // points flagged, not finite, or whose ray cannot be projected back
+};
+
+struct BenchSettings {
+    int grid_x = 601, grid_y = 401;  // pixels across and down, corners included
+    int repeat = 5;                  // timed repetitions, interleaved across the candidates
+    std::vector<int> threads{1, 2};  // thread counts for libcam's batch paths
+    bool full_frame = false;         // also every pixel's ray, and the memset reference
+};
+
+struct BenchResult {
+    std::vector<BenchRow> rows;
+    double table_build_ms_double = 0, table_build_ms_float = 0;  // Unprojector construction
+};
+
+BenchResult run_bench(const BenchCase& bench_case, const BenchSettings& settings);
+
+}  // namespace libcam::cli

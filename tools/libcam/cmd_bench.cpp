@@ -1,0 +1,182 @@
+// libcam bench: the speed/accuracy trade of every unprojection and projection method of
+// libcam, OpenCV and mrcal, measured on the same pixels in one run (bench_measure.cpp),
+// printed as a table, as JSON, and drawn as time against worst error (bench_plot.cpp).
+
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <opencv2/core/utility.hpp>
+#include <sstream>
+
+#include "bench_measure.hpp"
+#include "bench_plot.hpp"
+#include "commands.hpp"
+#include "libcam/io/atomic_write.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "parse.hpp"
+
+namespace libcam::cli {
+
+namespace {
+
+struct BenchFlags {
+    std::string from;
+    std::vector<std::string> cases;
+    std::string grid = "601x401";
+    int repeat = 5;
+    std::string threads = "1,2";
+    bool full_frame = false;
+    bool json = false;
+    std::string json_file;
+    std::string plot;
+};
+
+constexpr int kMinRepeat = 5;
+
+std::vector<BenchCase> chosen_cases(const BenchFlags& flags) {
+    if (!flags.from.empty()) return {{flags.from, read_camera_file(flags.from).camera}};
+    std::vector<BenchCase> all = builtin_bench_cases();
+    if (flags.cases.empty()) return all;
+    std::vector<BenchCase> chosen;
+    for (const std::string& name : flags.cases) {
+        const auto found = std::find_if(all.begin(), all.end(), [&](const BenchCase& c) { return c.name == name; });
+        if (found == all.end()) throw UsageError("--case: expected mild, strong, fisheye or wide, got '" + name + "'");
+        chosen.push_back(*found);
+    }
+    return chosen;
+}
+
+BenchSettings settings_from(const BenchFlags& flags) {
+    BenchSettings settings;
+    const ImageSize grid = parse_size("--grid", flags.grid);
+    if (grid.width < 2 || grid.height < 2) throw UsageError("--grid: needs at least 2x2 pixels (the corners), got '" + flags.grid + "'");
+    settings.grid_x = static_cast<int>(grid.width);
+    settings.grid_y = static_cast<int>(grid.height);
+    if (flags.repeat < kMinRepeat) throw UsageError("--repeat: at least " + std::to_string(kMinRepeat) + ", got " + std::to_string(flags.repeat));
+    settings.repeat = flags.repeat;
+    settings.threads.clear();
+    std::istringstream list(flags.threads);
+    for (std::string item; std::getline(list, item, ',');) {
+        const double count = parse_number("--threads", item);
+        if (count < 1 || count > 256 || count != static_cast<int>(count)) {
+            throw UsageError("--threads: expected whole numbers in [1, 256], got '" + flags.threads + "'");
+        }
+        settings.threads.push_back(static_cast<int>(count));
+    }
+    if (settings.threads.empty()) throw UsageError("--threads: expected a list such as 1,2");
+    settings.full_frame = flags.full_frame;
+    return settings;
+}
+
+nlohmann::json number_or_null(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr); }
+
+nlohmann::json row_json(const BenchRow& row) {
+    nlohmann::json out;
+    out["op"] = row.op;
+    out["library"] = row.library;
+    out["method"] = row.method;
+    out["scalar"] = row.scalar;
+    out["model"] = row.model;
+    out["camera"] = row.camera;
+    out["threads"] = row.threads;
+    out["ns_per_point"] = number_or_null(row.ns_per_point);
+    out["median_px"] = row.error ? number_or_null(row.error->median_px) : nlohmann::json(nullptr);
+    out["p99_px"] = row.error ? number_or_null(row.error->p99_px) : nlohmann::json(nullptr);
+    out["max_px"] = row.error ? number_or_null(row.error->max_px) : nlohmann::json(nullptr);
+    out["invalid_fraction"] = number_or_null(row.invalid_fraction);
+    return out;
+}
+
+struct CaseResult {
+    BenchCase bench_case;
+    BenchResult result;
+};
+
+std::string format_json(const std::vector<CaseResult>& results, const BenchSettings& settings) {
+    nlohmann::json out;
+    out["rows"] = nlohmann::json::array();
+    out["cameras"] = nlohmann::json::array();
+    for (const CaseResult& r : results) {
+        for (const BenchRow& row : r.result.rows) out["rows"].push_back(row_json(row));
+        const Camera& camera = r.bench_case.camera;
+        out["cameras"].push_back({{"camera", r.bench_case.name},
+                                  {"model", lens_info(camera.lens.type).name},
+                                  {"image_size", {camera.size.width, camera.size.height}},
+                                  {"grid", {settings.grid_x, settings.grid_y}},
+                                  {"repeat", settings.repeat},
+                                  {"table_build_ms", {{"double", r.result.table_build_ms_double}, {"float", r.result.table_build_ms_float}}}});
+    }
+    return out.dump(2) + "\n";
+}
+
+std::string number_text(double value, int precision) {
+    if (!std::isfinite(value)) return "-";
+    std::ostringstream out;
+    out << std::setprecision(precision) << value;
+    return out.str();
+}
+
+std::string format_table(const std::vector<CaseResult>& results, const BenchSettings& settings) {
+    std::ostringstream out;
+    out << std::left;
+    for (const CaseResult& r : results) {
+        const Camera& camera = r.bench_case.camera;
+        out << "camera " << r.bench_case.name << ": " << lens_info(camera.lens.type).name << ", " << camera.size.width << "x"
+            << camera.size.height << ", grid " << settings.grid_x << "x" << settings.grid_y << ", median of "
+            << settings.repeat << " interleaved runs; libcam table built in " << number_text(r.result.table_build_ms_double, 3)
+            << " ms (double), " << number_text(r.result.table_build_ms_float, 3) << " ms (float)\n";
+        out << std::setw(16) << "op" << std::setw(8) << "library" << std::setw(23) << "method" << std::setw(7) << "scalar"
+            << std::setw(8) << "threads" << std::setw(10) << "model" << std::setw(11) << "ns/point" << std::setw(11)
+            << "median px" << std::setw(11) << "p99 px" << std::setw(11) << "max px"
+            << "invalid\n";
+        for (const BenchRow& row : r.result.rows) {
+            out << std::setw(16) << row.op << std::setw(8) << row.library << std::setw(23) << row.method << std::setw(7)
+                << row.scalar << std::setw(8) << row.threads << std::setw(10) << row.model << std::setw(11)
+                << number_text(row.ns_per_point, 4) << std::setw(11) << (row.error ? number_text(row.error->median_px, 3) : "-")
+                << std::setw(11) << (row.error ? number_text(row.error->p99_px, 3) : "-") << std::setw(11)
+                << (row.error ? number_text(row.error->max_px, 3) : "-") << number_text(100 * row.invalid_fraction, 3) << "%\n";
+        }
+        out << "\n";
+    }
+    out << "error: distance in px from the pixel to the projection of the result by libcam (checked against OpenCV "
+           "and mrcal in the tests); invalid: flagged, not finite, or a ray outside the lens's domain\n";
+    return out.str();
+}
+
+}  // namespace
+
+Runner add_bench(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal");
+    auto flags = std::make_shared<BenchFlags>();
+    command->add_option("--from", flags->from, "Camera file to measure (default: the built-in cases)");
+    command->add_option("--case", flags->cases, "Built-in cases to run: mild, strong, fisheye, wide (default: all)")
+        ->excludes("--from");
+    command->add_option("--grid", flags->grid, "Pixels across x down, corners included (default 601x401)");
+    command->add_option("--repeat", flags->repeat, "Timed repetitions per method, interleaved (default and minimum 5)");
+    command->add_option("--threads", flags->threads, "Thread counts for libcam's batch paths (default 1,2)");
+    command->add_flag("--full-frame", flags->full_frame,
+                      "Also time every pixel's ray for the lens and for a pinhole with the same K, against memset");
+    command->add_flag("--json", flags->json, "Print JSON: {\"rows\": [...], \"cameras\": [...]}");
+    command->add_option("--save-json", flags->json_file, "Also write the JSON to this file (the table still goes to stdout)");
+    command->add_option("--plot", flags->plot, "Write a PNG: time per point against worst error, per camera");
+
+    return [flags] {
+        const BenchSettings settings = settings_from(*flags);
+        const std::vector<BenchCase> cases = chosen_cases(*flags);
+        cv::setNumThreads(1);  // OpenCV's rows run on one thread, like libcam's 1-thread rows
+        std::vector<CaseResult> results;
+        for (const BenchCase& bench_case : cases) results.push_back({bench_case, run_bench(bench_case, settings)});
+        if (!flags->plot.empty()) {
+            std::vector<BenchRow> rows;
+            for (const CaseResult& r : results) rows.insert(rows.end(), r.result.rows.begin(), r.result.rows.end());
+            const std::vector<unsigned char> png = plot_speed_accuracy(rows);
+            write_file_atomically(flags->plot, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+        }
+        if (!flags->json_file.empty()) write_file_atomically(flags->json_file, format_json(results, settings));
+        emit(flags->json ? format_json(results, settings) : format_table(results, settings), "");
+        return 0;
+    };
+}
+
+}  // namespace libcam::cli
