@@ -406,9 +406,11 @@ namespace {
 template <class Scalar>
 void pinhole_image(const Intrinsics& intrinsics, const ImageSize& size, const detail::RayOutput<Scalar>& out,
                    int threads) {
-    constexpr std::size_t kStreamAbove = std::size_t{16} << 20;  // bytes per output array
+    // Above a few MiB a frame does not stay in a core's share of the cache: its cache
+    // lines would be read from memory only to be overwritten.
+    constexpr std::size_t kStreamAbove = std::size_t{4} << 20;  // bytes of rays and flags
     const std::size_t width = static_cast<std::size_t>(size.width), height = static_cast<std::size_t>(size.height);
-    const bool stream = width * height * sizeof(Scalar) > kStreamAbove;
+    const bool stream = width * height * (3 * sizeof(Scalar) + 1) > kStreamAbove;
     std::vector<Scalar> column_x(width);
     for (std::size_t x = 0; x < width; ++x) {
         column_x[x] = lane_value(intrinsics.normalized_from_pixel(Vec2L<Scalar>(Scalar(static_cast<int>(x)), Scalar(0))).x());
