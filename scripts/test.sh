@@ -17,7 +17,7 @@ bash "$root/scripts/build.sh" "$root/build"
 [ "${LIBCAM_QUICK:-0}" = 1 ] && exit 0
 
 echo "== 2/3: the tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
-bash "$root/scripts/build.sh" "$root/build-asan" -DLIBCAM_SANITIZE=ON
+bash "$root/scripts/build.sh" "$root/build-asan" -DLIBCAM_SANITIZE=ON -DLIBCAM_BUILD_BENCHMARKS=OFF
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # The installed-package test links a consumer against the instrumented static libraries
@@ -26,5 +26,5 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
 echo "== 3/3: fuzzing every reader and the number parser"
 CXX=clang++ bash "$root/scripts/build.sh" "$root/build-fuzz" -DLIBCAM_FUZZ=ON -DLIBCAM_BUILD_TESTS=OFF \
-  -DLIBCAM_BUILD_TOOLS=OFF -DLIBCAM_FUZZ_SECONDS="${LIBCAM_FUZZ_SECONDS:-12}"
+  -DLIBCAM_BUILD_TOOLS=OFF -DLIBCAM_BUILD_BENCHMARKS=OFF -DLIBCAM_FUZZ_SECONDS="${LIBCAM_FUZZ_SECONDS:-12}"
 (cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz --timeout 600)
