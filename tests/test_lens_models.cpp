@@ -318,3 +318,15 @@ TEST_CASE("Every model compiles and agrees in float") {
         });
     }
 }
+
+TEST_CASE("a lens with the wrong number of coefficients is refused and never read past its end") {
+    Camera camera;
+    camera.size = {640, 480};
+    camera.intrinsics = {500.0, 500.0, 319.5, 239.5, 0.0};
+    camera.lens.type = LensType::Opencv8;
+    camera.lens.coefficients = {0.1, 0.01, 0.0};  // OPENCV8 takes 8
+    REQUIRE_THROWS_WITH(camera.project_camera_point(Vec3(0.1, 0.2, 1.0)),
+                        Catch::Matchers::Contains("dist") && Catch::Matchers::Contains("8 coefficients, got 3"));
+    Vec3 ray;
+    REQUIRE_THROWS_AS(camera.unproject(Vec2(100.0, 100.0), ray), InvalidArgument);
+}

@@ -5,10 +5,13 @@
 // by `if constexpr`).
 
 #include <Eigen/Core>
+#include <string>
 #include <cstddef>
 #include <limits>
 #include <span>
 #include <type_traits>
+
+#include "libcam/error.hpp"
 
 namespace libcam {
 
@@ -27,6 +30,11 @@ struct LensParameters {
 // a polynomial root search, the rest is a copy).
 template <class Scalar, int N>
 LensParameters<Scalar, N> lens_parameters(std::span<const double> coefficients, double valid_radius) {
+    // Once per camera: a wrong count would read past the caller's coefficients.
+    if (coefficients.size() != static_cast<std::size_t>(N)) {
+        throw InvalidArgument("dist: the lens model takes " + std::to_string(N) + " coefficients, got " +
+                              std::to_string(coefficients.size()));
+    }
     LensParameters<Scalar, N> parameters;
     for (int i = 0; i < N; ++i) parameters.coefficients(i) = Scalar(coefficients[static_cast<std::size_t>(i)]);
     parameters.valid_radius = Scalar(valid_radius);
