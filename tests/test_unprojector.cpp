@@ -24,16 +24,6 @@ namespace {
 constexpr double kExactTolerance = 1e-9;  // px, issue 4's bound for `exact`
 constexpr double kFastTolerance = 0.01;   // px, issue 4's bound for `fast` and `lut` on the wide lens
 
-template <class Scalar>
-Points2<Scalar> as_points2(const std::vector<Vec2>& pixels) {
-    Points2<Scalar> out;
-    for (const Vec2& p : pixels) {
-        out.x.push_back(Scalar(p.x()));
-        out.y.push_back(Scalar(p.y()));
-    }
-    return out;
-}
-
 // What an Unprojector returned, in double, with the pixels as it was given them (the
 // grid rounded to Scalar): a float method is measured against the pixel it saw.
 struct Unprojected {
@@ -278,17 +268,6 @@ std::vector<Vec3> projection_points(const Camera& camera) {
         points.push_back(Vec3(rays[i].direction.x(), rays[i].direction.y(), 0.0));
     }
     return points;
-}
-
-template <class Scalar>
-Points3<Scalar> as_points3(const std::vector<Vec3>& points) {
-    Points3<Scalar> out;
-    for (const Vec3& p : points) {
-        out.x.push_back(Scalar(p.x()));
-        out.y.push_back(Scalar(p.y()));
-        out.z.push_back(Scalar(p.z()));
-    }
-    return out;
 }
 
 }  // namespace

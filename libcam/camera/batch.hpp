@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "libcam/geometry/vector_math.hpp"
+
 namespace libcam {
 
 using ValidFlags = std::vector<std::uint8_t>;
@@ -40,6 +42,28 @@ struct Points3 {
         z.resize(n);
     }
 };
+
+// A batch from a list of Eigen points, each coordinate rounded to Scalar.
+template <class Scalar>
+Points2<Scalar> as_points2(const std::vector<Vec2>& points) {
+    Points2<Scalar> out;
+    for (const Vec2& p : points) {
+        out.x.push_back(Scalar(p.x()));
+        out.y.push_back(Scalar(p.y()));
+    }
+    return out;
+}
+
+template <class Scalar>
+Points3<Scalar> as_points3(const std::vector<Vec3>& points) {
+    Points3<Scalar> out;
+    for (const Vec3& p : points) {
+        out.x.push_back(Scalar(p.x()));
+        out.y.push_back(Scalar(p.y()));
+        out.z.push_back(Scalar(p.z()));
+    }
+    return out;
+}
 
 // How Unprojector solves distort(u) = m for the undistorted point u of a pixel. Each
 // keeps the validity flag exact: a pixel outside the lens's domain is never valid.

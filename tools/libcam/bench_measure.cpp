@@ -151,27 +151,6 @@ Outcome pixel_outcome(const std::vector<Vec2>& expected, const std::vector<Vec2>
     return outcome;
 }
 
-template <class Scalar>
-Points2<Scalar> as_points2(const std::vector<Vec2>& pixels) {
-    Points2<Scalar> out;
-    for (const Vec2& p : pixels) {
-        out.x.push_back(Scalar(p.x()));
-        out.y.push_back(Scalar(p.y()));
-    }
-    return out;
-}
-
-template <class Scalar>
-Points3<Scalar> as_points3(const std::vector<Vec3>& points) {
-    Points3<Scalar> out;
-    for (const Vec3& p : points) {
-        out.x.push_back(Scalar(p.x()));
-        out.y.push_back(Scalar(p.y()));
-        out.z.push_back(Scalar(p.z()));
-    }
-    return out;
-}
-
 // The pixels as the scalar type holds them: the float rows are measured against the
 // pixel they were given (the grid rounded to float), not against a pixel they never saw.
 template <class Scalar>
