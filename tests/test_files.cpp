@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "temp_dir.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -37,25 +38,9 @@ using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
 using libcam::test::relative_error;
 
-namespace {
+using libcam::test::TempDir;
 
-// A fresh folder under the system temp folder, removed with everything in it.
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::random_device device;
-        path = fs::temp_directory_path() /
-               ("libcam-test-files-" + std::to_string(::getpid()) + "-" + std::to_string(device()));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::permissions(path, fs::perms::owner_all, fs::perm_options::add, ignored);
-        fs::remove_all(path, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-};
+namespace {
 
 std::string slurp(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -172,8 +157,8 @@ TEST_CASE("Round trip through every format: K, R, t and size come back", "[files
             CAPTURE(i, to_string(format), fov.size.width, fov.size.height, fov.fov_deg);
             const double tolerance = format == CameraFormat::Gl ? 1e-9 : 1e-12;
             // By extension, and by content sniffing for a file without one.
-            const fs::path named = dir.path / ("camera" + std::to_string(i) + extension(format));
-            const fs::path bare = dir.path / ("camera" + std::to_string(i) + "-" + std::string(to_string(format)));
+            const fs::path named = dir.path() / ("camera" + std::to_string(i) + extension(format));
+            const fs::path bare = dir.path() / ("camera" + std::to_string(i) + "-" + std::string(to_string(format)));
             write_camera_file(named, camera, format);
             write_camera_file(bare, camera, format);
             CHECK(slurp(named) == format_camera(camera, format));
@@ -183,7 +168,7 @@ TEST_CASE("Round trip through every format: K, R, t and size come back", "[files
         }
     }
     // Nothing left behind but the files written.
-    CHECK(folder_listing(dir.path).size() == 16 * std::size(kFormats) * 2);
+    CHECK(folder_listing(dir.path()).size() == 16 * std::size(kFormats) * 2);
 }
 
 TEST_CASE("Round trip of a camera that is no FOV camera (skew, off-centre, fx != fy)", "[files]") {
@@ -194,14 +179,14 @@ TEST_CASE("Round trip of a camera that is no FOV camera (skew, off-centre, fx !=
     camera.pose = Pose::from_rvec(Vec3(0.3, -2.1, 0.7), Vec3(-12.5, 0.001, 1e4));
     for (CameraFormat format : kFormats) {
         CAPTURE(to_string(format));
-        const fs::path path = dir.path / (std::string("odd") + extension(format));
+        const fs::path path = dir.path() / (std::string("odd") + extension(format));
         write_camera_file(path, camera, format);
         check_same_camera(read_camera_file(path).camera, camera, format == CameraFormat::Gl ? 1e-9 : 1e-12);
     }
     camera.intrinsics.skew = 3.5;
     for (CameraFormat format : {CameraFormat::Json, CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml, CameraFormat::Gl}) {
         CAPTURE(to_string(format));
-        const fs::path path = dir.path / (std::string("skew") + extension(format));
+        const fs::path path = dir.path() / (std::string("skew") + extension(format));
         write_camera_file(path, camera, format);
         check_same_camera(read_camera_file(path).camera, camera, format == CameraFormat::Gl ? 1e-9 : 1e-12);
     }
@@ -214,7 +199,7 @@ TEST_CASE("JSON with \"fov_axis\" reads back the FOV camera: same fov, gaze and 
         const FovCamera fov = i % 6 == 1   ? libcam::test::random_fov_camera(kSizes[i % 6], axis, 1.0, 1.0 + 1e-9)
                               : i % 6 == 4 ? libcam::test::random_fov_camera(kSizes[i % 6], axis, 179.0 - 1e-9, 179.0)
                                            : libcam::test::random_fov_camera(kSizes[i % 6], axis);
-        const fs::path path = dir.path / ("fov" + std::to_string(i) + ".json");
+        const fs::path path = dir.path() / ("fov" + std::to_string(i) + ".json");
         WriteOptions options;
         options.fov_camera = fov;
         write_camera_file(path, to_camera(fov), CameraFormat::Json, options);
@@ -237,7 +222,7 @@ TEST_CASE("JSON with \"fov_axis\" reads back the FOV camera: same fov, gaze and 
         CHECK((back.seed_ray(corner).normalized() - fov.seed_ray(corner).normalized()).norm() <= 1e-12);
     }
     // Without "fov_axis" there is no FOV camera in the file.
-    const fs::path plain = dir.path / "plain.json";
+    const fs::path plain = dir.path() / "plain.json";
     write_camera_file(plain, to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Vertical)), CameraFormat::Json);
     CHECK_FALSE(read_camera_file(plain).fov_camera.has_value());
 }
@@ -262,7 +247,7 @@ TEST_CASE("A file written by cv::FileStorage reads back through read_camera_file
     cv::Rodrigues(rvec, R_cv);
     for (const char* name : {"by_opencv.yaml", "by_opencv.yml", "by_opencv.xml"}) {
         CAPTURE(name);
-        const fs::path path = dir.path / name;
+        const fs::path path = dir.path() / name;
         {
             cv::FileStorage fs_out(path.string(), cv::FileStorage::WRITE);
             REQUIRE(fs_out.isOpened());
@@ -289,7 +274,7 @@ TEST_CASE("A file written by cv::FileStorage reads back through read_camera_file
     }
 
     // No rvec and tvec: the identity pose. distortion_coefficients as a 1x5 row works too.
-    const fs::path bare = dir.path / "intrinsics_only.yaml";
+    const fs::path bare = dir.path() / "intrinsics_only.yaml";
     {
         cv::FileStorage fs_out(bare.string(), cv::FileStorage::WRITE);
         fs_out << "camera_matrix" << cv_K(fx, fy, cx, cy);
@@ -310,7 +295,7 @@ TEST_CASE("A file written by libcam's opencv-yaml/xml reads back through cv::Fil
         const Camera camera = to_camera(libcam::test::random_fov_camera(kSizes[i % 6], libcam::test::random_axis(i)));
         for (CameraFormat format : {CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml}) {
             CAPTURE(i, to_string(format));
-            const fs::path path = dir.path / (std::string("camera") + extension(format));
+            const fs::path path = dir.path() / (std::string("camera") + extension(format));
             write_camera_file(path, camera, format);
             cv::FileStorage in(path.string(), cv::FileStorage::READ);
             REQUIRE(in.isOpened());
@@ -433,9 +418,9 @@ struct YamlDoc {
 
 TEST_CASE("The hand-made base files are valid, with the numbers worked by hand", "[files][errors]") {
     TempDir dir;
-    const fs::path json_path = dir.path / "base.json";
+    const fs::path json_path = dir.path() / "base.json";
     write_text(json_path, JsonDoc{}.text());
-    const fs::path yaml_path = dir.path / "base.yaml";
+    const fs::path yaml_path = dir.path() / "base.yaml";
     write_text(yaml_path, YamlDoc{}.text());
     for (const fs::path& path : {json_path, yaml_path}) {
         CAPTURE(path.string());
@@ -509,7 +494,7 @@ TEST_CASE("Malformed libcam JSON is refused, naming the key", "[files][errors]")
     };
     int index = 0;
     for (const Case& c : cases) {
-        const fs::path path = dir.path / ("case" + std::to_string(index++) + ".json");
+        const fs::path path = dir.path() / ("case" + std::to_string(index++) + ".json");
         write_text(path, c.text);
         const std::string message = error_of([&] { read_camera_file(path); });
         CAPTURE(c.what, c.text);
@@ -518,8 +503,8 @@ TEST_CASE("Malformed libcam JSON is refused, naming the key", "[files][errors]")
         CHECK_THAT(message, Contains(path.string()));
     }
     // The value is named too where there is one.
-    write_text(dir.path / "model.json", base.with("model", "\"FISHEYE_FANCY\"").text());
-    CHECK_THAT(error_of([&] { read_camera_file(dir.path / "model.json"); }), Contains("FISHEYE_FANCY"));
+    write_text(dir.path() / "model.json", base.with("model", "\"FISHEYE_FANCY\"").text());
+    CHECK_THAT(error_of([&] { read_camera_file(dir.path() / "model.json"); }), Contains("FISHEYE_FANCY"));
 }
 
 TEST_CASE("JSON numbers that overflow to infinity are refused as a libcam error naming the key", "[files][errors]") {
@@ -532,7 +517,7 @@ TEST_CASE("JSON numbers that overflow to infinity are refused as a libcam error 
              {"t", "[0.5, 1e999, 2]"},
              {"K", "[[-1e999, 0, 319.5], [0, 510, 239.5], [0, 0, 1]]"},
              {"R", "[[0, -1, 0], [1, 0, 0], [0, 0, 1e999]]"}}) {
-        const fs::path path = dir.path / ("overflow-" + key + ".json");
+        const fs::path path = dir.path() / ("overflow-" + key + ".json");
         write_text(path, base.with(key, value).text());
         const std::string message = error_of([&] { read_camera_file(path); });
         CAPTURE(key, value);
@@ -549,7 +534,7 @@ TEST_CASE("Truncated, empty, missing and directory paths are refused with FileEr
 
     // Truncated JSON: every cut of a valid file.
     const std::string json = format_camera(camera, CameraFormat::Json);
-    const fs::path json_path = dir.path / "truncated.json";
+    const fs::path json_path = dir.path() / "truncated.json";
     for (std::size_t cut : {std::size_t{1}, json.size() / 4, json.size() / 2, json.size() - 3}) {
         write_text(json_path, json.substr(0, cut));
         const std::string message = error_of([&] { read_camera_file(json_path); });
@@ -562,7 +547,7 @@ TEST_CASE("Truncated, empty, missing and directory paths are refused with FileEr
     // happens to parse still lacks keys).
     for (CameraFormat format : {CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml, CameraFormat::Cameramodel}) {
         const std::string text = format_camera(camera, format);
-        const fs::path path = dir.path / (std::string("truncated") + extension(format));
+        const fs::path path = dir.path() / (std::string("truncated") + extension(format));
         for (std::size_t cut = 1; cut + 2 < text.size(); cut += std::max<std::size_t>(1, text.size() / 23)) {
             write_text(path, text.substr(0, cut));
             const std::string message = error_of([&] { read_camera_file(path); });
@@ -574,7 +559,7 @@ TEST_CASE("Truncated, empty, missing and directory paths are refused with FileEr
 
     // Empty and blank files, with and without a known extension.
     for (const char* name : {"empty.json", "empty.yaml", "empty.xml", "empty.cameramodel", "empty"}) {
-        const fs::path path = dir.path / name;
+        const fs::path path = dir.path() / name;
         write_text(path, "");
         CHECK_THAT(error_of([&] { read_camera_file(path); }), StartsWith("FileError: ") && Contains(path.string()) && Contains("empty"));
         write_text(path, "  \n\t\n");
@@ -582,19 +567,19 @@ TEST_CASE("Truncated, empty, missing and directory paths are refused with FileEr
     }
 
     // A directory, and a path that does not exist.
-    const fs::path folder = dir.path / "folder.json";
+    const fs::path folder = dir.path() / "folder.json";
     fs::create_directory(folder);
     CHECK_THAT(error_of([&] { read_camera_file(folder); }), StartsWith("FileError: ") && Contains(folder.string()));
-    const fs::path missing = dir.path / "no-such-file.json";
+    const fs::path missing = dir.path() / "no-such-file.json";
     CHECK_THAT(error_of([&] { read_camera_file(missing); }), StartsWith("FileError: ") && Contains(missing.string()));
-    CHECK_THAT(error_of([&] { read_camera_file(dir.path / "no-such-folder" / "camera.yaml"); }), StartsWith("FileError: "));
+    CHECK_THAT(error_of([&] { read_camera_file(dir.path() / "no-such-folder" / "camera.yaml"); }), StartsWith("FileError: "));
 
     // Content that is none of the formats, without an extension to go by.
-    write_text(dir.path / "mystery", "hello: world\n");
-    CHECK_THAT(error_of([&] { read_camera_file(dir.path / "mystery"); }), StartsWith("FileError: "));
+    write_text(dir.path() / "mystery", "hello: world\n");
+    CHECK_THAT(error_of([&] { read_camera_file(dir.path() / "mystery"); }), StartsWith("FileError: "));
     // A JSON array where an object belongs.
-    write_text(dir.path / "array.json", "[1, 2, 3]\n");
-    CHECK_THAT(error_of([&] { read_camera_file(dir.path / "array.json"); }), StartsWith("FileError: "));
+    write_text(dir.path() / "array.json", "[1, 2, 3]\n");
+    CHECK_THAT(error_of([&] { read_camera_file(dir.path() / "array.json"); }), StartsWith("FileError: "));
 }
 
 TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][errors]") {
@@ -626,7 +611,7 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
     };
     int index = 0;
     for (const Case& c : cases) {
-        const fs::path path = dir.path / ("case" + std::to_string(index++) + ".yaml");
+        const fs::path path = dir.path() / ("case" + std::to_string(index++) + ".yaml");
         write_text(path, c.text);
         const std::string message = error_of([&] { read_camera_file(path); });
         CAPTURE(c.what, c.text);
@@ -642,7 +627,7 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
     const auto end = xml.find("</camera_matrix>");
     REQUIRE(start != std::string::npos);
     REQUIRE(end != std::string::npos);
-    const fs::path no_k = dir.path / "no_k.xml";
+    const fs::path no_k = dir.path() / "no_k.xml";
     write_text(no_k, xml.substr(0, start) + xml.substr(end + std::string("</camera_matrix>").size()));
     std::string message = error_of([&] { read_camera_file(no_k); });
     CHECK_THAT(message, is_file_or_argument_error());
@@ -651,7 +636,7 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
     const auto width_at = bad_width.find("<image_width>");
     REQUIRE(width_at != std::string::npos);
     bad_width.replace(width_at, bad_width.find("</image_width>") - width_at, "<image_width>0");
-    const fs::path zero_width = dir.path / "zero_width.xml";
+    const fs::path zero_width = dir.path() / "zero_width.xml";
     write_text(zero_width, bad_width);
     message = error_of([&] { read_camera_file(zero_width); });
     CHECK_THAT(message, is_file_or_argument_error());
@@ -663,21 +648,21 @@ TEST_CASE("Malformed .cameramodel and gl files are refused", "[files][errors]") 
     const std::string legacy =
         "{\n    'lens_model': 'LENSMODEL_PINHOLE',\n    'intrinsics': [ 1000., 1000., 319.5, 239.5 ],\n"
         "    'imagersize': [ 640, 480 ],\n    'extrinsics': [ 0, 0, 0, 0, 0, 0 ]\n}\n";
-    const fs::path legacy_path = dir.path / "legacy.cameramodel";
+    const fs::path legacy_path = dir.path() / "legacy.cameramodel";
     write_text(legacy_path, legacy);
     CHECK_THAT(error_of([&] { read_camera_file(legacy_path); }),
                StartsWith("FileError: ") && Contains("lens_model") && Contains(legacy_path.string()));
     // Sniffed without an extension, too.
-    const fs::path legacy_bare = dir.path / "legacy_model";
+    const fs::path legacy_bare = dir.path() / "legacy_model";
     write_text(legacy_bare, "# old file\n" + legacy);
     CHECK_THAT(error_of([&] { read_camera_file(legacy_bare); }), StartsWith("FileError: ") && Contains("lens_model"));
 
     // Missing intrinsics; fx = 0.
-    const fs::path no_intrinsics = dir.path / "no_intrinsics.cameramodel";
+    const fs::path no_intrinsics = dir.path() / "no_intrinsics.cameramodel";
     write_text(no_intrinsics, "{\n    'lensmodel': 'LENSMODEL_PINHOLE',\n    'imagersize': [ 640, 480 ],\n"
                               "    'extrinsics': [ 0, 0, 0, 0, 0, 0 ]\n}\n");
     CHECK_THAT(error_of([&] { read_camera_file(no_intrinsics); }), is_file_or_argument_error());
-    const fs::path zero_fx = dir.path / "zero_fx.cameramodel";
+    const fs::path zero_fx = dir.path() / "zero_fx.cameramodel";
     write_text(zero_fx, "{\n    'lensmodel': 'LENSMODEL_PINHOLE',\n    'intrinsics': [ 0, 1000., 319.5, 239.5 ],\n"
                         "    'imagersize': [ 640, 480 ],\n    'extrinsics': [ 0, 0, 0, 0, 0, 0 ]\n}\n");
     CHECK_THAT(error_of([&] { read_camera_file(zero_fx); }), is_file_or_argument_error() && Contains("fx"));
@@ -696,7 +681,7 @@ TEST_CASE("Malformed .cameramodel and gl files are refused", "[files][errors]") 
         {"far", "1000"},
         {"depth_range", "\"minus-one-to-one\""},
     };
-    const fs::path gl_path = dir.path / "hand.gl.json";
+    const fs::path gl_path = dir.path() / "hand.gl.json";
     write_text(gl_path, gl.text());
     const Camera from_gl = read_camera_file(gl_path).camera;
     CHECK(from_gl.size == ImageSize{640, 480});
@@ -720,7 +705,7 @@ TEST_CASE("Malformed .cameramodel and gl files are refused", "[files][errors]") 
     };
     int index = 0;
     for (const auto& [doc, key] : bad_gl) {
-        const fs::path path = dir.path / ("bad-gl-" + std::to_string(index++) + ".json");
+        const fs::path path = dir.path() / ("bad-gl-" + std::to_string(index++) + ".json");
         write_text(path, doc.text());
         const std::string message = error_of([&] { read_camera_file(path); });
         CAPTURE(doc.text());
@@ -734,18 +719,18 @@ TEST_CASE("Formats that cannot hold a camera say so, and write nothing", "[files
     TempDir dir;
     Camera camera = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Diagonal));
     camera.intrinsics.skew = 1.0;
-    const fs::path path = dir.path / "skew.cameramodel";
+    const fs::path path = dir.path() / "skew.cameramodel";
     CHECK_THROWS_AS(write_camera_file(path, camera, CameraFormat::Cameramodel), NotRepresentable);
-    CHECK(fs::is_empty(dir.path));
+    CHECK(fs::is_empty(dir.path()));
     // An invalid camera is refused by every writer before anything is written.
     Camera broken = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Diagonal));
     broken.intrinsics.fx = -1.0;
     for (CameraFormat format : kFormats) {
         CAPTURE(to_string(format));
-        CHECK_THAT(error_of([&] { write_camera_file(dir.path / "broken", broken, format); }),
+        CHECK_THAT(error_of([&] { write_camera_file(dir.path() / "broken", broken, format); }),
                    StartsWith("InvalidArgument: ") && NamesKey("K"));
     }
-    CHECK(fs::is_empty(dir.path));
+    CHECK(fs::is_empty(dir.path()));
     CHECK_THROWS_AS(camera_format_from_string("png"), InvalidArgument);
     CHECK(camera_format_from_string("opencv-yaml") == CameraFormat::OpenCvYaml);
     CHECK(camera_format_from_path("a/b.yml") == CameraFormat::OpenCvYaml);
@@ -772,7 +757,7 @@ bool ignores_folder_permissions(const fs::path& read_only_folder) {
 
 TEST_CASE("write_file_atomically replaces a file and keeps its permissions", "[files][atomic]") {
     TempDir dir;
-    const fs::path path = dir.path / "camera.json";
+    const fs::path path = dir.path() / "camera.json";
     write_file_atomically(path, "first\n");
     CHECK(slurp(path) == "first\n");
     ::chmod(path.c_str(), 0640);
@@ -783,15 +768,15 @@ TEST_CASE("write_file_atomically replaces a file and keeps its permissions", "[f
     CHECK((status.st_mode & 07777) == 0640);
     write_file_atomically(path, "");
     CHECK(slurp(path).empty());
-    CHECK(folder_listing(dir.path) == std::vector<std::string>{"camera.json"});
+    CHECK(folder_listing(dir.path()) == std::vector<std::string>{"camera.json"});
     CHECK(read_text_file(path).empty());
-    CHECK_THROWS_AS(read_text_file(dir.path / "absent"), FileError);
-    CHECK_THROWS_AS(read_text_file(dir.path), FileError);
+    CHECK_THROWS_AS(read_text_file(dir.path() / "absent"), FileError);
+    CHECK_THROWS_AS(read_text_file(dir.path()), FileError);
 }
 
 TEST_CASE("write_file_atomically fails cleanly: FileError, old file intact, no temporary left", "[files][atomic]") {
     TempDir dir;
-    const fs::path folder = dir.path / "target";
+    const fs::path folder = dir.path() / "target";
     fs::create_directory(folder);
     const fs::path path = folder / "camera.yaml";
     std::string old_contents = "%YAML:1.0\n---\nold: contents\n";

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "temp_dir.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/mrcal.hpp"
@@ -29,26 +30,11 @@ using namespace libcam;
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 
+using libcam::test::TempDir;
+
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-
-// A fresh folder under the system temp folder, removed with everything in it.
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::random_device device;
-        path = fs::temp_directory_path() /
-               ("libcam-test-mrcal-" + std::to_string(::getpid()) + "-" + std::to_string(device()));
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ignored;
-        fs::remove_all(path, ignored);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-};
 
 struct ModelDeleter {
     void operator()(mrcal_cameramodel_t* model) const { mrcal_free_cameramodel(&model); }
@@ -116,7 +102,7 @@ TEST_CASE("A .cameramodel written by libcam loads in libmrcal with the same numb
     TempDir dir;
     int index = 0;
     for (const Camera& camera : test_cameras()) {
-        const fs::path path = dir.path / ("camera" + std::to_string(index++) + ".cameramodel");
+        const fs::path path = dir.path() / ("camera" + std::to_string(index++) + ".cameramodel");
         write_camera_file(path, camera, CameraFormat::Cameramodel);
         const ModelPtr model = mrcal_read_file(path);
         REQUIRE(model != nullptr);
@@ -162,7 +148,7 @@ TEST_CASE("A hand-written .cameramodel reads into libcam with mrcal's meaning", 
     // rt_cam_ref = (0, 0, pi/2, 1, 2, 3): R turns x into y; a world point X maps to
     // R X + t. Worked by hand: X = (1, 0, 5) -> (0, 1, 5) + (1, 2, 3) = (1, 3, 8).
     TempDir dir;
-    const fs::path path = dir.path / "hand.cameramodel";
+    const fs::path path = dir.path() / "hand.cameramodel";
     write_text(path,
                "# written by hand\n"
                "{\n"
@@ -192,7 +178,7 @@ TEST_CASE("mrcal_project of camera-frame points along each ray returns the pixel
     int checked = 0;
     for (const Camera& camera : test_cameras()) {
         // Intrinsics and extrinsics as libmrcal read them from libcam's file.
-        const fs::path path = dir.path / "camera.cameramodel";
+        const fs::path path = dir.path() / "camera.cameramodel";
         write_camera_file(path, camera, CameraFormat::Cameramodel);
         const ModelPtr model = mrcal_read_file(path);
         REQUIRE(model != nullptr);
@@ -272,7 +258,7 @@ TEST_CASE("A .cameramodel with the legacy key 'lens_model' is rejected, naming t
     const ModelPtr by_mrcal(mrcal_read_cameramodel_string(legacy.data(), static_cast<int>(legacy.size())));
     CHECK(by_mrcal == nullptr);
 
-    const fs::path path = dir.path / "legacy.cameramodel";
+    const fs::path path = dir.path() / "legacy.cameramodel";
     write_text(path, legacy);
     REQUIRE_THROWS_AS(read_camera_file(path), FileError);
     REQUIRE_THROWS_WITH(read_camera_file(path), Contains("lens_model") && Contains(path.string()));
@@ -293,10 +279,10 @@ TEST_CASE("A camera with skew cannot be written as .cameramodel", "[mrcal][error
     camera.intrinsics.skew = 0.25;
     REQUIRE_THROWS_AS(format_camera(camera, CameraFormat::Cameramodel), NotRepresentable);
     REQUIRE_THROWS_WITH(format_camera(camera, CameraFormat::Cameramodel), Contains("skew"));
-    const fs::path path = dir.path / "skewed.cameramodel";
+    const fs::path path = dir.path() / "skewed.cameramodel";
     REQUIRE_THROWS_AS(write_camera_file(path, camera, CameraFormat::Cameramodel), NotRepresentable);
     CHECK_FALSE(fs::exists(path));
-    CHECK(fs::is_empty(dir.path));  // no temporary left behind either
+    CHECK(fs::is_empty(dir.path()));  // no temporary left behind either
     REQUIRE_THROWS_AS(mrcal_project_points(camera, {Vec3(0, 0, 1)}), NotRepresentable);
     // The same camera without skew is fine.
     camera.intrinsics.skew = 0.0;
@@ -324,7 +310,7 @@ TEST_CASE("libcam's .cameramodel keeps every digit where libmrcal's own writer r
     model->intrinsics[3] = 239.5;
     model->rt_cam_ref[0] = r0;
     model->rt_cam_ref[3] = t0;
-    const fs::path by_mrcal = dir.path / "by_mrcal.cameramodel";
+    const fs::path by_mrcal = dir.path() / "by_mrcal.cameramodel";
     REQUIRE(mrcal_write_cameramodel_file(by_mrcal.c_str(), model.get()));
     const ModelPtr mrcal_back = mrcal_read_file(by_mrcal);
     REQUIRE(mrcal_back != nullptr);
@@ -338,7 +324,7 @@ TEST_CASE("libcam's .cameramodel keeps every digit where libmrcal's own writer r
     camera.size = {640, 480};
     camera.intrinsics = Intrinsics{fx, 1000.0, 319.5, 239.5, 0.0};
     camera.pose = Pose::from_rvec(Vec3(r0, 0, 0), Vec3(t0, 0, 0));
-    const fs::path by_libcam = dir.path / "by_libcam.cameramodel";
+    const fs::path by_libcam = dir.path() / "by_libcam.cameramodel";
     write_camera_file(by_libcam, camera, CameraFormat::Cameramodel);
     const ModelPtr libcam_back = mrcal_read_file(by_libcam);
     REQUIRE(libcam_back != nullptr);
