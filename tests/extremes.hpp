@@ -29,6 +29,8 @@ struct Row {
 // Every measurement, in table order.
 std::vector<Row> fov_rows();
 std::vector<Row> lens_rows();
+// The batch paths (Projector, Unprojector's exact, fast and lut) at the same extremes.
+std::vector<Row> batch_rows();
 
 // CHECKs each measured value against its bound (a NaN measurement fails).
 void check_rows(const std::vector<Row>& rows);

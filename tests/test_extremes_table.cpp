@@ -62,4 +62,6 @@ TEST_CASE("the table of numerical limits", "[.][table]") {
     const std::vector<Row> lens = lens_rows();
     rows.insert(rows.end(), lens.begin(), lens.end());
     print_table(rows);
+    std::cout << "\n";
+    print_table(batch_rows());
 }

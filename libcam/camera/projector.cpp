@@ -1,6 +1,9 @@
 #include "libcam/camera/projector.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
 
 #include "libcam/camera/batch_kernels.hpp"
 #include "libcam/camera/parallel.hpp"
@@ -9,12 +12,79 @@ namespace libcam {
 
 namespace {
 
+template <class Scalar>
+constexpr Scalar power_of_two(int exponent) {
+    Scalar value(1);
+    for (; exponent > 0; --exponent) value *= Scalar(2);
+    for (; exponent < 0; ++exponent) value /= Scalar(2);
+    return value;
+}
+
+// Every model projects a direction, so a camera point may be scaled by a power of two
+// (exactly) without changing its pixel. PINHOLE and OpenCV's models divide by z first
+// and need no scaling. The others form squares and norms of the coordinates; the
+// vectorised loop takes the points as they are, which is exact while the largest
+// coordinate lies in [2^(min exponent / 4), 2^(max exponent / 4)] (2^-255 to 2^256 in
+// double, 2^-31 to 2^32 in float), where no square or fourth power under- or overflows.
+// The few points outside are projected again, one by one, scaled into [1, 2) first,
+// as Camera::project_camera_point does.
+template <class Scalar>
+bool in_comfortable_range(Scalar x, Scalar y, Scalar z) {
+    using Limits = std::numeric_limits<Scalar>;
+    constexpr Scalar low = power_of_two<Scalar>(Limits::min_exponent / 4);
+    constexpr Scalar high = power_of_two<Scalar>(Limits::max_exponent / 4);
+    const Scalar largest = std::max(std::abs(x), std::max(std::abs(y), std::abs(z)));
+    return (largest >= low) & (largest <= high);  // &, not &&: no branch
+}
+
+// PINHOLE and OpenCV's models start from x / z and y / z, unchanged by any scaling.
+template <class Model>
+concept ProjectsRatios = requires { requires Model::projects_ratios; };
+
+// The pixel of one camera point through Model; invalid outside the domain, or where the
+// pixel is not finite (K m can overflow). Always inlined: called from two places, it
+// would otherwise stay a call in the hot loop.
+template <class Model, class Scalar>
+[[gnu::always_inline]] inline bool project_point(const Intrinsics& intrinsics,
+                                                 const typename Model::Parameters& lens,
+                                                 const typename Model::Vec3T& point, Scalar& pixel_x,
+                                                 Scalar& pixel_y) {
+    using Vec2L = typename Model::Vec2T;
+    Vec2L m = Vec2L::Zero();  // not every model writes m for a point outside its domain
+    const bool in_domain = Model::project(lens, point, m);
+    const Vec2L pixel = intrinsics.pixel_from_normalized(m);
+    const Scalar x = lane_value(pixel.x()), y = lane_value(pixel.y());
+    // Not isfinite but a comparison, which vectorises; NaN fails it too.
+    constexpr Scalar largest = std::numeric_limits<Scalar>::max();
+    const bool ok = in_domain & (std::abs(x) <= largest) & (std::abs(y) <= largest);  // &: no branch
+    pixel_x = ok ? x : Scalar(0);
+    pixel_y = ok ? y : Scalar(0);
+    return ok;
+}
+
+// Projects again, scaled, the points of a block outside the comfortable range: rare, so
+// out of line, where it does not take the inlining budget of the vectorised loop.
+template <class Model, class Scalar>
+[[gnu::noinline]] void project_outside_comfortable_range(const Intrinsics& intrinsics,
+                                                         const typename Model::Parameters& lens,
+                                                         const std::array<const Scalar*, 3>& points, std::size_t count,
+                                                         Scalar* pixel_x, Scalar* pixel_y, Scalar* flags) {
+    using Vec3L = typename Model::Vec3T;
+    const auto [x, y, z] = points;
+    for (std::size_t i = 0; i < count; ++i) {
+        if (in_comfortable_range(x[i], y[i], z[i])) continue;
+        const Vec3T<Scalar> scaled = scaled_to_unit_range<Scalar>(Vec3T<Scalar>(x[i], y[i], z[i]));
+        const bool ok = project_point<Model>(intrinsics, lens, Vec3L(scaled.x(), scaled.y(), scaled.z()), pixel_x[i],
+                                             pixel_y[i]);
+        flags[i] = batch::flag<Scalar>(ok);
+    }
+}
+
 // Points [begin, end) through Model (in Lane<Scalar>), block by block.
 template <class Model, class Scalar>
 void project_range(const Intrinsics& camera_intrinsics, const typename Model::Parameters& lens_parameters,
                    const Points3<Scalar>& points, std::size_t begin, std::size_t end, Points2<Scalar>& pixels,
                    ValidFlags& valid) {
-    using Vec2L = typename Model::Vec2T;
     using Vec3L = typename Model::Vec3T;
     // Local copies, which no store to the outputs can alias: see batch_kernels.hpp.
     const Intrinsics intrinsics = camera_intrinsics;
@@ -28,12 +98,15 @@ void project_range(const Intrinsics& camera_intrinsics, const typename Model::Pa
         Scalar* pixel_x = pixels.x.data() + first;
         Scalar* pixel_y = pixels.y.data() + first;
         for (std::size_t i = 0; i < count; ++i) {
-            Vec2L m;
-            const bool ok = Model::project(lens, Vec3L(x[i], y[i], z[i]), m);
-            const Vec2L pixel = intrinsics.pixel_from_normalized(m);
-            pixel_x[i] = ok ? lane_value(pixel.x()) : Scalar(0);
-            pixel_y[i] = ok ? lane_value(pixel.y()) : Scalar(0);
+            const bool ok = project_point<Model>(intrinsics, lens, Vec3L(x[i], y[i], z[i]), pixel_x[i], pixel_y[i]);
             flags[i] = batch::flag<Scalar>(ok);
+        }
+        if constexpr (!ProjectsRatios<Model>) {
+            int outside = 0;  // its own loop: an int sum, which vectorises
+            for (std::size_t i = 0; i < count; ++i) outside += in_comfortable_range(x[i], y[i], z[i]) ? 0 : 1;
+            if (outside > 0) {
+                project_outside_comfortable_range<Model>(intrinsics, lens, {x, y, z}, count, pixel_x, pixel_y, flags);
+            }
         }
         batch::store_flags<Scalar>({flags, count}, valid.data() + first);
     }

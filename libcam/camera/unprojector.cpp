@@ -33,8 +33,9 @@ concept SolvedIteratively = requires(const typename Model::Parameters& lens, con
 
 constexpr int kFastNewtonSteps = 1;
 // From the bilinear start two steps reach rounding level on the lenses measured (issue
-// 3's wide lens: 0.2 px, then 5e-5 px, then 4e-12 px); the residual check sends any
-// pixel they do not bring there to the full solver.
+// 3's wide lens: 0.2 px, then 5e-5 px, then 4e-12 px); a block with a pixel they do not
+// bring below reducible_residual() takes a third, and the residual check sends any
+// pixel still above the solver's tolerance to the full solver.
 constexpr int kExactNewtonSteps = 2;
 
 // ---------------------------------------------------------------------------------
@@ -50,6 +51,7 @@ struct Block {
     Scalar m_x[kBlock], m_y[kBlock];  // K^-1 [x, y, 1]
     Scalar u_x[kBlock], u_y[kBlock];  // undistorted point
     Scalar ok[kBlock];  // 1: u (then the ray) is the answer; -1: settled, no ray; 0: for the full solver
+    Scalar reducible[kBlock];  // 1: u passes, but another Newton step would gain digits (certify)
     detail::RayOutput<Scalar> rays;           // where the block's rays and flags go
     int cell[kBlock];                             // table node at the top-left of the pixel's cell
     Scalar fraction_x[kBlock], fraction_y[kBlock];  // position within that cell
@@ -184,7 +186,12 @@ void require_valid_radius(Scalar radius_squared, Block<Scalar>& b) {
     }
 }
 
-template <class Model, class Scalar>
+// Newton steps on every pixel of the block, or (Pixels::OnlyReducible) on the pixels
+// certify() marked reducible, the others left as they are: a pixel's answer never
+// depends on the other pixels of its block, so it is the same in any batch.
+enum class Pixels { All, OnlyReducible };
+
+template <class Model, Pixels which = Pixels::All, class Scalar>
 void newton_steps(const typename Model::Parameters& lens_parameters, int steps, Block<Scalar>& b) {
     const typename Model::Parameters lens = lens_parameters;
     for (int step = 0; step < steps; ++step) {
@@ -194,26 +201,33 @@ void newton_steps(const typename Model::Parameters& lens_parameters, int steps, 
             Eigen::Matrix<Lane<Scalar>, 2, 2> d_m_d_u;
             const bool in_domain = Model::distort(lens, u, m_u, &d_m_d_u);
             const Vec2L<Scalar> next = u - newton_step(d_m_d_u, Vec2L<Scalar>(m_u - Vec2L<Scalar>(b.m_x[i], b.m_y[i])));
-            b.u_x[i] = lane_value(next.x());
-            b.u_y[i] = lane_value(next.y());
-            b.ok[i] = in_domain ? b.ok[i] : Scalar(0);
+            const bool take = which == Pixels::All || b.reducible[i] > Scalar(0);
+            b.u_x[i] = take ? lane_value(next.x()) : b.u_x[i];
+            b.u_y[i] = take ? lane_value(next.y()) : b.u_y[i];
+            b.ok[i] = in_domain || !take ? b.ok[i] : Scalar(0);
         }
     }
 }
 
 // Keeps ok only where u is inside the domain and reprojects to m within the tolerance
-// the full solver accepts.
+// the full solver accepts. Returns how many of the pixels kept are still above
+// reducible_residual(), where another Newton step would gain digits.
 template <class Model, class Scalar>
-void certify(const typename Model::Parameters& lens_parameters, Block<Scalar>& b) {
+int certify(const typename Model::Parameters& lens_parameters, Block<Scalar>& b) {
     const typename Model::Parameters lens = lens_parameters;
+    int reducible = 0;
     for (std::size_t i = 0; i < b.count; ++i) {
         const Vec2L<Scalar> u(b.u_x[i], b.u_y[i]), m(b.m_x[i], b.m_y[i]);
         Vec2L<Scalar> m_u;
         const bool in_domain = Model::distort(lens, u, m_u);
-        const Lane<Scalar> tolerance = unprojection_tolerance(m.norm());
-        const bool converged = (m_u - m).squaredNorm() <= tolerance * tolerance;  // one square root, not two
-        b.ok[i] = in_domain && converged ? b.ok[i] : Scalar(0);
+        const Lane<Scalar> tolerance = unprojection_tolerance(m.norm()), floor = reducible_residual(m.norm());
+        const Lane<Scalar> residual_squared = (m_u - m).squaredNorm();  // squares: one square root, not two
+        const bool kept = in_domain & (residual_squared <= tolerance * tolerance) & (b.ok[i] > Scalar(0));
+        b.ok[i] = kept ? b.ok[i] : Scalar(0);
+        b.reducible[i] = batch::flag<Scalar>(kept & (residual_squared > floor * floor));
+        reducible += b.reducible[i] > Scalar(0) ? 1 : 0;
     }
+    return reducible;
 }
 
 // Settles as having no ray every pixel beyond the image of the whole domain.
@@ -289,7 +303,12 @@ void estimate(const Context<Scalar>& context, const typename Model::Parameters& 
             start_from_table<Interpolation::Bilinear>(context.table, b);
             require_certified_disc(context.certified_radius_squared, b);
             newton_steps<Model>(lens, kExactNewtonSteps, b);
-            certify<Model>(lens, b);
+            if (certify<Model>(lens, b) > 0) {
+                // A pixel not yet at rounding level (a coarse table on a huge image, a
+                // strong lens): one more step for it. Rejected pixels stay rejected.
+                newton_steps<Model, Pixels::OnlyReducible>(lens, 1, b);
+                certify<Model>(lens, b);
+            }
             return;
     }
 }

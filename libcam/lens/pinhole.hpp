@@ -20,6 +20,8 @@ template <class Scalar>
 struct PinholeLens {
     static constexpr LensType type = LensType::Pinhole;
     static constexpr int num_coefficients = 0;
+    // Starts from x / z and y / z: scaling the point changes nothing, not even rounding.
+    static constexpr bool projects_ratios = true;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
     using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;

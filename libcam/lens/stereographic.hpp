@@ -8,7 +8,9 @@
 //
 // Valid domain: every point but the origin and the backward axis (X = Y = 0, Z < 0),
 // where |p| + Z = 0. For Z < 0, |p| + Z is evaluated as (X^2 + Y^2) / (|p| - Z), which
-// does not cancel. Every m has a ray.
+// does not cancel; it is a normal number, and m finite, down to ~1e-154 rad from the
+// backward axis (1e-19 rad in float) for a point scaled to |p| ~ 1 (Camera and
+// Projector scale it): closer than that the point is flagged. Every m has a ray.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -49,7 +51,9 @@ struct StereographicLens {
             (*d_m_d_point)(0, 0) += scale;
             (*d_m_d_point)(1, 1) += scale;
         }
-        return m.allFinite();  // false within ~1e-308 rad of the backward axis, where m overflows
+        // False within ~1e-154 rad (1e-19 in float) of the backward axis: there rho2, and with
+        // it the denominator, is no longer a normal number and 2 / denominator overflows.
+        return m.allFinite();
     }
 
     // False where |m|^2 overflows (a ray within ~1e-154 rad of the backward axis).

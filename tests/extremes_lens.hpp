@@ -1,0 +1,453 @@
+#pragma once
+// The inputs of issue 5's lens extremes and the 113-bit reference they are measured
+// against, shared by the Camera path (test_extremes_lens.cpp) and the batch paths
+// (test_extremes_methods.cpp): the same lenses, pixels and points, the same reference
+// (libcam's model templates and solver run in Quad), the same scoring.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "extremes.hpp"
+#include "lens_cases.hpp"
+#include "libcam/lens/lens_models.hpp"
+#include "reference.hpp"
+#include "support.hpp"
+
+namespace libcam::test {
+
+inline constexpr double kEpsDouble = std::numeric_limits<double>::epsilon();
+inline constexpr double kEpsFloat = std::numeric_limits<float>::epsilon();
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// ------------------------------------------------------------ models in any scalar
+
+template <class Scalar>
+struct Unprojected {
+    bool valid = false;
+    Vec3T<Scalar> ray = Vec3T<Scalar>::Zero();
+};
+
+template <class Scalar>
+struct Projected {
+    bool valid = false;
+    Vec2T<Scalar> m = Vec2T<Scalar>::Zero();
+};
+
+// Model<Scalar>::unproject of every normalised point (the domain worked out once).
+template <class Scalar>
+std::vector<Unprojected<Scalar>> unproject_all(const Lens& lens, const std::vector<Vec2T<Scalar>>& points) {
+    return visit_lens_model<Scalar>(lens.type, [&]<class Model>() {
+        const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+        std::vector<Unprojected<Scalar>> out(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i)
+            out[i].valid = Model::unproject(parameters, points[i], out[i].ray);
+        return out;
+    });
+}
+
+// Model<Scalar>::project of every camera point.
+template <class Scalar>
+std::vector<Projected<Scalar>> project_all(const Lens& lens, const std::vector<Vec3T<Scalar>>& points) {
+    return visit_lens_model<Scalar>(lens.type, [&]<class Model>() {
+        const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+        std::vector<Projected<Scalar>> out(points.size());
+        for (std::size_t i = 0; i < points.size(); ++i) out[i].valid = Model::project(parameters, points[i], out[i].m);
+        return out;
+    });
+}
+
+template <class To, class From, int N>
+std::vector<Eigen::Matrix<To, N, 1>> cast_all(const std::vector<Eigen::Matrix<From, N, 1>>& values) {
+    std::vector<Eigen::Matrix<To, N, 1>> out;
+    out.reserve(values.size());
+    for (const auto& v : values) out.push_back(v.template cast<To>());
+    return out;
+}
+
+// K^-1 and K exactly (to 113 bits).
+inline Vec2Q normalized_q(const Intrinsics& k, const Vec2& pixel) {
+    const Quad y = (Quad(pixel.y()) - k.cy) / k.fy;
+    return {(Quad(pixel.x()) - k.cx - Quad(k.skew) * y) / k.fx, y};
+}
+
+inline Vec2Q pixel_q(const Intrinsics& k, const Vec2Q& m) {
+    return {Quad(k.fx) * m.x() + Quad(k.skew) * m.y() + k.cx, Quad(k.fy) * m.y() + k.cy};
+}
+
+inline std::string at_pixel(const std::string& name, const Vec2& pixel) {
+    std::ostringstream out;
+    out << name << " pixel (" << pixel.x() << ", " << pixel.y() << ")";
+    return out.str();
+}
+
+// --------------------------------------------------------- unprojection errors
+
+// d'(r) of a radial lens at the undistorted radius of `ray`, in Quad; 1 for the others.
+inline Quad radial_slope(const Lens& lens, const Vec3Q& ray) {
+    return visit_lens_model<Quad>(lens.type, [&]<class Model>() -> Quad {
+        if constexpr (requires { Model::radial_distortion; }) {
+            const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+            const Quad rho = hypot(ray.x(), ray.y());
+            const Quad r = Model::type == LensType::Fisheye ? atan2(rho, ray.z()) : rho / ray.z();
+            Quad slope;
+            Model::radial_distortion(parameters, r, slope);
+            return slope;
+        } else {
+            return Quad(1);
+        }
+    });
+}
+
+// The errors of the rays through a set of pixels, and what bounds them:
+// - the angle, by the unprojection's own conditioning eps |m| / d'(r) (an error of eps
+//   in m, through the lens's slope; d'(r) -> 0 at the fold): 8 times its largest;
+// - where a ray lands, by the solver's stopping residual 64 eps (1 + |m|) in m times f:
+//   in double the issue's target, 1e-9 px; in float 64 eps_f f (1 + |m|), its largest.
+struct UnprojectionWorst {
+    Worst rad_double, px_double, rad_float, px_float;
+    double conditioning_double = 0, conditioning_float = 0, solver_px_float = 0;
+    // Pixels compared, and those valid where the reference has no ray or flagged where
+    // it has one: [0] double, [1] float.
+    std::size_t pixels[2] = {0, 0};
+    std::size_t wrong_flags[2] = {0, 0};
+};
+
+// eps |m| / d'(r) at the reference ray through m.
+inline double conditioning(const Lens& lens, const Vec2Q& m, const Vec3Q& ray, double epsilon) {
+    return static_cast<double>(Quad(epsilon) * m.norm() / radial_slope(lens, ray));
+}
+
+// Whether a validity flag is wrong against the reference. A ray where the reference has
+// none is still right when it lies in the model's domain and lands within the solver's
+// tolerance, 64 eps (1 + |m|), of m: a pixel that close to the fold is the fold's pixel
+// to the type's precision (in float that band is 1e-5 wide in m, wider than d_max 1e-6).
+template <class Scalar>
+bool wrong_flag(bool valid, bool reference_valid, const Projected<Quad>& landed, const Vec2Q& m) {
+    if (valid == reference_valid) return false;
+    if (!valid) return true;  // flagged though the reference has a ray
+    const Quad tolerance = 64 * Quad(std::numeric_limits<Scalar>::epsilon()) * (1 + m.norm());
+    return !(landed.valid && (landed.m - m).norm() <= tolerance);
+}
+
+// The image corners and edge centres (pixel edges and pixel centres) and the centre.
+inline std::vector<Vec2> corner_pixels(const ImageSize& size) {
+    const double w = static_cast<double>(size.width), h = static_cast<double>(size.height);
+    std::vector<Vec2> pixels;
+    for (double x : {-0.5, 0.0, (w - 1) / 2, w - 1, w - 0.5})
+        for (double y : {-0.5, 0.0, (h - 1) / 2, h - 1, h - 0.5}) pixels.emplace_back(x, y);
+    return pixels;
+}
+
+// The same camera on a sensor `scale` times as large (f, c and the size scaled):
+// the same normalised points, at pixel coordinates up to 1e5.
+inline Camera scaled_camera(Camera camera, double scale) {
+    camera.size = {std::lround(static_cast<double>(camera.size.width) * scale),
+                   std::lround(static_cast<double>(camera.size.height) * scale)};
+    Intrinsics& k = camera.intrinsics;
+    k = {k.fx * scale, k.fy * scale, (k.cx + 0.5) * scale - 0.5, (k.cy + 0.5) * scale - 0.5, k.skew * scale};
+    return camera;
+}
+
+
+// Every model's lens (mild and strong) on a 100000-pixel-wide sensor.
+inline std::vector<LensCase> large_image_cases() {
+    std::vector<LensCase> cases;
+    for (const LensCase& c : lens_cases())
+        cases.push_back({c.name, scaled_camera(c.camera, 100000.0 / static_cast<double>(c.camera.size.width))});
+    return cases;
+}
+
+// ----------------------------------------------------------------- the fold-over radius
+
+// Radial-only lenses whose fold is worked by hand (d(r) = r P(r^2) / Q(r^2); r_max where
+// d'(r) = 0, d_max = d(r_max)), one per OpenCV model and FISHEYE, in Quad from the
+// coefficients as stored (doubles).
+struct HandFold {
+    std::string name;
+    Camera camera;
+    Quad r_max, d_max;
+};
+
+inline std::vector<HandFold> hand_folds() {
+    using boost::multiprecision::pow;
+    const auto lens = [](LensType type, std::vector<double> k) {
+        return lens_camera(type, std::move(k), {1600, 1200}, 900, 900);
+    };
+    const Quad k_half(0.5), k_tenth(0.1), k_fifth(0.2), k_quarter(0.25);
+    std::vector<HandFold> folds;
+    // d = r - 0.5 r^3: d' = 1 - 1.5 r^2.
+    const Quad r4 = sqrt(Quad(1) / (3 * k_half));
+    folds.push_back({"OPENCV4 k1 = -0.5", lens(LensType::Opencv4, {-0.5, 0, 0, 0}), r4, r4 * (1 - k_half * r4 * r4)});
+    // d = r (1 - 0.1 r^6): d' = 1 - 0.7 r^6.
+    const Quad r5 = pow(Quad(1) / (7 * k_tenth), Quad(1) / 6);
+    folds.push_back(
+        {"OPENCV5 k3 = -0.1", lens(LensType::Opencv5, {0, 0, 0, 0, -0.1}), r5, r5 * (1 - k_tenth * pow(r5, 6))});
+    // d = r / (1 + 0.5 r^2): d' = (1 - 0.5 r^2) / (1 + 0.5 r^2)^2.
+    const Quad r8 = sqrt(Quad(1) / k_half);
+    folds.push_back(
+        {"OPENCV8 k4 = 0.5", lens(LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}), r8, r8 / (1 + k_half * r8 * r8)});
+    // d = r (1 - 0.2 r^4): d' = 1 - r^4.
+    const Quad r12 = pow(Quad(1) / (5 * k_fifth), Quad(1) / 4);
+    folds.push_back({"OPENCV12 k2 = -0.2", lens(LensType::Opencv12, {0, -0.2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}), r12,
+                     r12 * (1 - k_fifth * pow(r12, 4))});
+    // d = r / (1 + 0.25 r^6): d' = (1 - 1.25 r^6) / (1 + 0.25 r^6)^2.
+    const Quad r14 = pow(Quad(1) / (5 * k_quarter), Quad(1) / 6);
+    folds.push_back({"OPENCV14 k6 = 0.25", lens(LensType::Opencv14, {0, 0, 0, 0, 0, 0, 0, 0.25, 0, 0, 0, 0, 0, 0}), r14,
+                     r14 / (1 + k_quarter * pow(r14, 6))});
+    // theta_d = theta (1 - 0.2 theta^2): theta_d' = 1 - 0.6 theta^2.
+    const Quad rf = sqrt(Quad(1) / (3 * k_fifth));
+    folds.push_back({"FISHEYE k1 = -0.2", lens(LensType::Fisheye, {-0.2, 0, 0, 0}), rf, rf * (1 - k_fifth * rf * rf)});
+    return folds;
+}
+
+// The pixel (rounded to double) at the distorted radius `radius` in direction phi.
+inline Vec2 pixel_at_radius(const Camera& camera, const Quad& radius, double phi) {
+    const Vec2Q m(radius * cos(Quad(phi)), radius * sin(Quad(phi)));
+    return pixel_q(camera.intrinsics, m).cast<double>();
+}
+
+// Pixels at |m| = d_max (1 - delta) (inside) and d_max (1 + delta) (outside), 16
+// directions. Inside: valid, landing within 1e-9 px; the angle is conditioned by the
+
+// ------------------------------------------------------------------ projection errors
+
+struct ProjectionWorst {
+    Worst ulps_double, ulps_float;  // m against the reference, normwise ulps
+    // [0] double, [1] float: points compared, and valid where the reference is not (or m
+    // overflows) or flagged where the reference projects.
+    std::size_t points[2] = {0, 0};
+    std::size_t wrong_flags[2] = {0, 0};
+};
+
+// Whether the OpenCV formula, evaluated in Scalar, forms a number past Scalar's range
+// for this camera point although m itself may fit: r^2 = (x/z)^2 + (y/z)^2, and r^4 for
+// the thin prism and the tilt (OPENCV12, OPENCV14). libcam flags such points; in double
+// they lie within ~1e-154 (r^2) or ~1e-77 (r^4) rad of the camera plane.
+template <class Scalar>
+bool intermediate_overflows(LensType type, const Vec3Q& point) {
+    const bool opencv = type == LensType::Opencv4 || type == LensType::Opencv5 || type == LensType::Opencv8 ||
+                        type == LensType::Opencv12 || type == LensType::Opencv14;
+    if (!opencv || !(point.z() > 0)) return false;
+    const Quad r2 = (point.x() * point.x() + point.y() * point.y()) / (point.z() * point.z());
+    const Quad largest(std::numeric_limits<Scalar>::max());
+    const bool prism_or_tilt = type == LensType::Opencv12 || type == LensType::Opencv14;
+    return r2 > largest || (prism_or_tilt && r2 * r2 > largest);
+}
+
+enum class Expect { Valid, Flagged, Either };
+
+// STEREOGRAPHIC behind the camera forms |p| + z as rho^2 / (|p| - z), from the point
+// scaled to a largest coordinate in [1, 2): within ~1e-154 rad (double; 1e-19 rad in
+// float) of the backward axis rho^2 is no longer a normal number and libcam flags the
+// point. Flagged there, either within a factor 8 of the threshold, nullopt elsewhere.
+template <class Scalar>
+std::optional<Expect> stereographic_behind(LensType type, const Vec3Q& point) {
+    if (type != LensType::Stereographic || !(point.z() < 0)) return std::nullopt;
+    const Quad largest = point.cwiseAbs().maxCoeff();
+    const Quad rho2 = (point.x() * point.x() + point.y() * point.y()) / (largest * largest);
+    const Quad threshold(std::numeric_limits<Scalar>::min());
+    if (rho2 < threshold / 8) return Expect::Flagged;
+    if (rho2 < threshold * 8) return Expect::Either;
+    return std::nullopt;
+}
+
+// The undistorted radius of a camera point in the units of the model's valid_radius
+// (|(x/z, y/z)| for OpenCV's models, the angle theta for FISHEYE); 0 for the others.
+inline Quad undistorted_radius(LensType type, const Vec3Q& point) {
+    const Quad rho = hypot(point.x(), point.y());
+    if (type == LensType::Fisheye) return atan2(rho, point.z());
+    const bool opencv = type != LensType::Pinhole && lens_info(type).num_coefficients > 0;
+    return opencv && point.z() > 0 ? rho / point.z() : Quad(0);
+}
+
+// Within 4 ulps of Scalar of the valid radius, the computed radius may land on either
+// side: either answer is right there.
+template <class Scalar>
+bool at_domain_edge(const Lens& lens, const Vec3Q& point) {
+    const double limit = valid_radius_of(lens);
+    if (!std::isfinite(limit)) return false;
+    return abs(undistorted_radius(lens.type, point) - limit) <= 4 * ulp_of<Scalar>(Quad(limit));
+}
+
+
+// The reference's answer for Scalar: valid when the reference projects the point, its m
+// fits in Scalar (past the largest number it must be flagged, not returned as inf) and
+// no intermediate overflows (above); either at the domain's edge.
+template <class Scalar>
+Expect expected(const Projected<Quad>& reference, const Lens& lens, const Vec3Q& point) {
+    if (at_domain_edge<Scalar>(lens, point)) return Expect::Either;
+    if (const std::optional<Expect> near_axis = stereographic_behind<Scalar>(lens.type, point)) return *near_axis;
+    const bool fits = reference.valid &&
+                      reference.m.cwiseAbs().maxCoeff() <= Quad(std::numeric_limits<Scalar>::max()) &&
+                      !intermediate_overflows<Scalar>(lens.type, point);
+    return fits ? Expect::Valid : Expect::Flagged;
+}
+
+// One projection against the reference: a wrong flag is counted, a right value measured.
+template <class Scalar, class Describe>
+void compare(const Projected<Scalar>& computed, const Projected<Quad>& reference, Expect expect, int type_index,
+             Worst& ulps_worst, ProjectionWorst& worst, Describe&& where) {
+    ++worst.points[type_index];
+    if ((expect == Expect::Flagged && computed.valid) || (expect == Expect::Valid && !computed.valid)) {
+        ++worst.wrong_flags[type_index];
+    }
+    if (expect != Expect::Flagged && computed.valid && reference.valid)
+        ulps_worst.update(ulps(computed.m, reference.m), where);
+}
+
+
+// A unit direction at angle theta from the optical axis (Quad, then rounded).
+inline Vec3 direction_at(const Quad& theta, double phi) {
+    return Vec3Q(sin(theta) * cos(Quad(phi)), sin(theta) * sin(Quad(phi)), cos(theta)).cast<double>();
+}
+
+inline const std::vector<LensCase>& fisheye_lenses() {
+    static const std::vector<LensCase> lenses{
+        {"FISHEYE equidistant", lens_camera(LensType::Fisheye, {0, 0, 0, 0}, {1600, 1200}, 300, 300)},
+        {"FISHEYE mild", lens_camera(LensType::Fisheye, {-0.013, -0.0057, 0.0023, -0.0009}, {1600, 1200}, 420, 421)},
+        {"FISHEYE strong", lens_camera(LensType::Fisheye, {0.08, -0.06, 0.012, -0.002}, {1600, 1200}, 300, 300)},
+    };
+    return lenses;
+}
+
+// FISHEYE at theta -> 0: theta / |(X, Y)| by its series below t = 1e-3 (no 0/0, no
+// cancellation), down to theta = 1e-300; and the pixels next to the principal point.
+
+// ------------------------------------------------------- z -> 0+, behind the camera
+
+// Points (0.3, -0.2, z) for z = 1 down to 1e-320, 0, and behind (-1e-300 to -1).
+inline std::vector<Vec3> points_towards_the_camera_plane() {
+    std::vector<Vec3> points;
+    for (int e = 0; e <= 320; e += 4) points.emplace_back(0.3, -0.2, std::pow(10.0, -e));
+    for (double z : {0.0, -0.0, -1e-300, -1e-100, -1e-10, -0.5, -1.0}) points.emplace_back(0.3, -0.2, z);
+    points.emplace_back(0, 0, -1);  // the backward axis: no direction for FISHEYE, STEREOGRAPHIC
+    return points;
+}
+
+// Perspective models (PINHOLE, OPENCV*): valid only for z > 0 and inside the fold radius,
+// accurate wherever valid. Models that see behind (FISHEYE, STEREOGRAPHIC, LONLAT, LATLON):
+// valid on both sides, accurate.
+
+// ---------------------------------------------------- strong and near-zero distortion
+
+inline Camera with_coefficients_scaled(Camera camera, double scale) {
+    for (double& k : camera.lens.coefficients) k *= scale;
+    return camera;
+}
+
+inline std::vector<LensCase> coefficient_extremes() {
+    std::vector<LensCase> cases;
+    for (const LensCase& c : lens_cases()) {
+        if (c.camera.lens.coefficients.empty() || c.name.find("mild") == std::string::npos) continue;
+        for (double scale : {1e-8, 1e-100, 1e-300, 4.9e-324}) {
+            std::ostringstream name;
+            name << c.name << " x " << scale;
+            cases.push_back({name.str(), with_coefficients_scaled(c.camera, scale)});
+        }
+    }
+    cases.push_back({"OPENCV4 k = -2, 1.5", lens_camera(LensType::Opencv4, {-2, 1.5, 0.01, -0.01})});
+    cases.push_back(
+        {"OPENCV8 k = 5, 3, .., 6, 4, 2", lens_camera(LensType::Opencv8, {5, 3, 0.001, 0.001, 1, 6, 4, 2})});
+    cases.push_back(
+        {"OPENCV12 prism 0.1", lens_camera(LensType::Opencv12, {0.1, 0, 0, 0, 0, 0, 0, 0, 0.1, -0.1, 0.05, 0.05})});
+    cases.push_back(
+        {"OPENCV14 tilt 0.3 rad", lens_camera(LensType::Opencv14, {0.1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.3, -0.3})});
+    cases.push_back({"FISHEYE k = 0.5, -0.3, 0.2, -0.05",
+                     lens_camera(LensType::Fisheye, {0.5, -0.3, 0.2, -0.05}, {1600, 1200}, 300, 300)});
+    return cases;
+}
+
+
+// ------------------------------------------------------------ points at any scale
+
+// Unit directions (both sides of the camera, on and off the axis) at scales 4.9e-324 to
+// 1.7e308: every model projects a direction, so the scale must not matter.
+inline std::vector<Vec3> points_at_every_scale() {
+    std::vector<Vec3> points;
+    for (double scale : {4.9e-324, 1e-310, 1e-300, 1e-170, 1e-100, 1.0, 1e100, 1e170, 1e300, 1.7e308}) {
+        for (const Vec3& d :
+             {Vec3(1, 1, 1), Vec3(1, 0, 0), Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(-1, 2, -3), Vec3(3, -2, 1e-20),
+              Vec3(1e-20, 0, 1), Vec3(1e-20, 1e-20, -1), Vec3(0, 1, 0), Vec3(0.2, -0.1, 1)}) {
+            points.push_back(d.normalized() * scale);
+        }
+    }
+    return points;
+}
+
+
+// ------------------------------------------------------ the NaN / infinity sweep
+
+// Everything at once: every model (mild, strong, near-zero, hand folds), points at every
+// scale and side, pixels from the principal point to 1e300 px away, and the FOV cameras
+// at their extremes. A result is either flagged (invalid, or an error thrown) or finite.
+struct SweepCount {
+    std::size_t results = 0, unflagged_non_finite = 0;
+    std::string first;
+    void add(bool valid, bool finite, const std::string& what) {
+        ++results;
+        if (valid && !finite) {
+            if (unflagged_non_finite++ == 0) first = what;
+        }
+    }
+};
+
+inline std::vector<Vec3> sweep_points() {
+    std::vector<Vec3> points = points_towards_the_camera_plane();
+    for (const Vec3& p : points_at_every_scale()) points.push_back(p);
+    const double inf = kInfinity, nan = std::numeric_limits<double>::quiet_NaN();
+    for (const Vec3& p : {Vec3(inf, 0, 1), Vec3(0, 0, inf), Vec3(nan, 0, 1), Vec3(1, 1, -inf)}) points.push_back(p);
+    return points;
+}
+
+inline std::vector<Vec2> sweep_pixels(const Camera& camera) {
+    std::vector<Vec2> pixels = pixel_grid(camera.size, 21, 17);
+    const Vec2 centre(camera.intrinsics.cx, camera.intrinsics.cy);
+    pixels.push_back(centre);
+    for (double distance : {1e-300, 1e-10, 1e4, 1e6, 1e15, 1e150, 1e300}) {
+        for (double phi : {0.0, 1.0, 2.5, 4.0})
+            pixels.push_back(centre + distance * Vec2(std::cos(phi), std::sin(phi)));
+    }
+    return pixels;
+}
+
+inline std::vector<Camera> sweep_cameras() {
+    std::vector<Camera> cameras;
+    for (const LensCase& c : lens_cases()) cameras.push_back(c.camera);
+    for (const LensCase& c : coefficient_extremes()) cameras.push_back(c.camera);
+    for (const HandFold& fold : hand_folds()) cameras.push_back(fold.camera);
+    for (const LensCase& c : fisheye_lenses()) cameras.push_back(c.camera);
+    // Focal lengths far from the usual: a 179.999-degree and a 1e-6-degree camera's.
+    const std::size_t usual = cameras.size();
+    for (std::size_t i = 0; i < usual; ++i) {
+        for (double f : {4.4e-6, 5.7e12}) {
+            Camera camera = cameras[i];
+            camera.intrinsics.fx = camera.intrinsics.fy = f;
+            cameras.push_back(camera);
+        }
+    }
+    return cameras;
+}
+
+inline std::string describe_camera(const Camera& camera) {
+    std::ostringstream out;
+    out << lens_info(camera.lens.type).name << " fx " << camera.intrinsics.fx << " k0 "
+        << (camera.lens.coefficients.empty() ? 0.0 : camera.lens.coefficients[0]);
+    return out.str();
+}
+
+template <class Vector>
+std::string show(const Vector& v) {
+    std::ostringstream out;
+    out << "(" << v.transpose() << ")";
+    return out.str();
+}
+
+// Camera (double, public API) and Model<float>: project, unproject, rays.
+
+}  // namespace libcam::test
