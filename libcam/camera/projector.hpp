@@ -21,8 +21,10 @@ public:
     explicit Projector(const Camera& camera);
 
     // The pixel of each camera-frame point; valid[i] = 0, and pixel (0, 0), outside the
-    // lens's domain (behind the camera, past the fold-over radius, ...). Resizes the
-    // outputs (no allocation when they already have the size).
+    // lens's domain (behind the camera, past the fold-over radius, ...) or where the
+    // pixel passes the largest Scalar. Points at any scale (1e-300, 1e300) give the
+    // pixel of their direction, as in Camera. Resizes the outputs (no allocation when
+    // they already have the size).
     void project(const Points3<Scalar>& camera_points, Points2<Scalar>& pixels, ValidFlags& valid,
                  int threads = 1) const;
 

@@ -9,8 +9,9 @@
 // For the models solved iteratively (OpenCV's family, FISHEYE) the constructor tabulates
 // the exact undistorted point u of a grid of pixels covering the image (and one node
 // beyond each edge), solved by the certified solver of lens/undistort.hpp. Then
-//   exact: u from the table (bilinear), two Newton steps, and the residual checked
-//          against unprojection_tolerance(); a pixel that fails goes to the full solver;
+//   exact: u from the table (bilinear), two Newton steps (a third for a pixel still
+//          above reducible_residual()), and the residual checked against
+//          unprojection_tolerance(); a pixel that fails goes to the full solver;
 //   fast:  u from the table (bilinear) and one Newton step, no check;
 //   lut:   u from the table (bicubic, Catmull-Rom), no model evaluation.
 // Validity never depends on the approximation: a method settles a pixel only inside the
