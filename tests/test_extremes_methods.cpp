@@ -239,6 +239,26 @@ std::vector<Row> coefficient_method_rows() {
                        "as the Camera path");
 }
 
+// Every lens behind the focal lengths of the FOV extremes: a 1e-6-degree camera's
+// (f = 5.7e12 px over 100000 px: the image spans |m| < 1e-8) and a 179.999-degree one's
+// (f = 4.4e-6 over 1600 px: |m| to 2e8, mostly past the domain).
+std::vector<Row> focal_extreme_method_rows() {
+    ExtremeWorst worst;
+    for (const LensCase& c : lens_cases()) {
+        for (double f : {5.7e12, 4.4e-6}) {
+            Camera camera = c.camera;
+            if (f > 1) camera = scaled_camera(camera, 100000.0 / static_cast<double>(camera.size.width));
+            camera.intrinsics.fx = camera.intrinsics.fy = f;
+            std::vector<Vec2> pixels = corner_pixels(camera.size);
+            for (const Vec2& p : pixel_grid(camera.size, 11, 9)) pixels.push_back(p);
+            score_methods(c.name + " f " + std::to_string(f), camera, pixels, worst, UnprojectorOptions{.table_nodes = 96});
+        }
+    }
+    return method_rows("batch: every model at f = 5.7e12 px (fov 1e-6 deg over 100000 px) and f = 4.4e-6 px (179.999 "
+                       "deg over 1600 px), corners and 11x9 grids (96-node tables)",
+                       worst, "as above");
+}
+
 // ------------------------------------------------------------------ projection
 
 struct BatchProjectionWorst {
@@ -362,6 +382,9 @@ TEST_CASE("extremes: batch methods on FISHEYE at theta -> 0 and near 90 and 180 
 TEST_CASE("extremes: batch methods with strong and near-zero distortion coefficients") {
     check_rows(coefficient_method_rows());
 }
+TEST_CASE("extremes: batch methods at the focal lengths of 1e-6 and 179.999-degree cameras") {
+    check_rows(focal_extreme_method_rows());
+}
 TEST_CASE("extremes: batch Projector at any scale and at z -> 0") { check_rows(projector_rows()); }
 TEST_CASE("extremes: batch paths give nothing NaN or infinite without the invalid flag") {
     check_rows(batch_sweep_rows());
@@ -372,7 +395,7 @@ namespace libcam::test {
 std::vector<Row> batch_rows() {
     std::vector<Row> rows;
     for (const auto& group : {large_image_method_rows, wide_lens_method_rows, fold_method_rows, fisheye_method_rows,
-                              coefficient_method_rows, projector_rows, batch_sweep_rows}) {
+                              coefficient_method_rows, focal_extreme_method_rows, projector_rows, batch_sweep_rows}) {
         const std::vector<Row> more = group();
         rows.insert(rows.end(), more.begin(), more.end());
     }
