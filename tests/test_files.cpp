@@ -608,6 +608,13 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
         {"negative height", base.with("image_height", "-480").text(), "image_height"},
         {"width as a string", base.with("image_width", "\"wide\"").text(), "image_width"},
         {"distortion .nan", base.with("distortion_coefficients", "5 1: 0., .nan, 0., 0., 0.").text(), "distortion_coefficients"},
+        // OpenCV 4.6 reads integers as 32-bit int, wrapping: 4294967936 would read as 640,
+        // 5700000000000 as 578398208, 4294967297 rows as 1.
+        {"width 2^32 + 640", base.with("image_width", "4294967936").text(), "image_width"},
+        {"height -2^32 + 480", base.with("image_height", "-4294966816").text(), "image_height"},
+        {"integer fx past int", base.with("camera_matrix", "3 3: 5700000000000, 0., 319.5, 0., 510., 239.5, 0., 0., 1.").text(),
+         "camera_matrix.data"},
+        {"integer past long long", base.with("tvec", "3 1: 0.5, 99999999999999999999999, 2.").text(), "tvec.data"},
     };
     int index = 0;
     for (const Case& c : cases) {
@@ -641,6 +648,24 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
     message = error_of([&] { read_camera_file(zero_width); });
     CHECK_THAT(message, is_file_or_argument_error());
     CHECK_THAT(message, NamesKey("image_width"));
+
+    // An integer past OpenCV's 32-bit int, in a scalar and inside a matrix of doubles.
+    std::string wrapping_width = xml;
+    wrapping_width.replace(width_at, wrapping_width.find("</image_width>") - width_at, "<image_width>4294967936");
+    const fs::path wrapping = dir.path() / "wrapping_width.xml";
+    write_text(wrapping, wrapping_width);
+    message = error_of([&] { read_camera_file(wrapping); });
+    CHECK_THAT(message, is_file_or_argument_error());
+    CHECK_THAT(message, NamesKey("image_width") && Contains("4294967936"));
+    std::string wrapping_k = xml;
+    const auto data_at = wrapping_k.find("<data>", start);
+    REQUIRE(data_at != std::string::npos);
+    wrapping_k.insert(data_at + std::string("<data>").size(), " 5700000000000 ");
+    const fs::path wrapping_data = dir.path() / "wrapping_k.xml";
+    write_text(wrapping_data, wrapping_k);
+    message = error_of([&] { read_camera_file(wrapping_data); });
+    CHECK_THAT(message, is_file_or_argument_error());
+    CHECK_THAT(message, NamesKey("camera_matrix.data") && Contains("5700000000000"));
 }
 
 TEST_CASE("Malformed .cameramodel and gl files are refused", "[files][errors]") {

@@ -3,9 +3,11 @@
 #include <opencv2/calib3d.hpp>
 
 #include <algorithm>
-#include <vector>
 #include <cctype>
+#include <charconv>
+#include <limits>
 #include <optional>
+#include <vector>
 
 #include "libcam/error.hpp"
 
@@ -151,6 +153,41 @@ Vec3 read_vector3(const cv::FileNode& node, const char* key, const std::string& 
     return {m.at<double>(0), m.at<double>(1), m.at<double>(2)};
 }
 
+// OpenCV 4.6 reads every integer literal into a 32-bit int and wraps it silently:
+// image_width 4294967936 reads as 640, and so does 4294967936 inside a matrix of
+// doubles (5700000000000 as fx reads 578398208). So every integer literal of the text
+// is checked before OpenCV sees it; `field` names where it stands.
+bool is_word_char(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-' || c == '_';
+}
+
+void check_integer_literal(std::string_view word, const std::string& field, const std::string& source) {
+    const std::string_view digits = word.starts_with('+') || word.starts_with('-') ? word.substr(1) : word;
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string_view::npos) return;  // not an integer
+    long long value = 0;
+    const char* first = word.data() + (word.starts_with('+') ? 1 : 0);
+    const auto [end, error] = std::from_chars(first, word.data() + word.size(), value);
+    const bool fits = error == std::errc() && end == word.data() + word.size() &&
+                      value >= std::numeric_limits<int>::min() && value <= std::numeric_limits<int>::max();
+    if (!fits) {
+        throw FileError(source + ": \"" + field + "\": the integer " + std::string(word) +
+                        " is outside OpenCV's 32-bit int range (OpenCV would read another number in its place)");
+    }
+}
+
+// The words of `text` (runs of letters, digits, '.', '+', '-', '_') from `i`, each checked;
+// returns where the word that starts at i ends.
+std::size_t check_word_at(std::string_view text, std::size_t i, const std::string& field, const std::string& source) {
+    std::size_t end = i;
+    while (end < text.size() && is_word_char(text[end])) ++end;
+    check_integer_literal(text.substr(i, end - i), field, source);
+    return end;
+}
+
+void check_integer_literals(std::string_view text, const std::string& field, const std::string& source) {
+    for (std::size_t i = 0; i < text.size();) i = is_word_char(text[i]) ? check_word_at(text, i, field, source) : i + 1;
+}
+
 // OpenCV 4.6's YAML parser loops forever on some malformed documents (found by
 // fuzzing: "%YAML:1.0\n----m\nm\nm"), so YAML is checked line by line against the
 // shape cv::FileStorage writes before OpenCV sees it: the %YAML header, "---", then
@@ -161,6 +198,7 @@ void check_opencv_yaml_shape(std::string_view text, const std::string& source) {
     int line_number = 0;
     int open_brackets = 0;
     auto is_key_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; };
+    std::string top_key, field;  // the key at indentation 0, and top_key.key below it
     while (start < text.size()) {
         const std::size_t end = std::min(text.find('\n', start), text.size());
         std::string_view line = text.substr(start, end - start);
@@ -190,6 +228,9 @@ void check_opencv_yaml_shape(std::string_view text, const std::string& source) {
                 std::size_t key_end = 0;
                 while (key_end < rest.size() && is_key_char(rest[key_end])) ++key_end;
                 if (key_end == 0 || key_end >= rest.size() || rest[key_end] != ':') refuse("expected 'key: value'");
+                const std::string key(rest.substr(0, key_end));
+                if (indent == 0) top_key = key;
+                field = indent == 0 ? key : top_key + "." + key;
                 rest.remove_prefix(key_end + 1);
             }
         }
@@ -205,6 +246,8 @@ void check_opencv_yaml_shape(std::string_view text, const std::string& source) {
                 if (--open_brackets < 0) refuse("unbalanced '" + std::string(1, c) + "'");
             } else if (c == '#' && open_brackets == 0) {
                 break;
+            } else if (is_word_char(c) && (i == 0 || !is_word_char(rest[i - 1]))) {
+                i = check_word_at(rest, i, field, source) - 1;
             }
         }
     }
@@ -214,7 +257,7 @@ void check_opencv_yaml_shape(std::string_view text, const std::string& source) {
 // OpenCV 4.6's XML parser reads past the end of its input on a truncated tag such as
 // "<im rn=" (found by fuzzing), so XML is checked first: every tag closed with '>',
 // attribute values quoted and closed, comments and declarations closed, elements
-// nested and balanced. Text between tags goes to OpenCV unchecked.
+// nested and balanced; the text between tags is checked for integer literals only.
 void check_opencv_xml_shape(std::string_view text, const std::string& source) {
     constexpr int kMaxDepth = 8;
     std::vector<std::string_view> open_elements;
@@ -224,15 +267,25 @@ void check_opencv_xml_shape(std::string_view text, const std::string& source) {
     auto is_name_char = [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == ':';
     };
-    std::size_t i = 0;
+    // The element a text between tags belongs to: the one below the root, and the
+    // innermost if deeper ("camera_matrix.data").
+    const auto field = [&open_elements] {
+        if (open_elements.size() < 2) return std::string(open_elements.empty() ? "" : open_elements.back());
+        std::string name(open_elements[1]);
+        if (open_elements.size() > 2) name += "." + std::string(open_elements.back());
+        return name;
+    };
+    std::size_t i = 0, content = 0;  // content: where the text after the last tag starts
     while ((i = text.find('<', i)) != std::string_view::npos) {
         const std::size_t tag = i;
+        check_integer_literals(text.substr(content, tag - content), field(), source);
         for (std::string_view closer : {"<!--", "<?"}) {
             if (text.substr(i).starts_with(closer)) {
                 const std::string_view end = closer == "<?" ? "?>" : "-->";
                 const std::size_t close = text.find(end, i + closer.size());
                 if (close == std::string_view::npos) refuse(tag, "unclosed '" + std::string(closer) + "'");
                 i = close + end.size();
+                content = i;
                 break;
             }
         }
@@ -266,6 +319,7 @@ void check_opencv_xml_shape(std::string_view text, const std::string& source) {
             i = close + 1;
         }
         ++i;  // past '>'
+        content = i;
         if (closing) {
             if (open_elements.empty() || open_elements.back() != name) refuse(tag, "unbalanced </" + std::string(name) + ">");
             open_elements.pop_back();
