@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <thread>
 #include <opencv2/calib3d.hpp>
 
 #include "lens_cases.hpp"
@@ -284,6 +285,39 @@ void check_against_jet(const Camera& camera, const std::vector<Vec3>& points) {
 }
 
 }  // namespace
+
+TEST_CASE("The fold-over radius is the same on every call: more lenses than the per-thread memo holds, two threads") {
+    // Worked by hand as above; six lenses in turn, so that the memo (4 entries) evicts.
+    struct HandRadius {
+        LensType type;
+        std::vector<double> k;
+        double radius;
+    };
+    const double k1 = -0.3, k2 = 0.02;
+    const std::vector<HandRadius> lenses{
+        {LensType::Opencv4, {-0.5, 0, 0, 0}, std::sqrt(1 / 1.5)},
+        {LensType::Opencv4, {k1, k2, 1e-3, 1e-3}, std::sqrt((-3 * k1 - std::sqrt(9 * k1 * k1 - 20 * k2)) / (10 * k2))},
+        {LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}, std::sqrt(2.0)},
+        {LensType::Opencv8, {0, 0, 0, 0, 0, -0.25, 0, 0}, 2.0},
+        {LensType::Fisheye, {-0.2, 0, 0, 0}, std::sqrt(1 / 0.6)},
+        {LensType::Fisheye, {0, 0, 0, 0}, std::numbers::pi},
+    };
+    const auto sweep = [&lenses](int rounds) {
+        int wrong = 0;
+        for (int round = 0; round < rounds; ++round) {
+            for (const HandRadius& lens : lenses) {
+                const double radius = valid_radius_of(Lens{lens.type, lens.k});
+                wrong += std::abs(radius - lens.radius) <= 1e-14 * lens.radius ? 0 : 1;
+            }
+        }
+        return wrong;
+    };
+    int wrong_on_thread = -1;
+    std::thread other([&] { wrong_on_thread = sweep(50); });
+    CHECK(sweep(50) == 0);
+    other.join();
+    CHECK(wrong_on_thread == 0);
+}
 
 TEST_CASE("Jacobians match central differences in long double and ceres::Jet") {
     for (const LensCase& c : lens_cases()) {

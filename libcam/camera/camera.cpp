@@ -11,7 +11,15 @@ void Camera::validate() const {
     pose.validate("R");
 }
 
+// What the camera-frame functions use: K and the lens (the pose and the size not).
+// Cheap when they are valid, so that every call checks them.
+void Camera::validate_lens_and_k() const {
+    intrinsics.validate("K");
+    lens.validate("dist");
+}
+
 std::vector<Projection> Camera::project_camera_points(std::span<const Vec3> camera_points) const {
+    validate_lens_and_k();
     return visit_lens_model<double>(lens.type, [&]<class Model>() {
         const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
         std::vector<Projection> projections(camera_points.size());
@@ -34,6 +42,7 @@ Projection Camera::project_camera_point(const Vec3& camera_point) const {
 }
 
 std::vector<Unprojection> Camera::unproject_pixels(std::span<const Vec2> pixels) const {
+    validate_lens_and_k();
     return visit_lens_model<double>(lens.type, [&]<class Model>() {
         const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
         std::vector<Unprojection> directions(pixels.size());
@@ -53,7 +62,13 @@ bool Camera::unproject(const Vec2& pixel, Vec3& camera_direction) const {
     return result.valid;
 }
 
+Projection Camera::project(const Vec3& world_point) const {
+    pose.validate("R");
+    return project_camera_point(pose.camera_from_world(world_point));
+}
+
 Ray Camera::ray(const Vec2& pixel) const {
+    pose.validate("R");
     Ray result;
     result.origin = pose.centre();
     Vec3 camera_direction;

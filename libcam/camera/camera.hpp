@@ -38,7 +38,9 @@ struct Camera {
     Lens lens;
     Pose pose;
 
-    // Throws InvalidArgument naming the field for a bad size, K, lens or pose.
+    // Throws InvalidArgument naming the field for a bad size, K, lens or pose. Every
+    // function below checks what it uses (K and the lens; the pose too for world
+    // points and rays) on each call, and throws the same.
     void validate() const;
 
     // P = K [R | t] (pinhole part only: distortion is not linear).
@@ -47,9 +49,7 @@ struct Camera {
     // The pixel of a camera-frame point; invalid outside the lens model's domain
     // (behind the camera, past the radius where the distortion folds over, ...).
     Projection project_camera_point(const Vec3& camera_point) const;
-    Projection project(const Vec3& world_point) const {
-        return project_camera_point(pose.camera_from_world(world_point));
-    }
+    Projection project(const Vec3& world_point) const;
     // Many points at once: the lens's valid domain is worked out once, not per point.
     std::vector<Projection> project_camera_points(std::span<const Vec3> camera_points) const;
 
@@ -64,6 +64,9 @@ struct Camera {
     // The world-frame ray through an OpenCV pixel: origin at the camera centre,
     // direction R^T K^-1 [x, y, 1] normalised.
     Ray ray(const Vec2& pixel) const;
+
+private:
+    void validate_lens_and_k() const;
 };
 
 }  // namespace libcam

@@ -1,5 +1,6 @@
 #include "libcam/geometry/intrinsics.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "libcam/error.hpp"
@@ -31,6 +32,10 @@ Intrinsics Intrinsics::from_K(const Mat3& K, const char* field) {
 }
 
 void Intrinsics::validate(const char* field) const {
+    // The common case first, without building a message: Camera checks K on every call.
+    const bool finite = std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) && std::isfinite(cy) &&
+                        std::isfinite(skew);
+    if (finite && fx > 0.0 && fy > 0.0) return;
     const std::string prefix(field);
     require_finite((prefix + ".fx").c_str(), fx);
     require_finite((prefix + ".fy").c_str(), fy);

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <unsupported/Eigen/Polynomials>
@@ -78,7 +79,47 @@ double smallest_positive_root(std::span<const double> coefficients) {
     return smallest;
 }
 
-double radial_valid_radius(std::span<const double> p, std::span<const double> q) {
+namespace {
+
+// The root search takes microseconds, and a camera asks for its lens's radius on every
+// call (Camera::project, Camera::ray: each builds the model's parameters), so the last
+// few answers are kept per thread, keyed by the exact coefficients. The function is
+// pure: a hit returns what the search would.
+class RadiusMemo {
+public:
+    const double* find(std::span<const double> p, std::span<const double> q) const {
+        for (const Entry& entry : entries_) {
+            if (entry.used && std::ranges::equal(entry.p(), p) && std::ranges::equal(entry.q(), q)) return &entry.radius;
+        }
+        return nullptr;
+    }
+    void store(std::span<const double> p, std::span<const double> q, double radius) {
+        if (p.size() + q.size() > kMaxKey) return;
+        Entry& entry = entries_[next_];
+        next_ = (next_ + 1) % entries_.size();
+        std::ranges::copy(p, entry.key.begin());
+        std::ranges::copy(q, entry.key.begin() + static_cast<std::ptrdiff_t>(p.size()));
+        entry.p_size = p.size();
+        entry.q_size = q.size();
+        entry.radius = radius;
+        entry.used = true;
+    }
+
+private:
+    static constexpr std::size_t kMaxKey = 16;  // OpenCV's 4 + 4, Kannala-Brandt's 5 + 1
+    struct Entry {
+        std::array<double, kMaxKey> key{};
+        std::size_t p_size = 0, q_size = 0;
+        double radius = 0;
+        bool used = false;
+        std::span<const double> p() const { return {key.data(), p_size}; }
+        std::span<const double> q() const { return {key.data() + p_size, q_size}; }
+    };
+    std::array<Entry, 4> entries_{};
+    std::size_t next_ = 0;
+};
+
+double search_valid_radius(std::span<const double> p, std::span<const double> q) {
     const Polynomial P(p.begin(), p.end());
     const Polynomial Q(q.begin(), q.end());
     // N = (P + 2 s P') Q - 2 s P Q'
@@ -86,6 +127,16 @@ double radial_valid_radius(std::span<const double> p, std::span<const double> q)
                              product(P, twice_s_times_derivative(Q)), -1.0);
     const double s = std::min(smallest_positive_root(N), smallest_positive_root(Q));
     return std::sqrt(s);
+}
+
+}  // namespace
+
+double radial_valid_radius(std::span<const double> p, std::span<const double> q) {
+    thread_local RadiusMemo memo;
+    if (const double* radius = memo.find(p, q)) return *radius;
+    const double radius = search_valid_radius(p, q);
+    memo.store(p, q, radius);
+    return radius;
 }
 
 }  // namespace libcam
