@@ -3,9 +3,12 @@
 // tolerance helpers. Expected values never come from here: only inputs.
 
 #include <Eigen/Geometry>
+#include <exception>
 #include <random>
+#include <string>
 
 #include "libcam/convert/fov_convert.hpp"
+#include "libcam/error.hpp"
 
 namespace libcam::test {
 
@@ -47,5 +50,22 @@ inline FovCamera random_fov_camera(ImageSize size, FovAxis axis, double fov_low 
 
 // Relative difference, scaled by the larger magnitude (or 1 near zero).
 inline double relative_error(double a, double b) { return std::abs(a - b) / std::max({std::abs(a), std::abs(b), 1e-300}); }
+
+// "FileError: ...", "InvalidArgument: ..." or what else happened, for matching.
+template <class F>
+std::string error_of(F&& f) {
+    try {
+        f();
+    } catch (const FileError& error) {
+        return std::string("FileError: ") + error.what();
+    } catch (const InvalidArgument& error) {
+        return std::string("InvalidArgument: ") + error.what();
+    } catch (const Error& error) {
+        return std::string("other libcam::Error: ") + error.what();
+    } catch (const std::exception& error) {
+        return std::string("not a libcam::Error: ") + error.what();
+    }
+    return "no exception";
+}
 
 }  // namespace libcam::test

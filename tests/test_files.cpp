@@ -36,6 +36,7 @@ using namespace libcam;
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
+using libcam::test::error_of;
 using libcam::test::relative_error;
 
 using libcam::test::TempDir;
@@ -62,22 +63,6 @@ std::vector<std::string> folder_listing(const fs::path& folder) {
     return names;
 }
 
-// "FileError: ...", "InvalidArgument: ..." or what else happened, for matching.
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const FileError& error) {
-        return std::string("FileError: ") + error.what();
-    } catch (const InvalidArgument& error) {
-        return std::string("InvalidArgument: ") + error.what();
-    } catch (const Error& error) {
-        return std::string("other libcam::Error: ") + error.what();
-    } catch (const std::exception& error) {
-        return std::string("not a libcam::Error: ") + error.what();
-    }
-    return "no exception";
-}
 
 // The message names `key` as a key: not inside another word, and followed by a quote,
 // colon, bracket or dot ("K", K[2][2], K.fx, image_width: ...).

@@ -176,3 +176,44 @@ TEST_CASE("The one solver runs in float and long double too") {
     check(2e-6f);     // about 64 float roundings of |m| ~ 3
     check(1e-17L);    // long double: a thousand times below double's result
 }
+
+TEST_CASE("Every Camera function refuses a camera it cannot use, naming the field: never a silent wrong pixel") {
+    using Catch::Matchers::Contains;
+    const Camera good = wide_reference_camera();
+    struct Misuse {
+        const char* what;
+        Camera camera;
+        const char* field;
+        bool pose_only;  // only the functions that use the pose see it
+    };
+    std::vector<Misuse> cases;
+    const auto with = [&](const char* what, const char* field, bool pose_only, auto&& change) {
+        Camera camera = good;
+        change(camera);
+        cases.push_back({what, camera, field, pose_only});
+    };
+    with("fx = 0 (used to give every point the pixel cx)", "K.fx", false, [](Camera& c) { c.intrinsics.fx = 0; });
+    with("fy NaN", "K.fy", false, [](Camera& c) { c.intrinsics.fy = std::nan(""); });
+    with("cx infinite", "K.cx", false, [](Camera& c) { c.intrinsics.cx = INFINITY; });
+    with("7 coefficients for OPENCV8", "dist", false, [](Camera& c) { c.lens.coefficients.pop_back(); });
+    with("a NaN coefficient", "dist[2]", false, [](Camera& c) { c.lens.coefficients[2] = std::nan(""); });
+    with("R scaled by 2", "R", true, [](Camera& c) { c.pose.R *= 2.0; });
+    with("t NaN", "t", true, [](Camera& c) { c.pose.t.x() = std::nan(""); });
+    const Vec3 point(0.1, 0.2, 1.0);
+    const Vec2 pixel(100, 200);
+    for (const Misuse& m : cases) {
+        CAPTURE(m.what);
+        const std::string message = error_of([&] { (void)m.camera.project(point); });
+        CHECK_THAT(message, Contains(m.field));
+        CHECK_THAT(error_of([&] { (void)m.camera.ray(pixel); }), Contains(m.field));
+        if (m.pose_only) {
+            CHECK(m.camera.project_camera_point(point).valid);
+            continue;
+        }
+        CHECK_THAT(error_of([&] { (void)m.camera.project_camera_point(point); }), Contains(m.field));
+        CHECK_THAT(error_of([&] { (void)m.camera.project_camera_points(std::vector<Vec3>{point}); }), Contains(m.field));
+        Vec3 direction;
+        CHECK_THAT(error_of([&] { (void)m.camera.unproject(pixel, direction); }), Contains(m.field));
+        CHECK_THAT(error_of([&] { (void)m.camera.unproject_pixels(std::vector<Vec2>{pixel}); }), Contains(m.field));
+    }
+}
