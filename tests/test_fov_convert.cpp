@@ -228,3 +228,20 @@ TEST_CASE("tan of half an angle near 180 degrees keeps its digits") {
         REQUIRE(relative_error(angle_deg_from_half_tangent(tan_half_angle_deg(angle)), angle) < 1e-15);
     }
 }
+
+TEST_CASE("Rodrigues both ways refuses what is not a rotation, naming the field") {
+    const auto message = [](auto&& call) { return libcam::test::error_of(call); };
+    using Catch::Matchers::Contains;
+    CHECK_THAT(message([] { (void)rotation_from_rvec(Vec3(0, std::nan(""), 1)); }),
+               Contains("InvalidArgument") && Contains("rvec"));
+    CHECK_THAT(message([] { (void)rotation_from_rvec(Vec3(0, INFINITY, 1)); }), Contains("rvec"));
+    CHECK_THAT(message([] { (void)rvec_from_rotation(2.0 * Mat3::Identity()); }),
+               Contains("R: not a rotation matrix"));
+    Mat3 reflection = Mat3::Identity();
+    reflection(2, 2) = -1;  // orthogonal, det -1
+    CHECK_THAT(message([&] { (void)rvec_from_rotation(reflection); }), Contains("det = -1"));
+    // A rotation by 0.25 rad about z, by hand, still converts.
+    Mat3 rz;
+    rz << std::cos(0.25), -std::sin(0.25), 0, std::sin(0.25), std::cos(0.25), 0, 0, 0, 1;
+    CHECK((rvec_from_rotation(rz) - Vec3(0, 0, 0.25)).norm() < 1e-15);
+}

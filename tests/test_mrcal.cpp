@@ -333,3 +333,21 @@ TEST_CASE("libcam's .cameramodel keeps every digit where libmrcal's own writer r
     CHECK(std::abs(libcam_back->rt_cam_ref[0] - r0) <= 1e-16);  // rvec of R(r0): r0 to an ulp
     CHECK(libcam_back->rt_cam_ref[0] == camera.pose.rvec().x());
 }
+
+TEST_CASE("The packed mrcal calls refuse partial points, mismatched outputs and invalid cameras, naming them") {
+    const Camera camera = to_camera(FovCamera{});
+    std::vector<double> points{0.1, 0.2, 1.0, 0.3};  // one point and a stray number
+    std::vector<double> pixels(2);
+    const std::string partial = test::error_of([&] { mrcal_project_packed(camera, points, pixels); });
+    CHECK_THAT(partial, Contains("InvalidArgument") && Contains("mrcal_project_packed") && Contains("got 4 and 2"));
+    points.pop_back();
+    std::vector<double> short_output(1);
+    CHECK_THAT(test::error_of([&] { mrcal_project_packed(camera, points, short_output); }), Contains("got 3 and 1"));
+    std::vector<double> directions(3);
+    CHECK_THAT(test::error_of([&] { mrcal_unproject_packed(camera, std::vector<double>{1, 2, 3}, directions); }),
+               Contains("mrcal_unproject_packed") && Contains("got 3 and 3"));
+    Camera zero_fx = camera;
+    zero_fx.intrinsics.fx = 0;
+    CHECK_THAT(test::error_of([&] { mrcal_project_packed(zero_fx, points, pixels); }), Contains("K.fx"));
+    CHECK_THAT(test::error_of([&] { (void)mrcal_project_points(zero_fx, {Vec3(0, 0, 1)}); }), Contains("K.fx"));
+}

@@ -126,3 +126,13 @@ TEST_CASE("a matrix that is not a perspective projection is refused, naming the 
     REQUIRE_THROWS_WITH(to_opengl(to_camera(FovCamera{}), 1.0, 0.5), Catch::Matchers::Contains("far"));
     REQUIRE_THROWS_WITH(to_opengl(to_camera(FovCamera{}), 0.0, 0.5), Catch::Matchers::Contains("near"));
 }
+
+TEST_CASE("gl_project flags a point it cannot place: behind the eye, or a matrix with NaN") {
+    GlCamera gl = to_opengl(to_camera(FovCamera{}), 0.1, 10.0);
+    const Vec3 in_view = FovCamera{}.eye + FovCamera{}.gaze;  // one unit along the gaze
+    CHECK(gl_project(gl, in_view).valid);
+    CHECK_FALSE(gl_project(gl, FovCamera{}.eye - FovCamera{}.gaze).valid);
+    gl.projection(0, 0) = std::nan("");  // clip x NaN while w stays positive: was "valid" with a NaN window
+    const GlWindowPoint nan_point = gl_project(gl, in_view);
+    CHECK_FALSE(nan_point.valid);
+}

@@ -1,6 +1,7 @@
 #include "libcam/convert/opengl.hpp"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <string>
 
 #include "libcam/error.hpp"
@@ -97,12 +98,12 @@ GlIntrinsics intrinsics_from_opengl(const Mat4& P, const ImageSize& size, DepthR
 GlWindowPoint gl_project(const GlCamera& gl, const Vec3& world_point) {
     const Eigen::Vector4d clip = gl.projection * gl.view * world_point.homogeneous();
     GlWindowPoint result;
-    result.valid = clip.w() > 0.0;
-    if (!result.valid) return result;
+    if (!(clip.w() > 0.0) || !clip.allFinite()) return result;  // behind the eye, or not a number: invalid
     const Eigen::Vector3d ndc = clip.head<3>() / clip.w();
     result.window = {static_cast<double>(gl.viewport[0]) + 0.5 * (ndc.x() + 1.0) * static_cast<double>(gl.viewport[2]),
                      static_cast<double>(gl.viewport[1]) + 0.5 * (ndc.y() + 1.0) * static_cast<double>(gl.viewport[3])};
     result.ndc_depth = ndc.z();
+    result.valid = result.window.allFinite() && std::isfinite(result.ndc_depth);
     return result;
 }
 

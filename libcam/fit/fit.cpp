@@ -244,6 +244,7 @@ std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<
 }
 
 std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<Observation>& observations) {
+    fitted.pose.validate("R");  // K and the lens: by project_camera_points
     std::vector<Vec3> moved;
     moved.reserve(observations.size());
     for (const Observation& observation : observations) moved.push_back(fitted.pose.camera_from_world(observation.point));

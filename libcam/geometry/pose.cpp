@@ -1,13 +1,32 @@
 #include "libcam/geometry/pose.hpp"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <string>
 
 #include "libcam/error.hpp"
 
 namespace libcam {
 
+namespace {
+
+// Throws InvalidArgument naming `field` unless R is finite and a rotation to within
+// kRotationTolerance.
+void require_rotation(const char* field, const Mat3& R) {
+    require_finite_all(field, R);
+    const double orthogonality = (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff();
+    const double det = R.determinant();
+    if (orthogonality > kRotationTolerance || std::abs(det - 1.0) > kRotationTolerance) {
+        throw InvalidArgument(std::string(field) + ": not a rotation matrix (max |R^T R - I| = " +
+                              format_number(orthogonality) + ", det = " + format_number(det) + ", tolerance " +
+                              format_number(kRotationTolerance) + ")");
+    }
+}
+
+}  // namespace
+
 Vec3 rvec_from_rotation(const Mat3& R) {
+    require_rotation("R", R);
     // Eigen converts R to a quaternion (Shepperd's method), then takes
     // angle = 2 atan2(|q.vec|, |q.w|): accurate at every angle.
     const Eigen::AngleAxisd axis_angle(R);
@@ -15,6 +34,7 @@ Vec3 rvec_from_rotation(const Mat3& R) {
 }
 
 Mat3 rotation_from_rvec(const Vec3& rvec) {
+    require_finite_all("rvec", rvec);
     const double angle = rvec.norm();
     if (angle == 0.0) return Mat3::Identity();
     return Eigen::AngleAxisd(angle, rvec / angle).toRotationMatrix();
@@ -27,15 +47,8 @@ Mat34 Pose::matrix() const {
 }
 
 void Pose::validate(const char* field) const {
-    require_finite_all(field, R);
+    require_rotation(field, R);
     require_finite_all("t", t);
-    const double orthogonality = (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff();
-    const double det = R.determinant();
-    if (orthogonality > kRotationTolerance || std::abs(det - 1.0) > kRotationTolerance) {
-        throw InvalidArgument(std::string(field) + ": not a rotation matrix (max |R^T R - I| = " +
-                              format_number(orthogonality) + ", det = " + format_number(det) +
-                              ", tolerance " + format_number(kRotationTolerance) + ")");
-    }
 }
 
 }  // namespace libcam

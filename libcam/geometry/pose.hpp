@@ -15,7 +15,8 @@ namespace libcam {
 using Mat34 = Eigen::Matrix<double, 3, 4>;
 
 // Rodrigues' formula both ways, through a quaternion so that angles near 0 and near pi
-// keep their accuracy.
+// keep their accuracy. Throw InvalidArgument for a non-finite rvec, or an R that is not
+// a rotation (within kRotationTolerance).
 Vec3 rvec_from_rotation(const Mat3& R);
 Mat3 rotation_from_rvec(const Vec3& rvec);
 

@@ -193,11 +193,28 @@ Camera parse_cameramodel(std::string_view text, const std::string& source) {
     return camera;
 }
 
+namespace {
+
+// Throws InvalidArgument unless `in` holds whole points of in_width numbers and `out`
+// has room for as many of out_width; returns the count.
+int packed_count(const char* function, std::span<const double> in, std::size_t in_width, std::span<double> out,
+                 std::size_t out_width) {
+    const std::size_t n = in.size() / in_width;
+    if (in.size() % in_width != 0 || out.size() != n * out_width || n > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+        throw InvalidArgument(std::string(function) + ": expected " + std::to_string(in_width) + " numbers per input and " +
+                              std::to_string(out_width) + " per output, got " + std::to_string(in.size()) + " and " +
+                              std::to_string(out.size()));
+    }
+    return static_cast<int>(n);
+}
+
+}  // namespace
+
 void mrcal_project_packed(const Camera& camera, std::span<const double> points_xyz, std::span<double> pixels_xy) {
+    camera.validate();
+    const int n = packed_count("mrcal_project_packed", points_xyz, 3, pixels_xy, 2);
     const mrcal_lensmodel_t model = mrcal_lensmodel(camera.lens);
     const std::vector<double> intrinsics = mrcal_intrinsics(camera);
-    const int n = static_cast<int>(points_xyz.size() / 3);
-    if (pixels_xy.size() != 2 * points_xyz.size() / 3) throw InvalidArgument("mrcal_project_packed: output size");
     // mrcal_point3_t and mrcal_point2_t are unions of x, y[, z] with double[3] / double[2].
     if (!mrcal_project(reinterpret_cast<mrcal_point2_t*>(pixels_xy.data()), nullptr, nullptr,
                        reinterpret_cast<const mrcal_point3_t*>(points_xyz.data()), n, &model, intrinsics.data())) {
@@ -206,10 +223,10 @@ void mrcal_project_packed(const Camera& camera, std::span<const double> points_x
 }
 
 void mrcal_unproject_packed(const Camera& camera, std::span<const double> pixels_xy, std::span<double> directions_xyz) {
+    camera.validate();
+    const int n = packed_count("mrcal_unproject_packed", pixels_xy, 2, directions_xyz, 3);
     const mrcal_lensmodel_t model = mrcal_lensmodel(camera.lens);
     const std::vector<double> intrinsics = mrcal_intrinsics(camera);
-    const int n = static_cast<int>(pixels_xy.size() / 2);
-    if (directions_xyz.size() != 3 * pixels_xy.size() / 2) throw InvalidArgument("mrcal_unproject_packed: output size");
     if (!mrcal_unproject(reinterpret_cast<mrcal_point3_t*>(directions_xyz.data()),
                          reinterpret_cast<const mrcal_point2_t*>(pixels_xy.data()), n, &model, intrinsics.data())) {
         throw Error("mrcal_unproject failed");

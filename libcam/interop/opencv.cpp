@@ -43,6 +43,7 @@ cv::Mat opencv_distortion(const Lens& lens) {
 cv::Mat opencv_vector(const Vec3& v) { return (cv::Mat_<double>(3, 1) << v.x(), v.y(), v.z()); }
 
 std::vector<Vec2> opencv_project_points(const Camera& camera, const std::vector<Vec3>& camera_points) {
+    camera.validate();
     if (camera_points.empty()) return {};
     std::vector<cv::Point3d> object;
     for (const Vec3& p : camera_points) object.emplace_back(p.x(), p.y(), p.z());
