@@ -160,3 +160,21 @@ TEST_CASE("CONVENTIONS: seed pixel (0, 0) is the lower-left pixel, OpenCV pixel 
     require_near(camera.ray({0, 2}).direction, expected);
     require_near(seed_camera_1().seed_ray({0, 2}, PixelOrigin::TopLeft).normalized(), expected);
 }
+
+TEST_CASE("The seed's formula refuses a FOV camera built by hand that validate() refuses, naming the field") {
+    using Catch::Matchers::Contains;
+    FovCamera zero_gaze;
+    zero_gaze.gaze = Vec3::Zero();
+    FovCamera nan_fov;
+    nan_fov.fov_deg = std::nan("");
+    FovCamera up_along_gaze;
+    up_along_gaze.up = up_along_gaze.gaze;
+    for (const auto& [camera, field] : {std::pair{zero_gaze, "gaze"}, std::pair{nan_fov, "fov"},
+                                        std::pair{up_along_gaze, "up"}}) {
+        CAPTURE(field);
+        CHECK_THAT(libcam::test::error_of([&] { (void)camera.seed_ray({1, 1}); }), Contains(field));
+        CHECK_THAT(libcam::test::error_of([&] { (void)camera.basis(); }), Contains(field));
+        CHECK_THAT(libcam::test::error_of([&] { (void)camera.half_tangents(); }), Contains(field));
+        CHECK_THAT(libcam::test::error_of([&] { (void)camera.field_ray(0.5, 0.5); }), Contains(field));
+    }
+}

@@ -77,8 +77,14 @@ void FovCamera::validate() const {
     }
 }
 
-Basis FovCamera::basis(Handedness handedness) const { return basis_from_gaze_up<double>(gaze, up, handedness); }
+Basis FovCamera::basis(Handedness handedness) const {
+    validate();
+    return basis_from_gaze_up<double>(gaze, up, handedness);
+}
 
-Vec2 FovCamera::half_tangents() const { return half_tangents_of_fov<double>(fov_deg, fov_axis, size); }
+Vec2 FovCamera::half_tangents() const {
+    validate();
+    return half_tangents_of_fov<double>(fov_deg, fov_axis, size);
+}
 
 }  // namespace libcam

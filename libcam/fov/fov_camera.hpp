@@ -55,6 +55,7 @@ struct FovCamera {
     // least kMinUpGazeAngleRad apart.
     void validate() const;
 
+    // These, and seed_ray and field_ray, validate() first.
     Basis basis(Handedness handedness = Handedness::Left) const;
 
     // (tan_x, tan_y): tangents of half the field of view across the width and height.
@@ -79,7 +80,10 @@ SeedRayFormulaT<Scalar> seed_formula_in(const FovCamera& camera) {
     return {basis_from_gaze_up<Scalar>(camera.gaze.cast<Scalar>(), camera.up.cast<Scalar>(), Handedness::Left),
             half_tangents_of_fov<Scalar>(Scalar(camera.fov_deg), camera.fov_axis, camera.size), camera.size};
 }
-inline SeedRayFormula FovCamera::seed_formula() const { return seed_formula_in<double>(*this); }
+inline SeedRayFormula FovCamera::seed_formula() const {
+    validate();
+    return seed_formula_in<double>(*this);
+}
 
 // tan(angle/2) for an angle in degrees in (0, 180), accurate near 180 too; evaluated in
 // long double and rounded once.
