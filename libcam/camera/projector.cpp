@@ -62,33 +62,55 @@ template <class Model, class Scalar>
     return ok;
 }
 
-// Projects again, scaled, the points of a block outside the comfortable range: rare, so
-// out of line, where it does not take the inlining budget of the vectorised loop.
+// The model in Lane<Scalar> for the vectorised pass, and in Scalar for the points that
+// pass leaves to a second one.
 template <class Model, class Scalar>
-[[gnu::noinline]] void project_outside_comfortable_range(const Intrinsics& intrinsics,
-                                                         const typename Model::Parameters& lens,
-                                                         const std::array<const Scalar*, 3>& points, std::size_t count,
-                                                         Scalar* pixel_x, Scalar* pixel_y, Scalar* flags) {
-    using Vec3L = typename Model::Vec3T;
+struct ProjectorLens {
+    using Plain = LensInScalar<Model, Scalar>;
+    typename Model::Parameters lanes;
+    typename Plain::Parameters plain;
+};
+
+// Whether the vectorised pass may have got a point wrong: for PINHOLE and OpenCV's
+// models a point in front of the camera that it flagged (in Lane the rational factor
+// skips its overflow-safe form, see opencv.hpp); for the others a point outside the
+// comfortable range.
+template <class Model, class Scalar>
+bool needs_second_pass(Scalar x, Scalar y, Scalar z, Scalar flag) {
+    if constexpr (ProjectsRatios<Model>) {
+        (void)x, (void)y;
+        return (flag == Scalar(0)) & (z > Scalar(0));  // &, not &&: no branch
+    } else {
+        (void)flag;
+        return !in_comfortable_range(x, y, z);
+    }
+}
+
+// Those points again, one by one, in Scalar (the same bits Lane gives where both
+// apply), scaled into [1, 2) first as Camera does. Rare: out of line, where it does not
+// take the inlining budget of the vectorised loop.
+template <class Model, class Scalar>
+[[gnu::noinline]] void project_second_pass(const Intrinsics& intrinsics, const ProjectorLens<Model, Scalar>& lens,
+                                           const std::array<const Scalar*, 3>& points, std::size_t count,
+                                           Scalar* pixel_x, Scalar* pixel_y, Scalar* flags) {
+    using Plain = typename ProjectorLens<Model, Scalar>::Plain;
     const auto [x, y, z] = points;
     for (std::size_t i = 0; i < count; ++i) {
-        if (in_comfortable_range(x[i], y[i], z[i])) continue;
+        if (!needs_second_pass<Model>(x[i], y[i], z[i], flags[i])) continue;
         const Vec3T<Scalar> scaled = scaled_to_unit_range<Scalar>(Vec3T<Scalar>(x[i], y[i], z[i]));
-        const bool ok = project_point<Model>(intrinsics, lens, Vec3L(scaled.x(), scaled.y(), scaled.z()), pixel_x[i],
-                                             pixel_y[i]);
-        flags[i] = batch::flag<Scalar>(ok);
+        flags[i] = batch::flag<Scalar>(project_point<Plain>(intrinsics, lens.plain, scaled, pixel_x[i], pixel_y[i]));
     }
 }
 
 // Points [begin, end) through Model (in Lane<Scalar>), block by block.
 template <class Model, class Scalar>
-void project_range(const Intrinsics& camera_intrinsics, const typename Model::Parameters& lens_parameters,
+void project_range(const Intrinsics& camera_intrinsics, const ProjectorLens<Model, Scalar>& camera_lens,
                    const Points3<Scalar>& points, std::size_t begin, std::size_t end, Points2<Scalar>& pixels,
                    ValidFlags& valid) {
     using Vec3L = typename Model::Vec3T;
     // Local copies, which no store to the outputs can alias: see batch_kernels.hpp.
     const Intrinsics intrinsics = camera_intrinsics;
-    const typename Model::Parameters lens = lens_parameters;
+    const typename Model::Parameters lens = camera_lens.lanes;
     Scalar flags[batch::kBlock];
     for (std::size_t first = begin; first < end; first += batch::kBlock) {
         const std::size_t count = std::min(batch::kBlock, end - first);
@@ -101,13 +123,9 @@ void project_range(const Intrinsics& camera_intrinsics, const typename Model::Pa
             const bool ok = project_point<Model>(intrinsics, lens, Vec3L(x[i], y[i], z[i]), pixel_x[i], pixel_y[i]);
             flags[i] = batch::flag<Scalar>(ok);
         }
-        if constexpr (!ProjectsRatios<Model>) {
-            int outside = 0;  // its own loop: an int sum, which vectorises
-            for (std::size_t i = 0; i < count; ++i) outside += in_comfortable_range(x[i], y[i], z[i]) ? 0 : 1;
-            if (outside > 0) {
-                project_outside_comfortable_range<Model>(intrinsics, lens, {x, y, z}, count, pixel_x, pixel_y, flags);
-            }
-        }
+        int again = 0;  // its own loop: an int sum, which vectorises
+        for (std::size_t i = 0; i < count; ++i) again += needs_second_pass<Model>(x[i], y[i], z[i], flags[i]) ? 1 : 0;
+        if (again > 0) project_second_pass<Model>(intrinsics, camera_lens, {x, y, z}, count, pixel_x, pixel_y, flags);
         batch::store_flags<Scalar>({flags, count}, valid.data() + first);
     }
 }
@@ -128,7 +146,9 @@ void Projector<Scalar>::project(const Points3<Scalar>& camera_points, Points2<Sc
     pixels.resize(n);
     valid.resize(n);
     visit_lens_model<Lane<Scalar>>(camera_.lens.type, [&]<class Model>() {
-        const auto lens = batch::model_parameters<Model>(camera_.lens, valid_radius_);
+        const ProjectorLens<Model, Scalar> lens{
+            batch::model_parameters<Model>(camera_.lens, valid_radius_),
+            batch::model_parameters<typename ProjectorLens<Model, Scalar>::Plain>(camera_.lens, valid_radius_)};
         parallel_chunks(n, threads, batch::kBlock, [&](std::size_t begin, std::size_t end) {
             project_range<Model>(camera_.intrinsics, lens, camera_points, begin, end, pixels, valid);
         });

@@ -60,6 +60,13 @@ struct Lane {
     friend bool isfinite(Lane a) { return std::isfinite(a.value); }
 };
 
+// Whether a scalar type is a Lane: the few places where a model must not branch per
+// point (opencv.hpp's overflow-safe rational factor) ask.
+template <class T>
+inline constexpr bool is_lane_v = false;
+template <class T>
+inline constexpr bool is_lane_v<Lane<T>> = true;
+
 // The plain value of a T or a Lane<T>.
 template <class T>
 constexpr T lane_value(T v) {

@@ -49,7 +49,7 @@ struct LonlatLens {
             *d_m_d_point << z * inv_h2, Scalar(0), -x * inv_h2,  //
                 x * lat_across, h * inv_n2, z * lat_across;
         }
-        return m.allFinite();  // false for a NaN coordinate
+        return all_finite(m);  // false for a NaN coordinate
     }
 
     static bool unproject(const Parameters&, const Vec2T& m, Vec3T& ray) {

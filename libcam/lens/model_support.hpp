@@ -41,6 +41,16 @@ LensParameters<Scalar, N> lens_parameters(std::span<const double> coefficients, 
     return parameters;
 }
 
+// Whether every coordinate of v is finite, without a branch: x - x is 0 for a finite x
+// and NaN for an infinite or NaN one, and NaN != NaN. (Eigen's allFinite() stops at
+// the first bad coordinate, and that branch per point stops the batch loops' vectoriser.)
+template <class Vector>
+bool all_finite(const Vector& v) {
+    auto zero = v(0) - v(0);
+    for (int i = 1; i < v.size(); ++i) zero += v(i) - v(i);
+    return zero == zero;
+}
+
 // True when a Jacobian output pointer of type Ptr was passed (not the nullptr default).
 template <class Ptr>
 inline constexpr bool is_requested = !std::is_same_v<Ptr, std::nullptr_t>;

@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <span>
 
+#include "libcam/lens/lane.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 #include "libcam/lens/pinhole.hpp"
@@ -124,7 +125,7 @@ struct OpenCvLens {
         const bool in_domain = distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
         if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
         // Also false where m overflows (the thin prism's r^4 past r ~ 1e77).
-        return in_front && in_domain && m.allFinite();
+        return in_front & in_domain & all_finite(m);  // &, not &&: no branch
     }
 
     // The ray (x, y, 1) through m, by the shared iterative solver; false where no
@@ -147,7 +148,7 @@ struct OpenCvLens {
         const Scalar x = u.x(), y = u.y();
         const Scalar r2 = x * x + y * y;
         const Radial radial = radial_factor(lens, r2);
-        const bool in_domain = r2 < lens.valid_radius * lens.valid_radius && radial.denominator > Scalar(0);
+        const bool in_domain = (r2 < lens.valid_radius * lens.valid_radius) & (radial.denominator > Scalar(0));
         const Scalar p1 = c<2>(lens), p2 = c<3>(lens);
         const Scalar two(2), r4 = r2 * r2, xy2 = two * x * y;
         Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x),
@@ -230,6 +231,11 @@ private:
     // largest number: r ~ 1e51 in double, 2.6e6 in float) by Horner in t = 1 / s, with P
     // and Q divided by s^3 first: P(s)/s^3 = t^3 + k1 t^2 + k2 t + k3. In s alone R would
     // be inf/inf = NaN there, though R itself is finite.
+    //
+    // Not in Lane<T>, the batch loops' type: that branch per point would stop the
+    // vectoriser (it cost the batch paths 40 to 50 %). There such a point comes out NaN,
+    // hence invalid, and the batch paths evaluate it again in T (camera/projector.cpp;
+    // the Unprojector's full solver, for a pixel whose u is that far out).
     static Radial radial_factor(const Parameters& lens, const Scalar& r2) {
         const Scalar k1 = c<0>(lens), k2 = c<1>(lens);
         const Scalar one(1), two(2), three(3);
@@ -249,7 +255,9 @@ private:
             using std::isfinite;
             const Scalar k4 = c<5>(lens), k5 = c<6>(lens), k6 = c<7>(lens);
             const Scalar q = one + r2 * (k4 + r2 * (k5 + r2 * k6));
-            if (!(isfinite(p) && isfinite(q))) return inverted_radial_factor(lens, r2);
+            if constexpr (!is_lane_v<Scalar>) {
+                if (!(isfinite(p) && isfinite(q))) return inverted_radial_factor(lens, r2);
+            }
             const Scalar dq = k4 + r2 * (two * k5 + three * k6 * r2);
             // p / q, not p * (1 / q): the reciprocal's extra rounding cost up to 20 ulps in
             // float near the camera plane (test_extremes "points at z -> 0+").

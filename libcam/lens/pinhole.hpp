@@ -41,13 +41,13 @@ struct PinholeLens {
             *d_m_d_point << inv_z, Scalar(0), -m.x() * inv_z,  //
                 Scalar(0), inv_z, -m.y() * inv_z;
         }
-        return in_front && m.allFinite();
+        return in_front & all_finite(m);  // &, not &&: no branch
     }
 
     // Every finite normalised point has a ray; its z is 1.
     static bool unproject(const Vec2T& m, Vec3T& ray) {
         ray = Vec3T(m.x(), m.y(), Scalar(1));
-        return m.allFinite();
+        return all_finite(m);
     }
 
     // The interface every model shares (see lens_models.hpp); PINHOLE has no

@@ -53,13 +53,13 @@ struct StereographicLens {
         }
         // False within ~1e-154 rad (1e-19 in float) of the backward axis: there rho2, and with
         // it the denominator, is no longer a normal number and 2 / denominator overflows.
-        return m.allFinite();
+        return all_finite(m);
     }
 
     // False where |m|^2 overflows (a ray within ~1e-154 rad of the backward axis).
     static bool unproject(const Parameters&, const Vec2T& m, Vec3T& ray) {
         ray = Vec3T(m.x(), m.y(), Scalar(1) - m.squaredNorm() / Scalar(4));
-        return ray.allFinite();
+        return all_finite(ray);
     }
 };
 
