@@ -243,14 +243,17 @@ bool intermediate_overflows(LensType type, const Vec3Q& point) {
 enum class Expect { Valid, Flagged, Either };
 
 // STEREOGRAPHIC behind the camera forms |p| + z as rho^2 / (|p| - z), from the point
-// scaled to a largest coordinate in [1, 2): within ~1e-154 rad (double; 1e-19 rad in
-// float) of the backward axis rho^2 is no longer a normal number and libcam flags the
-// point. Flagged there, either within a factor 8 of the threshold, nullopt elsewhere.
+// as given, or scaled to a largest coordinate in [1, 2) when that lies outside
+// 2^(min exponent / 4) .. 2^(max exponent / 4) (camera/point_scale.hpp): where rho^2 is
+// no longer a normal number libcam flags the point. Flagged there, either within a
+// factor 8 of the threshold, nullopt elsewhere.
 template <class Scalar>
 std::optional<Expect> stereographic_behind(LensType type, const Vec3Q& point) {
     if (type != LensType::Stereographic || !(point.z() < 0)) return std::nullopt;
+    using Limits = std::numeric_limits<Scalar>;
     const Quad largest = point.cwiseAbs().maxCoeff();
-    const Quad rho2 = (point.x() * point.x() + point.y() * point.y()) / (largest * largest);
+    const bool scaled = largest < ldexp(Quad(1), Limits::min_exponent / 4) || largest > ldexp(Quad(1), Limits::max_exponent / 4);
+    const Quad rho2 = (point.x() * point.x() + point.y() * point.y()) / (scaled ? largest * largest : Quad(1));
     const Quad threshold(std::numeric_limits<Scalar>::min());
     if (rho2 < threshold / 8) return Expect::Flagged;
     if (rho2 < threshold * 8) return Expect::Either;

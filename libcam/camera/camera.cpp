@@ -1,5 +1,6 @@
 #include "libcam/camera/camera.hpp"
 
+#include "libcam/camera/point_scale.hpp"
 #include "libcam/lens/lens_models.hpp"
 
 namespace libcam {
@@ -24,12 +25,13 @@ std::vector<Projection> Camera::project_camera_points(std::span<const Vec3> came
         const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
         std::vector<Projection> projections(camera_points.size());
         for (std::size_t i = 0; i < camera_points.size(); ++i) {
-            // Every model projects a direction, so a power-of-two scaling (exact) changes
-            // nothing but keeps x^2 + y^2, |p| and the like from under- or overflowing
-            // for points at 1e-300 or 1e300.
+            // A power-of-two scaling (exact) where the model needs it, for points at
+            // 1e-300 or 1e300 (camera/point_scale.hpp).
+            const Vec3& point = camera_points[i];
+            const bool scale = detail::needs_scaling<Model>(point.x(), point.y(), point.z());
             Vec2 normalized;
             Projection& out = projections[i];
-            out.valid = Model::project(parameters, scaled_to_unit_range(camera_points[i]), normalized);
+            out.valid = Model::project(parameters, scale ? scaled_to_unit_range(point) : point, normalized);
             if (out.valid) out.pixel = intrinsics.pixel_from_normalized(normalized);
             out.valid = out.valid && out.pixel.allFinite();  // K m can overflow too
         }

@@ -7,39 +7,11 @@
 
 #include "libcam/camera/batch_kernels.hpp"
 #include "libcam/camera/parallel.hpp"
+#include "libcam/camera/point_scale.hpp"
 
 namespace libcam {
 
 namespace {
-
-template <class Scalar>
-constexpr Scalar power_of_two(int exponent) {
-    Scalar value(1);
-    for (; exponent > 0; --exponent) value *= Scalar(2);
-    for (; exponent < 0; ++exponent) value /= Scalar(2);
-    return value;
-}
-
-// Every model projects a direction, so a camera point may be scaled by a power of two
-// (exactly) without changing its pixel. PINHOLE and OpenCV's models divide by z first
-// and need no scaling. The others form squares and norms of the coordinates; the
-// vectorised loop takes the points as they are, which is exact while the largest
-// coordinate lies in [2^(min exponent / 4), 2^(max exponent / 4)] (2^-255 to 2^256 in
-// double, 2^-31 to 2^32 in float), where no square or fourth power under- or overflows.
-// The few points outside are projected again, one by one, scaled into [1, 2) first,
-// as Camera::project_camera_point does.
-template <class Scalar>
-bool in_comfortable_range(Scalar x, Scalar y, Scalar z) {
-    using Limits = std::numeric_limits<Scalar>;
-    constexpr Scalar low = power_of_two<Scalar>(Limits::min_exponent / 4);
-    constexpr Scalar high = power_of_two<Scalar>(Limits::max_exponent / 4);
-    const Scalar largest = std::max(std::abs(x), std::max(std::abs(y), std::abs(z)));
-    return (largest >= low) & (largest <= high);  // &, not &&: no branch
-}
-
-// PINHOLE and OpenCV's models start from x / z and y / z, unchanged by any scaling.
-template <class Model>
-concept ProjectsRatios = requires { requires Model::projects_ratios; };
 
 // The pixel of one camera point through Model; invalid outside the domain, or where the
 // pixel is not finite (K m can overflow). Always inlined: called from two places, it
@@ -77,17 +49,17 @@ struct ProjectorLens {
 // comfortable range.
 template <class Model, class Scalar>
 bool needs_second_pass(Scalar x, Scalar y, Scalar z, Scalar flag) {
-    if constexpr (ProjectsRatios<Model>) {
+    if constexpr (detail::ProjectsRatios<Model>) {
         (void)x, (void)y;
         return (flag == Scalar(0)) & (z > Scalar(0));  // &, not &&: no branch
     } else {
         (void)flag;
-        return !in_comfortable_range(x, y, z);
+        return detail::needs_scaling<Model>(x, y, z);
     }
 }
 
 // Those points again, one by one, in Scalar (the same bits Lane gives where both
-// apply), scaled into [1, 2) first as Camera does. Rare: out of line, where it does not
+// apply), scaled into [1, 2) first (point_scale.hpp). Rare: out of line, where it does not
 // take the inlining budget of the vectorised loop.
 template <class Model, class Scalar>
 [[gnu::noinline]] void project_second_pass(const Intrinsics& intrinsics, const ProjectorLens<Model, Scalar>& lens,

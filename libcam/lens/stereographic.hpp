@@ -8,9 +8,10 @@
 //
 // Valid domain: every point but the origin and the backward axis (X = Y = 0, Z < 0),
 // where |p| + Z = 0. For Z < 0, |p| + Z is evaluated as (X^2 + Y^2) / (|p| - Z), which
-// does not cancel; it is a normal number, and m finite, down to ~1e-154 rad from the
-// backward axis (1e-19 rad in float) for a point scaled to |p| ~ 1 (Camera and
-// Projector scale it): closer than that the point is flagged. Every m has a ray.
+// does not cancel. Where X^2 + Y^2 is no longer a normal number (within ~1e-154 rad of
+// the backward axis for |p| ~ 1, 1e-19 rad in float; Camera and Projector scale a point
+// far from |p| ~ 1 first, see camera/point_scale.hpp) m overflows and the point is
+// flagged. Every m has a ray.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -51,8 +52,8 @@ struct StereographicLens {
             (*d_m_d_point)(0, 0) += scale;
             (*d_m_d_point)(1, 1) += scale;
         }
-        // False within ~1e-154 rad (1e-19 in float) of the backward axis: there rho2, and with
-        // it the denominator, is no longer a normal number and 2 / denominator overflows.
+        // False where rho2, and with it the denominator, is no longer a normal number (near
+        // the backward axis, see above): 2 / denominator overflows.
         return all_finite(m);
     }
 
