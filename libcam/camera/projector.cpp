@@ -28,7 +28,8 @@ template <class Model, class Scalar>
     const Scalar x = lane_value(pixel.x()), y = lane_value(pixel.y());
     // Not isfinite but a comparison, which vectorises; NaN fails it too.
     constexpr Scalar largest = std::numeric_limits<Scalar>::max();
-    const bool ok = in_domain & (std::abs(x) <= largest) & (std::abs(y) <= largest);  // &: no branch
+    const bool x_finite = std::abs(x) <= largest, y_finite = std::abs(y) <= largest;
+    const bool ok = in_domain & x_finite & y_finite;  // &, not &&: no branch
     pixel_x = ok ? x : Scalar(0);
     pixel_y = ok ? y : Scalar(0);
     return ok;

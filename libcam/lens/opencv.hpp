@@ -148,7 +148,9 @@ struct OpenCvLens {
         const Scalar x = u.x(), y = u.y();
         const Scalar r2 = x * x + y * y;
         const Radial radial = radial_factor(lens, r2);
-        const bool in_domain = (r2 < lens.valid_radius * lens.valid_radius) & (radial.denominator > Scalar(0));
+        const bool inside = r2 < lens.valid_radius * lens.valid_radius;
+        const bool positive = radial.denominator > Scalar(0);
+        const bool in_domain = inside & positive;  // &, not &&: no branch
         const Scalar p1 = c<2>(lens), p2 = c<3>(lens);
         const Scalar two(2), r4 = r2 * r2, xy2 = two * x * y;
         Vec2T d(x * radial.value + p1 * xy2 + p2 * (r2 + two * x * x),
