@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "libcam/error.hpp"
+#include "libcam/interop/heatmap.hpp"
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 
@@ -530,9 +531,8 @@ cv::Mat draw_map(const VerifyReport& report, const VerifyCheck& check, const Dec
         no_ray.data[i] = report.pixel_valid[static_cast<std::size_t>(i)] ? 0 : 255;
         unmeasured.data[i] = std::isnan(error) && !no_ray.data[i] ? 255 : 0;
     }
-    cv::Mat coloured, map, no_ray_big, unmeasured_big;
-    cv::applyColorMap(levels, coloured, cv::COLORMAP_VIRIDIS);
-    cv::resize(coloured, map, size, 0, 0, cv::INTER_NEAREST);
+    cv::Mat map, no_ray_big, unmeasured_big;
+    cv::resize(colour_levels(levels), map, size, 0, 0, cv::INTER_NEAREST);
     cv::resize(no_ray, no_ray_big, size, 0, 0, cv::INTER_NEAREST);
     cv::resize(unmeasured, unmeasured_big, size, 0, 0, cv::INTER_NEAREST);
     map.setTo(kUnmeasuredGrey, unmeasured_big);
@@ -558,14 +558,7 @@ std::string decade_label(int decade) { return "1e" + std::to_string(decade); }
 // A vertical bar from the top decade (top) to the bottom one, a tick and label per
 // decade (every other one, or fewer, when there are many).
 void draw_scale_bar(cv::Mat& canvas, cv::Rect bar, const Decades& d) {
-    cv::Mat ramp(bar.height, 1, CV_8U), coloured;
-    for (int y = 0; y < bar.height; ++y) {
-        ramp.at<std::uint8_t>(y) = static_cast<std::uint8_t>(std::lround(255.0 * (bar.height - 1 - y) / std::max(1, bar.height - 1)));
-    }
-    cv::applyColorMap(ramp, coloured, cv::COLORMAP_VIRIDIS);
-    cv::Mat widened;
-    cv::resize(coloured, widened, bar.size(), 0, 0, cv::INTER_NEAREST);
-    widened.copyTo(canvas(bar));
+    draw_colour_ramp(canvas, bar);
     cv::rectangle(canvas, bar, kBlack, 1);
     put_text(canvas, "error, px", {bar.x - 8, bar.y - 14});
     const int span = d.high - d.low, step = (span + 7) / 8;

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "libcam/error.hpp"
+#include "libcam/interop/heatmap.hpp"
 
 namespace libcam::cli {
 
@@ -67,8 +68,7 @@ cv::Mat colour_errors(const std::vector<double>& errors, const cv::Size& size, d
         const double e = errors[static_cast<std::size_t>(i)];
         level.at<std::uint8_t>(i) = static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(std::isfinite(e) ? e / tolerance_px : 0.0, 0.0, 1.0)));
     }
-    cv::Mat colour;
-    cv::applyColorMap(level, colour, cv::COLORMAP_VIRIDIS);
+    cv::Mat colour = colour_levels(level);
     for (int i = 0; i < size.area(); ++i) {
         const double e = errors[static_cast<std::size_t>(i)];
         if (std::isnan(e) || std::isinf(e)) colour.at<cv::Vec3b>(i) = kNoRay;
@@ -95,11 +95,7 @@ void draw_text(cv::Mat& image, const std::string& text, cv::Point at, double siz
 // The colour scale from 0 (bottom) to the tolerance (top), and the legend.
 void draw_scale_bar(cv::Mat& canvas, int left, int height, double tolerance_px) {
     const int top = 20, bottom = std::max(top + 40, height - 90), bar_width = 20;
-    cv::Mat ramp(bottom - top, 1, CV_8UC1);
-    for (int y = 0; y < ramp.rows; ++y) ramp.at<std::uint8_t>(y) = static_cast<std::uint8_t>(255 - 255 * y / std::max(1, ramp.rows - 1));
-    cv::Mat ramp_colour;
-    cv::applyColorMap(ramp, ramp_colour, cv::COLORMAP_VIRIDIS);
-    cv::resize(ramp_colour, canvas(cv::Rect(left, top, bar_width, ramp.rows)), cv::Size(bar_width, ramp.rows), 0, 0, cv::INTER_NEAREST);
+    draw_colour_ramp(canvas, cv::Rect(left, top, bar_width, bottom - top));
     draw_text(canvas, short_number(tolerance_px) + " px", {left + bar_width + 6, top + 10});
     draw_text(canvas, "0 px", {left + bar_width + 6, bottom});
     canvas(cv::Rect(left, bottom + 16, bar_width, 14)) = cv::Scalar(kOverTolerance[0], kOverTolerance[1], kOverTolerance[2]);
