@@ -33,9 +33,9 @@ concept SolvedIteratively = requires(const typename Model::Parameters& lens, con
 
 constexpr int kFastNewtonSteps = 1;
 // From the bilinear start two steps reach rounding level on the lenses measured (issue
-// 3's wide lens: 0.2 px, then 5e-5 px, then 4e-12 px); a block with a pixel they do not
-// bring below reducible_residual() takes a third, and the residual check sends any
-// pixel still above the solver's tolerance to the full solver.
+// 3's wide lens: 0.2 px, then 5e-5 px, then 4e-12 px); a pixel they do not bring below
+// reducible_residual() takes a third, and the residual check sends any pixel still
+// above the solver's tolerance to the full solver.
 constexpr int kExactNewtonSteps = 2;
 
 // ---------------------------------------------------------------------------------
