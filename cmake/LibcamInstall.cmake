@@ -37,7 +37,7 @@ install(FILES
 
 # pkg-config files find the prefix from their own folder, so an installed tree can move.
 file(RELATIVE_PATH LIBCAM_PC_TO_PREFIX "/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/")
-foreach(pc libcam-core libcam)
+foreach(pc libcam-core libcam libcam-fit)
   configure_file("cmake/${pc}.pc.in" "${PROJECT_BINARY_DIR}/${pc}.pc" @ONLY)
   install(FILES "${PROJECT_BINARY_DIR}/${pc}.pc" DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
 endforeach()

@@ -11,7 +11,8 @@ trap 'rm -rf "$work"' EXIT
 
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 for path in bin/libcam include/libcam/version.hpp include/libcam/convert/fov_convert.hpp \
-            lib/cmake/libcam/libcamConfig.cmake lib/pkgconfig/libcam.pc lib/pkgconfig/libcam-core.pc; do
+            lib/cmake/libcam/libcamConfig.cmake lib/pkgconfig/libcam.pc lib/pkgconfig/libcam-core.pc \
+            lib/pkgconfig/libcam-fit.pc; do
   [ -e "$work/prefix/$path" ] || { echo "test-install: missing $path in the install"; exit 1; }
 done
 "$work/prefix/bin/libcam" --version | grep -q "^libcam " || { echo "test-install: libcam --version"; exit 1; }
@@ -32,9 +33,16 @@ cmake -S "$root/examples/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$wor
       -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
 cmake --build "$work/consumer" > "$work/build.log"
 check "$("$work/consumer/consumer")"
+# libcam::fit: a FOV camera's simplest model is the FOV form itself.
+check_fit() {
+  echo "$1" | grep -q "^chosen FOV max " || { echo "test-install: wrong fit from the consumer:"; echo "$1"; exit 1; }
+}
+check_fit "$("$work/consumer/consumer_fit")"
 
 # The same source through pkg-config.
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 c++ "$root/examples/consumer/main.cpp" -o "$work/consumer-pc" $(pkg-config --cflags --libs libcam-core)
 check "$("$work/consumer-pc")"
-echo "test-install: the installed package builds and runs examples/consumer (CMake and pkg-config)"
+c++ "$root/examples/consumer/fit_main.cpp" -o "$work/consumer-fit-pc" $(pkg-config --cflags --libs libcam-fit)
+check_fit "$("$work/consumer-fit-pc")"
+echo "test-install: the installed package builds and runs examples/consumer and its fit example (CMake and pkg-config)"
