@@ -567,6 +567,32 @@ TEST_CASE("Truncated, empty, missing and directory paths are refused with FileEr
     CHECK_THAT(error_of([&] { read_camera_file(dir.path() / "array.json"); }), StartsWith("FileError: "));
 }
 
+TEST_CASE("YAML that hangs OpenCV 4.6's parser is refused before it parses it, naming the line", "[files][errors]") {
+    // Found by fuzzing (tests/fuzz/corpus/opencv/hang_second_document.yaml and variants):
+    // a second document marker, or a directive, inside a flow sequence.
+    const std::string head = "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\n";
+    struct Case {
+        const char* what;
+        std::string text;
+        const char* line;
+    };
+    const std::vector<Case> cases{
+        {"the fuzzer's input", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv/hang_second_document.yaml"),
+         "line 4"},
+        {"--- inside a flow sequence", head + "data: [ 1.5,\n---\n 2. ]\n", "line 6"},
+        {"... after the document", head + "...\n", "line 5"},
+        {"a directive inside a flow sequence", head + "data: [ 1.5 %YAML:1.0 ]\n", "line 5"},
+        {"an anchor", head + "k: &a 5\n", "line 5"},
+        {"an alias", head + "k: *a\n", "line 5"},
+        {"a block scalar", head + "k: |\n", "line 5"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.what);
+        const std::string message = error_of([&] { (void)parse_camera(c.text, CameraFormat::OpenCvYaml, "in.yaml"); });
+        CHECK_THAT(message, Contains("FileError") && Contains(c.line) && Contains("not the YAML cv::FileStorage writes"));
+    }
+}
+
 TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][errors]") {
     TempDir dir;
     const YamlDoc base;

@@ -222,6 +222,9 @@ void check_opencv_yaml_shape(std::string_view text, const std::string& source) {
         if (indent == std::string_view::npos || line[indent] == '#') continue;  // blank or comment
         if (line.find('\t') != std::string_view::npos) refuse("tab character");
         std::string_view rest = line.substr(indent);
+        // One document: a second "---" or "..." hangs OpenCV 4.6's parser (found by fuzzing:
+        // "%YAML:1.5\n---\n   data:([ 1.5%YAML:1.5\n---\n..." inside a flow sequence).
+        if (rest.starts_with("---") || rest.starts_with("...")) refuse("a second YAML document marker");
         if (open_brackets == 0) {
             if (rest.starts_with("- ") || rest == "-") {
                 rest.remove_prefix(1);
@@ -247,6 +250,10 @@ void check_opencv_yaml_shape(std::string_view text, const std::string& source) {
                 if (--open_brackets < 0) refuse("unbalanced '" + std::string(1, c) + "'");
             } else if (c == '#' && open_brackets == 0) {
                 break;
+            } else if (std::string_view("%&*|>@`()").find(c) != std::string_view::npos) {
+                // Directives, anchors, aliases, block scalars, reserved: never in what
+                // cv::FileStorage writes outside a string.
+                refuse("'" + std::string(1, c) + "' outside a string");
             } else if (is_word_char(c) && (i == 0 || !is_word_char(rest[i - 1]))) {
                 i = check_word_at(rest, i, field, source) - 1;
             }
