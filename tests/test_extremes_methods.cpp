@@ -89,14 +89,6 @@ double landing_bound(UnprojectMethod method, const Camera& camera, const Vec2& p
     return std::is_same_v<Scalar, double> ? kExactPx : rounding;
 }
 
-// The pixels rounded to Scalar (held in double, exactly).
-template <class Scalar>
-std::vector<Vec2> rounded_to(const std::vector<Vec2>& pixels) {
-    std::vector<Vec2> out;
-    for (const Vec2& p : pixels) out.push_back(p.cast<Scalar>().template cast<double>());
-    return out;
-}
-
 // The rays of `pixels` (already Scalar values) by `method`, scored against the reference.
 template <class Scalar>
 void score_method(const std::string& name, const Unprojector<Scalar>& unprojector, UnprojectMethod method,
@@ -138,7 +130,7 @@ void score_methods(const std::string& name, const Camera& camera, const std::vec
                    ExtremeWorst& worst, UnprojectorOptions options = {}) {
     const Unprojector<double> in_double(camera, options);
     const Unprojector<float> in_float(camera, options);
-    const std::vector<Vec2> pixels_f = rounded_to<float>(pixels);
+    const std::vector<Vec2> pixels_f = cast_all<double>(cast_all<float>(pixels));  // float values, held in double
     for (UnprojectMethod method : kUnprojectMethods) {
         score_method(name, in_double, method, pixels, worst[method]);
         score_method(name, in_float, method, pixels_f, worst[method]);

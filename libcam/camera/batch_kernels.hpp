@@ -37,6 +37,19 @@ typename Model::Parameters model_parameters(const Lens& lens, double valid_radiu
     return lens_parameters<Scalar, Model::num_coefficients>(lens.coefficients, valid_radius);
 }
 
+// A camera's lens in Model's scalar (Lane<T>, for the vectorised loops) and in a plain
+// scalar, for the points those loops leave to a one-by-one pass: the Unprojector's full
+// solver (double) and the Projector's second pass (T).
+template <class Model, class PlainScalar>
+struct BatchLens {
+    using Plain = LensInScalar<Model, PlainScalar>;
+    typename Model::Parameters lanes;
+    typename Plain::Parameters plain;
+
+    BatchLens(const Lens& lens, double valid_radius)
+        : lanes(model_parameters<Model>(lens, valid_radius)), plain(model_parameters<Plain>(lens, valid_radius)) {}
+};
+
 // The lens's valid radius (lens/model_support.hpp), found once (a polynomial root search).
 inline double lens_valid_radius(const Lens& lens) {
     return visit_lens_model<double>(

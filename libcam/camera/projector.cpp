@@ -38,11 +38,7 @@ template <class Model, class Scalar>
 // The model in Lane<Scalar> for the vectorised pass, and in Scalar for the points that
 // pass leaves to a second one.
 template <class Model, class Scalar>
-struct ProjectorLens {
-    using Plain = LensInScalar<Model, Scalar>;
-    typename Model::Parameters lanes;
-    typename Plain::Parameters plain;
-};
+using ProjectorLens = batch::BatchLens<Model, Scalar>;
 
 // Whether the vectorised pass may have got a point wrong: for PINHOLE and OpenCV's
 // models a point in front of the camera that it flagged (in Lane the rational factor
@@ -119,9 +115,7 @@ void Projector<Scalar>::project(const Points3<Scalar>& camera_points, Points2<Sc
     pixels.resize(n);
     valid.resize(n);
     visit_lens_model<Lane<Scalar>>(camera_.lens.type, [&]<class Model>() {
-        const ProjectorLens<Model, Scalar> lens{
-            batch::model_parameters<Model>(camera_.lens, valid_radius_),
-            batch::model_parameters<typename ProjectorLens<Model, Scalar>::Plain>(camera_.lens, valid_radius_)};
+        const ProjectorLens<Model, Scalar> lens(camera_.lens, valid_radius_);
         parallel_chunks(n, threads, batch::kBlock, [&](std::size_t begin, std::size_t end) {
             project_range<Model>(camera_.intrinsics, lens, camera_points, begin, end, pixels, valid);
         });

@@ -326,11 +326,7 @@ void approximate(const Context<Scalar>& context, const typename Model::Parameter
 
 // The model in Lane<Scalar> for the vectorised steps, and in double for the full solver.
 template <class Model>
-struct LensPair {
-    using ModelDouble = LensInScalar<Model, double>;
-    typename Model::Parameters lanes;
-    typename ModelDouble::Parameters full;
-};
+using LensPair = batch::BatchLens<Model, double>;
 
 template <class Model, class Scalar>
 void unproject_block(const Context<Scalar>& context, const LensPair<Model>& lens, UnprojectMethod method,
@@ -338,7 +334,7 @@ void unproject_block(const Context<Scalar>& context, const LensPair<Model>& lens
     normalize(context.intrinsics, b);
     if constexpr (SolvedIteratively<Model>) {
         approximate<Model>(context, lens.lanes, method, b);
-        solve_remaining<typename LensPair<Model>::ModelDouble>(context, lens.full, b);
+        solve_remaining<typename LensPair<Model>::Plain>(context, lens.plain, b);
         rays_from_undistorted<Model>(b);
     } else {
         unproject_closed_form<Model>(lens.lanes, b);
@@ -377,8 +373,7 @@ void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads
     const Context<Scalar> context{camera_.intrinsics, table, Scalar(certified_radius_ * certified_radius_),
                                   Scalar(no_ray_radius_ * no_ray_radius_), rim_, Scalar(valid_radius_ * valid_radius_)};
     visit_lens_model<Lane<Scalar>>(camera_.lens.type, [&]<class Model>() {
-        const LensPair<Model> lens{batch::model_parameters<Model>(camera_.lens, valid_radius_),
-                                   batch::model_parameters<LensInScalar<Model, double>>(camera_.lens, valid_radius_)};
+        const LensPair<Model> lens(camera_.lens, valid_radius_);
         parallel_chunks(n, threads, kBlock, [&](std::size_t begin, std::size_t end) {
             Block<Scalar> block;
             for (std::size_t first = begin; first < end; first += kBlock) {
