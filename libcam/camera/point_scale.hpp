@@ -14,6 +14,8 @@
 #include <cmath>
 #include <limits>
 
+#include "libcam/lens/lens_models.hpp"
+
 namespace libcam::detail {
 
 template <class Scalar>
@@ -32,10 +34,6 @@ bool in_comfortable_range(Scalar x, Scalar y, Scalar z) {
     const Scalar largest = std::max(std::abs(x), std::max(std::abs(y), std::abs(z)));
     return (largest >= low) & (largest <= high);  // &, not &&: no branch
 }
-
-// PINHOLE and OpenCV's models start from x / z and y / z, unchanged by any scaling.
-template <class Model>
-concept ProjectsRatios = requires { requires Model::projects_ratios; };
 
 // Whether Model needs the point scaled first.
 template <class Model, class Scalar>

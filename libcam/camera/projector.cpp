@@ -46,7 +46,7 @@ using ProjectorLens = batch::BatchLens<Model, Scalar>;
 // comfortable range.
 template <class Model, class Scalar>
 bool needs_second_pass(Scalar x, Scalar y, Scalar z, Scalar flag) {
-    if constexpr (detail::ProjectsRatios<Model>) {
+    if constexpr (ProjectsRatios<Model>) {
         (void)x, (void)y;
         return (flag == Scalar(0)) & (z > Scalar(0));  // &, not &&: no branch
     } else {

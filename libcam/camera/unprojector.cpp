@@ -23,14 +23,6 @@ namespace {
 using batch::kBlock;
 using namespace detail;
 
-// Models without a closed-form inverse, solved through their distort() (lens/undistort.hpp).
-template <class Model>
-concept SolvedIteratively = requires(const typename Model::Parameters& lens, const typename Model::Vec2T& u,
-                                     typename Model::Vec2T& m) {
-    Model::distort(lens, u, m);
-    Model::ray_from_undistorted(u);
-};
-
 constexpr int kFastNewtonSteps = 1;
 // From the bilinear start two steps reach rounding level on the lenses measured (issue
 // 3's wide lens: 0.2 px, then 5e-5 px, then 4e-12 px); a pixel they do not bring below
@@ -332,7 +324,7 @@ template <class Model, class Scalar>
 void unproject_block(const Context<Scalar>& context, const LensPair<Model>& lens, UnprojectMethod method,
                      Block<Scalar>& b) {
     normalize(context.intrinsics, b);
-    if constexpr (SolvedIteratively<Model>) {
+    if constexpr (SolvedLensModel<Model>) {
         approximate<Model>(context, lens.lanes, method, b);
         solve_remaining<typename LensPair<Model>::Plain>(context, lens.plain, b);
         rays_from_undistorted<Model>(b);
@@ -354,7 +346,7 @@ Unprojector<Scalar>::Unprojector(const Camera& camera, UnprojectorOptions option
     }
     valid_radius_ = batch::lens_valid_radius(camera_.lens);
     visit_lens_model<double>(camera_.lens.type, [&]<class Model>() {
-        if constexpr (SolvedIteratively<Model>) {
+        if constexpr (SolvedLensModel<Model>) {
             const auto lens = batch::model_parameters<Model>(camera_.lens, valid_radius_);
             const DomainBounds bounds = domain_bounds<Model>(camera_, lens);
             certified_radius_ = bounds.certified;

@@ -15,25 +15,10 @@ namespace {
 // error, a few times its RMS, is far inside the tolerance, so no decision can change.
 constexpr double kNegligibleFraction = 1e-3;
 
-// The perspective chain, simplest first: each model contains the ones before it
-// (OpenCV's shorter coefficient lists are prefixes of the longer ones, PINHOLE has
-// none). -1 for a model outside it.
-int perspective_rank(LensType lens) {
-    switch (lens) {
-        case LensType::Pinhole: return 0;
-        case LensType::Opencv4: return 1;
-        case LensType::Opencv5: return 2;
-        case LensType::Opencv8: return 3;
-        case LensType::Opencv12: return 4;
-        default: return -1;
-    }
-}
-
-// Can the candidate's model express every camera of `lens` exactly (up to skew)?
+// Can the candidate's model express every camera of `lens` exactly (up to skew)? The
+// table says which models nest (lens_contains).
 bool contains_model(const Candidate& candidate, LensType lens) {
-    if (candidate.fov_camera) return false;
-    const int rank = perspective_rank(candidate.lens), other = perspective_rank(lens);
-    return candidate.lens == lens || (rank >= 0 && other >= 0 && rank >= other);
+    return !candidate.fov_camera && lens_contains(candidate.lens, lens);
 }
 
 Vec2 image_centre(const ImageSize& size) { return {size.centre_x(), size.centre_y()}; }
@@ -198,13 +183,14 @@ std::optional<std::size_t> choose(const std::vector<CandidateReport>& reports) {
 int Candidate::num_params() const { return fov_camera ? 1 : 4 + lens_info(lens).num_coefficients; }
 
 std::vector<Candidate> candidates_for(double largest_angle_deg) {
-    std::vector<Candidate> list = {
-        {"FOV", LensType::Pinhole, true},  {"PINHOLE", LensType::Pinhole},   {"OPENCV4", LensType::Opencv4},
-        {"OPENCV5", LensType::Opencv5},    {"OPENCV8", LensType::Opencv8},   {"OPENCV12", LensType::Opencv12},
-    };
-    if (largest_angle_deg >= kWideSceneAngleDeg) {
-        list.push_back({"FISHEYE", LensType::Fisheye});
-        list.push_back({"STEREOGRAPHIC", LensType::Stereographic});
+    // The FOV camera first (one parameter), then the table's candidates in its order,
+    // simplest first.
+    std::vector<Candidate> list = {{"FOV", LensType::Pinhole, true}};
+    for (const LensInfo& info : lens_models()) {
+        const bool wide = largest_angle_deg >= kWideSceneAngleDeg;
+        if (info.fit == FitCandidate::Always || (info.fit == FitCandidate::WideScenes && wide)) {
+            list.push_back({info.name, info.type});
+        }
     }
     return list;
 }

@@ -179,17 +179,15 @@ LeastSquaresState solve_least_squares(const Candidate& candidate, const Vec2& im
         return solve_with<Model, kFovCore>(image_centre, observations, std::move(start), options, hook);
     };
     if (candidate.fov_camera) return solve.template operator()<PinholeLens<double>, true>();
-    switch (candidate.lens) {
-        case LensType::Pinhole: return solve.template operator()<PinholeLens<double>, false>();
-        case LensType::Opencv4: return solve.template operator()<OpenCv4Lens<double>, false>();
-        case LensType::Opencv5: return solve.template operator()<OpenCv5Lens<double>, false>();
-        case LensType::Opencv8: return solve.template operator()<OpenCv8Lens<double>, false>();
-        case LensType::Opencv12: return solve.template operator()<OpenCv12Lens<double>, false>();
-        case LensType::Fisheye: return solve.template operator()<FisheyeLens<double>, false>();
-        case LensType::Stereographic: return solve.template operator()<StereographicLens<double>, false>();
-        default:
+    return visit_lens_model<double>(candidate.lens, [&]<class Model>() -> LeastSquaresState {
+        // Only the table's candidates are compiled for the solver (each is a Ceres
+        // instantiation of its own).
+        if constexpr (lens_info(Model::type).fit != FitCandidate::No) {
+            return solve.template operator()<Model, false>();
+        } else {
             throw InvalidArgument("fit: " + std::string(lens_info(candidate.lens).name) + " is not a fit candidate");
-    }
+        }
+    });
 }
 
 }  // namespace libcam::detail

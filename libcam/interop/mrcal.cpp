@@ -15,15 +15,17 @@ namespace libcam {
 
 namespace {
 
-// libcam's table uses mrcal's names, so the mapping both ways goes by name: a model
-// mrcal lacks (FISHEYE, OPENCV14) has no mrcal type of that name.
+// The lens's mrcal model, by the name the table gives it.
 mrcal_lensmodel_t mrcal_lensmodel(const Lens& lens) {
     mrcal_lensmodel_t model{};
-    const std::string name = "LENSMODEL_" + std::string(lens_info(lens.type).name);
-    if (!mrcal_lensmodel_from_name(&model, name.c_str()) || model.type < 0) {
+    const std::string name(lens_info(lens.type).mrcal);
+    if (name.empty() || !mrcal_lensmodel_from_name(&model, name.c_str()) || model.type < 0) {
+        std::string has;
+        for (const LensInfo& info : lens_models()) {
+            if (!info.mrcal.empty()) has += (has.empty() ? "" : ", ") + std::string(info.name);
+        }
         throw NotRepresentable("lens: model " + std::string(lens_info(lens.type).name) +
-                               " has no mrcal equivalent (mrcal models PINHOLE, OPENCV4/5/8/12, STEREOGRAPHIC, "
-                               "LONLAT, LATLON among those libcam supports)");
+                               " has no mrcal equivalent (mrcal models " + has + " among those libcam supports)");
     }
     return model;
 }
@@ -33,7 +35,9 @@ LensType lens_type_from_mrcal(const mrcal_lensmodel_t& model, const std::string&
     // (Appending, not "#" + std::to_string(...): GCC 12 at -O3 raises a false -Wrestrict on that.)
     const std::string mrcal_name =
         name != nullptr ? std::string(name) : std::string("#").append(std::to_string(static_cast<int>(model.type)));
-    if (const std::optional<LensType> type = lens_type_from_name(mrcal_name)) return *type;
+    for (const LensInfo& info : lens_models()) {
+        if (!info.mrcal.empty() && info.mrcal == mrcal_name) return info.type;
+    }
     throw NotRepresentable(source + ": \"lensmodel\": " + mrcal_name + " is not a lens model libcam supports");
 }
 
@@ -145,7 +149,7 @@ std::string number_list(const double* values, int count) {
 
 std::string mrcal_lensmodel_name(const Lens& lens) {
     mrcal_lensmodel(lens);  // throws for a lens mrcal lacks
-    return "LENSMODEL_" + std::string(lens_info(lens.type).name);
+    return std::string(lens_info(lens.type).mrcal);
 }
 
 std::string format_cameramodel(const Camera& camera) {

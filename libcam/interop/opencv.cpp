@@ -19,20 +19,24 @@ cv::Mat opencv_camera_matrix(const Intrinsics& k) {
 
 namespace {
 
-// OpenCV's radial-tangential models, told apart by their number of coefficients.
-bool is_opencv_model(LensType type) { return lens_info(type).name.starts_with("OPENCV"); }
-
+// OpenCV's radial-tangential models (cv::projectPoints), told apart by their number of
+// coefficients; PINHOLE's empty list is written as five zeros and read back as PINHOLE.
 std::optional<LensType> opencv_model_with(std::size_t count) {
     for (const LensInfo& info : lens_models()) {
-        if (is_opencv_model(info.type) && static_cast<std::size_t>(info.num_coefficients) == count) return info.type;
+        if (info.opencv == OpenCvFunction::ProjectPoints && info.num_coefficients > 0 &&
+            static_cast<std::size_t>(info.num_coefficients) == count) {
+            return info.type;
+        }
     }
     return std::nullopt;
 }
 
+bool uses_opencv_fisheye(const Lens& lens) { return lens_info(lens.type).opencv == OpenCvFunction::Fisheye; }
+
 }  // namespace
 
 cv::Mat opencv_distortion(const Lens& lens) {
-    if (lens.type != LensType::Pinhole && lens.type != LensType::Fisheye && !is_opencv_model(lens.type)) {
+    if (lens_info(lens.type).opencv == OpenCvFunction::None) {
         throw NotRepresentable("lens: OpenCV has no model " + std::string(lens_info(lens.type).name));
     }
     cv::Mat dist(1, static_cast<int>(lens.coefficients.size()), CV_64F);
@@ -51,7 +55,7 @@ std::vector<Vec2> opencv_project_points(const Camera& camera, const std::vector<
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
     const cv::Mat dist = opencv_distortion(camera.lens);
     const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    if (camera.lens.type == LensType::Fisheye) {
+    if (uses_opencv_fisheye(camera.lens)) {
         cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
     } else {
         cv::projectPoints(object, zero, zero, K, dist, image);
@@ -69,7 +73,7 @@ std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
     fs << "image_width" << static_cast<int>(camera.size.width);
     fs << "image_height" << static_cast<int>(camera.size.height);
     fs << "camera_matrix" << opencv_camera_matrix(camera.intrinsics);
-    if (camera.lens.type != LensType::Pinhole && !is_opencv_model(camera.lens.type)) {
+    if (lens_info(camera.lens.type).opencv != OpenCvFunction::ProjectPoints) {
         // FISHEYE's four coefficients would read back as OPENCV4: refuse, never convert silently.
         throw NotRepresentable("lens: OpenCV's camera file holds only OpenCV's radial-tangential models, not " +
                                std::string(lens_info(camera.lens.type).name));

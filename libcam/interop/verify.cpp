@@ -94,28 +94,27 @@ Samples make_samples(const Camera& camera, const VerifyOptions& options) {
 // ---------------------------------------------------------------------------------
 // The libraries, on libcam's types.
 
-// Why a library cannot check this camera; nullopt when it can. The bridges themselves
-// decide (they throw NotRepresentable), so the list of models lives in one place.
+// Why a library cannot check this camera (the table says which library has the model);
+// nullopt when it can.
 std::optional<std::string> opencv_lacks(const Camera& camera) {
     if (camera.intrinsics.skew != 0.0) return "cv::projectPoints and cv::undistortPoints ignore K's skew";
-    try {
-        (void)opencv_distortion(camera.lens);
-    } catch (const NotRepresentable& error) {
-        return error.what();
+    if (lens_info(camera.lens.type).opencv == OpenCvFunction::None) {
+        return "lens: OpenCV has no model " + std::string(lens_info(camera.lens.type).name);
     }
     return std::nullopt;
 }
 
 std::optional<std::string> mrcal_lacks(const Camera& camera) {
-    try {
-        (void)mrcal_project_points(camera, {});
-    } catch (const NotRepresentable& error) {
-        return error.what();
+    if (lens_info(camera.lens.type).mrcal.empty()) {
+        return "lens: model " + std::string(lens_info(camera.lens.type).name) + " has no mrcal equivalent";
+    }
+    if (camera.intrinsics.skew != 0.0) {
+        return "K: skew " + format_number(camera.intrinsics.skew) + " cannot be stored in mrcal's model (fx, fy, cx, cy only)";
     }
     return std::nullopt;
 }
 
-bool is_fisheye(const Camera& camera) { return camera.lens.type == LensType::Fisheye; }
+bool is_fisheye(const Camera& camera) { return lens_info(camera.lens.type).opencv == OpenCvFunction::Fisheye; }
 
 std::string opencv_project_name(const Camera& camera) {
     return is_fisheye(camera) ? "cv::fisheye::projectPoints" : "cv::projectPoints";

@@ -34,6 +34,8 @@ template <class Scalar>
 struct FisheyeLens {
     static constexpr LensType type = LensType::Fisheye;
     static constexpr int num_coefficients = 4;
+    template <class Other>
+    using InScalar = FisheyeLens<Other>;
     using Parameters = LensParameters<Scalar, 4>;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;

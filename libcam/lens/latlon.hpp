@@ -24,6 +24,8 @@ template <class Scalar>
 struct LatlonLens {
     static constexpr LensType type = LensType::Latlon;
     static constexpr int num_coefficients = 0;
+    template <class Other>
+    using InScalar = LatlonLens<Other>;
     using Parameters = LensParameters<Scalar, 0>;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;

@@ -1,53 +1,179 @@
 #pragma once
-// The table of lens models, one place to add a model (as mrcal's
-// MRCAL_LENSMODEL_LIST). A lens model maps a point in the camera frame
-// (OpenCV axes: x right, y down, z forward) to a normalised image point m; the
-// intrinsic matrix K then maps m to a pixel. Each model lives in its own header
-// as a stateless struct templated on the scalar type (see pinhole.hpp).
+// The table of lens models: one row per model, carrying everything the rest of libcam
+// asks about a model (as mrcal's MRCAL_LENSMODEL_LIST, with more columns). A lens model
+// maps a point in the camera frame (OpenCV axes: x right, y down, z forward) to a
+// normalised image point m; the intrinsic matrix K then maps m to a pixel. Each model
+// lives in its own header as a stateless struct templated on the scalar type (see
+// pinhole.hpp); lens_models.hpp ties each row to its implementation and checks that
+// they agree. Adding a model: docs/adding-a-lens-model.md.
 //
-// Columns: enum name, name in files (mrcal's, without "LENSMODEL_"),
-// number of distortion coefficients, can it see points with z <= 0 (as mrcal's
-// can_project_behind_camera, and FISHEYE, whose angle theta goes on past 90 degrees),
-// the struct template implementing it (see lens_models.hpp, which checks the count).
+// This header is plain C++ (no Eigen): file readers, the command line and the tests
+// read the table without compiling any model.
 
+#include <array>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#define LIBCAM_LENS_MODEL_LIST(_)                                   \
-    _(Pinhole, "PINHOLE", 0, false, PinholeLens)                    \
-    _(Opencv4, "OPENCV4", 4, false, OpenCv4Lens)                    \
-    _(Opencv5, "OPENCV5", 5, false, OpenCv5Lens)                    \
-    _(Opencv8, "OPENCV8", 8, false, OpenCv8Lens)                    \
-    _(Opencv12, "OPENCV12", 12, false, OpenCv12Lens)                \
-    _(Opencv14, "OPENCV14", 14, false, OpenCv14Lens)                \
-    _(Fisheye, "FISHEYE", 4, true, FisheyeLens)                     \
-    _(Stereographic, "STEREOGRAPHIC", 0, true, StereographicLens)   \
-    _(Lonlat, "LONLAT", 0, true, LonlatLens)                        \
-    _(Latlon, "LATLON", 0, true, LatlonLens)
+// Every model: its enum name and the struct template implementing it (lens_models.hpp).
+#define LIBCAM_LENS_MODEL_LIST(_)      \
+    _(Pinhole, PinholeLens)             \
+    _(Opencv4, OpenCv4Lens)             \
+    _(Opencv5, OpenCv5Lens)             \
+    _(Opencv8, OpenCv8Lens)             \
+    _(Opencv12, OpenCv12Lens)           \
+    _(Opencv14, OpenCv14Lens)           \
+    _(Fisheye, FisheyeLens)             \
+    _(Stereographic, StereographicLens) \
+    _(Lonlat, LonlatLens)               \
+    _(Latlon, LatlonLens)
 
 namespace libcam {
 
 enum class LensType {
-#define LIBCAM_LENS_ENUM(id, name, n, behind, model) id,
+#define LIBCAM_LENS_ENUM(id, model) id,
     LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_ENUM)
 #undef LIBCAM_LENS_ENUM
 };
 
-struct LensInfo {
-    LensType type;
-    std::string_view name;
-    int num_coefficients;
-    bool sees_behind_camera;
+inline constexpr int kMaxLensCoefficients = 14;
+
+// How a pixel's ray is found.
+enum class Inverse {
+    ClosedForm,  // a formula (Model::unproject)
+    Solved,      // the certified iterative solver of lens/undistort.hpp, through Model::distort
 };
 
+// Which OpenCV function projects the model (the reference `libcam verify` and the tests
+// check against), if any.
+enum class OpenCvFunction {
+    None,
+    ProjectPoints,  // cv::projectPoints, cv::undistortPoints
+    Fisheye,        // cv::fisheye::projectPoints, cv::fisheye::undistortPoints
+};
+
+// Models that nest: a model contains every model of its family with a lower or equal
+// rank (its coefficient list is theirs followed by more, which can be zero), so a
+// camera of the lower model is exactly a camera of the higher one.
+enum class LensFamily {
+    Perspective,  // PINHOLE < OPENCV4 < OPENCV5 < OPENCV8 < OPENCV12 < OPENCV14
+    Fisheye,
+    Stereographic,
+    Lonlat,
+    Latlon,
+};
+
+// Whether `libcam fit` tries the model as a candidate.
+enum class FitCandidate {
+    No,
+    Always,
+    WideScenes,  // only for a scene reaching kWideSceneAngleDeg (fit/fit.hpp) off the axis
+};
+
+// The names of a model's coefficients, in the model's order.
+struct CoefficientNames {
+    std::array<std::string_view, kMaxLensCoefficients> names{};
+    int count = 0;
+
+    constexpr CoefficientNames() = default;
+    template <class... Names>
+    constexpr CoefficientNames(Names... list) : names{list...}, count(static_cast<int>(sizeof...(Names))) {}
+    constexpr std::span<const std::string_view> view() const { return {names.data(), static_cast<std::size_t>(count)}; }
+};
+
+struct LensInfo {
+    LensType type;
+    std::string_view name;  // in libcam's files; mrcal's name without "LENSMODEL_" where mrcal has it
+    CoefficientNames coefficients;
+    int num_coefficients;     // = coefficients.count (checked below)
+    bool sees_behind_camera;  // can project points with z <= 0 (mrcal's can_project_behind_camera)
+    Inverse inverse;
+    // The same model in other libraries; empty where the library lacks it.
+    OpenCvFunction opencv;
+    std::string_view mrcal;   // "LENSMODEL_..."
+    std::string_view colmap;  // COLMAP's camera model name (its pixel centres are at +0.5)
+    std::string_view kalibr;  // Kalibr's camera_model-distortion_model
+    std::string_view basalt;  // basalt's camera type
+    LensFamily family;
+    int family_rank;  // see LensFamily
+    FitCandidate fit;
+};
+
+// The table. Its order is the order of LensType, and among fit candidates the order from
+// the simplest model to the richest.
+inline constexpr LensInfo kLensTable[] = {
+    {.type = LensType::Pinhole, .name = "PINHOLE", .coefficients = {}, .num_coefficients = 0,
+     .sees_behind_camera = false, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::ProjectPoints,
+     .mrcal = "LENSMODEL_PINHOLE", .colmap = "PINHOLE", .kalibr = "pinhole-none", .basalt = "pinhole",
+     .family = LensFamily::Perspective, .family_rank = 0, .fit = FitCandidate::Always},
+    {.type = LensType::Opencv4, .name = "OPENCV4", .coefficients = {"k1", "k2", "p1", "p2"}, .num_coefficients = 4,
+     .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::ProjectPoints,
+     .mrcal = "LENSMODEL_OPENCV4", .colmap = "OPENCV", .kalibr = "pinhole-radtan", .basalt = "",
+     .family = LensFamily::Perspective, .family_rank = 1, .fit = FitCandidate::Always},
+    {.type = LensType::Opencv5, .name = "OPENCV5", .coefficients = {"k1", "k2", "p1", "p2", "k3"},
+     .num_coefficients = 5, .sees_behind_camera = false, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::ProjectPoints, .mrcal = "LENSMODEL_OPENCV5", .colmap = "", .kalibr = "", .basalt = "",
+     .family = LensFamily::Perspective, .family_rank = 2, .fit = FitCandidate::Always},
+    {.type = LensType::Opencv8, .name = "OPENCV8", .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"},
+     .num_coefficients = 8, .sees_behind_camera = false, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::ProjectPoints, .mrcal = "LENSMODEL_OPENCV8", .colmap = "FULL_OPENCV", .kalibr = "",
+     .basalt = "", .family = LensFamily::Perspective, .family_rank = 3, .fit = FitCandidate::Always},
+    {.type = LensType::Opencv12, .name = "OPENCV12",
+     .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6", "s1", "s2", "s3", "s4"}, .num_coefficients = 12,
+     .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::ProjectPoints,
+     .mrcal = "LENSMODEL_OPENCV12", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Perspective,
+     .family_rank = 4, .fit = FitCandidate::Always},
+    {.type = LensType::Opencv14, .name = "OPENCV14",
+     .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6", "s1", "s2", "s3", "s4", "tauX", "tauY"},
+     .num_coefficients = 14, .sees_behind_camera = false, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::ProjectPoints, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
+     .family = LensFamily::Perspective, .family_rank = 5, .fit = FitCandidate::No},
+    {.type = LensType::Fisheye, .name = "FISHEYE", .coefficients = {"k1", "k2", "k3", "k4"}, .num_coefficients = 4,
+     .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::Fisheye, .mrcal = "",
+     .colmap = "OPENCV_FISHEYE", .kalibr = "pinhole-equi", .basalt = "kb4", .family = LensFamily::Fisheye,
+     .family_rank = 0, .fit = FitCandidate::WideScenes},
+    {.type = LensType::Stereographic, .name = "STEREOGRAPHIC", .coefficients = {}, .num_coefficients = 0,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None,
+     .mrcal = "LENSMODEL_STEREOGRAPHIC", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Stereographic,
+     .family_rank = 0, .fit = FitCandidate::WideScenes},
+    {.type = LensType::Lonlat, .name = "LONLAT", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
+     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LONLAT", .colmap = "",
+     .kalibr = "", .basalt = "", .family = LensFamily::Lonlat, .family_rank = 0, .fit = FitCandidate::No},
+    {.type = LensType::Latlon, .name = "LATLON", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
+     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LATLON", .colmap = "",
+     .kalibr = "", .basalt = "", .family = LensFamily::Latlon, .family_rank = 0, .fit = FitCandidate::No},
+};
+
+namespace detail {
+constexpr bool lens_table_is_consistent() {
+    std::size_t index = 0;
+    for (const LensInfo& info : kLensTable) {
+        if (static_cast<std::size_t>(info.type) != index++) return false;  // rows in LensType's order
+        if (info.coefficients.count != info.num_coefficients) return false;
+        for (int i = 0; i < info.num_coefficients; ++i) {
+            if (info.coefficients.names[static_cast<std::size_t>(i)].empty()) return false;
+        }
+    }
+    return true;
+}
+}  // namespace detail
+static_assert(detail::lens_table_is_consistent(),
+              "kLensTable: a row out of LensType's order, or a coefficient count that disagrees with its names");
+
 // Every model, in the order of the table.
-std::span<const LensInfo> lens_models();
-const LensInfo& lens_info(LensType type);
+constexpr std::span<const LensInfo> lens_models() { return kLensTable; }
+constexpr const LensInfo& lens_info(LensType type) { return kLensTable[static_cast<std::size_t>(type)]; }
+
 // Accepts "PINHOLE" and mrcal's "LENSMODEL_PINHOLE"; nullopt for an unknown name.
 std::optional<LensType> lens_type_from_name(std::string_view name);
+
+// Does `container` express every camera of `model` exactly (same family, higher or equal rank)?
+constexpr bool lens_contains(LensType container, LensType model) {
+    const LensInfo &a = lens_info(container), &b = lens_info(model);
+    return a.family == b.family && a.family_rank >= b.family_rank;
+}
 
 // A lens: which model, and its distortion coefficients in the model's order
 // (OpenCV's order for OpenCV's models).

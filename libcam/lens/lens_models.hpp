@@ -1,18 +1,42 @@
 #pragma once
-// Every lens model, and the one dispatch from a runtime LensType to its compile-time
-// implementation, generated from LIBCAM_LENS_MODEL_LIST (lens_model.hpp).
+// Every lens model's implementation, the rules an implementation follows (the LensModel
+// concept), and the one dispatch from a runtime LensType to its compile-time
+// implementation, generated from LIBCAM_LENS_MODEL_LIST (lens_model.hpp). Each row of the
+// table is checked here against its implementation.
 //
-// Each model is a stateless struct template on the scalar type with
-//   type, num_coefficients, Parameters (= LensParameters<Scalar, num_coefficients>),
-//   Parameters parameters(std::span<const double> coefficients)  the domain, once per camera
+// A model is a stateless struct template on the scalar type (float, double, long
+// double, Lane<T> for the batch loops, ceres::Jet for fitting) with
+//
+//   type, num_coefficients            its row of the table
+//   InScalar<Other>                    the same model in another scalar type
+//   Vec2T, Vec3T, Parameters           Parameters = LensParameters<Scalar, num_coefficients>
+//   Parameters parameters(std::span<const double> coefficients)
+//                                      the coefficients and the valid domain, worked out
+//                                      once per camera (a polynomial root search for
+//                                      the models that fold over)
 //   bool project(parameters, point, m, d_m_d_point = nullptr, d_m_d_coefficients = nullptr)
-//   bool unproject(parameters, m, ray)
+//                                      m of a camera point, false outside the domain; the
+//                                      Jacobians only when asked for, at no cost otherwise
+//   bool unproject(parameters, m, ray) the ray through m, false where m has none
+//
+// and, for a model whose table row says Inverse::Solved (no closed-form inverse), what
+// the iterative solver of undistort.hpp needs:
+//
+//   bool distort(parameters, u, m, d_m_d_u = nullptr)   m of the undistorted point u
+//   Scalar radial_distortion(parameters, r, slope)       the radial part alone, d(r), d'(r)
+//   Vec3T ray_from_undistorted(u)                        the ray through u
+//
+// Optional: `static constexpr bool projects_ratios = true` for a model that starts from
+// x / z and y / z (a point at any scale then needs no rescaling, camera/point_scale.hpp).
 
+#include <concepts>
+#include <span>
 #include <string>
 #include <utility>
 
 #include "libcam/error.hpp"
 #include "libcam/lens/fisheye.hpp"
+#include "libcam/lens/lane.hpp"
 #include "libcam/lens/latlon.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/lonlat.hpp"
@@ -22,33 +46,61 @@
 
 namespace libcam {
 
-#define LIBCAM_LENS_CHECK(id, name, n, behind, model)                                            \
-    static_assert(model<double>::type == LensType::id && model<double>::num_coefficients == (n), \
-                  "LIBCAM_LENS_MODEL_LIST: " name " disagrees with its implementation");
-LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_CHECK)
-#undef LIBCAM_LENS_CHECK
+template <class Model>
+concept LensModel = requires(const typename Model::Parameters& lens, const typename Model::Vec3T& point,
+                             typename Model::Vec2T& m, typename Model::Vec3T& ray, std::span<const double> coefficients) {
+    { Model::type } -> std::convertible_to<LensType>;
+    { Model::num_coefficients } -> std::convertible_to<int>;
+    typename Model::template InScalar<double>;
+    { Model::parameters(coefficients) } -> std::same_as<typename Model::Parameters>;
+    { Model::project(lens, point, m) } -> std::same_as<bool>;
+    { Model::unproject(lens, m, ray) } -> std::same_as<bool>;
+};
+
+// A model unprojected by the certified iterative solver (lens/undistort.hpp).
+template <class Model>
+concept SolvedLensModel = LensModel<Model> && requires(const typename Model::Parameters& lens,
+                                                       const typename Model::Vec2T& u, typename Model::Vec2T& m,
+                                                       typename Model::Vec2T::Scalar r, typename Model::Vec2T::Scalar& slope) {
+    { Model::distort(lens, u, m) } -> std::same_as<bool>;
+    { Model::radial_distortion(lens, r, slope) } -> std::convertible_to<typename Model::Vec2T::Scalar>;
+    { Model::ray_from_undistorted(u) } -> std::convertible_to<typename Model::Vec3T>;
+};
+
+// A model that projects through x / z and y / z (optional; see above).
+template <class Model>
+concept ProjectsRatios = requires { requires Model::projects_ratios; };
 
 // The same model in another scalar type: LensInScalar<OpenCvLens<double, 8>, long double>
 // is OpenCvLens<long double, 8>.
 template <class Model, class Scalar>
-struct RebindLens;
-template <template <class> class ModelTemplate, class Old, class Scalar>
-struct RebindLens<ModelTemplate<Old>, Scalar> {
-    using type = ModelTemplate<Scalar>;
-};
-template <class Old, int N, class Scalar>
-struct RebindLens<OpenCvLens<Old, N>, Scalar> {
-    using type = OpenCvLens<Scalar, N>;
-};
-template <class Model, class Scalar>
-using LensInScalar = typename RebindLens<Model, Scalar>::type;
+using LensInScalar = typename Model::template InScalar<Scalar>;
+
+namespace detail {
+// One row of the table against its implementation, in every scalar type libcam uses.
+template <template <class> class Model>
+constexpr bool implements_row(LensType type) {
+    const LensInfo& info = lens_info(type);
+    return Model<double>::type == type && Model<double>::num_coefficients == info.num_coefficients &&
+           LensModel<Model<double>> && LensModel<Model<float>> && LensModel<Model<Lane<double>>> &&
+           LensModel<Model<Lane<float>>> && (SolvedLensModel<Model<double>> == (info.inverse == Inverse::Solved)) &&
+           std::same_as<LensInScalar<Model<double>, float>, Model<float>>;
+}
+}  // namespace detail
+
+#define LIBCAM_LENS_CHECK(id, model)                                   \
+    static_assert(detail::implements_row<model>(LensType::id),        \
+                  "kLensTable's row " #id " disagrees with " #model \
+                  " (type, coefficient count, LensModel, or Inverse::Solved without distort())");
+LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_CHECK)
+#undef LIBCAM_LENS_CHECK
 
 // Calls visitor.template operator()<Model>() with the implementation of `type` in
 // Scalar, e.g.  visit_lens_model<double>(lens.type, [&]<class Model>() { ... });
 template <class Scalar, class Visitor>
 decltype(auto) visit_lens_model(LensType type, Visitor&& visitor) {
     switch (type) {
-#define LIBCAM_LENS_VISIT(id, name, n, behind, model) \
+#define LIBCAM_LENS_VISIT(id, model) \
     case LensType::id: return std::forward<Visitor>(visitor).template operator()<model<Scalar>>();
         LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_VISIT)
 #undef LIBCAM_LENS_VISIT

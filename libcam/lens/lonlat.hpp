@@ -27,6 +27,8 @@ template <class Scalar>
 struct LonlatLens {
     static constexpr LensType type = LensType::Lonlat;
     static constexpr int num_coefficients = 0;
+    template <class Other>
+    using InScalar = LonlatLens<Other>;
     using Parameters = LensParameters<Scalar, 0>;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;

@@ -92,6 +92,8 @@ struct OpenCvLens {
     static_assert(N == 4 || N == 5 || N == 8 || N == 12 || N == 14, "OpenCV takes 4, 5, 8, 12 or 14 coefficients");
     static constexpr LensType type = detail::opencv_lens_type(N);
     static constexpr int num_coefficients = N;
+    template <class Other>
+    using InScalar = OpenCvLens<Other, N>;
     static constexpr bool projects_ratios = true;  // through PinholeLens::project: x / z, y / z
     using Parameters = LensParameters<Scalar, N>;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;

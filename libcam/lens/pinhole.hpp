@@ -20,6 +20,8 @@ template <class Scalar>
 struct PinholeLens {
     static constexpr LensType type = LensType::Pinhole;
     static constexpr int num_coefficients = 0;
+    template <class Other>
+    using InScalar = PinholeLens<Other>;
     // Starts from x / z and y / z: scaling the point changes nothing, not even rounding.
     static constexpr bool projects_ratios = true;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;

@@ -27,6 +27,8 @@ template <class Scalar>
 struct StereographicLens {
     static constexpr LensType type = LensType::Stereographic;
     static constexpr int num_coefficients = 0;
+    template <class Other>
+    using InScalar = StereographicLens<Other>;
     using Parameters = LensParameters<Scalar, 0>;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;

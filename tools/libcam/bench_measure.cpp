@@ -172,24 +172,9 @@ const char* scalar_name() {
     return sizeof(Scalar) == sizeof(float) ? "float" : "double";
 }
 
-// Which reference library has the lens's model: the bridges refuse the others.
-bool opencv_has(const Lens& lens) {
-    try {
-        opencv_distortion(lens);
-        return true;
-    } catch (const NotRepresentable&) {
-        return false;
-    }
-}
-
-bool mrcal_has(const Lens& lens) {
-    try {
-        mrcal_lensmodel_name(lens);
-        return true;
-    } catch (const NotRepresentable&) {
-        return false;
-    }
-}
+// Which reference library has the lens's model: the table says.
+bool opencv_has(const Lens& lens) { return lens_info(lens.type).opencv != OpenCvFunction::None; }
+bool mrcal_has(const Lens& lens) { return !lens_info(lens.type).mrcal.empty(); }
 
 // ---------------------------------------------------------------------------------
 // The candidates. Each builder adds its rows; the buffers they write live in the
@@ -276,7 +261,7 @@ void add_opencv_unprojection(std::vector<Candidate>& out, const Setup& setup, co
     const Camera& camera = setup.bench_case.camera;
     if (!opencv_has(camera.lens)) return;
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
-    const bool fisheye = camera.lens.type == LensType::Fisheye;
+    const bool fisheye = lens_info(camera.lens.type).opencv == OpenCvFunction::Fisheye;
     const cv::TermCriteria many(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-14);
     for (const bool iterate : {false, true}) {
         Candidate c{row(setup, "unproject", "opencv", iterate ? "100it-eps1e-14" : "default", "double"), setup.grid.size(),
@@ -354,7 +339,7 @@ void add_opencv_projection(std::vector<Candidate>& out, const Setup& setup, cons
     if (!opencv_has(camera.lens)) return;
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
     const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    const bool fisheye = camera.lens.type == LensType::Fisheye;
+    const bool fisheye = lens_info(camera.lens.type).opencv == OpenCvFunction::Fisheye;
     Candidate c{row(setup, "project", "opencv", fisheye ? "fisheye::projectPoints" : "projectPoints", "double"),
                 setup.rays.points.size(), nullptr, nullptr};
     c.run = [&, K, D, zero, fisheye] {
