@@ -12,7 +12,7 @@ int main() {
     const FovCamera fov = FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3});
     const Camera camera = to_camera(fov);
     const Vec2 pixel = opencv_pixel({0, 0}, PixelOrigin::BottomLeft, camera.size);
-    const Ray ray = camera.ray(pixel);
+    const Ray ray = PreparedCamera(camera).ray(pixel);
     std::printf("libcam %s\n", LIBCAM_VERSION);
     std::printf("fx %.17g fy %.17g cx %.17g cy %.17g\n", camera.intrinsics.fx, camera.intrinsics.fy,
                 camera.intrinsics.cx, camera.intrinsics.cy);

@@ -50,12 +50,6 @@ struct BatchLens {
         : lanes(model_parameters<Model>(lens, valid_radius)), plain(model_parameters<Plain>(lens, valid_radius)) {}
 };
 
-// The lens's valid radius (lens/model_support.hpp), found once (a polynomial root search).
-inline double lens_valid_radius(const Lens& lens) {
-    return visit_lens_model<double>(
-        lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
-}
-
 // Throws InvalidArgument unless every coordinate array of a batch has n entries.
 inline void require_same_sizes(const char* field, std::size_t n, std::initializer_list<std::size_t> others) {
     for (std::size_t size : others) {

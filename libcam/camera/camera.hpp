@@ -1,11 +1,26 @@
 #pragma once
-// A calibrated camera: image size, intrinsic matrix K, lens, and extrinsics R|t, all
-// in OpenCV's conventions (see geometry/intrinsics.hpp and geometry/pose.hpp).
+// Project these points, unproject these pixels: a calibrated camera and the engine that
+// computes with it.
+//
+//   Camera: what a camera is (image size, intrinsic matrix K, lens, extrinsics R|t, all
+//           in OpenCV's conventions, see geometry/intrinsics.hpp and geometry/pose.hpp);
+//           what camera files hold and conversions produce. Plain data.
+//   PreparedCamera: a Camera validated once, with its lens's valid domain worked out
+//           once (and, on first unprojection, the table of the batch engine): every
+//           projection and unprojection goes through one.
 //
 //   world point X -> camera point p = R X + t -> lens: normalised m -> pixel K [m; 1]
 //
-// Pixels here are OpenCV pixels (row 0 at the top, centres at integers).
+//   const PreparedCamera camera(read_camera_file("cam.yaml").camera);
+//   std::vector<Projection> pixels = camera.project(world_points);
+//   std::vector<Unprojection> rays = camera.unproject(pixels_to_unproject);
+//
+// Pixels here are OpenCV pixels (row 0 at the top, centres at integers). A point or a
+// pixel is never an error: one the lens cannot map is returned with valid = false.
+// For float, structure-of-arrays or full-frame batches see projector.hpp and
+// unprojector.hpp, which share the same prepared state.
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -16,13 +31,26 @@
 
 namespace libcam {
 
+struct Camera {
+    ImageSize size;
+    Intrinsics intrinsics;
+    Lens lens;
+    Pose pose;
+
+    // Throws InvalidArgument naming the field for a bad size, K, lens or pose.
+    void validate() const;
+
+    // P = K [R | t] (pinhole part only: distortion is not linear).
+    Mat34 P() const { return intrinsics.K() * pose.matrix(); }
+};
+
 struct Projection {
     Vec2 pixel = Vec2::Zero();
     bool valid = false;  // false: outside the lens model's domain (e.g. behind the camera)
 };
 
 struct Unprojection {
-    Vec3 direction = Vec3::Zero();  // camera frame, not normalised (see Camera::unproject)
+    Vec3 direction = Vec3::Zero();  // camera frame, not normalised (see PreparedCamera::unproject)
     bool valid = false;             // false: the pixel has no ray under this lens
 };
 
@@ -32,41 +60,52 @@ struct Ray {
     bool valid = false;             // false: the pixel has no ray under this lens
 };
 
-struct Camera {
-    ImageSize size;
-    Intrinsics intrinsics;
-    Lens lens;
-    Pose pose;
+template <class Scalar>
+class Unprojector;
 
-    // Throws InvalidArgument naming the field for a bad size, K, lens or pose. Every
-    // function below checks what it uses (K and the lens; the pose too for world
-    // points and rays) on each call, and throws the same.
-    void validate() const;
+namespace detail {
+struct PreparedState;
+}
 
-    // P = K [R | t] (pinhole part only: distortion is not linear).
-    Mat34 P() const { return intrinsics.K() * pose.matrix(); }
+class PreparedCamera {
+public:
+    // Validates the camera (throws InvalidArgument naming the field) and works out its
+    // lens's valid domain (the radius where the distortion folds over).
+    explicit PreparedCamera(const Camera& camera);
+
+    const Camera& camera() const;
+    // The lens's valid radius (lens/model_support.hpp): infinity where it has none.
+    double valid_radius() const;
 
     // The pixel of a camera-frame point; invalid outside the lens model's domain
-    // (behind the camera, past the radius where the distortion folds over, ...).
+    // (behind the camera, past the radius where the distortion folds over, ...). Points
+    // at any scale (1e-300, 1e300) give the pixel of their direction.
     Projection project_camera_point(const Vec3& camera_point) const;
-    Projection project(const Vec3& world_point) const;
-    // Many points at once: the lens's valid domain is worked out once, not per point.
     std::vector<Projection> project_camera_points(std::span<const Vec3> camera_points) const;
+    // The same for world points (through R|t).
+    Projection project(const Vec3& world_point) const;
+    std::vector<Projection> project(std::span<const Vec3> world_points) const;
 
     // The direction, in the camera frame, of the ray through an OpenCV pixel, not
-    // normalised: for PINHOLE and OpenCV's models K^-1 [x, y, 1] undistorted (z = 1).
-    // False where the pixel has no ray, or none that reprojects to it to rounding
-    // accuracy (see lens/undistort.hpp).
-    bool unproject(const Vec2& pixel, Vec3& camera_direction) const;
-    // Many pixels at once, the lens's domain worked out once.
-    std::vector<Unprojection> unproject_pixels(std::span<const Vec2> pixels) const;
+    // normalised: for PINHOLE and OpenCV's models K^-1 [x, y, 1] undistorted (z = 1), unit
+    // length for the others. Invalid where the pixel has no ray, or none that
+    // reprojects to it to rounding accuracy (the certified solver, lens/undistort.hpp).
+    // A pixel's answer is the same bits in a single call and in any batch, with any
+    // number of threads: both are the batch engine's `exact` method (unprojector.hpp),
+    // whose table is built on the first call.
+    Unprojection unproject(const Vec2& pixel) const;
+    std::vector<Unprojection> unproject(std::span<const Vec2> pixels, int threads = 1) const;
 
     // The world-frame ray through an OpenCV pixel: origin at the camera centre,
-    // direction R^T K^-1 [x, y, 1] normalised.
+    // direction R^T (the camera-frame direction) normalised.
     Ray ray(const Vec2& pixel) const;
+    std::vector<Ray> rays(std::span<const Vec2> pixels, int threads = 1) const;
+
+    // The batch engine these calls use (built on first use, shared by copies).
+    const Unprojector<double>& unprojector() const;
 
 private:
-    void validate_lens_and_k() const;
+    std::shared_ptr<detail::PreparedState> state_;
 };
 
 }  // namespace libcam

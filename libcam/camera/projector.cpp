@@ -102,10 +102,11 @@ void project_range(const Intrinsics& camera_intrinsics, const ProjectorLens<Mode
 }  // namespace
 
 template <class Scalar>
-Projector<Scalar>::Projector(const Camera& camera) : camera_(camera) {
-    camera_.validate();
-    valid_radius_ = batch::lens_valid_radius(camera_.lens);
-}
+Projector<Scalar>::Projector(const Camera& camera) : Projector(PreparedCamera(camera)) {}
+
+template <class Scalar>
+Projector<Scalar>::Projector(const PreparedCamera& camera)
+    : camera_(camera.camera()), valid_radius_(camera.valid_radius()) {}
 
 template <class Scalar>
 void Projector<Scalar>::project(const Points3<Scalar>& camera_points, Points2<Scalar>& pixels, ValidFlags& valid,

@@ -7,7 +7,7 @@
 //   projector.project(camera_points, pixels, valid, /*threads=*/2);
 //
 // The result of each point is bit for bit the same for any number of threads, and
-// (in double) equal to Camera::project_camera_point's to rounding.
+// (in double) the same as PreparedCamera::project_camera_point's.
 
 #include "libcam/camera/batch.hpp"
 #include "libcam/camera/camera.hpp"
@@ -17,8 +17,10 @@ namespace libcam {
 template <class Scalar>
 class Projector {
 public:
-    // Throws InvalidArgument for an invalid camera.
+    // Throws InvalidArgument for an invalid camera. From a PreparedCamera, its
+    // validated camera and valid domain are used as they are.
     explicit Projector(const Camera& camera);
+    explicit Projector(const PreparedCamera& camera);
 
     // The pixel of each camera-frame point; valid[i] = 0, and pixel (0, 0), outside the
     // lens's domain (behind the camera, past the fold-over radius, ...) or where the

@@ -336,15 +336,23 @@ void unproject_block(const Context<Scalar>& context, const LensPair<Model>& lens
 }  // namespace
 
 template <class Scalar>
-Unprojector<Scalar>::Unprojector(const Camera& camera, UnprojectorOptions options) : camera_(camera) {
-    camera_.validate();
+Unprojector<Scalar>::Unprojector(const Camera& camera, UnprojectorOptions options)
+    : Unprojector(PreparedCamera(camera), options) {}
+
+template <class Scalar>
+Unprojector<Scalar>::Unprojector(const PreparedCamera& camera, UnprojectorOptions options)
+    : camera_(camera.camera()), valid_radius_(camera.valid_radius()) {
+    prepare(options);
+}
+
+template <class Scalar>
+void Unprojector<Scalar>::prepare(const UnprojectorOptions& options) {
     if (options.table_nodes < 4 || options.table_nodes > 100'000) {
         throw InvalidArgument("table_nodes: must be in [4, 100000], got " + std::to_string(options.table_nodes));
     }
     if (!(options.approximation_budget_px > 0)) {
         throw InvalidArgument("approximation_budget_px: must be > 0, got " + format_number(options.approximation_budget_px));
     }
-    valid_radius_ = batch::lens_valid_radius(camera_.lens);
     visit_lens_model<double>(camera_.lens.type, [&]<class Model>() {
         if constexpr (SolvedLensModel<Model>) {
             const auto lens = batch::model_parameters<Model>(camera_.lens, valid_radius_);
@@ -357,10 +365,12 @@ Unprojector<Scalar>::Unprojector(const Camera& camera, UnprojectorOptions option
     });
 }
 
+// `out.at(first, scratch)` says where a block's rays and flags go (the caller's arrays,
+// or the scratch), and `out.done(first, count, scratch)` finishes the block.
 template <class Scalar>
-template <class FillPixels>
+template <class FillPixels, class Output>
 void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads, FillPixels&& fill,
-                              const detail::RayOutput<Scalar>& out) const {
+                              Output&& out) const {
     const TableView<Scalar> table(table_);
     const Context<Scalar> context{camera_.intrinsics, table, Scalar(certified_radius_ * certified_radius_),
                                   Scalar(no_ray_radius_ * no_ray_radius_), rim_, Scalar(valid_radius_ * valid_radius_)};
@@ -368,12 +378,14 @@ void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads
         const LensPair<Model> lens(camera_.lens, valid_radius_);
         parallel_chunks(n, threads, kBlock, [&](std::size_t begin, std::size_t end) {
             Block<Scalar> block;
+            RayScratch<Scalar, kBlock> scratch;
             for (std::size_t first = begin; first < end; first += kBlock) {
                 block.count = std::min(kBlock, end - first);
-                block.rays = out.at(first);
+                block.rays = out.at(first, scratch);
                 fill(first, block);
                 unproject_block<Model>(context, lens, method, block);
                 batch::store_flags<Scalar>({block.ok, block.count}, block.rays.valid);
+                out.done(first, block.count, scratch);
             }
         });
     });
@@ -381,10 +393,34 @@ void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads
 
 namespace {
 
+// Rays written straight into structure-of-arrays outputs.
 template <class Scalar>
-detail::RayOutput<Scalar> output_into(Points3<Scalar>& directions, ValidFlags& valid) {
-    return {directions.x.data(), directions.y.data(), directions.z.data(), valid.data()};
+struct ArraysOutput {
+    detail::RayOutput<Scalar> arrays;
+    detail::RayOutput<Scalar> at(std::size_t first, RayScratch<Scalar, kBlock>&) const { return arrays.at(first); }
+    void done(std::size_t, std::size_t, const RayScratch<Scalar, kBlock>&) const {}
+};
+
+template <class Scalar>
+ArraysOutput<Scalar> output_into(Points3<Scalar>& directions, ValidFlags& valid) {
+    return {{directions.x.data(), directions.y.data(), directions.z.data(), valid.data()}};
 }
+
+// Rays written to a block's scratch, then copied into a list of Unprojection.
+template <class Scalar>
+struct ListOutput {
+    std::span<Unprojection> list;
+    detail::RayOutput<Scalar> at(std::size_t, RayScratch<Scalar, kBlock>& scratch) const {
+        return {scratch.x, scratch.y, scratch.z, scratch.valid};
+    }
+    void done(std::size_t first, std::size_t count, const RayScratch<Scalar, kBlock>& scratch) const {
+        for (std::size_t i = 0; i < count; ++i) {
+            Unprojection& out = list[first + i];
+            out.direction = Vec3(double(scratch.x[i]), double(scratch.y[i]), double(scratch.z[i]));
+            out.valid = scratch.valid[i] != 0;
+        }
+    }
+};
 
 }  // namespace
 
@@ -456,7 +492,7 @@ void Unprojector<Scalar>::unproject_image(UnprojectMethod method, Points3<Scalar
     directions.resize(n);
     valid.resize(n);
     if (camera_.lens.type == LensType::Pinhole && camera_.intrinsics.skew == 0) {
-        pinhole_image(camera_.intrinsics, camera_.size, output_into(directions, valid), threads);
+        pinhole_image(camera_.intrinsics, camera_.size, output_into(directions, valid).arrays, threads);
         return;
     }
     // Pixel index k is (k % width, k / width); each block is filled row segment by row segment.
@@ -486,9 +522,25 @@ bool Unprojector<Scalar>::unproject(const Vec2T& pixel, UnprojectMethod method, 
     };
     Vec3T ray;
     std::uint8_t valid = 0;
-    run(1, method, 1, one_pixel, detail::RayOutput<Scalar>{&ray.x(), &ray.y(), &ray.z(), &valid});
+    const ArraysOutput<Scalar> out{{&ray.x(), &ray.y(), &ray.z(), &valid}};
+    run(1, method, 1, one_pixel, out);
     if (valid) direction = ray;
     return valid != 0;
+}
+
+template <class Scalar>
+void Unprojector<Scalar>::unproject(std::span<const Vec2> pixels, UnprojectMethod method, std::span<Unprojection> out,
+                                    int threads) const {
+    batch::require_same_sizes("pixels", pixels.size(), {out.size()});
+    const auto copy_pixels = [&pixels](std::size_t first, Block<Scalar>& b) {
+        for (std::size_t i = 0; i < b.count; ++i) {
+            b.made_x[i] = Scalar(pixels[first + i].x());
+            b.made_y[i] = Scalar(pixels[first + i].y());
+        }
+        b.pixel_x = b.made_x;
+        b.pixel_y = b.made_y;
+    };
+    run(pixels.size(), method, threads, copy_pixels, ListOutput<Scalar>{out});
 }
 
 template class Unprojector<float>;

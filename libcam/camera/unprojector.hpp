@@ -30,6 +30,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "libcam/camera/batch.hpp"
@@ -71,6 +72,13 @@ struct RayOutput {
     RayOutput at(std::size_t first) const { return {x + first, y + first, z + first, valid + first}; }
 };
 
+// A block's rays and flags, for an output that is not structure-of-arrays.
+template <class Scalar, std::size_t kCount>
+struct RayScratch {
+    Scalar x[kCount], y[kCount], z[kCount];
+    std::uint8_t valid[kCount];
+};
+
 // The rim of the valid domain's image: its radius against its polar angle (unprojector.cpp).
 struct DomainRim {
     std::vector<double> angle, radius;
@@ -83,8 +91,10 @@ public:
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
 
-    // Throws InvalidArgument for an invalid camera or options.
+    // Throws InvalidArgument for an invalid camera or options. From a PreparedCamera,
+    // its validated camera and valid domain are used as they are.
     explicit Unprojector(const Camera& camera, UnprojectorOptions options = {});
+    explicit Unprojector(const PreparedCamera& camera, UnprojectorOptions options = {});
 
     // The direction through each pixel; valid[i] = 0 where the pixel has no ray. Resizes
     // the outputs (no allocation when they already have the size).
@@ -95,8 +105,14 @@ public:
     void unproject_image(UnprojectMethod method, Points3<Scalar>& directions, ValidFlags& valid,
                          int threads = 1) const;
 
-    // One pixel; false where it has no ray.
+    // One pixel; false where it has no ray (direction then left as it was). The same
+    // bits as the pixel gets in any batch.
     bool unproject(const Vec2T& pixel, UnprojectMethod method, Vec3T& direction) const;
+
+    // Pixels and rays as lists of points (PreparedCamera::unproject's form): out must
+    // have pixels.size() entries. Computed in Scalar.
+    void unproject(std::span<const Vec2> pixels, UnprojectMethod method, std::span<Unprojection> out,
+                   int threads = 1) const;
 
     const Camera& camera() const { return camera_; }
     // Every pixel whose normalised point m has |m| below this has a ray (0 without a table).
@@ -106,9 +122,9 @@ public:
     const UnprojectionTable<Scalar>& table() const { return table_; }
 
 private:
-    template <class FillPixels>
-    void run(std::size_t n, UnprojectMethod method, int threads, FillPixels&& fill,
-             const detail::RayOutput<Scalar>& out) const;
+    template <class FillPixels, class Output>
+    void run(std::size_t n, UnprojectMethod method, int threads, FillPixels&& fill, Output&& out) const;
+    void prepare(const UnprojectorOptions& options);
 
     Camera camera_;
     double valid_radius_ = 0;

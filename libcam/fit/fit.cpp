@@ -230,11 +230,10 @@ std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<
 }
 
 std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<Observation>& observations) {
-    fitted.pose.validate("R");  // K and the lens: by project_camera_points
     std::vector<Vec3> moved;
     moved.reserve(observations.size());
     for (const Observation& observation : observations) moved.push_back(fitted.pose.camera_from_world(observation.point));
-    const std::vector<Projection> projections = fitted.project_camera_points(moved);
+    const std::vector<Projection> projections = PreparedCamera(fitted).project_camera_points(moved);
     std::vector<double> errors(observations.size(), std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < observations.size(); ++i) {
         if (projections[i].valid) errors[i] = (projections[i].pixel - observations[i].pixel).norm();
@@ -263,7 +262,7 @@ ModelError measure(const Camera& fitted, const std::vector<Observation>& observa
 FitReport fit_scene(const Camera& source, const Scene& scene, const FitOptions& options) {
     validate_options(options);
     FitReport report;
-    report.sampling = sample_scene(source, scene, options.lattice);
+    report.sampling = sample_scene(PreparedCamera(source), scene, options.lattice);
     const std::vector<Observation> fit_set = observations_of(report.sampling.fit, options.depths);
     const std::vector<Observation> check_set = observations_of(report.sampling.check, options.depths);
     report.fit_observations = fit_set.size();

@@ -78,8 +78,8 @@ double polyline_length(const std::vector<Vec2>& points) {
 }
 
 // Unit directions of the pixels (zero where the source has no ray) and their validity.
-std::vector<Unprojection> unit_rays(const Camera& source, const std::vector<Vec2>& pixels) {
-    std::vector<Unprojection> rays = source.unproject_pixels(pixels);
+std::vector<Unprojection> unit_rays(const PreparedCamera& source, const std::vector<Vec2>& pixels) {
+    std::vector<Unprojection> rays = source.unproject(pixels);
     for (Unprojection& ray : rays) {
         if (ray.valid) ray.direction.normalize();
     }
@@ -143,10 +143,10 @@ void sort_unique(std::vector<Vec2>& points) {
 }
 
 // The scene's pixels among `lattice` and the boundary at `spacing`, with their rays.
-ScenePixels scene_pixels(const Camera& source, const Scene& scene, const Lattice& lattice, double spacing) {
+ScenePixels scene_pixels(const PreparedCamera& source, const Scene& scene, const Lattice& lattice, double spacing) {
     std::vector<Vec2> boundary = scene.boundary(source, spacing);
     sort_unique(boundary);
-    std::vector<Vec2> interior = lattice_points(source.size, lattice, scene.bounds(source));
+    std::vector<Vec2> interior = lattice_points(source.camera().size, lattice, scene.bounds(source));
     std::erase_if(interior, [&](const Vec2& p) { return std::binary_search(boundary.begin(), boundary.end(), p, pixel_less); });
 
     std::vector<Vec2> pixels = boundary;
@@ -253,7 +253,7 @@ bool Scene::contains(const Vec2& pixel, const Unprojection& ray) const {
     return false;
 }
 
-std::vector<Vec2> Scene::cone_pixels(const Camera& source, int count, bool* complete) const {
+std::vector<Vec2> Scene::cone_pixels(const PreparedCamera& source, int count, bool* complete) const {
     const double angle = radians_from_degrees(max_angle_deg_);
     std::vector<Vec3> directions;
     for (const Vec2& azimuth : circle_points(Vec2::Zero(), 1.0, count)) {
@@ -269,8 +269,8 @@ std::vector<Vec2> Scene::cone_pixels(const Camera& source, int count, bool* comp
     return pixels;
 }
 
-PixelBox Scene::bounds(const Camera& source) const {
-    const PixelBox image = image_box(source.size);
+PixelBox Scene::bounds(const PreparedCamera& source) const {
+    const PixelBox image = image_box(source.camera().size);
     const auto clamp_to_image = [&](PixelBox box) {
         return PixelBox{box.min.cwiseMax(image.min).cwiseMin(image.max), box.max.cwiseMax(image.min).cwiseMin(image.max)};
     };
@@ -297,8 +297,8 @@ PixelBox Scene::bounds(const Camera& source) const {
     return image;
 }
 
-std::vector<Vec2> Scene::boundary(const Camera& source, double spacing) const {
-    const PixelBox image = image_box(source.size);
+std::vector<Vec2> Scene::boundary(const PreparedCamera& source, double spacing) const {
+    const PixelBox image = image_box(source.camera().size);
     std::vector<Vec2> edge;
     switch (shape_) {
         case Shape::WholeImage: return polygon_points(box_corners(image), spacing);
@@ -327,11 +327,11 @@ std::vector<Vec2> Scene::boundary(const Camera& source, double spacing) const {
     return edge;
 }
 
-std::vector<Vec2> Scene::outline(const Camera& source) const {
+std::vector<Vec2> Scene::outline(const PreparedCamera& source) const {
     constexpr int kOutlinePoints = 256;
     std::vector<Vec2> curve;
     switch (shape_) {
-        case Shape::WholeImage: curve = box_corners(image_box(source.size)); break;
+        case Shape::WholeImage: curve = box_corners(image_box(source.camera().size)); break;
         case Shape::Rectangle: curve = box_corners({corner0_, corner1_}); break;
         case Shape::Circle: curve = circle_points(center_, radius_, kOutlinePoints); break;
         case Shape::FieldAngle: curve = cone_pixels(source, kOutlinePoints); break;
@@ -340,21 +340,20 @@ std::vector<Vec2> Scene::outline(const Camera& source) const {
     return curve;
 }
 
-SceneSampling sample_scene(const Camera& source, const Scene& scene, std::optional<Lattice> lattice) {
-    source.validate();
-    scene.validate(source.size);
+SceneSampling sample_scene(const PreparedCamera& source, const Scene& scene, std::optional<Lattice> lattice) {
+    scene.validate(source.camera().size);
     SceneSampling sampling;
-    sampling.fit_lattice = lattice.value_or(default_lattice(source.size, scene.bounds(source)));
+    sampling.fit_lattice = lattice.value_or(default_lattice(source.camera().size, scene.bounds(source)));
     if (sampling.fit_lattice.columns < 2 || sampling.fit_lattice.rows < 2) {
         throw InvalidArgument("sampling lattice: needs at least 2x2 points, got " +
                               std::to_string(sampling.fit_lattice.columns) + "x" + std::to_string(sampling.fit_lattice.rows));
     }
     sampling.check_lattice = denser(sampling.fit_lattice, kCheckDensity);
-    const double spacing = lattice_spacing(source.size, sampling.fit_lattice);
+    const double spacing = lattice_spacing(source.camera().size, sampling.fit_lattice);
     sampling.fit = scene_pixels(source, scene, sampling.fit_lattice, spacing);
     sampling.check = scene_pixels(source, scene, sampling.check_lattice, spacing / kCheckDensity);
     if (sampling.fit.pixels.empty() || sampling.check.pixels.empty()) {
-        throw InvalidArgument("scene " + scene.describe(source.size) + ": no pixel of it has a ray through the source camera (" +
+        throw InvalidArgument("scene " + scene.describe(source.camera().size) + ": no pixel of it has a ray through the source camera (" +
                               std::to_string(sampling.check.skipped) + " without one)");
     }
     return sampling;

@@ -52,22 +52,22 @@ public:
     bool contains(const Vec2& pixel, const Unprojection& ray) const;
 
     // A box inside the image that holds the whole scene.
-    PixelBox bounds(const Camera& source) const;
+    PixelBox bounds(const PreparedCamera& source) const;
 
     // Points along the boundary of the scene's part of the image, about `spacing`
     // pixels apart (the scene's own edge inside the image, and for circles and field
     // angles the stretches of the image border inside the scene).
-    std::vector<Vec2> boundary(const Camera& source, double spacing) const;
+    std::vector<Vec2> boundary(const PreparedCamera& source, double spacing) const;
 
     // The scene's own edge as a closed polyline (last point = first) for drawing; may
     // leave the image.
-    std::vector<Vec2> outline(const Camera& source) const;
+    std::vector<Vec2> outline(const PreparedCamera& source) const;
 
 private:
     Scene() = default;
     // The pixels of the cone at max_angle_deg around the optical axis, `count` of them,
     // and whether every direction of it has a pixel.
-    std::vector<Vec2> cone_pixels(const Camera& source, int count, bool* complete = nullptr) const;
+    std::vector<Vec2> cone_pixels(const PreparedCamera& source, int count, bool* complete = nullptr) const;
 
     Shape shape_ = Shape::WholeImage;
     double radius_ = 0.0;
@@ -112,6 +112,6 @@ inline constexpr double kDefaultFitSamples = 2000.0;
 // kCheckDensity times denser), else on a lattice sized to put about kDefaultFitSamples
 // in the scene's bounding box. Throws InvalidArgument for an invalid scene, or when
 // no sample of the scene has a ray through the source.
-SceneSampling sample_scene(const Camera& source, const Scene& scene, std::optional<Lattice> lattice = std::nullopt);
+SceneSampling sample_scene(const PreparedCamera& source, const Scene& scene, std::optional<Lattice> lattice = std::nullopt);
 
 }  // namespace libcam

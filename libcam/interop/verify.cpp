@@ -55,6 +55,7 @@ std::vector<Vec2> pixel_grid(const ImageSize& size, long columns, long rows) {
 // The grid, libcam's ray through each pixel, and points at every depth along each ray
 // with libcam's projection of them.
 struct Samples {
+    PreparedCamera camera;  // every libcam projection and unprojection goes through it
     std::vector<Vec2> pixels;
     std::vector<Unprojection> rays;
     std::vector<std::size_t> with_ray;  // indices of the pixels libcam has a ray through
@@ -75,9 +76,9 @@ struct Samples {
 };
 
 Samples make_samples(const Camera& camera, const VerifyOptions& options) {
-    Samples s;
+    Samples s{PreparedCamera(camera)};
     s.pixels = pixel_grid(camera.size, options.grid_columns, options.grid_rows);
-    s.rays = camera.unproject_pixels(s.pixels);
+    s.rays = s.camera.unproject(s.pixels);
     for (std::size_t i = 0; i < s.pixels.size(); ++i) {
         if (!s.rays[i].valid) continue;
         s.with_ray.push_back(i);
@@ -87,7 +88,7 @@ Samples make_samples(const Camera& camera, const VerifyOptions& options) {
             s.point_pixel.push_back(i);
         }
     }
-    s.projected = camera.project_camera_points(s.points);
+    s.projected = s.camera.project_camera_points(s.points);
     return s;
 }
 
@@ -146,8 +147,9 @@ std::vector<Vec3> opencv_undistort(const Camera& camera, const std::vector<Vec2>
 }
 
 // libcam's pixels of camera-frame points; NaN for a point outside the lens's domain.
-std::vector<Vec2> libcam_project(const Camera& camera, const std::vector<Vec3>& points) {
+std::vector<Vec2> libcam_project(const PreparedCamera& camera, const std::vector<Vec3>& points) {
     std::vector<Vec2> out;
+    out.reserve(points.size());
     for (const Projection& p : camera.project_camera_points(points)) out.push_back(p.valid ? p.pixel : Vec2(kNaN, kNaN));
     return out;
 }
@@ -265,7 +267,7 @@ VerifyCheck check_project_mrcal(const Camera& camera, const Samples& s, const st
 // libcam's rays reprojected by libcam itself: the solver's own residual.
 VerifyCheck check_unproject_libcam(const Camera& camera, const Samples& s) {
     VerifyCheck check = new_check(verify_check::unproject_libcam, "libcam, reprojected by libcam", kExactPx);
-    return reprojection_errors(s.pixels.size(), s.with_ray, s.pixels_with_ray(), libcam_project(camera, s.libcam_rays()))
+    return reprojection_errors(s.pixels.size(), s.with_ray, s.pixels_with_ray(), libcam_project(s.camera, s.libcam_rays()))
         .finish(std::move(check));
 }
 
@@ -313,9 +315,9 @@ std::vector<VerifyCheck> check_unproject_mrcal(const Camera& camera, const Sampl
 
     const std::vector<Vec2> pixels = s.pixels_with_ray();
     const std::vector<Vec3> theirs = mrcal_unproject_pixels(camera, pixels);
-    const std::vector<Vec2> ours_reprojected = libcam_project(camera, s.libcam_rays());
+    const std::vector<Vec2> ours_reprojected = libcam_project(s.camera, s.libcam_rays());
     const std::vector<Vec2> theirs_by_mrcal = mrcal_project_points(camera, theirs);
-    const std::vector<Vec2> theirs_by_libcam = libcam_project(camera, theirs);
+    const std::vector<Vec2> theirs_by_libcam = libcam_project(s.camera, theirs);
 
     ErrorField residuals(s.pixels.size()), distances(s.pixels.size());
     std::size_t no_ray = 0, outside_domain = 0;
@@ -378,7 +380,7 @@ VerifyCheck check_round_trip(const Camera& camera, const Samples& s) {
         projected.push_back(i);
         pixels.push_back(s.projected[i].pixel);
     }
-    const std::vector<Unprojection> rays = camera.unproject_pixels(pixels);
+    const std::vector<Unprojection> rays = s.camera.unproject(pixels);
     ErrorField errors(s.pixels.size());
     for (std::size_t k = 0; k < projected.size(); ++k) {
         const std::size_t i = projected[k];

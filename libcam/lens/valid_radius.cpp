@@ -2,7 +2,6 @@
 
 #include <Eigen/Core>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <unsupported/Eigen/Polynomials>
@@ -81,44 +80,6 @@ double smallest_positive_root(std::span<const double> coefficients) {
 
 namespace {
 
-// The root search takes microseconds, and a camera asks for its lens's radius on every
-// call (Camera::project, Camera::ray: each builds the model's parameters), so the last
-// few answers are kept per thread, keyed by the exact coefficients. The function is
-// pure: a hit returns what the search would.
-class RadiusMemo {
-public:
-    const double* find(std::span<const double> p, std::span<const double> q) const {
-        for (const Entry& entry : entries_) {
-            if (entry.used && std::ranges::equal(entry.p(), p) && std::ranges::equal(entry.q(), q)) return &entry.radius;
-        }
-        return nullptr;
-    }
-    void store(std::span<const double> p, std::span<const double> q, double radius) {
-        if (p.size() + q.size() > kMaxKey) return;
-        Entry& entry = entries_[next_];
-        next_ = (next_ + 1) % entries_.size();
-        std::ranges::copy(p, entry.key.begin());
-        std::ranges::copy(q, entry.key.begin() + static_cast<std::ptrdiff_t>(p.size()));
-        entry.p_size = p.size();
-        entry.q_size = q.size();
-        entry.radius = radius;
-        entry.used = true;
-    }
-
-private:
-    static constexpr std::size_t kMaxKey = 16;  // OpenCV's 4 + 4, Kannala-Brandt's 5 + 1
-    struct Entry {
-        std::array<double, kMaxKey> key{};
-        std::size_t p_size = 0, q_size = 0;
-        double radius = 0;
-        bool used = false;
-        std::span<const double> p() const { return {key.data(), p_size}; }
-        std::span<const double> q() const { return {key.data() + p_size, q_size}; }
-    };
-    std::array<Entry, 4> entries_{};
-    std::size_t next_ = 0;
-};
-
 double search_valid_radius(std::span<const double> p, std::span<const double> q) {
     const Polynomial P(p.begin(), p.end());
     const Polynomial Q(q.begin(), q.end());
@@ -131,12 +92,8 @@ double search_valid_radius(std::span<const double> p, std::span<const double> q)
 
 }  // namespace
 
-double radial_valid_radius(std::span<const double> p, std::span<const double> q) {
-    thread_local RadiusMemo memo;
-    if (const double* radius = memo.find(p, q)) return *radius;
-    const double radius = search_valid_radius(p, q);
-    memo.store(p, q, radius);
-    return radius;
-}
+// Microseconds (an eigenvalue problem): worked out once per camera (PreparedCamera,
+// and per evaluation of a fit, whose coefficients change), never per point.
+double radial_valid_radius(std::span<const double> p, std::span<const double> q) { return search_valid_radius(p, q); }
 
 }  // namespace libcam

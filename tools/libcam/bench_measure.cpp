@@ -131,7 +131,7 @@ Outcome reprojection_outcome(const Camera& camera, const std::vector<Vec2>& pixe
     for (std::size_t i = 0; i < directions.size(); ++i) {
         if (has_result[i] && directions[i].allFinite()) usable[i] = directions[i];
     }
-    const std::vector<Projection> projected = camera.project_camera_points(usable);
+    const std::vector<Projection> projected = PreparedCamera(camera).project_camera_points(usable);
     Outcome outcome;
     outcome.total = pixels.size();
     for (std::size_t i = 0; i < pixels.size(); ++i) {
@@ -234,19 +234,24 @@ void add_libcam_unprojection(std::vector<Candidate>& out, const Setup& setup, co
     }
 }
 
-void add_robust_unprojection(std::vector<Candidate>& out, const Setup& setup, Workspace& work) {
-    Candidate c{row(setup, "unproject", "libcam", "robust", "double"), setup.grid.size(), nullptr, nullptr};
-    c.run = [&] { work.unprojections = setup.bench_case.camera.unproject_pixels(setup.grid); };
-    c.outcome = [&] {
-        std::vector<Vec3> directions;
-        std::vector<char> valid;
-        for (const Unprojection& u : work.unprojections) {
-            directions.push_back(u.direction);
-            valid.push_back(u.valid);
-        }
-        return reprojection_outcome(setup.bench_case.camera, setup.grid, directions, valid);
-    };
-    out.push_back(std::move(c));
+// The public call: PreparedCamera::unproject on a list of pixels, as a user calls it
+// (its engine built before timing, as the Unprojector rows' is).
+void add_camera_unprojection(std::vector<Candidate>& out, const Setup& setup, const PreparedCamera& camera,
+                             Workspace& work) {
+    for (int threads : setup.settings.threads) {
+        Candidate c{row(setup, "unproject", "libcam", "camera", "double", threads), setup.grid.size(), nullptr, nullptr};
+        c.run = [&, threads] { work.unprojections = camera.unproject(setup.grid, threads); };
+        c.outcome = [&] {
+            std::vector<Vec3> directions;
+            std::vector<char> valid;
+            for (const Unprojection& u : work.unprojections) {
+                directions.push_back(u.direction);
+                valid.push_back(u.valid);
+            }
+            return reprojection_outcome(setup.bench_case.camera, setup.grid, directions, valid);
+        };
+        out.push_back(std::move(c));
+    }
 }
 
 cv::Mat as_cv_points(const std::vector<Vec2>& pixels) {
@@ -319,9 +324,10 @@ void add_libcam_projection(std::vector<Candidate>& out, const Setup& setup, cons
     }
 }
 
-void add_per_point_projection(std::vector<Candidate>& out, const Setup& setup, Workspace& work) {
-    Candidate c{row(setup, "project", "libcam", "per-point", "double"), setup.rays.points.size(), nullptr, nullptr};
-    c.run = [&] { work.projections = setup.bench_case.camera.project_camera_points(setup.rays.points); };
+void add_camera_projection(std::vector<Candidate>& out, const Setup& setup, const PreparedCamera& camera,
+                           Workspace& work) {
+    Candidate c{row(setup, "project", "libcam", "camera", "double"), setup.rays.points.size(), nullptr, nullptr};
+    c.run = [&] { work.projections = camera.project_camera_points(setup.rays.points); };
     c.outcome = [&] {
         std::vector<Vec2> pixels;
         std::vector<char> valid;
@@ -469,18 +475,20 @@ std::vector<BenchRow> grid_rows(const Setup& setup, const Unprojector<double>& u
     const std::vector<double> mrcal_points = packed_points(setup.rays.points);
     work.mrcal_unprojected.resize(3 * setup.grid.size());
     work.mrcal_projected.resize(2 * setup.rays.points.size());
-    const Projector<double> projector_double(camera);
-    const Projector<float> projector_float(camera);
+    const PreparedCamera prepared(camera);
+    prepared.unprojector();  // built before timing
+    const Projector<double> projector_double(prepared);
+    const Projector<float> projector_float(prepared);
 
     std::vector<Candidate> candidates;
     add_libcam_unprojection(candidates, setup, unprojector_double, pixels_double, work, work.directions_double);
     add_libcam_unprojection(candidates, setup, unprojector_float, pixels_float, work, work.directions_float);
-    add_robust_unprojection(candidates, setup, work);
+    add_camera_unprojection(candidates, setup, prepared, work);
     add_opencv_unprojection(candidates, setup, cv_pixels, work);
     add_mrcal_unprojection(candidates, setup, mrcal_pixels, work);
     add_libcam_projection(candidates, setup, projector_double, points_double, work, work.pixels_double);
     add_libcam_projection(candidates, setup, projector_float, points_float, work, work.pixels_float);
-    add_per_point_projection(candidates, setup, work);
+    add_camera_projection(candidates, setup, prepared, work);
     add_opencv_projection(candidates, setup, cv_points, work);
     add_mrcal_projection(candidates, setup, mrcal_points, work);
     return measure(candidates, setup.settings.repeat);

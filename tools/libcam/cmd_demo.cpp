@@ -76,10 +76,11 @@ std::vector<Check> check_example(const SeedExample& example) {
     std::cout << "  rvec = " << vec(camera.pose.rvec()) << "\n";
     std::cout << "  P    = " << vec(camera.P().reshaped<Eigen::RowMajor>()) << "\n";
 
+    const PreparedCamera prepared(camera);
     for (const Vec2& seed_pixel : example.pixels) {
         const Vec3 seed_d = example.camera.seed_ray(seed_pixel, PixelOrigin::BottomLeft);
         const Vec2 pixel = opencv_pixel(seed_pixel, PixelOrigin::BottomLeft, camera.size);
-        const Ray ray = camera.ray(pixel);
+        const Ray ray = prepared.ray(pixel);
         seed.max_error = std::max(seed.max_error, angle_between(seed_d, ray.direction));
         std::cout << "  seed pixel " << vec(seed_pixel) << ": d = " << vec(seed_d) << "   OpenCV pixel "
                   << vec(pixel) << "\n";

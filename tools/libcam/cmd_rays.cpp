@@ -100,8 +100,9 @@ Runner add_rays(CLI::App& app) {
         const std::optional<FovCamera> fov_camera = seed_camera(file);
 
         std::vector<RayRow> rows;
+        const PreparedCamera camera(file.camera);
         for (const Vec2& pixel : pixels) {
-            RayRow row{pixel, file.camera.ray(opencv_pixel(pixel, origin, file.camera.size)), std::nullopt};
+            RayRow row{pixel, camera.ray(opencv_pixel(pixel, origin, file.camera.size)), std::nullopt};
             if (fov_camera) row.seed_direction = fov_camera->seed_ray(pixel, origin).normalized();
             rows.push_back(row);
         }

@@ -45,7 +45,7 @@ std::vector<double> errors_at(const Camera& source, const FittedModel& chosen, c
     std::vector<double> worst(pixels.size(), std::nan(""));
     ScenePixels rays;
     std::vector<std::size_t> index_of;
-    const std::vector<Unprojection> unprojected = source.unproject_pixels(pixels);
+    const std::vector<Unprojection> unprojected = PreparedCamera(source).unproject(pixels);
     for (std::size_t i = 0; i < pixels.size(); ++i) {
         if (!unprojected[i].valid) continue;
         rays.pixels.push_back(pixels[i]);
@@ -81,7 +81,7 @@ void draw_outline(cv::Mat& image, const Scene& scene, const Camera& source, doub
     // Far outside the picture a point only has to keep its direction; clamping keeps it an int.
     const double reach = 10.0 * std::max(image.cols, image.rows);
     std::vector<cv::Point> points;
-    for (const Vec2& p : scene.outline(source)) {
+    for (const Vec2& p : scene.outline(PreparedCamera(source))) {
         const Vec2 q = (((p.array() + 0.5) / scale - 0.5).max(-reach).min(reach)).matrix();
         points.emplace_back(cvRound(q.x()), cvRound(q.y()));
     }
