@@ -105,12 +105,10 @@ inline std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) {
     return pixels;
 }
 
-// Which reference library has a model (by hand: OpenCV lacks mrcal's three, mrcal lacks
-// FISHEYE and the tilted OPENCV14).
-inline bool in_opencv(LensType type) {
-    return type != LensType::Stereographic && type != LensType::Lonlat && type != LensType::Latlon;
-}
-inline bool in_mrcal(LensType type) { return type != LensType::Fisheye && type != LensType::Opencv14; }
+// Which reference library has a model: the table says (test_lens_models checks the
+// table's mrcal names against libmrcal's own list, and its OpenCV rows against OpenCV).
+inline bool in_opencv(LensType type) { return lens_info(type).opencv != OpenCvFunction::None; }
+inline bool in_mrcal(LensType type) { return !lens_info(type).mrcal.empty(); }
 
 // The pixels of camera-frame rays by the reference library that has the model: OpenCV
 // for its models (z > 0), mrcal for its own. FISHEYE rays past 90 degrees, which
@@ -121,7 +119,7 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
     std::vector<Vec2> pixels = opencv_project_points(camera, rays);
     for (std::size_t i = 0; i < rays.size(); ++i) {
         if (rays[i].z() <= 0) {
-            const Projection p = camera.project_camera_point(rays[i]);
+            const Projection p = PreparedCamera(camera).project_camera_point(rays[i]);
             pixels[i] = p.valid ? p.pixel : Vec2::Constant(std::numeric_limits<double>::infinity());
         }
     }

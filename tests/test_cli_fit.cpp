@@ -122,19 +122,19 @@ TEST_CASE("fit -o writes the chosen camera, and an independent check finds it wi
     Files files;
     const std::string out = (files.dir / "chosen.yaml").string();
     const json report = fit_json({files.mild, "--radius", "300", "--center", "700,500", "--tolerance", "0.02", "-o", out});
-    const libcam::Camera source = libcam::read_camera_file(files.mild).camera;
-    const libcam::Camera chosen = libcam::read_camera_file(out).camera;
+    const libcam::PreparedCamera source(libcam::read_camera_file(files.mild).camera);
+    const libcam::PreparedCamera chosen(libcam::read_camera_file(out).camera);
     const std::string model = report.at("chosen").at("model");
-    CHECK(libcam::lens_info(chosen.lens.type).name == (model == "FOV" ? "PINHOLE" : model));
+    CHECK(libcam::lens_info(chosen.camera().lens.type).name == (model == "FOV" ? "PINHOLE" : model));
 
     double worst = 0.0;
     for (double y = 200.0; y <= 800.0; y += 3.0) {
         for (double x = 400.0; x <= 1000.0; x += 3.0) {
             const libcam::Vec2 pixel(x, y);
             if ((pixel - libcam::Vec2(700, 500)).norm() > 300.0) continue;
-            libcam::Vec3 ray;
-            REQUIRE(source.unproject(pixel, ray));
-            const libcam::Projection back = chosen.project(ray);
+            const libcam::Unprojection ray = source.unproject(pixel);
+            REQUIRE(ray.valid);
+            const libcam::Projection back = chosen.project(ray.direction);
             REQUIRE(back.valid);
             worst = std::max(worst, (back.pixel - pixel).norm());
         }

@@ -112,7 +112,7 @@ struct FovSweepWorst {
     Worst focal_double, focal_float;                 // fx, fy, ulps of their own type
     Worst seed_rad_double, seed_rad_float;           // seed ray, angle
     Worst seed_px_double, seed_px_float;             // seed ray, pixels
-    Worst calibrated_rad, calibrated_px;             // Camera::ray (double only)
+    Worst calibrated_rad, calibrated_px;             // PreparedCamera::ray (double only)
     Worst fov_back;                                  // K -> fov, ulps of double against the input fov
     double px_scale_double = 0, px_scale_float = 0;  // the largest pixel_conditioning seen
 };
@@ -126,6 +126,7 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
     for (int i = 0; i < 2; ++i) worst.focal_double.update(ulps(pinhole_d.focal(i), pinhole_q.focal(i)), where);
 
     const Camera calibrated = to_camera(camera);
+    const PreparedCamera prepared(calibrated);
     const SeedRayFormula seed_d = camera.seed_formula();
     for (const Vec2& pixel : probe_pixels(camera.size)) {
         const auto at = [&] {
@@ -135,7 +136,7 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
         worst.px_scale_double = std::max(worst.px_scale_double, pixel_conditioning(pinhole_q, pixel, kEpsDouble));
         worst.seed_rad_double.update(rad, at);
         worst.seed_px_double.update(px, at);
-        const auto [c_rad, c_px] = ray_errors<double>(calibrated.ray(pixel).direction, pinhole_q, seed_q, pixel);
+        const auto [c_rad, c_px] = ray_errors<double>(prepared.ray(pixel).direction, pinhole_q, seed_q, pixel);
         worst.calibrated_rad.update(c_rad, at);
         worst.calibrated_px.update(c_px, at);
     }
@@ -261,7 +262,7 @@ std::vector<Row> far_eye_rows() {
                         where);
         const Vec2Q pixel_q(q.focal.x() * target_q.x() / target_q.z() + q.principal_point.x(),
                             q.focal.y() * target_q.y() / target_q.z() + q.principal_point.y());
-        pixel_d.update(static_cast<double>((calibrated.project(target).pixel.cast<Quad>() - pixel_q).norm()), where);
+        pixel_d.update(static_cast<double>((PreparedCamera(calibrated).project(target).pixel.cast<Quad>() - pixel_q).norm()), where);
         // Float, from the float-rounded inputs.
         const FovCamera camera_f = rounded_to_float(camera);
         const Vec3 target_f = target.cast<float>().cast<double>();

@@ -20,11 +20,11 @@ using namespace libcam::test;
 
 namespace {
 
-// Double, through Camera::unproject_pixels; the reference from the exact pixel. The
+// Double, through PreparedCamera::unproject; the reference from the exact pixel. The
 // pixel error is where the computed ray lands in the reference camera.
 void unproject_double(const std::string& name, const Camera& camera, const std::vector<Vec2>& pixels,
                       UnprojectionWorst& worst) {
-    const std::vector<Unprojection> rays = camera.unproject_pixels(pixels);
+    const std::vector<Unprojection> rays = PreparedCamera(camera).unproject(pixels);
     std::vector<Vec2Q> normalized;
     for (const Vec2& pixel : pixels) normalized.push_back(normalized_q(camera.intrinsics, pixel));
     const std::vector<Unprojected<Quad>> reference = unproject_all<Quad>(camera.lens, normalized);
@@ -246,9 +246,10 @@ std::vector<Row> camera_plane_rows() {
         project_both(c.camera.lens, points, lens_info(c.camera.lens.type).sees_behind_camera ? behind : perspective,
                      c.name);
         if (lens_info(c.camera.lens.type).sees_behind_camera) continue;
+        const PreparedCamera camera(c.camera);
         for (std::size_t i = 0; i < points.size(); ++i) {
             if (points[i].z() > 0) continue;
-            perspective_behind_valid += c.camera.project_camera_point(points[i]).valid ? 1 : 0;
+            perspective_behind_valid += camera.project_camera_point(points[i]).valid ? 1 : 0;
         }
     }
     // 16 ulps: at r = |(x/z, y/z)| ~ 1e3..1e4 (z = 1e-4 here) the OpenCV model's own terms
@@ -295,7 +296,7 @@ std::vector<Row> scale_rows() {
     for (const LensCase& c : fisheye_lenses()) cases.push_back(c);
     const std::vector<Vec3> points = points_at_every_scale();
     for (const LensCase& c : cases) {
-        const std::vector<Projection> projections = c.camera.project_camera_points(points);
+        const std::vector<Projection> projections = PreparedCamera(c.camera).project_camera_points(points);
         const std::vector<Projected<Quad>> reference = project_all<Quad>(c.camera.lens, cast_all<Quad>(points));
         for (std::size_t i = 0; i < points.size(); ++i) {
             const Vec2Q expected_pixel = pixel_q(c.camera.intrinsics, reference[i].m);
@@ -328,17 +329,18 @@ std::vector<Row> scale_rows() {
 
 void sweep_lens(const Camera& camera, SweepCount& in_double, SweepCount& in_float) {
     const std::vector<Vec3> points = sweep_points();
-    const std::vector<Projection> projections = camera.project_camera_points(points);
+    const PreparedCamera prepared(camera);
+    const std::vector<Projection> projections = prepared.project_camera_points(points);
     for (std::size_t i = 0; i < points.size(); ++i) {
         in_double.add(projections[i].valid, projections[i].pixel.allFinite(),
                       describe_camera(camera) + " project " + show(points[i]));
     }
     const std::vector<Vec2> pixels = sweep_pixels(camera);
-    const std::vector<Unprojection> rays = camera.unproject_pixels(pixels);
+    const std::vector<Unprojection> rays = prepared.unproject(pixels);
     for (std::size_t i = 0; i < pixels.size(); ++i) {
         const bool finite = rays[i].direction.allFinite() && !rays[i].direction.isZero(0.0);
         in_double.add(rays[i].valid, finite, describe_camera(camera) + " unproject " + show(pixels[i]));
-        const Ray ray = camera.ray(pixels[i]);
+        const Ray ray = prepared.ray(pixels[i]);
         in_double.add(ray.valid, ray.direction.allFinite() && ray.origin.allFinite(),
                       describe_camera(camera) + " ray " + show(pixels[i]));
     }
@@ -379,8 +381,9 @@ void sweep_fov(SweepCount& in_double) {
                         camera.intrinsics.K().allFinite() && camera.pose.R.allFinite() && camera.pose.t.allFinite();
                     in_double.add(true, finite,
                                   "FOV camera fov " + std::to_string(fov) + " eye " + std::to_string(eye_scale));
+                    const PreparedCamera prepared(camera);
                     for (const Vec2& pixel : corner_pixels(size)) {
-                        const Ray ray = camera.ray(pixel);
+                        const Ray ray = prepared.ray(pixel);
                         in_double.add(ray.valid, ray.direction.allFinite() && ray.origin.allFinite(),
                                       "FOV camera ray " + show(pixel));
                         const Vec3 seed = fov_camera.seed_ray(pixel, PixelOrigin::TopLeft);

@@ -91,7 +91,7 @@ std::vector<Vec2> dense_pixels(const ImageSize& size, const Lattice& lattice, in
 double independent_max_error(const Camera& source, const Camera& fitted, const SceneTruth& truth,
                              const Lattice& fit_lattice, int density, const std::vector<double>& depths) {
     const std::vector<Vec2> pixels = dense_pixels(source.size, fit_lattice, density, truth.box(source.size));
-    const std::vector<Unprojection> rays = source.unproject_pixels(pixels);
+    const std::vector<Unprojection> rays = PreparedCamera(source).unproject(pixels);
     std::vector<Vec3> points;  // in the fitted camera's frame
     std::vector<Vec2> expected;
     for (std::size_t i = 0; i < pixels.size(); ++i) {
@@ -103,7 +103,7 @@ double independent_max_error(const Camera& source, const Camera& fitted, const S
         }
     }
     REQUIRE(points.size() > 1000);
-    const std::vector<Projection> projections = fitted.project_camera_points(points);
+    const std::vector<Projection> projections = PreparedCamera(fitted).project_camera_points(points);
     double worst = 0.0;
     std::size_t invalid = 0;
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -254,7 +254,8 @@ TEST_CASE("scene samples: the lattice inside the scene and its boundary, and a d
     const Vec2 centre(700.0, 500.0);
     const double radius = 300.0;
     const Lattice lattice{33, 25};  // steps of 1599/32 and 1199/24 px
-    const SceneSampling sampling = sample_scene(source, Scene::circle(radius, centre), lattice);
+    const PreparedCamera prepared(source);
+    const SceneSampling sampling = sample_scene(prepared, Scene::circle(radius, centre), lattice);
 
     const ScenePixels& fit = sampling.fit;
     REQUIRE(fit.boundary_count > 0);
@@ -268,9 +269,9 @@ TEST_CASE("scene samples: the lattice inside the scene and its boundary, and a d
             CHECK(std::abs(p.x() / step_x - std::round(p.x() / step_x)) < 1e-9);
             CHECK(std::abs(p.y() / step_y - std::round(p.y() / step_y)) < 1e-9);
         }
-        Vec3 expected;
-        REQUIRE(source.unproject(p, expected));
-        CHECK(fit.directions[i].isApprox(expected.normalized(), 1e-15));
+        const Unprojection expected = prepared.unproject(p);
+        REQUIRE(expected.valid);
+        CHECK(fit.directions[i].isApprox(expected.direction.normalized(), 1e-15));
     }
     // Lattice points inside the disc: about its area over a cell's.
     const double interior = static_cast<double>(fit.pixels.size() - fit.boundary_count);
@@ -281,13 +282,14 @@ TEST_CASE("scene samples: the lattice inside the scene and its boundary, and a d
 }
 
 TEST_CASE("a field-angle scene holds the pixels whose rays are within the angle, its edge at the angle") {
-    const Camera source = libcam::test::wide_reference_camera();
+    const PreparedCamera source(libcam::test::wide_reference_camera());
     const SceneSampling sampling = sample_scene(source, Scene::field_angle(30.0));
     const ScenePixels& fit = sampling.fit;
     REQUIRE(fit.boundary_count > 16);
     for (std::size_t i = 0; i < fit.pixels.size(); ++i) {
-        Vec3 ray;
-        REQUIRE(source.unproject(fit.pixels[i], ray));
+        const Unprojection unprojection = source.unproject(fit.pixels[i]);
+        REQUIRE(unprojection.valid);
+        const Vec3& ray = unprojection.direction;
         const double angle_deg = std::atan2(ray.head<2>().norm(), ray.z()) * 180.0 / std::numbers::pi;
         CHECK(angle_deg <= 30.0 + 1e-7);
         if (i < fit.boundary_count) CHECK(angle_deg == Approx(30.0).epsilon(1e-9));

@@ -38,15 +38,17 @@ constexpr double kSameMinimum = 1e-9;
 // mrcal-convert-lensmodel's sample set, by its own recipe (see the file comment).
 std::vector<Observation> mrcal_samples(const Camera& source, double radius, const std::vector<double>& distances) {
     const Vec2 centre((source.size.width - 1) / 2.0, (source.size.height - 1) / 2.0);
+    const PreparedCamera prepared(source);
     ScenePixels pixels;
     for (long j = 0; j < kMrcalGrid.rows; ++j) {
         for (long i = 0; i < kMrcalGrid.columns; ++i) {
             const Vec2 q(static_cast<double>(source.size.width - 1) * i / (kMrcalGrid.columns - 1),
                          static_cast<double>(source.size.height - 1) * j / (kMrcalGrid.rows - 1));
-            Vec3 direction;
-            if ((q - centre).squaredNorm() < radius * radius && source.unproject(q, direction)) {
+            if ((q - centre).squaredNorm() >= radius * radius) continue;
+            const Unprojection ray = prepared.unproject(q);
+            if (ray.valid) {
                 pixels.pixels.push_back(q);
-                pixels.directions.push_back(direction.normalized());
+                pixels.directions.push_back(ray.direction.normalized());
             }
         }
     }
@@ -62,8 +64,9 @@ struct MrcalFit {
 double rms_through(const Camera& camera, const std::vector<Observation>& observations) {
     double sum = 0.0;
     std::size_t invalid = 0;
+    const PreparedCamera prepared(camera);
     for (const Observation& o : observations) {
-        const Projection p = camera.project(o.point);
+        const Projection p = prepared.project(o.point);
         invalid += p.valid ? 0 : 1;
         sum += (p.pixel - o.pixel).squaredNorm();
     }

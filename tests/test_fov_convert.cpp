@@ -109,7 +109,7 @@ TEST_CASE("rays both ways agree on every pixel of a 1920x1080 image") {
         const ImageSize size = i < 16 ? ImageSize{1920, 1080} : ImageSize{i % 2 ? 300L : 2400L, i % 2 ? 2400L : 300L};
         const FovCamera fov = test::random_fov_camera(size, test::random_axis(i));
         const PixelOrigin origin = i % 2 == 0 ? PixelOrigin::BottomLeft : PixelOrigin::TopLeft;
-        const Camera camera = to_camera(fov);
+        const PreparedCamera camera(to_camera(fov));
         const SeedRayFormula seed = fov.seed_formula();
         for (long y = 0; y < size.height; ++y) {
             for (long x = 0; x < size.width; ++x) {

@@ -15,6 +15,8 @@
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/mrcal_c.hpp"
 #include "libcam/interop/opencv.hpp"
+#include "libcam/camera/projector.hpp"
+#include "libcam/camera/unprojector.hpp"
 #include "libcam/lens/lens_models.hpp"
 #include "support.hpp"
 
@@ -72,10 +74,13 @@ std::vector<Vec3> sample_points(const Camera& camera, double max_degrees) {
 
 TEST_CASE("The model table agrees with mrcal's metadata for every model both have") {
     for (const LensInfo& info : lens_models()) {
+        INFO(info.name);
+        // The table's mrcal column names exactly the models libmrcal itself knows by that name.
+        CHECK(mrcal_has(info.type) == !info.mrcal.empty());
         if (!mrcal_has(info.type)) continue;
+        CHECK(info.mrcal == "LENSMODEL_" + std::string(info.name));
         mrcal_lensmodel_t model;
         REQUIRE(mrcal_lensmodel_from_name(&model, ("LENSMODEL_" + std::string(info.name)).c_str()));
-        INFO(info.name);
         CHECK(mrcal_lensmodel_num_params(&model) == 4 + info.num_coefficients);
         CHECK(mrcal_lensmodel_metadata(&model).can_project_behind_camera == info.sees_behind_camera);
     }
@@ -88,7 +93,8 @@ TEST_CASE("Projection agrees with cv::projectPoints / cv::fisheye::projectPoints
     for (const LensCase& c : lens_cases()) {
         INFO(c.name);
         const std::vector<Vec3> front = sample_points(c.camera, 89.5);
-        const std::vector<Projection> ours = c.camera.project_camera_points(front);
+        const PreparedCamera camera(c.camera);
+        const std::vector<Projection> ours = camera.project_camera_points(front);
         for (const Projection& p : ours) REQUIRE(p.valid);
         double worst_cv = 0, worst_mrcal = 0;
         if (in_opencv(c.camera.lens.type)) {
@@ -100,7 +106,7 @@ TEST_CASE("Projection agrees with cv::projectPoints / cv::fisheye::projectPoints
             // stereographic |p| + z cancels (libcam's does not; checked by hand below).
             const bool behind = lens_info(c.camera.lens.type).sees_behind_camera;
             const std::vector<Vec3> points = behind ? sample_points(c.camera, 150.0) : front;
-            const std::vector<Projection> ours_all = c.camera.project_camera_points(points);
+            const std::vector<Projection> ours_all = camera.project_camera_points(points);
             const std::vector<Vec2> mrcal_pixels = mrcal_project_points(c.camera, points);
             for (std::size_t i = 0; i < points.size(); ++i) {
                 REQUIRE(ours_all[i].valid);
@@ -148,7 +154,7 @@ TEST_CASE("STEREOGRAPHIC stays accurate near the backward axis: m = 2 tan(theta 
 TEST_CASE("Points behind the camera and on its plane are flagged, not mirrored as cv::projectPoints does") {
     const Camera camera = lens_camera(LensType::Opencv5, {-0.05, 0.01, 2e-4, -3e-4, 0.001});
     const std::vector<Vec3> points{{0.3, -0.2, 0.0}, {0.3, -0.2, -1.0}, {0.0, 0.0, -2.0}, {0.0, 0.0, 0.0}};
-    for (const Projection& p : camera.project_camera_points(points)) CHECK_FALSE(p.valid);
+    for (const Projection& p : PreparedCamera(camera).project_camera_points(points)) CHECK_FALSE(p.valid);
     // What OpenCV does instead: (x, y, -1) lands where (-x, -y, 1) does.
     const std::vector<Vec2> cv_pixels = opencv_project_points(camera, {{0.3, -0.2, -1.0}, {-0.3, 0.2, 1.0}});
     CHECK((cv_pixels[0] - cv_pixels[1]).norm() < 1e-9);
@@ -157,7 +163,7 @@ TEST_CASE("Points behind the camera and on its plane are flagged, not mirrored a
         if (!info.sees_behind_camera) {
             const Camera c = lens_camera(info.type, std::vector<double>(static_cast<std::size_t>(info.num_coefficients), 0.0));
             INFO(info.name);
-            for (const Projection& p : c.project_camera_points(points)) CHECK_FALSE(p.valid);
+            for (const Projection& p : PreparedCamera(c).project_camera_points(points)) CHECK_FALSE(p.valid);
         }
     }
     struct Expectation {
@@ -176,7 +182,7 @@ TEST_CASE("Points behind the camera and on its plane are flagged, not mirrored a
     for (const Expectation& e : expectations) {
         const Camera c = lens_camera(e.type, std::vector<double>(static_cast<std::size_t>(lens_info(e.type).num_coefficients), 0.0));
         INFO(lens_info(e.type).name << " " << e.point.transpose());
-        CHECK(c.project_camera_point(e.point).valid == e.valid);
+        CHECK(PreparedCamera(c).project_camera_point(e.point).valid == e.valid);
     }
 }
 
@@ -359,8 +365,9 @@ TEST_CASE("a lens with the wrong number of coefficients is refused and never rea
     camera.intrinsics = {500.0, 500.0, 319.5, 239.5, 0.0};
     camera.lens.type = LensType::Opencv8;
     camera.lens.coefficients = {0.1, 0.01, 0.0};  // OPENCV8 takes 8
-    REQUIRE_THROWS_WITH(camera.project_camera_point(Vec3(0.1, 0.2, 1.0)),
+    // Refused when the camera is prepared, before any point or pixel is computed.
+    REQUIRE_THROWS_WITH(PreparedCamera(camera),
                         Catch::Matchers::Contains("dist") && Catch::Matchers::Contains("8 coefficients, got 3"));
-    Vec3 ray;
-    REQUIRE_THROWS_AS(camera.unproject(Vec2(100.0, 100.0), ray), InvalidArgument);
+    REQUIRE_THROWS_AS(Unprojector<double>(camera), InvalidArgument);
+    REQUIRE_THROWS_AS(Projector<double>(camera), InvalidArgument);
 }

@@ -167,7 +167,7 @@ TEST_CASE("A hand-written .cameramodel reads into libcam with mrcal's meaning", 
     const Vec3 p = camera.pose.camera_from_world(Vec3(1, 0, 5));
     CHECK((p - Vec3(1, 3, 8)).norm() <= 1e-15);
     // Pixel by hand: (1234.5 * 1/8 + 639.5, 1100.25 * 3/8 + 359.5).
-    const Projection q = camera.project(Vec3(1, 0, 5));
+    const Projection q = PreparedCamera(camera).project(Vec3(1, 0, 5));
     REQUIRE(q.valid);
     CHECK(std::abs(q.pixel.x() - (1234.5 / 8 + 639.5)) <= 1e-12);
     CHECK(std::abs(q.pixel.y() - (1100.25 * 3 / 8 + 359.5)) <= 1e-12);
@@ -184,8 +184,9 @@ TEST_CASE("mrcal_project of camera-frame points along each ray returns the pixel
         REQUIRE(model != nullptr);
         CAPTURE(camera.size.width, camera.size.height, camera.intrinsics.fx, camera.intrinsics.fy);
 
+        const PreparedCamera prepared(camera);
         for (const Vec2& pixel : pixel_grid(camera.size)) {
-            const Ray ray = camera.ray(pixel);
+            const Ray ray = prepared.ray(pixel);
             REQUIRE(ray.valid);
             const Vec3 direction = camera.pose.R * ray.direction;  // camera frame, unit
             std::vector<Vec3> points;
@@ -197,7 +198,7 @@ TEST_CASE("mrcal_project of camera-frame points along each ray returns the pixel
                 CHECK((by_mrcal[i] - pixel).cwiseAbs().maxCoeff() <= 1e-9);
                 CHECK(by_wrapper[i] == by_mrcal[i]);
                 // libcam's own projection agrees too.
-                const Projection own = camera.project_camera_point(points[i]);
+                const Projection own = prepared.project_camera_point(points[i]);
                 REQUIRE(own.valid);
                 CHECK((own.pixel - by_mrcal[i]).cwiseAbs().maxCoeff() <= 1e-9);
                 ++checked;
@@ -232,13 +233,14 @@ TEST_CASE("mrcal_unproject gives libcam's ray direction", "[mrcal]") {
         const mrcal_lensmodel_t model = pinhole_model();
         const double intrinsics[4] = {camera.intrinsics.fx, camera.intrinsics.fy, camera.intrinsics.cx, camera.intrinsics.cy};
         REQUIRE(mrcal_unproject(v.data(), q.data(), static_cast<int>(q.size()), &model, intrinsics));
+        const PreparedCamera prepared(camera);
         for (std::size_t i = 0; i < pixels.size(); ++i) {
             const Vec3 expected = Vec3(v[i].x, v[i].y, v[i].z).normalized();
-            Vec3 direction;
-            REQUIRE(camera.unproject(pixels[i], direction));
+            const Unprojection unprojection = prepared.unproject(pixels[i]);
+            REQUIRE(unprojection.valid);
             CAPTURE(pixels[i].x(), pixels[i].y());
-            CHECK((direction.normalized() - expected).norm() <= 1e-13);
-            const Ray ray = camera.ray(pixels[i]);
+            CHECK((unprojection.direction.normalized() - expected).norm() <= 1e-13);
+            const Ray ray = prepared.ray(pixels[i]);
             CHECK((camera.pose.R * ray.direction - expected).norm() <= 1e-13);
             CHECK((ray.origin - camera.pose.centre()).norm() == 0.0);
         }

@@ -115,15 +115,16 @@ double max_abs(const Mat3& m) { return m.cwiseAbs().maxCoeff(); }
 
 }  // namespace
 
-TEST_CASE("cv::projectPoints maps points along camera.ray(pixel) back to the pixel", "[opencv]") {
+TEST_CASE("cv::projectPoints maps points along the ray through a pixel back to the pixel", "[opencv]") {
     const std::vector<double> depths{0.5, 3.0, 100.0, 1e4};
     int checked = 0;
     double worst_over_tolerance = 0.0;
     for (const FovCamera& fov : test_cameras()) {
         const Camera camera = to_camera(fov);
+        const PreparedCamera prepared(camera);
         CAPTURE(fov.size.width, fov.size.height, fov.fov_deg, to_string(fov.fov_axis));
         for (const Vec2& pixel : pixel_grid(fov.size)) {
-            const Ray ray = camera.ray(pixel);
+            const Ray ray = prepared.ray(pixel);
             REQUIRE(ray.valid);
             std::vector<Vec3> world;
             for (double depth : depths) world.push_back(ray.origin + depth * ray.direction);
@@ -151,9 +152,10 @@ TEST_CASE("cv::projectPoints meets 1e-9 px flat when the camera sits near the or
                                    : random_fov_camera(kSizes[i % 3], libcam::test::random_axis(i));
         fov.eye = libcam::test::random_vector(1.0);
         const Camera camera = to_camera(fov);
+        const PreparedCamera prepared(camera);
         CAPTURE(fov.size.width, fov.size.height, fov.fov_deg, to_string(fov.fov_axis));
         for (const Vec2& pixel : pixel_grid(fov.size)) {
-            const Ray ray = camera.ray(pixel);
+            const Ray ray = prepared.ray(pixel);
             std::vector<Vec3> world;
             for (double depth : {0.5, 3.0, 100.0, 1e4}) world.push_back(ray.origin + depth * ray.direction);
             const std::vector<Vec2> projected = cv_project(world, camera);
@@ -214,9 +216,10 @@ TEST_CASE("cv::undistortPoints with no distortion is K^-1 [x, y, 1]", "[opencv]"
             CHECK((by_inverse - libcam_normalized).cwiseAbs().maxCoeff() <= 1e-12);
             CHECK(std::abs(h.at<double>(2) - 1.0) <= 1e-15);
 
-            // camera.unproject returns the same K^-1 [x, y, 1] with z = 1.
-            Vec3 direction;
-            REQUIRE(camera.unproject(pixels[i], direction));
+            // PreparedCamera::unproject returns the same K^-1 [x, y, 1] with z = 1.
+            const Unprojection unprojection = PreparedCamera(camera).unproject(pixels[i]);
+            REQUIRE(unprojection.valid);
+            const Vec3& direction = unprojection.direction;
             CHECK(direction.z() == 1.0);
             CHECK((direction.head<2>() - by_opencv).cwiseAbs().maxCoeff() <= 1e-12);
         }

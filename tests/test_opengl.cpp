@@ -67,13 +67,14 @@ TEST_CASE("the GL pipeline and K [R | t] land on the same pixel") {
         const Camera camera = random_camera(i % 3 == 0, i % 5 == 0);
         const DepthRange range = i % 2 ? DepthRange::ZeroToOne : DepthRange::MinusOneToOne;
         const GlCamera gl = to_opengl(camera, 0.01, 1e5, range);
+        const PreparedCamera prepared(camera);
         for (int j = 0; j < 200; ++j) {
             // A pixel anywhere on the image (edges included), at a depth in front.
             const Vec2 pixel(test::uniform(-0.5, static_cast<double>(camera.size.width) - 0.5),
                              test::uniform(-0.5, static_cast<double>(camera.size.height) - 0.5));
-            const Ray ray = camera.ray(pixel);
+            const Ray ray = prepared.ray(pixel);
             const Vec3 point = ray.origin + test::uniform(0.1, 1000.0) * ray.direction;
-            const Projection cv = camera.project(point);
+            const Projection cv = prepared.project(point);
             const GlWindowPoint window = gl_project(gl, point);
             REQUIRE(cv.valid);
             REQUIRE(window.valid);

@@ -30,7 +30,7 @@ FovCamera seed_camera_2() { return FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 
 // The world ray through an OpenCV pixel by the calibrated path, scaled so it can be
 // compared with the seed's unnormalised d.
 Vec3 calibrated_ray_like(const Camera& camera, const Vec2& seed_pixel, const Vec3& seed_d) {
-    const Ray ray = camera.ray(opencv_pixel(seed_pixel, PixelOrigin::BottomLeft, camera.size));
+    const Ray ray = PreparedCamera(camera).ray(opencv_pixel(seed_pixel, PixelOrigin::BottomLeft, camera.size));
     REQUIRE(ray.valid);
     return ray.direction * seed_d.norm();
 }
@@ -157,7 +157,7 @@ TEST_CASE("CONVENTIONS: seed pixel (0, 0) is the lower-left pixel, OpenCV pixel 
     const Camera camera = to_camera(seed_camera_1());
     // Its ray is (-2/3, -2/3, -1) (CONVENTIONS.md section 2).
     const Vec3 expected = Vec3(-2.0 / 3, -2.0 / 3, -1).normalized();
-    require_near(camera.ray({0, 2}).direction, expected);
+    require_near(PreparedCamera(camera).ray({0, 2}).direction, expected);
     require_near(seed_camera_1().seed_ray({0, 2}, PixelOrigin::TopLeft).normalized(), expected);
 }
 
