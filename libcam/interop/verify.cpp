@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <thread>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <utility>
 
+#include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/heatmap.hpp"
 #include "libcam/interop/mrcal.hpp"
@@ -56,6 +58,7 @@ std::vector<Vec2> pixel_grid(const ImageSize& size, long columns, long rows) {
 // with libcam's projection of them.
 struct Samples {
     PreparedCamera camera;  // every libcam projection and unprojection goes through it
+    int threads = 1;        // each library's calls are split over this many
     std::vector<Vec2> pixels;
     std::vector<Unprojection> rays;
     std::vector<std::size_t> with_ray;  // indices of the pixels libcam has a ray through
@@ -75,10 +78,14 @@ struct Samples {
     }
 };
 
+int threads_to_use(int requested) {
+    return requested > 0 ? requested : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 Samples make_samples(const Camera& camera, const VerifyOptions& options) {
-    Samples s{PreparedCamera(camera)};
+    Samples s{PreparedCamera(camera), threads_to_use(options.threads)};
     s.pixels = pixel_grid(camera.size, options.grid_columns, options.grid_rows);
-    s.rays = s.camera.unproject(s.pixels);
+    s.rays = s.camera.unproject(s.pixels, s.threads);
     for (std::size_t i = 0; i < s.pixels.size(); ++i) {
         if (!s.rays[i].valid) continue;
         s.with_ray.push_back(i);
@@ -125,10 +132,37 @@ std::string opencv_undistort_name(const Camera& camera) {
     return is_fisheye(camera) ? "cv::fisheye::undistortPoints" : "cv::undistortPoints";
 }
 
+// f(part) for consecutive parts of `inputs`, on `threads` threads, concatenated: each
+// library maps every point on its own, so the result is the same for any split.
+template <class Output, class Input, class Map>
+std::vector<Output> in_parts(int threads, const std::vector<Input>& inputs, Map map) {
+    constexpr std::size_t kSmallestPart = 4096;
+    std::vector<Output> outputs(inputs.size());
+    parallel_chunks(inputs.size(), threads, kSmallestPart, [&](std::size_t begin, std::size_t end) {
+        const std::vector<Input> part(inputs.begin() + static_cast<std::ptrdiff_t>(begin),
+                                      inputs.begin() + static_cast<std::ptrdiff_t>(end));
+        const std::vector<Output> mapped = map(part);
+        std::copy(mapped.begin(), mapped.end(), outputs.begin() + static_cast<std::ptrdiff_t>(begin));
+    });
+    return outputs;
+}
+
+std::vector<Vec2> opencv_project(const Camera& camera, const std::vector<Vec3>& points, int threads) {
+    return in_parts<Vec2>(threads, points, [&](const std::vector<Vec3>& part) { return opencv_project_points(camera, part); });
+}
+
+std::vector<Vec2> mrcal_project(const Camera& camera, const std::vector<Vec3>& points, int threads) {
+    return in_parts<Vec2>(threads, points, [&](const std::vector<Vec3>& part) { return mrcal_project_points(camera, part); });
+}
+
+std::vector<Vec3> mrcal_unproject(const Camera& camera, const std::vector<Vec2>& pixels, int threads) {
+    return in_parts<Vec3>(threads, pixels, [&](const std::vector<Vec2>& part) { return mrcal_unproject_pixels(camera, part); });
+}
+
 // Rays (x, y, 1) by cv::undistortPoints (cv::fisheye::undistortPoints for FISHEYE), at
 // the function's default stopping rule when `criteria` is empty.
-std::vector<Vec3> opencv_undistort(const Camera& camera, const std::vector<Vec2>& pixels,
-                                   const std::optional<cv::TermCriteria>& criteria) {
+std::vector<Vec3> opencv_undistort_part(const Camera& camera, const std::vector<Vec2>& pixels,
+                                        const std::optional<cv::TermCriteria>& criteria) {
     if (pixels.empty()) return {};
     std::vector<cv::Point2d> in, out;
     for (const Vec2& p : pixels) in.emplace_back(p.x(), p.y());
@@ -144,6 +178,12 @@ std::vector<Vec3> opencv_undistort(const Camera& camera, const std::vector<Vec2>
     std::vector<Vec3> rays;
     for (const cv::Point2d& q : out) rays.emplace_back(q.x, q.y, 1.0);
     return rays;
+}
+
+std::vector<Vec3> opencv_undistort(const Camera& camera, const std::vector<Vec2>& pixels,
+                                   const std::optional<cv::TermCriteria>& criteria, int threads) {
+    return in_parts<Vec3>(threads, pixels,
+                          [&](const std::vector<Vec2>& part) { return opencv_undistort_part(camera, part, criteria); });
 }
 
 // libcam's pixels of camera-frame points; NaN for a point outside the lens's domain.
@@ -251,7 +291,7 @@ VerifyCheck check_project_opencv(const Camera& camera, const Samples& s, const s
     // cv::fisheye::projectPoints folds them forward: only points in front are comparable.
     return compare_projection(
         std::move(check), s, [](const Vec3& p) { return p.z() > 0.0; },
-        [&](const std::vector<Vec3>& points) { return opencv_project_points(camera, points); },
+        [&](const std::vector<Vec3>& points) { return opencv_project(camera, points, s.threads); },
         "behind the camera, or outside libcam's domain");
 }
 
@@ -260,7 +300,7 @@ VerifyCheck check_project_mrcal(const Camera& camera, const Samples& s, const st
     if (lacks) return skip(std::move(check), *lacks);
     return compare_projection(
         std::move(check), s, [](const Vec3&) { return true; },
-        [&](const std::vector<Vec3>& points) { return mrcal_project_points(camera, points); },
+        [&](const std::vector<Vec3>& points) { return mrcal_project(camera, points, s.threads); },
         "outside libcam's domain");
 }
 
@@ -287,7 +327,7 @@ VerifyCheck check_unproject_libcam_opencv(const Camera& camera, const Samples& s
         pixels.push_back(s.pixels[i]);
         rays.push_back(s.rays[i].direction);
     }
-    VerifyCheck out = reprojection_errors(s.pixels.size(), in_front, pixels, opencv_project_points(camera, rays))
+    VerifyCheck out = reprojection_errors(s.pixels.size(), in_front, pixels, opencv_project(camera, rays, s.threads))
                           .finish(std::move(check));
     out.note = count_note(s.with_ray.size() - in_front.size(), "rays behind the camera not compared");
     return out;
@@ -298,7 +338,7 @@ VerifyCheck check_unproject_libcam_mrcal(const Camera& camera, const Samples& s,
     VerifyCheck check = new_check(verify_check::unproject_libcam_mrcal, "libcam, reprojected by mrcal_project", kExactPx);
     if (lacks) return skip(std::move(check), *lacks);
     return reprojection_errors(s.pixels.size(), s.with_ray, s.pixels_with_ray(),
-                               mrcal_project_points(camera, s.libcam_rays()))
+                               mrcal_project(camera, s.libcam_rays(), s.threads))
         .finish(std::move(check));
 }
 
@@ -314,9 +354,9 @@ std::vector<VerifyCheck> check_unproject_mrcal(const Camera& camera, const Sampl
     if (lacks) return {skip(std::move(residual), *lacks), skip(std::move(agreement), *lacks)};
 
     const std::vector<Vec2> pixels = s.pixels_with_ray();
-    const std::vector<Vec3> theirs = mrcal_unproject_pixels(camera, pixels);
+    const std::vector<Vec3> theirs = mrcal_unproject(camera, pixels, s.threads);
     const std::vector<Vec2> ours_reprojected = libcam_project(s.camera, s.libcam_rays());
-    const std::vector<Vec2> theirs_by_mrcal = mrcal_project_points(camera, theirs);
+    const std::vector<Vec2> theirs_by_mrcal = mrcal_project(camera, theirs, s.threads);
     const std::vector<Vec2> theirs_by_libcam = libcam_project(s.camera, theirs);
 
     ErrorField residuals(s.pixels.size()), distances(s.pixels.size());
@@ -348,11 +388,11 @@ VerifyCheck check_undistort(const Camera& camera, const Samples& s, std::string_
     VerifyCheck check = new_check(name, opencv_undistort_name(camera) + " (" + how + ")", std::nullopt);
     if (lacks) return skip(std::move(check), *lacks);
     const std::vector<Vec2> pixels = s.pixels_with_ray();
-    std::vector<Vec3> rays = opencv_undistort(camera, pixels, criteria);
+    std::vector<Vec3> rays = opencv_undistort(camera, pixels, criteria, s.threads);
     for (Vec3& ray : rays) {
         if (!ray.allFinite()) ray = Vec3::Constant(kNaN);
     }
-    VerifyCheck out = reprojection_errors(s.pixels.size(), s.with_ray, pixels, opencv_project_points(camera, rays))
+    VerifyCheck out = reprojection_errors(s.pixels.size(), s.with_ray, pixels, opencv_project(camera, rays, s.threads))
                           .finish(std::move(check));
     const auto behind = static_cast<std::size_t>(std::count_if(
         s.with_ray.begin(), s.with_ray.end(), [&](std::size_t i) { return !(s.rays[i].direction.z() > 0.0); }));
@@ -380,7 +420,7 @@ VerifyCheck check_round_trip(const Camera& camera, const Samples& s) {
         projected.push_back(i);
         pixels.push_back(s.projected[i].pixel);
     }
-    const std::vector<Unprojection> rays = s.camera.unproject(pixels);
+    const std::vector<Unprojection> rays = s.camera.unproject(pixels, s.threads);
     ErrorField errors(s.pixels.size());
     for (std::size_t k = 0; k < projected.size(); ++k) {
         const std::size_t i = projected[k];
@@ -428,6 +468,9 @@ void VerifyOptions::validate() const {
         if (!(std::isfinite(depth) && depth > 0.0)) {
             throw InvalidArgument("depths: must be finite and positive, got " + format_number(depth));
         }
+    }
+    if (threads < 0 || threads > 1024) {
+        throw InvalidArgument("threads: must be in [0, 1024] (0: every core), got " + std::to_string(threads));
     }
 }
 

@@ -49,6 +49,9 @@ struct VerifyOptions {
     long grid_rows = 150;
     // Distances along each pixel's (unit) ray at which points are projected.
     std::vector<double> depths{0.5, 2.0, 10.0, 1000.0};
+    // Threads each library's calls are split over (the results do not depend on it);
+    // 0: as many as the machine has.
+    int threads = 0;
 
     // Throws InvalidArgument naming the field.
     void validate() const;
