@@ -107,8 +107,12 @@ Unprojection PreparedCamera::unproject(const Vec2& pixel) const {
 
 std::vector<Unprojection> PreparedCamera::unproject(std::span<const Vec2> pixels, int threads) const {
     std::vector<Unprojection> out(pixels.size());
-    unprojector().unproject(pixels, UnprojectMethod::Exact, out, threads);
+    unproject(pixels, out, threads);
     return out;
+}
+
+void PreparedCamera::unproject(std::span<const Vec2> pixels, std::span<Unprojection> out, int threads) const {
+    unprojector().unproject(pixels, UnprojectMethod::Exact, out, threads);
 }
 
 namespace {

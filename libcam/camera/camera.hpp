@@ -95,6 +95,9 @@ public:
     // whose table is built on the first call.
     Unprojection unproject(const Vec2& pixel) const;
     std::vector<Unprojection> unproject(std::span<const Vec2> pixels, int threads = 1) const;
+    // The same into `out` (pixels.size() entries; throws InvalidArgument otherwise): no
+    // allocation, for a caller that reuses its buffer.
+    void unproject(std::span<const Vec2> pixels, std::span<Unprojection> out, int threads = 1) const;
 
     // The world-frame ray through an OpenCV pixel: origin at the camera centre,
     // direction R^T (the camera-frame direction) normalised.

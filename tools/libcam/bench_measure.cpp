@@ -238,9 +238,10 @@ void add_libcam_unprojection(std::vector<Candidate>& out, const Setup& setup, co
 // (its engine built before timing, as the Unprojector rows' is).
 void add_camera_unprojection(std::vector<Candidate>& out, const Setup& setup, const PreparedCamera& camera,
                              Workspace& work) {
+    work.unprojections.resize(setup.grid.size());  // reused by every run, as the other rows' outputs
     for (int threads : setup.settings.threads) {
         Candidate c{row(setup, "unproject", "libcam", "camera", "double", threads), setup.grid.size(), nullptr, nullptr};
-        c.run = [&, threads] { work.unprojections = camera.unproject(setup.grid, threads); };
+        c.run = [&, threads] { camera.unproject(setup.grid, work.unprojections, threads); };
         c.outcome = [&] {
             std::vector<Vec3> directions;
             std::vector<char> valid;
