@@ -25,7 +25,7 @@ endif()
 # Every public header; report/detail/ holds report's OpenCV helpers, which stay inside it.
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/libcam/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/libcam"
   FILES_MATCHING PATTERN "*.hpp"
-  PATTERN "report/detail" EXCLUDE)
+  REGEX "/report/detail(/|$)" EXCLUDE)
 install(FILES "${LIBCAM_GENERATED_DIR}/libcam/version.hpp" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/libcam")
 
 configure_package_config_file(cmake/libcamConfig.cmake.in "${PROJECT_BINARY_DIR}/libcamConfig.cmake"

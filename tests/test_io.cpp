@@ -14,7 +14,6 @@
 #include "temp_dir.hpp"
 
 using namespace libcam;
-using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 namespace {
@@ -28,11 +27,26 @@ Camera wide_camera() {
     return camera;
 }
 
+// The FileError message of `read`, which must throw one.
+template <class Read>
+std::string file_error_of(Read&& read) {
+    try {
+        read();
+    } catch (const FileError& error) {
+        return error.what();
+    }
+    FAIL("no FileError");
+    return {};
+}
+
 // What the message of an uninstalled format says: the file, what was asked, the format,
 // the library to link and the function to call.
-auto names_the_fix(const std::string& where, const std::string& doing, const std::string& format) {
-    return Contains(where) && Contains(doing + " " + format) && Contains("libcam::interop") &&
-           Contains("libcam::register_interop_formats()");
+void check_names_the_fix(const std::string& message, const std::string& where, const std::string& doing,
+                         const std::string& format) {
+    INFO(message);
+    CHECK(message.starts_with(where + ": "));
+    CHECK(message.find(doing + " " + format + " needs libcam::interop") != std::string::npos);
+    CHECK(message.find("libcam::register_interop_formats()") != std::string::npos);
 }
 
 }  // namespace
@@ -66,18 +80,18 @@ TEST_CASE("io alone: a JSON camera is written and read back, from text and from 
 TEST_CASE("io alone: reading an OpenCV or mrcal file says to link libcam::interop and register its formats") {
     const test::TempDir dir;
     const std::string yaml = "%YAML:1.0\n---\nimage_width: 640\n";
-    CHECK_THROWS_AS(parse_camera(yaml, CameraFormat::OpenCvYaml, "cam.yaml"), FileError);
-    CHECK_THROWS_WITH(parse_camera(yaml, CameraFormat::OpenCvYaml, "cam.yaml"), names_the_fix("cam.yaml", "reading", "OpenCV YAML"));
-    CHECK_THROWS_WITH(parse_camera("<?xml version=\"1.0\"?>", CameraFormat::OpenCvXml, "cam.xml"),
-                      names_the_fix("cam.xml", "reading", "OpenCV XML"));
+    check_names_the_fix(file_error_of([&] { parse_camera(yaml, CameraFormat::OpenCvYaml, "cam.yaml"); }), "cam.yaml",
+                        "reading", "OpenCV YAML");
+    check_names_the_fix(file_error_of([&] { parse_camera("<?xml version=\"1.0\"?>", CameraFormat::OpenCvXml, "cam.xml"); }),
+                        "cam.xml", "reading", "OpenCV XML");
 
     // By extension, and by contents for a file without one.
     const fs::path model = dir / "camera.cameramodel";
     write_file_atomically(model, "{ 'lensmodel': 'LENSMODEL_PINHOLE' }\n");
-    CHECK_THROWS_WITH(read_camera_file(model), names_the_fix(model.string(), "reading", "mrcal .cameramodel"));
+    check_names_the_fix(file_error_of([&] { read_camera_file(model); }), model.string(), "reading", "mrcal .cameramodel");
     const fs::path sniffed = dir / "camera";
     write_file_atomically(sniffed, yaml);
-    CHECK_THROWS_WITH(read_camera_file(sniffed), names_the_fix(sniffed.string(), "reading", "OpenCV YAML"));
+    check_names_the_fix(file_error_of([&] { read_camera_file(sniffed); }), sniffed.string(), "reading", "OpenCV YAML");
 }
 
 TEST_CASE("io alone: writing an OpenCV or mrcal file fails the same way and leaves no file") {
@@ -86,12 +100,13 @@ TEST_CASE("io alone: writing an OpenCV or mrcal file fails the same way and leav
     for (const CameraFormat format : {CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml, CameraFormat::Cameramodel}) {
         const fs::path path = dir / ("camera." + std::string(to_string(format)));
         INFO(path);
-        CHECK_THROWS_AS(write_camera_file(path, camera, format), FileError);
-        CHECK_THROWS_WITH(write_camera_file(path, camera, format), Contains(path.string()) && Contains("writing") &&
-                                                                     Contains("libcam::register_interop_formats()"));
+        const std::string title = format == CameraFormat::Cameramodel ? "mrcal .cameramodel"
+                                  : format == CameraFormat::OpenCvYaml ? "OpenCV YAML"
+                                                                       : "OpenCV XML";
+        check_names_the_fix(file_error_of([&] { write_camera_file(path, camera, format); }), path.string(), "writing", title);
         CHECK_FALSE(fs::exists(path));
-        CHECK_THROWS_WITH(format_camera(camera, format), Contains(std::string(to_string(format))) &&
-                                                           Contains("libcam::interop"));
+        check_names_the_fix(file_error_of([&] { format_camera(camera, format); }),
+                            "format " + std::string(to_string(format)), "writing", title);
     }
     CHECK(fs::is_empty(dir.path()));
 }
