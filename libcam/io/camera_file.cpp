@@ -38,7 +38,9 @@ constexpr std::string_view kInterop = "libcam::interop";
 constexpr std::string_view kRegisterInterop = "libcam::register_interop_formats()";
 
 // libcam JSON and gl JSON share a reader: the keys tell which (io/json_format.hpp).
-std::array<FormatRow, 5> format_table = {{
+// constinit: filled before any code runs, so a registration made from another file's
+// static initialiser cannot find it unready.
+constinit std::array<FormatRow, 5> format_table = {{
     {CameraFormat::Json, "json", "libcam JSON", "libcam::io", "", parse_json_camera, write_json},
     {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", kInterop, kRegisterInterop, nullptr, nullptr},
     {CameraFormat::OpenCvXml, "opencv-xml", "OpenCV XML", kInterop, kRegisterInterop, nullptr, nullptr},
