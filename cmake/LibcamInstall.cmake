@@ -1,30 +1,33 @@
 # Installs headers, libraries, the `libcam` program, the CMake package
-# (find_package(libcam CONFIG) -> libcam::core, libcam::interop, libcam::fit) and pkg-config files.
+# (find_package(libcam CONFIG COMPONENTS ...) -> libcam::core, libcam::io,
+# libcam::interop, libcam::fit, libcam::report) and a pkg-config file per library.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 set(LIBCAM_CMAKE_DIR "${CMAKE_INSTALL_LIBDIR}/cmake/libcam")
 
-install(TARGETS libcam_core EXPORT libcamCoreTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(TARGETS libcam_interop EXPORT libcamInteropTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(TARGETS libcam_fit EXPORT libcamFitTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+# One export set per library, so that a consumer's find_package loads only the
+# components it asks for (and needs only their dependencies).
+foreach(layer core io interop fit report)
+  string(SUBSTRING ${layer} 0 1 first)
+  string(TOUPPER ${first} first)
+  string(SUBSTRING ${layer} 1 -1 rest)
+  set(export_set "libcam${first}${rest}Targets")
+  install(TARGETS libcam_${layer} EXPORT ${export_set}
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(EXPORT ${export_set} NAMESPACE libcam:: DESTINATION ${LIBCAM_CMAKE_DIR})
+endforeach()
 if(TARGET libcam_cli)
   install(TARGETS libcam_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 
+# Every public header; report/detail/ holds report's OpenCV helpers, which stay inside it.
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/libcam/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/libcam"
-  FILES_MATCHING PATTERN "*.hpp")
+  FILES_MATCHING PATTERN "*.hpp"
+  REGEX "/report/detail(/|$)" EXCLUDE)
 install(FILES "${LIBCAM_GENERATED_DIR}/libcam/version.hpp" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/libcam")
 
-install(EXPORT libcamCoreTargets NAMESPACE libcam:: DESTINATION ${LIBCAM_CMAKE_DIR})
-install(EXPORT libcamInteropTargets NAMESPACE libcam:: DESTINATION ${LIBCAM_CMAKE_DIR})
-install(EXPORT libcamFitTargets NAMESPACE libcam:: DESTINATION ${LIBCAM_CMAKE_DIR})
 configure_package_config_file(cmake/libcamConfig.cmake.in "${PROJECT_BINARY_DIR}/libcamConfig.cmake"
   INSTALL_DESTINATION ${LIBCAM_CMAKE_DIR})
 write_basic_package_version_file("${PROJECT_BINARY_DIR}/libcamConfigVersion.cmake"
@@ -36,8 +39,9 @@ install(FILES
   DESTINATION ${LIBCAM_CMAKE_DIR})
 
 # pkg-config files find the prefix from their own folder, so an installed tree can move.
+# libcam.pc is libcam::interop's (its historical name).
 file(RELATIVE_PATH LIBCAM_PC_TO_PREFIX "/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/")
-foreach(pc libcam-core libcam libcam-fit)
+foreach(pc libcam-core libcam-io libcam libcam-fit libcam-report)
   configure_file("cmake/${pc}.pc.in" "${PROJECT_BINARY_DIR}/${pc}.pc" @ONLY)
   install(FILES "${PROJECT_BINARY_DIR}/${pc}.pc" DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
 endforeach()

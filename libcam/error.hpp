@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "libcam/text/number_format.hpp"  // format_number, quoted by the messages below
+
 namespace libcam {
 
 // Base of every libcam exception.
@@ -34,9 +36,6 @@ class NotRepresentable : public Error {
 public:
     using Error::Error;
 };
-
-// Formats a double so that it reads back to the same value.
-std::string format_number(double value);
 
 // Throws InvalidArgument("<field>: must be finite, got <value>") unless value is finite.
 void require_finite(const char* field, double value);

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs a built libcam into a temporary prefix, builds examples/consumer against the
 # installed CMake package (and a pkg-config build of the same source), runs both, and
-# checks the printed ray against the seed's worked answer.
+# checks the printed ray against the seed's worked answer. The camera-file consumer
+# (libcam::io alone) is also compiled by hand with nothing but the installed headers and
+# Eigen, and must see no OpenCV, mrcal, Ceres or nlohmann header, nor link their libraries.
 # Usage: scripts/test-install.sh BUILD_DIR
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -11,10 +13,13 @@ trap 'rm -rf "$work"' EXIT
 
 cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 for path in bin/libcam include/libcam/version.hpp include/libcam/convert/fov_convert.hpp \
+            include/libcam/io/camera_file.hpp include/libcam/interop/formats.hpp include/libcam/report/image.hpp \
             lib/cmake/libcam/libcamConfig.cmake lib/pkgconfig/libcam.pc lib/pkgconfig/libcam-core.pc \
-            lib/pkgconfig/libcam-fit.pc; do
+            lib/pkgconfig/libcam-io.pc lib/pkgconfig/libcam-fit.pc lib/pkgconfig/libcam-report.pc; do
   [ -e "$work/prefix/$path" ] || { echo "test-install: missing $path in the install"; exit 1; }
 done
+# report's OpenCV helpers stay inside it.
+[ ! -e "$work/prefix/include/libcam/report/detail" ] || { echo "test-install: report/detail was installed"; exit 1; }
 "$work/prefix/bin/libcam" --version | grep -q "^libcam " || { echo "test-install: libcam --version"; exit 1; }
 
 # Expected: the seed's d at (0, 0) is (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2), normalised.
@@ -39,10 +44,41 @@ check_fit() {
 }
 check_fit "$("$work/consumer/consumer_fit")"
 
-# The same source through pkg-config.
+# libcam::io alone reads a JSON camera (written here by the installed program) and
+# refuses an OpenCV YAML one, naming libcam::interop and the call that registers it.
+"$work/prefix/bin/libcam" convert --fov 90 --size 3x3 --eye 0,5,5 --target 0,0,0 -o "$work/seed.json"
+"$work/prefix/bin/libcam" convert --from "$work/seed.json" --to opencv-yaml -o "$work/seed.yaml"
+check "$("$work/consumer/consumer_io" "$work/seed.json")"
+check_io_refuses_yaml() {
+  if "$1" "$work/seed.yaml" 2> "$work/io.err"; then echo "test-install: $1 read OpenCV YAML without libcam::interop"; exit 1; fi
+  grep -q "register_interop_formats" "$work/io.err" || { echo "test-install: unclear error from $1:"; cat "$work/io.err"; exit 1; }
+}
+check_io_refuses_yaml "$work/consumer/consumer_io"
+
+# The same consumer by hand: only the installed include folder and Eigen's on the
+# include path, only libcam's io and core libraries on the link line. The headers it
+# sees are listed (-MD) and none may be OpenCV's, mrcal's, Ceres's or nlohmann's.
+c++ -std=c++20 -MD -MF "$work/consumer-io.d" -I"$work/prefix/include" $(pkg-config --cflags eigen3) \
+    "$root/examples/consumer/io_main.cpp" -o "$work/consumer-io-bare" -L"$work/prefix/lib" -lcam_io -lcam_core
+if grep -Eiq "opencv|mrcal|ceres|nlohmann" "$work/consumer-io.d"; then
+  echo "test-install: the io consumer includes a header of OpenCV, mrcal, Ceres or nlohmann:"
+  grep -Eio "[^ ]*(opencv|mrcal|ceres|nlohmann)[^ ]*" "$work/consumer-io.d" | sort -u
+  exit 1
+fi
+check "$("$work/consumer-io-bare" "$work/seed.json")"
+check_io_refuses_yaml "$work/consumer-io-bare"
+
+# The same sources through pkg-config; libcam-io's flags name no OpenCV, mrcal or Ceres.
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
+io_flags="$(pkg-config --cflags --libs libcam-io)"
+if echo "$io_flags" | grep -Eiq "opencv|mrcal|ceres"; then
+  echo "test-install: pkg-config libcam-io names OpenCV, mrcal or Ceres: $io_flags"
+  exit 1
+fi
+c++ "$root/examples/consumer/io_main.cpp" -o "$work/consumer-io-pc" $io_flags
+check "$("$work/consumer-io-pc" "$work/seed.json")"
 c++ "$root/examples/consumer/main.cpp" -o "$work/consumer-pc" $(pkg-config --cflags --libs libcam-core)
 check "$("$work/consumer-pc")"
 c++ "$root/examples/consumer/fit_main.cpp" -o "$work/consumer-fit-pc" $(pkg-config --cflags --libs libcam-fit)
 check_fit "$("$work/consumer-fit-pc")"
-echo "test-install: the installed package builds and runs examples/consumer and its fit example (CMake and pkg-config)"
+echo "test-install: the installed package builds and runs examples/consumer, its camera-file example (libcam::io alone, no OpenCV, mrcal or Ceres) and its fit example (CMake and pkg-config)"

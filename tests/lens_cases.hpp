@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/geometry/pixel_grid.hpp"
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/lens/lens_models.hpp"
@@ -92,18 +93,9 @@ inline std::vector<FoldCase> fold_cases() {
     };
 }
 
-// A grid of nx by ny OpenCV pixels spanning the whole image, corners included.
-inline std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) {
-    std::vector<Vec2> pixels;
-    pixels.reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
-    for (int j = 0; j < ny; ++j) {
-        for (int i = 0; i < nx; ++i) {
-            pixels.emplace_back(static_cast<double>(size.width - 1) * i / (nx - 1),
-                                static_cast<double>(size.height - 1) * j / (ny - 1));
-        }
-    }
-    return pixels;
-}
+// A grid of nx by ny OpenCV pixels spanning the whole image, corners included:
+// libcam's one pixel grid (geometry/pixel_grid.hpp).
+inline std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) { return PixelGrid{nx, ny}.pixels(size); }
 
 // Which reference library has a model: the table says (test_lens_models checks the
 // table's mrcal names against libmrcal's own list, and its OpenCV rows against OpenCV).

@@ -114,7 +114,7 @@ Attempt attempt(const Candidate& candidate, const Camera& source, const std::vec
     SolveOptions guarded = options;
     guarded.must_project = representable(start_camera, options.must_project);
     result.state = detail::solve_least_squares(candidate, image_centre(source.size), kept, result.state, guarded, hook);
-    result.rms_px = measure(camera_from_state(candidate, source.size, result.state), kept).rms_px;
+    result.rms_px = measure(camera_from_state(candidate, source.size, result.state), kept).stats.rms_px;
     return result;
 }
 
@@ -242,20 +242,13 @@ std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<
 }
 
 ModelError measure(const Camera& fitted, const std::vector<Observation>& observations) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::vector<double> projected = reprojection_errors(fitted, observations);
     ModelError error;
-    double sum_squares = 0.0;
-    for (const double e : reprojection_errors(fitted, observations)) {
-        if (std::isinf(e)) {
-            ++error.unprojected;
-            continue;
-        }
-        sum_squares += e * e;
-        error.max_px = std::max(error.max_px, e);
-    }
-    const std::size_t projected = observations.size() - error.unprojected;
-    error.rms_px = projected > 0 ? std::sqrt(sum_squares / static_cast<double>(projected))
-                                 : std::numeric_limits<double>::infinity();
-    if (!error.covers()) error.max_px = std::numeric_limits<double>::infinity();
+    error.unprojected = static_cast<std::size_t>(std::erase_if(projected, [](double e) { return std::isinf(e); }));
+    error.stats = error_stats(std::move(projected));
+    if (error.stats.count == 0) error.stats.rms_px = kInf;
+    if (!error.covers()) error.stats.max_px = kInf;
     return error;
 }
 
@@ -276,9 +269,9 @@ FitReport fit_scene(const Camera& source, const Scene& scene, const FitOptions& 
     for (const FittedModel& model : fitted) {
         CandidateReport entry;
         entry.fit = model;
-        entry.rms_px = measure(model.camera, fit_set).rms_px;
+        entry.rms_px = measure(model.camera, fit_set).stats.rms_px;
         const ModelError check = measure(model.camera, check_set);
-        entry.max_px = check.max_px;
+        entry.max_px = check.stats.max_px;
         entry.covers_scene = check.covers() && model.unrepresentable == 0;
         entry.pass = entry.covers_scene && entry.max_px <= options.tolerance_px;
         report.candidates.push_back(entry);

@@ -37,6 +37,7 @@
 
 #include "libcam/camera/camera.hpp"
 #include "libcam/fit/scene.hpp"
+#include "libcam/stats/error_stats.hpp"
 
 namespace libcam {
 
@@ -117,8 +118,10 @@ std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<
                                         const std::vector<Candidate>& candidates, const SolveOptions& options = {});
 
 struct ModelError {
-    double rms_px = 0.0;  // sqrt(mean |error|^2) over the observations it projects
-    double max_px = 0.0;  // largest |error|; +infinity when some observation does not project
+    // Over the observations the fitted model projects (stats/error_stats.hpp), except
+    // that max_px is +infinity when some observation does not project, and rms_px when
+    // none does.
+    ErrorStats stats;
     std::size_t unprojected = 0;  // observations outside the fitted model's valid domain
     bool covers() const { return unprojected == 0; }
 };
@@ -127,7 +130,7 @@ struct ModelError {
 // camera's frame); +infinity where the observation leaves the model's valid domain.
 std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<Observation>& observations);
 
-// Their RMS and maximum.
+// Their statistics.
 ModelError measure(const Camera& fitted, const std::vector<Observation>& observations);
 
 struct FitOptions {

@@ -88,21 +88,7 @@ std::vector<Unprojection> unit_rays(const PreparedCamera& source, const std::vec
 
 // The lattice's points inside `box`.
 std::vector<Vec2> lattice_points(const ImageSize& size, const Lattice& lattice, const PixelBox& box) {
-    const double step_x = static_cast<double>(size.width - 1) / static_cast<double>(lattice.columns - 1);
-    const double step_y = static_cast<double>(size.height - 1) / static_cast<double>(lattice.rows - 1);
-    // The lattice indices whose coordinates fall in [low, high] (all of them for a 1-pixel side).
-    const auto index_range = [](double low, double high, double step, long count) {
-        if (step == 0.0) return std::pair<long, long>(0, 0);
-        return std::pair<long, long>(std::max(0L, static_cast<long>(std::ceil(low / step - kBoundarySlack))),
-                                     std::min(count - 1, static_cast<long>(std::floor(high / step + kBoundarySlack))));
-    };
-    const auto [i0, i1] = index_range(box.min.x(), box.max.x(), step_x, lattice.columns);
-    const auto [j0, j1] = index_range(box.min.y(), box.max.y(), step_y, lattice.rows);
-    std::vector<Vec2> points;
-    for (long j = j0; j <= j1; ++j) {
-        for (long i = i0; i <= i1; ++i) points.emplace_back(static_cast<double>(i) * step_x, static_cast<double>(j) * step_y);
-    }
-    return points;
+    return lattice.pixels_in(size, box.min, box.max, kBoundarySlack);
 }
 
 // A lattice whose spacing puts about kDefaultFitSamples in the box, and at least
@@ -123,11 +109,9 @@ Lattice denser(const Lattice& lattice, int factor) {
 
 // The lattice spacing along the finer axis, which the boundary follows.
 double lattice_spacing(const ImageSize& size, const Lattice& lattice) {
-    const double step_x = static_cast<double>(size.width - 1) / static_cast<double>(lattice.columns - 1);
-    const double step_y = static_cast<double>(size.height - 1) / static_cast<double>(lattice.rows - 1);
     // A side of one pixel has a step of 0 and does not count.
     double step = std::numeric_limits<double>::infinity();
-    for (const double axis_step : {step_x, step_y}) {
+    for (const double axis_step : {lattice.step_x(size), lattice.step_y(size)}) {
         if (axis_step > 0.0) step = std::min(step, axis_step);
     }
     return std::isfinite(step) ? step : 1.0;

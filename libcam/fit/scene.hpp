@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/geometry/pixel_grid.hpp"
 
 namespace libcam {
 
@@ -78,11 +79,9 @@ private:
 };
 
 // The sampling lattice over the image: `columns` x values evenly spaced on [0, W-1]
-// and `rows` y values on [0, H-1], each at least 2 (mrcal-convert-lensmodel's --gridn).
-struct Lattice {
-    long columns = 0;
-    long rows = 0;
-};
+// and `rows` y values on [0, H-1], each at least 2 (mrcal-convert-lensmodel's --gridn):
+// libcam's one pixel grid.
+using Lattice = PixelGrid;
 
 // Scene pixels that have a ray through the source camera, with that ray.
 struct ScenePixels {

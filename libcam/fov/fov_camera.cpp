@@ -16,30 +16,12 @@ std::string_view to_string(FovAxis axis) {
     return "?";
 }
 
-std::string_view to_string(PixelOrigin origin) {
-    return origin == PixelOrigin::BottomLeft ? "bottom-left" : "top-left";
-}
-
 FovAxis fov_axis_from_string(std::string_view text) {
     for (FovAxis axis : {FovAxis::Horizontal, FovAxis::Vertical, FovAxis::Diagonal, FovAxis::Both}) {
         if (text == to_string(axis)) return axis;
     }
     throw InvalidArgument("fov_axis: must be horizontal, vertical, diagonal or both, got '" +
                           std::string(text) + "'");
-}
-
-PixelOrigin pixel_origin_from_string(std::string_view text) {
-    if (text == "bottom-left") return PixelOrigin::BottomLeft;
-    if (text == "top-left") return PixelOrigin::TopLeft;
-    throw InvalidArgument("pixel_origin: must be bottom-left or top-left, got '" + std::string(text) + "'");
-}
-
-Vec2 opencv_pixel(const Vec2& pixel, PixelOrigin origin, const ImageSize& size) {
-    return origin == PixelOrigin::TopLeft ? pixel : Vec2(pixel.x(), flip_row(pixel.y(), size));
-}
-
-Vec2 user_pixel(const Vec2& opencv, PixelOrigin origin, const ImageSize& size) {
-    return opencv_pixel(opencv, origin, size);  // the flip is its own inverse
 }
 
 FovCamera FovCamera::look_at(const Vec3& eye, const Vec3& target, const Vec3& up, double fov_deg,

@@ -18,18 +18,14 @@
 
 #include "libcam/fov/fov_formulas.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/geometry/pixel_origin.hpp"
 #include "libcam/geometry/vector_math.hpp"
 
 namespace libcam {
 
+// PixelOrigin, opencv_pixel and user_pixel live with the geometry: geometry/pixel_origin.hpp.
 std::string_view to_string(FovAxis axis);
-std::string_view to_string(PixelOrigin origin);
-FovAxis fov_axis_from_string(std::string_view text);          // throws InvalidArgument
-PixelOrigin pixel_origin_from_string(std::string_view text);  // throws InvalidArgument
-
-// The OpenCV (top-left) pixel of a pixel given in `origin`'s convention, and back.
-Vec2 opencv_pixel(const Vec2& pixel, PixelOrigin origin, const ImageSize& size);
-Vec2 user_pixel(const Vec2& opencv, PixelOrigin origin, const ImageSize& size);
+FovAxis fov_axis_from_string(std::string_view text);  // throws InvalidArgument
 
 // Smallest angle between up and the gaze: below it the camera's roll is undefined
 // (a one-ulp change of up turns u by more than 1e-7 rad) and validate() refuses it.

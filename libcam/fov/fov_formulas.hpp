@@ -9,15 +9,12 @@
 #include <type_traits>
 
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/geometry/pixel_origin.hpp"
 #include "libcam/geometry/vector_math.hpp"
 
 namespace libcam {
 
 enum class FovAxis { Horizontal, Vertical, Diagonal, Both };
-
-// Where the user's pixel row 0 is. Every calibrated camera (K, files) is top-left;
-// this only says how pixel coordinates given to or returned by libcam are counted.
-enum class PixelOrigin { BottomLeft, TopLeft };
 
 // The seed's two bases: w along the gaze (left-handed, the seed's choice) or
 // against it (right-handed). u and v are the same in both.
@@ -98,13 +95,6 @@ BasisT<Scalar> basis_from_gaze_up(const Vec3T<Scalar>& gaze, const Vec3T<Scalar>
     const Vec3T<Scalar> v = accurate_cross<Scalar>(u, along_gaze);
     return {u, v, handedness == Handedness::Left ? along_gaze : Vec3T<Scalar>(-along_gaze), handedness};
 }
-
-// A pixel's row in the other origin convention: y' = (H - 1) - y (its own inverse).
-template <class Scalar>
-Scalar flip_row(const std::type_identity_t<Scalar>& y, const ImageSize& size) {
-    return Scalar(size.height - 1) - y;
-}
-inline double flip_row(double y, const ImageSize& size) { return flip_row<double>(y, size); }
 
 // The seed's formula with everything per camera computed once, for generating many rays:
 //     d = alpha u + beta v + w_gaze,

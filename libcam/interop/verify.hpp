@@ -12,7 +12,6 @@
 // skipped with the reason.
 
 #include <cstddef>
-#include <opencv2/core.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -20,6 +19,7 @@
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/stats/error_stats.hpp"
 
 namespace libcam {
 
@@ -43,8 +43,9 @@ std::span<const std::string_view> verify_check_names();
 inline constexpr long kMaxVerifyGridSide = 2000;
 
 struct VerifyOptions {
-    // Grid of pixel centres: columns evenly from x = 0 to W-1 and rows from y = 0 to
-    // H-1, so the four corner pixels are always on it. Each side in [2, kMaxVerifyGridSide].
+    // Grid of pixel centres (geometry/pixel_grid.hpp): columns evenly from x = 0 to W-1
+    // and rows from y = 0 to H-1, so the four corner pixels are always on it. Each side
+    // in [2, kMaxVerifyGridSide].
     long grid_columns = 200;
     long grid_rows = 150;
     // Distances along each pixel's (unit) ray at which points are projected.
@@ -57,20 +58,13 @@ struct VerifyOptions {
     void validate() const;
 };
 
-struct ErrorStats {
-    std::size_t count = 0;  // errors measured (points or pixels)
-    double median_px = 0.0;
-    double p99_px = 0.0;
-    double max_px = 0.0;  // +inf when some measurement had no finite answer
-};
-
 struct VerifyCheck {
     std::string name;     // one of verify_check_names()
     std::string library;  // whose result is measured, and how
     std::optional<double> tolerance_px;      // none: informational
     std::optional<std::string> skipped_because;  // the library lacks the model
     std::string note;                        // what was left out, and why
-    ErrorStats stats;
+    ErrorStats stats;  // over every point (pixel) measured; nearest-rank quantiles
     // Per grid pixel (row-major, as VerifyReport::pixels): the worst error over its
     // points, NaN where nothing was measured.
     std::vector<double> pixel_error_px;
@@ -110,13 +104,6 @@ struct VerifyReport {
 // Runs every check. Throws InvalidArgument for a bad camera or options.
 VerifyReport verify_camera(const Camera& camera, const VerifyOptions& options = {});
 
-// A picture of one check's error over the image (8-bit BGR): the error per grid pixel
-// on a log10 colour scale (viridis), the image scaled so that its longer side is
-// kHeatmapMapSide px, a title with the statistics above, a scale bar with labelled
-// decades to the right, and a legend below. Pixels where libcam has no ray are grey and
-// hatched; pixels with a ray that the check did not measure are plain grey.
-// Throws InvalidArgument for an unknown name, Error for a skipped check.
-inline constexpr int kHeatmapMapSide = 720;
-cv::Mat verify_heatmap(const VerifyReport& report, std::string_view check_name);
+// The picture of one check's error over the image: libcam/report/verify_heatmap.hpp.
 
 }  // namespace libcam

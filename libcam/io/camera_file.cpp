@@ -1,37 +1,109 @@
 #include "libcam/io/camera_file.hpp"
 
 #include <array>
+#include <atomic>
 #include <cstdint>
-#include <utility>
 
 #include "libcam/error.hpp"
-#include "libcam/interop/mrcal.hpp"
-#include "libcam/interop/opencv.hpp"
 #include "libcam/io/atomic_write.hpp"
+#include "libcam/io/format_table.hpp"
 #include "libcam/io/json_format.hpp"
 
 namespace libcam {
 
 namespace {
-constexpr std::array<std::pair<CameraFormat, std::string_view>, 5> kFormatNames = {{
-    {CameraFormat::Json, "json"},
-    {CameraFormat::OpenCvYaml, "opencv-yaml"},
-    {CameraFormat::OpenCvXml, "opencv-xml"},
-    {CameraFormat::Cameramodel, "cameramodel"},
-    {CameraFormat::Gl, "gl"},
+
+// libcam::io's own writers, in the table's form.
+std::string write_json(const Camera& camera, const WriteOptions& options) {
+    return format_json(camera, options.fov_camera);
+}
+
+std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
+    return format_gl_json(to_opengl(camera, options.gl_near, options.gl_far, options.gl_depth_range), camera.size);
+}
+
+// One row per format (io/format_table.hpp). The rows of the formats io implements
+// are filled here; the others start empty until `library` fills them (`installer`).
+struct FormatRow {
+    CameraFormat format;
+    std::string_view name;   // what --to and camera_format_from_string take
+    std::string_view title;  // for messages
+    std::string_view library;
+    std::string_view installer;
+    std::atomic<CameraReader> reader;
+    std::atomic<CameraWriter> writer;
+};
+
+constexpr std::string_view kInterop = "libcam::interop";
+constexpr std::string_view kRegisterInterop = "libcam::register_interop_formats()";
+
+// libcam JSON and gl JSON share a reader: the keys tell which (io/json_format.hpp).
+// constinit: filled before any code runs, so a registration made from another file's
+// static initialiser cannot find it unready.
+constinit std::array<FormatRow, 5> format_table = {{
+    {CameraFormat::Json, "json", "libcam JSON", "libcam::io", "", parse_json_camera, write_json},
+    {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", kInterop, kRegisterInterop, nullptr, nullptr},
+    {CameraFormat::OpenCvXml, "opencv-xml", "OpenCV XML", kInterop, kRegisterInterop, nullptr, nullptr},
+    {CameraFormat::Cameramodel, "cameramodel", "mrcal .cameramodel", kInterop, kRegisterInterop, nullptr, nullptr},
+    {CameraFormat::Gl, "gl", "gl JSON", "libcam::io", "", parse_json_camera, write_gl_json},
 }};
+
+FormatRow& row_of(CameraFormat format) {
+    for (FormatRow& row : format_table) {
+        if (row.format == format) return row;
+    }
+    throw InvalidArgument("format: unknown");
+}
+
+// "<where>: reading OpenCV YAML needs libcam::interop (link it and call
+// libcam::register_interop_formats() first)".
+[[noreturn]] void throw_not_installed(const FormatRow& row, std::string_view doing, const std::string& where) {
+    throw FileError(where + ": " + std::string(doing) + " " + std::string(row.title) + " needs " +
+                    std::string(row.library) + " (link it and call " + std::string(row.installer) + " first)");
+}
+
+CameraReader reader_for(CameraFormat format, const std::string& source) {
+    const FormatRow& row = row_of(format);
+    const CameraReader reader = row.reader.load(std::memory_order_acquire);
+    if (reader == nullptr) throw_not_installed(row, "reading", source);
+    return reader;
+}
+
+CameraWriter writer_for(CameraFormat format, const std::string& destination) {
+    const FormatRow& row = row_of(format);
+    const CameraWriter writer = row.writer.load(std::memory_order_acquire);
+    if (writer == nullptr) throw_not_installed(row, "writing", destination);
+    return writer;
+}
+
+std::string format_camera_with(CameraWriter writer, const Camera& camera, const WriteOptions& options) {
+    camera.validate();
+    return writer(camera, options);
+}
+
 }  // namespace
 
+void install_camera_format(CameraFormat format, CameraReader reader, CameraWriter writer) {
+    FormatRow& row = row_of(format);
+    row.reader.store(reader, std::memory_order_release);
+    row.writer.store(writer, std::memory_order_release);
+}
+
+bool camera_format_installed(CameraFormat format) {
+    const FormatRow& row = row_of(format);
+    return row.reader.load(std::memory_order_acquire) != nullptr && row.writer.load(std::memory_order_acquire) != nullptr;
+}
+
 std::string_view to_string(CameraFormat format) {
-    for (const auto& [value, name] : kFormatNames) {
-        if (value == format) return name;
+    for (const FormatRow& row : format_table) {
+        if (row.format == format) return row.name;
     }
     return "?";
 }
 
 CameraFormat camera_format_from_string(std::string_view text) {
-    for (const auto& [value, name] : kFormatNames) {
-        if (name == text) return value;
+    for (const FormatRow& row : format_table) {
+        if (row.name == text) return row.format;
     }
     throw InvalidArgument("format: must be json, opencv-yaml, opencv-xml, cameramodel or gl, got '" +
                           std::string(text) + "'");
@@ -47,17 +119,7 @@ std::optional<CameraFormat> camera_format_from_path(const std::filesystem::path&
 }
 
 std::string format_camera(const Camera& camera, CameraFormat format, const WriteOptions& options) {
-    camera.validate();
-    switch (format) {
-        case CameraFormat::Json: return format_json(camera, options.fov_camera);
-        case CameraFormat::OpenCvYaml: return format_opencv_storage(camera, OpenCvStorage::Yaml);
-        case CameraFormat::OpenCvXml: return format_opencv_storage(camera, OpenCvStorage::Xml);
-        case CameraFormat::Cameramodel: return format_cameramodel(camera);
-        case CameraFormat::Gl:
-            return format_gl_json(to_opengl(camera, options.gl_near, options.gl_far, options.gl_depth_range),
-                                  camera.size);
-    }
-    throw InvalidArgument("format: unknown");
+    return format_camera_with(writer_for(format, "format " + std::string(to_string(format))), camera, options);
 }
 
 namespace {
@@ -92,15 +154,9 @@ void check_text(std::string_view text, const std::string& source) {
 }  // namespace
 
 CameraFile parse_camera(std::string_view text, CameraFormat format, const std::string& source) {
+    const CameraReader reader = reader_for(format, source);
     check_text(text, source);
-    switch (format) {
-        case CameraFormat::Json:
-        case CameraFormat::Gl: return parse_json_camera(text, source);  // the keys tell which
-        case CameraFormat::OpenCvYaml:
-        case CameraFormat::OpenCvXml: return {parse_opencv_storage(text, source), std::nullopt};
-        case CameraFormat::Cameramodel: return {parse_cameramodel(text, source), std::nullopt};
-    }
-    throw InvalidArgument("format: unknown");
+    return reader(text, source);
 }
 
 namespace {
@@ -134,7 +190,7 @@ CameraFile read_camera_file(const std::filesystem::path& path) {
 
 void write_camera_file(const std::filesystem::path& path, const Camera& camera, CameraFormat format,
                        const WriteOptions& options) {
-    write_file_atomically(path, format_camera(camera, format, options));
+    write_file_atomically(path, format_camera_with(writer_for(format, path.string()), camera, options));
 }
 
 }  // namespace libcam

@@ -10,6 +10,11 @@
 //
 // Every reader validates what it reads and throws FileError (unreadable, malformed)
 // or InvalidArgument (a value out of range) with the file, the key and the value.
+//
+// libcam::io itself reads and writes json and gl, and links neither OpenCV nor libmrcal.
+// opencv-yaml, opencv-xml and cameramodel are read and written by libcam::interop once
+// the program has called libcam::register_interop_formats() (interop/formats.hpp);
+// before that, they throw FileError saying so (io/format_table.hpp).
 
 #include <filesystem>
 #include <optional>

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "libcam/error.hpp"
+#include "libcam/interop/formats.hpp"
 #include "libcam/io/camera_file.hpp"
 
 namespace {
@@ -21,6 +22,13 @@ bool same_camera(const libcam::Camera& a, const libcam::Camera& b) {
 }
 
 }  // namespace
+
+// Once, before the first input: the OpenCV and mrcal formats, as the `libcam` program
+// registers them.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    libcam::register_interop_formats();
+    return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace libcam;

@@ -14,8 +14,8 @@ struct BenchCase {
 };
 
 // "mild" and "strong" OPENCV8 lenses (the strong one folds over inside the image's
-// corners), "fisheye" (FISHEYE, corners past 90 degrees), and "wide": issue 3's real wide
-// lens (6016x4016 OPENCV8).
+// corners), "fisheye" (FISHEYE, corners past 90 degrees), and "wide": a real calibrated
+// wide lens (6016x4016 OPENCV8).
 std::vector<BenchCase> builtin_bench_cases();
 
 }  // namespace libcam::cli

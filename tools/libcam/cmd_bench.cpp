@@ -1,18 +1,21 @@
 // libcam bench: the speed/accuracy trade of every unprojection and projection method of
-// libcam, OpenCV and mrcal, measured on the same pixels in one run (bench_measure.cpp),
-// printed as a table, as JSON, and drawn as time against worst error (bench_plot.cpp).
+// libcam, OpenCV and mrcal, measured on the same pixels in one run (libcam/interop/bench.hpp),
+// printed as a table, as JSON, and drawn as time against worst error
+// (libcam/report/bench_plot.hpp).
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <opencv2/core/utility.hpp>
 #include <sstream>
 
-#include "bench_measure.hpp"
-#include "bench_plot.hpp"
+#include "bench_cases.hpp"
 #include "commands.hpp"
+#include "libcam/interop/bench.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/report/bench_plot.hpp"
+#include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
@@ -80,9 +83,10 @@ nlohmann::json row_json(const BenchRow& row) {
     out["camera"] = row.camera;
     out["threads"] = row.threads;
     out["ns_per_point"] = number_or_null(row.ns_per_point);
-    out["median_px"] = row.error ? number_or_null(row.error->median_px) : nlohmann::json(nullptr);
-    out["p99_px"] = row.error ? number_or_null(row.error->p99_px) : nlohmann::json(nullptr);
-    out["max_px"] = row.error ? number_or_null(row.error->max_px) : nlohmann::json(nullptr);
+    const bool measured = row.error && row.error->count > 0;
+    out["median_px"] = measured ? number_or_null(row.error->median_px) : nlohmann::json(nullptr);
+    out["p99_px"] = measured ? number_or_null(row.error->p99_px) : nlohmann::json(nullptr);
+    out["max_px"] = measured ? number_or_null(row.error->max_px) : nlohmann::json(nullptr);
     out["invalid_fraction"] = number_or_null(row.invalid_fraction);
     return out;
 }
@@ -109,11 +113,12 @@ std::string format_json(const std::vector<CaseResult>& results, const BenchSetti
     return out.dump(2) + "\n";
 }
 
-std::string number_text(double value, int precision) {
-    if (!std::isfinite(value)) return "-";
-    std::ostringstream out;
-    out << std::setprecision(precision) << value;
-    return out.str();
+// `digits` significant digits; "-" where there is no finite value.
+std::string number_text(double value, int digits) { return std::isfinite(value) ? format_short(value, digits) : "-"; }
+
+// A row's error statistic; "-" where nothing was measured.
+std::string error_text(const BenchRow& row, double ErrorStats::*statistic) {
+    return row.error && row.error->count > 0 ? number_text((*row.error).*statistic, 3) : "-";
 }
 
 std::string format_table(const std::vector<CaseResult>& results, const BenchSettings& settings) {
@@ -132,9 +137,9 @@ std::string format_table(const std::vector<CaseResult>& results, const BenchSett
         for (const BenchRow& row : r.result.rows) {
             out << std::setw(16) << row.op << std::setw(8) << row.library << std::setw(23) << row.method << std::setw(7)
                 << row.scalar << std::setw(8) << row.threads << std::setw(10) << row.model << std::setw(11)
-                << number_text(row.ns_per_point, 4) << std::setw(11) << (row.error ? number_text(row.error->median_px, 3) : "-")
-                << std::setw(11) << (row.error ? number_text(row.error->p99_px, 3) : "-") << std::setw(11)
-                << (row.error ? number_text(row.error->max_px, 3) : "-") << number_text(100 * row.invalid_fraction, 3) << "%\n";
+                << number_text(row.ns_per_point, 4) << std::setw(11) << error_text(row, &ErrorStats::median_px)
+                << std::setw(11) << error_text(row, &ErrorStats::p99_px) << std::setw(11)
+                << error_text(row, &ErrorStats::max_px) << number_text(100 * row.invalid_fraction, 3) << "%\n";
         }
         out << "\n";
     }
@@ -164,14 +169,14 @@ Runner add_bench(CLI::App& app) {
     return [flags] {
         const BenchSettings settings = settings_from(*flags);
         const std::vector<BenchCase> cases = chosen_cases(*flags);
-        cv::setNumThreads(1);  // OpenCV's rows run on one thread, like libcam's 1-thread rows
         std::vector<CaseResult> results;
-        for (const BenchCase& bench_case : cases) results.push_back({bench_case, run_bench(bench_case, settings)});
+        for (const BenchCase& bench_case : cases) {
+            results.push_back({bench_case, run_bench(bench_case.name, bench_case.camera, settings)});
+        }
         if (!flags->plot.empty()) {
             std::vector<BenchRow> rows;
             for (const CaseResult& r : results) rows.insert(rows.end(), r.result.rows.begin(), r.result.rows.end());
-            const std::vector<unsigned char> png = plot_speed_accuracy(rows);
-            write_file_atomically(flags->plot, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+            write_png(flags->plot, plot_speed_accuracy(rows));
         }
         if (!flags->json_file.empty()) write_file_atomically(flags->json_file, format_json(results, settings));
         emit(flags->json ? format_json(results, settings) : format_table(results, settings), "");

@@ -9,12 +9,12 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "fit_heatmap.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/fit/fit.hpp"
-#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/report/fit_heatmap.hpp"
+#include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
@@ -107,12 +107,9 @@ private:
     int last_candidate_ = -1;
 };
 
-std::string short_number(double value) {
-    if (std::isinf(value)) return "-";
-    std::ostringstream out;
-    out << std::setprecision(3) << value;
-    return out.str();
-}
+// Three significant digits; "-" for a largest error that is infinite (the model leaves
+// part of the scene unprojected: the covers column says so).
+std::string short_number(double value) { return std::isinf(value) ? "-" : format_short(value); }
 
 std::string motion_text(const FitOptions& options) {
     switch (options.motion) {
@@ -134,10 +131,12 @@ std::string vec_text(const Vec3& v) {
 std::string fov_text(const Camera& camera) {
     const FovCamera fov = to_fov_camera(camera, FovAxis::Horizontal);
     const FovDescription description = describe_fov(camera);
+    const auto ten_digits = [](double value) { return format_short(value, 10); };
     std::ostringstream out;
-    out << std::setprecision(10) << "  FOV camera: fov horizontal " << description.fov_deg.horizontal << " deg, vertical "
-        << description.fov_deg.vertical << " deg, diagonal " << description.fov_deg.diagonal << " deg; size "
-        << camera.size.width << "x" << camera.size.height << "; f " << camera.intrinsics.fx << " px\n";
+    out << "  FOV camera: fov horizontal " << ten_digits(description.fov_deg.horizontal) << " deg, vertical "
+        << ten_digits(description.fov_deg.vertical) << " deg, diagonal " << ten_digits(description.fov_deg.diagonal)
+        << " deg; size " << camera.size.width << "x" << camera.size.height << "; f " << ten_digits(camera.intrinsics.fx)
+        << " px\n";
     out << "  as flags: --fov " << format_number(fov.fov_deg) << " --fov-axis horizontal --size " << camera.size.width << "x"
         << camera.size.height << " --eye " << vec_text(fov.eye) << " --gaze " << vec_text(fov.gaze) << " --up "
         << vec_text(fov.up) << "\n";
@@ -283,10 +282,7 @@ void write_outputs(const FitFlags& flags, const Camera& source, const Scene& sce
         if (chosen.fit.candidate.fov_camera) write.fov_camera = to_fov_camera(camera, FovAxis::Horizontal);
         write_camera_file(flags.output, camera, output_format(flags), write);
     }
-    if (!flags.heatmap.empty()) {
-        write_file_atomically(flags.heatmap,
-                              fit_heatmap_png(source, scene, chosen.fit, options.depths, options.tolerance_px, chosen.max_px));
-    }
+    if (!flags.heatmap.empty()) write_png(flags.heatmap, fit_heatmap(source, scene, options, chosen));
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 // libcam rays: the ray through each pixel, by the calibrated path R^T K^-1 [x, y, 1]
 // and, for a FOV camera, by the seed's formula, with the angle between them.
 
-#include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -9,6 +8,7 @@
 #include "camera_options.hpp"
 #include "commands.hpp"
 #include "libcam/convert/fov_convert.hpp"
+#include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
@@ -52,21 +52,20 @@ std::string format_json(const std::vector<RayRow>& rows) {
 }
 
 std::string format_table(const std::vector<RayRow>& rows) {
+    // Ten significant digits; + 0.0 prints zeros as 0, not -0.
+    const auto number = [](double value) { return format_short(value + 0.0, 10); };
+    const auto vec = [&](const Vec3& v) { return "(" + number(v.x()) + ", " + number(v.y()) + ", " + number(v.z()) + ")"; };
     std::ostringstream out;
-    out << std::setprecision(10);
-    auto vec = [&](const Vec3& v) {
-        std::ostringstream s;
-        s << std::setprecision(10) << "(" << v.x() + 0.0 << ", " << v.y() + 0.0 << ", " << v.z() + 0.0 << ")";
-        return s.str();
-    };
     for (const RayRow& row : rows) {
-        out << "pixel (" << row.pixel.x() << ", " << row.pixel.y() << ")\n";
+        out << "pixel (" << format_short(row.pixel.x(), 10) << ", " << format_short(row.pixel.y(), 10) << ")\n";
         out << "  origin          " << vec(row.ray.origin) << "\n";
         out << "  direction       " << (row.ray.valid ? vec(row.ray.direction) : "none (outside the lens model's domain)")
             << "\n";
         if (row.seed_direction) {
             out << "  direction_seed  " << vec(*row.seed_direction) << "\n";
-            if (row.ray.valid) out << "  angle_rad       " << angle_between(row.ray.direction, *row.seed_direction) << "\n";
+            if (row.ray.valid) {
+                out << "  angle_rad       " << format_short(angle_between(row.ray.direction, *row.seed_direction), 10) << "\n";
+            }
         }
     }
     out << "directions are unit vectors in world coordinates; direction = R^T K^-1 [x, y, 1], "

@@ -4,18 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <iomanip>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "commands.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/verify.hpp"
-#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/report/verify_heatmap.hpp"
+#include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
@@ -52,13 +51,6 @@ void require_check_name(const std::string& name) {
     throw UsageError("--check: unknown check '" + name + "'; one of: " + check_names_list());
 }
 
-std::string number(double value) {
-    if (std::isinf(value)) return "inf";
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", value);
-    return text;
-}
-
 std::string status(const VerifyCheck& check) {
     if (check.skipped()) return "skipped";
     if (check.informational()) return "info";
@@ -72,13 +64,13 @@ using Row = std::vector<std::string>;
 
 Row table_row(const VerifyCheck& check) {
     const bool measured = !check.skipped() && check.stats.count > 0;
-    auto stat = [&](double value) { return measured ? number(value) : std::string("-"); };
+    auto stat = [&](double value) { return measured ? format_short(value) : std::string("-"); };
     return {check.name,
             check.library,
             stat(check.stats.median_px),
             stat(check.stats.p99_px),
             stat(check.stats.max_px),
-            check.tolerance_px ? number(*check.tolerance_px) : "none",
+            check.tolerance_px ? format_short(*check.tolerance_px) : "none",
             status(check)};
 }
 
@@ -103,12 +95,12 @@ std::string format_header(const std::string& file, const VerifyReport& report) {
         << report.image_size.height << "\n";
     out << "grid " << report.options.grid_columns << "x" << report.options.grid_rows
         << " pixel centres, corners included; points at depths";
-    for (double depth : report.options.depths) out << " " << depth;
+    for (double depth : report.options.depths) out << " " << format_short(depth, 6);
     out << " along each ray\n";
     const std::size_t invalid =
         static_cast<std::size_t>(std::count(report.pixel_valid.begin(), report.pixel_valid.end(), false));
     out << "libcam flags " << invalid << " of " << report.pixels.size() << " grid pixels invalid ("
-        << number(100.0 * report.invalid_fraction) << "%): no ray in the lens model's valid domain\n\n";
+        << format_short(100.0 * report.invalid_fraction) << "%): no ray in the lens model's valid domain\n\n";
     return out.str();
 }
 
@@ -134,10 +126,10 @@ std::string format_opencv_summary(const VerifyReport& report) {
     const OpenCvDefaultSummary& s = *report.opencv_default;
     std::ostringstream out;
     out << "\nwhere OpenCV's default undistortPoints goes wrong (" << s.function << ", reprojected by OpenCV):\n"
-        << "  median " << number(s.median_px) << " px, worst " << number(s.max_px) << " px at pixel ("
-        << s.worst_pixel.x() << ", " << s.worst_pixel.y() << ")\n"
-        << "  " << number(100.0 * s.fraction_over_0_1px) << "% of the pixels libcam unprojects are off by more than 0.1 px, "
-        << number(100.0 * s.fraction_over_1px) << "% by more than 1 px\n";
+        << "  median " << format_short(s.median_px) << " px, worst " << format_short(s.max_px) << " px at pixel ("
+        << format_short(s.worst_pixel.x(), 6) << ", " << format_short(s.worst_pixel.y(), 6) << ")\n"
+        << "  " << format_short(100.0 * s.fraction_over_0_1px) << "% of the pixels libcam unprojects are off by more than 0.1 px, "
+        << format_short(100.0 * s.fraction_over_1px) << "% by more than 1 px\n";
     return out.str();
 }
 
@@ -206,12 +198,6 @@ std::string format_json(const VerifyReport& report) {
     return out.dump(2) + "\n";
 }
 
-void write_heatmap(const VerifyReport& report, const std::string& check, const std::string& path) {
-    std::vector<std::uint8_t> png;
-    if (!cv::imencode(".png", verify_heatmap(report, check), png)) throw libcam::Error(path + ": cannot encode the PNG");
-    write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
-}
-
 }  // namespace
 
 Runner add_verify(CLI::App& app) {
@@ -243,7 +229,7 @@ Runner add_verify(CLI::App& app) {
         const Camera camera = read_camera_file(flags->file).camera;
         const VerifyReport report = verify_camera(camera, options);
         // The picture first: a failure to write it leaves nothing on stdout.
-        if (!flags->heatmap.empty()) write_heatmap(report, flags->check, flags->heatmap);
+        if (!flags->heatmap.empty()) write_png(flags->heatmap, verify_heatmap(report, flags->check));
         emit(flags->json ? format_json(report) : format_table(flags->file, report), "");
         return report.pass() ? 0 : 1;
     };

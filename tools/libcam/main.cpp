@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "libcam/error.hpp"
+#include "libcam/interop/formats.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/version.hpp"
 #include "parse.hpp"
@@ -37,6 +38,7 @@ int quiet_opencv_errors(int, const char*, const char*, const char*, int, void*) 
 int main(int argc, char** argv) {
     using namespace libcam::cli;
     cv::redirectError(quiet_opencv_errors);
+    libcam::register_interop_formats();  // OpenCV YAML/XML and .cameramodel files
 
     CLI::App app{"libcam: graphics cameras <-> calibrated cameras, checked against OpenCV and mrcal"};
     app.set_version_flag("--version", std::string("libcam ") + LIBCAM_VERSION);

@@ -1,4 +1,4 @@
-#include "bench_measure.hpp"
+#include "libcam/interop/bench.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,15 +8,17 @@
 #include <limits>
 #include <optional>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core/utility.hpp>
 
 #include "libcam/camera/projector.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/error.hpp"
+#include "libcam/geometry/pixel_grid.hpp"
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/lens/lens_models.hpp"
 
-namespace libcam::cli {
+namespace libcam {
 
 namespace {
 
@@ -28,7 +30,7 @@ struct Outcome {
     std::size_t total = 0;          // points attempted
 };
 
-struct Candidate {
+struct Contender {
     BenchRow row;
     std::size_t points = 0;             // per run, for the time per point
     std::function<void()> run;          // the timed work
@@ -38,33 +40,21 @@ struct Candidate {
 // ---------------------------------------------------------------------------------
 // Timing and statistics.
 
-// Median, 99th percentile and maximum; not numbers when no point had a result.
-ErrorStats error_stats(std::vector<double> errors) {
-    constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
-    if (errors.empty()) return {kNone, kNone, kNone};
-    const auto at_fraction = [&](double fraction) {
-        const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(fraction * static_cast<double>(errors.size())));
-        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
-        return errors[k];
-    };
-    const double median = at_fraction(0.5), p99 = at_fraction(0.99);
-    return {median, p99, *std::max_element(errors.begin(), errors.end())};
-}
-
+// The median time of the repetitions, by error_stats's nearest-rank rule.
 double median_of(std::vector<double> values) {
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2), values.end());
-    return values[values.size() / 2];
+    std::sort(values.begin(), values.end());
+    return nearest_rank_quantile(values, 0.5);
 }
 
 // Every candidate run once to warm up (page faults, caches), then `repeat` rounds in
 // which each runs once, so that a slow spell of the machine spreads over all of them.
 // Candidates share output buffers: each outcome is read right after its last run.
-std::vector<BenchRow> measure(std::vector<Candidate>& candidates, int repeat) {
-    for (Candidate& c : candidates) c.run();
+std::vector<BenchRow> measure(std::vector<Contender>& candidates, int repeat) {
+    for (Contender& c : candidates) c.run();
     std::vector<std::vector<double>> seconds(candidates.size());
     for (int round = 0; round < repeat; ++round) {
         for (std::size_t i = 0; i < candidates.size(); ++i) {
-            Candidate& c = candidates[i];
+            Contender& c = candidates[i];
             const Clock::time_point start = Clock::now();
             c.run();
             seconds[i].push_back(std::chrono::duration<double>(Clock::now() - start).count());
@@ -86,18 +76,6 @@ std::vector<BenchRow> measure(std::vector<Candidate>& candidates, int repeat) {
 
 // ---------------------------------------------------------------------------------
 // The points: a grid of pixels, and the rays through them.
-
-std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) {
-    std::vector<Vec2> pixels;
-    pixels.reserve(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
-    for (int j = 0; j < ny; ++j) {
-        for (int i = 0; i < nx; ++i) {
-            pixels.emplace_back(static_cast<double>(size.width - 1) * i / std::max(nx - 1, 1),
-                                static_cast<double>(size.height - 1) * j / std::max(ny - 1, 1));
-        }
-    }
-    return pixels;
-}
 
 // Camera points for the projection rows: the rays of the grid's pixels that have one,
 // by the full solver in long double, and the pixel each came from.
@@ -196,8 +174,14 @@ struct Workspace {
     ValidFlags frame_valid;
 };
 
+// The camera measured, by name.
+struct BenchCase {
+    const std::string& name;
+    const Camera& camera;
+};
+
 struct Setup {
-    const BenchCase& bench_case;
+    BenchCase bench_case;
     const BenchSettings& settings;
     std::string model;
     std::vector<Vec2> grid;
@@ -217,12 +201,12 @@ BenchRow row(const Setup& setup, const char* op, const char* library, std::strin
 }
 
 template <class Scalar>
-void add_libcam_unprojection(std::vector<Candidate>& out, const Setup& setup, const Unprojector<Scalar>& unprojector,
+void add_libcam_unprojection(std::vector<Contender>& out, const Setup& setup, const Unprojector<Scalar>& unprojector,
                              const Points2<Scalar>& pixels, Workspace& work, Points3<Scalar>& directions) {
     const std::vector<Vec2> given = as_given(pixels);
     for (UnprojectMethod method : kUnprojectMethods) {
         for (int threads : setup.settings.threads) {
-            Candidate c{row(setup, "unproject", "libcam", std::string(method_name(method)), scalar_name<Scalar>(), threads),
+            Contender c{row(setup, "unproject", "libcam", std::string(method_name(method)), scalar_name<Scalar>(), threads),
                         pixels.size(), nullptr, nullptr};
             c.run = [&, method, threads] { unprojector.unproject(pixels, method, directions, work.unprojected_valid, threads); };
             c.outcome = [&, given] {
@@ -236,11 +220,11 @@ void add_libcam_unprojection(std::vector<Candidate>& out, const Setup& setup, co
 
 // The public call: PreparedCamera::unproject on a list of pixels, as a user calls it
 // (its engine built before timing, as the Unprojector rows' is).
-void add_camera_unprojection(std::vector<Candidate>& out, const Setup& setup, const PreparedCamera& camera,
+void add_camera_unprojection(std::vector<Contender>& out, const Setup& setup, const PreparedCamera& camera,
                              Workspace& work) {
     work.unprojections.resize(setup.grid.size());  // reused by every run, as the other rows' outputs
     for (int threads : setup.settings.threads) {
-        Candidate c{row(setup, "unproject", "libcam", "camera", "double", threads), setup.grid.size(), nullptr, nullptr};
+        Contender c{row(setup, "unproject", "libcam", "camera", "double", threads), setup.grid.size(), nullptr, nullptr};
         c.run = [&, threads] { camera.unproject(setup.grid, work.unprojections, threads); };
         c.outcome = [&] {
             std::vector<Vec3> directions;
@@ -263,14 +247,14 @@ cv::Mat as_cv_points(const std::vector<Vec2>& pixels) {
 
 // cv::undistortPoints (cv::fisheye::undistortPoints for FISHEYE) at its default and at
 // 100 iterations with eps 1e-14. Its normalised point (x, y) is the ray (x, y, 1).
-void add_opencv_unprojection(std::vector<Candidate>& out, const Setup& setup, const cv::Mat& cv_pixels, Workspace& work) {
+void add_opencv_unprojection(std::vector<Contender>& out, const Setup& setup, const cv::Mat& cv_pixels, Workspace& work) {
     const Camera& camera = setup.bench_case.camera;
     if (!opencv_has(camera.lens)) return;
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
     const bool fisheye = lens_info(camera.lens.type).opencv == OpenCvFunction::Fisheye;
     const cv::TermCriteria many(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-14);
     for (const bool iterate : {false, true}) {
-        Candidate c{row(setup, "unproject", "opencv", iterate ? "100it-eps1e-14" : "default", "double"), setup.grid.size(),
+        Contender c{row(setup, "unproject", "opencv", iterate ? "100it-eps1e-14" : "default", "double"), setup.grid.size(),
                     nullptr, nullptr};
         c.run = [&, K, D, fisheye, iterate, many] {
             if (fisheye) {
@@ -293,10 +277,10 @@ void add_opencv_unprojection(std::vector<Candidate>& out, const Setup& setup, co
     }
 }
 
-void add_mrcal_unprojection(std::vector<Candidate>& out, const Setup& setup, const std::vector<double>& packed, Workspace& work) {
+void add_mrcal_unprojection(std::vector<Contender>& out, const Setup& setup, const std::vector<double>& packed, Workspace& work) {
     const Camera& camera = setup.bench_case.camera;
     if (!mrcal_has(camera.lens)) return;
-    Candidate c{row(setup, "unproject", "mrcal", "mrcal_unproject", "double"), setup.grid.size(), nullptr, nullptr};
+    Contender c{row(setup, "unproject", "mrcal", "mrcal_unproject", "double"), setup.grid.size(), nullptr, nullptr};
     c.run = [&] {
         mrcal_unproject_packed(camera, packed, work.mrcal_unprojected);
     };
@@ -312,10 +296,10 @@ void add_mrcal_unprojection(std::vector<Candidate>& out, const Setup& setup, con
 }
 
 template <class Scalar>
-void add_libcam_projection(std::vector<Candidate>& out, const Setup& setup, const Projector<Scalar>& projector,
+void add_libcam_projection(std::vector<Contender>& out, const Setup& setup, const Projector<Scalar>& projector,
                            const Points3<Scalar>& points, Workspace& work, Points2<Scalar>& pixels) {
     for (int threads : setup.settings.threads) {
-        Candidate c{row(setup, "project", "libcam", "batch", scalar_name<Scalar>(), threads), points.size(), nullptr, nullptr};
+        Contender c{row(setup, "project", "libcam", "batch", scalar_name<Scalar>(), threads), points.size(), nullptr, nullptr};
         c.run = [&, threads] { projector.project(points, pixels, work.projected_valid, threads); };
         c.outcome = [&] {
             return pixel_outcome(setup.rays.pixels, as_given(pixels),
@@ -325,9 +309,9 @@ void add_libcam_projection(std::vector<Candidate>& out, const Setup& setup, cons
     }
 }
 
-void add_camera_projection(std::vector<Candidate>& out, const Setup& setup, const PreparedCamera& camera,
+void add_camera_projection(std::vector<Contender>& out, const Setup& setup, const PreparedCamera& camera,
                            Workspace& work) {
-    Candidate c{row(setup, "project", "libcam", "camera", "double"), setup.rays.points.size(), nullptr, nullptr};
+    Contender c{row(setup, "project", "libcam", "camera", "double"), setup.rays.points.size(), nullptr, nullptr};
     c.run = [&] { work.projections = camera.project_camera_points(setup.rays.points); };
     c.outcome = [&] {
         std::vector<Vec2> pixels;
@@ -341,13 +325,13 @@ void add_camera_projection(std::vector<Candidate>& out, const Setup& setup, cons
     out.push_back(std::move(c));
 }
 
-void add_opencv_projection(std::vector<Candidate>& out, const Setup& setup, const cv::Mat& cv_points, Workspace& work) {
+void add_opencv_projection(std::vector<Contender>& out, const Setup& setup, const cv::Mat& cv_points, Workspace& work) {
     const Camera& camera = setup.bench_case.camera;
     if (!opencv_has(camera.lens)) return;
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
     const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
     const bool fisheye = lens_info(camera.lens.type).opencv == OpenCvFunction::Fisheye;
-    Candidate c{row(setup, "project", "opencv", fisheye ? "fisheye::projectPoints" : "projectPoints", "double"),
+    Contender c{row(setup, "project", "opencv", fisheye ? "fisheye::projectPoints" : "projectPoints", "double"),
                 setup.rays.points.size(), nullptr, nullptr};
     c.run = [&, K, D, zero, fisheye] {
         if (fisheye) cv::fisheye::projectPoints(cv_points, work.cv_projected, zero, zero, K, D);
@@ -364,11 +348,11 @@ void add_opencv_projection(std::vector<Candidate>& out, const Setup& setup, cons
     out.push_back(std::move(c));
 }
 
-void add_mrcal_projection(std::vector<Candidate>& out, const Setup& setup, const std::vector<double>& packed, Workspace& work) {
+void add_mrcal_projection(std::vector<Contender>& out, const Setup& setup, const std::vector<double>& packed, Workspace& work) {
     const Camera& camera = setup.bench_case.camera;
     if (!mrcal_has(camera.lens)) return;
     const std::size_t n = setup.rays.points.size();
-    Candidate c{row(setup, "project", "mrcal", "mrcal_project", "double"), n, nullptr, nullptr};
+    Contender c{row(setup, "project", "mrcal", "mrcal_project", "double"), n, nullptr, nullptr};
     c.run = [&] { mrcal_project_packed(camera, packed, work.mrcal_projected); };
     c.outcome = [&, n] {
         std::vector<Vec2> pixels;
@@ -381,7 +365,7 @@ void add_mrcal_projection(std::vector<Candidate>& out, const Setup& setup, const
 
 // Every pixel's ray (unproject_image), and the time to write the same bytes once.
 template <class Scalar>
-void add_full_frame(std::vector<Candidate>& out, const Setup& setup, const Unprojector<Scalar>& unprojector,
+void add_full_frame(std::vector<Contender>& out, const Setup& setup, const Unprojector<Scalar>& unprojector,
                     Points3<Scalar>& directions, ValidFlags& valid) {
     const Camera& camera = unprojector.camera();
     const std::size_t width = static_cast<std::size_t>(camera.size.width);
@@ -391,7 +375,7 @@ void add_full_frame(std::vector<Candidate>& out, const Setup& setup, const Unpro
     for (UnprojectMethod method : kUnprojectMethods) {
         if (closed_form && method != UnprojectMethod::Exact) continue;  // one closed form for every method
         for (int threads : setup.settings.threads) {
-            Candidate c{row(setup, "rays_full_frame", "libcam", closed_form ? "closed-form" : std::string(method_name(method)),
+            Contender c{row(setup, "rays_full_frame", "libcam", closed_form ? "closed-form" : std::string(method_name(method)),
                             scalar_name<Scalar>(), threads),
                         n, nullptr, nullptr};
             c.row.model = model;
@@ -419,10 +403,10 @@ void add_full_frame(std::vector<Candidate>& out, const Setup& setup, const Unpro
 // bytes are not (z is 1, every flag 1). On the machine of the README zeros are written
 // 2.4 times as fast as any other byte, which would make zeros no reference for them.
 template <class Scalar>
-void add_memset(std::vector<Candidate>& out, const Setup& setup, std::size_t n, Points3<Scalar>& directions,
+void add_memset(std::vector<Contender>& out, const Setup& setup, std::size_t n, Points3<Scalar>& directions,
                 ValidFlags& valid) {
     for (const int byte : {0, 0x3f}) {
-        Candidate c{row(setup, "rays_full_frame", "memset", byte == 0 ? "zeros" : "non-zero-bytes", scalar_name<Scalar>()), n,
+        Contender c{row(setup, "rays_full_frame", "memset", byte == 0 ? "zeros" : "non-zero-bytes", scalar_name<Scalar>()), n,
                     nullptr, nullptr};
         c.row.model = "-";
         c.run = [&, n, byte] {
@@ -455,6 +439,18 @@ cv::Mat as_cv_points3(const std::vector<Vec3>& points) {
     return out;
 }
 
+// Sets OpenCV's thread count for its lifetime, and restores the caller's after.
+class OpenCvThreads {
+public:
+    explicit OpenCvThreads(int threads) : previous_(cv::getNumThreads()) { cv::setNumThreads(threads); }
+    ~OpenCvThreads() { cv::setNumThreads(previous_); }
+    OpenCvThreads(const OpenCvThreads&) = delete;
+    OpenCvThreads& operator=(const OpenCvThreads&) = delete;
+
+private:
+    int previous_;
+};
+
 template <class T>
 double milliseconds_to_build(std::optional<T>& target, const Camera& camera) {
     const Clock::time_point start = Clock::now();
@@ -481,7 +477,7 @@ std::vector<BenchRow> grid_rows(const Setup& setup, const Unprojector<double>& u
     const Projector<double> projector_double(prepared);
     const Projector<float> projector_float(prepared);
 
-    std::vector<Candidate> candidates;
+    std::vector<Contender> candidates;
     add_libcam_unprojection(candidates, setup, unprojector_double, pixels_double, work, work.directions_double);
     add_libcam_unprojection(candidates, setup, unprojector_float, pixels_float, work, work.directions_float);
     add_camera_unprojection(candidates, setup, prepared, work);
@@ -503,7 +499,7 @@ std::vector<BenchRow> full_frame_rows(const Setup& setup, const Unprojector<doub
     const Unprojector<double> pinhole_double(pinhole);
     const Unprojector<float> pinhole_float(pinhole);
     const std::size_t n = static_cast<std::size_t>(pinhole.size.width) * static_cast<std::size_t>(pinhole.size.height);
-    std::vector<Candidate> candidates;
+    std::vector<Contender> candidates;
     add_full_frame(candidates, setup, pinhole_double, work.frame_double, work.frame_valid);
     add_memset(candidates, setup, n, work.frame_double, work.frame_valid);
     add_full_frame(candidates, setup, pinhole_float, work.frame_float, work.frame_valid);
@@ -515,16 +511,21 @@ std::vector<BenchRow> full_frame_rows(const Setup& setup, const Unprojector<doub
 
 }  // namespace
 
-BenchResult run_bench(const BenchCase& bench_case, const BenchSettings& settings) {
-    const std::vector<Vec2> grid = pixel_grid(bench_case.camera.size, settings.grid_x, settings.grid_y);
-    const Setup setup{bench_case, settings, std::string(lens_info(bench_case.camera.lens.type).name), grid,
-                      rays_of(bench_case.camera, grid)};
+BenchResult run_bench(const std::string& name, const Camera& camera, const BenchSettings& settings) {
+    camera.validate();
+    const PixelGrid grid_shape{settings.grid_x, settings.grid_y};
+    grid_shape.validate("bench grid");
+    const BenchCase bench_case{name, camera};
+    const std::vector<Vec2> grid = grid_shape.pixels(camera.size);
+    const Setup setup{bench_case, settings, std::string(lens_info(camera.lens.type).name), grid, rays_of(camera, grid)};
     BenchResult result;
     std::optional<Unprojector<double>> unprojector_double;
     std::optional<Unprojector<float>> unprojector_float;
-    result.table_build_ms_double = milliseconds_to_build(unprojector_double, bench_case.camera);
-    result.table_build_ms_float = milliseconds_to_build(unprojector_float, bench_case.camera);
+    result.table_build_ms_double = milliseconds_to_build(unprojector_double, camera);
+    result.table_build_ms_float = milliseconds_to_build(unprojector_float, camera);
     Workspace work;
+    // OpenCV's rows run on one thread, like libcam's 1-thread rows.
+    const OpenCvThreads one_thread(1);
     result.rows = grid_rows(setup, *unprojector_double, *unprojector_float, work);
     if (settings.full_frame) {
         std::vector<BenchRow> frame = full_frame_rows(setup, *unprojector_double, *unprojector_float, work);
@@ -533,4 +534,4 @@ BenchResult run_bench(const BenchCase& bench_case, const BenchSettings& settings
     return result;
 }
 
-}  // namespace libcam::cli
+}  // namespace libcam

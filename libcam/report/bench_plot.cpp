@@ -1,14 +1,15 @@
-#include "bench_plot.hpp"
+#include "libcam/report/bench_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
+#include <utility>
 
 #include "libcam/error.hpp"
+#include "libcam/report/detail/cv_image.hpp"
 
-namespace libcam::cli {
+namespace libcam {
 
 namespace {
 
@@ -180,8 +181,8 @@ std::vector<std::vector<const BenchRow*>> panels_of(const std::vector<BenchRow>&
     std::vector<std::vector<const BenchRow*>> panels;
     std::vector<std::string> cameras;
     for (const BenchRow& row : rows) {
-        if (row.op != "unproject" || row.threads != 1 || !row.error || !std::isfinite(row.error->max_px) ||
-            !(row.ns_per_point > 0)) {
+        if (row.op != "unproject" || row.threads != 1 || !row.error || row.error->count == 0 ||
+            !std::isfinite(row.error->max_px) || !(row.ns_per_point > 0)) {
             continue;
         }
         const auto found = std::find(cameras.begin(), cameras.end(), row.camera);
@@ -196,9 +197,9 @@ std::vector<std::vector<const BenchRow*>> panels_of(const std::vector<BenchRow>&
 
 }  // namespace
 
-std::vector<unsigned char> plot_speed_accuracy(const std::vector<BenchRow>& rows) {
+Image plot_speed_accuracy(const std::vector<BenchRow>& rows) {
     const std::vector<std::vector<const BenchRow*>> panels = panels_of(rows);
-    if (panels.empty()) throw Error("--plot: no unprojection rows to draw");
+    if (panels.empty()) throw Error("speed/accuracy plot: no unprojection rows on one thread with a measured error to draw");
     const int columns = panels.size() > 1 ? 2 : 1;
     const int lines = static_cast<int>((panels.size() + static_cast<std::size_t>(columns) - 1) / static_cast<std::size_t>(columns));
     cv::Mat image(lines * kPanelHeight, columns * kPanelWidth, CV_8UC3, kWhite);
@@ -206,9 +207,7 @@ std::vector<unsigned char> plot_speed_accuracy(const std::vector<BenchRow>& rows
         const int column = static_cast<int>(i) % columns, line = static_cast<int>(i) / columns;
         draw_panel(panels[i].front()->camera, panels[i]).copyTo(image(cv::Rect(column * kPanelWidth, line * kPanelHeight, kPanelWidth, kPanelHeight)));
     }
-    std::vector<unsigned char> png;
-    if (!cv::imencode(".png", image, png)) throw Error("--plot: OpenCV could not encode the PNG");
-    return png;
+    return detail::to_image(image);
 }
 
-}  // namespace libcam::cli
+}  // namespace libcam

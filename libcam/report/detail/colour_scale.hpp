@@ -1,8 +1,9 @@
 #pragma once
-// What libcam's error heatmaps share (`libcam verify --heatmap`, interop/verify.cpp, and
-// `libcam fit --heatmap`, tools/libcam/fit_heatmap.cpp): the colour scale, chosen in
-// one place. Each picture maps its own errors to levels (a log scale for verify, a
-// linear one up to the tolerance for fit).
+// What libcam's error heatmaps share (report/verify_heatmap.cpp for `libcam verify
+// --heatmap`, report/fit_heatmap.cpp for `libcam fit --heatmap`): the colour scale,
+// chosen in one place. Each picture maps its own errors to levels (a log scale for
+// verify, a linear one up to the tolerance for fit). Inside libcam::report only: not
+// installed, so that report's headers stay free of OpenCV.
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +11,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-namespace libcam {
+namespace libcam::detail {
 
 // Levels 0 (the bottom of the scale) to 255 (the top), CV_8U, in colour (BGR): viridis,
 // which reads in order on screen and in grey.
@@ -32,4 +33,4 @@ inline void draw_colour_ramp(cv::Mat& canvas, const cv::Rect& bar) {
     widened.copyTo(canvas(bar));
 }
 
-}  // namespace libcam
+}  // namespace libcam::detail

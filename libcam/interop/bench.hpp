@@ -1,0 +1,47 @@
+#pragma once
+// `libcam bench`: the time per point and the accuracy of every way libcam, OpenCV and
+// mrcal project and unproject, measured on the same pixels in one process.
+//
+// The pixels are a PixelGrid over the image (geometry/pixel_grid.hpp). The error of a
+// result is the distance in pixels from its pixel to the projection of the result by
+// libcam (which the tests check against OpenCV and mrcal); its statistics are
+// stats/error_stats.hpp's.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/stats/error_stats.hpp"
+
+namespace libcam {
+
+struct BenchRow {
+    std::string camera;   // the camera's name
+    std::string op;       // "unproject", "project", "rays_full_frame"
+    std::string library;  // "libcam", "opencv", "mrcal", "memset"
+    std::string method;
+    std::string scalar;  // "double", "float"
+    std::string model;   // the lens model, e.g. "OPENCV8"
+    int threads = 1;
+    double ns_per_point = 0;          // median over the repetitions
+    std::optional<ErrorStats> error;  // none for the memset reference; count 0 when no point had a result
+    double invalid_fraction = 0;      // points flagged, not finite, or whose ray cannot be projected back
+};
+
+struct BenchSettings {
+    int grid_x = 601, grid_y = 401;  // pixels across and down, corners included (each >= 2)
+    int repeat = 5;                  // timed repetitions, interleaved across the candidates
+    std::vector<int> threads{1, 2};  // thread counts for libcam's batch paths
+    bool full_frame = false;         // also every pixel's ray, and the memset reference
+};
+
+struct BenchResult {
+    std::vector<BenchRow> rows;
+    double table_build_ms_double = 0, table_build_ms_float = 0;  // Unprojector construction
+};
+
+// Measures every method on `camera`; `name` labels its rows.
+BenchResult run_bench(const std::string& name, const Camera& camera, const BenchSettings& settings);
+
+}  // namespace libcam

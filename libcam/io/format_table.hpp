@@ -1,0 +1,35 @@
+#pragma once
+// The table behind read_camera_file, parse_camera, format_camera and write_camera_file
+// (io/camera_file.hpp): one row per CameraFormat, holding its reader and its writer.
+//
+// libcam::io fills the rows of the formats it implements itself (json, gl) and links
+// neither OpenCV nor libmrcal. The rows of opencv-yaml, opencv-xml (cv::FileStorage) and
+// cameramodel (libmrcal's parser) start empty: libcam::interop fills them when the
+// program calls libcam::register_interop_formats() (interop/formats.hpp). An empty row
+// is never skipped silently: reading or writing its format throws FileError naming the
+// library to link and the function to call.
+//
+// The rows are filled by an explicit call rather than by a static initialiser in
+// libcam::interop: the linker drops an object file of a static library that nothing
+// references, initialiser and all, and the formats would be missing without a word.
+
+#include <string>
+#include <string_view>
+
+#include "libcam/io/camera_file.hpp"
+
+namespace libcam {
+
+// Parses a file's text; `source` names the file in error messages.
+using CameraReader = CameraFile (*)(std::string_view text, const std::string& source);
+// The text of a file holding the camera (which format_camera has validated).
+using CameraWriter = std::string (*)(const Camera& camera, const WriteOptions& options);
+
+// Fills a format's row; filling it again with the same functions changes nothing.
+// Safe to call while other threads read files.
+void install_camera_format(CameraFormat format, CameraReader reader, CameraWriter writer);
+
+// Whether the format's row has its reader and writer.
+bool camera_format_installed(CameraFormat format);
+
+}  // namespace libcam

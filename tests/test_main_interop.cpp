@@ -1,0 +1,11 @@
+// The Catch2 main of the test programs that link libcam::interop: it plugs the OpenCV and
+// mrcal file formats into libcam::io before any test runs, as the `libcam` program does.
+#define CATCH_CONFIG_RUNNER
+#include <catch2/catch.hpp>
+
+#include "libcam/interop/formats.hpp"
+
+int main(int argc, char** argv) {
+    libcam::register_interop_formats();
+    return Catch::Session().run(argc, argv);
+}
