@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <vector>
@@ -104,7 +105,7 @@ TEST_CASE("tile_centres: the centres of equal tiles covering the image to its ed
 
 TEST_CASE("format_number round-trips; format_short is printf's %.3g, or as many digits as asked") {
     for (const double value : {0.1, 1.0 / 3.0, 1e-300, 6016.0, -2.5e17, 5e-324}) {
-        CHECK(std::stod(format_number(value)) == value);
+        CHECK(std::strtod(format_number(value).c_str(), nullptr) == value);  // (std::stod refuses subnormals)
     }
     CHECK(format_number(0.1) == "0.1");
     CHECK(format_number(kInf) == "inf");
