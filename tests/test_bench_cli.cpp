@@ -59,10 +59,22 @@ TEST_CASE("bench --json: every row has the documented keys, and every method and
                                  "unproject opencv default double", "unproject opencv 100it-eps1e-14 double",
                                  "unproject mrcal mrcal_unproject double", "project libcam batch double",
                                  "project libcam batch float", "project opencv projectPoints double",
-                                 "project mrcal mrcal_project double"}) {
+                                 "project mrcal mrcal_project double", "unproject libcam camera double",
+                                 "project libcam camera double"}) {
         INFO(expected);
         CHECK(names.count(expected) == 1);
     }
+    // The public call (PreparedCamera) is the exact method: the same worst error.
+    const auto max_of = [&](const std::string& method) {
+        for (const json& row : out["rows"]) {
+            if (row["op"] == "unproject" && row["library"] == "libcam" && row["method"] == method && row["scalar"] == "double") {
+                return row["max_px"].get<double>();
+            }
+        }
+        return -1.0;
+    };
+    CHECK(max_of("camera") == max_of("exact"));
+    CHECK(max_of("camera") <= 1e-9);
 }
 
 TEST_CASE("bench on a FISHEYE lens: OpenCV's fisheye functions, no mrcal rows (mrcal lacks the model)") {
