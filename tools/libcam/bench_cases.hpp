@@ -13,9 +13,7 @@ struct BenchCase {
     Camera camera;
 };
 
-// "mild" and "strong" OPENCV8 lenses (the strong one folds over inside the image's
-// corners), "fisheye" (FISHEYE, corners past 90 degrees), and "wide": a real calibrated
-// wide lens (6016x4016 OPENCV8).
+// The library's example cameras (camera/example_cameras.hpp).
 std::vector<BenchCase> builtin_bench_cases();
 
 }  // namespace libcam::cli
