@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job on the built-in example: install what is missing, build, then convert the
-# seed's cameras and check every ray against OpenCV and mrcal.
+# two worked example cameras and check every ray against OpenCV and mrcal.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bash "$root/scripts/install-deps.sh"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs a built libcam into a temporary prefix, builds examples/consumer against the
 # installed CMake package (and a pkg-config build of the same source), runs both, and
-# checks the printed ray against the seed's worked answer. The camera-file consumer
+# checks the printed ray against the answer worked by hand. The camera-file consumer
 # (libcam::io alone) is also compiled by hand with nothing but the installed headers and
 # Eigen, and must see no OpenCV, mrcal, Ceres or nlohmann header, nor link their libraries.
 # Usage: scripts/test-install.sh BUILD_DIR
@@ -22,7 +22,9 @@ done
 [ ! -e "$work/prefix/include/libcam/report/detail" ] || { echo "test-install: report/detail was installed"; exit 1; }
 "$work/prefix/bin/libcam" --version | grep -q "^libcam " || { echo "test-install: libcam --version"; exit 1; }
 
-# Expected: the seed's d at (0, 0) is (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2), normalised.
+# Expected: for the camera at eye (0,5,5) looking at the origin (90 degrees, 3x3), the
+# look-at formula's d at pixel (0, 0), counted from the bottom-left, is
+# (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2), normalised.
 check() {
   awk -v out="$1" 'BEGIN {
     s = sqrt(2); x = -2/3; y = -s/3 - 1/s; z = s/3 - 1/s; n = sqrt(x*x + y*y + z*z)
@@ -46,11 +48,11 @@ check_fit "$("$work/consumer/consumer_fit")"
 
 # libcam::io alone reads a JSON camera (written here by the installed program) and
 # refuses an OpenCV YAML one, naming libcam::interop and the call that registers it.
-"$work/prefix/bin/libcam" convert --fov 90 --size 3x3 --eye 0,5,5 --target 0,0,0 -o "$work/seed.json"
-"$work/prefix/bin/libcam" convert --from "$work/seed.json" --to opencv-yaml -o "$work/seed.yaml"
-check "$("$work/consumer/consumer_io" "$work/seed.json")"
+"$work/prefix/bin/libcam" convert --fov 90 --size 3x3 --eye 0,5,5 --target 0,0,0 -o "$work/camera.json"
+"$work/prefix/bin/libcam" convert --from "$work/camera.json" --to opencv-yaml -o "$work/camera.yaml"
+check "$("$work/consumer/consumer_io" "$work/camera.json")"
 check_io_refuses_yaml() {
-  if "$1" "$work/seed.yaml" 2> "$work/io.err"; then echo "test-install: $1 read OpenCV YAML without libcam::interop"; exit 1; fi
+  if "$1" "$work/camera.yaml" 2> "$work/io.err"; then echo "test-install: $1 read OpenCV YAML without libcam::interop"; exit 1; fi
   grep -q "register_interop_formats" "$work/io.err" || { echo "test-install: unclear error from $1:"; cat "$work/io.err"; exit 1; }
 }
 check_io_refuses_yaml "$work/consumer/consumer_io"
@@ -65,7 +67,7 @@ if grep -Eiq "opencv|mrcal|ceres|nlohmann" "$work/consumer-io.d"; then
   grep -Eio "[^ ]*(opencv|mrcal|ceres|nlohmann)[^ ]*" "$work/consumer-io.d" | sort -u
   exit 1
 fi
-check "$("$work/consumer-io-bare" "$work/seed.json")"
+check "$("$work/consumer-io-bare" "$work/camera.json")"
 check_io_refuses_yaml "$work/consumer-io-bare"
 
 # The same sources through pkg-config; libcam-io's flags name no OpenCV, mrcal or Ceres.
@@ -76,7 +78,7 @@ if echo "$io_flags" | grep -Eiq "opencv|mrcal|ceres"; then
   exit 1
 fi
 c++ "$root/examples/consumer/io_main.cpp" -o "$work/consumer-io-pc" $io_flags
-check "$("$work/consumer-io-pc" "$work/seed.json")"
+check "$("$work/consumer-io-pc" "$work/camera.json")"
 c++ "$root/examples/consumer/main.cpp" -o "$work/consumer-pc" $(pkg-config --cflags --libs libcam-core)
 check "$("$work/consumer-pc")"
 c++ "$root/examples/consumer/fit_main.cpp" -o "$work/consumer-fit-pc" $(pkg-config --cflags --libs libcam-fit)

@@ -1,8 +1,8 @@
 #pragma once
-// The extremes of issue 5 as rows of one table: each row is one error measured at one
+// The numerical extremes as rows of one table: each row is one error measured at one
 // extreme, in double and in float, against the 113-bit reference (reference.hpp) or a
 // hand formula, with the bound the tests assert. The test cases check the rows; the
-// hidden test case "[table]" prints them all (README, "Numerical limits"):
+// hidden test case "[table]" prints them all (docs/numerical-limits.md):
 //
 //     build/tests/test_extremes "[table]"
 

@@ -1,5 +1,5 @@
 #pragma once
-// The inputs of issue 5's lens extremes and the 113-bit reference they are measured
+// The inputs of the lens models' extremes and the 113-bit reference they are measured
 // against, shared by the Camera path (test_extremes_lens.cpp) and the batch paths
 // (test_extremes_methods.cpp): the same lenses, pixels and points, the same reference
 // (libcam's model templates and solver run in Quad), the same scoring.
@@ -108,7 +108,7 @@ inline Quad radial_slope(const Lens& lens, const Vec3Q& ray) {
 // - the angle, by the unprojection's own conditioning eps |m| / d'(r) (an error of eps
 //   in m, through the lens's slope; d'(r) -> 0 at the fold): 8 times its largest;
 // - where a ray lands, by the solver's stopping residual 64 eps (1 + |m|) in m times f:
-//   in double the issue's target, 1e-9 px; in float 64 eps_f f (1 + |m|), its largest.
+//   in double the 1e-9 px target; in float 64 eps_f f (1 + |m|), its largest.
 struct UnprojectionWorst {
     Worst rad_double, px_double, rad_float, px_float;
     double conditioning_double = 0, conditioning_float = 0, solver_px_float = 0;

@@ -1,6 +1,6 @@
 #pragma once
 // The cameras the lens-model tests run on: for each model a mild and a strong lens, and
-// the real wide lens of issue 3. Inputs only; expected values come from OpenCV, mrcal or
+// the real wide lens (6016x4016, OPENCV8). Inputs only; expected values come from OpenCV, mrcal or
 // formulas worked by hand in the tests.
 
 #include <cmath>
@@ -32,7 +32,7 @@ inline Camera lens_camera(LensType type, std::vector<double> coefficients, Image
     return camera;
 }
 
-// Issue 3's real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767.
+// The real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767.
 inline Camera wide_reference_camera() {
     Camera camera;
     camera.size = {6016, 4016};

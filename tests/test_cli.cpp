@@ -1,10 +1,10 @@
-// The `libcam` program, run as a user runs it (tests/cli_runner.hpp): the seed's worked
-// answers through `libcam rays --json`, `libcam convert` and its file round trips, the
-// fov axes, the pixel origin, and bad input.
+// The `libcam` program, run as a user runs it (tests/cli_runner.hpp): the two worked
+// example cameras through `libcam rays --json`, `libcam convert` and its file round trips,
+// the fov axes, the pixel origin, and bad input.
 //
-// Every expected value is worked by hand from the seed's formulas
+// Every expected value is worked by hand from the look-at formula
 //     d = alpha u + beta v + w,  alpha = tan(fov/2) (2x - W + 1) / W,  beta = tan(fov/2) (2y - H + 1) / H
-// (rows counted upward, w along the gaze) and from shared/CONVENTIONS.md
+// (rows counted upward, w along the gaze) and from docs/conventions.md
 // (K = [W/(2 tan_x), 0, (W-1)/2; 0, H/(2 tan_y), (H-1)/2; 0, 0, 1], rows of R = camera
 // axes x right (u), y down (-v), z forward (gaze), t = -R eye), never from the program.
 
@@ -157,7 +157,7 @@ void check_ray(const json& ray, const Vector3d& expected, const Vector3d& eye) {
     const Vector3d e = expected.normalized();
     REQUIRE(ray.at("valid") == true);
     const Vector3d d = vec3(ray.at("direction"));
-    const Vector3d s = vec3(ray.at("direction_seed"));
+    const Vector3d s = vec3(ray.at("direction_look_at"));
     CHECK(std::abs(d.norm() - 1.0) < 1e-12);
     CHECK(std::abs(s.norm() - 1.0) < 1e-12);
     CHECK_CLOSE(d, e, 1e-12);
@@ -180,66 +180,66 @@ const Args kSquare90 = {"--fov", "90", "--size", "3x3"};
 }  // namespace
 
 // ---------------------------------------------------------------------------------------
-// 1. The seed's worked answers.
+// 1. The two worked example cameras, and the look-at formula on any basis.
 
-TEST_CASE("rays: seed section 1, camera at the origin looking along -z") {
-    // 1.1: u = (1,0,0), v = (0,1,0), w = (0,0,-1) (left-handed, w along the gaze).
-    // SLIP in the seed: 1.1 says the left-handed w faces "away from the gaze"; its own
-    // value w = (0,0,-1) points along the gaze (-z), which is what is tested here.
+TEST_CASE("rays: example camera 1, at the origin looking along -z") {
+    // Basis: u = (1,0,0), v = (0,1,0), w = (0,0,-1) (left-handed, w along the gaze).
+    // (The worked example says the left-handed w faces "away from the gaze" by mistake;
+    // its own value w = (0,0,-1) points along the gaze (-z), which is what is tested here.)
     const Vector3d eye(0, 0, 0);
     for (const Args& look : {Args{"--gaze", "0,0,-1"}, Args{"--target", "0,0,-1"}}) {
         INFO("look " << look[0]);
         const json r = rays(kSquare90 + Args{"--eye", "0,0,0", "--up", "0,1,0"} + look, {"1,1", "0,0", "-0.5,-0.5"});
-        // 1.2, pixel (1,1): alpha = tan45 (2*1 - 3 + 1)/3 = 0, beta = 0, d = w = (0,0,-1).
+        // Pixel (1,1): alpha = tan45 (2*1 - 3 + 1)/3 = 0, beta = 0, d = w = (0,0,-1).
         check_pixel(r[0], 1, 1);
         check_ray(r[0], Vector3d(0, 0, -1), eye);
-        // 1.2, pixel (0,0): alpha = beta = (2*0 - 3 + 1)/3 = -2/3, d = (-2/3, -2/3, -1).
-        // SLIP in the seed: the second f(t) of 1.2 is labelled "at (1,1)"; it is the ray at (0,0).
+        // Pixel (0,0): alpha = beta = (2*0 - 3 + 1)/3 = -2/3, d = (-2/3, -2/3, -1).
+        // (The worked example labels this second f(t) "at (1,1)" by mistake; it is the ray at (0,0).)
         check_pixel(r[1], 0, 0);
         check_ray(r[1], Vector3d(-2.0 / 3, -2.0 / 3, -1), eye);
-        // 1.3, the lower-left corner of the field of view is pixel (-0.5,-0.5) (the image
+        // The lower-left corner of the field of view is pixel (-0.5,-0.5) (the image
         // spans [-0.5, W-0.5]): alpha = (2(-0.5) - 3 + 1)/3 = -1, beta = -1, d = (-1,-1,-1).
         check_pixel(r[2], -0.5, -0.5);
         check_ray(r[2], Vector3d(-1, -1, -1), eye);
     }
 }
 
-TEST_CASE("rays: seed section 2, eye (0,5,5) looking at the origin") {
-    // 2.1: w = ((0,0,0) - (0,5,5))/|..| = (0,-1,-1)/sqrt2;
+TEST_CASE("rays: example camera 2, eye (0,5,5) looking at the origin") {
+    // Basis: w = ((0,0,0) - (0,5,5))/|..| = (0,-1,-1)/sqrt2;
     //      u = w x up = (1,0,0)/sqrt2 -> (1,0,0);  v = u x w = (0,1,-1)/sqrt2.
     const Vector3d eye(0, 5, 5);
     const Vector3d u(1, 0, 0), v = Vector3d(0, 1, -1) / kSqrt2, w = Vector3d(0, -1, -1) / kSqrt2;
     const json r = rays(kSquare90 + Args{"--eye", "0,5,5", "--target", "0,0,0", "--up", "0,1,0"},
                         {"1,1", "0,0", "1,2.5"});
-    // 2.2, pixel (1,1): alpha = beta = 0, d = w = (0,-1,-1)/sqrt2.
+    // Pixel (1,1): alpha = beta = 0, d = w = (0,-1,-1)/sqrt2.
     check_ray(r[0], Vector3d(0, -1, -1) / kSqrt2, eye);
     check_ray(r[0], w, eye);
-    // 2.2, pixel (0,0): alpha = beta = -2/3,
+    // Pixel (0,0): alpha = beta = -2/3,
     //   d = -2/3 (1,0,0) - 2/3 (0,1,-1)/sqrt2 + (0,-1,-1)/sqrt2
     //     = (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2)      (2/(3 sqrt2) = sqrt2/3).
-    // SLIP in the seed: 2.2's f(t) at (0,0) prints x = 0 (it is -2t/3) and
-    // y = 5 - 2t/3 - t/sqrt2 (it is 5 - sqrt2 t/3 - t/sqrt2); its d above is right.
+    // (The worked example's f(t) at (0,0) prints x = 0 by mistake (it is -2t/3) and
+    // y = 5 - 2t/3 - t/sqrt2 (it is 5 - sqrt2 t/3 - t/sqrt2); its d above is right.)
     const Vector3d d00(-2.0 / 3, -kSqrt2 / 3 - 1 / kSqrt2, kSqrt2 / 3 - 1 / kSqrt2);
     check_ray(r[1], d00, eye);
     check_ray(r[1], -2.0 / 3 * u - 2.0 / 3 * v + w, eye);
     {
-        // f(t) = eye + t d with the seed's unnormalised d, at t = 3: x = -2 (not 0),
+        // f(t) = eye + t d with the look-at formula's unnormalised d, at t = 3: x = -2 (not 0),
         // y = 5 - sqrt2 - 3/sqrt2 (not 5 - 2 - 3/sqrt2), z = 5 + sqrt2 - 3/sqrt2.
         const double t = 3.0;
         const Vector3d point = vec3(r[1]["origin"]) + t * d00.norm() * vec3(r[1]["direction"]);
         CHECK_CLOSE(point, Vector3d(-2, 5 - kSqrt2 - 3 / kSqrt2, 5 + kSqrt2 - 3 / kSqrt2), 1e-12);
     }
-    // 2.3, the top centre of the field of view: alpha factor 0, beta factor 1, i.e. pixel
+    // The top centre of the field of view: alpha factor 0, beta factor 1, i.e. pixel
     // (1, 2.5): (2*1 - 3 + 1)/3 = 0, (2*2.5 - 3 + 1)/3 = 1;
     //   d = (0,1,-1)/sqrt2 + (0,-1,-1)/sqrt2 = (0, 0, -sqrt2).
     check_pixel(r[2], 1, 2.5);
     check_ray(r[2], Vector3d(0, 0, -kSqrt2), eye);
 }
 
-TEST_CASE("rays: seed section 3, a general orthonormal basis") {
-    // 3.1: pixel (1,1) -> w;  3.2: pixel (0,0) -> -2/3 u - 2/3 v + w.
+TEST_CASE("rays: the look-at formula on a general orthonormal basis") {
+    // Pixel (1,1) -> w;  pixel (0,0) -> -2/3 u - 2/3 v + w.
     // The basis: w random (the gaze), v random orthogonal to w (given as --up), u = w x v,
-    // so that v = u x w as in the seed's 2.1 and {u, v, w} is orthonormal.
+    // so that v = u x w as in example camera 2 and {u, v, w} is orthonormal.
     for (int trial = 0; trial < 6; ++trial) {
         const Vector3d w = libcam::test::random_unit();
         Vector3d a;
@@ -303,7 +303,7 @@ void check_json_structure(const json& j, long width, long height) {
 
 }  // namespace
 
-TEST_CASE("convert: JSON of the seed's camera 1 (3x3, fov 90, at the origin looking along -z)") {
+TEST_CASE("convert: JSON of example camera 1 (3x3, fov 90, at the origin looking along -z)") {
     const json j = run_json(Args{"convert"} + kSquare90 + Args{"--eye", "0,0,0", "--gaze", "0,0,-1", "--up", "0,1,0"});
     check_json_structure(j, 3, 3);
     // fx = fy = W/(2 tan 45) = 3/2 = 1.5, cx = cy = (W-1)/2 = 1.
@@ -330,7 +330,7 @@ TEST_CASE("convert: JSON of the seed's camera 1 (3x3, fov 90, at the origin look
     CHECK_CLOSE(vec3(j["up"]), Vector3d(0, 1, 0), 1e-12);
 }
 
-TEST_CASE("convert: JSON of the seed's camera 2 (eye 0,5,5 looking at the origin)") {
+TEST_CASE("convert: JSON of example camera 2 (eye 0,5,5 looking at the origin)") {
     const json j = run_json(Args{"convert"} + kSquare90 + Args{"--eye", "0,5,5", "--target", "0,0,0", "--up", "0,1,0"});
     check_json_structure(j, 3, 3);
     Matrix3d K;
@@ -351,9 +351,9 @@ TEST_CASE("convert: JSON of the seed's camera 2 (eye 0,5,5 looking at the origin
 namespace {
 
 const std::vector<ConvertCase> kConvertCases = {
-    {"seed camera 2", kSquare90 + Args{"--eye", "0,5,5", "--target", "0,0,0", "--up", "0,1,0"}},
+    {"example camera 2", kSquare90 + Args{"--eye", "0,5,5", "--target", "0,0,0", "--up", "0,1,0"}},
     // R = diag(1,-1,-1): a rotation by exactly pi about x (rvec's edge case).
-    {"seed camera 1", kSquare90 + Args{"--eye", "0,0,0", "--gaze", "0,0,-1", "--up", "0,1,0"}},
+    {"example camera 1", kSquare90 + Args{"--eye", "0,0,0", "--gaze", "0,0,-1", "--up", "0,1,0"}},
     // gaze +z, up -y: u = (0,0,1) x (0,-1,0) = (1,0,0), v = (0,-1,0), R rows (u, -v, gaze) = I.
     {"identity rotation", {"--fov", "50", "--size", "4x6", "--eye", "2,-1,0.5", "--gaze", "0,0,1", "--up", "0,-1,0"}},
     // gaze +z, up +y: u = (-1,0,0), v = (0,1,0), R = diag(-1,-1,1): a rotation by pi about z.
@@ -366,7 +366,7 @@ const std::vector<ConvertCase> kConvertCases = {
     {"1920x1080 hfov 60, general pose",
      {"--fov", "60", "--fov-axis", "horizontal", "--size", "1920x1080", "--eye", "1.5,-2,3.25", "--target",
       "-4,0.5,7", "--up", "0.1,1,0.2"}},
-    {"640x480 seed fov 75 (fx != fy)",
+    {"640x480 fov 75 on both axes (fx != fy)",
      {"--fov", "75", "--size", "640x480", "--eye", "-3,2,10", "--gaze", "0.3,-0.2,-1", "--up", "0,1,0"}},
 };
 
@@ -459,7 +459,7 @@ TEST_CASE("convert: --fov-axis on 1920x1080, fov 60") {
         {"horizontal", 960 / tan30, 960 / tan30},                                  // 1662.77 both
         {"vertical", 540 / tan30, 540 / tan30},                                    // 935.31 both
         {"diagonal", std::hypot(960.0, 540.0) / tan30, std::hypot(960.0, 540.0) / tan30},  // 1907.77 both
-        {"both", 960 / tan30, 540 / tan30},                                        // the seed's
+        {"both", 960 / tan30, 540 / tan30},                                        // the look-at formula's
     };
     for (const AxisCase& c : cases) {
         INFO("--fov-axis " << c.axis);
@@ -479,8 +479,8 @@ TEST_CASE("convert: --fov-axis on 1920x1080, fov 60") {
 // 4. --pixel-origin.
 
 TEST_CASE("rays: top-left pixel (x, y) is bottom-left pixel (x, H-1-y)") {
-    // By hand first: in the seed's camera 1, top-left (1, 0) is the top middle pixel, seed
-    // pixel (1, 2): alpha = 0, beta = (2*2 - 3 + 1)/3 = 2/3, d = (0, 2/3, -1).
+    // By hand first: in example camera 1, top-left (1, 0) is the top middle pixel,
+    // bottom-left pixel (1, 2): alpha = 0, beta = (2*2 - 3 + 1)/3 = 2/3, d = (0, 2/3, -1).
     const Args camera1 = kSquare90 + Args{"--gaze", "0,0,-1"};
     const json top = rays(camera1, {"1,0"}, "top-left");
     check_ray(top[0], Vector3d(0, 2.0 / 3, -1), Vector3d::Zero());
@@ -500,7 +500,7 @@ TEST_CASE("rays: top-left pixel (x, y) is bottom-left pixel (x, H-1-y)") {
     for (std::size_t i = 0; i < pixels.size(); ++i) {
         INFO("top-left pixel " << top_args[i] << " vs bottom-left " << bottom_args[i]);
         check_ray(t[i], vec3(b[i]["direction"]), vec3(b[i]["origin"]));
-        CHECK_CLOSE(vec3(t[i]["direction_seed"]), vec3(b[i]["direction_seed"]), 1e-12);
+        CHECK_CLOSE(vec3(t[i]["direction_look_at"]), vec3(b[i]["direction_look_at"]), 1e-12);
     }
     // And the flip is not a no-op: the same numbers (0, 0) are different pixels in the two origins.
     const json same_numbers = rays(camera, top_args, "bottom-left");
@@ -703,8 +703,8 @@ TEST_CASE("rays --from a file written by convert gives the rays of the flags") {
             }
         }
     }
-    // And by hand for the seed's camera 2 read from JSON: pixel (0,0) bottom-left is
-    // (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2) from (0,5,5) (section 2.2).
+    // And by hand for example camera 2 read from JSON: pixel (0,0) bottom-left is
+    // (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2) from (0,5,5) (as in "rays: example camera 2").
     TempDir dir;
     const fs::path file = dir / "camera2.json";
     run_to_file(Args{"convert"} + kConvertCases[0].flags, file);

@@ -184,7 +184,7 @@ TEST_CASE("fit refuses bad scenes and flags, and says when no model meets the to
 }
 
 TEST_CASE("a fit that runs past a second reports its progress on stderr") {
-    // Issue 3's wide lens over the whole image on a fine lattice: a few seconds of fitting.
+    // The real wide lens (6016x4016, OPENCV8) over the whole image on a fine lattice: a few seconds of fitting.
     TempDir dir;
     const std::string wide = (dir / "wide.json").string();
     write_whole_file(wide, R"({

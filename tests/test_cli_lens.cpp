@@ -61,8 +61,8 @@ TEST_CASE("rays through a distorted lens: inside the fold a ray, past it valid f
     REQUIRE(std::abs(rays[0].at("direction")[0].get<double>() - r / norm) < 1e-12);
     REQUIRE(std::abs(rays[0].at("direction")[1].get<double>()) < 1e-12);
     REQUIRE(std::abs(rays[0].at("direction")[2].get<double>() - 1 / norm) < 1e-12);
-    // Not a FOV camera: no seed direction.
-    REQUIRE(rays[0].at("direction_seed").is_null());
+    // Not a FOV camera: no look-at direction.
+    REQUIRE(rays[0].at("direction_look_at").is_null());
 
     REQUIRE(rays[1].at("valid") == false);
     REQUIRE(rays[1].at("direction").is_null());

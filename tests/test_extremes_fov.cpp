@@ -1,6 +1,6 @@
-// Issue 5, the FOV camera and its conversions at the extremes, against the 113-bit
+// The FOV camera and its conversions at the extremes, against the 113-bit
 // reference: libcam's own templated formulas (fov_formulas.hpp, pinhole_from_fov,
-// seed_formula_in) run in Quad from the very same inputs. Each extreme is a group of
+// look_at_formula_in) run in Quad from the very same inputs. Each extreme is a group of
 // rows (extremes.hpp) with a documented bound; the test cases assert the bounds and
 // `test_extremes "[table]"` prints the measured values.
 
@@ -98,9 +98,9 @@ double pixel_conditioning(const FovPinholeT<Quad>& pinhole, const Vec2& pixel, d
 // (px) between `pixel` and where the computed ray lands in the reference camera.
 template <class Scalar>
 std::pair<double, double> ray_errors(const Vec3T<Scalar>& ray, const FovPinholeT<Quad>& pinhole,
-                                     const SeedRayFormulaT<Quad>& seed, const Vec2& pixel) {
+                                     const LookAtRayFormulaT<Quad>& look_at, const Vec2& pixel) {
     const Vec2Q pixel_q = pixel.cast<Quad>();
-    const Vec3Q expected = seed.ray(pixel_q, PixelOrigin::TopLeft);
+    const Vec3Q expected = look_at.ray(pixel_q, PixelOrigin::TopLeft);
     const double angle = angle_error(ray, expected);
     const double px = static_cast<double>((reference_pixel(pinhole, ray.template cast<Quad>()) - pixel_q).norm());
     return {angle, px};
@@ -110,8 +110,8 @@ std::pair<double, double> ray_errors(const Vec3T<Scalar>& ray, const FovPinholeT
 
 struct FovSweepWorst {
     Worst focal_double, focal_float;                 // fx, fy, ulps of their own type
-    Worst seed_rad_double, seed_rad_float;           // seed ray, angle
-    Worst seed_px_double, seed_px_float;             // seed ray, pixels
+    Worst look_at_rad_double, look_at_rad_float;     // look-at ray, angle
+    Worst look_at_px_double, look_at_px_float;       // look-at ray, pixels
     Worst calibrated_rad, calibrated_px;             // PreparedCamera::ray (double only)
     Worst fov_back;                                  // K -> fov, ulps of double against the input fov
     double px_scale_double = 0, px_scale_float = 0;  // the largest pixel_conditioning seen
@@ -121,22 +121,22 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
     const auto where = [&] { return describe(camera); };
     // In double, against the reference from the same inputs.
     const FovPinholeT<Quad> pinhole_q = pinhole_from_fov<Quad>(camera);
-    const SeedRayFormulaT<Quad> seed_q = seed_formula_in<Quad>(camera);
+    const LookAtRayFormulaT<Quad> look_at_q = look_at_formula_in<Quad>(camera);
     const FovPinholeT<double> pinhole_d = pinhole_from_fov<double>(camera);
     for (int i = 0; i < 2; ++i) worst.focal_double.update(ulps(pinhole_d.focal(i), pinhole_q.focal(i)), where);
 
     const Camera calibrated = to_camera(camera);
     const PreparedCamera prepared(calibrated);
-    const SeedRayFormula seed_d = camera.seed_formula();
+    const LookAtRayFormula look_at_d = camera.look_at_formula();
     for (const Vec2& pixel : probe_pixels(camera.size)) {
         const auto at = [&] {
             return where() + " pixel (" + std::to_string(pixel.x()) + ", " + std::to_string(pixel.y()) + ")";
         };
-        const auto [rad, px] = ray_errors<double>(seed_d.ray(pixel, PixelOrigin::TopLeft), pinhole_q, seed_q, pixel);
+        const auto [rad, px] = ray_errors<double>(look_at_d.ray(pixel, PixelOrigin::TopLeft), pinhole_q, look_at_q, pixel);
         worst.px_scale_double = std::max(worst.px_scale_double, pixel_conditioning(pinhole_q, pixel, kEpsDouble));
-        worst.seed_rad_double.update(rad, at);
-        worst.seed_px_double.update(px, at);
-        const auto [c_rad, c_px] = ray_errors<double>(prepared.ray(pixel).direction, pinhole_q, seed_q, pixel);
+        worst.look_at_rad_double.update(rad, at);
+        worst.look_at_px_double.update(px, at);
+        const auto [c_rad, c_px] = ray_errors<double>(prepared.ray(pixel).direction, pinhole_q, look_at_q, pixel);
         worst.calibrated_rad.update(c_rad, at);
         worst.calibrated_px.update(c_px, at);
     }
@@ -146,19 +146,19 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
     // In float, against the reference from the float-rounded inputs.
     const FovCamera camera_f = rounded_to_float(camera);
     const FovPinholeT<Quad> pinhole_fq = pinhole_from_fov<Quad>(camera_f);
-    const SeedRayFormulaT<Quad> seed_fq = seed_formula_in<Quad>(camera_f);
+    const LookAtRayFormulaT<Quad> look_at_fq = look_at_formula_in<Quad>(camera_f);
     const FovPinholeT<float> pinhole_f = pinhole_from_fov<float>(camera_f);
     for (int i = 0; i < 2; ++i) worst.focal_float.update(ulps(pinhole_f.focal(i), pinhole_fq.focal(i)), where);
-    const SeedRayFormulaT<float> seed_f = seed_formula_in<float>(camera_f);
+    const LookAtRayFormulaT<float> look_at_f = look_at_formula_in<float>(camera_f);
     for (const Vec2& pixel : probe_pixels(camera.size)) {
         const auto at = [&] {
             return where() + " pixel (" + std::to_string(pixel.x()) + ", " + std::to_string(pixel.y()) + ")";
         };
         const auto [rad, px] =
-            ray_errors<float>(seed_f.ray(pixel.cast<float>(), PixelOrigin::TopLeft), pinhole_fq, seed_fq, pixel);
+            ray_errors<float>(look_at_f.ray(pixel.cast<float>(), PixelOrigin::TopLeft), pinhole_fq, look_at_fq, pixel);
         worst.px_scale_float = std::max(worst.px_scale_float, pixel_conditioning(pinhole_fq, pixel, kEpsFloat));
-        worst.seed_rad_float.update(rad, at);
-        worst.seed_px_float.update(px, at);
+        worst.look_at_rad_float.update(rad, at);
+        worst.look_at_px_float.update(px, at);
     }
 }
 
@@ -166,7 +166,7 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
 // - fx, fy: the tangent rounds once, the aspect ratio (or hypot for the diagonal) and
 //   W / (2 tan) add at most 4 more roundings: 3 ulps.
 // - a ray's direction: held as three numbers, it is resolved to about eps in angle;
-//   the seed's sum alpha u + beta v + w and R^T K^-1 add a few roundings: 4 eps.
+//   the look-at formula's sum alpha u + beta v + w and R^T K^-1 add a few roundings: 4 eps.
 // - where a ray lands: 4 eps f (1 + tan^2 off axis), its conditioning (above). At fov
 //   1e-6 deg over 100000 px, f = 5.7e12 and one pixel is 1.7e-13 rad, so eps alone is
 //   6e-4 px; at 179.999 deg the corner rays are 89.9995 deg off axis, cos^2 = 8e-11.
@@ -182,12 +182,12 @@ std::vector<Row> fov_extreme_rows(const std::string& extreme, const std::vector<
         {extreme, "fx, fy vs reference [ulp]", worst.focal_double.value, worst.focal_float.value, kFocalUlps,
          kFocalUlps, tangent + "; fx = W / (2 tan_x)",
          worst.focal_double.where + "; float: " + worst.focal_float.where},
-        {extreme, "seed ray alpha u + beta v + w [rad]", worst.seed_rad_double.value, worst.seed_rad_float.value,
+        {extreme, "look-at ray alpha u + beta v + w [rad]", worst.look_at_rad_double.value, worst.look_at_rad_float.value,
          kRayEps * kEpsDouble, kRayEps * kEpsFloat, "alpha = tan_x (2x - W + 1) / W: 2x - W + 1 exact",
-         worst.seed_rad_double.where},
-        {extreme, "seed ray, where it lands [px]", worst.seed_px_double.value, worst.seed_px_float.value,
+         worst.look_at_rad_double.where},
+        {extreme, "look-at ray, where it lands [px]", worst.look_at_px_double.value, worst.look_at_px_float.value,
          kPixelConditionings * worst.px_scale_double, kPixelConditionings * worst.px_scale_float,
-         "bound: 4 eps f / cos^2(angle off axis), the pixel's own conditioning", worst.seed_px_double.where},
+         "bound: 4 eps f / cos^2(angle off axis), the pixel's own conditioning", worst.look_at_px_double.where},
         {extreme, "calibrated ray R^T K^-1 [x y 1] [rad]", worst.calibrated_rad.value, kNotApplicable,
          kRayEps * kEpsDouble, kNotApplicable, "K^-1: (x - cx) / fx, x - cx exact", worst.calibrated_rad.where},
         {extreme, "calibrated ray, where it lands [px]", worst.calibrated_px.value, kNotApplicable,

@@ -1,4 +1,4 @@
-// Issue 5, the lens models at the extremes, against the 113-bit reference: the same
+// The lens models at the extremes, against the 113-bit reference: the same
 // model templates (lens/*.hpp) and the same solver (undistort.hpp) run in Quad.
 //
 // Double goes through the public Camera API (K^-1 included); its reference starts from
@@ -103,7 +103,7 @@ std::vector<Row> large_image_rows() {
                              "Newton from the radial 1-D root, bracketed; residual <= 64 eps (1 + |m|)");
 }
 
-// Issue 3's wide lens, a 151x101 grid with the corners (test_unproject checks 601x401
+// The real wide lens (6016x4016, OPENCV8), a 151x101 grid with the corners (test_unproject checks 601x401
 // against OpenCV; the 113-bit reference costs more).
 std::vector<Row> wide_lens_rows() {
     UnprojectionWorst worst;
@@ -386,8 +386,8 @@ void sweep_fov(SweepCount& in_double) {
                         const Ray ray = prepared.ray(pixel);
                         in_double.add(ray.valid, ray.direction.allFinite() && ray.origin.allFinite(),
                                       "FOV camera ray " + show(pixel));
-                        const Vec3 seed = fov_camera.seed_ray(pixel, PixelOrigin::TopLeft);
-                        in_double.add(true, seed.allFinite(), "FOV seed ray " + show(pixel));
+                        const Vec3 look_at = fov_camera.look_at_ray(pixel, PixelOrigin::TopLeft);
+                        in_double.add(true, look_at.allFinite(), "FOV look-at ray " + show(pixel));
                     }
                 }
             }

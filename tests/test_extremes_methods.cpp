@@ -1,4 +1,4 @@
-// Issue 5, the batch paths at the extremes: Unprojector's exact, fast and lut methods
+// The batch paths at the extremes: Unprojector's exact, fast and lut methods
 // and the batch Projector, in double and in float, at the extremes the Camera path is
 // measured at (test_extremes_lens.cpp), against the same 113-bit reference.
 //
@@ -9,7 +9,7 @@
 //
 // The bounds, per pixel, with f the larger focal length, c the larger of |cx|, |cy| and
 // p the larger pixel coordinate:
-// - where the ray lands [px]: exact in double, issue 4's 1e-9 px; exact in float, the
+// - where the ray lands [px]: exact in double, the 1e-9 px target; exact in float, the
 //   solver's residual 64 eps f (1 + |m|) plus K^-1 in float, 4 eps (p + c); fast and
 //   lut, the 0.01 px they are held to (their cells are checked to 0.005 px,
 //   UnprojectorOptions) plus the same two terms in their scalar type;
@@ -31,7 +31,7 @@ using namespace libcam::test;
 namespace {
 
 constexpr double kApproximationPx = 0.01;  // fast and lut: as in test_unprojector.cpp
-constexpr double kExactPx = 1e-9;          // exact in double: issue 4's target
+constexpr double kExactPx = 1e-9;          // exact in double: the 1e-9 px target
 
 template <class Scalar>
 constexpr int type_index = std::is_same_v<Scalar, float> ? 1 : 0;

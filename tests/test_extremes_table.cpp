@@ -1,4 +1,4 @@
-// The table of issue 5 (README, "Numerical limits"): every row of extremes.hpp with
+// The table of numerical limits (docs/numerical-limits.md): every row of extremes.hpp with
 // its measured worst error in double and in float and the asserted bound.
 //
 //     build/tests/test_extremes "[table]"        (hidden: not run by ctest)

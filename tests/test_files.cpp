@@ -202,9 +202,9 @@ TEST_CASE("JSON with \"fov_axis\" reads back the FOV camera: same fov, gaze and 
         CHECK((got.u - expected.u).norm() <= 1e-12);
         CHECK((got.v - expected.v).norm() <= 1e-12);
         CHECK((got.w - expected.w).norm() <= 1e-12);
-        // Same rays: the seed ray of a corner pixel, compared as directions.
+        // Same rays: the look-at ray of a corner pixel, compared as directions.
         const Vec2 corner(0.0, 0.0);
-        CHECK((back.seed_ray(corner).normalized() - fov.seed_ray(corner).normalized()).norm() <= 1e-12);
+        CHECK((back.look_at_ray(corner).normalized() - fov.look_at_ray(corner).normalized()).norm() <= 1e-12);
     }
     // Without "fov_axis" there is no FOV camera in the file.
     const fs::path plain = dir.path() / "plain.json";

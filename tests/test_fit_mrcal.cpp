@@ -13,7 +13,7 @@
 // per-point RMS divided by sqrt(3). The table shows it too, and libcam's RMS in that
 // normalisation: sqrt(sum |error|^2 / (3 Npoints + 2 + Ndistortions)).
 //
-// The source is issue 3's real wide lens (6016x4016, OPENCV8). The grid is mrcal's
+// The source is the real wide lens (6016x4016, OPENCV8). The grid is mrcal's
 // default 30x20, modest so that the 12 runs of mrcal's Python tool take ~10 s.
 // Run with -s to print the comparison table (the README's).
 

@@ -45,7 +45,7 @@ TEST_CASE("K for every fov axis, by hand") {
 }
 
 TEST_CASE("R has rows u, -v, gaze and t = -R eye") {
-    // Camera at (0, 5, 5) looking at the origin (the seed's second camera):
+    // Camera at (0, 5, 5) looking at the origin (the second worked example camera):
     // u = (1,0,0), v = (0,1,-1)/sqrt2, w = (0,-1,-1)/sqrt2.
     const Camera camera = to_camera(FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90, FovAxis::Both, {3, 3}));
     const double s = 1 / std::sqrt(2.0);
@@ -110,12 +110,12 @@ TEST_CASE("rays both ways agree on every pixel of a 1920x1080 image") {
         const FovCamera fov = test::random_fov_camera(size, test::random_axis(i));
         const PixelOrigin origin = i % 2 == 0 ? PixelOrigin::BottomLeft : PixelOrigin::TopLeft;
         const PreparedCamera camera(to_camera(fov));
-        const SeedRayFormula seed = fov.seed_formula();
+        const LookAtRayFormula look_at = fov.look_at_formula();
         for (long y = 0; y < size.height; ++y) {
             for (long x = 0; x < size.width; ++x) {
                 const Vec2 pixel(static_cast<double>(x), static_cast<double>(y));
                 const Ray ray = camera.ray(opencv_pixel(pixel, origin, size));
-                worst = std::max(worst, angle_between(ray.direction, seed.ray(pixel, origin)));
+                worst = std::max(worst, angle_between(ray.direction, look_at.ray(pixel, origin)));
                 ++pixels;
             }
         }

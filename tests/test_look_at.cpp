@@ -1,12 +1,15 @@
-// Every worked answer of the seed (shared/seed/000_4a7508bd2248dabd.txt), reproduced
-// through the library. Expected values are derived from the seed's formulas by hand,
-// in the comments; where the seed's printed answer has a slip, the comment says so and
-// the test uses the correct value.
+// The look-at formula on two worked example cameras and on random ones, reproduced
+// through the library. Expected values are derived from the formula by hand, in the
+// comments; where the worked example this comes from printed a wrong value, the
+// comment says so and the test uses the correct one.
 //
-// The seed: alpha = tan(theta/2) (2x - W + 1)/W, beta = tan(theta/2) (2y - H + 1)/H,
-// d = alpha u + beta v + w (w along the gaze, left-handed), rows counted upward.
-// All its cameras are 3x3 with theta = 90 degrees, so tan(theta/2) = 1 and
-// alpha, beta are -2/3, 0, 2/3 for x, y = 0, 1, 2.
+// The look-at formula: alpha = tan(theta/2) (2x - W + 1)/W, beta = tan(theta/2) (2y - H + 1)/H,
+// d = alpha u + beta v + w (w along the gaze, left-handed), rows counted upward from the
+// bottom-left pixel. All the cameras here are 3x3 with theta = 90 degrees, so
+// tan(theta/2) = 1 and alpha, beta are -2/3, 0, 2/3 for x, y = 0, 1, 2.
+//
+// Example camera 1: eye at the origin looking down -z, up +y.
+// Example camera 2: eye (0, 5, 5) looking at the origin, up +y.
 
 #include <catch2/catch.hpp>
 
@@ -24,28 +27,28 @@ void require_near(const Vec3& actual, const Vec3& expected, double tolerance = 1
     REQUIRE((actual - expected).norm() <= tolerance * std::max(1.0, expected.norm()));
 }
 
-FovCamera seed_camera_1() { return {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3}}; }
-FovCamera seed_camera_2() { return FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3}); }
+FovCamera example_camera_1() { return {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3}}; }
+FovCamera example_camera_2() { return FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3}); }
 
-// The world ray through an OpenCV pixel by the calibrated path, scaled so it can be
-// compared with the seed's unnormalised d.
-Vec3 calibrated_ray_like(const Camera& camera, const Vec2& seed_pixel, const Vec3& seed_d) {
-    const Ray ray = PreparedCamera(camera).ray(opencv_pixel(seed_pixel, PixelOrigin::BottomLeft, camera.size));
+// The world ray through a pixel (counted from the bottom-left) by the calibrated path,
+// scaled so it can be compared with the look-at formula's unnormalised d.
+Vec3 calibrated_ray_like(const Camera& camera, const Vec2& pixel, const Vec3& look_at_d) {
+    const Ray ray = PreparedCamera(camera).ray(opencv_pixel(pixel, PixelOrigin::BottomLeft, camera.size));
     REQUIRE(ray.valid);
-    return ray.direction * seed_d.norm();
+    return ray.direction * look_at_d.norm();
 }
 
 }  // namespace
 
-TEST_CASE("seed 1.1: basis of the camera at the origin looking down -z") {
-    // Note: the seed's text says it uses the left-handed basis "with w facing away from
-    // the gaze"; that is a slip: its own answer, w = (0, 0, -1) for a gaze along -z,
-    // points along the gaze, which is what the left-handed basis means.
-    const Basis left = seed_camera_1().basis(Handedness::Left);
+TEST_CASE("look-at example 1: basis of the camera at the origin looking down -z") {
+    // The left-handed basis has w along the gaze: w = (0, 0, -1) for a gaze along -z.
+    // (The worked example describes it as "w facing away from the gaze" by mistake; its
+    // own answer, w = (0, 0, -1), points along the gaze.)
+    const Basis left = example_camera_1().basis(Handedness::Left);
     require_near(left.u, {1, 0, 0});
     require_near(left.v, {0, 1, 0});
     require_near(left.w, {0, 0, -1});
-    const Basis right = seed_camera_1().basis(Handedness::Right);
+    const Basis right = example_camera_1().basis(Handedness::Right);
     require_near(right.u, {1, 0, 0});
     require_near(right.v, {0, 1, 0});
     require_near(right.w, {0, 0, 1});
@@ -54,27 +57,28 @@ TEST_CASE("seed 1.1: basis of the camera at the origin looking down -z") {
     require_near(right.u.cross(right.v), right.w);
 }
 
-TEST_CASE("seed 1.2: rays of pixels (1, 1) and (0, 0)") {
-    const FovCamera camera = seed_camera_1();
+TEST_CASE("look-at example 1: rays of pixels (1, 1) and (0, 0)") {
+    const FovCamera camera = example_camera_1();
     // (1,1): alpha = beta = (2 - 3 + 1)/3 = 0, so d = w = (0, 0, -1).
-    require_near(camera.seed_ray({1, 1}), {0, 0, -1});
+    require_near(camera.look_at_ray({1, 1}), {0, 0, -1});
     // (0,0): alpha = beta = (0 - 3 + 1)/3 = -2/3, d = (-2/3, -2/3, -1).
-    // (The seed labels this second f(t) "at (1, 1)": a slip for (0, 0).)
-    require_near(camera.seed_ray({0, 0}), {-2.0 / 3, -2.0 / 3, -1});
+    // (The worked example labels this second f(t) "at (1, 1)" by mistake; it is the ray
+    // at (0, 0).)
+    require_near(camera.look_at_ray({0, 0}), {-2.0 / 3, -2.0 / 3, -1});
     // f(t) = o + t d, at t = 3: (-2, -2, -3).
-    require_near(camera.eye + 3.0 * camera.seed_ray({0, 0}), {-2, -2, -3});
+    require_near(camera.eye + 3.0 * camera.look_at_ray({0, 0}), {-2, -2, -3});
 }
 
-TEST_CASE("seed 1.3: the lower-left corner of the field of view") {
-    const FovCamera camera = seed_camera_1();
+TEST_CASE("look-at example 1: the lower-left corner of the field of view") {
+    const FovCamera camera = example_camera_1();
     // alpha = beta = -1: d = -u - v + w = (-1, -1, -1).
     require_near(camera.field_ray(-1, -1), {-1, -1, -1});
     // The corner is the outer edge of pixel (0, 0): x = y = -0.5 gives (2(-0.5) - 3 + 1)/3 = -1.
-    require_near(camera.seed_ray({-0.5, -0.5}), {-1, -1, -1});
+    require_near(camera.look_at_ray({-0.5, -0.5}), {-1, -1, -1});
 }
 
-TEST_CASE("seed 2.1: basis of the camera at (0, 5, 5) looking at the origin") {
-    const Basis basis = seed_camera_2().basis();
+TEST_CASE("look-at example 2: basis of the camera at (0, 5, 5) looking at the origin") {
+    const Basis basis = example_camera_2().basis();
     // w = (target - eye)/|...| = (0, -5, -5)/(5 sqrt2) = (0, -1, -1)/sqrt2.
     require_near(basis.w, Vec3(0, -1, -1) / kRoot2);
     // u = w x up = (0,-1,-1)/sqrt2 x (0,1,0) = ((-1)(0) - (-1)(1), (-1)(0) - (0)(0), (0)(1) - (-1)(0))/sqrt2
@@ -84,35 +88,35 @@ TEST_CASE("seed 2.1: basis of the camera at (0, 5, 5) looking at the origin") {
     require_near(basis.v, Vec3(0, 1, -1) / kRoot2);
 }
 
-TEST_CASE("seed 2.2: rays of pixels (1, 1) and (0, 0) for the camera at (0, 5, 5)") {
-    const FovCamera camera = seed_camera_2();
+TEST_CASE("look-at example 2: rays of pixels (1, 1) and (0, 0) for the camera at (0, 5, 5)") {
+    const FovCamera camera = example_camera_2();
     // (1,1): d = w = (0, -1, -1)/sqrt2; f(t) = (0, 5 - t/sqrt2, 5 - t/sqrt2).
-    require_near(camera.seed_ray({1, 1}), Vec3(0, -1, -1) / kRoot2);
+    require_near(camera.look_at_ray({1, 1}), Vec3(0, -1, -1) / kRoot2);
     // (0,0): d = -2/3 u - 2/3 v + w
     //   x: -2/3
     //   y: -2/3 (1/sqrt2) + (-1/sqrt2) = -sqrt2/3 - 1/sqrt2
     //   z: -2/3 (-1/sqrt2) + (-1/sqrt2) = sqrt2/3 - 1/sqrt2
     const Vec3 d00(-2.0 / 3, -kRoot2 / 3 - 1 / kRoot2, kRoot2 / 3 - 1 / kRoot2);
-    require_near(camera.seed_ray({0, 0}), d00);
+    require_near(camera.look_at_ray({0, 0}), d00);
     // f(t) at (0,0) = eye + t d = (-2t/3, 5 - sqrt2 t/3 - t/sqrt2, 5 + sqrt2 t/3 - t/sqrt2).
-    // The seed prints x = 0 (a slip: it is -2t/3) and y = 5 - 2t/3 - t/sqrt2 (a slip: the
-    // middle term is sqrt2 t/3, as its own d shows); z matches.
+    // (The worked example prints x = 0 by mistake: it is -2t/3; and y = 5 - 2t/3 - t/sqrt2,
+    // also by mistake: the middle term is sqrt2 t/3, as its own d shows; z matches.)
     const double t = 2.0;
-    require_near(camera.eye + t * camera.seed_ray({0, 0}),
+    require_near(camera.eye + t * camera.look_at_ray({0, 0}),
                  {-2 * t / 3, 5 - kRoot2 * t / 3 - t / kRoot2, 5 + kRoot2 * t / 3 - t / kRoot2});
 }
 
-TEST_CASE("seed 2.3: the top centre of the field of view") {
-    const FovCamera camera = seed_camera_2();
+TEST_CASE("look-at example 2: the top centre of the field of view") {
+    const FovCamera camera = example_camera_2();
     // alpha = 0, beta = 1: d = v + w = (0, 1, -1)/sqrt2 + (0, -1, -1)/sqrt2 = (0, 0, -sqrt2).
     require_near(camera.field_ray(0, 1), {0, 0, -kRoot2});
     // On pixels: x = 1 (centre column), y = 2.5 (top edge of the top row): (2(2.5) - 3 + 1)/3 = 1.
-    require_near(camera.seed_ray({1, 2.5}), {0, 0, -kRoot2});
+    require_near(camera.look_at_ray({1, 2.5}), {0, 0, -kRoot2});
     // f(t) = (0, 5, 5 - t sqrt2) at t = 1.
     require_near(camera.eye + camera.field_ray(0, 1), {0, 5, 5 - kRoot2});
 }
 
-TEST_CASE("seed 3: any eye and orthonormal basis") {
+TEST_CASE("look-at formula: any eye and orthonormal basis") {
     for (int i = 0; i < 50; ++i) {
         const FovCamera camera = test::random_fov_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
         const Basis b = camera.basis();
@@ -123,13 +127,13 @@ TEST_CASE("seed 3: any eye and orthonormal basis") {
         require_near(b.w, camera.gaze.normalized());
         require_near(b.u.cross(b.v), -b.w, 1e-14);
         // (1,1): d = w. (0,0): d = -2/3 u - 2/3 v + w.
-        require_near(camera.seed_ray({1, 1}), b.w);
-        require_near(camera.seed_ray({0, 0}), -2.0 / 3 * b.u - 2.0 / 3 * b.v + b.w);
+        require_near(camera.look_at_ray({1, 1}), b.w);
+        require_near(camera.look_at_ray({0, 0}), -2.0 / 3 * b.u - 2.0 / 3 * b.v + b.w);
     }
 }
 
 TEST_CASE("the right-handed basis describes the same rays") {
-    // The seed: with the right-handed basis, replace w by -w throughout.
+    // With the right-handed basis, the look-at formula holds with w replaced by -w.
     for (int i = 0; i < 20; ++i) {
         const FovCamera camera = test::random_fov_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
         const Basis left = camera.basis(Handedness::Left);
@@ -139,29 +143,29 @@ TEST_CASE("the right-handed basis describes the same rays") {
         require_near(right.w, -left.w);
         // u = up x w (right-handed) equals w x up (left-handed), normalised.
         require_near(camera.up.cross(right.w).normalized(), left.u, 1e-14);
-        require_near(camera.seed_ray({0, 2}), -2.0 / 3 * right.u + 2.0 / 3 * right.v - right.w);
+        require_near(camera.look_at_ray({0, 2}), -2.0 / 3 * right.u + 2.0 / 3 * right.v - right.w);
     }
 }
 
-TEST_CASE("the calibrated path reproduces every seed ray") {
-    for (const FovCamera& fov : {seed_camera_1(), seed_camera_2()}) {
+TEST_CASE("the calibrated path reproduces every look-at ray") {
+    for (const FovCamera& fov : {example_camera_1(), example_camera_2()}) {
         const Camera camera = to_camera(fov);
         for (const Vec2& pixel : {Vec2(0, 0), Vec2(1, 1), Vec2(2, 0), Vec2(0, 2), Vec2(-0.5, -0.5), Vec2(1, 2.5)}) {
-            const Vec3 d = fov.seed_ray(pixel);
+            const Vec3 d = fov.look_at_ray(pixel);
             require_near(calibrated_ray_like(camera, pixel, d), d, 1e-15);
         }
     }
 }
 
-TEST_CASE("CONVENTIONS: seed pixel (0, 0) is the lower-left pixel, OpenCV pixel (0, H-1)") {
-    const Camera camera = to_camera(seed_camera_1());
-    // Its ray is (-2/3, -2/3, -1) (CONVENTIONS.md section 2).
+TEST_CASE("row origin: bottom-left pixel (0, 0) is the lower-left pixel, OpenCV pixel (0, H-1)") {
+    const Camera camera = to_camera(example_camera_1());
+    // Its ray is (-2/3, -2/3, -1) (docs/conventions.md, "Row origin: top-left or bottom-left").
     const Vec3 expected = Vec3(-2.0 / 3, -2.0 / 3, -1).normalized();
     require_near(PreparedCamera(camera).ray({0, 2}).direction, expected);
-    require_near(seed_camera_1().seed_ray({0, 2}, PixelOrigin::TopLeft).normalized(), expected);
+    require_near(example_camera_1().look_at_ray({0, 2}, PixelOrigin::TopLeft).normalized(), expected);
 }
 
-TEST_CASE("The seed's formula refuses a FOV camera built by hand that validate() refuses, naming the field") {
+TEST_CASE("The look-at formula refuses a FOV camera built by hand that validate() refuses, naming the field") {
     using Catch::Matchers::Contains;
     FovCamera zero_gaze;
     zero_gaze.gaze = Vec3::Zero();
@@ -172,7 +176,7 @@ TEST_CASE("The seed's formula refuses a FOV camera built by hand that validate()
     for (const auto& [camera, field] : {std::pair{zero_gaze, "gaze"}, std::pair{nan_fov, "fov"},
                                         std::pair{up_along_gaze, "up"}}) {
         CAPTURE(field);
-        CHECK_THAT(libcam::test::error_of([&] { (void)camera.seed_ray({1, 1}); }), Contains(field));
+        CHECK_THAT(libcam::test::error_of([&] { (void)camera.look_at_ray({1, 1}); }), Contains(field));
         CHECK_THAT(libcam::test::error_of([&] { (void)camera.basis(); }), Contains(field));
         CHECK_THAT(libcam::test::error_of([&] { (void)camera.half_tangents(); }), Contains(field));
         CHECK_THAT(libcam::test::error_of([&] { (void)camera.field_ray(0.5, 0.5); }), Contains(field));

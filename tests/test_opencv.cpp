@@ -1,6 +1,6 @@
 // Cross-checks against OpenCV: every expected pixel, normalised point and rotation
 // comes from OpenCV's calib3d (projectPoints, undistortPoints, Rodrigues) or from the
-// seed's formula worked here by hand; libcam only supplies the inputs.
+// look-at formula worked here by hand; libcam only supplies the inputs.
 
 #include <catch2/catch.hpp>
 
@@ -90,9 +90,9 @@ double pixel_tolerance(const Camera& camera, const Vec2& pixel, double depth) {
     return std::max(1e-9, conditioning);
 }
 
-// The seed's ray, worked here from its formula (shared/seed), with the half-angle
-// tangents per axis as CONVENTIONS.md section 5 states them.
-Vec3 hand_seed_ray(const FovCamera& c, double x, double y) {
+// The look-at formula's ray, worked here by hand, with the half-angle tangents per axis
+// as docs/conventions.md ("Field-of-view axis") states them.
+Vec3 hand_look_at_ray(const FovCamera& c, double x, double y) {
     const double W = static_cast<double>(c.size.width);
     const double H = static_cast<double>(c.size.height);
     const double t = std::tan(c.fov_deg * std::numbers::pi / 360.0);
@@ -319,7 +319,7 @@ TEST_CASE("Rotations of exactly 0 and exactly pi", "[opencv]") {
     CHECK(identity.rvec().norm() == 0.0);
     CHECK(cv_rvec(identity.R).norm() == 0.0);
 
-    // The seed's default camera (gaze -z, up +y): rows u = (1, 0, 0), -v = (0, -1, 0),
+    // The default look-at camera (gaze -z, up +y): rows u = (1, 0, 0), -v = (0, -1, 0),
     // w = (0, 0, -1), i.e. diag(1, -1, -1), a rotation by pi about x.
     fov.gaze = Vec3(0, 0, -1);
     fov.up = Vec3(0, 1, 0);
@@ -344,28 +344,29 @@ TEST_CASE("Rotations of exactly 0 and exactly pi", "[opencv]") {
     CHECK(max_abs(cv_rotation(about_y.rvec()) - expected) <= 1e-15);
 }
 
-TEST_CASE("Seed pixels (bottom-left origin) project through OpenCV onto the flipped row", "[opencv][seed]") {
+TEST_CASE("Bottom-left pixels (as the look-at formula counts them) project through OpenCV onto the flipped row",
+          "[opencv][look-at]") {
     for (const FovCamera& fov : test_cameras()) {
         const Camera camera = to_camera(fov);
         const double H = static_cast<double>(fov.size.height);
         CAPTURE(fov.size.width, fov.size.height, fov.fov_deg, to_string(fov.fov_axis));
-        for (const Vec2& seed_pixel : pixel_grid(fov.size)) {
-            const Vec3 d = fov.seed_ray(seed_pixel, PixelOrigin::BottomLeft);
-            const Vec3 d_hand = hand_seed_ray(fov, seed_pixel.x(), seed_pixel.y());
-            // libcam's seed ray is the seed's formula, worked by hand above.
+        for (const Vec2& bottom_left_pixel : pixel_grid(fov.size)) {
+            const Vec3 d = fov.look_at_ray(bottom_left_pixel, PixelOrigin::BottomLeft);
+            const Vec3 d_hand = hand_look_at_ray(fov, bottom_left_pixel.x(), bottom_left_pixel.y());
+            // libcam's look-at ray is the look-at formula, worked by hand above.
             CHECK((d - d_hand).norm() <= 1e-12 * d_hand.norm());
-            const Vec2 expected(seed_pixel.x(), H - 1.0 - seed_pixel.y());
-            CHECK(opencv_pixel(seed_pixel, PixelOrigin::BottomLeft, fov.size) == expected);
+            const Vec2 expected(bottom_left_pixel.x(), H - 1.0 - bottom_left_pixel.y());
+            CHECK(opencv_pixel(bottom_left_pixel, PixelOrigin::BottomLeft, fov.size) == expected);
             const std::vector<Vec2> projected = cv_project({fov.eye + d}, camera);
-            CAPTURE(seed_pixel.x(), seed_pixel.y(), projected[0].x(), projected[0].y());
+            CAPTURE(bottom_left_pixel.x(), bottom_left_pixel.y(), projected[0].x(), projected[0].y());
             CHECK((projected[0] - expected).cwiseAbs().maxCoeff() <= pixel_tolerance(camera, expected, d.norm()));
         }
     }
 }
 
-TEST_CASE("The seed's 3x3, 90 degree camera, worked by hand, through OpenCV", "[opencv][seed]") {
-    // shared/seed section 1: eye at 0, gaze -z, up +y; seed pixel (0, 0) has
-    // d = (-2/3, -2/3, -1) and is the lower-left pixel, OpenCV pixel (0, 2).
+TEST_CASE("The two worked example cameras (3x3, 90 degrees), worked by hand, through OpenCV", "[opencv][look-at]") {
+    // Example camera 1: eye at 0, gaze -z, up +y; pixel (0, 0) counted from the
+    // bottom-left has d = (-2/3, -2/3, -1) and is the lower-left pixel, OpenCV pixel (0, 2).
     const FovCamera fov = FovCamera::look_at(Vec3::Zero(), Vec3(0, 0, -1), Vec3(0, 1, 0), 90.0, FovAxis::Both, {3, 3});
     const Camera camera = to_camera(fov);
     CHECK(std::abs(camera.intrinsics.fx - 1.5) <= 1e-15);
@@ -380,8 +381,8 @@ TEST_CASE("The seed's 3x3, 90 degree camera, worked by hand, through OpenCV", "[
     // The top centre of the field of view (0, 1, -1): (1, -0.5).
     CHECK((q[3] - Vec2(1, -0.5)).norm() <= 1e-14);
 
-    // Section 2: eye (0, 5, 5) looking at the origin; seed pixel (0, 0) has
-    // d = (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2).
+    // Example camera 2: eye (0, 5, 5) looking at the origin; pixel (0, 0) counted from the
+    // bottom-left has d = (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2).
     const FovCamera fov2 = FovCamera::look_at(Vec3(0, 5, 5), Vec3::Zero(), Vec3(0, 1, 0), 90.0, FovAxis::Both, {3, 3});
     const Camera camera2 = to_camera(fov2);
     const double s2 = std::sqrt(2.0);

@@ -1,6 +1,6 @@
-// Converts the seed's second camera (eye (0,5,5) looking at the origin, 90 degrees,
-// 3x3) to K, R, t with an installed libcam, and prints the ray through the seed's
-// pixel (0, 0), the lower-left pixel.
+// Converts a look-at camera (eye (0,5,5) looking at the origin, 90 degrees, 3x3) to
+// K, R, t with an installed libcam, and prints the ray through pixel (0, 0) counted from
+// the bottom-left (as the look-at formula counts it): the lower-left pixel.
 
 #include <cstdio>
 

@@ -115,7 +115,7 @@ FovDescription describe_fov(const Camera& camera) {
     }
     if (!equal_tangents) {
         why.push_back("W/fx " + format_number(width / k.fx) + " differs from H/fy " + format_number(height / k.fy) +
-                      ": not the seed's same-angle-on-both-axes fov");
+                      ": not the same angle on both axes (fov axis 'both')");
     }
     if (shape_free) {
         if (square_pixels) description.fov_axes = {FovAxis::Horizontal, FovAxis::Vertical, FovAxis::Diagonal};

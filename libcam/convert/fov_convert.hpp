@@ -3,14 +3,16 @@
 //
 // Forward (exact): K = [W/(2 tan_x), 0, (W-1)/2; 0, H/(2 tan_y), (H-1)/2; 0, 0, 1],
 // R has rows (u, -v, gaze) (OpenCV axes: x right, y down, z forward), t = -R eye.
-// Then R^T K^-1 [x, H-1-y, 1] is the seed's d for seed pixel (x, y) exactly.
+// Then R^T K^-1 [x, H-1-y, 1] is the look-at formula's d for pixel (x, y) exactly, the
+// pixel counted from the bottom-left as the look-at formula counts it.
 //
 // Back: eye = -R^T t, gaze = third row of R, up = minus the second row (the camera's
 // own up, orthogonal to the gaze: the original up is not recoverable, only the plane
 // it spans with the gaze), fov on every axis. A camera is a FOV camera only with a
 // pinhole lens, no skew, the principal point at the image centre, and pixels that
 // fit the axis: square pixels (fx = fy) for horizontal/vertical/diagonal, equal half
-// tangents (W/fx = H/fy) for the seed's "both". Anything else is reported, not dropped.
+// tangents (W/fx = H/fy) for "both" (the same angle on both axes). Anything else is
+// reported, not dropped.
 
 #include <string>
 #include <vector>

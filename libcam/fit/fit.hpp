@@ -9,7 +9,7 @@
 // scene is within the tolerance.
 //
 // Candidates, simplest first:
-//   FOV       the seed's FOV camera: PINHOLE with square pixels and the principal point
+//   FOV       the look-at (FOV) camera: PINHOLE with square pixels and the principal point
 //             at the image centre; one parameter, the focal length f
 //   PINHOLE   fx fy cx cy
 //   OPENCV4, OPENCV5, OPENCV8, OPENCV12   fx fy cx cy and OpenCV's k1 k2 p1 p2 ...

@@ -1,18 +1,19 @@
 #pragma once
-// The graphics camera of the seed (shared/seed): an eye, a gaze (or a target), an
-// up vector, a field-of-view angle and an image size. The ray through pixel (x, y) is
+// The graphics (look-at) camera: an eye, a gaze (or a target), an up vector, a
+// field-of-view angle and an image size. The ray through pixel (x, y) is given by the
+// look-at formula
 //
 //     d = alpha u + beta v + w_gaze,
 //     alpha = tan_x (2x - W + 1) / W,    beta = tan_y (2y - H + 1) / H,
 //
 // where tan_x, tan_y are the tangents of half the field of view on each image axis
-// and the seed counts rows upward from the bottom-left pixel.
+// and rows are counted upward from the bottom-left pixel.
 //
-// The seed's own fov (FovAxis::Both) puts the same angle on both axes, each normalised
-// by its own side, so tan_x = tan_y and the pixels are not square when W != H. The
-// other axes give square pixels: the angle spans the width (Horizontal), the height
-// (Vertical) or the diagonal (Diagonal) of the image, and the other tangent follows
-// from the aspect ratio.
+// The look-at formula's own fov (FovAxis::Both) puts the same angle on both axes, each
+// normalised by its own side, so tan_x = tan_y and the pixels are not square when
+// W != H. The other axes give square pixels: the angle spans the width (Horizontal),
+// the height (Vertical) or the diagonal (Diagonal) of the image, and the other tangent
+// follows from the aspect ratio.
 
 #include <string_view>
 
@@ -33,7 +34,7 @@ inline constexpr double kMinUpGazeAngleRad = 1e-9;
 
 // The double instances of the formulas in fov_formulas.hpp.
 using Basis = BasisT<double>;
-using SeedRayFormula = SeedRayFormulaT<double>;
+using LookAtRayFormula = LookAtRayFormulaT<double>;
 
 struct FovCamera {
     Vec3 eye = Vec3::Zero();
@@ -51,34 +52,35 @@ struct FovCamera {
     // least kMinUpGazeAngleRad apart.
     void validate() const;
 
-    // These, and seed_ray and field_ray, validate() first.
+    // These, and look_at_ray and field_ray, validate() first.
     Basis basis(Handedness handedness = Handedness::Left) const;
 
     // (tan_x, tan_y): tangents of half the field of view across the width and height.
     Vec2 half_tangents() const;
 
-    SeedRayFormula seed_formula() const;
+    LookAtRayFormula look_at_formula() const;
 
-    // The seed's ray d = alpha u + beta v + w_gaze through pixel (x, y), not normalised.
-    Vec3 seed_ray(const Vec2& pixel, PixelOrigin origin = PixelOrigin::BottomLeft) const {
-        return seed_formula().ray(pixel, origin);
+    // The look-at formula's ray d = alpha u + beta v + w_gaze through pixel (x, y), not
+    // normalised.
+    Vec3 look_at_ray(const Vec2& pixel, PixelOrigin origin = PixelOrigin::BottomLeft) const {
+        return look_at_formula().ray(pixel, origin);
     }
 
     // The ray through a point of the field of view given as fractions (sx, sy) of its
     // half-extent, y up: (-1, -1) is the lower-left corner, (0, 1) the top centre.
-    Vec3 field_ray(double sx, double sy) const { return seed_formula().field_ray(sx, sy); }
+    Vec3 field_ray(double sx, double sy) const { return look_at_formula().field_ray(sx, sy); }
 };
 
-// The seed's formula of a FOV camera in Scalar: seed_formula() in double, and the tests'
-// reference in 113 bits from the same inputs.
+// The look-at formula of a FOV camera in Scalar: look_at_formula() in double, and the
+// tests' reference in 113 bits from the same inputs.
 template <class Scalar>
-SeedRayFormulaT<Scalar> seed_formula_in(const FovCamera& camera) {
+LookAtRayFormulaT<Scalar> look_at_formula_in(const FovCamera& camera) {
     return {basis_from_gaze_up<Scalar>(camera.gaze.cast<Scalar>(), camera.up.cast<Scalar>(), Handedness::Left),
             half_tangents_of_fov<Scalar>(Scalar(camera.fov_deg), camera.fov_axis, camera.size), camera.size};
 }
-inline SeedRayFormula FovCamera::seed_formula() const {
+inline LookAtRayFormula FovCamera::look_at_formula() const {
     validate();
-    return seed_formula_in<double>(*this);
+    return look_at_formula_in<double>(*this);
 }
 
 // tan(angle/2) for an angle in degrees in (0, 180), accurate near 180 too; evaluated in

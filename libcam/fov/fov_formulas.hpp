@@ -1,5 +1,5 @@
 #pragma once
-// The FOV camera's formulas (the seed's ray, the basis, the half-angle tangents, K
+// The FOV camera's formulas (the look-at ray, the basis, the half-angle tangents, K
 // from the fov), each written once as a template on the scalar type. The double API
 // (FovCamera, to_camera) calls them in double; the tests call the very same code in a
 // 113-bit type and use it as the reference (tests/reference.hpp). Where a double overload
@@ -16,8 +16,8 @@ namespace libcam {
 
 enum class FovAxis { Horizontal, Vertical, Diagonal, Both };
 
-// The seed's two bases: w along the gaze (left-handed, the seed's choice) or
-// against it (right-handed). u and v are the same in both.
+// The two bases of the look-at camera: w along the gaze (left-handed, the one the
+// look-at formula uses) or against it (right-handed). u and v are the same in both.
 enum class Handedness { Left, Right };
 
 // The type a half-angle tangent is evaluated in: long double for the built-in types, so
@@ -83,7 +83,7 @@ struct BasisT {
     Vec3T<Scalar> gaze() const { return handedness == Handedness::Left ? w : Vec3T<Scalar>(-w); }
 };
 
-// u = gaze x up for both handednesses (the seed's w x up with w along the gaze, or
+// u = gaze x up for both handednesses (w x up with w along the gaze, or
 // up x w with w against it). The accurate cross product of the raw inputs (scaled by
 // powers of two, exactly) keeps u right to a few ulps even when up is within a small
 // angle of the gaze, at any magnitude.
@@ -96,11 +96,11 @@ BasisT<Scalar> basis_from_gaze_up(const Vec3T<Scalar>& gaze, const Vec3T<Scalar>
     return {u, v, handedness == Handedness::Left ? along_gaze : Vec3T<Scalar>(-along_gaze), handedness};
 }
 
-// The seed's formula with everything per camera computed once, for generating many rays:
+// The look-at formula with everything per camera computed once, for generating many rays:
 //     d = alpha u + beta v + w_gaze,
 //     alpha = tan_x (2x - W + 1) / W,    beta = tan_y (2y - H + 1) / H.
 template <class Scalar>
-struct SeedRayFormulaT {
+struct LookAtRayFormulaT {
     BasisT<Scalar> basis;    // left-handed: w along the gaze
     Vec2T<Scalar> tangents;  // (tan_x, tan_y)
     ImageSize size;

@@ -1,8 +1,8 @@
 #pragma once
 // Which way pixel rows are counted. Every calibrated camera (K, the camera files) counts
-// them from the top (OpenCV's convention); the seed's graphics camera counts them from
-// the bottom. This only says how pixel coordinates given to or returned by libcam are
-// counted: the geometry underneath is the same.
+// them from the top (OpenCV's convention); the graphics camera's look-at formula counts
+// them from the bottom. This only says how pixel coordinates given to or returned by
+// libcam are counted: the geometry underneath is the same.
 
 #include <string_view>
 #include <type_traits>

@@ -10,8 +10,8 @@ void CameraOptions::add_to(CLI::App& command) {
     std::vector<CLI::Option*> fov_flags = {
         command.add_option("--fov", fov, "Field of view in degrees, in (0, 180)"),
         command.add_option("--fov-axis", fov_axis,
-                           "Axis the fov spans: horizontal, vertical, diagonal, or both (the seed's: the same "
-                           "angle on each axis, each normalised by its own side)")
+                           "Axis the fov spans: horizontal, vertical, diagonal, or both (the look-at formula's: "
+                           "the same angle on each axis, each normalised by its own side)")
             ->capture_default_str(),
         command.add_option("--size", size, "Image size WIDTHxHEIGHT in pixels"),
         command.add_option("--eye", eye, "Eye position x,y,z")->capture_default_str(),
@@ -22,7 +22,8 @@ void CameraOptions::add_to(CLI::App& command) {
     for (CLI::Option* flag : fov_flags) from_option->excludes(flag);
     fov_flags[4]->excludes(fov_flags[5]);
     command.add_option("--pixel-origin", pixel_origin,
-                       "How pixel rows are counted: bottom-left (the seed's) or top-left (OpenCV's)")
+                       "How pixel rows are counted: bottom-left (as the look-at formula counts them) or "
+                       "top-left (OpenCV's)")
         ->capture_default_str();
 }
 

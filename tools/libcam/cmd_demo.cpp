@@ -1,12 +1,12 @@
-// libcam demo: the built-in example. Converts the seed's two cameras to calibrated
-// cameras and checks every ray against OpenCV (projectPoints, undistortPoints,
-// Rodrigues) and mrcal (mrcal_project): libcam/interop/seed_check.hpp.
+// libcam demo: the built-in example. Converts the two worked example cameras to
+// calibrated cameras and checks every ray against OpenCV (projectPoints,
+// undistortPoints, Rodrigues) and mrcal (mrcal_project): libcam/interop/worked_examples.hpp.
 
 #include <iomanip>
 #include <iostream>
 
 #include "commands.hpp"
-#include "libcam/interop/seed_check.hpp"
+#include "libcam/interop/worked_examples.hpp"
 #include "libcam/text/number_format.hpp"
 
 namespace libcam::cli {
@@ -20,7 +20,7 @@ std::string vec(const Eigen::VectorXd& v) {
     return out + ")";
 }
 
-void print_example(const SeedExample& example) {
+void print_example(const WorkedExample& example) {
     const Camera& camera = example.camera;
     std::cout << "\n" << example.title << "\n";
     std::cout << "  K    = " << vec(camera.intrinsics.K().reshaped<Eigen::RowMajor>()) << "\n";
@@ -28,8 +28,8 @@ void print_example(const SeedExample& example) {
     std::cout << "  t    = " << vec(camera.pose.t) << "\n";
     std::cout << "  rvec = " << vec(camera.pose.rvec()) << "\n";
     std::cout << "  P    = " << vec(camera.P().reshaped<Eigen::RowMajor>()) << "\n";
-    for (const SeedPixel& pixel : example.pixels) {
-        std::cout << "  seed pixel " << vec(pixel.seed_pixel) << ": d = " << vec(pixel.seed_direction)
+    for (const WorkedExamplePixel& pixel : example.pixels) {
+        std::cout << "  pixel " << vec(pixel.bottom_left_pixel) << ": d = " << vec(pixel.look_at_direction)
                   << "   OpenCV pixel " << vec(pixel.opencv_pixel) << "\n";
     }
 }
@@ -38,21 +38,25 @@ void print_example(const SeedExample& example) {
 
 Runner add_demo(CLI::App& app) {
     app.add_subcommand("demo",
-                       "The built-in example: convert the seed's cameras and check them against OpenCV and mrcal");
+                       "The built-in example: convert the two worked example cameras and check them against "
+                       "OpenCV and mrcal");
     return [] {
-        std::cout << "libcam demo: the seed's cameras (pixel rows counted from the bottom, as in the seed)\n";
-        std::vector<SeedCheck> checks;
-        for (const SeedExample& example : check_seed_examples()) {
+        std::cout << "libcam demo: the two worked example cameras, converted to K, R, t and checked against "
+                     "OpenCV and mrcal\n"
+                     "(pixels counted from the bottom-left, as the look-at formula counts them; "
+                     "d = alpha u + beta v + w)\n";
+        std::vector<WorkedExampleCheck> checks;
+        for (const WorkedExample& example : check_worked_examples()) {
             print_example(example);
-            for (SeedCheck check : example.checks) {
-                check.name = example.title.substr(0, 6) + ": " + check.name;
+            for (WorkedExampleCheck check : example.checks) {
+                check.name = example.name + ": " + check.name;
                 checks.push_back(check);
             }
         }
         std::cout << "\n" << std::left << std::setw(56) << "check" << std::setw(14) << "max error" << std::setw(12)
                   << "tolerance" << "result\n";
         bool all_pass = true;
-        for (const SeedCheck& check : checks) {
+        for (const WorkedExampleCheck& check : checks) {
             std::cout << std::setw(56) << check.name << std::setw(14) << format_short(check.max_error) << std::setw(12)
                       << format_short(check.tolerance, 6) << (check.pass() ? "pass" : "FAIL") << "\n";
             all_pass = all_pass && check.pass();

@@ -1,5 +1,5 @@
 // libcam rays: the ray through each pixel, by the calibrated path R^T K^-1 [x, y, 1]
-// and, for a FOV camera, by the seed's formula, with the angle between them.
+// and, for a FOV camera, by the look-at formula, with the angle between them.
 
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -18,12 +18,12 @@ namespace {
 struct RayRow {
     Vec2 pixel;  // as the user gave it
     Ray ray;
-    std::optional<Vec3> seed_direction;  // unit
+    std::optional<Vec3> look_at_direction;  // unit
 };
 
-// The FOV camera to run the seed's formula on: the file's own, or any axis on which the
+// The FOV camera to run the look-at formula on: the file's own, or any axis on which the
 // calibrated camera is one.
-std::optional<FovCamera> seed_camera(const CameraFile& file) {
+std::optional<FovCamera> look_at_camera(const CameraFile& file) {
     if (file.fov_camera) return file.fov_camera;
     const FovDescription description = describe_fov(file.camera);
     if (!description.is_fov_camera()) return std::nullopt;
@@ -42,9 +42,9 @@ std::string format_json(const std::vector<RayRow>& rows) {
         entry["valid"] = row.ray.valid;
         entry["origin"] = vec_json(row.ray.origin);
         entry["direction"] = row.ray.valid ? vec_json(row.ray.direction) : nlohmann::json(nullptr);
-        entry["direction_seed"] = row.seed_direction ? vec_json(*row.seed_direction) : nlohmann::json(nullptr);
-        entry["angle_rad"] = row.ray.valid && row.seed_direction
-                                 ? nlohmann::json(angle_between(row.ray.direction, *row.seed_direction))
+        entry["direction_look_at"] = row.look_at_direction ? vec_json(*row.look_at_direction) : nlohmann::json(nullptr);
+        entry["angle_rad"] = row.ray.valid && row.look_at_direction
+                                 ? nlohmann::json(angle_between(row.ray.direction, *row.look_at_direction))
                                  : nlohmann::json(nullptr);
         out["rays"].push_back(entry);
     }
@@ -58,25 +58,26 @@ std::string format_table(const std::vector<RayRow>& rows) {
     std::ostringstream out;
     for (const RayRow& row : rows) {
         out << "pixel (" << format_short(row.pixel.x(), 10) << ", " << format_short(row.pixel.y(), 10) << ")\n";
-        out << "  origin          " << vec(row.ray.origin) << "\n";
-        out << "  direction       " << (row.ray.valid ? vec(row.ray.direction) : "none (outside the lens model's domain)")
+        out << "  origin             " << vec(row.ray.origin) << "\n";
+        out << "  direction          " << (row.ray.valid ? vec(row.ray.direction) : "none (outside the lens model's domain)")
             << "\n";
-        if (row.seed_direction) {
-            out << "  direction_seed  " << vec(*row.seed_direction) << "\n";
+        if (row.look_at_direction) {
+            out << "  direction_look_at  " << vec(*row.look_at_direction) << "\n";
             if (row.ray.valid) {
-                out << "  angle_rad       " << format_short(angle_between(row.ray.direction, *row.seed_direction), 10) << "\n";
+                out << "  angle_rad          "
+                    << format_short(angle_between(row.ray.direction, *row.look_at_direction), 10) << "\n";
             }
         }
     }
     out << "directions are unit vectors in world coordinates; direction = R^T K^-1 [x, y, 1], "
-           "direction_seed = alpha u + beta v + w (the seed's formula)\n";
+           "direction_look_at = alpha u + beta v + w (the look-at formula)\n";
     return out.str();
 }
 
 }  // namespace
 
 Runner add_rays(CLI::App& app) {
-    CLI::App* command = app.add_subcommand("rays", "World rays through pixels, by K^-1 and by the seed's formula");
+    CLI::App* command = app.add_subcommand("rays", "World rays through pixels, by K^-1 and by the look-at formula");
     struct Flags {
         CameraOptions camera;
         std::vector<std::string> pixels;
@@ -96,13 +97,13 @@ Runner add_rays(CLI::App& app) {
         for (const std::string& text : flags->pixels) pixels.push_back(parse_vec2("--pixels", text));
         const PixelOrigin origin = flags->camera.origin();
         const CameraFile file = flags->camera.camera();
-        const std::optional<FovCamera> fov_camera = seed_camera(file);
+        const std::optional<FovCamera> fov_camera = look_at_camera(file);
 
         std::vector<RayRow> rows;
         const PreparedCamera camera(file.camera);
         for (const Vec2& pixel : pixels) {
             RayRow row{pixel, camera.ray(opencv_pixel(pixel, origin, file.camera.size)), std::nullopt};
-            if (fov_camera) row.seed_direction = fov_camera->seed_ray(pixel, origin).normalized();
+            if (fov_camera) row.look_at_direction = fov_camera->look_at_ray(pixel, origin).normalized();
             rows.push_back(row);
         }
         emit(flags->json ? format_json(rows) : format_table(rows), "");

@@ -1,4 +1,4 @@
-#include "libcam/interop/seed_check.hpp"
+#include "libcam/interop/worked_examples.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,24 +12,26 @@ namespace libcam {
 
 namespace {
 
-// The seed's cameras, and the pixels each example looks at.
-std::vector<SeedExample> seed_examples() {
+// The two example cameras, and the pixels each one looks at.
+std::vector<WorkedExample> worked_examples() {
     const ImageSize size{3, 3};
     // Pixel centres, then the lower-left corner (-0.5, -0.5) and the top centre (1, 2.5)
     // of the field of view, which sit on the image edges.
     const std::vector<Vec2> pixels = {{1, 1}, {0, 0}, {-0.5, -0.5}, {1, 2.5}, {2, 2}};
-    std::vector<SeedExample> examples(2);
-    examples[0].title = "seed 1: eye (0,0,0), gaze -z, up +y, 90 deg, 3x3";
+    std::vector<WorkedExample> examples(2);
+    examples[0].name = "example 1";
+    examples[0].title = examples[0].name + ": eye (0,0,0), gaze -z, up +y, 90 deg, 3x3";
     examples[0].fov_camera = FovCamera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, size};
-    examples[1].title = "seed 2: eye (0,5,5), target (0,0,0), up +y, 90 deg, 3x3";
+    examples[1].name = "example 2";
+    examples[1].title = examples[1].name + ": eye (0,5,5), target (0,0,0), up +y, 90 deg, 3x3";
     examples[1].fov_camera = FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, size);
-    for (SeedExample& example : examples) {
+    for (WorkedExample& example : examples) {
         for (const Vec2& pixel : pixels) example.pixels.push_back({pixel, Vec3::Zero(), Vec2::Zero()});
     }
     return examples;
 }
 
-void keep_worst(SeedCheck& check, double error) { check.max_error = std::max(check.max_error, error); }
+void keep_worst(WorkedExampleCheck& check, double error) { check.max_error = std::max(check.max_error, error); }
 
 // cv::Rodrigues(rvec) against R, entry by entry.
 double rodrigues_error(const Camera& camera) {
@@ -44,9 +46,9 @@ double rodrigues_error(const Camera& camera) {
 
 }  // namespace
 
-std::vector<SeedExample> check_seed_examples() {
-    std::vector<SeedExample> examples = seed_examples();
-    for (SeedExample& example : examples) {
+std::vector<WorkedExample> check_worked_examples() {
+    std::vector<WorkedExample> examples = worked_examples();
+    for (WorkedExample& example : examples) {
         const Camera camera = to_camera(example.fov_camera);
         example.camera = camera;
         const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
@@ -54,19 +56,19 @@ std::vector<SeedExample> check_seed_examples() {
         const cv::Mat rvec = opencv_vector(camera.pose.rvec());
         const cv::Mat tvec = opencv_vector(camera.pose.t);
 
-        SeedCheck seed{"seed formula vs R^T K^-1 (angle)", 0, 1e-15, "rad"};
-        SeedCheck project{"cv::projectPoints of points on each ray", 0, 1e-9, "px"};
-        SeedCheck undistort{"cv::undistortPoints vs K^-1 [x, y, 1]", 0, 1e-12, ""};
-        SeedCheck rodrigues{"cv::Rodrigues(rvec) vs R", 0, 1e-15, ""};
-        SeedCheck mrcal{"mrcal_project of points on each ray", 0, 1e-9, "px"};
+        WorkedExampleCheck look_at{"look-at formula vs R^T K^-1 (angle)", 0, 1e-15, "rad"};
+        WorkedExampleCheck project{"cv::projectPoints of points on each ray", 0, 1e-9, "px"};
+        WorkedExampleCheck undistort{"cv::undistortPoints vs K^-1 [x, y, 1]", 0, 1e-12, ""};
+        WorkedExampleCheck rodrigues{"cv::Rodrigues(rvec) vs R", 0, 1e-15, ""};
+        WorkedExampleCheck mrcal{"mrcal_project of points on each ray", 0, 1e-9, "px"};
         rodrigues.max_error = rodrigues_error(camera);
 
         const PreparedCamera prepared(camera);
-        for (SeedPixel& pixel : example.pixels) {
-            pixel.seed_direction = example.fov_camera.seed_ray(pixel.seed_pixel, PixelOrigin::BottomLeft);
-            pixel.opencv_pixel = opencv_pixel(pixel.seed_pixel, PixelOrigin::BottomLeft, camera.size);
+        for (WorkedExamplePixel& pixel : example.pixels) {
+            pixel.look_at_direction = example.fov_camera.look_at_ray(pixel.bottom_left_pixel, PixelOrigin::BottomLeft);
+            pixel.opencv_pixel = opencv_pixel(pixel.bottom_left_pixel, PixelOrigin::BottomLeft, camera.size);
             const Ray ray = prepared.ray(pixel.opencv_pixel);
-            keep_worst(seed, angle_between(pixel.seed_direction, ray.direction));
+            keep_worst(look_at, angle_between(pixel.look_at_direction, ray.direction));
 
             std::vector<cv::Point3d> world_points;
             std::vector<Vec3> camera_points;
@@ -86,7 +88,7 @@ std::vector<SeedExample> check_seed_examples() {
             const Vec2 expected = camera.intrinsics.normalized_from_pixel(pixel.opencv_pixel);
             keep_worst(undistort, (Vec2(undistorted[0].x, undistorted[0].y) - expected).norm());
         }
-        example.checks = {seed, project, undistort, rodrigues, mrcal};
+        example.checks = {look_at, project, undistort, rodrigues, mrcal};
     }
     return examples;
 }
