@@ -9,8 +9,9 @@
 // For the models solved iteratively (OpenCV's family, FISHEYE) the constructor tabulates
 // the exact undistorted point u of a grid of pixels covering the image (and one node
 // beyond each edge), solved by the certified solver of lens/undistort.hpp. Then
-//   exact: u from the table (bilinear), two Newton steps (a third for a pixel still
-//          above reducible_residual()), and the residual checked against
+//   exact: u from the table (bilinear), two Newton steps (up to three more, each kept
+//          only if it lowers the residual, for a pixel still above
+//          reducible_residual()), and the residual checked against
 //          unprojection_tolerance(); a pixel that fails goes to the full solver;
 //   fast:  u from the table (bilinear) and one Newton step, no check;
 //   lut:   u from the table (bicubic, Catmull-Rom), no model evaluation.
@@ -41,7 +42,8 @@ namespace libcam {
 struct UnprojectorOptions {
     // Table nodes along the image's longer side (the same spacing on the other). The
     // interpolation error falls with the square (bilinear) or the cube (bicubic) of the
-    // spacing; 384 puts the lut method within 0.01 px on issue 3's wide lens.
+    // spacing; 384 puts the lut method within 0.01 px on the real wide lens
+    // (camera/example_cameras.hpp).
     int table_nodes = 384;
     // fast and lut answer only in the table cells where their estimate reprojects within
     // this many pixels at five checkpoints (the centre and the quarter points); the other

@@ -34,13 +34,14 @@ Scalar unprojection_tolerance(const Scalar& distorted_radius) {
     return Scalar(64) * std::numeric_limits<Scalar>::epsilon() * (Scalar(1) + distorted_radius);
 }
 
-// A residual still above a few roundings of the distorted point, which another Newton
-// step would reduce: 8 eps (1 + |m|). (The full solver steps until the residual stops
-// decreasing; the batch `exact` method takes a third step for a block in which any
-// pixel is still above this after two.)
+// A residual still above about two roundings of the distorted point, which another
+// Newton step may reduce: 2 eps (1 + |m|). (The full solver steps until the residual
+// stops decreasing; the batch `exact` method takes up to three more steps, each kept only
+// if it lowers the residual, for a block in which any pixel is still above this after
+// two.)
 template <class Scalar>
 Scalar reducible_residual(const Scalar& distorted_radius) {
-    return Scalar(8) * std::numeric_limits<Scalar>::epsilon() * (Scalar(1) + distorted_radius);
+    return Scalar(2) * std::numeric_limits<Scalar>::epsilon() * (Scalar(1) + distorted_radius);
 }
 
 // The Newton step J^-1 residual for the 2x2 Jacobian J, by its adjugate. Not finite
