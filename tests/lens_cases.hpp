@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/camera/example_cameras.hpp"
 #include "libcam/geometry/pixel_grid.hpp"
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
@@ -32,16 +33,9 @@ inline Camera lens_camera(LensType type, std::vector<double> coefficients, Image
     return camera;
 }
 
-// The real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767.
-inline Camera wide_reference_camera() {
-    Camera camera;
-    camera.size = {6016, 4016};
-    camera.intrinsics = {2073.872915, 2077.452267, 3004.686823, 1997.377253, 0.0};
-    camera.lens = {LensType::Opencv8,
-                   {0.4791613797, 0.0266824914, 4.398264387e-05, -1.180073913e-05, 8.959722542e-05, 0.7666912469,
-                    0.09633561231, 0.001407513313}};
-    return camera;
-}
+// The real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767 (the library's
+// example camera "wide", one copy for the command line, the benchmarks and the tests).
+inline Camera wide_reference_camera() { return example_camera("wide"); }
 
 // Every model at mild and strong distortion (the strong ones fold over inside or near
 // the image: the valid domain matters).

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "temp_dir.hpp"
+#include "libcam/camera/example_cameras.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -899,4 +900,16 @@ TEST_CASE("write_file_atomically fails cleanly: FileError, old file intact, no t
         CHECK(read_camera_file(camera_path).camera.intrinsics.fx == camera.intrinsics.fx);
         CHECK(folder_listing(folder) == std::vector<std::string>{"camera.yaml", "good.json"});
     }
+}
+
+TEST_CASE("The fuzzing seed of the wide lens is the library's example camera \"wide\", digit for digit") {
+    // The corpus file is data for the fuzzer (and the documentation's example file); the
+    // camera itself is written once, in camera/example_cameras.cpp. They must not drift.
+    const Camera from_file = read_camera_file(fs::path(LIBCAM_FUZZ_CORPUS) / "json" / "opencv8.json").camera;
+    const Camera example = example_camera("wide");
+    CHECK(from_file.size == example.size);
+    CHECK(from_file.intrinsics.K() == example.intrinsics.K());
+    CHECK(from_file.lens == example.lens);
+    CHECK(from_file.pose.R == example.pose.R);
+    CHECK(from_file.pose.t == example.pose.t);
 }
