@@ -288,7 +288,7 @@ std::vector<Row> coefficient_rows() {
     return rows;
 }
 
-// Through Camera::project_camera_points (double, pixels against K m of the reference).
+// Through PreparedCamera::project_camera_points (double, pixels against K m of the reference).
 std::vector<Row> scale_rows() {
     Worst px;
     std::size_t wrong_flags = 0, compared = 0;
@@ -318,7 +318,7 @@ std::vector<Row> scale_rows() {
             });
         }
     }
-    const std::string extreme = "points at scales 4.9e-324 to 1.7e308, every model (Camera::project_camera_points)";
+    const std::string extreme = "points at scales 4.9e-324 to 1.7e308, every model (PreparedCamera::project_camera_points)";
     return {
         {extreme, "pixel vs reference [ulp of |pixel|]", px.value, kNotApplicable, 16, kNotApplicable,
          "the point scaled by a power of two into [1, 2) first (exact)", px.where},

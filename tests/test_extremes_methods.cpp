@@ -1,5 +1,5 @@
 // The batch paths at the extremes: Unprojector's exact, fast and lut methods
-// and the batch Projector, in double and in float, at the extremes the Camera path is
+// and the batch Projector, in double and in float, at the extremes the public path is
 // measured at (test_extremes_lens.cpp), against the same 113-bit reference.
 //
 // A batch takes its input in its own scalar type: a float batch gets the pixels (or
@@ -228,7 +228,7 @@ std::vector<Row> coefficient_method_rows() {
     for (const LensCase& c : coefficient_extremes())
         score_methods(c.name, c.camera, pixel_grid(c.camera.size, 21, 16), worst, UnprojectorOptions{.table_nodes = 96});
     return method_rows("batch: coefficients x 1e-8 .. 4.9e-324 and strong, 21x16 grids (96-node tables)", worst,
-                       "as the Camera path");
+                       "as the public path");
 }
 
 // Every lens behind the focal lengths of the FOV extremes: a 1e-6-degree camera's
