@@ -40,6 +40,8 @@ constexpr std::string_view kCheckNames[] = {
 // The grid, libcam's ray through each pixel, and points at every depth along each ray
 // with libcam's projection of them.
 struct Samples {
+    Samples(PreparedCamera prepared, int thread_count) : camera(std::move(prepared)), threads(thread_count) {}
+
     PreparedCamera camera;  // every libcam projection and unprojection goes through it
     int threads = 1;        // each library's calls are split over this many
     std::vector<Vec2> pixels;
@@ -66,7 +68,7 @@ int threads_to_use(int requested) {
 }
 
 Samples make_samples(const Camera& camera, const VerifyOptions& options) {
-    Samples s{PreparedCamera(camera), threads_to_use(options.threads)};
+    Samples s(PreparedCamera(camera), threads_to_use(options.threads));
     s.pixels = PixelGrid{options.grid_columns, options.grid_rows}.pixels(camera.size);
     s.rays = s.camera.unproject(s.pixels, s.threads);
     for (std::size_t i = 0; i < s.pixels.size(); ++i) {
@@ -276,7 +278,7 @@ VerifyCheck check_project_mrcal(const Camera& camera, const Samples& s, const st
 }
 
 // libcam's rays reprojected by libcam itself: the solver's own residual.
-VerifyCheck check_unproject_libcam(const Camera& camera, const Samples& s) {
+VerifyCheck check_unproject_libcam(const Samples& s) {
     VerifyCheck check = new_check(verify_check::unproject_libcam, "libcam, reprojected by libcam", kExactPx);
     return reprojection_errors(s.pixels.size(), s.with_ray, s.pixels_with_ray(), libcam_project(s.camera, s.libcam_rays()))
         .finish(std::move(check));
@@ -477,7 +479,7 @@ VerifyReport verify_camera(const Camera& camera, const VerifyOptions& options) {
 
     report.checks.push_back(check_project_opencv(camera, samples, no_opencv));
     report.checks.push_back(check_project_mrcal(camera, samples, no_mrcal));
-    report.checks.push_back(check_unproject_libcam(camera, samples));
+    report.checks.push_back(check_unproject_libcam(samples));
     report.checks.push_back(check_unproject_libcam_opencv(camera, samples, no_opencv));
     report.checks.push_back(check_unproject_libcam_mrcal(camera, samples, no_mrcal));
     for (VerifyCheck& check : check_unproject_mrcal(camera, samples, no_mrcal)) report.checks.push_back(std::move(check));
