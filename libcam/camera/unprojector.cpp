@@ -180,12 +180,9 @@ void require_valid_radius(Scalar radius_squared, Block<Scalar>& b) {
     }
 }
 
-// Newton steps on every pixel of the block, or (Pixels::OnlyReducible) on the pixels
-// certify() marked reducible, the others left as they are: a pixel's answer never
-// depends on the other pixels of its block, so it is the same in any batch.
-enum class Pixels { All, OnlyReducible };
-
-template <class Model, Pixels which = Pixels::All, class Scalar>
+// Newton steps on every pixel of the block. A pixel's answer never depends on the other
+// pixels of its block, so it is the same in any batch.
+template <class Model, class Scalar>
 void newton_steps(const typename Model::Parameters& lens_parameters, int steps, Block<Scalar>& b) {
     const typename Model::Parameters lens = lens_parameters;
     for (int step = 0; step < steps; ++step) {
@@ -195,10 +192,9 @@ void newton_steps(const typename Model::Parameters& lens_parameters, int steps, 
             Eigen::Matrix<Lane<Scalar>, 2, 2> d_m_d_u;
             const bool in_domain = Model::distort(lens, u, m_u, &d_m_d_u);
             const Vec2L<Scalar> next = u - newton_step(d_m_d_u, Vec2L<Scalar>(m_u - Vec2L<Scalar>(b.m_x[i], b.m_y[i])));
-            const bool take = which == Pixels::All || b.reducible[i] > Scalar(0);
-            b.u_x[i] = take ? lane_value(next.x()) : b.u_x[i];
-            b.u_y[i] = take ? lane_value(next.y()) : b.u_y[i];
-            b.ok[i] = in_domain || !take ? b.ok[i] : Scalar(0);
+            b.u_x[i] = lane_value(next.x());
+            b.u_y[i] = lane_value(next.y());
+            b.ok[i] = in_domain ? b.ok[i] : Scalar(0);
         }
     }
 }
