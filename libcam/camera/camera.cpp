@@ -2,6 +2,7 @@
 
 #include <mutex>
 
+#include "libcam/camera/batch_kernels.hpp"
 #include "libcam/camera/point_scale.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/lens/lens_models.hpp"
@@ -26,12 +27,11 @@ struct PreparedState {
     std::unique_ptr<const Unprojector<double>> unprojector;
 };
 
-// The model's parameters from the camera's coefficients and the prepared valid radius:
-// a copy, no root search, no allocation.
+// The model's parameters from the prepared valid radius: a copy, no root search, no
+// allocation.
 template <class Model>
 typename Model::Parameters prepared_parameters(const PreparedState& state) {
-    return lens_parameters<typename Model::Vec2T::Scalar, Model::num_coefficients>(state.camera.lens.coefficients,
-                                                                                  state.valid_radius);
+    return batch::model_parameters<Model>(state.camera.lens, state.valid_radius);
 }
 
 }  // namespace detail
