@@ -6,11 +6,13 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev          # core math
-  libopencv-dev          # reference + OpenCV YAML/XML files
+  libopencv-dev          # reference
   libmrcal-dev mrcal python3-mrcal   # reference + .cameramodel files
   catch2                 # tests (2.13)
   libcli11-dev           # command-line parsing
   nlohmann-json3-dev     # JSON camera files
+  libyaml-cpp-dev        # YAML camera files (OpenCV, and the YAML of other tools)
+  libpugixml-dev         # OpenCV's XML camera files
   libbenchmark-dev       # micro-benchmarks
   libceres-dev           # model fitting
   libboost-dev           # multiprecision reference

@@ -3,7 +3,8 @@
 # installed CMake package (and a pkg-config build of the same source), runs both, and
 # checks the printed ray against the answer worked by hand. The camera-file consumer
 # (libcam::io alone) is also compiled by hand with nothing but the installed headers and
-# Eigen, and must see no OpenCV, mrcal, Ceres or nlohmann header, nor link their libraries.
+# Eigen, and must see no OpenCV, mrcal, Ceres, nlohmann, yaml-cpp or pugixml header, nor
+# link OpenCV's, mrcal's or Ceres's libraries.
 # Usage: scripts/test-install.sh BUILD_DIR
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -46,29 +47,34 @@ check_fit() {
 }
 check_fit "$("$work/consumer/consumer_fit")"
 
-# libcam::io alone reads a JSON camera (written here by the installed program) and
-# refuses an OpenCV YAML one, naming libcam::interop and the call that registers it.
+# libcam::io alone reads a JSON camera and an OpenCV YAML one (written here by the
+# installed program) and refuses an mrcal one, naming libcam::interop and the call that
+# registers it.
 "$work/prefix/bin/libcam" convert --fov 90 --size 3x3 --eye 0,5,5 --target 0,0,0 -o "$work/camera.json"
 "$work/prefix/bin/libcam" convert --from "$work/camera.json" --to opencv-yaml -o "$work/camera.yaml"
+"$work/prefix/bin/libcam" convert --from "$work/camera.json" --to cameramodel -o "$work/camera.cameramodel"
 check "$("$work/consumer/consumer_io" "$work/camera.json")"
-check_io_refuses_yaml() {
-  if "$1" "$work/camera.yaml" 2> "$work/io.err"; then echo "test-install: $1 read OpenCV YAML without libcam::interop"; exit 1; fi
+check "$("$work/consumer/consumer_io" "$work/camera.yaml")"
+check_io_refuses_cameramodel() {
+  if "$1" "$work/camera.cameramodel" 2> "$work/io.err"; then echo "test-install: $1 read a .cameramodel without libcam::interop"; exit 1; fi
   grep -q "register_interop_formats" "$work/io.err" || { echo "test-install: unclear error from $1:"; cat "$work/io.err"; exit 1; }
 }
-check_io_refuses_yaml "$work/consumer/consumer_io"
+check_io_refuses_cameramodel "$work/consumer/consumer_io"
 
 # The same consumer by hand: only the installed include folder and Eigen's on the
 # include path, only libcam's io and core libraries on the link line. The headers it
 # sees are listed (-MD) and none may be OpenCV's, mrcal's, Ceres's or nlohmann's.
 c++ -std=c++20 -MD -MF "$work/consumer-io.d" -I"$work/prefix/include" $(pkg-config --cflags eigen3) \
-    "$root/examples/consumer/io_main.cpp" -o "$work/consumer-io-bare" -L"$work/prefix/lib" -lcam_io -lcam_core
-if grep -Eiq "opencv|mrcal|ceres|nlohmann" "$work/consumer-io.d"; then
-  echo "test-install: the io consumer includes a header of OpenCV, mrcal, Ceres or nlohmann:"
-  grep -Eio "[^ ]*(opencv|mrcal|ceres|nlohmann)[^ ]*" "$work/consumer-io.d" | sort -u
+    "$root/examples/consumer/io_main.cpp" -o "$work/consumer-io-bare" -L"$work/prefix/lib" -lcam_io -lcam_core \
+    -lyaml-cpp -lpugixml
+if grep -Eiq "opencv|mrcal|ceres|nlohmann|yaml-cpp|pugixml" "$work/consumer-io.d"; then
+  echo "test-install: the io consumer includes a header of OpenCV, mrcal, Ceres, nlohmann, yaml-cpp or pugixml:"
+  grep -Eio "[^ ]*(opencv|mrcal|ceres|nlohmann|yaml-cpp|pugixml)[^ ]*" "$work/consumer-io.d" | sort -u
   exit 1
 fi
 check "$("$work/consumer-io-bare" "$work/camera.json")"
-check_io_refuses_yaml "$work/consumer-io-bare"
+check "$("$work/consumer-io-bare" "$work/camera.yaml")"
+check_io_refuses_cameramodel "$work/consumer-io-bare"
 
 # The same sources through pkg-config; libcam-io's flags name no OpenCV, mrcal or Ceres.
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
@@ -79,6 +85,7 @@ if echo "$io_flags" | grep -Eiq "opencv|mrcal|ceres"; then
 fi
 c++ "$root/examples/consumer/io_main.cpp" -o "$work/consumer-io-pc" $io_flags
 check "$("$work/consumer-io-pc" "$work/camera.json")"
+check "$("$work/consumer-io-pc" "$work/camera.yaml")"
 c++ "$root/examples/consumer/main.cpp" -o "$work/consumer-pc" $(pkg-config --cflags --libs libcam-core)
 check "$("$work/consumer-pc")"
 c++ "$root/examples/consumer/fit_main.cpp" -o "$work/consumer-fit-pc" $(pkg-config --cflags --libs libcam-fit)

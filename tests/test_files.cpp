@@ -391,7 +391,7 @@ struct YamlDoc {
                 continue;
             }
             std::istringstream shape(value.substr(0, colon));
-            int rows = 0, cols = 0;
+            long long rows = 0, cols = 0;
             shape >> rows >> cols;
             out += key + ": !!opencv-matrix\n   rows: " + std::to_string(rows) + "\n   cols: " + std::to_string(cols) +
                    "\n   dt: d\n   data: [ " + value.substr(colon + 1) + " ]\n";
@@ -399,6 +399,19 @@ struct YamlDoc {
         return out;
     }
 };
+
+}  // namespace
+
+namespace {
+
+// The size and K the hand-made files below write: 640x480, fx 500, fy 510, (319.5, 239.5).
+void check_hand_made_size_and_k(const Camera& camera) {
+    CHECK(camera.size == ImageSize{640, 480});
+    CHECK(camera.intrinsics.fx == 500.0);
+    CHECK(camera.intrinsics.fy == 510.0);
+    CHECK(camera.intrinsics.cx == 319.5);
+    CHECK(camera.intrinsics.cy == 239.5);
+}
 
 }  // namespace
 
@@ -411,11 +424,7 @@ TEST_CASE("The hand-made base files are valid, with the numbers worked by hand",
     for (const fs::path& path : {json_path, yaml_path}) {
         CAPTURE(path.string());
         const Camera camera = read_camera_file(path).camera;
-        CHECK(camera.size == ImageSize{640, 480});
-        CHECK(camera.intrinsics.fx == 500.0);
-        CHECK(camera.intrinsics.fy == 510.0);
-        CHECK(camera.intrinsics.cx == 319.5);
-        CHECK(camera.intrinsics.cy == 239.5);
+        check_hand_made_size_and_k(camera);
         Mat3 R;
         R << 0, -1, 0, 1, 0, 0, 0, 0, 1;
         CHECK((camera.pose.R - R).cwiseAbs().maxCoeff() <= 1e-15);
@@ -529,15 +538,31 @@ TEST_CASE("Truncated, empty, missing and directory paths are refused with FileEr
         CHECK_THAT(message, Contains(json_path.string()));
     }
 
-    // Truncated YAML and XML: every cut must be refused as a libcam error (a prefix that
-    // happens to parse still lacks keys).
+    // Truncated YAML, XML and .cameramodel: every cut is refused as a libcam error, with
+    // one exception YAML cannot avoid: it has no end marker, so a cut at the end of a
+    // line, after every required key (size and camera_matrix), is a whole file without
+    // the optional keys after it (rvec, tvec). Such a prefix must read back what it holds.
     for (CameraFormat format : {CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml, CameraFormat::Cameramodel}) {
         const std::string text = format_camera(camera, format);
         const fs::path path = dir.path() / (std::string("truncated") + extension(format));
-        for (std::size_t cut = 1; cut + 2 < text.size(); cut += std::max<std::size_t>(1, text.size() / 23)) {
-            write_text(path, text.substr(0, cut));
+        for (std::size_t cut = 1; cut + 2 < text.size(); cut += 1) {
+            const std::string prefix = text.substr(0, cut);
+            write_text(path, prefix);
+            CAPTURE(to_string(format), cut, prefix);
+            // Whole: the cut is at the end of a top-level entry (the next line starts a key).
+            const std::string rest = text.substr(cut);
+            const bool at_entry_end = rest.starts_with("\n") ? rest.size() > 1 && rest[1] != ' '
+                                                              : prefix.back() == '\n' && rest.front() != ' ';
+            const auto holds = [&](const char* key) { return prefix.find(std::string("\n") + key + ":") != std::string::npos; };
+            if (format == CameraFormat::OpenCvYaml && at_entry_end && holds("camera_matrix")) {
+                const Camera shorter = read_camera_file(path).camera;
+                CHECK(shorter.intrinsics.K() == camera.intrinsics.K());
+                CHECK(shorter.lens == (holds("distortion_coefficients") ? camera.lens : Lens{}));
+                CHECK(shorter.pose.R.isApprox(holds("rvec") ? camera.pose.R : Mat3::Identity(), 1e-15));
+                CHECK(shorter.pose.t == (holds("tvec") ? camera.pose.t : Vec3::Zero()));
+                continue;
+            }
             const std::string message = error_of([&] { read_camera_file(path); });
-            CAPTURE(to_string(format), cut, text.substr(0, cut));
             CHECK_THAT(message, is_file_or_argument_error());
             CHECK_THAT(message, Contains(path.string()));
         }
@@ -568,29 +593,126 @@ TEST_CASE("Truncated, empty, missing and directory paths are refused with FileEr
     CHECK_THAT(error_of([&] { read_camera_file(dir.path() / "array.json"); }), StartsWith("FileError: "));
 }
 
-TEST_CASE("YAML that hangs OpenCV 4.6's parser is refused before it parses it, naming the line", "[files][errors]") {
-    // Found by fuzzing (tests/fuzz/corpus/opencv/hang_second_document.yaml and variants):
-    // a second document marker, or a directive, inside a flow sequence.
+TEST_CASE("YAML that hangs OpenCV 4.6's parser is refused by libcam's own, naming the line", "[files][errors]") {
+    // Found by fuzzing when libcam still read OpenCV's files through cv::FileStorage,
+    // which loops forever on them: a second document marker inside a flow sequence, and
+    // a block entry after a key on the same line.
     const std::string head = "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\n";
     struct Case {
         const char* what;
         std::string text;
-        const char* line;
+        const char* says;
     };
     const std::vector<Case> cases{
-        {"the fuzzer's input", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv/hang_second_document.yaml"),
-         "line 4"},
-        {"--- inside a flow sequence", head + "data: [ 1.5,\n---\n 2. ]\n", "line 6"},
-        {"... after the document", head + "...\n", "line 5"},
-        {"a directive inside a flow sequence", head + "data: [ 1.5 %YAML:1.0 ]\n", "line 5"},
-        {"an anchor", head + "k: &a 5\n", "line 5"},
-        {"an alias", head + "k: *a\n", "line 5"},
-        {"a block scalar", head + "k: |\n", "line 5"},
+        {"the fuzzer's second document", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv/hang_second_document.yaml"),
+         "YAML documents"},
+        {"the fuzzer's block entry", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv/hang_block_entry.yaml"), "line 5"},
+        {"--- inside a flow sequence", head + "data: [ 1.5,\n---\n 2. ]\n", "line "},
+        {"a second document", head + "---\nimage_width: 320\n", "2 YAML documents"},
+        {"an unclosed flow sequence", head + "data: [ 1.5, 2.\n", "line "},
+        {"a tab for indentation", head + "camera_matrix:\n\trows: 3\n", "line "},
     };
     for (const Case& c : cases) {
-        CAPTURE(c.what);
+        CAPTURE(c.what, c.text);
         const std::string message = error_of([&] { (void)parse_camera(c.text, CameraFormat::OpenCvYaml, "in.yaml"); });
-        CHECK_THAT(message, Contains("FileError") && Contains(c.line) && Contains("not the YAML cv::FileStorage writes"));
+        CHECK_THAT(message, StartsWith("FileError: in.yaml") && Contains(c.says));
+    }
+}
+
+TEST_CASE("YAML past what a camera file needs is refused before it grows: aliases, nesting", "[files][errors]") {
+    // Nine levels of aliases, each repeating the one below ten times, would make 10^9
+    // values out of 100 lines ("billion laughs").
+    std::string laughs = "a0: &a0 [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n";
+    for (int level = 1; level < 9; ++level) {
+        const std::string below = "*a" + std::to_string(level - 1);
+        laughs += "a" + std::to_string(level) + ": &a" + std::to_string(level) + " [";
+        for (int k = 0; k < 10; ++k) laughs += (k ? ", " : "") + below;
+        laughs += "]\n";
+    }
+    CHECK_THAT(error_of([&] { (void)parse_camera(laughs, CameraFormat::OpenCvYaml, "laughs.yaml"); }),
+               StartsWith("FileError: laughs.yaml") && Contains("more than 200000 values"));
+    // 100 nested lists, in YAML and (1000) in XML; 100000 in YAML, which yaml-cpp itself
+    // refuses rather than recursing through them.
+    const std::string deep = "image_width: " + std::string(100, '[') + std::string(100, ']') + "\n";
+    CHECK_THAT(error_of([&] { (void)parse_camera(deep, CameraFormat::OpenCvYaml, "deep.yaml"); }),
+               StartsWith("FileError: deep.yaml") && Contains("nested more than 32 levels"));
+    const std::string deeper = "image_width: " + std::string(100000, '[') + std::string(100000, ']') + "\n";
+    CHECK_THAT(error_of([&] { (void)parse_camera(deeper, CameraFormat::OpenCvYaml, "deeper.yaml"); }),
+               StartsWith("FileError: deeper.yaml: line 1: not valid YAML"));
+    std::string deep_xml = "<?xml version=\"1.0\"?>\n<opencv_storage>";
+    for (int i = 0; i < 1000; ++i) deep_xml += "<a>";
+    for (int i = 0; i < 1000; ++i) deep_xml += "</a>";
+    deep_xml += "</opencv_storage>\n";
+    CHECK_THAT(error_of([&] { (void)parse_camera(deep_xml, CameraFormat::OpenCvXml, "deep.xml"); }),
+               StartsWith("FileError: deep.xml") && Contains("nested more than 32 levels"));
+}
+
+namespace {
+
+// K as cv::FileStorage reads it from `path` under `key`, for comparing with libcam's reader.
+cv::Mat opencv_reads_matrix(const fs::path& path, const char* key) {
+    cv::FileStorage in(path.string(), cv::FileStorage::READ);
+    REQUIRE(in.isOpened());
+    cv::Mat m;
+    in[key] >> m;
+    if (!m.empty()) m.convertTo(m, CV_64F);
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("OpenCV YAML in the layouts OpenCV reads: header or not, '---' or not, CRLF, old names, lists",
+          "[files][opencv]") {
+    // Each text is read by libcam and by cv::FileStorage; both must find K = [500 0 319.5;
+    // 0 510 239.5; 0 0 1], the size 640x480 and the coefficients written in the text.
+    const std::string matrix_k = "!!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+                                 "   data: [ 500., 0., 319.5, 0., 510., 239.5, 0., 0., 1. ]\n";
+    const std::string dist5 = "!!opencv-matrix\n   rows: 5\n   cols: 1\n   dt: d\n   data: [ -0.1, 0.02, 1e-4, -2e-4, 0.003 ]\n";
+    const std::string body = "image_width: 640\nimage_height: 480\ncamera_matrix: " + matrix_k + "distortion_coefficients: " + dist5;
+    const auto crlf = [](std::string text) {
+        for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at + 2)) text.insert(at, "\r");
+        return text;
+    };
+    struct Case {
+        const char* what;
+        std::string text;
+        const char* k_key;  // where OpenCV finds K in this layout
+    };
+    const std::vector<Case> cases{
+        {"as cv::FileStorage writes it", "%YAML:1.0\n---\n" + body, "camera_matrix"},
+        {"without '---' (ORB-SLAM's settings)", "%YAML:1.0\n" + body, "camera_matrix"},
+        {"CRLF line ends", crlf("%YAML:1.0\n---\n" + body), "camera_matrix"},
+        {"comments and blank lines", "%YAML:1.0\n---\n# calibrated 2019\n\n" + body + "# end\n", "camera_matrix"},
+        {"the calibration sample's older names",
+         "%YAML:1.0\n---\nimage_Width: 640\nimage_Height: 480\nCamera_Matrix: " + matrix_k + "Distortion_Coefficients: " + dist5,
+         "Camera_Matrix"},
+        {"coefficients as a plain list",
+         "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\ncamera_matrix: " + matrix_k +
+             "distortion_coefficients: [ -0.1, 0.02, 1e-4, -2e-4, 0.003 ]\n",
+         "camera_matrix"},
+        {"data across lines, as OpenCV wraps it",
+         "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n"
+         "   dt: d\n   data: [ 500., 0., 319.5, 0.,\n       510., 239.5, 0., 0., 1. ]\ndistortion_coefficients: " + dist5,
+         "camera_matrix"},
+    };
+    TempDir dir;
+    int index = 0;
+    for (const Case& c : cases) {
+        CAPTURE(c.what, c.text);
+        const fs::path path = dir.path() / ("layout" + std::to_string(index++) + ".yaml");
+        write_text(path, c.text);
+        const Camera camera = read_camera_file(path).camera;
+        check_hand_made_size_and_k(camera);
+        CHECK(camera.lens.type == LensType::Opencv5);
+        CHECK(camera.lens.coefficients == std::vector<double>{-0.1, 0.02, 1e-4, -2e-4, 0.003});
+        // OpenCV reads the same K from the same file.
+        const cv::Mat K = opencv_reads_matrix(path, c.k_key);
+        REQUIRE(K.rows == 3);
+        REQUIRE(K.cols == 3);
+        CHECK(K.at<double>(0, 0) == camera.intrinsics.fx);
+        CHECK(K.at<double>(1, 1) == camera.intrinsics.fy);
+        CHECK(K.at<double>(0, 2) == camera.intrinsics.cx);
+        CHECK(K.at<double>(1, 2) == camera.intrinsics.cy);
     }
 }
 
@@ -621,12 +743,14 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
         {"width as a string", base.with("image_width", "\"wide\"").text(), "image_width"},
         {"distortion .nan", base.with("distortion_coefficients", "5 1: 0., .nan, 0., 0., 0.").text(), "distortion_coefficients"},
         // OpenCV 4.6 reads integers as 32-bit int, wrapping: 4294967936 would read as 640,
-        // 5700000000000 as 578398208, 4294967297 rows as 1.
+        // 4294967299 rows as 3. libcam reads them whole and refuses them.
         {"width 2^32 + 640", base.with("image_width", "4294967936").text(), "image_width"},
         {"height -2^32 + 480", base.with("image_height", "-4294966816").text(), "image_height"},
-        {"integer fx past int", base.with("camera_matrix", "3 3: 5700000000000, 0., 319.5, 0., 510., 239.5, 0., 0., 1.").text(),
+        {"rows 2^32 + 3", base.with("camera_matrix", "4294967299 1: 500., 0., 319.5").text(), "camera_matrix.rows"},
+        {"width past long long", base.with("image_width", "99999999999999999999999").text(), "image_width"},
+        {"a word in the data", base.with("tvec", "3 1: 0.5, one, 2.").text(), "tvec.data"},
+        {"data shorter than rows x cols", base.with("camera_matrix", "3 3: 500., 0., 319.5, 0., 510.").text(),
          "camera_matrix.data"},
-        {"integer past long long", base.with("tvec", "3 1: 0.5, 99999999999999999999999, 2.").text(), "tvec.data"},
     };
     int index = 0;
     for (const Case& c : cases) {
@@ -661,7 +785,7 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
     CHECK_THAT(message, is_file_or_argument_error());
     CHECK_THAT(message, NamesKey("image_width"));
 
-    // An integer past OpenCV's 32-bit int, in a scalar and inside a matrix of doubles.
+    // An integer past OpenCV's 32-bit int, and a word where a number belongs.
     std::string wrapping_width = xml;
     wrapping_width.replace(width_at, wrapping_width.find("</image_width>") - width_at, "<image_width>4294967936");
     const fs::path wrapping = dir.path() / "wrapping_width.xml";
@@ -672,12 +796,13 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
     std::string wrapping_k = xml;
     const auto data_at = wrapping_k.find("<data>", start);
     REQUIRE(data_at != std::string::npos);
-    wrapping_k.insert(data_at + std::string("<data>").size(), " 5700000000000 ");
-    const fs::path wrapping_data = dir.path() / "wrapping_k.xml";
+    const auto first_number = wrapping_k.find_first_not_of(" \n", data_at + std::string("<data>").size());
+    wrapping_k.replace(first_number, wrapping_k.find(' ', first_number) - first_number, "5.7e12x");
+    const fs::path wrapping_data = dir.path() / "word_in_k.xml";
     write_text(wrapping_data, wrapping_k);
     message = error_of([&] { read_camera_file(wrapping_data); });
     CHECK_THAT(message, is_file_or_argument_error());
-    CHECK_THAT(message, NamesKey("camera_matrix.data") && Contains("5700000000000"));
+    CHECK_THAT(message, NamesKey("camera_matrix.data") && Contains("5.7e12x") && Contains("line "));
 }
 
 TEST_CASE("Malformed .cameramodel and gl files are refused", "[files][errors]") {

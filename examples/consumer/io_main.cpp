@@ -1,8 +1,8 @@
-// Reads a libcam JSON camera file with an installed libcam::io (no OpenCV, mrcal or
-// Ceres anywhere in the build) and prints the ray through the lower-left pixel (pixel
-// (0, 0) counted from the bottom, as a graphics camera counts). A file of a format that
-// needs libcam::interop (OpenCV YAML/XML, .cameramodel) is refused with a message that
-// says so.
+// Reads a camera file (libcam JSON, OpenCV YAML or XML) with an installed libcam::io
+// (no OpenCV, mrcal or Ceres anywhere in the build) and prints the ray through the
+// lower-left pixel (pixel (0, 0) counted from the bottom, as a graphics camera counts).
+// A file of a format that needs libcam::interop (mrcal's .cameramodel) is refused with
+// a message that says so.
 // Usage: consumer_io CAMERA_FILE
 
 #include <cstdio>

@@ -1,16 +1,15 @@
 #pragma once
-// The camera-file formats that need OpenCV or libmrcal, plugged into libcam::io's format
-// table (io/format_table.hpp): opencv-yaml and opencv-xml (cv::FileStorage,
-// interop/opencv.hpp) and cameramodel (libmrcal's parser, interop/mrcal.hpp).
+// The camera-file format that needs libmrcal, plugged into libcam::io's format table
+// (io/format_table.hpp): cameramodel (libmrcal's parser, interop/mrcal.hpp).
 
 namespace libcam {
 
-// Fills io's rows for opencv-yaml, opencv-xml and cameramodel, so that read_camera_file,
-// parse_camera, format_camera and write_camera_file (io/camera_file.hpp) handle them.
-// Call it once at the start of the program (calling it again changes nothing). Until
-// it is called those formats throw FileError naming this function: the call is
-// explicit because a registration made by a static initialiser in a static library is
-// dropped by the linker when nothing else in its object file is used.
+// Fills io's row for cameramodel, so that read_camera_file, parse_camera, format_camera
+// and write_camera_file (io/camera_file.hpp) handle it. Call it once at the start of the
+// program (calling it again changes nothing). Until it is called that format throws
+// FileError naming this function: the call is explicit because a registration made by a
+// static initialiser in a static library is dropped by the linker when nothing else in
+// its object file is used.
 void register_interop_formats();
 
 }  // namespace libcam

@@ -8,6 +8,7 @@
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/format_table.hpp"
 #include "libcam/io/json_format.hpp"
+#include "libcam/io/opencv_storage.hpp"
 
 namespace libcam {
 
@@ -20,6 +21,19 @@ std::string write_json(const Camera& camera, const WriteOptions& options) {
 
 std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
     return format_gl_json(to_opengl(camera, options.gl_near, options.gl_far, options.gl_depth_range), camera.size);
+}
+
+// OpenCV's files record no FOV camera and take no options.
+CameraFile read_opencv_storage(std::string_view text, const std::string& source) {
+    return {parse_opencv_storage(text, source), std::nullopt};
+}
+
+std::string write_opencv_yaml(const Camera& camera, const WriteOptions&) {
+    return format_opencv_storage(camera, OpenCvStorage::Yaml);
+}
+
+std::string write_opencv_xml(const Camera& camera, const WriteOptions&) {
+    return format_opencv_storage(camera, OpenCvStorage::Xml);
 }
 
 // One row per format (io/format_table.hpp). The rows of the formats io implements
@@ -37,13 +51,14 @@ struct FormatRow {
 constexpr std::string_view kInterop = "libcam::interop";
 constexpr std::string_view kRegisterInterop = "libcam::register_interop_formats()";
 
-// libcam JSON and gl JSON share a reader: the keys tell which (io/json_format.hpp).
+// libcam JSON and gl JSON share a reader: the keys tell which (io/json_format.hpp);
+// OpenCV's YAML and XML share one too (io/opencv_storage.hpp).
 // constinit: filled before any code runs, so a registration made from another file's
 // static initialiser cannot find it unready.
 constinit std::array<FormatRow, 5> format_table = {{
     {CameraFormat::Json, "json", "libcam JSON", "libcam::io", "", parse_json_camera, write_json},
-    {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", kInterop, kRegisterInterop, nullptr, nullptr},
-    {CameraFormat::OpenCvXml, "opencv-xml", "OpenCV XML", kInterop, kRegisterInterop, nullptr, nullptr},
+    {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", "libcam::io", "", read_opencv_storage, write_opencv_yaml},
+    {CameraFormat::OpenCvXml, "opencv-xml", "OpenCV XML", "libcam::io", "", read_opencv_storage, write_opencv_xml},
     {CameraFormat::Cameramodel, "cameramodel", "mrcal .cameramodel", kInterop, kRegisterInterop, nullptr, nullptr},
     {CameraFormat::Gl, "gl", "gl JSON", "libcam::io", "", parse_json_camera, write_gl_json},
 }};
@@ -55,7 +70,7 @@ FormatRow& row_of(CameraFormat format) {
     throw InvalidArgument("format: unknown");
 }
 
-// "<where>: reading OpenCV YAML needs libcam::interop (link it and call
+// "<where>: reading mrcal .cameramodel needs libcam::interop (link it and call
 // libcam::register_interop_formats() first)".
 [[noreturn]] void throw_not_installed(const FormatRow& row, std::string_view doing, const std::string& where) {
     throw FileError(where + ": " + std::string(doing) + " " + std::string(row.title) + " needs " +

@@ -4,17 +4,17 @@
 //   json         libcam's JSON (io/json_format.hpp): K, dist, R, t, rvec, P, fov...
 //   opencv-yaml  what cv::FileStorage writes and reads, with the key names of
 //   opencv-xml   OpenCV's calibration sample (camera_matrix, distortion_coefficients,
-//                image_width, image_height) plus rvec and tvec
+//                image_width, image_height) plus rvec and tvec (io/opencv_storage.hpp)
 //   cameramodel  mrcal's .cameramodel, checked by libmrcal's own parser
 //   gl           JSON holding an OpenGL projection, view matrix and viewport
 //
 // Every reader validates what it reads and throws FileError (unreadable, malformed)
 // or InvalidArgument (a value out of range) with the file, the key and the value.
 //
-// libcam::io itself reads and writes json and gl, and links neither OpenCV nor libmrcal.
-// opencv-yaml, opencv-xml and cameramodel are read and written by libcam::interop once
+// libcam::io itself reads and writes json, gl, opencv-yaml and opencv-xml, and links
+// neither OpenCV nor libmrcal. cameramodel is read and written by libcam::interop once
 // the program has called libcam::register_interop_formats() (interop/formats.hpp);
-// before that, they throw FileError saying so (io/format_table.hpp).
+// before that, it throws FileError saying so (io/format_table.hpp).
 
 #include <filesystem>
 #include <optional>

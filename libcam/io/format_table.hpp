@@ -2,12 +2,12 @@
 // The table behind read_camera_file, parse_camera, format_camera and write_camera_file
 // (io/camera_file.hpp): one row per CameraFormat, holding its reader and its writer.
 //
-// libcam::io fills the rows of the formats it implements itself (json, gl) and links
-// neither OpenCV nor libmrcal. The rows of opencv-yaml, opencv-xml (cv::FileStorage) and
-// cameramodel (libmrcal's parser) start empty: libcam::interop fills them when the
-// program calls libcam::register_interop_formats() (interop/formats.hpp). An empty row
-// is never skipped silently: reading or writing its format throws FileError naming the
-// library to link and the function to call.
+// libcam::io fills the rows of the formats it implements itself (json, gl, opencv-yaml,
+// opencv-xml) and links neither OpenCV nor libmrcal. The row of cameramodel (libmrcal's
+// parser) starts empty: libcam::interop fills it when the program calls
+// libcam::register_interop_formats() (interop/formats.hpp). An empty row is never
+// skipped silently: reading or writing its format throws FileError naming the library
+// to link and the function to call.
 //
 // The rows are filled by an explicit call rather than by a static initialiser in
 // libcam::interop: the linker drops an object file of a static library that nothing

@@ -1,0 +1,85 @@
+#pragma once
+// A structured camera file (YAML, OpenCV's XML) as one small tree, so that every
+// reader of such a file (OpenCV's FileStorage layouts today, and the calibration
+// files of other tools that are YAML too) works on the same thing and reports
+// errors the same way: the file, the line, the field and the value.
+//
+// The parsers behind it are yaml-cpp (the YAML parser ROS and Kalibr read their
+// files with) and pugixml; neither appears in this header.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace libcam {
+
+// One node of a parsed file. Scalars keep their text as written (unquoted); numbers
+// are read from it by Field below, with libcam's own checks.
+struct DocumentNode {
+    enum class Kind { Null, Scalar, Sequence, Map };
+    Kind kind = Kind::Null;
+    std::string text;                // Scalar: its text
+    std::string tag;                 // "opencv-matrix" for YAML's !!opencv-matrix or XML's type_id="opencv-matrix"
+    std::vector<DocumentNode> items;  // Sequence: its items; Map: the values of `keys`
+    std::vector<std::string> keys;    // Map: its keys, in file order, each once
+    int line = 0;                    // where the node starts, counted from 1 (0: not known)
+
+    // The value of `key` in a map, or null when this is not a map or has no such key.
+    const DocumentNode* find(std::string_view key) const;
+};
+
+// The most a file may nest (a camera file nests three or four levels). Deeper files are
+// refused before anything recurses through them.
+constexpr int kMaxDocumentDepth = 32;
+
+// Parses YAML (one document). OpenCV's own header line "%YAML:1.0", which YAML
+// parsers refuse, is accepted, with or without the "---" after it; CRLF line ends are
+// accepted. A file whose last key has no value is refused as cut short. Throws
+// FileError "<source>: line L: <what the parser says>".
+DocumentNode parse_yaml_document(std::string_view text, const std::string& source);
+
+// Parses XML as OpenCV's FileStorage lays it out: the root element's children are the
+// top-level keys; an element with child elements is a map (a sequence when its children
+// are all "_"); an element with text is a scalar, or a sequence of scalars when its text
+// holds several whitespace-separated words; the attribute type_id becomes the tag.
+DocumentNode parse_opencv_xml_document(std::string_view text, const std::string& source);
+
+// A node with the name a user knows it by ("camera_matrix.data") and the file it came
+// from, for reading values with messages that say where a bad value is:
+// "<source>: line 7: \"camera_matrix.data\"[3]: must be finite, got .inf".
+class Field {
+public:
+    Field(const DocumentNode& node, std::string name, const std::string& source);
+
+    const DocumentNode& node() const { return *node_; }
+    const std::string& name() const { return name_; }
+    const std::string& source() const { return *source_; }
+
+    // A key of this map: the first of `keys` present (later names are older
+    // spellings), or nothing. Fails unless this is a map, and when the key is there
+    // with no value (`key:` and nothing after it): a field left empty is not guessed at.
+    std::optional<Field> find(std::initializer_list<std::string_view> keys) const;
+    // The same, failing with "missing" (naming the first key) when none is present.
+    Field at(std::initializer_list<std::string_view> keys) const;
+
+    std::string text() const;                             // a scalar's text
+    double number() const;                                // a finite number
+    long long integer(long long min, long long max) const;  // a decimal integer in [min, max]
+    // A sequence of finite numbers (a single scalar counts as one), at most max_count.
+    std::vector<double> numbers(std::size_t max_count) const;
+
+    // Throws FileError naming the source, line and field: "<source>: line L: \"<name>\": <what>".
+    [[noreturn]] void fail(const std::string& what) const;
+
+private:
+    Field(const DocumentNode& node, std::string name, const std::string* source);
+    double number_at(const DocumentNode& scalar, std::size_t index, bool indexed) const;
+
+    const DocumentNode* node_;
+    std::string name_;
+    const std::string* source_;
+};
+
+}  // namespace libcam
