@@ -1,10 +1,17 @@
 #include "libcam/io/document.hpp"
 
-#include <yaml-cpp/yaml.h>
+#include <yaml-cpp/anchor.h>
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/exceptions.h>
+#include <yaml-cpp/mark.h>
+#include <yaml-cpp/parser.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
 #include <pugixml.hpp>
 #include <system_error>
 
@@ -36,6 +43,11 @@ public:
         if (depth > kMaxDocumentDepth) refuse(line, "nested more than " + std::to_string(kMaxDocumentDepth) + " levels deep");
         if (++nodes_ > kMaxDocumentNodes) refuse(line, "more than " + std::to_string(kMaxDocumentNodes) + " values");
     }
+    // An alias: `count` more nodes at once.
+    void add(std::size_t count, int line) {
+        nodes_ += count;
+        if (nodes_ > kMaxDocumentNodes) refuse(line, "more than " + std::to_string(kMaxDocumentNodes) + " values");
+    }
     [[noreturn]] void refuse(int line, const std::string& what) const {
         throw FileError(source_ + (line > 0 ? ": line " + std::to_string(line) : "") + ": " + what);
     }
@@ -54,38 +66,126 @@ std::string yaml_tag(const std::string& tag) {
     return tag;
 }
 
-DocumentNode from_yaml(const YAML::Node& node, int depth, TreeBudget& budget) {
-    DocumentNode out;
-    out.line = node.Mark().is_null() ? 0 : node.Mark().line + 1;
-    budget.enter(depth, out.line);
-    switch (node.Type()) {
-        case YAML::NodeType::Undefined:
-        case YAML::NodeType::Null: break;
-        case YAML::NodeType::Scalar:
-            out.kind = DocumentNode::Kind::Scalar;
-            out.text = node.Scalar();
-            out.tag = yaml_tag(node.Tag());
-            break;
-        case YAML::NodeType::Sequence:
-            out.kind = DocumentNode::Kind::Sequence;
-            out.tag = yaml_tag(node.Tag());
-            for (const YAML::Node& item : node) out.items.push_back(from_yaml(item, depth + 1, budget));
-            break;
-        case YAML::NodeType::Map:
-            out.kind = DocumentNode::Kind::Map;
-            out.tag = yaml_tag(node.Tag());
-            for (const auto& entry : node) {
-                const int key_line = entry.first.Mark().is_null() ? out.line : entry.first.Mark().line + 1;
-                if (!entry.first.IsScalar()) budget.refuse(key_line, "a key that is not text");
-                std::string key = entry.first.Scalar();
-                if (out.find(key) != nullptr) budget.refuse(key_line, "the key \"" + key + "\" appears twice");
-                out.items.push_back(from_yaml(entry.second, depth + 1, budget));
-                out.keys.push_back(std::move(key));
-            }
-            break;
-    }
-    return out;
+std::size_t count_nodes(const DocumentNode& node) {
+    std::size_t count = 1;
+    for (const DocumentNode& item : node.items) count += count_nodes(item);
+    return count;
 }
+
+int depth_below(const DocumentNode& node) {
+    int depth = 0;
+    for (const DocumentNode& item : node.items) depth = std::max(depth, 1 + depth_below(item));
+    return depth;
+}
+
+// Builds the tree straight from yaml-cpp's parse events (one document), so that no
+// other tree is built first and the budget is counted as it grows. An alias is a copy
+// of the node its anchor named, counted again.
+class TreeBuilder : public YAML::EventHandler {
+public:
+    explicit TreeBuilder(TreeBudget& budget) : budget_(budget) {}
+
+    DocumentNode take() { return std::move(root_); }
+
+    void OnDocumentStart(const YAML::Mark&) override {}
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override { add(leaf(mark, DocumentNode::Kind::Null, "", ""), anchor); }
+    void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+        const auto found = anchors_.find(anchor);
+        if (found == anchors_.end()) budget_.refuse(line_of(mark), "an alias to an unknown anchor");
+        budget_.enter(static_cast<int>(open_.size()) + depth_below(found->second), line_of(mark));
+        budget_.add(count_nodes(found->second), line_of(mark));
+        add(DocumentNode(found->second), YAML::NullAnchor);
+    }
+    void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor, const std::string& value) override {
+        add(leaf(mark, DocumentNode::Kind::Scalar, tag, value), anchor);
+    }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
+                         YAML::EmitterStyle::value) override {
+        open(mark, DocumentNode::Kind::Sequence, tag, anchor);
+    }
+    void OnSequenceEnd() override { close(); }
+    void OnMapStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+        open(mark, DocumentNode::Kind::Map, tag, anchor);
+    }
+    void OnMapEnd() override { close(); }
+
+private:
+    struct Open {
+        DocumentNode node;
+        YAML::anchor_t anchor;
+        std::optional<std::string> key;  // a map's key waiting for its value
+    };
+
+    static int line_of(const YAML::Mark& mark) { return mark.is_null() ? 0 : mark.line + 1; }
+
+    DocumentNode leaf(const YAML::Mark& mark, DocumentNode::Kind kind, const std::string& tag, const std::string& text) {
+        budget_.enter(static_cast<int>(open_.size()), line_of(mark));
+        DocumentNode node;
+        node.kind = kind;
+        node.tag = yaml_tag(tag);
+        node.text = text;
+        node.line = line_of(mark);
+        return node;
+    }
+
+    void open(const YAML::Mark& mark, DocumentNode::Kind kind, const std::string& tag, YAML::anchor_t anchor) {
+        if (!open_.empty() && open_.back().node.kind == DocumentNode::Kind::Map && !open_.back().key) {
+            budget_.refuse(line_of(mark), "a key that is not text");
+        }
+        open_.push_back({leaf(mark, kind, tag, ""), anchor, std::nullopt});
+    }
+
+    void close() {
+        Open done = std::move(open_.back());
+        open_.pop_back();
+        if (done.key) budget_.refuse(done.node.line, "the key \"" + *done.key + "\" has no value");
+        add(std::move(done.node), done.anchor);
+    }
+
+    // Puts a finished node where it belongs: the root, a sequence's next item, a map's
+    // next key, or the value of the key before it.
+    void add(DocumentNode node, YAML::anchor_t anchor) {
+        if (anchor != YAML::NullAnchor) anchors_[anchor] = node;
+        if (open_.empty()) {
+            root_ = std::move(node);
+            return;
+        }
+        Open& parent = open_.back();
+        if (parent.node.kind == DocumentNode::Kind::Sequence) {
+            parent.node.items.push_back(std::move(node));
+        } else if (!parent.key) {
+            if (node.kind != DocumentNode::Kind::Scalar && node.kind != DocumentNode::Kind::Null) {
+                budget_.refuse(node.line, "a key that is not text");
+            }
+            if (parent.node.find(node.text) != nullptr) budget_.refuse(node.line, "the key \"" + node.text + "\" appears twice");
+            parent.key = std::move(node.text);
+        } else {
+            parent.node.keys.push_back(std::move(*parent.key));
+            parent.node.items.push_back(std::move(node));
+            parent.key.reset();
+        }
+    }
+
+    TreeBudget& budget_;
+    std::vector<Open> open_;
+    std::map<YAML::anchor_t, DocumentNode> anchors_;
+    DocumentNode root_;
+};
+
+// Counts the events of a document without keeping them: only whether there is one.
+class NothingBuilder : public YAML::EventHandler {
+public:
+    void OnDocumentStart(const YAML::Mark&) override {}
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+    void OnMapEnd() override {}
+};
 
 // OpenCV begins its YAML with "%YAML:1.0", which is not a YAML directive (YAML's is
 // "%YAML 1.2"), and writes "---" after it only sometimes (ORB-SLAM's settings have
@@ -100,6 +200,34 @@ std::string without_yaml_header(std::string_view text) {
         std::fill(out.begin() + static_cast<std::ptrdiff_t>(start), out.begin() + static_cast<std::ptrdiff_t>(end), ' ');
     }
     return out;
+}
+
+// A camera file is one YAML document. A line that starts with "---" after the
+// document's content has begun starts another one, and so does content after a "..."
+// line (in YAML such lines end a document wherever they stand, even inside brackets).
+void check_one_yaml_document(std::string_view text, const std::string& source) {
+    bool content = false, ended = false;
+    int line_number = 0;
+    for (std::size_t start = 0; start < text.size();) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        const std::string_view line = text.substr(start, end - start);
+        start = end + 1;
+        ++line_number;
+        const auto second_document = [&] {
+            throw FileError(source + ": line " + std::to_string(line_number) +
+                            ": a second YAML document (a camera file holds one)");
+        };
+        const bool marker = (line.starts_with("---") || line.starts_with("...")) &&
+                            (line.size() == 3 || line[3] == ' ' || line[3] == '\t' || line[3] == '\r');
+        const std::size_t first = line.find_first_not_of(" \t\r", marker ? 3 : 0);
+        const bool holds_content = first != std::string_view::npos && line[first] != '#' && (marker || line[first] != '%');
+        if (marker && line.starts_with("...")) {
+            ended = ended || content;
+            continue;
+        }
+        if ((marker && content) || (holds_content && ended)) second_document();
+        content = content || holds_content;
+    }
 }
 
 // ---- OpenCV's XML (pugixml) ----
@@ -203,18 +331,27 @@ std::string_view trim(std::string_view text) {
 
 DocumentNode parse_yaml_document(std::string_view text, const std::string& source) {
     const std::string yaml = without_yaml_header(text);
-    std::vector<YAML::Node> documents;
+    check_one_yaml_document(yaml, source);
+    TreeBudget budget(source);
+    DocumentNode tree;
     try {
-        documents = YAML::LoadAll(yaml);
+        std::istringstream stream(yaml);
+        YAML::Parser parser(stream);
+        TreeBuilder builder(budget);
+        if (parser.HandleNextDocument(builder)) tree = builder.take();
+        // Whatever the parser did not take as the first document must be nothing. (One
+        // more call, never a loop: yaml-cpp 0.7's LoadAll loops forever on some malformed
+        // files, a document that starts with ',' among them; found by fuzzing.)
+        NothingBuilder rest;
+        if (parser.HandleNextDocument(rest)) throw FileError(source + ": text after the YAML document (not valid YAML)");
     } catch (const YAML::Exception& error) {
         const std::string where = error.mark.is_null() ? "" : ": line " + std::to_string(error.mark.line + 1);
         throw FileError(source + where + ": not valid YAML: " + error.msg);
+    } catch (const Error&) {
+        throw;
     } catch (const std::exception& error) {
         throw FileError(source + ": not valid YAML: " + error.what());
     }
-    if (documents.size() > 1) throw FileError(source + ": holds " + std::to_string(documents.size()) + " YAML documents, expected one");
-    TreeBudget budget(source);
-    DocumentNode tree = documents.empty() ? DocumentNode{} : from_yaml(documents.front(), 0, budget);
     // YAML has no closing bracket to show that a file is whole; a file cut short within
     // its last key ("distortion_coeffici") reads as that key with no value. Refused, so
     // that a cut file never reads as a camera without its last field.
