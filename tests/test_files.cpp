@@ -29,6 +29,7 @@
 #include "libcam/camera/example_cameras.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
+#include "libcam/interop/opencv.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "support.hpp"
@@ -727,6 +728,58 @@ TEST_CASE("OpenCV YAML in the layouts OpenCV reads: header or not, '---' or not,
         CHECK(K.at<double>(1, 1) == camera.intrinsics.fy);
         CHECK(K.at<double>(0, 2) == camera.intrinsics.cx);
         CHECK(K.at<double>(1, 2) == camera.intrinsics.cy);
+    }
+}
+
+TEST_CASE("fisheye_model and distortion_model say whose coefficients a file holds", "[files][opencv]") {
+    const std::string head =
+        "%YAML:1.0\n---\nimage_width: 640\nimage_height: 480\ncamera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n"
+        "   dt: d\n   data: [ 300., 0., 319.5, 0., 300., 239.5, 0., 0., 1. ]\n";
+    const std::string k4 = "distortion_coefficients: [ 0.05, -0.01, 0.002, -0.0003 ]\n";
+    struct Case {
+        const char* what;
+        std::string text;
+        LensType type;
+    };
+    const std::vector<Case> cases{
+        {"no flag: cv::projectPoints", head + k4, LensType::Opencv4},
+        {"the calibration sample's fisheye_model: 0", head + "fisheye_model: 0\n" + k4, LensType::Opencv4},
+        {"the calibration sample's fisheye_model: 1", head + "fisheye_model: 1\n" + k4, LensType::Fisheye},
+        {"ROS's equidistant", head + "distortion_model: equidistant\n" + k4, LensType::Fisheye},
+        {"\"fisheye\", quoted", head + "distortion_model: \"fisheye\"\n" + k4, LensType::Fisheye},
+        {"ROS's plumb_bob", head + "distortion_model: plumb_bob\n" + k4, LensType::Opencv4},
+    };
+    // OpenCV projects a point through the coefficients with the function the file names
+    // (cv::fisheye::projectPoints for FISHEYE); libcam's camera must give the same pixel.
+    const Vec3 point(0.3, -0.2, 1.0);
+    for (const Case& c : cases) {
+        CAPTURE(c.what);
+        const Camera camera = parse_camera(c.text, CameraFormat::OpenCvYaml, "in.yaml").camera;
+        CHECK(camera.lens.type == c.type);
+        CHECK(camera.lens.coefficients == std::vector<double>{0.05, -0.01, 0.002, -0.0003});
+        const Vec2 by_opencv = opencv_project_points(camera, {point}).front();
+        const Projection by_libcam = PreparedCamera(camera).project_camera_point(point);
+        REQUIRE(by_libcam.valid);
+        CHECK((by_libcam.pixel - by_opencv).norm() < 1e-9);
+    }
+    // cv::fisheye's coefficients all zero are the equidistant lens, not PINHOLE.
+    const Camera zero = parse_camera(head + "fisheye_model: 1\ndistortion_coefficients: [ 0., 0., 0., 0. ]\n",
+                                     CameraFormat::OpenCvYaml, "in.yaml")
+                            .camera;
+    CHECK(zero.lens.type == LensType::Fisheye);
+
+    const std::vector<std::pair<std::string, std::string>> refused{
+        {head + "distortion_model: kb8\n" + k4, "\"distortion_model\": 'kb8' is not a model"},
+        {head + "fisheye_model: 1\ndistortion_model: plumb_bob\n" + k4, "disagrees with \"fisheye_model\""},
+        {head + "fisheye_model: 2\n" + k4, "\"fisheye_model\": must be in [0, 1], got 2"},
+        {head + "fisheye_model: 1\ndistortion_coefficients: [ 0.05, -0.01, 0.002, -0.0003, 0.1 ]\n",
+         "expected cv::fisheye's 4 coefficients, got 5"},
+        {head + "distortion_model: equidistant\n", "\"distortion_coefficients\": missing"},
+    };
+    for (const auto& [text, says] : refused) {
+        CAPTURE(text);
+        CHECK_THAT(error_of([&] { (void)parse_camera(text, CameraFormat::OpenCvYaml, "in.yaml"); }),
+                   StartsWith("FileError: in.yaml") && Contains(says));
     }
 }
 

@@ -1,6 +1,7 @@
 #include "libcam/io/opencv_storage.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <optional>
 #include <vector>
 
@@ -117,13 +118,51 @@ Intrinsics read_camera_matrix(const Field& field) {
     }
 }
 
-Lens read_distortion(const Field& field) {
+// Which function of OpenCV's the coefficients are for. OpenCV's calibration sample
+// writes `fisheye_model: 1` for cv::fisheye; ROS-style files name the model in
+// `distortion_model`. Without either they are cv::projectPoints' coefficients.
+enum class CoefficientFamily { RadialTangential, Fisheye };
+
+CoefficientFamily coefficient_family(const Field& file) {
+    std::optional<CoefficientFamily> family;
+    if (const std::optional<Field> flag = file.find({"fisheye_model"})) {
+        family = flag->integer(0, 1) == 1 ? CoefficientFamily::Fisheye : CoefficientFamily::RadialTangential;
+    }
+    if (const std::optional<Field> model = file.find({"distortion_model"})) {
+        std::string name = model->text();
+        std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+        static constexpr std::string_view kRadialTangential[] = {"plumb_bob", "rational_polynomial", "radtan",
+                                                                 "radial-tangential", "pinhole"};
+        static constexpr std::string_view kFisheye[] = {"fisheye", "equidistant", "kannala_brandt"};
+        const auto named = [&](const auto& names) { return std::find(std::begin(names), std::end(names), name) != std::end(names); };
+        const std::optional<CoefficientFamily> by_name =
+            named(kRadialTangential) ? std::optional(CoefficientFamily::RadialTangential)
+            : named(kFisheye)        ? std::optional(CoefficientFamily::Fisheye)
+                                     : std::nullopt;
+        if (!by_name) {
+            model->fail("'" + model->text() +
+                        "' is not a model this reader knows (plumb_bob, rational_polynomial, equidistant or fisheye)");
+        }
+        if (family && *family != *by_name) model->fail("disagrees with \"fisheye_model\"");
+        family = by_name;
+    }
+    return family.value_or(CoefficientFamily::RadialTangential);
+}
+
+Lens read_distortion(const Field& field, CoefficientFamily family) {
     const Matrix m = read_matrix(field);
-    Lens lens;
-    if (std::all_of(m.values.begin(), m.values.end(), [](double v) { return v == 0.0; })) return lens;  // PINHOLE
-    if (m.rows != 1 && m.cols != 1) {
+    if (m.rows != 1 && m.cols != 1 && !m.values.empty()) {
         field.fail("expected a vector, got a " + std::to_string(m.rows) + "x" + std::to_string(m.cols) + " matrix");
     }
+    Lens lens;
+    if (family == CoefficientFamily::Fisheye) {
+        // cv::fisheye's k1..k4. All zero is the equidistant lens r = f theta, not PINHOLE.
+        if (m.values.size() != 4) field.fail("expected cv::fisheye's 4 coefficients, got " + std::to_string(m.values.size()));
+        lens.type = LensType::Fisheye;
+        lens.coefficients = m.values;
+        return lens;
+    }
+    if (std::all_of(m.values.begin(), m.values.end(), [](double v) { return v == 0.0; })) return lens;  // PINHOLE
     const std::optional<LensType> type = opencv_model_with(m.values.size());
     if (!type) field.fail("expected 4, 5, 8, 12 or 14 coefficients, got " + std::to_string(m.values.size()));
     lens.type = *type;
@@ -174,8 +213,11 @@ Camera parse_opencv_storage(std::string_view text, const std::string& source) {
     camera.size = {static_cast<long>(file.at({"image_width", "image_Width"}).integer(1, kMaxImageSide)),
                    static_cast<long>(file.at({"image_height", "image_Height"}).integer(1, kMaxImageSide))};
     camera.intrinsics = read_camera_matrix(file.at({"camera_matrix", "Camera_Matrix"}));
+    const CoefficientFamily family = coefficient_family(file);
     if (const std::optional<Field> dist = file.find({"distortion_coefficients", "Distortion_Coefficients"})) {
-        camera.lens = read_distortion(*dist);
+        camera.lens = read_distortion(*dist, family);
+    } else if (family == CoefficientFamily::Fisheye) {
+        file.fail("\"distortion_coefficients\": missing (the file names a fisheye model)");
     }
     if (const std::optional<Field> rvec = file.find({"rvec"})) camera.pose.R = rotation_from_rvec(read_vector3(*rvec));
     if (const std::optional<Field> tvec = file.find({"tvec"})) camera.pose.t = read_vector3(*tvec);

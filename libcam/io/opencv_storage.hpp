@@ -17,6 +17,10 @@
 //
 // These are the names OpenCV's calibration sample writes; its older spellings
 // (Camera_Matrix, Distortion_Coefficients, image_Width, image_Height) are read too.
+// The coefficients are cv::projectPoints' (OPENCV4..14) unless the file says they are
+// cv::fisheye's (FISHEYE): the sample's `fisheye_model: 1`, or a `distortion_model` of
+// equidistant, fisheye or kannala_brandt (plumb_bob, rational_polynomial and radtan
+// name cv::projectPoints' model; any other name is refused).
 // A matrix may also be a plain list of numbers. The file may start with or without the
 // "%YAML:1.0" line and the "---" line, with CRLF line ends.
 
@@ -38,7 +42,8 @@ std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage);
 // Reads such a file (XML when its first character is '<', YAML otherwise). rvec and
 // tvec may be absent (identity pose). 4, 5, 8, 12 or 14 distortion coefficients are
 // OPENCV4..OPENCV14; coefficients that are all zero, or none, are read as PINHOLE,
-// which they equal exactly. Throws FileError naming the file, line, key and value.
+// which they equal exactly. cv::fisheye's are FISHEYE (4, even when all zero: that is
+// the equidistant lens). Throws FileError naming the file, line, key and value.
 Camera parse_opencv_storage(std::string_view text, const std::string& source);
 
 }  // namespace libcam
