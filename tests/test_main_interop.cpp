@@ -1,5 +1,5 @@
-// The Catch2 main of the test programs that link libcam::interop: it plugs the OpenCV and
-// mrcal file formats into libcam::io before any test runs, as the `libcam` program does.
+// The Catch2 main of the test programs that link libcam::interop: it plugs mrcal's file
+// format into libcam::io before any test runs, as the `libcam` program does.
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 

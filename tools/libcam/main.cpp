@@ -38,7 +38,7 @@ int quiet_opencv_errors(int, const char*, const char*, const char*, int, void*) 
 int main(int argc, char** argv) {
     using namespace libcam::cli;
     cv::redirectError(quiet_opencv_errors);
-    libcam::register_interop_formats();  // OpenCV YAML/XML and .cameramodel files
+    libcam::register_interop_formats();  // mrcal .cameramodel files (libmrcal's parser)
 
     CLI::App app{"libcam: graphics cameras <-> calibrated cameras, checked against OpenCV and mrcal"};
     app.set_version_flag("--version", std::string("libcam ") + LIBCAM_VERSION);
