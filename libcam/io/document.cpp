@@ -14,6 +14,7 @@
 #include <sstream>
 #include <pugixml.hpp>
 #include <system_error>
+#include <unordered_set>
 
 #include "libcam/error.hpp"
 
@@ -115,6 +116,7 @@ private:
         DocumentNode node;
         YAML::anchor_t anchor;
         std::optional<std::string> key;  // a map's key waiting for its value
+        std::unordered_set<std::string> keys_seen;  // a map's keys so far (a file may hold many)
     };
 
     static int line_of(const YAML::Mark& mark) { return mark.is_null() ? 0 : mark.line + 1; }
@@ -133,7 +135,7 @@ private:
         if (!open_.empty() && open_.back().node.kind == DocumentNode::Kind::Map && !open_.back().key) {
             budget_.refuse(line_of(mark), "a key that is not text");
         }
-        open_.push_back({leaf(mark, kind, tag, ""), anchor, std::nullopt});
+        open_.push_back({leaf(mark, kind, tag, ""), anchor, std::nullopt, {}});
     }
 
     void close() {
@@ -158,7 +160,9 @@ private:
             if (node.kind != DocumentNode::Kind::Scalar && node.kind != DocumentNode::Kind::Null) {
                 budget_.refuse(node.line, "a key that is not text");
             }
-            if (parent.node.find(node.text) != nullptr) budget_.refuse(node.line, "the key \"" + node.text + "\" appears twice");
+            if (!parent.keys_seen.insert(node.text).second) {
+                budget_.refuse(node.line, "the key \"" + node.text + "\" appears twice");
+            }
             parent.key = std::move(node.text);
         } else {
             parent.node.keys.push_back(std::move(*parent.key));
@@ -276,10 +280,11 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
         const bool sequence =
             std::all_of(children.begin(), children.end(), [](const pugi::xml_node& c) { return std::string_view(c.name()) == "_"; });
         out.kind = sequence ? DocumentNode::Kind::Sequence : DocumentNode::Kind::Map;
+        std::unordered_set<std::string> keys_seen;
         for (const pugi::xml_node& child : children) {
             if (!sequence) {
                 const std::string key = child.name();
-                if (out.find(key) != nullptr) {
+                if (!keys_seen.insert(key).second) {
                     budget.refuse(lines.line_of(child.offset_debug()), "the element <" + key + "> appears twice");
                 }
                 out.keys.push_back(key);
