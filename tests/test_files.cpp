@@ -32,6 +32,7 @@
 #include "libcam/interop/opencv.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "opencv_k.hpp"
 #include "support.hpp"
 
 using namespace libcam;
@@ -42,6 +43,7 @@ using libcam::test::error_of;
 using libcam::test::relative_error;
 
 using libcam::test::TempDir;
+using libcam::test::check_opencv_k;
 
 namespace {
 
@@ -293,18 +295,7 @@ TEST_CASE("A file written by libcam's opencv-yaml/xml reads back through cv::Fil
             in["distortion_coefficients"] >> dist;
             in["rvec"] >> rvec;
             in["tvec"] >> tvec;
-            REQUIRE(K.rows == 3);
-            REQUIRE(K.cols == 3);
-            REQUIRE(K.type() == CV_64F);
-            CHECK(K.at<double>(0, 0) == camera.intrinsics.fx);
-            CHECK(K.at<double>(1, 1) == camera.intrinsics.fy);
-            CHECK(K.at<double>(0, 2) == camera.intrinsics.cx);
-            CHECK(K.at<double>(1, 2) == camera.intrinsics.cy);
-            CHECK(K.at<double>(0, 1) == 0.0);
-            CHECK(K.at<double>(1, 0) == 0.0);
-            CHECK(K.at<double>(2, 0) == 0.0);
-            CHECK(K.at<double>(2, 1) == 0.0);
-            CHECK(K.at<double>(2, 2) == 1.0);
+            check_opencv_k(K, camera.intrinsics);
             REQUIRE(dist.total() == 5);
             CHECK(cv::countNonZero(dist) == 0);
             REQUIRE(rvec.total() == 3);
@@ -721,13 +712,7 @@ TEST_CASE("OpenCV YAML in the layouts OpenCV reads: header or not, '---' or not,
         CHECK(camera.lens.type == LensType::Opencv5);
         CHECK(camera.lens.coefficients == std::vector<double>{-0.1, 0.02, 1e-4, -2e-4, 0.003});
         // OpenCV reads the same K from the same file.
-        const cv::Mat K = opencv_reads_matrix(path, c.k_key);
-        REQUIRE(K.rows == 3);
-        REQUIRE(K.cols == 3);
-        CHECK(K.at<double>(0, 0) == camera.intrinsics.fx);
-        CHECK(K.at<double>(1, 1) == camera.intrinsics.fy);
-        CHECK(K.at<double>(0, 2) == camera.intrinsics.cx);
-        CHECK(K.at<double>(1, 2) == camera.intrinsics.cy);
+        check_opencv_k(opencv_reads_matrix(path, c.k_key), camera.intrinsics);
     }
 }
 

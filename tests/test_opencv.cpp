@@ -15,9 +15,11 @@
 
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/interop/opencv.hpp"
+#include "opencv_k.hpp"
 #include "support.hpp"
 
 using namespace libcam;
+using libcam::test::check_opencv_k;
 using libcam::test::random_fov_camera;
 using libcam::test::uniform;
 
@@ -170,18 +172,8 @@ TEST_CASE("cv::projectPoints meets 1e-9 px flat when the camera sits near the or
 TEST_CASE("libcam's cv::Mat arguments hold K, rvec and tvec in OpenCV's layout", "[opencv]") {
     const Camera camera = to_camera(random_fov_camera({1920, 1080}, FovAxis::Horizontal));
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
-    REQUIRE(K.type() == CV_64F);
-    REQUIRE(K.rows == 3);
-    REQUIRE(K.cols == 3);
-    CHECK(K.at<double>(0, 0) == camera.intrinsics.fx);
-    CHECK(K.at<double>(1, 1) == camera.intrinsics.fy);
-    CHECK(K.at<double>(0, 2) == camera.intrinsics.cx);
-    CHECK(K.at<double>(1, 2) == camera.intrinsics.cy);
-    CHECK(K.at<double>(0, 1) == 0.0);
-    CHECK(K.at<double>(1, 0) == 0.0);
-    CHECK(K.at<double>(2, 0) == 0.0);
-    CHECK(K.at<double>(2, 1) == 0.0);
-    CHECK(K.at<double>(2, 2) == 1.0);
+    REQUIRE(camera.intrinsics.skew == 0.0);  // a FOV camera has none
+    check_opencv_k(K, camera.intrinsics);
     // Centred principal point in OpenCV's pixel-centre convention: (W-1)/2, (H-1)/2.
     CHECK(camera.intrinsics.cx == 959.5);
     CHECK(camera.intrinsics.cy == 539.5);

@@ -255,6 +255,12 @@ private:
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
 
+std::string_view trim(std::string_view text) {
+    while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
+    while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
+    return text;
+}
+
 std::vector<std::string> words_of(std::string_view text) {
     std::vector<std::string> words;
     std::size_t i = 0;
@@ -297,12 +303,7 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
     for (const pugi::xml_node& child : element.children()) {
         if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) text += child.value();
     }
-    const std::string_view trimmed = [&] {
-        std::string_view view(text);
-        while (!view.empty() && is_space(view.front())) view.remove_prefix(1);
-        while (!view.empty() && is_space(view.back())) view.remove_suffix(1);
-        return view;
-    }();
+    const std::string_view trimmed = trim(text);
     if (trimmed.size() >= 2 && trimmed.front() == '"' && trimmed.back() == '"') {  // a string OpenCV quoted
         out.kind = DocumentNode::Kind::Scalar;
         out.text = std::string(trimmed.substr(1, trimmed.size() - 2));
@@ -324,12 +325,6 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
         }
     }
     return out;
-}
-
-std::string_view trim(std::string_view text) {
-    while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
-    while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
-    return text;
 }
 
 }  // namespace
@@ -405,7 +400,7 @@ std::optional<Field> Field::find(std::initializer_list<std::string_view> keys) c
     if (node_->kind != DocumentNode::Kind::Map) fail("expected keys and values");
     for (std::string_view key : keys) {
         if (const DocumentNode* value = node_->find(key)) {
-            Field found(*value, name_.empty() ? std::string(key) : name_ + "." + std::string(key), source_);
+            Field found(*value, child_name(key), source_);
             if (value->kind == DocumentNode::Kind::Null) found.fail("has no value");
             return found;
         }
@@ -415,9 +410,11 @@ std::optional<Field> Field::find(std::initializer_list<std::string_view> keys) c
 
 Field Field::at(std::initializer_list<std::string_view> keys) const {
     if (std::optional<Field> found = find(keys)) return *found;
-    const std::string key(*keys.begin());
-    const std::string name = name_.empty() ? key : name_ + "." + key;
-    throw FileError(*source_ + ": \"" + name + "\": missing");
+    throw FileError(*source_ + ": \"" + child_name(*keys.begin()) + "\": missing");
+}
+
+std::string Field::child_name(std::string_view key) const {
+    return name_.empty() ? std::string(key) : name_ + "." + std::string(key);
 }
 
 std::string Field::text() const {

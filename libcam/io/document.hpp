@@ -76,6 +76,7 @@ public:
 private:
     Field(const DocumentNode& node, std::string name, const std::string* source);
     double number_at(const DocumentNode& scalar, std::size_t index, bool indexed) const;
+    std::string child_name(std::string_view key) const;  // "camera_matrix.data"
 
     const DocumentNode* node_;
     std::string name_;
