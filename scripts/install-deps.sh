@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev          # core math
   libopencv-dev          # reference
+  libopencv-contrib-dev  # reference: cv::omnidir (the unified camera model)
   libmrcal-dev mrcal python3-mrcal   # reference + .cameramodel files
   catch2                 # tests (2.13)
   libcli11-dev           # command-line parsing

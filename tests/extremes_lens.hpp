@@ -123,6 +123,35 @@ inline double conditioning(const Lens& lens, const Vec2Q& m, const Vec3Q& ray, d
     return static_cast<double>(Quad(epsilon) * m.norm() / radial_slope(lens, ray));
 }
 
+// |dm/dp| |p| (elementwise absolute values): how far m moves when each coordinate of
+// the point moves by its own relative error (one unit), in the units of m; nullopt where
+// the model does not project the point.
+inline std::optional<Vec2Q> spread_of_m(const Lens& lens, const Vec3Q& point) {
+    return visit_lens_model<Quad>(lens.type, [&]<class Model>() -> std::optional<Vec2Q> {
+        const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+        Vec2Q m;
+        Eigen::Matrix<Quad, 2, 3> d_m_d_point;
+        if (!Model::project(parameters, point, m, &d_m_d_point)) return std::nullopt;
+        return Vec2Q(d_m_d_point.cwiseAbs() * point.cwiseAbs());
+    });
+}
+
+// The projection's relative condition number at a point: by how much a relative error
+// of eps in each coordinate grows in |m|, over the 2 of a plain ratio x / z; at least 1.
+// No evaluation of a model in a type with epsilon eps can be expected to beat
+// eps times it. It is near 1 for every model except where a denominator cancels
+// (DOUBLE_SPHERE with alpha < 1/2 near its cone, where m goes to infinity).
+inline double projection_condition(const Lens& lens, const Vec3Q& point) {
+    const std::optional<Vec2Q> spread = spread_of_m(lens, point);
+    const Quad size = visit_lens_model<Quad>(lens.type, [&]<class Model>() {
+        Vec2Q m;
+        Model::project(Model::parameters(lens.coefficients), point, m);
+        return m.norm();
+    });
+    if (!spread || !(size > 0) || !spread->allFinite()) return 1.0;
+    return std::max(1.0, static_cast<double>(spread->norm() / (2 * size)));
+}
+
 // Whether a validity flag is wrong against the reference. A ray where the reference has
 // none is still right when it lies in the model's domain and lands within the solver's
 // tolerance, 64 eps (1 + |m|), of m: a pixel that close to the fold is the fold's pixel

@@ -3,6 +3,7 @@
 // the real wide lens (6016x4016, OPENCV8). Inputs only; expected values come from OpenCV, mrcal or
 // formulas worked by hand in the tests.
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <opencv2/calib3d.hpp>
@@ -15,6 +16,7 @@
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/lens/lens_models.hpp"
+#include "double_sphere_reference.hpp"
 
 namespace libcam::test {
 
@@ -29,6 +31,15 @@ inline Camera lens_camera(LensType type, std::vector<double> coefficients, Image
     camera.size = size;
     camera.intrinsics = {fx, fy, 0.5 * static_cast<double>(size.width - 1) + 13.0,
                          0.5 * static_cast<double>(size.height - 1) - 7.0, 0.0};
+    camera.lens = {type, std::move(coefficients)};
+    return camera;
+}
+
+// A camera with a real calibration's K (fx, fy, cx, cy) and lens.
+inline Camera real_camera(LensType type, std::vector<double> coefficients, ImageSize size, std::array<double, 4> k) {
+    Camera camera;
+    camera.size = size;
+    camera.intrinsics = {k[0], k[1], k[2], k[3], 0.0};
     camera.lens = {type, std::move(coefficients)};
     return camera;
 }
@@ -61,6 +72,15 @@ inline std::vector<LensCase> lens_cases() {
         {"STEREOGRAPHIC", lens_camera(LensType::Stereographic, {}, {1600, 1200}, 300, 310)},
         {"LONLAT", lens_camera(LensType::Lonlat, {}, {2000, 1000}, 318, 318)},
         {"LATLON", lens_camera(LensType::Latlon, {}, {1000, 2000}, 318, 318)},
+        // basalt's calibrations of real cameras: EuRoC's cam0 (752x480, about 150
+        // degrees) and TUM-VI's cam0 (512x512, about 195 degrees).
+        {"DOUBLE_SPHERE mild", real_camera(LensType::DoubleSphere, {-0.2409573942178872, 0.566996899163044}, {752, 480},
+                                           {349.7560023050409, 348.72454229977035, 365.89440762590147, 249.32995565708703})},
+        {"DOUBLE_SPHERE strong",
+         real_camera(LensType::DoubleSphere, {-0.17213086034353242, 0.5931177593944744}, {512, 512},
+                     {158.28600034966976, 158.2743455478755, 254.96116578191652, 256.8894394501779})},
+        // alpha below 1/2: every normalised point has a ray; the lens sees 136 degrees off the axis.
+        {"DOUBLE_SPHERE alpha 0.4", lens_camera(LensType::DoubleSphere, {0.1, 0.4}, {1600, 1200}, 300, 300)},
     };
     return cases;
 }
@@ -100,7 +120,16 @@ inline bool in_mrcal(LensType type) { return !lens_info(type).mrcal.empty(); }
 // for its models (z > 0), mrcal for its own. FISHEYE rays past 90 degrees, which
 // cv::fisheye cannot take, go through libcam's projection (itself checked against
 // theta_d's formula in test_lens_models).
+// DOUBLE_SPHERE, which neither library has, goes through the paper's formulas in 113-bit
+// (double_sphere_reference.hpp); its points outside the domain get infinity.
 inline std::vector<Vec2> reference_project(const Camera& camera, const std::vector<Vec3>& rays) {
+    if (camera.lens.type == LensType::DoubleSphere) {
+        std::vector<Vec2> pixels;
+        for (const Vec3& ray : rays) {
+            pixels.push_back(double_sphere_paper_pixel(camera, ray).value_or(Vec2::Constant(std::numeric_limits<double>::infinity())));
+        }
+        return pixels;
+    }
     if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
     std::vector<Vec2> pixels = opencv_project_points(camera, rays);
     for (std::size_t i = 0; i < rays.size(); ++i) {

@@ -17,7 +17,7 @@ namespace {
 
 // Which formats hold which models, by hand: OpenCV's calibration file only its own
 // radial-tangential models (FISHEYE's four numbers would read back as OPENCV4);
-// mrcal lacks FISHEYE and OPENCV14; libcam's JSON holds every model.
+// mrcal lacks FISHEYE, OPENCV14 and DOUBLE_SPHERE; libcam's JSON holds every model.
 bool holds(CameraFormat format, LensType type) {
     switch (format) {
         case CameraFormat::Json: return true;
@@ -25,7 +25,8 @@ bool holds(CameraFormat format, LensType type) {
         case CameraFormat::OpenCvXml:
             return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
                    type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Opencv14;
-        case CameraFormat::Cameramodel: return type != LensType::Fisheye && type != LensType::Opencv14;
+        case CameraFormat::Cameramodel:
+            return type != LensType::Fisheye && type != LensType::Opencv14 && type != LensType::DoubleSphere;
         case CameraFormat::Gl: return type == LensType::Pinhole;
     }
     return false;

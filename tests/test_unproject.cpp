@@ -49,15 +49,20 @@ GridResult unproject_grid(const Camera& camera, int nx, int ny) {
 }
 
 // The radius of the undistorted point of a ray, in the units of the model's
-// valid_radius: |(x/z, y/z)| for OpenCV's models, the angle for FISHEYE.
+// valid_radius: |(x/z, y/z)| for OpenCV's models, the angle for a model that sees behind the camera.
 double undistorted_radius(LensType type, const Vec3& ray) {
-    if (type == LensType::Fisheye) return std::atan2(std::hypot(ray.x(), ray.y()), ray.z());
+    if (lens_info(type).sees_behind_camera) return std::atan2(std::hypot(ray.x(), ray.y()), ray.z());  // an angle
     return std::hypot(ray.x(), ray.y()) / ray.z();
 }
 
 // Rays by a solver independent of libcam: mrcal_unproject, or for what mrcal lacks
 // cv::undistortPoints (cv::fisheye::undistortPoints) at many iterations.
 std::vector<Vec3> independent_unproject(const Camera& camera, const std::vector<Vec2>& pixels) {
+    if (camera.lens.type == LensType::DoubleSphere) {  // the paper's closed form, in 113-bit
+        std::vector<Vec3> rays;
+        for (const Vec2& pixel : pixels) rays.push_back(double_sphere_paper_ray(camera, pixel).value_or(Vec3::Constant(NAN)));
+        return rays;
+    }
     if (in_mrcal(camera.lens.type)) return mrcal_unproject_pixels(camera, pixels);
     std::vector<cv::Point2d> in, out;
     for (const Vec2& p : pixels) in.emplace_back(p.x(), p.y());

@@ -31,6 +31,16 @@ Camera wide_camera() {
     return camera;
 }
 
+// basalt's calibration of TUM-VI's cam0 (512x512, Double Sphere): a real fisheye whose
+// image reaches almost to the model's rim.
+Camera tum_vi_camera() {
+    Camera camera;
+    camera.size = {512, 512};
+    camera.intrinsics = {158.28600034966976, 158.2743455478755, 254.96116578191652, 256.8894394501779, 0.0};
+    camera.lens = {LensType::DoubleSphere, {-0.17213086034353242, 0.5931177593944744}};
+    return camera;
+}
+
 }  // namespace
 
 std::vector<ExampleCamera> example_cameras() {
@@ -42,6 +52,7 @@ std::vector<ExampleCamera> example_cameras() {
         {"fisheye", "FISHEYE, 1600x1200, corners past 90 degrees",
          synthetic_camera({1600, 1200}, 420, {LensType::Fisheye, {-0.013, -0.0057, 0.0023, -0.0009}})},
         {"wide", "OPENCV8, 6016x4016, a real wide-angle calibration", wide_camera()},
+        {"double-sphere", "DOUBLE_SPHERE, 512x512, a real fisheye calibration (TUM-VI, by basalt)", tum_vi_camera()},
     };
 }
 

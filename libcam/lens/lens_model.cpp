@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "libcam/error.hpp"
+#include "libcam/lens/lens_models.hpp"
 
 namespace libcam {
 
@@ -28,6 +29,12 @@ void Lens::validate(const char* field) const {
                                   format_number(coefficients[i]));
         }
     }
+    // A model whose coefficients are bounded says so with check_coefficients.
+    visit_lens_model<double>(type, [&]<class Model>() {
+        if constexpr (requires { Model::check_coefficients(std::span<const double>(coefficients), field); }) {
+            Model::check_coefficients(coefficients, field);
+        }
+    });
 }
 
 }  // namespace libcam

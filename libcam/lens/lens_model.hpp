@@ -28,7 +28,8 @@
     _(Fisheye, FisheyeLens)             \
     _(Stereographic, StereographicLens) \
     _(Lonlat, LonlatLens)               \
-    _(Latlon, LatlonLens)
+    _(Latlon, LatlonLens)               \
+    _(DoubleSphere, DoubleSphereLens)
 
 namespace libcam {
 
@@ -63,6 +64,7 @@ enum class LensFamily {
     Stereographic,
     Lonlat,
     Latlon,
+    Unified,  // DOUBLE_SPHERE (with alpha = 0, the unified camera model)
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -144,6 +146,10 @@ inline constexpr LensInfo kLensTable[] = {
     {.type = LensType::Latlon, .name = "LATLON", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
      .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LATLON", .colmap = "",
      .kalibr = "", .basalt = "", .family = LensFamily::Latlon, .family_rank = 0, .fit = FitCandidate::No},
+    {.type = LensType::DoubleSphere, .name = "DOUBLE_SPHERE", .coefficients = {"xi", "alpha"}, .num_coefficients = 2,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "ds-none", .basalt = "ds", .family = LensFamily::Unified, .family_rank = 1,
+     .fit = FitCandidate::No},
 };
 
 namespace detail {

@@ -35,6 +35,7 @@
 #include <utility>
 
 #include "libcam/error.hpp"
+#include "libcam/lens/double_sphere.hpp"
 #include "libcam/lens/fisheye.hpp"
 #include "libcam/lens/lane.hpp"
 #include "libcam/lens/latlon.hpp"

@@ -36,6 +36,15 @@ struct BenchFlags {
 
 constexpr int kMinRepeat = 5;
 
+// "mild, strong or wide": the built-in cases' names, the last after `last_separator`.
+std::string case_names(const std::vector<BenchCase>& cases, const std::string& last_separator) {
+    std::string names;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        names += (i == 0 ? "" : i + 1 == cases.size() ? last_separator : ", ") + cases[i].name;
+    }
+    return names;
+}
+
 std::vector<BenchCase> chosen_cases(const BenchFlags& flags) {
     if (!flags.from.empty()) return {{flags.from, read_camera_file(flags.from).camera}};
     std::vector<BenchCase> all = builtin_bench_cases();
@@ -43,7 +52,7 @@ std::vector<BenchCase> chosen_cases(const BenchFlags& flags) {
     std::vector<BenchCase> chosen;
     for (const std::string& name : flags.cases) {
         const auto found = std::find_if(all.begin(), all.end(), [&](const BenchCase& c) { return c.name == name; });
-        if (found == all.end()) throw UsageError("--case: expected mild, strong, fisheye or wide, got '" + name + "'");
+        if (found == all.end()) throw UsageError("--case: expected " + case_names(all, " or ") + ", got '" + name + "'");
         chosen.push_back(*found);
     }
     return chosen;
@@ -131,12 +140,12 @@ std::string format_table(const std::vector<CaseResult>& results, const BenchSett
             << settings.repeat << " interleaved runs; libcam table built in " << number_text(r.result.table_build_ms_double, 3)
             << " ms (double), " << number_text(r.result.table_build_ms_float, 3) << " ms (float)\n";
         out << std::setw(16) << "op" << std::setw(8) << "library" << std::setw(23) << "method" << std::setw(7) << "scalar"
-            << std::setw(8) << "threads" << std::setw(10) << "model" << std::setw(11) << "ns/point" << std::setw(11)
+            << std::setw(8) << "threads" << std::setw(15) << "model" << std::setw(11) << "ns/point" << std::setw(11)
             << "median px" << std::setw(11) << "p99 px" << std::setw(11) << "max px"
             << "invalid\n";
         for (const BenchRow& row : r.result.rows) {
             out << std::setw(16) << row.op << std::setw(8) << row.library << std::setw(23) << row.method << std::setw(7)
-                << row.scalar << std::setw(8) << row.threads << std::setw(10) << row.model << std::setw(11)
+                << row.scalar << std::setw(8) << row.threads << std::setw(15) << row.model << std::setw(11)
                 << number_text(row.ns_per_point, 4) << std::setw(11) << error_text(row, &ErrorStats::median_px)
                 << std::setw(11) << error_text(row, &ErrorStats::p99_px) << std::setw(11)
                 << error_text(row, &ErrorStats::max_px) << number_text(100 * row.invalid_fraction, 3) << "%\n";
@@ -155,7 +164,8 @@ Runner add_bench(CLI::App& app) {
         "bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal");
     auto flags = std::make_shared<BenchFlags>();
     command->add_option("--from", flags->from, "Camera file to measure (default: the built-in cases)");
-    command->add_option("--case", flags->cases, "Built-in cases to run: mild, strong, fisheye, wide (default: all)")
+    command->add_option("--case", flags->cases,
+                        "Built-in cases to run: " + case_names(builtin_bench_cases(), ", ") + " (default: all)")
         ->excludes("--from");
     command->add_option("--grid", flags->grid, "Pixels across x down, corners included (default 601x401)");
     command->add_option("--repeat", flags->repeat, "Timed repetitions per method, interleaved (default and minimum 5)");
