@@ -139,8 +139,8 @@ inline std::optional<Vec2Q> spread_of_m(const Lens& lens, const Vec3Q& point) {
 // The projection's relative condition number at a point: by how much a relative error
 // of eps in each coordinate grows in |m|, over the 2 of a plain ratio x / z; at least 1.
 // No evaluation of a model in a type with epsilon eps can be expected to beat
-// eps times it. It is near 1 for every model except where a denominator cancels
-// (DOUBLE_SPHERE with alpha < 1/2 near its cone, where m goes to infinity).
+// eps times it. It is near 1 for every model except where a denominator cancels (the
+// unified models with an unbounded image near its edge, where m goes to infinity).
 inline double projection_condition(const Lens& lens, const Vec3Q& point) {
     const std::optional<Vec2Q> spread = spread_of_m(lens, point);
     const Quad size = visit_lens_model<Quad>(lens.type, [&]<class Model>() {

@@ -16,7 +16,7 @@
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/lens/lens_models.hpp"
-#include "double_sphere_reference.hpp"
+#include "unified_reference.hpp"
 
 namespace libcam::test {
 
@@ -81,6 +81,21 @@ inline std::vector<LensCase> lens_cases() {
                      {158.28600034966976, 158.2743455478755, 254.96116578191652, 256.8894394501779})},
         // alpha below 1/2: every normalised point has a ray; the lens sees 136 degrees off the axis.
         {"DOUBLE_SPHERE alpha 0.4", lens_camera(LensType::DoubleSphere, {0.1, 0.4}, {1600, 1200}, 300, 300)},
+        // UCM with xi and K of the MEI calibrations VINS-Fusion ships for a MYNT EYE
+        // (xi 1.45) and EuRoC (xi 3.63), without their distortion: the pinhole outside the
+        // sphere, the rim 858 and 612 px from the centre; and xi 0.8, an unbounded image.
+        {"UCM xi 1.45", real_camera(LensType::Ucm, {1.4456544769803834}, {752, 480},
+                                    {895.94371861807986, 897.41581479032754, 372.21680816143993, 238.33534175557006})},
+        {"UCM xi 3.63", real_camera(LensType::Ucm, {3.6313355285286337}, {752, 480},
+                                    {2138.7619122017772, 2131.5886210259278, 361.19856633263799, 248.27644773395667})},
+        {"UCM xi 0.8", lens_camera(LensType::Ucm, {0.8}, {1600, 1200}, 400, 400)},
+        // basalt's EUCM calibrations of the same two cameras as DOUBLE_SPHERE's above.
+        {"EUCM mild", real_camera(LensType::Eucm, {0.5903365915227143, 1.127468196965374}, {752, 480},
+                                  {460.76484651566468, 459.4051018049483, 365.8937161309615, 249.33499869752445})},
+        {"EUCM strong", real_camera(LensType::Eucm, {0.6291060871161842, 1.0418067403139693}, {512, 512},
+                                    {191.14799816648748, 191.13150946585135, 254.95857715233118, 256.8815466235898})},
+        // alpha below 1/2 and beta below 1: an unbounded image.
+        {"EUCM alpha 0.4", lens_camera(LensType::Eucm, {0.4, 0.7}, {1600, 1200}, 300, 300)},
     };
     return cases;
 }
@@ -120,13 +135,14 @@ inline bool in_mrcal(LensType type) { return !lens_info(type).mrcal.empty(); }
 // for its models (z > 0), mrcal for its own. FISHEYE rays past 90 degrees, which
 // cv::fisheye cannot take, go through libcam's projection (itself checked against
 // theta_d's formula in test_lens_models).
-// DOUBLE_SPHERE, which neither library has, goes through the paper's formulas in 113-bit
-// (double_sphere_reference.hpp); its points outside the domain get infinity.
+// DOUBLE_SPHERE, UCM and EUCM, which neither library has (cv::omnidir's UCM is checked
+// in test_unified.cpp), go through their papers' formulas in long double
+// (unified_reference.hpp); their points outside the domain get infinity.
 inline std::vector<Vec2> reference_project(const Camera& camera, const std::vector<Vec3>& rays) {
-    if (camera.lens.type == LensType::DoubleSphere) {
+    if (has_paper_formulas(camera.lens.type)) {
         std::vector<Vec2> pixels;
         for (const Vec3& ray : rays) {
-            pixels.push_back(double_sphere_paper_pixel(camera, ray).value_or(Vec2::Constant(std::numeric_limits<double>::infinity())));
+            pixels.push_back(paper_pixel(camera, ray).value_or(Vec2::Constant(std::numeric_limits<double>::infinity())));
         }
         return pixels;
     }

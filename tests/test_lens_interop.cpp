@@ -17,7 +17,8 @@ namespace {
 
 // Which formats hold which models, by hand: OpenCV's calibration file only its own
 // radial-tangential models (FISHEYE's four numbers would read back as OPENCV4);
-// mrcal lacks FISHEYE, OPENCV14 and DOUBLE_SPHERE; libcam's JSON holds every model.
+// mrcal has PINHOLE, OPENCV4/5/8/12, STEREOGRAPHIC, LONLAT and LATLON of libcam's
+// models; libcam's JSON holds every model.
 bool holds(CameraFormat format, LensType type) {
     switch (format) {
         case CameraFormat::Json: return true;
@@ -26,7 +27,9 @@ bool holds(CameraFormat format, LensType type) {
             return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
                    type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Opencv14;
         case CameraFormat::Cameramodel:
-            return type != LensType::Fisheye && type != LensType::Opencv14 && type != LensType::DoubleSphere;
+            return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
+                   type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Stereographic ||
+                   type == LensType::Lonlat || type == LensType::Latlon;
         case CameraFormat::Gl: return type == LensType::Pinhole;
     }
     return false;

@@ -58,9 +58,9 @@ double undistorted_radius(LensType type, const Vec3& ray) {
 // Rays by a solver independent of libcam: mrcal_unproject, or for what mrcal lacks
 // cv::undistortPoints (cv::fisheye::undistortPoints) at many iterations.
 std::vector<Vec3> independent_unproject(const Camera& camera, const std::vector<Vec2>& pixels) {
-    if (camera.lens.type == LensType::DoubleSphere) {  // the paper's closed form, in 113-bit
+    if (has_paper_formulas(camera.lens.type)) {  // the papers' inverses, in long double
         std::vector<Vec3> rays;
-        for (const Vec2& pixel : pixels) rays.push_back(double_sphere_paper_ray(camera, pixel).value_or(Vec3::Constant(NAN)));
+        for (const Vec2& pixel : pixels) rays.push_back(paper_ray(camera, pixel).value_or(Vec3::Constant(NAN)));
         return rays;
     }
     if (in_mrcal(camera.lens.type)) return mrcal_unproject_pixels(camera, pixels);

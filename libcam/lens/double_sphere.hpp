@@ -104,25 +104,16 @@ struct DoubleSphereLens {
         const bool in_domain = z > cos(lens.valid_radius) * d1;
         const Scalar inverse = Scalar(1) / denominator;
         m = Vec2T(x * inverse, y * inverse);
-        if constexpr (is_requested<PointJacobianPtr> || is_requested<CoefficientJacobianPtr>) {
-            const Scalar m_over_d[2] = {m.x() * inverse, m.y() * inverse};
-            if constexpr (is_requested<PointJacobianPtr>) {
-                const Vec3T d_d1 = point / d1;
-                const Vec3T d_zeta = xi * d_d1 + Vec3T::UnitZ();
-                const Vec3T d_d2 = (Vec3T(x, y, Scalar(0)) + zeta * d_zeta) / d2;
-                const Vec3T d_denominator = alpha * d_d2 + (Scalar(1) - alpha) * d_zeta;
-                d_m_d_point->row(0) = -m_over_d[0] * d_denominator.transpose();
-                d_m_d_point->row(1) = -m_over_d[1] * d_denominator.transpose();
-                (*d_m_d_point)(0, 0) += inverse;
-                (*d_m_d_point)(1, 1) += inverse;
-            }
-            if constexpr (is_requested<CoefficientJacobianPtr>) {
-                const Scalar d_denominator_d_xi = (alpha * zeta / d2 + (Scalar(1) - alpha)) * d1;
-                const Scalar d_denominator_d_alpha = d2 - zeta;
-                d_m_d_coefficients->col(0) = Vec2T(-m_over_d[0] * d_denominator_d_xi, -m_over_d[1] * d_denominator_d_xi);
-                d_m_d_coefficients->col(1) =
-                    Vec2T(-m_over_d[0] * d_denominator_d_alpha, -m_over_d[1] * d_denominator_d_alpha);
-            }
+        if constexpr (is_requested<PointJacobianPtr>) {
+            const Vec3T d_d1 = point / d1;
+            const Vec3T d_zeta = xi * d_d1 + Vec3T::UnitZ();
+            const Vec3T d_d2 = (Vec3T(x, y, Scalar(0)) + zeta * d_zeta) / d2;
+            ratio_point_jacobian(m, inverse, Vec3T(alpha * d_d2 + (Scalar(1) - alpha) * d_zeta), d_m_d_point);
+        }
+        if constexpr (is_requested<CoefficientJacobianPtr>) {
+            // d D / d xi and d D / d alpha.
+            const Vec2T d_denominator((alpha * zeta / d2 + (Scalar(1) - alpha)) * d1, d2 - zeta);
+            ratio_coefficient_jacobian(m, inverse, d_denominator, d_m_d_coefficients);
         }
         return in_domain & (denominator > Scalar(0)) & all_finite(m);
     }
@@ -143,7 +134,9 @@ struct DoubleSphereLens {
         const Scalar scale = (mz * xi + sqrt(mz * mz + (Scalar(1) - xi * xi) * r2)) / (mz * mz + r2);
         ray = Vec3T(scale * m.x(), scale * m.y(), scale * mz - xi);
         const bool inside_rim = (rim_term <= Scalar(0)) | (radicand > Scalar(0));
-        return inside_rim & all_finite(ray);
+        // mz^2 + r^2 past the type's range (|m| beyond about 1e154 in double) would give
+        // the ray (0, 0, -xi): flagged (scale is positive for every other m).
+        return inside_rim & (scale > Scalar(0)) & all_finite(ray);
     }
 };
 

@@ -29,7 +29,9 @@
     _(Stereographic, StereographicLens) \
     _(Lonlat, LonlatLens)               \
     _(Latlon, LatlonLens)               \
-    _(DoubleSphere, DoubleSphereLens)
+    _(DoubleSphere, DoubleSphereLens)   \
+    _(Ucm, UcmLens)                     \
+    _(Eucm, EucmLens)
 
 namespace libcam {
 
@@ -64,7 +66,9 @@ enum class LensFamily {
     Stereographic,
     Lonlat,
     Latlon,
-    Unified,  // DOUBLE_SPHERE (with alpha = 0, the unified camera model)
+    DoubleSphere,
+    Unified,  // UCM (for xi <= 1, DOUBLE_SPHERE with alpha = 0; not nested, as xi > 1 is not)
+    Eucm,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -148,7 +152,16 @@ inline constexpr LensInfo kLensTable[] = {
      .kalibr = "", .basalt = "", .family = LensFamily::Latlon, .family_rank = 0, .fit = FitCandidate::No},
     {.type = LensType::DoubleSphere, .name = "DOUBLE_SPHERE", .coefficients = {"xi", "alpha"}, .num_coefficients = 2,
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
-     .colmap = "", .kalibr = "ds-none", .basalt = "ds", .family = LensFamily::Unified, .family_rank = 1,
+     .colmap = "", .kalibr = "ds-none", .basalt = "ds", .family = LensFamily::DoubleSphere, .family_rank = 0,
+     .fit = FitCandidate::No},
+    // basalt's "ucm" is this model with another K (its alpha = xi / (1 + xi), its focal
+    // length 1 / (1 + xi) times this one's): not the same numbers, so not named here.
+    {.type = LensType::Ucm, .name = "UCM", .coefficients = {"xi"}, .num_coefficients = 1, .sees_behind_camera = true,
+     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "omni-none",
+     .basalt = "", .family = LensFamily::Unified, .family_rank = 0, .fit = FitCandidate::No},
+    {.type = LensType::Eucm, .name = "EUCM", .coefficients = {"alpha", "beta"}, .num_coefficients = 2,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "eucm-none", .basalt = "eucm", .family = LensFamily::Eucm, .family_rank = 0,
      .fit = FitCandidate::No},
 };
 

@@ -36,6 +36,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/lens/double_sphere.hpp"
+#include "libcam/lens/eucm.hpp"
 #include "libcam/lens/fisheye.hpp"
 #include "libcam/lens/lane.hpp"
 #include "libcam/lens/latlon.hpp"
@@ -44,6 +45,7 @@
 #include "libcam/lens/opencv.hpp"
 #include "libcam/lens/pinhole.hpp"
 #include "libcam/lens/stereographic.hpp"
+#include "libcam/lens/ucm.hpp"
 
 namespace libcam {
 

@@ -51,6 +51,24 @@ bool all_finite(const Vector& v) {
     return zero == zero;
 }
 
+// The Jacobians of m = (x, y) / D, for a model written as a ratio (the unified
+// family), from D's gradient: d m / d point = ([I 0] - m (d D / d point)^T) / D, and
+// d m / d c = -m (d D / d c) / D for each coefficient c. `inverse` is 1 / D.
+template <class Scalar, class JacobianPtr>
+void ratio_point_jacobian(const Eigen::Matrix<Scalar, 2, 1>& m, const Scalar& inverse,
+                          const Eigen::Matrix<Scalar, 3, 1>& d_denominator, JacobianPtr d_m_d_point) {
+    d_m_d_point->row(0) = -(m.x() * inverse) * d_denominator.transpose();
+    d_m_d_point->row(1) = -(m.y() * inverse) * d_denominator.transpose();
+    (*d_m_d_point)(0, 0) += inverse;
+    (*d_m_d_point)(1, 1) += inverse;
+}
+
+template <class Scalar, int N, class JacobianPtr>
+void ratio_coefficient_jacobian(const Eigen::Matrix<Scalar, 2, 1>& m, const Scalar& inverse,
+                                const Eigen::Matrix<Scalar, N, 1>& d_denominator, JacobianPtr d_m_d_coefficients) {
+    for (int k = 0; k < N; ++k) d_m_d_coefficients->col(k) = -(d_denominator(k) * inverse) * m;
+}
+
 // True when a Jacobian output pointer of type Ptr was passed (not the nullptr default).
 template <class Ptr>
 inline constexpr bool is_requested = !std::is_same_v<Ptr, std::nullptr_t>;

@@ -1,0 +1,131 @@
+#pragma once
+// The unified family as its papers write it, transcribed here apart from libcam's
+// lens/*.hpp and evaluated in long double (64-bit significand, 11 bits more than
+// double): the expected values of the tests, independent of the code under test.
+// - Double Sphere: Usenko, Demmel and Cremers, "The Double Sphere Camera Model", 3DV
+//   2018, equations 40-47.
+// - UCM: Mei and Rives, ICRA 2007 (the projection and its closed-form inverse).
+// - EUCM: Khomutenko, Garcia and Martinet, RA-L 2016 (the projection); its inverse
+//   solved here from the ellipsoid's equation, not with the paper's closed form.
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "libcam/camera/camera.hpp"
+
+namespace libcam::test {
+
+using Long = long double;
+
+// Equations 40-42: the pixel of a camera-frame point; nothing outside the domain, taken
+// as the geometry the paper describes: the point carried onto the second sphere must be
+// in front of the tangent cone of the pinhole alpha / (1 - alpha) behind that sphere's
+// centre (z2 > -w1; equation 43's closed form for it is narrower, see
+// lens/double_sphere.hpp).
+inline std::optional<Vec2> double_sphere_paper_pixel(const Camera& camera, const Vec3& point) {
+    const Long xi = camera.lens.coefficients.at(0), alpha = camera.lens.coefficients.at(1);
+    const Long x = point.x(), y = point.y(), z = point.z();
+    const Long d1 = std::sqrt(x * x + y * y + z * z);
+    const Long d2 = std::sqrt(x * x + y * y + (xi * d1 + z) * (xi * d1 + z));
+    const Long w1 = alpha <= Long(0.5) ? alpha / (1 - alpha) : (1 - alpha) / alpha;
+    if (!((xi * d1 + z) / d2 > -w1)) return std::nullopt;
+    const Long denominator = alpha * d2 + (1 - alpha) * (xi * d1 + z);
+    const Intrinsics& k = camera.intrinsics;
+    return Vec2(static_cast<double>(k.fx * x / denominator + k.cx), static_cast<double>(k.fy * y / denominator + k.cy));
+}
+
+// Equations 45-47: the unit ray of a pixel, or nothing where it has none.
+inline std::optional<Vec3> double_sphere_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const Long xi = camera.lens.coefficients.at(0), alpha = camera.lens.coefficients.at(1);
+    const Intrinsics& k = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - k.cx) / k.fx, my = (Long(pixel.y()) - k.cy) / k.fy;
+    const Long r2 = mx * mx + my * my;
+    if (alpha > Long(0.5) && !(r2 <= 1 / (2 * alpha - 1))) return std::nullopt;
+    const Long mz = (1 - alpha * alpha * r2) / (alpha * std::sqrt(1 - (2 * alpha - 1) * r2) + 1 - alpha);
+    const Long scale = (mz * xi + std::sqrt(mz * mz + (1 - xi * xi) * r2)) / (mz * mz + r2);
+    return Vec3(static_cast<double>(scale * mx), static_cast<double>(scale * my), static_cast<double>(scale * mz - xi));
+}
+
+// UCM: m = (x, y) / (z + xi |p|), for z / |p| > -w (w = xi up to 1, then 1 / xi: the
+// pinhole's tangent cone to the sphere).
+inline std::optional<Vec2> ucm_paper_pixel(const Camera& camera, const Vec3& point) {
+    const Long xi = camera.lens.coefficients.at(0);
+    const Long x = point.x(), y = point.y(), z = point.z();
+    const Long d = std::sqrt(x * x + y * y + z * z);
+    const Long w = xi <= 1 ? xi : 1 / xi;
+    if (!(z > -w * d)) return std::nullopt;
+    const Intrinsics& k = camera.intrinsics;
+    return Vec2(static_cast<double>(k.fx * x / (z + xi * d) + k.cx), static_cast<double>(k.fy * y / (z + xi * d) + k.cy));
+}
+
+// UCM's inverse (Mei and Rives): the unit ray, or nothing past the rim when xi > 1.
+inline std::optional<Vec3> ucm_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const Long xi = camera.lens.coefficients.at(0);
+    const Intrinsics& k = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - k.cx) / k.fx, my = (Long(pixel.y()) - k.cy) / k.fy;
+    const Long r2 = mx * mx + my * my;
+    if (xi > 1 && !(r2 < 1 / (xi * xi - 1))) return std::nullopt;
+    const Long s = (xi + std::sqrt(1 + (1 - xi * xi) * r2)) / (1 + r2);
+    return Vec3(static_cast<double>(s * mx), static_cast<double>(s * my), static_cast<double>(s - xi));
+}
+
+// EUCM: m = (x, y) / (alpha d + (1 - alpha) z), d = sqrt(beta (x^2 + y^2) + z^2), for
+// z / d > -w (w = alpha / (1 - alpha) up to alpha = 1/2, then (1 - alpha) / alpha).
+inline std::optional<Vec2> eucm_paper_pixel(const Camera& camera, const Vec3& point) {
+    const Long alpha = camera.lens.coefficients.at(0), beta = camera.lens.coefficients.at(1);
+    const Long x = point.x(), y = point.y(), z = point.z();
+    const Long d = std::sqrt(beta * (x * x + y * y) + z * z);
+    const Long w = alpha <= Long(0.5) ? alpha / (1 - alpha) : (1 - alpha) / alpha;
+    if (!(z > -w * d)) return std::nullopt;
+    const Long denominator = alpha * d + (1 - alpha) * z;
+    const Intrinsics& k = camera.intrinsics;
+    return Vec2(static_cast<double>(k.fx * x / denominator + k.cx), static_cast<double>(k.fy * y / denominator + k.cy));
+}
+
+// EUCM's inverse, from the geometry (alpha < 1): the ray meets the ellipsoid
+// beta (X^2 + Y^2) + Z^2 = 1 at P = (mx s, my s, Z) with s = alpha + (1 - alpha) Z, so
+// (1 + beta r^2 (1 - alpha)^2) s^2 - 2 alpha s + (2 alpha - 1) = 0; the larger root is
+// the side the pinhole sees. Nothing where there is no root, or on or past the rim.
+inline std::optional<Vec3> eucm_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const Long alpha = camera.lens.coefficients.at(0), beta = camera.lens.coefficients.at(1);
+    const Intrinsics& k = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - k.cx) / k.fx, my = (Long(pixel.y()) - k.cy) / k.fy;
+    const Long r2 = mx * mx + my * my;
+    if (alpha > Long(0.5) && !(r2 < 1 / ((2 * alpha - 1) * beta))) return std::nullopt;
+    const Long a = 1 + beta * r2 * (1 - alpha) * (1 - alpha);
+    const Long discriminant = alpha * alpha - a * (2 * alpha - 1);
+    if (!(discriminant >= 0)) return std::nullopt;
+    const Long s = (alpha + std::sqrt(discriminant)) / a;
+    const Long X = mx * s, Y = my * s, Z = (s - alpha) / (1 - alpha);
+    const Long norm = std::sqrt(X * X + Y * Y + Z * Z);
+    return Vec3(static_cast<double>(X / norm), static_cast<double>(Y / norm), static_cast<double>(Z / norm));
+}
+
+// The papers' formulas for any model of the family; nullopt for a model outside it
+// (the outer optional), nothing for a point or pixel outside the domain (the inner).
+inline bool has_paper_formulas(LensType type) {
+    return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm;
+}
+
+inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
+    switch (camera.lens.type) {
+        case LensType::DoubleSphere: return double_sphere_paper_pixel(camera, point);
+        case LensType::Ucm: return ucm_paper_pixel(camera, point);
+        case LensType::Eucm: return eucm_paper_pixel(camera, point);
+        default: throw std::logic_error("paper_pixel: not a model of the unified family");
+    }
+}
+
+inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
+    switch (camera.lens.type) {
+        case LensType::DoubleSphere: return double_sphere_paper_ray(camera, pixel);
+        case LensType::Ucm: return ucm_paper_ray(camera, pixel);
+        case LensType::Eucm: return eucm_paper_ray(camera, pixel);
+        default: throw std::logic_error("paper_ray: not a model of the unified family");
+    }
+}
+
+}  // namespace libcam::test
