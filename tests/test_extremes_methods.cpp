@@ -11,7 +11,7 @@
 // p the larger pixel coordinate:
 // - where the ray lands [px], less what rounding the exact ray to the scalar type moves
 //   its pixel (4 eps f | |d m / d ray| |ray| |; negligible except where the projection is
-//   ill-conditioned, as near the cone of a DOUBLE_SPHERE with alpha < 1/2):
+//   ill-conditioned, as near the edge of a unified model's unbounded image):
 //   exact in double, the 1e-9 px target; exact in float, the
 //   solver's residual 64 eps f (1 + |m|) plus K^-1 in float, 4 eps (p + c); fast and
 //   lut, the 0.01 px they are held to (their cells are checked to 0.005 px,
@@ -42,27 +42,21 @@ constexpr int type_index = std::is_same_v<Scalar, float> ? 1 : 0;
 // ------------------------------------------------------------ the lens's local gain
 
 // The smallest singular value of d m / d ray across the unit ray (in its tangent
-// plane): a change of angle a moves m by at least sigma a. Zero where the model does
-// not project the ray.
-Quad smallest_gain(const Lens& lens, const Vec3Q& ray) {
-    const Vec3Q d = ray.normalized();
-    // An orthonormal basis of the plane across d, from the axis least aligned with it.
+// plane), from the lens's local projection there: a change of angle a moves m by at
+// least sigma a.
+Quad smallest_gain(const LocalProjection& local, const Vec3Q& unit_ray) {
+    // An orthonormal basis of the plane across the ray, from the axis least aligned with it.
     Eigen::Index axis = 0;
-    d.cwiseAbs().minCoeff(&axis);
-    const Vec3Q first = d.cross(Vec3Q::Unit(axis)).normalized();
+    unit_ray.cwiseAbs().minCoeff(&axis);
+    const Vec3Q first = unit_ray.cross(Vec3Q::Unit(axis)).normalized();
     Eigen::Matrix<Quad, 3, 2> across;
-    across << first, d.cross(first);
-    return visit_lens_model<Quad>(lens.type, [&]<class Model>() -> Quad {
-        Vec2Q m;
-        Eigen::Matrix<Quad, 2, 3> d_m_d_ray;
-        if (!Model::project(Model::parameters(lens.coefficients), d, m, &d_m_d_ray)) return Quad(0);
-        const Eigen::Matrix<Quad, 2, 2> a = d_m_d_ray * across;
-        // sigma_min^2 = 2 det^2 / (F + sqrt(F^2 - 4 det^2)), F the squared Frobenius norm:
-        // the smaller root of sigma^4 - F sigma^2 + det^2, without cancellation.
-        const Quad det = a.determinant(), frobenius = a.squaredNorm();
-        const Quad discriminant = frobenius * frobenius - 4 * det * det;
-        return sqrt(2 * det * det / (frobenius + sqrt(discriminant > 0 ? discriminant : Quad(0))));
-    });
+    across << first, unit_ray.cross(first);
+    const Eigen::Matrix<Quad, 2, 2> a = local.d_m_d_point * across;
+    // sigma_min^2 = 2 det^2 / (F + sqrt(F^2 - 4 det^2)), F the squared Frobenius norm:
+    // the smaller root of sigma^4 - F sigma^2 + det^2, without cancellation.
+    const Quad det = a.determinant(), frobenius = a.squaredNorm();
+    const Quad discriminant = frobenius * frobenius - 4 * det * det;
+    return sqrt(2 * det * det / (frobenius + sqrt(discriminant > 0 ? discriminant : Quad(0))));
 }
 
 // ---------------------------------------------------------------- unprojection
@@ -119,14 +113,17 @@ void score_method(const std::string& name, const Unprojector<Scalar>& unprojecto
         const auto where = [&] { return at_pixel(name + " " + std::string(method_name(method)), pixels[i]); };
         const double px_bound = landing_bound<Scalar>(method, camera, pixels[i], normalized[i]);
         worst.px_bound[t] = std::max(worst.px_bound[t], px_bound);
-        // No ray in Scalar lands closer than rounding it moves its pixel: near the cone of a
-        // DOUBLE_SPHERE with alpha < 1/2 that is far more than the target, elsewhere nothing.
-        const std::optional<Vec2Q> spread = spread_of_m(camera.lens, reference[i].ray);
+        // The lens at the reference ray: zero gain where the model does not project it.
+        const Vec3Q unit_ray = reference[i].ray.normalized();
+        const std::optional<LocalProjection> local = local_projection(camera.lens, unit_ray);
+        // No ray in Scalar lands closer than rounding it moves its pixel: near the edge of a
+        // unified model's unbounded image that is far more than the target, elsewhere nothing.
         const Quad ray_rounding_px =
-            spread ? 4 * Quad(std::numeric_limits<Scalar>::epsilon()) * Quad(f_max) * spread->norm() : Quad(0);
+            local ? 4 * Quad(std::numeric_limits<Scalar>::epsilon()) * Quad(f_max) * spread_of_m(*local, unit_ray).norm()
+                  : Quad(0);
         const Quad landing_px = (pixel_q(camera.intrinsics, landed[i].m) - pixels[i].cast<Quad>()).norm();
         worst.px[t].update(static_cast<double>(std::max(Quad(0), landing_px - ray_rounding_px)), where);
-        const Quad gain = smallest_gain(camera.lens, reference[i].ray);
+        const Quad gain = local ? smallest_gain(*local, unit_ray) : Quad(0);
         const double rad_bound = gain > 0 ? static_cast<double>(2 * Quad(px_bound / f_min) / gain) : kInfinity;
         worst.rad_bound[t] = std::max(worst.rad_bound[t], rad_bound);
         worst.rad[t].update(static_cast<double>(angle_between<Quad>(computed[i], reference[i].ray)), where);

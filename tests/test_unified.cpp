@@ -260,6 +260,20 @@ TEST_CASE("UCM, and DOUBLE_SPHERE with alpha = 0, are cv::omnidir's unified came
     }
 }
 
+// Two cameras that are the same map: the same valid angle, the same flags (but within
+// 1e-9 rad of the domain's edge) and the same pixels within agreement_px of the second
+// (a UCM, whose denominator's two terms measure the cancellation).
+void check_same_map(const PreparedCamera& first, const PreparedCamera& second, const std::vector<Vec3>& points) {
+    CHECK(first.valid_radius() == Approx(second.valid_radius()).epsilon(1e-15));
+    for (const Vec3& point : points) {
+        const Projection a = first.project_camera_point(point), b = second.project_camera_point(point);
+        const double angle = std::atan2(point.head<2>().norm(), point.z());
+        if (std::abs(angle - first.valid_radius()) < 1e-9) continue;
+        REQUIRE(a.valid == b.valid);
+        if (a.valid) CHECK((a.pixel - b.pixel).norm() <= agreement_px(second.camera(), point, a.pixel));
+    }
+}
+
 TEST_CASE("UCM with xi <= 1 is DOUBLE_SPHERE with alpha = 0, and EUCM with beta = 1 is UCM with a longer focal length") {
     // EUCM (alpha, 1): m = (x, y) / (alpha |p| + (1 - alpha) z) = (x, y) / ((1 - alpha) (z + xi |p|))
     // with xi = alpha / (1 - alpha): UCM's m over (1 - alpha), so UCM with f / (1 - alpha).
@@ -267,15 +281,7 @@ TEST_CASE("UCM with xi <= 1 is DOUBLE_SPHERE with alpha = 0, and EUCM with beta 
     for (const double xi : {-0.3, 0.4, 1.0}) {
         INFO("xi " << xi);
         const PreparedCamera ucm(real_camera(LensType::Ucm, {xi}, {1024, 768}, {300.0, 305.0, 515.0, 380.0}));
-        const PreparedCamera ds(double_sphere(xi, 0.0));
-        CHECK(ucm.valid_radius() == Approx(ds.valid_radius()).epsilon(1e-15));
-        for (const Vec3& point : points) {
-            const Projection a = ucm.project_camera_point(point), b = ds.project_camera_point(point);
-            const double angle = std::atan2(point.head<2>().norm(), point.z());
-            if (std::abs(angle - ucm.valid_radius()) < 1e-9) continue;
-            REQUIRE(a.valid == b.valid);
-            if (a.valid) CHECK((a.pixel - b.pixel).norm() <= agreement_px(ucm.camera(), point, a.pixel));
-        }
+        check_same_map(PreparedCamera(double_sphere(xi, 0.0)), ucm, points);
     }
     for (const double alpha : {0.3, 0.5, 0.62}) {
         INFO("alpha " << alpha);
@@ -283,14 +289,7 @@ TEST_CASE("UCM with xi <= 1 is DOUBLE_SPHERE with alpha = 0, and EUCM with beta 
         const PreparedCamera eucm(real_camera(LensType::Eucm, {alpha, 1.0}, {1024, 768}, {300.0, 305.0, 515.0, 380.0}));
         const PreparedCamera ucm(
             real_camera(LensType::Ucm, {xi}, {1024, 768}, {300.0 / (1 - alpha), 305.0 / (1 - alpha), 515.0, 380.0}));
-        CHECK(eucm.valid_radius() == Approx(ucm.valid_radius()).epsilon(1e-15));
-        for (const Vec3& point : points) {
-            const Projection a = eucm.project_camera_point(point), b = ucm.project_camera_point(point);
-            const double angle = std::atan2(point.head<2>().norm(), point.z());
-            if (std::abs(angle - eucm.valid_radius()) < 1e-9) continue;
-            REQUIRE(a.valid == b.valid);
-            if (a.valid) CHECK((a.pixel - b.pixel).norm() <= agreement_px(ucm.camera(), point, a.pixel));
-        }
+        check_same_map(eucm, ucm, points);
     }
 }
 

@@ -20,6 +20,12 @@ namespace libcam::test {
 
 using Long = long double;
 
+// K (x, y) / denominator, the last step of every model here, rounded to double once.
+inline Vec2 pixel_of(const Camera& camera, Long x, Long y, Long denominator) {
+    const Intrinsics& k = camera.intrinsics;
+    return Vec2(static_cast<double>(k.fx * x / denominator + k.cx), static_cast<double>(k.fy * y / denominator + k.cy));
+}
+
 // Equations 40-42: the pixel of a camera-frame point; nothing outside the domain, taken
 // as the geometry the paper describes: the point carried onto the second sphere must be
 // in front of the tangent cone of the pinhole alpha / (1 - alpha) behind that sphere's
@@ -33,8 +39,7 @@ inline std::optional<Vec2> double_sphere_paper_pixel(const Camera& camera, const
     const Long w1 = alpha <= Long(0.5) ? alpha / (1 - alpha) : (1 - alpha) / alpha;
     if (!((xi * d1 + z) / d2 > -w1)) return std::nullopt;
     const Long denominator = alpha * d2 + (1 - alpha) * (xi * d1 + z);
-    const Intrinsics& k = camera.intrinsics;
-    return Vec2(static_cast<double>(k.fx * x / denominator + k.cx), static_cast<double>(k.fy * y / denominator + k.cy));
+    return pixel_of(camera, x, y, denominator);
 }
 
 // Equations 45-47: the unit ray of a pixel, or nothing where it has none.
@@ -57,8 +62,7 @@ inline std::optional<Vec2> ucm_paper_pixel(const Camera& camera, const Vec3& poi
     const Long d = std::sqrt(x * x + y * y + z * z);
     const Long w = xi <= 1 ? xi : 1 / xi;
     if (!(z > -w * d)) return std::nullopt;
-    const Intrinsics& k = camera.intrinsics;
-    return Vec2(static_cast<double>(k.fx * x / (z + xi * d) + k.cx), static_cast<double>(k.fy * y / (z + xi * d) + k.cy));
+    return pixel_of(camera, x, y, z + xi * d);
 }
 
 // UCM's inverse (Mei and Rives): the unit ray, or nothing past the rim when xi > 1.
@@ -81,8 +85,7 @@ inline std::optional<Vec2> eucm_paper_pixel(const Camera& camera, const Vec3& po
     const Long w = alpha <= Long(0.5) ? alpha / (1 - alpha) : (1 - alpha) / alpha;
     if (!(z > -w * d)) return std::nullopt;
     const Long denominator = alpha * d + (1 - alpha) * z;
-    const Intrinsics& k = camera.intrinsics;
-    return Vec2(static_cast<double>(k.fx * x / denominator + k.cx), static_cast<double>(k.fy * y / denominator + k.cy));
+    return pixel_of(camera, x, y, denominator);
 }
 
 // EUCM's inverse, from the geometry (alpha < 1): the ray meets the ellipsoid
