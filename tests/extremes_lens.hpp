@@ -93,8 +93,12 @@ inline Quad radial_slope(const Lens& lens, const Vec3Q& ray) {
     return visit_lens_model<Quad>(lens.type, [&]<class Model>() -> Quad {
         if constexpr (requires { Model::radial_distortion; }) {
             const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+            // The radius the model's radial part takes: theta for FISHEYE, |q| = rho / (z + xi |p|)
+            // in UCM's plane for MEI, rho / z for OpenCV's models.
             const Quad rho = hypot(ray.x(), ray.y());
-            const Quad r = Model::type == LensType::Fisheye ? atan2(rho, ray.z()) : rho / ray.z();
+            Quad r = rho / ray.z();
+            if (Model::type == LensType::Fisheye) r = atan2(rho, ray.z());
+            if (Model::type == LensType::Mei) r = rho / (ray.z() + parameters.coefficients(0) * ray.norm());
             Quad slope;
             Model::radial_distortion(parameters, r, slope);
             return slope;

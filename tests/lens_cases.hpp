@@ -96,6 +96,21 @@ inline std::vector<LensCase> lens_cases() {
                                     {191.14799816648748, 191.13150946585135, 254.95857715233118, 256.8815466235898})},
         // alpha below 1/2 and beta below 1: an unbounded image.
         {"EUCM alpha 0.4", lens_camera(LensType::Eucm, {0.4, 0.7}, {1600, 1200}, 300, 300)},
+        // The MEI calibrations VINS-Fusion ships (camodocal's files): a MYNT EYE (k1 < 0)
+        // and EuRoC's cam0 (xi 3.63, k2 15.5); and xi 1 with a mild distortion, an
+        // unbounded image (q = tan(theta / 2) in the direction of the point: stereographic).
+        // (For xi < 1 the denominator of q cancels near the domain's edge, where no
+        // evaluation in float comes within the harness's 16 eps of double: the extremes
+        // tests measure such points against their condition number.)
+        {"MEI xi 1.45", real_camera(LensType::Mei,
+                                    {1.4456544769803834, -0.34363053357673362, 0.062347376791548004,
+                                     0.0012608078788285675, -0.00021374139252651483},
+                                    {752, 480}, {895.94371861807986, 897.41581479032754, 372.21680816143993, 238.33534175557006})},
+        {"MEI xi 3.63", real_camera(LensType::Mei,
+                                    {3.6313355285286337, 1.1757726639872075, 15.491281051140213,
+                                     -0.00081237172954550494, 0.00067297684030310243},
+                                    {752, 480}, {2138.7619122017772, 2131.5886210259278, 361.19856633263799, 248.27644773395667})},
+        {"MEI xi 1", lens_camera(LensType::Mei, {1.0, -0.05, 0.01, 1e-3, -5e-4}, {1600, 1200}, 400, 400)},
     };
     return cases;
 }
@@ -126,13 +141,32 @@ inline std::vector<FoldCase> fold_cases() {
 // libcam's one pixel grid (geometry/pixel_grid.hpp).
 inline std::vector<Vec2> pixel_grid(const ImageSize& size, int nx, int ny) { return PixelGrid{nx, ny}.pixels(size); }
 
+// The lens's valid_radius (lens/model_support.hpp), an input the tests sample within.
+inline double valid_radius_of(const Lens& lens) {
+    return visit_lens_model<double>(lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
+}
+
+// The largest angle off the axis the lens images (lens_models.hpp's valid_angle).
+inline double valid_angle_of(const Lens& lens) {
+    return visit_lens_model<double>(lens.type, [&]<class Model>() {
+        return valid_angle<Model>(lens.coefficients, valid_radius_of(lens));
+    });
+}
+
+// The domain's edge as the tests sample it: the angle off the axis for a model that sees
+// behind the camera, the radius of (x/z, y/z) for a perspective one.
+inline double domain_edge_of(const Lens& lens) {
+    return lens_info(lens.type).sees_behind_camera ? valid_angle_of(lens) : valid_radius_of(lens);
+}
+
 // Which reference library has a model: the table says (test_lens_models checks the
 // table's mrcal names against libmrcal's own list, and its OpenCV rows against OpenCV).
 inline bool in_opencv(LensType type) { return lens_info(type).opencv != OpenCvFunction::None; }
 inline bool in_mrcal(LensType type) { return !lens_info(type).mrcal.empty(); }
 
 // The pixels of camera-frame rays by the reference library that has the model: OpenCV
-// for its models (z > 0), mrcal for its own. FISHEYE rays past 90 degrees, which
+// for its models (z > 0; cv::omnidir's UCM and MEI inside the valid angle), mrcal for
+// its own. FISHEYE rays past 90 degrees, which
 // cv::fisheye cannot take, go through libcam's projection (itself checked against
 // theta_d's formula in test_lens_models).
 // DOUBLE_SPHERE, UCM and EUCM, which neither library has (cv::omnidir's UCM is checked
@@ -147,6 +181,16 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
         return pixels;
     }
     if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
+    if (lens_info(camera.lens.type).opencv == OpenCvFunction::Omnidir) {
+        // cv::omnidir evaluates the formula on every point: those past the valid angle get
+        // infinity.
+        std::vector<Vec2> pixels = opencv_project_points(camera, rays);
+        const double limit = std::cos(valid_angle_of(camera.lens));
+        for (std::size_t i = 0; i < rays.size(); ++i) {
+            if (!(rays[i].z() > limit * rays[i].norm())) pixels[i] = Vec2::Constant(std::numeric_limits<double>::infinity());
+        }
+        return pixels;
+    }
     std::vector<Vec2> pixels = opencv_project_points(camera, rays);
     for (std::size_t i = 0; i < rays.size(); ++i) {
         if (rays[i].z() <= 0) {
@@ -157,9 +201,5 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
     return pixels;
 }
 
-// The lens's valid_radius (lens/model_support.hpp), an input the tests sample within.
-inline double valid_radius_of(const Lens& lens) {
-    return visit_lens_model<double>(lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
-}
 
 }  // namespace libcam::test

@@ -121,8 +121,8 @@ Vec3 direction_at(double theta, double phi) {
     return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
 
-// Where a model's valid radius is measured (lens/model_support.hpp): in the angle theta
-// from the optical axis for a model that sees behind the camera (FISHEYE), in the radius
+// Where the tests measure a domain's edge (domain_edge_of): in the angle theta from the
+// optical axis for a model that sees behind the camera (FISHEYE), in the radius
 // |(x/z, y/z)| of the pinhole-normalised point for one that does not (OpenCV's). The
 // point at that radius and azimuth phi.
 Vec3 point_at_radius(const LensInfo& info, double radius, double phi) {
@@ -134,9 +134,9 @@ Vec3 point_at_radius(const LensInfo& info, double radius, double phi) {
 // the fold-over nears, the inverse loses its conditioning), 10 degrees short of the
 // backward axis (singular for FISHEYE and STEREOGRAPHIC), and for a perspective model
 // at most |(x/z, y/z)| = 2.5 (68 degrees, about the widest example camera's corners).
-double max_sample_angle(const LensInfo& info, double valid_radius) {
-    if (info.sees_behind_camera) return std::min(0.98 * valid_radius, radians_from_degrees(170.0));
-    return std::atan(std::min(0.98 * valid_radius, 2.5));
+double max_sample_angle(const LensInfo& info, double edge) {
+    if (info.sees_behind_camera) return std::min(0.98 * edge, radians_from_degrees(170.0));
+    return std::atan(std::min(0.98 * edge, 2.5));
 }
 
 // Within 2 degrees of the X or Y axis: LATLON's and LONLAT's singular axes.
@@ -165,7 +165,7 @@ std::vector<Vec3> domain_points(double max_angle, int count) {
 constexpr int kPointsPerCase = 300;
 
 std::vector<Vec3> sample_points(const LensInfo& info, const Camera& camera) {
-    return domain_points(max_sample_angle(info, valid_radius_of(camera.lens)), kPointsPerCase);
+    return domain_points(max_sample_angle(info, domain_edge_of(camera.lens)), kPointsPerCase);
 }
 
 // The angle between two directions, in long double (atan2 of the cross and dot
@@ -450,12 +450,13 @@ TEST_CASE("harness: the validity flag at the domain's edge, behind the camera an
             INFO("fold-over radius by hand " << *by_hand);
             CHECK(std::abs(radius - *by_hand) <= 1e-14 * *by_hand);
         }
-        // A radius at or past pi bounds no angle.
-        const bool bounded = info.sees_behind_camera ? radius < std::numbers::pi : std::isfinite(radius);
-        INFO("valid radius " << radius);
-        if (bounded) check_radius_edge(info, flags, radius);
+        const double edge = info.sees_behind_camera ? camera.valid_angle() : radius;
+        // An angle at or past pi bounds nothing.
+        const bool bounded = info.sees_behind_camera ? edge < std::numbers::pi : std::isfinite(edge);
+        INFO("valid radius " << radius << ", domain's edge " << edge);
+        if (bounded) check_radius_edge(info, flags, edge);
         if (info.sees_behind_camera) {
-            check_sees_behind(flags, radius);
+            check_sees_behind(flags, edge);
         } else {
             check_perspective_behind(flags);
         }
@@ -584,8 +585,10 @@ std::vector<Vec3> batch_points(const LensInfo& info, const Camera& camera) {
     const std::vector<Vec3> outside{{0.3, -0.2, 0.0}, {0.3, -0.2, -1.0}, {0, 0, -2}, {0, 0, 0}, {0, 1, 0},
                                     {1, 0, 0},        {1e-3, 0, -1},      {1e200, 0, 1e-200}};
     points.insert(points.end(), outside.begin(), outside.end());
-    const double radius = valid_radius_of(camera.lens);
-    if (std::isfinite(radius)) points.push_back(point_at_radius(info, 1.01 * radius, 0.3));
+    const double edge = domain_edge_of(camera.lens);
+    if (info.sees_behind_camera ? edge < 0.99 * std::numbers::pi : std::isfinite(edge)) {
+        points.push_back(point_at_radius(info, 1.01 * edge, 0.3));
+    }
     for (std::size_t i = 0; i < inside.size(); i += 7) {
         for (double scale : {1e-300, 1e300, 4e-320}) points.push_back(inside[i] * scale);
     }
@@ -733,7 +736,7 @@ TEST_CASE("harness: every row of the model table matches its implementation and 
         for (const LensCase& lens_case : cases) {
             if (lens_case.camera.lens.type != info.type) continue;
             ++examples;
-            seeing_behind += valid_radius_of(lens_case.camera.lens) > std::numbers::pi / 2 ? 1 : 0;
+            seeing_behind += valid_angle_of(lens_case.camera.lens) > std::numbers::pi / 2 ? 1 : 0;
         }
         CHECK(examples > 0);
         if (info.sees_behind_camera) CHECK(seeing_behind > 0);

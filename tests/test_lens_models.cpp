@@ -39,7 +39,7 @@ bool mrcal_has(LensType type) {
 // max_degrees bounds the angle from the optical axis for the models that see behind.
 std::vector<Vec3> sample_points(const Camera& camera, double max_degrees) {
     const LensType type = camera.lens.type;
-    const double limit = valid_radius_of(camera.lens);
+    const double limit = domain_edge_of(camera.lens);
     std::vector<Vec3> directions;
     if (type == LensType::Fisheye || type == LensType::Stereographic || type == LensType::Lonlat ||
         type == LensType::Latlon) {

@@ -264,11 +264,11 @@ TEST_CASE("UCM, and DOUBLE_SPHERE with alpha = 0, are cv::omnidir's unified came
 // 1e-9 rad of the domain's edge) and the same pixels within agreement_px of the second
 // (a UCM, whose denominator's two terms measure the cancellation).
 void check_same_map(const PreparedCamera& first, const PreparedCamera& second, const std::vector<Vec3>& points) {
-    CHECK(first.valid_radius() == Approx(second.valid_radius()).epsilon(1e-15));
+    CHECK(first.valid_angle() == Approx(second.valid_angle()).epsilon(1e-15));
     for (const Vec3& point : points) {
         const Projection a = first.project_camera_point(point), b = second.project_camera_point(point);
         const double angle = std::atan2(point.head<2>().norm(), point.z());
-        if (std::abs(angle - first.valid_radius()) < 1e-9) continue;
+        if (std::abs(angle - first.valid_angle()) < 1e-9) continue;
         REQUIRE(a.valid == b.valid);
         if (a.valid) CHECK((a.pixel - b.pixel).norm() <= agreement_px(second.camera(), point, a.pixel));
     }
@@ -355,4 +355,120 @@ TEST_CASE("fit: basalt's Double Sphere and EUCM calibrations become an OpenCV mo
         CHECK(pixels.size() > 1000);
         CHECK(worst <= 0.1);
     }
+}
+
+// ---------------------------------------------------------------------------------
+// MEI: UCM followed by OPENCV4's radial-tangential distortion, as cv::omnidir defines it.
+
+namespace {
+
+bool is_mei_case(const LensCase& c) { return c.camera.lens.type == LensType::Mei; }
+
+// The angle between a point and the optical axis.
+double off_axis(const Vec3& point) { return std::atan2(point.head<2>().norm(), point.z()); }
+
+}  // namespace
+
+TEST_CASE("MEI projects as cv::omnidir::projectPoints over its whole domain, behind the camera too") {
+    for (const LensCase& c : lens_cases()) {
+        if (!is_mei_case(c)) continue;
+        INFO(c.name);
+        const PreparedCamera camera(c.camera);
+        std::vector<Vec3> inside;
+        for (const Vec3& point : sphere_points(3000)) {
+            if (off_axis(point) < camera.valid_angle() - 1e-6) inside.push_back(point);
+        }
+        const std::vector<Vec2> theirs = opencv_project_points(c.camera, inside);
+        const Vec2 principal(c.camera.intrinsics.cx, c.camera.intrinsics.cy);
+        double worst = 0;
+        std::size_t behind = 0;
+        for (std::size_t i = 0; i < inside.size(); ++i) {
+            const Projection ours = camera.project_camera_point(inside[i]);
+            REQUIRE(ours.valid);
+            behind += inside[i].z() < 0 ? 1 : 0;
+            worst = std::max(worst, (ours.pixel - theirs[i]).norm() / std::max(1.0, (theirs[i] - principal).norm() / 1e3));
+        }
+        INFO("worst " << worst << " px (relative to 1000 px beyond 1000 px from the centre), " << behind
+                      << " of " << inside.size() << " points behind the camera");
+        CHECK(behind > 100);
+        CHECK(worst <= 1e-9);
+    }
+}
+
+TEST_CASE("MEI unprojects every pixel of VINS-Fusion's calibrations, back to the pixel through cv::omnidir") {
+    for (const LensCase& c : lens_cases()) {
+        if (!is_mei_case(c)) continue;
+        INFO(c.name);
+        const PreparedCamera camera(c.camera);
+        const std::vector<double>& k = c.camera.lens.coefficients;
+        const double xi = k[0];
+        // Where the image of the domain ends, by hand. None of these lenses folds:
+        // q (1 + k1 q^2 + k2 q^4) has a positive slope everywhere when 9 k1^2 < 20 k2
+        // (the slope's quadratic in q^2 has no real root) or k1, k2 >= 0. For xi > 1 the
+        // domain ends at UCM's rim |q| = 1 / sqrt(xi^2 - 1), distorted radially (the
+        // tangential terms move it by under 0.5 %); every pixel closer to the principal
+        // point than that has a ray. For xi <= 1 the image is unbounded: every pixel.
+        REQUIRE((9 * k[1] * k[1] < 20 * k[2] || (k[1] >= 0 && k[2] >= 0)));
+        double reach = std::numeric_limits<double>::infinity();
+        if (xi > 1) {
+            const double rim = 1 / std::sqrt(xi * xi - 1);
+            reach = rim * (1 + k[1] * rim * rim + k[2] * std::pow(rim, 4)) * 0.995;
+        }
+        const std::vector<Vec2> pixels = pixel_grid(c.camera.size, 76, 49);
+        const std::vector<Unprojection> rays = camera.unproject(pixels);
+        std::vector<Vec2> with_ray;
+        std::vector<Vec3> directions;
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            const Vec2 m = c.camera.intrinsics.normalized_from_pixel(pixels[i]);
+            INFO("pixel " << pixels[i].transpose());
+            if (m.norm() < reach) REQUIRE(rays[i].valid);
+            if (!rays[i].valid) continue;
+            with_ray.push_back(pixels[i]);
+            directions.push_back(rays[i].direction);
+        }
+        const std::vector<Vec2> back = opencv_project_points(c.camera, directions);
+        double worst = 0;
+        for (std::size_t i = 0; i < with_ray.size(); ++i) worst = std::max(worst, (back[i] - with_ray[i]).norm());
+        INFO("libcam's rays reprojected by cv::omnidir: worst " << worst << " px over " << with_ray.size() << " pixels");
+        CHECK(with_ray.size() > 3000);
+        CHECK(worst <= 1e-9);
+    }
+}
+
+TEST_CASE("MEI without distortion is UCM, and its valid radius and angle are UCM's rim and edge or the fold, worked by hand") {
+    const std::vector<Vec3> points = sphere_points(2000);
+    for (const double xi : {0.5, 1.0, 2.0, 3.6313355285286337}) {
+        INFO("xi " << xi);
+        const PreparedCamera mei(real_camera(LensType::Mei, {xi, 0, 0, 0, 0}, {1024, 768}, {300.0, 305.0, 515.0, 380.0}));
+        const PreparedCamera ucm(real_camera(LensType::Ucm, {xi}, {1024, 768}, {300.0, 305.0, 515.0, 380.0}));
+        check_same_map(mei, ucm, points);
+        for (const Vec2& pixel : pixel_grid({1024, 768}, 33, 25)) {
+            const Unprojection a = mei.unproject(pixel), b = ucm.unproject(pixel);
+            REQUIRE(a.valid == b.valid);
+            if (a.valid) CHECK(angle_between(a.direction, b.direction) <= 1e-13);
+        }
+    }
+    // xi = 1: q = tan(theta / 2) (x, y) / |(x, y)|, unbounded; k1 = -1/2 folds at
+    // |q| = sqrt(2/3), so the lens sees theta < 2 atan(sqrt(2/3)), and a pixel has a ray
+    // exactly when |m| < d_max = (2/3) sqrt(2/3).
+    const PreparedCamera folding(real_camera(LensType::Mei, {1.0, -0.5, 0, 0, 0}, {1024, 768}, {300.0, 300.0, 515.0, 380.0}));
+    const double fold = std::sqrt(2.0 / 3);
+    CHECK(std::abs(folding.valid_radius() - fold) <= 1e-15);
+    CHECK(std::abs(folding.valid_angle() - 2 * std::atan(fold)) <= 1e-14);
+    const double d_max = 2.0 / 3 * fold;
+    CHECK(folding.unproject(Vec2(515.0 + 300.0 * d_max * (1 - 1e-6), 380.0)).valid);
+    CHECK_FALSE(folding.unproject(Vec2(515.0 + 300.0 * d_max * (1 + 1e-6), 380.0)).valid);
+    CHECK_FALSE(folding.project_camera_point(Vec3(std::sin(2 * std::atan(fold) + 1e-6), 0, std::cos(2 * std::atan(fold) + 1e-6))).valid);
+    // xi = 2 and no fold: UCM's rim |q| = 1 / sqrt(3), its edge cos(theta) = -1 / xi, 120 degrees.
+    const PreparedCamera edge(real_camera(LensType::Mei, {2.0, 0.1, 0.01, 0, 0}, {1024, 768}, {300.0, 300.0, 515.0, 380.0}));
+    CHECK(std::abs(edge.valid_radius() - 1 / std::sqrt(3.0)) <= 1e-15);
+    CHECK(std::abs(edge.valid_angle() - 2 * std::numbers::pi / 3) <= 1e-15);
+    // A perspective lens: the angle of its radius of (x/z, y/z); OPENCV4 k1 = -1/2 folds at
+    // r = sqrt(2/3).
+    const PreparedCamera perspective(real_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1024, 768}, {300.0, 300.0, 515.0, 380.0}));
+    CHECK(std::abs(perspective.valid_angle() - std::atan(fold)) <= 1e-15);
+    CHECK_THAT(test::error_of([] {
+                   PreparedCamera(real_camera(LensType::Mei, {-1.5, 0, 0, 0, 0}, {1024, 768}, {300.0, 300.0, 515.0, 380.0}));
+               }),
+               Catch::Contains("(xi): must be above -1, got -1.5"));
 }

@@ -317,3 +317,24 @@ TEST_CASE("libcam verify: a malformed file fails with one line, a malformed grid
         CHECK(r.err.find("--grid") != std::string::npos);
     }
 }
+
+TEST_CASE("libcam verify: MEI and UCM are checked by cv::omnidir, behind the camera too") {
+    const TempDir dir;
+    for (const std::string name : {"MEI xi 1.45", "MEI xi 1", "UCM xi 0.8"}) {
+        INFO(name);
+        const json report = run_verify_json({write_json_camera(dir, "camera", lens_case(name)).string(), "--grid", "41x31"});
+        CHECK(report.at("pass") == true);
+        require_libcam_within_tolerance(report);
+        const json project = check_named(report, "project-opencv");
+        CHECK(project.at("library") == "cv::omnidir::projectPoints");
+        CHECK(project.at("status") != "skipped");
+        CHECK(project.at("max_px").get<double>() <= 1e-9);
+        CHECK(check_named(report, "unproject-libcam-opencv").at("max_px").get<double>() <= 1e-9);
+        const json undistort = check_named(report, "undistort-opencv-default");
+        CHECK(undistort.at("library").get<std::string>().find("cv::omnidir::undistortPoints") != std::string::npos);
+        CHECK(undistort.at("status") != "skipped");
+        // cv::omnidir::undistortPoints has one fixed rule: the second rule's row says so.
+        CHECK(check_named(report, "undistort-opencv-100").at("status") == "skipped");
+        CHECK(check_named(report, "project-mrcal").at("status") == "skipped");
+    }
+}

@@ -76,6 +76,9 @@ public:
     const Camera& camera() const;
     // The lens's valid radius (lens/model_support.hpp): infinity where it has none.
     double valid_radius() const;
+    // The largest angle from the optical axis the lens images, radians (pi: every
+    // direction but the backward axis; below pi/2 for a perspective lens).
+    double valid_angle() const;
 
     // The pixel of a camera-frame point; invalid outside the lens model's domain
     // (behind the camera, past the radius where the distortion folds over, ...). Points

@@ -279,9 +279,9 @@ void set_ray(Block<Scalar>& b, std::size_t i, bool ok, const Vec3L<Scalar>& ray)
 }
 
 template <class Model, class Scalar>
-void rays_from_undistorted(Block<Scalar>& b) {
+void rays_from_undistorted(const typename Model::Parameters& lens, Block<Scalar>& b) {
     for (std::size_t i = 0; i < b.count; ++i) {
-        set_ray(b, i, b.ok[i] > Scalar(0), Model::ray_from_undistorted(Vec2L<Scalar>(b.u_x[i], b.u_y[i])));
+        set_ray(b, i, b.ok[i] > Scalar(0), Model::ray_from_undistorted(lens, Vec2L<Scalar>(b.u_x[i], b.u_y[i])));
     }
 }
 
@@ -352,7 +352,7 @@ void unproject_block(const Context<Scalar>& context, const LensPair<Model>& lens
     if constexpr (SolvedLensModel<Model>) {
         approximate<Model>(context, lens.lanes, method, b);
         solve_remaining<typename LensPair<Model>::Plain>(context, lens.plain, b);
-        rays_from_undistorted<Model>(b);
+        rays_from_undistorted<Model>(lens.lanes, b);
     } else {
         unproject_closed_form<Model>(lens.lanes, b);
     }

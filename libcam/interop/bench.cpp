@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/ccalib/omnidir.hpp>
 #include <opencv2/core/utility.hpp>
 
 #include "libcam/camera/projector.hpp"
@@ -246,18 +247,23 @@ cv::Mat as_cv_points(const std::vector<Vec2>& pixels) {
 }
 
 // cv::undistortPoints (cv::fisheye::undistortPoints for FISHEYE) at its default and at
-// 100 iterations with eps 1e-14. Its normalised point (x, y) is the ray (x, y, 1).
+// 100 iterations with eps 1e-14; cv::omnidir::undistortPoints (UCM, MEI) at its one fixed
+// rule (20 iterations). Each gives (x, y) for the ray (x, y, 1).
 void add_opencv_unprojection(std::vector<Contender>& out, const Setup& setup, const cv::Mat& cv_pixels, Workspace& work) {
     const Camera& camera = setup.bench_case.camera;
     if (!opencv_has(camera.lens)) return;
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
-    const bool fisheye = lens_info(camera.lens.type).opencv == OpenCvFunction::Fisheye;
+    const OpenCvFunction function = lens_info(camera.lens.type).opencv;
     const cv::TermCriteria many(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-14);
     for (const bool iterate : {false, true}) {
-        Contender c{row(setup, "unproject", "opencv", iterate ? "100it-eps1e-14" : "default", "double"), setup.grid.size(),
-                    nullptr, nullptr};
-        c.run = [&, K, D, fisheye, iterate, many] {
-            if (fisheye) {
+        if (function == OpenCvFunction::Omnidir && iterate) continue;
+        const char* rule = function == OpenCvFunction::Omnidir ? "20it" : iterate ? "100it-eps1e-14" : "default";
+        Contender c{row(setup, "unproject", "opencv", rule, "double"), setup.grid.size(), nullptr, nullptr};
+        c.run = [&, K, D, function, iterate, many] {
+            if (function == OpenCvFunction::Omnidir) {
+                const cv::Mat xi(1, 1, CV_64F, cv::Scalar(opencv_xi(camera.lens)));
+                cv::omnidir::undistortPoints(cv_pixels, work.cv_unprojected, K, D, xi, cv::noArray());
+            } else if (function == OpenCvFunction::Fisheye) {
                 if (iterate) cv::fisheye::undistortPoints(cv_pixels, work.cv_unprojected, K, D, cv::noArray(), cv::noArray(), many);
                 else cv::fisheye::undistortPoints(cv_pixels, work.cv_unprojected, K, D);
             } else {
@@ -330,12 +336,19 @@ void add_opencv_projection(std::vector<Contender>& out, const Setup& setup, cons
     if (!opencv_has(camera.lens)) return;
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
     const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    const bool fisheye = lens_info(camera.lens.type).opencv == OpenCvFunction::Fisheye;
-    Contender c{row(setup, "project", "opencv", fisheye ? "fisheye::projectPoints" : "projectPoints", "double"),
-                setup.rays.points.size(), nullptr, nullptr};
-    c.run = [&, K, D, zero, fisheye] {
-        if (fisheye) cv::fisheye::projectPoints(cv_points, work.cv_projected, zero, zero, K, D);
-        else cv::projectPoints(cv_points, zero, zero, K, D, work.cv_projected);
+    const OpenCvFunction function = lens_info(camera.lens.type).opencv;
+    const char* name = function == OpenCvFunction::Omnidir   ? "omnidir::projectPoints"
+                       : function == OpenCvFunction::Fisheye ? "fisheye::projectPoints"
+                                                             : "projectPoints";
+    Contender c{row(setup, "project", "opencv", name, "double"), setup.rays.points.size(), nullptr, nullptr};
+    c.run = [&, K, D, zero, function] {
+        if (function == OpenCvFunction::Omnidir) {
+            cv::omnidir::projectPoints(cv_points, work.cv_projected, zero, zero, K, opencv_xi(camera.lens), D);
+        } else if (function == OpenCvFunction::Fisheye) {
+            cv::fisheye::projectPoints(cv_points, work.cv_projected, zero, zero, K, D);
+        } else {
+            cv::projectPoints(cv_points, zero, zero, K, D, work.cv_projected);
+        }
     };
     c.outcome = [&] {
         std::vector<Vec2> pixels;

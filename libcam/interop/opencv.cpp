@@ -1,6 +1,7 @@
 #include "libcam/interop/opencv.hpp"
 
 #include <opencv2/calib3d.hpp>
+#include <opencv2/ccalib/omnidir.hpp>
 
 #include <algorithm>
 #include <vector>
@@ -20,12 +21,26 @@ bool uses_opencv_fisheye(const Lens& lens) { return lens_info(lens.type).opencv 
 }  // namespace
 
 cv::Mat opencv_distortion(const Lens& lens) {
-    if (lens_info(lens.type).opencv == OpenCvFunction::None) {
+    const OpenCvFunction function = lens_info(lens.type).opencv;
+    if (function == OpenCvFunction::None) {
         throw NotRepresentable("lens: OpenCV has no model " + std::string(lens_info(lens.type).name));
+    }
+    if (function == OpenCvFunction::Omnidir) {
+        // xi goes apart (opencv_xi); UCM is cv::omnidir without distortion.
+        cv::Mat dist = cv::Mat::zeros(1, 4, CV_64F);
+        std::copy(lens.coefficients.begin() + 1, lens.coefficients.end(), dist.ptr<double>());
+        return dist;
     }
     cv::Mat dist(1, static_cast<int>(lens.coefficients.size()), CV_64F);
     std::copy(lens.coefficients.begin(), lens.coefficients.end(), dist.ptr<double>());
     return dist;
+}
+
+double opencv_xi(const Lens& lens) {
+    if (lens_info(lens.type).opencv != OpenCvFunction::Omnidir) {
+        throw NotRepresentable("lens: " + std::string(lens_info(lens.type).name) + " is not a cv::omnidir model");
+    }
+    return lens.coefficients.at(0);
 }
 
 cv::Mat opencv_vector(const Vec3& v) { return (cv::Mat_<double>(3, 1) << v.x(), v.y(), v.z()); }
@@ -41,6 +56,8 @@ std::vector<Vec2> opencv_project_points(const Camera& camera, const std::vector<
     const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
     if (uses_opencv_fisheye(camera.lens)) {
         cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
+    } else if (lens_info(camera.lens.type).opencv == OpenCvFunction::Omnidir) {
+        cv::omnidir::projectPoints(object, image, zero, zero, K, opencv_xi(camera.lens), dist);
     } else {
         cv::projectPoints(object, zero, zero, K, dist, image);
     }

@@ -5,6 +5,7 @@
 #include <limits>
 #include <thread>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/ccalib/omnidir.hpp>
 #include <utility>
 
 #include "libcam/camera/parallel.hpp"
@@ -90,7 +91,9 @@ Samples make_samples(const Camera& camera, const VerifyOptions& options) {
 // Why a library cannot check this camera (the table says which library has the model);
 // nullopt when it can.
 std::optional<std::string> opencv_lacks(const Camera& camera) {
-    if (camera.intrinsics.skew != 0.0) return "cv::projectPoints and cv::undistortPoints ignore K's skew";
+    if (camera.intrinsics.skew != 0.0 && lens_info(camera.lens.type).opencv != OpenCvFunction::Omnidir) {
+        return "cv::projectPoints and cv::undistortPoints ignore K's skew";
+    }
     if (lens_info(camera.lens.type).opencv == OpenCvFunction::None) {
         return "lens: OpenCV has no model " + std::string(lens_info(camera.lens.type).name);
     }
@@ -107,15 +110,31 @@ std::optional<std::string> mrcal_lacks(const Camera& camera) {
     return std::nullopt;
 }
 
-bool is_fisheye(const Camera& camera) { return lens_info(camera.lens.type).opencv == OpenCvFunction::Fisheye; }
+OpenCvFunction opencv_function(const Camera& camera) { return lens_info(camera.lens.type).opencv; }
+bool is_fisheye(const Camera& camera) { return opencv_function(camera) == OpenCvFunction::Fisheye; }
+bool is_omnidir(const Camera& camera) { return opencv_function(camera) == OpenCvFunction::Omnidir; }
 
 std::string opencv_project_name(const Camera& camera) {
+    if (is_omnidir(camera)) return "cv::omnidir::projectPoints";
     return is_fisheye(camera) ? "cv::fisheye::projectPoints" : "cv::projectPoints";
 }
 
 std::string opencv_undistort_name(const Camera& camera) {
+    if (is_omnidir(camera)) return "cv::omnidir::undistortPoints";
     return is_fisheye(camera) ? "cv::fisheye::undistortPoints" : "cv::undistortPoints";
 }
+
+// Whether OpenCV's projection of a point libcam projects can be compared with libcam's:
+// cv::projectPoints mirrors points behind the camera into the image and
+// cv::fisheye::projectPoints folds them forward; cv::omnidir's unified model evaluates
+// the same formula everywhere, and libcam's domain leaves out where it does not hold.
+bool opencv_projects_as_libcam(const Camera& camera, const Vec3& point) {
+    return is_omnidir(camera) || point.z() > 0.0;
+}
+
+// Whether OpenCV's undistortion can give a pixel's ray: each gives (x, y) for the ray
+// (x, y, 1), which has no direction behind the camera.
+bool opencv_undistorts_to(const Vec3& ray) { return ray.z() > 0.0; }
 
 // f(part) for consecutive parts of `inputs`, on `threads` threads, concatenated: each
 // library maps every point on its own, so the result is the same for any split.
@@ -144,8 +163,9 @@ std::vector<Vec3> mrcal_unproject(const Camera& camera, const std::vector<Vec2>&
     return in_parts<Vec3>(threads, pixels, [&](const std::vector<Vec2>& part) { return mrcal_unproject_pixels(camera, part); });
 }
 
-// Rays (x, y, 1) by cv::undistortPoints (cv::fisheye::undistortPoints for FISHEYE), at
-// the function's default stopping rule when `criteria` is empty.
+// Rays (x, y, 1) by cv::undistortPoints (cv::fisheye::undistortPoints for FISHEYE,
+// cv::omnidir::undistortPoints for UCM and MEI: its fixed 20 iterations, no stopping rule
+// to set), at the function's default stopping rule when `criteria` is empty.
 std::vector<Vec3> opencv_undistort_part(const Camera& camera, const std::vector<Vec2>& pixels,
                                         const std::optional<cv::TermCriteria>& criteria) {
     if (pixels.empty()) return {};
@@ -153,7 +173,10 @@ std::vector<Vec3> opencv_undistort_part(const Camera& camera, const std::vector<
     for (const Vec2& p : pixels) in.emplace_back(p.x(), p.y());
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
     const cv::Mat dist = opencv_distortion(camera.lens);
-    if (is_fisheye(camera)) {
+    if (is_omnidir(camera)) {
+        const cv::Mat xi(1, 1, CV_64F, cv::Scalar(opencv_xi(camera.lens)));
+        cv::omnidir::undistortPoints(in, out, K, dist, xi, cv::noArray());
+    } else if (is_fisheye(camera)) {
         if (criteria) cv::fisheye::undistortPoints(in, out, K, dist, cv::noArray(), cv::noArray(), *criteria);
         else cv::fisheye::undistortPoints(in, out, K, dist);
     } else {
@@ -260,10 +283,8 @@ VerifyCheck compare_projection(VerifyCheck check, const Samples& s, Accept compa
 VerifyCheck check_project_opencv(const Camera& camera, const Samples& s, const std::optional<std::string>& lacks) {
     VerifyCheck check = new_check(verify_check::project_opencv, opencv_project_name(camera), kExactPx);
     if (lacks) return skip(std::move(check), *lacks);
-    // cv::projectPoints mirrors points behind the camera into the image and
-    // cv::fisheye::projectPoints folds them forward: only points in front are comparable.
     return compare_projection(
-        std::move(check), s, [](const Vec3& p) { return p.z() > 0.0; },
+        std::move(check), s, [&](const Vec3& p) { return opencv_projects_as_libcam(camera, p); },
         [&](const std::vector<Vec3>& points) { return opencv_project(camera, points, s.threads); },
         "behind the camera, or outside libcam's domain");
 }
@@ -285,7 +306,7 @@ VerifyCheck check_unproject_libcam(const Samples& s) {
 }
 
 // libcam's rays reprojected by OpenCV, an implementation of the model independent of
-// libcam's; rays past 90 degrees (FISHEYE) are beyond what it can project.
+// libcam's; rays past 90 degrees (FISHEYE) are beyond what cv::fisheye can project.
 VerifyCheck check_unproject_libcam_opencv(const Camera& camera, const Samples& s,
                                           const std::optional<std::string>& lacks) {
     VerifyCheck check = new_check(verify_check::unproject_libcam_opencv,
@@ -295,7 +316,7 @@ VerifyCheck check_unproject_libcam_opencv(const Camera& camera, const Samples& s
     std::vector<Vec2> pixels;
     std::vector<Vec3> rays;
     for (std::size_t i : s.with_ray) {
-        if (!(s.rays[i].direction.z() > 0.0)) continue;
+        if (!opencv_projects_as_libcam(camera, s.rays[i].direction)) continue;
         in_front.push_back(i);
         pixels.push_back(s.pixels[i]);
         rays.push_back(s.rays[i].direction);
@@ -368,13 +389,21 @@ VerifyCheck check_undistort(const Camera& camera, const Samples& s, std::string_
     VerifyCheck out = reprojection_errors(s.pixels.size(), s.with_ray, pixels, opencv_project(camera, rays, s.threads))
                           .finish(std::move(check));
     const auto behind = static_cast<std::size_t>(std::count_if(
-        s.with_ray.begin(), s.with_ray.end(), [&](std::size_t i) { return !(s.rays[i].direction.z() > 0.0); }));
+        s.with_ray.begin(), s.with_ray.end(), [&](std::size_t i) { return !opencv_undistorts_to(s.rays[i].direction); }));
     out.note = count_note(behind, "pixels see behind the camera, which its (x, y, 1) cannot express");
     return out;
 }
 
 std::vector<VerifyCheck> check_undistort_opencv(const Camera& camera, const Samples& s,
                                                 const std::optional<std::string>& lacks) {
+    if (is_omnidir(camera)) {
+        const std::string fixed = "its fixed rule: 20 iterations";
+        const std::optional<std::string> no_rule =
+            lacks ? lacks : std::optional<std::string>("cv::omnidir::undistortPoints has no stopping rule to set");
+        return {check_undistort(camera, s, verify_check::undistort_opencv_default, fixed, std::nullopt, lacks),
+                check_undistort(camera, s, verify_check::undistort_opencv_100, "100 iterations, eps 1e-14",
+                                std::nullopt, no_rule)};
+    }
     const std::string default_rule =
         is_fisheye(camera) ? "default: 10 iterations, eps 1e-8" : "default: 5 iterations";
     const cv::TermCriteria precise(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-14);

@@ -70,12 +70,12 @@ struct FisheyeLens {
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
         Vec2T u;
         if (!solve_undistorted<FisheyeLens>(lens, m, u)) return false;
-        ray = ray_from_undistorted(u);
+        ray = ray_from_undistorted(lens, u);
         return true;
     }
 
     // The unit ray at the angle theta = |u| from the axis, towards u.
-    static Vec3T ray_from_undistorted(const Vec2T& u) {
+    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) {
         using std::cos;
         using std::sin;
         const Scalar theta = u.norm();

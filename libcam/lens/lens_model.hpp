@@ -31,7 +31,8 @@
     _(Latlon, LatlonLens)               \
     _(DoubleSphere, DoubleSphereLens)   \
     _(Ucm, UcmLens)                     \
-    _(Eucm, EucmLens)
+    _(Eucm, EucmLens)                   \
+    _(Mei, MeiLens)
 
 namespace libcam {
 
@@ -55,6 +56,7 @@ enum class OpenCvFunction {
     None,
     ProjectPoints,  // cv::projectPoints, cv::undistortPoints
     Fisheye,        // cv::fisheye::projectPoints, cv::fisheye::undistortPoints
+    Omnidir,        // cv::omnidir::projectPoints, cv::omnidir::undistortPoints (xi, then k1 k2 p1 p2)
 };
 
 // Models that nest: a model contains every model of its family with a lower or equal
@@ -67,7 +69,7 @@ enum class LensFamily {
     Lonlat,
     Latlon,
     DoubleSphere,
-    Unified,  // UCM (for xi <= 1, DOUBLE_SPHERE with alpha = 0; not nested, as xi > 1 is not)
+    Unified,  // UCM < MEI (UCM for xi <= 1 is DOUBLE_SPHERE with alpha = 0; not nested, as xi > 1 is not)
     Eucm,
 };
 
@@ -157,11 +159,16 @@ inline constexpr LensInfo kLensTable[] = {
     // basalt's "ucm" is this model with another K (its alpha = xi / (1 + xi), its focal
     // length 1 / (1 + xi) times this one's): not the same numbers, so not named here.
     {.type = LensType::Ucm, .name = "UCM", .coefficients = {"xi"}, .num_coefficients = 1, .sees_behind_camera = true,
-     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "omni-none",
+     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::Omnidir, .mrcal = "", .colmap = "", .kalibr = "omni-none",
      .basalt = "", .family = LensFamily::Unified, .family_rank = 0, .fit = FitCandidate::No},
     {.type = LensType::Eucm, .name = "EUCM", .coefficients = {"alpha", "beta"}, .num_coefficients = 2,
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
      .colmap = "", .kalibr = "eucm-none", .basalt = "eucm", .family = LensFamily::Eucm, .family_rank = 0,
+     .fit = FitCandidate::No},
+    // camodocal and VINS call it "MEI".
+    {.type = LensType::Mei, .name = "MEI", .coefficients = {"xi", "k1", "k2", "p1", "p2"}, .num_coefficients = 5,
+     .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::Omnidir, .mrcal = "",
+     .colmap = "", .kalibr = "omni-radtan", .basalt = "", .family = LensFamily::Unified, .family_rank = 1,
      .fit = FitCandidate::No},
 };
 

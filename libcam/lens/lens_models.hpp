@@ -24,12 +24,15 @@
 //
 //   bool distort(parameters, u, m, d_m_d_u = nullptr)   m of the undistorted point u
 //   Scalar radial_distortion(parameters, r, slope)       the radial part alone, d(r), d'(r)
-//   Vec3T ray_from_undistorted(u)                        the ray through u
+//   Vec3T ray_from_undistorted(parameters, u)            the ray through u
 //
 // Optional: `static constexpr bool projects_ratios = true` for a model that starts from
 // x / z and y / z (a point at any scale then needs no rescaling, camera/point_scale.hpp).
 
+#include <algorithm>
+#include <cmath>
 #include <concepts>
+#include <numbers>
 #include <span>
 #include <string>
 #include <utility>
@@ -42,6 +45,7 @@
 #include "libcam/lens/latlon.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/lonlat.hpp"
+#include "libcam/lens/mei.hpp"
 #include "libcam/lens/opencv.hpp"
 #include "libcam/lens/pinhole.hpp"
 #include "libcam/lens/stereographic.hpp"
@@ -67,7 +71,7 @@ concept SolvedLensModel = LensModel<Model> && requires(const typename Model::Par
                                                        typename Model::Vec2T::Scalar r, typename Model::Vec2T::Scalar& slope) {
     { Model::distort(lens, u, m) } -> std::same_as<bool>;
     { Model::radial_distortion(lens, r, slope) } -> std::convertible_to<typename Model::Vec2T::Scalar>;
-    { Model::ray_from_undistorted(u) } -> std::convertible_to<typename Model::Vec3T>;
+    { Model::ray_from_undistorted(lens, u) } -> std::convertible_to<typename Model::Vec3T>;
 };
 
 // A model that projects through x / z and y / z (optional; see above).
@@ -97,6 +101,22 @@ constexpr bool implements_row(LensType type) {
                   " (type, coefficient count, LensModel, or Inverse::Solved without distort())");
 LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_CHECK)
 #undef LIBCAM_LENS_CHECK
+
+// The largest angle from the optical axis a lens of Model images (radians; pi: every
+// direction but the backward axis), from its valid radius: the radius itself for a model
+// that sees behind the camera (it measures the radius as that angle), atan of it for a
+// perspective model (the radius of (x/z, y/z)), and what the model says
+// (Model::valid_angle) for one whose radius is neither (MEI's lies in UCM's plane).
+template <class Model>
+double valid_angle(std::span<const double> coefficients, double valid_radius) {
+    if constexpr (requires { Model::valid_angle(coefficients, valid_radius); }) {
+        return Model::valid_angle(coefficients, valid_radius);
+    } else if (lens_info(Model::type).sees_behind_camera) {
+        return std::min(valid_radius, std::numbers::pi);
+    } else {
+        return std::atan(valid_radius);
+    }
+}
 
 // Calls visitor.template operator()<Model>() with the implementation of `type` in
 // Scalar, e.g.  visit_lens_model<double>(lens.type, [&]<class Model>() { ... });

@@ -135,12 +135,12 @@ struct OpenCvLens {
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
         Vec2T u;
         if (!solve_undistorted<OpenCvLens>(lens, m, u)) return false;
-        ray = ray_from_undistorted(u);
+        ray = ray_from_undistorted(lens, u);
         return true;
     }
 
     // The ray through the undistorted point u: (x, y, 1).
-    static Vec3T ray_from_undistorted(const Vec2T& u) { return Vec3T(u.x(), u.y(), Scalar(1)); }
+    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) { return Vec3T(u.x(), u.y(), Scalar(1)); }
 
     // m = distort(u) for the pinhole-normalised point u = (X/Z, Y/Z); false outside the
     // valid domain (m then meaningless; evaluated without branches, see pinhole.hpp).
