@@ -285,18 +285,29 @@ bool intermediate_overflows(LensType type, const Vec3Q& point) {
 
 enum class Expect { Valid, Flagged, Either };
 
-// STEREOGRAPHIC behind the camera forms |p| + z as rho^2 / (|p| - z), from the point
-// as given, or scaled to a largest coordinate in [1, 2) when that lies outside
+// Near the backward axis STEREOGRAPHIC forms |p| + z as rho^2 / (|p| - z), and FISHEYE
+// and FOV (of (a x, a y, z), a = 2 tan(omega / 2)) the direction (x, y) / rho, from the
+// point as given, or scaled to a largest coordinate in [1, 2) when that lies outside
 // 2^(min exponent / 4) .. 2^(max exponent / 4) (camera/point_scale.hpp): where rho^2 is
 // no longer a normal number libcam flags the point. Flagged there, either within a
-// factor 8 of the threshold, nullopt elsewhere.
+// factor 8 of the threshold, nullopt elsewhere (and for FISHEYE and FOV wherever their
+// series on the forward axis applies, z > 0 and rho < 1e-3 z).
 template <class Scalar>
-std::optional<Expect> stereographic_behind(LensType type, const Vec3Q& point) {
-    if (type != LensType::Stereographic || !(point.z() < 0)) return std::nullopt;
+std::optional<Expect> backward_axis_band(const Lens& lens, const Vec3Q& point) {
+    const LensType type = lens.type;
+    if (type != LensType::Stereographic && type != LensType::Fisheye && type != LensType::Fov) return std::nullopt;
+    Quad rho2 = point.x() * point.x() + point.y() * point.y();
+    if (type == LensType::Fov) {
+        if (lens.coefficients.at(0) == 0) return std::nullopt;  // the pinhole
+        rho2 *= 4 * tan(Quad(lens.coefficients[0]) / 2) * tan(Quad(lens.coefficients[0]) / 2);
+    }
+    if (type == LensType::Stereographic ? !(point.z() < 0) : (point.z() > 0 && rho2 < Quad(1e-6) * point.z() * point.z())) {
+        return std::nullopt;
+    }
     using Limits = std::numeric_limits<Scalar>;
     const Quad largest = point.cwiseAbs().maxCoeff();
     const bool scaled = largest < ldexp(Quad(1), Limits::min_exponent / 4) || largest > ldexp(Quad(1), Limits::max_exponent / 4);
-    const Quad rho2 = (point.x() * point.x() + point.y() * point.y()) / (scaled ? largest * largest : Quad(1));
+    rho2 /= scaled ? largest * largest : Quad(1);
     const Quad threshold(std::numeric_limits<Scalar>::min());
     if (rho2 < threshold / 8) return Expect::Flagged;
     if (rho2 < threshold * 8) return Expect::Either;
@@ -328,7 +339,7 @@ bool at_domain_edge(const Lens& lens, const Vec3Q& point) {
 template <class Scalar>
 Expect expected(const Projected<Quad>& reference, const Lens& lens, const Vec3Q& point) {
     if (at_domain_edge<Scalar>(lens, point)) return Expect::Either;
-    if (const std::optional<Expect> near_axis = stereographic_behind<Scalar>(lens.type, point)) return *near_axis;
+    if (const std::optional<Expect> near_axis = backward_axis_band<Scalar>(lens, point)) return *near_axis;
     const bool fits = reference.valid &&
                       reference.m.cwiseAbs().maxCoeff() <= Quad(std::numeric_limits<Scalar>::max()) &&
                       !intermediate_overflows<Scalar>(lens.type, point);

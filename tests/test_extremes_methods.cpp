@@ -311,7 +311,7 @@ std::vector<Row> projector_rows() {
         "batch Projector: points at scales 4.9e-324 to 1.7e308 and at z = +-1e-320 to +-1, every model";
     return {
         {extreme, "pixel vs reference [ulp of |pixel| / the projection's condition number]", worst.ulps[0].value, worst.ulps[1].value, 16, 16,
-         "a point past 2^+-(max exponent / 4) scaled by a power of two first (exact)", worst.ulps[0].where},
+         "a point past 2^+-(max exponent / 4) scaled by a power of two first (exact)", worst.ulps[0].where + " / " + worst.ulps[1].where},
         {extreme, "wrong flags [count of " + std::to_string(worst.points[0]) + "]",
          static_cast<double>(worst.wrong_flags[0]), static_cast<double>(worst.wrong_flags[1]), 0, 0,
          "valid only in the domain and if the pixel is finite", worst.first_wrong},

@@ -61,6 +61,7 @@ std::vector<Vec2> omnidir_pixels(const Camera& camera, const std::vector<Vec3>& 
 // xi < 1) it grows without bound, as m goes to infinity: no evaluation in double gives
 // m there to better than eps times it.
 double denominator_cancellation(const Camera& camera, const Vec3& point) {
+    if (camera.lens.type == LensType::Fov) return 1.0;  // an angle: no denominator that cancels
     const std::vector<double>& c = camera.lens.coefficients;
     const long double x = point.x(), y = point.y(), z = point.z();
     const long double d1 = std::sqrt(x * x + y * y + z * z);
@@ -89,7 +90,7 @@ double agreement_px(const Camera& camera, const Vec3& point, const Vec2& pixel) 
                       denominator_cancellation(camera, point);
 }
 
-TEST_CASE("DOUBLE_SPHERE, UCM and EUCM project as their papers' equations, and flag what they exclude") {
+TEST_CASE("DOUBLE_SPHERE, UCM, EUCM and FOV project as their papers' equations, and flag what they exclude") {
     constexpr double eps = std::numeric_limits<double>::epsilon();
     for (const LensCase& c : lens_cases()) {
         if (!in_unified_family(c)) continue;
@@ -124,7 +125,7 @@ TEST_CASE("DOUBLE_SPHERE, UCM and EUCM project as their papers' equations, and f
     }
 }
 
-TEST_CASE("DOUBLE_SPHERE, UCM and EUCM unproject as their papers' inverses, and back to the pixel") {
+TEST_CASE("DOUBLE_SPHERE, UCM, EUCM and FOV unproject as their papers' inverses, and back to the pixel") {
     for (const LensCase& c : lens_cases()) {
         if (!in_unified_family(c)) continue;
         INFO(c.name);
@@ -471,4 +472,71 @@ TEST_CASE("MEI without distortion is UCM, and its valid radius and angle are UCM
                    PreparedCamera(real_camera(LensType::Mei, {-1.5, 0, 0, 0, 0}, {1024, 768}, {300.0, 300.0, 515.0, 380.0}));
                }),
                Catch::Contains("(xi): must be above -1, got -1.5"));
+}
+
+// ---------------------------------------------------------------------------------
+// FOV: r_d = atan(2 tan(omega / 2) r) / omega, on behind the camera as basalt writes it.
+
+TEST_CASE("FOV's radii worked by hand, behind the camera too, and its image's edge") {
+    // omega = pi / 2: 2 tan(omega / 2) = 2, so r_d = atan2(2 sin(theta), cos(theta)) / (pi / 2).
+    const Camera camera = real_camera(LensType::Fov, {std::numbers::pi / 2}, {1024, 768}, {300.0, 300.0, 515.0, 380.0});
+    const PreparedCamera fov(camera);
+    const double s = std::sqrt(0.5);
+    const struct {
+        Vec3 point;
+        double distorted_radius;
+    } by_hand[] = {
+        {{s, 0, s}, 2 * std::atan(2.0) / std::numbers::pi},       // 45 degrees
+        {{0, 1, 0}, 1.0},                                         // 90 degrees: atan2(2, 0) = pi / 2
+        {{-s, 0, -s}, 2 - 2 * std::atan(2.0) / std::numbers::pi},  // 135 degrees: pi - atan(2)
+    };
+    for (const auto& [point, distorted_radius] : by_hand) {
+        INFO("point " << point.transpose());
+        const Projection p = fov.project_camera_point(point);
+        REQUIRE(p.valid);
+        const Vec2 expected = Vec2(515.0, 380.0) + 300.0 * distorted_radius * point.head<2>().normalized();
+        CHECK((p.pixel - expected).norm() <= 1e-12);
+        const Unprojection back = fov.unproject(expected);
+        REQUIRE(back.valid);
+        CHECK(angle_between(back.direction, point) <= 1e-15);
+    }
+    CHECK(fov.valid_radius() == std::numbers::pi);
+    CHECK_FALSE(fov.project_camera_point({0, 0, -1}).valid);  // the backward axis
+    // The image is the disc r_d < pi / omega = 2 (600 px).
+    CHECK(fov.unproject(Vec2(515.0, 380.0 + 600.0 * (1 - 1e-9))).valid);
+    CHECK_FALSE(fov.unproject(Vec2(515.0, 380.0 + 600.0 * (1 + 1e-9))).valid);
+    const auto refused = [](double omega) {
+        return test::error_of([&] { PreparedCamera(real_camera(LensType::Fov, {omega}, {1024, 768}, {300.0, 300.0, 515.0, 380.0})); });
+    };
+    CHECK_THAT(refused(-0.1), Catch::Contains("(omega): must be in [0, pi) radians, got -0.1"));
+    CHECK_THAT(refused(4.0), Catch::Contains("(omega): must be in [0, pi) radians, got 4"));
+}
+
+TEST_CASE("FOV as omega -> 0 becomes the pinhole, and omega = 0 is the pinhole exactly") {
+    // r_d = atan(2 tan(omega / 2) r) / omega = r + omega^2 (r / 12 - r^3 / 3) + O(omega^4)
+    // for r = |(x, y)| / z (by the series of tan and atan).
+    const Intrinsics k{300.0, 305.0, 515.0, 380.0, 0.0};
+    const Camera pinhole_camera = real_camera(LensType::Pinhole, {}, {1024, 768}, {k.fx, k.fy, k.cx, k.cy});
+    const PreparedCamera pinhole(pinhole_camera);
+    for (const double omega : {0.0, 1e-12, 1e-8, 1e-4}) {
+        INFO("omega " << omega);
+        const PreparedCamera fov(real_camera(LensType::Fov, {omega}, {1024, 768}, {k.fx, k.fy, k.cx, k.cy}));
+        CHECK(fov.valid_radius() == (omega > 0 ? std::numbers::pi : std::numbers::pi / 2));
+        for (const Vec3& point : sphere_points(500)) {
+            const Projection a = fov.project_camera_point(point), b = pinhole.project_camera_point(point);
+            if (!(point.z() > 0)) {
+                CHECK(a.valid == (omega > 0 && point.head<2>().norm() > 0));
+                continue;
+            }
+            REQUIRE(a.valid);
+            const double r = point.head<2>().norm() / point.z();
+            const double shift = omega * omega * std::abs(r / 12 - r * r * r / 3) * 305.0;
+            CHECK((a.pixel - b.pixel).norm() <= 1e-9 * std::max(1.0, (b.pixel - Vec2(k.cx, k.cy)).norm() / 1e3) + 2 * shift);
+        }
+        for (const Vec2& pixel : pixel_grid({1024, 768}, 17, 13)) {
+            const Unprojection a = fov.unproject(pixel), b = pinhole.unproject(pixel);
+            REQUIRE(a.valid);
+            CHECK(angle_between(a.direction, b.direction) <= 1e-15 + omega * omega);
+        }
+    }
 }

@@ -7,9 +7,12 @@
 // - UCM: Mei and Rives, ICRA 2007 (the projection and its closed-form inverse).
 // - EUCM: Khomutenko, Garcia and Martinet, RA-L 2016 (the projection); its inverse
 //   solved here from the ellipsoid's equation, not with the paper's closed form.
+// - FOV: Devernay and Faugeras, "Straight lines have to be straight", MVA 2001, in
+//   basalt's form that goes on behind the camera; its inverse through the undistorted angle.
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -107,10 +110,39 @@ inline std::optional<Vec3> eucm_paper_ray(const Camera& camera, const Vec2& pixe
     return Vec3(static_cast<double>(X / norm), static_cast<double>(Y / norm), static_cast<double>(Z / norm));
 }
 
+// FOV (Devernay and Faugeras 2001): r_d = atan(2 tan(omega / 2) r) / omega, with basalt's
+// atan2(2 tan(omega / 2) |(x, y)|, z) for atan(2 tan(omega / 2) r), which goes on behind
+// the camera; nothing on the backward axis (or at the origin).
+inline std::optional<Vec2> fov_paper_pixel(const Camera& camera, const Vec3& point) {
+    const Long omega = camera.lens.coefficients.at(0), a = 2 * std::tan(omega / 2);
+    const Long x = point.x(), y = point.y(), z = point.z();
+    const Long rho = std::hypot(x, y);
+    if (rho == 0) {
+        if (!(z > 0)) return std::nullopt;
+        return pixel_of(camera, 0, 0, 1);
+    }
+    const Long distorted = std::atan2(a * rho, z) / omega;
+    return pixel_of(camera, x * distorted, y * distorted, rho);
+}
+
+// The inverse, by the undistorted angle: tan(theta) = tan(omega r_d) / (2 tan(omega / 2));
+// nothing where omega r_d reaches pi.
+inline std::optional<Vec3> fov_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const Long omega = camera.lens.coefficients.at(0), a = 2 * std::tan(omega / 2);
+    const Intrinsics& k = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - k.cx) / k.fx, my = (Long(pixel.y()) - k.cy) / k.fy;
+    const Long distorted = std::hypot(mx, my), phi = omega * distorted;
+    if (!(phi < std::numbers::pi_v<Long>)) return std::nullopt;
+    if (distorted == 0) return Vec3(0, 0, 1);
+    const Long theta = std::atan2(std::sin(phi), a * std::cos(phi));
+    return Vec3(static_cast<double>(std::sin(theta) * mx / distorted), static_cast<double>(std::sin(theta) * my / distorted),
+                static_cast<double>(std::cos(theta)));
+}
+
 // The papers' formulas for any model of the family; nullopt for a model outside it
 // (the outer optional), nothing for a point or pixel outside the domain (the inner).
 inline bool has_paper_formulas(LensType type) {
-    return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm;
+    return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov;
 }
 
 inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
@@ -118,7 +150,8 @@ inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) 
         case LensType::DoubleSphere: return double_sphere_paper_pixel(camera, point);
         case LensType::Ucm: return ucm_paper_pixel(camera, point);
         case LensType::Eucm: return eucm_paper_pixel(camera, point);
-        default: throw std::logic_error("paper_pixel: not a model of the unified family");
+        case LensType::Fov: return fov_paper_pixel(camera, point);
+        default: throw std::logic_error("paper_pixel: not a model with a paper's formulas here");
     }
 }
 
@@ -127,7 +160,8 @@ inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
         case LensType::DoubleSphere: return double_sphere_paper_ray(camera, pixel);
         case LensType::Ucm: return ucm_paper_ray(camera, pixel);
         case LensType::Eucm: return eucm_paper_ray(camera, pixel);
-        default: throw std::logic_error("paper_ray: not a model of the unified family");
+        case LensType::Fov: return fov_paper_ray(camera, pixel);
+        default: throw std::logic_error("paper_ray: not a model with a paper's formulas here");
     }
 }
 

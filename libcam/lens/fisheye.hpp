@@ -13,7 +13,8 @@
 // m = D(theta^2) u with D(s) = 1 + k1 s + k2 s^2 + k3 s^3 + k4 s^4.
 //
 // Valid domain: theta < valid_radius() = min(pi, the first theta where theta_d stops
-// increasing). On and near the axis, theta / |(X, Y)| and its derivative are evaluated
+// increasing), less the points so close to the backward axis that X^2 + Y^2 is no longer
+// a normal number (flagged). On and near the axis, theta / |(X, Y)| and its derivative are evaluated
 // by their series in t = |(X, Y)| / Z: no 0/0, no cancellation.
 
 #include <Eigen/Core>
@@ -102,6 +103,10 @@ struct FisheyeLens {
             g = (Scalar(1) - t2 * (Scalar(1) / Scalar(3) - t2 * (Scalar(1) / Scalar(5) - t2 / Scalar(7)))) * inv_z;
             h = (Scalar(-2) / Scalar(3) + t2 * (Scalar(4) / Scalar(5) - t2 * Scalar(6) / Scalar(7))) * inv_z * inv_z * inv_z;
         } else {
+            // Near the backward axis, where rho^2 is no longer a normal number (within
+            // ~1e-154 rad of it in double, 1e-19 rad in float, for |p| ~ 1), rho would carry
+            // few digits: the point is flagged, as STEREOGRAPHIC flags it.
+            if (!(rho2 >= smallest_normal<Scalar>())) return false;
             const Scalar rho = sqrt(rho2), theta = atan2(rho, z);
             g = theta / rho;
             h = (z * rho / (rho2 + z * z) - theta) / (rho2 * rho);

@@ -55,6 +55,7 @@ struct Lane {
     friend Lane abs(Lane a) { return std::abs(a.value); }
     friend Lane sin(Lane a) { return std::sin(a.value); }
     friend Lane cos(Lane a) { return std::cos(a.value); }
+    friend Lane tan(Lane a) { return std::tan(a.value); }
     friend Lane atan(Lane a) { return std::atan(a.value); }
     friend Lane atan2(Lane y, Lane x) { return std::atan2(y.value, x.value); }
     friend bool isfinite(Lane a) { return std::isfinite(a.value); }

@@ -32,7 +32,8 @@
     _(DoubleSphere, DoubleSphereLens)   \
     _(Ucm, UcmLens)                     \
     _(Eucm, EucmLens)                   \
-    _(Mei, MeiLens)
+    _(Mei, MeiLens)                     \
+    _(Fov, FovLens)
 
 namespace libcam {
 
@@ -71,6 +72,7 @@ enum class LensFamily {
     DoubleSphere,
     Unified,  // UCM < MEI (UCM for xi <= 1 is DOUBLE_SPHERE with alpha = 0; not nested, as xi > 1 is not)
     Eucm,
+    Fov,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -170,6 +172,11 @@ inline constexpr LensInfo kLensTable[] = {
      .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::Omnidir, .mrcal = "",
      .colmap = "", .kalibr = "omni-radtan", .basalt = "", .family = LensFamily::Unified, .family_rank = 1,
      .fit = FitCandidate::No},
+    // COLMAP's and Kalibr's take points in front of the camera only; basalt's and this
+    // one go on behind it (the same map where both are defined).
+    {.type = LensType::Fov, .name = "FOV", .coefficients = {"omega"}, .num_coefficients = 1, .sees_behind_camera = true,
+     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "FOV",
+     .kalibr = "pinhole-fov", .basalt = "fov", .family = LensFamily::Fov, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

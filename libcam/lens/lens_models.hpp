@@ -41,6 +41,7 @@
 #include "libcam/lens/double_sphere.hpp"
 #include "libcam/lens/eucm.hpp"
 #include "libcam/lens/fisheye.hpp"
+#include "libcam/lens/fov.hpp"
 #include "libcam/lens/lane.hpp"
 #include "libcam/lens/latlon.hpp"
 #include "libcam/lens/lens_model.hpp"

@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "libcam/error.hpp"
+#include "libcam/lens/lane.hpp"
 
 namespace libcam {
 
@@ -67,6 +68,20 @@ template <class Scalar, int N, class JacobianPtr>
 void ratio_coefficient_jacobian(const Eigen::Matrix<Scalar, 2, 1>& m, const Scalar& inverse,
                                 const Eigen::Matrix<Scalar, N, 1>& d_denominator, JacobianPtr d_m_d_coefficients) {
     for (int k = 0; k < N; ++k) d_m_d_coefficients->col(k) = -(d_denominator(k) * inverse) * m;
+}
+
+// The smallest normal number of float, double, long double or Lane<T> (T's); 0 for
+// another type (the tests' 113-bit reference, ceres::Jet), where a check against it then
+// only excludes 0.
+template <class Scalar>
+Scalar smallest_normal() {
+    if constexpr (std::is_floating_point_v<Scalar>) {
+        return std::numeric_limits<Scalar>::min();
+    } else if constexpr (is_lane_v<Scalar>) {
+        return Scalar(std::numeric_limits<decltype(lane_value(Scalar()))>::min());
+    } else {
+        return Scalar(0);
+    }
 }
 
 // True when a Jacobian output pointer of type Ptr was passed (not the nullptr default).
