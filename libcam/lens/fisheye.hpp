@@ -14,8 +14,8 @@
 //
 // Valid domain: theta < valid_radius() = min(pi, the first theta where theta_d stops
 // increasing), less the points so close to the backward axis that X^2 + Y^2 is no longer
-// a normal number (flagged). On and near the axis, theta / |(X, Y)| and its derivative are evaluated
-// by their series in t = |(X, Y)| / Z: no 0/0, no cancellation.
+// a normal number (flagged). On and near the axis, theta / |(X, Y)| and its derivative
+// are evaluated by their series in t = |(X, Y)| / Z: no 0/0, no cancellation.
 
 #include <Eigen/Core>
 #include <algorithm>
