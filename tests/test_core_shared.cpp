@@ -103,7 +103,7 @@ TEST_CASE("tile_centres: the centres of equal tiles covering the image to its ed
     CHECK(tile_centres({640, 480}, 640, 480).back() == Vec2(639, 479));
 }
 
-TEST_CASE("format_number round-trips; format_short is printf's %.3g, or as many digits as asked") {
+TEST_CASE("format_number round-trips, and format_short is printf's %.3g, or as many digits as asked") {
     for (const double value : {0.1, 1.0 / 3.0, 1e-300, 6016.0, -2.5e17, 5e-324}) {
         CHECK(std::strtod(format_number(value).c_str(), nullptr) == value);  // (std::stod refuses subnormals)
     }
@@ -120,7 +120,7 @@ TEST_CASE("format_number round-trips; format_short is printf's %.3g, or as many 
     CHECK(format_short(1.0 / 3.0, 40) == format_short(1.0 / 3.0, 17));  // no digits past double's
 }
 
-TEST_CASE("PixelOrigin: the row flip is its own inverse; names read back") {
+TEST_CASE("PixelOrigin: the row flip is its own inverse, and names read back") {
     const ImageSize size{3, 5};
     CHECK(flip_row(0.0, size) == 4.0);
     CHECK(opencv_pixel({1, 1}, PixelOrigin::BottomLeft, size) == Vec2(1, 3));

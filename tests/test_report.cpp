@@ -51,7 +51,7 @@ void check_png_round_trip(const Image& image) {
 
 }  // namespace
 
-TEST_CASE("verify_heatmap: an Image of the map, title, scale and legend; PNG bytes of the same pixels") {
+TEST_CASE("verify_heatmap: an Image of the map, title, scale and legend, and PNG bytes of the same pixels") {
     // d = r (1 - 0.5 r^2) folds inside the image: part of it has no ray (hatched).
     const Camera camera = lens_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1600, 1200});
     VerifyOptions options;
@@ -132,7 +132,7 @@ TEST_CASE("fit_heatmap: one picture pixel per tile, the scale bar beside it, a c
     check_png_round_trip(image);
 }
 
-TEST_CASE("plot_speed_accuracy: a panel per camera; rows without a measured error are not drawn") {
+TEST_CASE("plot_speed_accuracy: a panel per camera, and rows without a measured error are not drawn") {
     BenchRow row;
     row.camera = "test";
     row.op = "unproject";

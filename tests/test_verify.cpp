@@ -148,7 +148,7 @@ TEST_CASE("The grid runs over the whole image, corners included, and every check
     CHECK_THROWS_AS(verify_camera(camera, options), InvalidArgument);
 }
 
-TEST_CASE("Informational rows never fail; a measured row fails past its tolerance") {
+TEST_CASE("Informational rows never fail, and a measured row fails past its tolerance") {
     VerifyCheck check;
     check.stats.count = 1;
     check.stats.max_px = 384.0;
