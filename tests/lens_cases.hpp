@@ -186,20 +186,17 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
         return pixels;
     }
     if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
-    if (lens_info(camera.lens.type).opencv == OpenCvFunction::Omnidir) {
-        // cv::omnidir evaluates the formula on every point: those past the valid angle get
-        // infinity.
-        std::vector<Vec2> pixels = opencv_project_points(camera, rays);
-        const double limit = std::cos(valid_angle_of(camera.lens));
-        for (std::size_t i = 0; i < rays.size(); ++i) {
-            if (!(rays[i].z() > limit * rays[i].norm())) pixels[i] = Vec2::Constant(std::numeric_limits<double>::infinity());
-        }
-        return pixels;
-    }
+    // cv::omnidir evaluates its formula on every point: those past the valid angle get
+    // infinity. cv::projectPoints and cv::fisheye take points in front of the camera.
+    const bool omnidir = lens_info(camera.lens.type).opencv == OpenCvFunction::Omnidir;
+    const double limit = std::cos(valid_angle_of(camera.lens));
+    const PreparedCamera prepared(camera);
     std::vector<Vec2> pixels = opencv_project_points(camera, rays);
     for (std::size_t i = 0; i < rays.size(); ++i) {
-        if (rays[i].z() <= 0) {
-            const Projection p = PreparedCamera(camera).project_camera_point(rays[i]);
+        if (omnidir) {
+            if (!(rays[i].z() > limit * rays[i].norm())) pixels[i] = Vec2::Constant(std::numeric_limits<double>::infinity());
+        } else if (rays[i].z() <= 0) {
+            const Projection p = prepared.project_camera_point(rays[i]);
             pixels[i] = p.valid ? p.pixel : Vec2::Constant(std::numeric_limits<double>::infinity());
         }
     }

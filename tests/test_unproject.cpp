@@ -8,7 +8,6 @@
 #include <cmath>
 #include <numbers>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/ccalib/omnidir.hpp>
 
 #include "lens_cases.hpp"
 #include "libcam/camera/projector.hpp"
@@ -68,18 +67,11 @@ std::vector<Vec3> independent_unproject(const Camera& camera, const std::vector<
     if (in_mrcal(camera.lens.type)) return mrcal_unproject_pixels(camera, pixels);
     std::vector<cv::Point2d> in, out;
     for (const Vec2& p : pixels) in.emplace_back(p.x(), p.y());
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), dist = opencv_distortion(camera.lens);
+    // Many iterations, or for cv::omnidir its fixed 20 (it has no rule to set).
+    const OpenCvCamera opencv(camera);
     const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 200, 1e-15);
-    if (lens_info(camera.lens.type).opencv == OpenCvFunction::Omnidir) {
-        // Its fixed 20 iterations (no rule to set); (x, y) of the ray (x, y, 1), as
-        // cv::undistortPoints gives.
-        cv::omnidir::undistortPoints(in, out, K, dist, cv::Mat(1, 1, CV_64F, cv::Scalar(opencv_xi(camera.lens))),
-                                     cv::noArray());
-    } else if (camera.lens.type == LensType::Fisheye) {
-        cv::fisheye::undistortPoints(in, out, K, dist, cv::noArray(), cv::noArray(), criteria);
-    } else {
-        cv::undistortPoints(in, out, K, dist, cv::noArray(), cv::noArray(), criteria);
-    }
+    opencv_undistort(opencv, in, out,
+                     opencv.function == OpenCvFunction::Omnidir ? std::nullopt : std::optional(criteria));
     std::vector<Vec3> rays;
     for (const cv::Point2d& q : out) rays.emplace_back(q.x, q.y, 1.0);
     return rays;

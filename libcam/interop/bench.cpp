@@ -8,7 +8,6 @@
 #include <limits>
 #include <optional>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/ccalib/omnidir.hpp>
 #include <opencv2/core/utility.hpp>
 
 #include "libcam/camera/projector.hpp"
@@ -252,25 +251,15 @@ cv::Mat as_cv_points(const std::vector<Vec2>& pixels) {
 void add_opencv_unprojection(std::vector<Contender>& out, const Setup& setup, const cv::Mat& cv_pixels, Workspace& work) {
     const Camera& camera = setup.bench_case.camera;
     if (!opencv_has(camera.lens)) return;
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
-    const OpenCvFunction function = lens_info(camera.lens.type).opencv;
+    const OpenCvCamera opencv(camera);
     const cv::TermCriteria many(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-14);
+    const bool omnidir = opencv.function == OpenCvFunction::Omnidir;
     for (const bool iterate : {false, true}) {
-        if (function == OpenCvFunction::Omnidir && iterate) continue;
-        const char* rule = function == OpenCvFunction::Omnidir ? "20it" : iterate ? "100it-eps1e-14" : "default";
+        if (omnidir && iterate) continue;  // one fixed rule
+        const char* rule = omnidir ? "20it" : iterate ? "100it-eps1e-14" : "default";
         Contender c{row(setup, "unproject", "opencv", rule, "double"), setup.grid.size(), nullptr, nullptr};
-        c.run = [&, K, D, function, iterate, many] {
-            if (function == OpenCvFunction::Omnidir) {
-                const cv::Mat xi(1, 1, CV_64F, cv::Scalar(opencv_xi(camera.lens)));
-                cv::omnidir::undistortPoints(cv_pixels, work.cv_unprojected, K, D, xi, cv::noArray());
-            } else if (function == OpenCvFunction::Fisheye) {
-                if (iterate) cv::fisheye::undistortPoints(cv_pixels, work.cv_unprojected, K, D, cv::noArray(), cv::noArray(), many);
-                else cv::fisheye::undistortPoints(cv_pixels, work.cv_unprojected, K, D);
-            } else {
-                if (iterate) cv::undistortPoints(cv_pixels, work.cv_unprojected, K, D, cv::noArray(), cv::noArray(), many);
-                else cv::undistortPoints(cv_pixels, work.cv_unprojected, K, D);
-            }
-        };
+        const std::optional<cv::TermCriteria> criteria = iterate ? std::optional(many) : std::nullopt;
+        c.run = [&, opencv, criteria] { opencv_undistort(opencv, cv_pixels, work.cv_unprojected, criteria); };
         c.outcome = [&] {
             std::vector<Vec3> directions;
             for (int i = 0; i < work.cv_unprojected.rows; ++i) {
@@ -334,22 +323,12 @@ void add_camera_projection(std::vector<Contender>& out, const Setup& setup, cons
 void add_opencv_projection(std::vector<Contender>& out, const Setup& setup, const cv::Mat& cv_points, Workspace& work) {
     const Camera& camera = setup.bench_case.camera;
     if (!opencv_has(camera.lens)) return;
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics), D = opencv_distortion(camera.lens);
-    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    const OpenCvFunction function = lens_info(camera.lens.type).opencv;
-    const char* name = function == OpenCvFunction::Omnidir   ? "omnidir::projectPoints"
-                       : function == OpenCvFunction::Fisheye ? "fisheye::projectPoints"
-                                                             : "projectPoints";
+    const OpenCvCamera opencv(camera);
+    const char* name = opencv.function == OpenCvFunction::Omnidir   ? "omnidir::projectPoints"
+                       : opencv.function == OpenCvFunction::Fisheye ? "fisheye::projectPoints"
+                                                                    : "projectPoints";
     Contender c{row(setup, "project", "opencv", name, "double"), setup.rays.points.size(), nullptr, nullptr};
-    c.run = [&, K, D, zero, function] {
-        if (function == OpenCvFunction::Omnidir) {
-            cv::omnidir::projectPoints(cv_points, work.cv_projected, zero, zero, K, opencv_xi(camera.lens), D);
-        } else if (function == OpenCvFunction::Fisheye) {
-            cv::fisheye::projectPoints(cv_points, work.cv_projected, zero, zero, K, D);
-        } else {
-            cv::projectPoints(cv_points, zero, zero, K, D, work.cv_projected);
-        }
-    };
+    c.run = [&, opencv] { opencv_project(opencv, cv_points, work.cv_projected); };
     c.outcome = [&] {
         std::vector<Vec2> pixels;
         for (int i = 0; i < work.cv_projected.rows; ++i) {

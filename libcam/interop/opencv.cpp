@@ -14,12 +14,6 @@ cv::Mat opencv_camera_matrix(const Intrinsics& k) {
     return (cv::Mat_<double>(3, 3) << k.fx, k.skew, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0);
 }
 
-namespace {
-
-bool uses_opencv_fisheye(const Lens& lens) { return lens_info(lens.type).opencv == OpenCvFunction::Fisheye; }
-
-}  // namespace
-
 cv::Mat opencv_distortion(const Lens& lens) {
     const OpenCvFunction function = lens_info(lens.type).opencv;
     if (function == OpenCvFunction::None) {
@@ -45,22 +39,56 @@ double opencv_xi(const Lens& lens) {
 
 cv::Mat opencv_vector(const Vec3& v) { return (cv::Mat_<double>(3, 1) << v.x(), v.y(), v.z()); }
 
+OpenCvCamera::OpenCvCamera(const Camera& camera)
+    : function(lens_info(camera.lens.type).opencv),
+      K(opencv_camera_matrix(camera.intrinsics)),
+      dist(opencv_distortion(camera.lens)),
+      xi(function == OpenCvFunction::Omnidir ? opencv_xi(camera.lens) : 0.0) {}
+
+void opencv_project(const OpenCvCamera& camera, cv::InputArray points, cv::OutputArray pixels) {
+    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
+    switch (camera.function) {
+        case OpenCvFunction::Fisheye: cv::fisheye::projectPoints(points, pixels, zero, zero, camera.K, camera.dist); return;
+        case OpenCvFunction::Omnidir:
+            cv::omnidir::projectPoints(points, pixels, zero, zero, camera.K, camera.xi, camera.dist);
+            return;
+        case OpenCvFunction::ProjectPoints: cv::projectPoints(points, zero, zero, camera.K, camera.dist, pixels); return;
+        case OpenCvFunction::None: break;
+    }
+    throw NotRepresentable("lens: OpenCV has no model for this camera");
+}
+
+void opencv_undistort(const OpenCvCamera& camera, cv::InputArray pixels, cv::OutputArray normalized,
+                      const std::optional<cv::TermCriteria>& criteria) {
+    switch (camera.function) {
+        case OpenCvFunction::Fisheye:
+            if (criteria) cv::fisheye::undistortPoints(pixels, normalized, camera.K, camera.dist, cv::noArray(), cv::noArray(), *criteria);
+            else cv::fisheye::undistortPoints(pixels, normalized, camera.K, camera.dist);
+            return;
+        case OpenCvFunction::Omnidir: {
+            if (criteria) throw InvalidArgument("criteria: cv::omnidir::undistortPoints has no stopping rule to set");
+            // OpenCV 4.6's gives (x/z, y/z) of the ray (newer sources give the point of the
+            // unified model's plane).
+            const cv::Mat xi(1, 1, CV_64F, cv::Scalar(camera.xi));
+            cv::omnidir::undistortPoints(pixels, normalized, camera.K, camera.dist, xi, cv::noArray());
+            return;
+        }
+        case OpenCvFunction::ProjectPoints:
+            if (criteria) cv::undistortPoints(pixels, normalized, camera.K, camera.dist, cv::noArray(), cv::noArray(), *criteria);
+            else cv::undistortPoints(pixels, normalized, camera.K, camera.dist);
+            return;
+        case OpenCvFunction::None: break;
+    }
+    throw NotRepresentable("lens: OpenCV has no model for this camera");
+}
+
 std::vector<Vec2> opencv_project_points(const Camera& camera, const std::vector<Vec3>& camera_points) {
     camera.validate();
     if (camera_points.empty()) return {};
     std::vector<cv::Point3d> object;
     for (const Vec3& p : camera_points) object.emplace_back(p.x(), p.y(), p.z());
     std::vector<cv::Point2d> image;
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
-    const cv::Mat dist = opencv_distortion(camera.lens);
-    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
-    if (uses_opencv_fisheye(camera.lens)) {
-        cv::fisheye::projectPoints(object, image, zero, zero, K, dist);
-    } else if (lens_info(camera.lens.type).opencv == OpenCvFunction::Omnidir) {
-        cv::omnidir::projectPoints(object, image, zero, zero, K, opencv_xi(camera.lens), dist);
-    } else {
-        cv::projectPoints(object, zero, zero, K, dist, image);
-    }
+    opencv_project(OpenCvCamera(camera), object, image);
     std::vector<Vec2> pixels;
     for (const cv::Point2d& q : image) pixels.emplace_back(q.x, q.y);
     return pixels;

@@ -5,7 +5,6 @@
 #include <limits>
 #include <thread>
 #include <opencv2/calib3d.hpp>
-#include <opencv2/ccalib/omnidir.hpp>
 #include <utility>
 
 #include "libcam/camera/parallel.hpp"
@@ -171,18 +170,7 @@ std::vector<Vec3> opencv_undistort_part(const Camera& camera, const std::vector<
     if (pixels.empty()) return {};
     std::vector<cv::Point2d> in, out;
     for (const Vec2& p : pixels) in.emplace_back(p.x(), p.y());
-    const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
-    const cv::Mat dist = opencv_distortion(camera.lens);
-    if (is_omnidir(camera)) {
-        const cv::Mat xi(1, 1, CV_64F, cv::Scalar(opencv_xi(camera.lens)));
-        cv::omnidir::undistortPoints(in, out, K, dist, xi, cv::noArray());
-    } else if (is_fisheye(camera)) {
-        if (criteria) cv::fisheye::undistortPoints(in, out, K, dist, cv::noArray(), cv::noArray(), *criteria);
-        else cv::fisheye::undistortPoints(in, out, K, dist);
-    } else {
-        if (criteria) cv::undistortPoints(in, out, K, dist, cv::noArray(), cv::noArray(), *criteria);
-        else cv::undistortPoints(in, out, K, dist);
-    }
+    opencv_undistort(OpenCvCamera(camera), in, out, criteria);
     std::vector<Vec3> rays;
     for (const cv::Point2d& q : out) rays.emplace_back(q.x, q.y, 1.0);
     return rays;
