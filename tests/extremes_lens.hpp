@@ -21,6 +21,13 @@
 
 namespace libcam::test {
 
+// The models built on FISHEYE's equidistant point u = theta (X, Y) / |(X, Y)|: theta is
+// their undistorted radius, and they share its handling of both axes.
+inline bool on_equidistant_point(LensType type) {
+    return type == LensType::Fisheye || type == LensType::ThinPrismFisheye || type == LensType::RadTanThinPrismFisheye;
+}
+
+
 inline constexpr double kEpsDouble = std::numeric_limits<double>::epsilon();
 inline constexpr double kEpsFloat = std::numeric_limits<float>::epsilon();
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
@@ -97,7 +104,7 @@ inline Quad radial_slope(const Lens& lens, const Vec3Q& ray) {
             // in UCM's plane for MEI, rho / z for OpenCV's models.
             const Quad rho = hypot(ray.x(), ray.y());
             Quad r = rho / ray.z();
-            if (Model::type == LensType::Fisheye) r = atan2(rho, ray.z());
+            if (on_equidistant_point(Model::type)) r = atan2(rho, ray.z());
             if (Model::type == LensType::Mei) r = rho / (ray.z() + parameters.coefficients(0) * ray.norm());
             Quad slope;
             Model::radial_distortion(parameters, r, slope);
@@ -295,13 +302,14 @@ enum class Expect { Valid, Flagged, Either };
 template <class Scalar>
 std::optional<Expect> backward_axis_band(const Lens& lens, const Vec3Q& point) {
     const LensType type = lens.type;
-    if (type != LensType::Stereographic && type != LensType::Fisheye && type != LensType::Fov) return std::nullopt;
+    const bool behind_only = type == LensType::Stereographic || type == LensType::Equisolid;
+    if (!behind_only && !on_equidistant_point(type) && type != LensType::Fov) return std::nullopt;
     Quad rho2 = point.x() * point.x() + point.y() * point.y();
     if (type == LensType::Fov) {
         if (lens.coefficients.at(0) == 0) return std::nullopt;  // the pinhole
         rho2 *= 4 * tan(Quad(lens.coefficients[0]) / 2) * tan(Quad(lens.coefficients[0]) / 2);
     }
-    if (type == LensType::Stereographic ? !(point.z() < 0) : (point.z() > 0 && rho2 < Quad(1e-6) * point.z() * point.z())) {
+    if (behind_only ? !(point.z() < 0) : (point.z() > 0 && rho2 < Quad(1e-6) * point.z() * point.z())) {
         return std::nullopt;
     }
     using Limits = std::numeric_limits<Scalar>;
@@ -318,7 +326,7 @@ std::optional<Expect> backward_axis_band(const Lens& lens, const Vec3Q& point) {
 // (|(x/z, y/z)| for OpenCV's models, the angle theta for FISHEYE); 0 for the others.
 inline Quad undistorted_radius(LensType type, const Vec3Q& point) {
     const Quad rho = hypot(point.x(), point.y());
-    if (type == LensType::Fisheye) return atan2(rho, point.z());
+    if (on_equidistant_point(type)) return atan2(rho, point.z());
     const bool opencv = type != LensType::Pinhole && lens_info(type).num_coefficients > 0;
     return opencv && point.z() > 0 ? rho / point.z() : Quad(0);
 }

@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "colmap_reference.hpp"
 #include "libcam/camera/camera.hpp"
+#include "libcam/convert/colmap_models.hpp"
 #include "libcam/camera/example_cameras.hpp"
 #include "libcam/geometry/pixel_grid.hpp"
 #include "libcam/interop/mrcal.hpp"
@@ -116,6 +118,30 @@ inline std::vector<LensCase> lens_cases() {
         {"FOV basalt", real_camera(LensType::Fov, {0.9259487501905697}, {752, 480}, {379.045, 379.008, 505.512, 509.969})},
         {"FOV mild", lens_camera(LensType::Fov, {0.3}, {1600, 1200}, 900, 910)},
         {"FOV wide", lens_camera(LensType::Fov, {2.5}, {1600, 1200}, 250, 250)},
+        // COLMAP's model tests' parameters (models_test.cc: fx fy cx cy 651.123 655.123
+        // 386.123 511.123 in COLMAP's pixels, whose centres are at +0.5, on the 800x800
+        // grid those tests sweep); and the FIORD fisheye's KB4 coefficients (COLMAP
+        // OPENCV_FISHEYE, 3264x3264) with small decentering and prism terms made up.
+        {"THIN_PRISM_FISHEYE colmap", real_camera(LensType::ThinPrismFisheye,
+                                                  {-0.471, 0.223, -0.001, 0.001, 0.001, 0.02, -0.02, 0.001},
+                                                  {800, 800}, {651.123, 655.123, 385.623, 510.623})},
+        {"THIN_PRISM_FISHEYE fiord", real_camera(LensType::ThinPrismFisheye,
+                                                 {0.024943212941115993, 0.0049984956352712093, 2e-4, -1e-4,
+                                                  -0.017541641442409061, 0.0045520708951808514, 3e-4, -2e-4},
+                                                 {3264, 3264}, {991, 991, 1611.5, 1616.5})},
+        {"RAD_TAN_THIN_PRISM_FISHEYE colmap",
+         real_camera(LensType::RadTanThinPrismFisheye,
+                     {-0.0232, 0.0924, -0.0591, 0.003, 0.0048, -0.0009, 0.0002, 0.0005, -0.0009, -0.0001, 0.00007, -0.00017},
+                     {800, 800}, {651.123, 655.123, 385.623, 510.623})},
+        {"RAD_TAN_THIN_PRISM_FISHEYE fiord",
+         real_camera(LensType::RadTanThinPrismFisheye,
+                     {0.024943212941115993, 0.0049984956352712093, -0.017541641442409061, 0.0045520708951808514, 0, 0,
+                      -1e-4, 2e-4, 3e-4, -1e-5, -2e-4, 1e-5},
+                     {3264, 3264}, {991, 991, 1611.5, 1616.5})},
+        // Blender's default FISHEYE_EQUISOLID camera (10.5 mm on a 36 mm sensor across
+        // 1920 px: f = 560 px), and a short one that sees far behind itself.
+        {"EQUISOLID blender", real_camera(LensType::Equisolid, {}, {1920, 1080}, {560, 560, 959.5, 539.5})},
+        {"EQUISOLID wide", lens_camera(LensType::Equisolid, {}, {1600, 1200}, 250, 250)},
     };
     return cases;
 }
@@ -168,6 +194,11 @@ inline double domain_edge_of(const Lens& lens) {
 // table's mrcal names against libmrcal's own list, and its OpenCV rows against OpenCV).
 inline bool in_opencv(LensType type) { return lens_info(type).opencv != OpenCvFunction::None; }
 inline bool in_mrcal(LensType type) { return !lens_info(type).mrcal.empty(); }
+// A model only COLMAP has (THIN_PRISM_FISHEYE, RAD_TAN_THIN_PRISM_FISHEYE): its reference
+// is COLMAP's formula (colmap_reference.hpp), in front of the camera.
+inline bool colmap_only(LensType type) {
+    return !has_paper_formulas(type) && !in_opencv(type) && !in_mrcal(type) && !lens_info(type).colmap.empty();
+}
 
 // The pixels of camera-frame rays by the reference library that has the model: OpenCV
 // for its models (z > 0; cv::omnidir's UCM and MEI inside the valid angle), mrcal for
@@ -176,8 +207,26 @@ inline bool in_mrcal(LensType type) { return !lens_info(type).mrcal.empty(); }
 // theta_d's formula in test_lens_models).
 // DOUBLE_SPHERE, UCM and EUCM, which neither library has (cv::omnidir's UCM is checked
 // in test_unified.cpp), go through their papers' formulas in long double
-// (unified_reference.hpp); their points outside the domain get infinity.
+// (unified_reference.hpp); their points outside the domain get infinity. The models only
+// COLMAP has go through COLMAP's formulas (z > 0) and, as FISHEYE, libcam's projection
+// behind the camera.
 inline std::vector<Vec2> reference_project(const Camera& camera, const std::vector<Vec3>& rays) {
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    if (colmap_only(camera.lens.type)) {
+        const ColmapCamera colmap = colmap_from_camera(camera);
+        const PreparedCamera prepared(camera);
+        std::vector<Vec2> pixels;
+        for (const Vec3& ray : rays) {
+            if (ray.z() > 0) {
+                const std::optional<Eigen::Vector2d> pixel = colmap_img_from_cam(colmap.model, colmap.params, ray);
+                pixels.push_back(pixel ? Vec2(*pixel - Vec2::Constant(kColmapPixelShift)) : Vec2::Constant(kInfinity));
+            } else {
+                const Projection p = prepared.project_camera_point(ray);
+                pixels.push_back(p.valid ? p.pixel : Vec2::Constant(kInfinity));
+            }
+        }
+        return pixels;
+    }
     if (has_paper_formulas(camera.lens.type)) {
         std::vector<Vec2> pixels;
         for (const Vec3& ray : rays) {

@@ -239,13 +239,19 @@ std::vector<Row> fisheye_wide_rows() {
 }
 
 std::vector<Row> camera_plane_rows() {
-    ProjectionWorst perspective, behind, distorted_unified;
+    ProjectionWorst perspective, behind, distorted_unified, distorted_fisheye;
     std::size_t perspective_behind_valid = 0;
     for (const LensCase& c : lens_cases()) {
         const std::vector<Vec3> points = points_towards_the_camera_plane();
         const bool sees_behind = lens_info(c.camera.lens.type).sees_behind_camera;
+        const LensType type = c.camera.lens.type;
+        const bool two_step_fisheye = type == LensType::ThinPrismFisheye || type == LensType::RadTanThinPrismFisheye;
         project_both(c.camera.lens, points,
-                     c.camera.lens.type == LensType::Mei ? distorted_unified : sees_behind ? behind : perspective, c.name);
+                     type == LensType::Mei    ? distorted_unified
+                     : two_step_fisheye       ? distorted_fisheye
+                     : sees_behind            ? behind
+                                              : perspective,
+                     c.name);
         if (lens_info(c.camera.lens.type).sees_behind_camera) continue;
         const PreparedCamera camera(c.camera);
         for (std::size_t i = 0; i < points.size(); ++i) {
@@ -271,6 +277,13 @@ std::vector<Row> camera_plane_rows() {
     const std::vector<Row> unified = projection_rows("points at z = +-1e-320 to +-1, MEI", distorted_unified, 16, 16,
                                                      "UCM's q, then OPENCV4's distortion of q");
     rows.insert(rows.end(), unified.begin(), unified.end());
+    // COLMAP's thin-prism fisheyes add decentering and prism terms to the radial part
+    // (RAD_TAN_THIN_PRISM_FISHEYE after it): more terms, each rounding, and at 90 degrees
+    // COLMAP's test lens (k1 = -0.471) has terms of 1.2 and 1.4 that cancel to 1.
+    const std::vector<Row> thin_prism =
+        projection_rows("points at z = +-1e-320 to +-1, THIN_PRISM_FISHEYE, RAD_TAN_THIN_PRISM_FISHEYE",
+                        distorted_fisheye, 16, 16, "FISHEYE's theta, then the radial, decentering and prism terms");
+    rows.insert(rows.end(), thin_prism.begin(), thin_prism.end());
     return rows;
 }
 

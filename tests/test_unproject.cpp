@@ -91,6 +91,9 @@ TEST_CASE("The real wide lens (6016x4016, OPENCV8): every pixel of a 601x401 gri
 TEST_CASE("Unprojection agrees with mrcal_unproject and cv::undistortPoints wherever they converge inside the domain") {
     std::vector<LensCase> cases = lens_cases();
     for (const LensCase& c : cases) {
+        // COLMAP's models have no independent inverse here; test_unprojector reprojects
+        // their rays through COLMAP's formula instead.
+        if (colmap_only(c.camera.lens.type)) continue;
         INFO(c.name);
         const GridResult grid = unproject_grid(c.camera, 121, 91);
         CHECK(grid.worst <= kPixelTolerance);

@@ -139,10 +139,34 @@ inline std::optional<Vec3> fov_paper_ray(const Camera& camera, const Vec2& pixel
                 static_cast<double>(std::cos(theta)));
 }
 
+// EQUISOLID: r = 2 sin(theta / 2), theta = atan2(rho, z), in the angle itself.
+inline std::optional<Vec2> equisolid_paper_pixel(const Camera& camera, const Vec3& point) {
+    const Long x = point.x(), y = point.y(), z = point.z(), rho = std::hypot(x, y);
+    if (rho == 0) {
+        if (!(z > 0)) return std::nullopt;
+        return pixel_of(camera, 0, 0, 1);
+    }
+    const Long distorted = 2 * std::sin(std::atan2(rho, z) / 2);
+    return pixel_of(camera, x * distorted, y * distorted, rho);
+}
+
+// theta = 2 asin(r / 2); nothing outside the image disc r < 2.
+inline std::optional<Vec3> equisolid_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const Intrinsics& k = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - k.cx) / k.fx, my = (Long(pixel.y()) - k.cy) / k.fy;
+    const Long distorted = std::hypot(mx, my);
+    if (!(distorted < 2)) return std::nullopt;
+    if (distorted == 0) return Vec3(0, 0, 1);
+    const Long theta = 2 * std::asin(distorted / 2);
+    return Vec3(static_cast<double>(std::sin(theta) * mx / distorted), static_cast<double>(std::sin(theta) * my / distorted),
+                static_cast<double>(std::cos(theta)));
+}
+
 // The papers' formulas for any model of the family; nullopt for a model outside it
 // (the outer optional), nothing for a point or pixel outside the domain (the inner).
 inline bool has_paper_formulas(LensType type) {
-    return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov;
+    return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov ||
+           type == LensType::Equisolid;
 }
 
 inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
@@ -151,6 +175,7 @@ inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) 
         case LensType::Ucm: return ucm_paper_pixel(camera, point);
         case LensType::Eucm: return eucm_paper_pixel(camera, point);
         case LensType::Fov: return fov_paper_pixel(camera, point);
+        case LensType::Equisolid: return equisolid_paper_pixel(camera, point);
         default: throw std::logic_error("paper_pixel: not a model with a paper's formulas here");
     }
 }
@@ -161,6 +186,7 @@ inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
         case LensType::Ucm: return ucm_paper_ray(camera, pixel);
         case LensType::Eucm: return eucm_paper_ray(camera, pixel);
         case LensType::Fov: return fov_paper_ray(camera, pixel);
+        case LensType::Equisolid: return equisolid_paper_ray(camera, pixel);
         default: throw std::logic_error("paper_ray: not a model with a paper's formulas here");
     }
 }

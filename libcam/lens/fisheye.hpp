@@ -76,7 +76,10 @@ struct FisheyeLens {
     }
 
     // The unit ray at the angle theta = |u| from the axis, towards u.
-    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) {
+    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) { return ray_from_equidistant(u); }
+
+    // The same for any model built on the equidistant point (thin_prism_fisheye.hpp, ...).
+    static Vec3T ray_from_equidistant(const Vec2T& u) {
         using std::cos;
         using std::sin;
         const Scalar theta = u.norm();

@@ -33,7 +33,10 @@
     _(Ucm, UcmLens)                     \
     _(Eucm, EucmLens)                   \
     _(Mei, MeiLens)                     \
-    _(Fov, FovLens)
+    _(Fov, FovLens)                     \
+    _(ThinPrismFisheye, ThinPrismFisheyeLens) \
+    _(RadTanThinPrismFisheye, RadTanThinPrismFisheyeLens) \
+    _(Equisolid, EquisolidLens)
 
 namespace libcam {
 
@@ -65,7 +68,7 @@ enum class OpenCvFunction {
 // camera of the lower model is exactly a camera of the higher one.
 enum class LensFamily {
     Perspective,  // PINHOLE < OPENCV4 < OPENCV5 < OPENCV8 < OPENCV12 < OPENCV14
-    Fisheye,
+    Fisheye,  // FISHEYE < RAD_TAN_THIN_PRISM_FISHEYE (k1..k4 are its k0..k3)
     Stereographic,
     Lonlat,
     Latlon,
@@ -73,6 +76,8 @@ enum class LensFamily {
     Unified,  // UCM < MEI (UCM for xi <= 1 is DOUBLE_SPHERE with alpha = 0; not nested, as xi > 1 is not)
     Eucm,
     Fov,
+    ThinPrismFisheye,  // not FISHEYE's: its coefficients interleave (k1 k2 p1 p2 k3 k4)
+    Equisolid,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -177,6 +182,22 @@ inline constexpr LensInfo kLensTable[] = {
     {.type = LensType::Fov, .name = "FOV", .coefficients = {"omega"}, .num_coefficients = 1, .sees_behind_camera = true,
      .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "FOV",
      .kalibr = "pinhole-fov", .basalt = "fov", .family = LensFamily::Fov, .family_rank = 0, .fit = FitCandidate::No},
+    {.type = LensType::ThinPrismFisheye, .name = "THIN_PRISM_FISHEYE",
+     .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "sx1", "sy1"}, .num_coefficients = 8,
+     .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "THIN_PRISM_FISHEYE", .kalibr = "", .basalt = "", .family = LensFamily::ThinPrismFisheye,
+     .family_rank = 0, .fit = FitCandidate::No},
+    // Project Aria calls it Fisheye624.
+    {.type = LensType::RadTanThinPrismFisheye, .name = "RAD_TAN_THIN_PRISM_FISHEYE",
+     .coefficients = {"k0", "k1", "k2", "k3", "k4", "k5", "p0", "p1", "s0", "s1", "s2", "s3"},
+     .num_coefficients = 12, .sees_behind_camera = true, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "RAD_TAN_THIN_PRISM_FISHEYE", .kalibr = "",
+     .basalt = "", .family = LensFamily::Fisheye, .family_rank = 1, .fit = FitCandidate::No},
+    // Blender's FISHEYE_EQUISOLID panoramic camera (convert/blender_camera.hpp).
+    {.type = LensType::Equisolid, .name = "EQUISOLID", .coefficients = {}, .num_coefficients = 0,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Equisolid, .family_rank = 0,
+     .fit = FitCandidate::No},
 };
 
 namespace detail {

@@ -39,6 +39,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/lens/double_sphere.hpp"
+#include "libcam/lens/equisolid.hpp"
 #include "libcam/lens/eucm.hpp"
 #include "libcam/lens/fisheye.hpp"
 #include "libcam/lens/fov.hpp"
@@ -49,7 +50,9 @@
 #include "libcam/lens/mei.hpp"
 #include "libcam/lens/opencv.hpp"
 #include "libcam/lens/pinhole.hpp"
+#include "libcam/lens/rad_tan_thin_prism_fisheye.hpp"
 #include "libcam/lens/stereographic.hpp"
+#include "libcam/lens/thin_prism_fisheye.hpp"
 #include "libcam/lens/ucm.hpp"
 
 namespace libcam {

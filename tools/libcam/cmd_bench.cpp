@@ -3,6 +3,7 @@
 // printed as a table, as JSON, and drawn as time against worst error
 // (libcam/report/bench_plot.hpp).
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -139,13 +140,16 @@ std::string format_table(const std::vector<CaseResult>& results, const BenchSett
             << camera.size.height << ", grid " << settings.grid_x << "x" << settings.grid_y << ", median of "
             << settings.repeat << " interleaved runs; libcam table built in " << number_text(r.result.table_build_ms_double, 3)
             << " ms (double), " << number_text(r.result.table_build_ms_float, 3) << " ms (float)\n";
+        // The model column fits the longest name (RAD_TAN_THIN_PRISM_FISHEYE) and a space.
+        int model_width = 15;
+        for (const BenchRow& row : r.result.rows) model_width = std::max(model_width, static_cast<int>(row.model.size()) + 2);
         out << std::setw(16) << "op" << std::setw(8) << "library" << std::setw(23) << "method" << std::setw(7) << "scalar"
-            << std::setw(8) << "threads" << std::setw(15) << "model" << std::setw(11) << "ns/point" << std::setw(11)
+            << std::setw(8) << "threads" << std::setw(model_width) << "model" << std::setw(11) << "ns/point" << std::setw(11)
             << "median px" << std::setw(11) << "p99 px" << std::setw(11) << "max px"
             << "invalid\n";
         for (const BenchRow& row : r.result.rows) {
             out << std::setw(16) << row.op << std::setw(8) << row.library << std::setw(23) << row.method << std::setw(7)
-                << row.scalar << std::setw(8) << row.threads << std::setw(15) << row.model << std::setw(11)
+                << row.scalar << std::setw(8) << row.threads << std::setw(model_width) << row.model << std::setw(11)
                 << number_text(row.ns_per_point, 4) << std::setw(11) << error_text(row, &ErrorStats::median_px)
                 << std::setw(11) << error_text(row, &ErrorStats::p99_px) << std::setw(11)
                 << error_text(row, &ErrorStats::max_px) << number_text(100 * row.invalid_fraction, 3) << "%\n";

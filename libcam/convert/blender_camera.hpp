@@ -1,0 +1,60 @@
+#pragma once
+// Blender's cameras (Cycles) as libcam cameras: the perspective camera and the panoramic
+// FISHEYE_EQUIDISTANT, FISHEYE_EQUISOLID and EQUIRECTANGULAR, with Blender's own
+// parameters (lens and sensor in millimetres, sensor fit, shift, the fisheye's field of
+// view and lens, the equirectangular latitude and longitude ranges), as Cycles maps a
+// pixel to a ray (intern/cycles/kernel/camera/projection.h, scene/camera.cpp and
+// blender/camera.cpp in Blender's source). Each is exactly a libcam model:
+//
+//   perspective          PINHOLE
+//   FISHEYE_EQUIDISTANT  FISHEYE with zero coefficients: fx = W / fov, fy = H / fov
+//   FISHEYE_EQUISOLID    EQUISOLID: fx = lens W / sensor width, fy = lens H / sensor height
+//   EQUIRECTANGULAR      LONLAT: fx = W / (lon max - lon min), fy = H / (lat max - lat min)
+//
+// Pixels: Cycles samples pixel (i, j) at its centre (i + 0.5, j + 0.5), counting rows
+// from the bottom; libcam (as OpenCV) puts pixel centres at integers, rows from the top.
+// A panoramic camera's shift moves the image by shift_x W and shift_y H; a perspective
+// camera's by shift times the fitted side (W for a horizontal fit).
+//
+// Blender's fisheyes render only inside the image circle theta <= fov / 2 (black
+// outside); the libcam camera images the lens model's whole domain.
+//
+// Axes: Blender's camera looks along its -Z with Y up; libcam's (OpenCV's) along +z with
+// y down: p_libcam = (X, -Y, -Z) of Blender's camera frame.
+
+#include <numbers>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/geometry/image_size.hpp"
+
+namespace libcam {
+
+enum class BlenderCameraType { Perspective, FisheyeEquidistant, FisheyeEquisolid, Equirectangular };
+
+// Blender's sensor_fit: which side of the image the sensor size measures.
+enum class SensorFit { Auto, Horizontal, Vertical };
+
+// A Blender camera's settings (bpy names; Blender 3.4 keeps the panoramic ones on
+// camera.data.cycles). Angles in radians, lengths in millimetres. Defaults: Blender's.
+struct BlenderCamera {
+    BlenderCameraType type = BlenderCameraType::Perspective;
+    ImageSize size{1920, 1080};  // render resolution times its percentage
+    double lens_mm = 50.0;       // perspective focal length
+    double sensor_width_mm = 36.0;
+    double sensor_height_mm = 24.0;
+    SensorFit sensor_fit = SensorFit::Auto;
+    double shift_x = 0.0;
+    double shift_y = 0.0;
+    double fisheye_fov = std::numbers::pi;  // FISHEYE_EQUIDISTANT and FISHEYE_EQUISOLID
+    double fisheye_lens_mm = 10.5;          // FISHEYE_EQUISOLID
+    double latitude_min = -std::numbers::pi / 2, latitude_max = std::numbers::pi / 2;  // EQUIRECTANGULAR
+    double longitude_min = -std::numbers::pi, longitude_max = std::numbers::pi;
+};
+
+// The libcam camera (intrinsics and lens; identity pose) that maps pixels to rays as
+// Cycles does. Square pixels (pixel aspect 1) only. Throws InvalidArgument naming a
+// setting that is out of range (a lens or sensor size <= 0, an empty angle range, a field
+// of view outside (0, 2 pi]).
+Camera camera_from_blender(const BlenderCamera& blender);
+
+}  // namespace libcam

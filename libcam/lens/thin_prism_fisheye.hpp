@@ -1,0 +1,133 @@
+#pragma once
+// THIN_PRISM_FISHEYE: COLMAP's fisheye with radial, decentering and thin-prism terms
+// (COLMAP's ThinPrismFisheyeCameraModel, after Weng et al., "Camera Calibration with
+// Distortion Models and Accuracy Evaluation", TPAMI 1992), coefficients in COLMAP's
+// order k1 k2 p1 p2 k3 k4 sx1 sy1:
+//
+//   u  = theta (X, Y) / |(X, Y)|,   theta = atan2(|(X, Y)|, Z)     the equidistant point
+//   s  = |u|^2 = theta^2
+//   m  = u (1 + k1 s + k2 s^2 + k3 s^3 + k4 s^4)
+//        + (2 p1 u_x u_y + p2 (s + 2 u_x^2),  p1 (s + 2 u_y^2) + 2 p2 u_x u_y)
+//        + (sx1 s,  sy1 s)
+//
+// All the terms act on u, the undistorted point, as in COLMAP (where the radial part
+// with p1 p2 sx1 sy1 zero is FISHEYE's). COLMAP writes theta = atan(|(X/Z, Y/Z)|) and so
+// takes points in front of the camera only; this formula in theta carries on behind it,
+// as FISHEYE's does (the same map where both are defined). The pixel is K m; COLMAP's
+// pixel centres are at +0.5 (convert/colmap_models.hpp).
+//
+// Valid domain: theta < valid_radius() = min(pi, the first theta where the radial part
+// theta (1 + k1 theta^2 + ...) stops increasing); the decentering and prism terms are
+// taken to be small there, as for OpenCV's models. Points on the backward axis, or so
+// close to it that X^2 + Y^2 is not a normal number, are flagged (fisheye.hpp).
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cstddef>
+#include <numbers>
+#include <span>
+
+#include "libcam/lens/decentering.hpp"
+#include "libcam/lens/fisheye.hpp"
+#include "libcam/lens/lens_model.hpp"
+#include "libcam/lens/model_support.hpp"
+#include "libcam/lens/undistort.hpp"
+#include "libcam/lens/valid_radius.hpp"
+
+namespace libcam {
+
+template <class Scalar>
+struct ThinPrismFisheyeLens {
+    static constexpr LensType type = LensType::ThinPrismFisheye;
+    static constexpr int num_coefficients = 8;
+    template <class Other>
+    using InScalar = ThinPrismFisheyeLens<Other>;
+    using Parameters = LensParameters<Scalar, 8>;
+    using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
+    using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
+    using Jacobian22 = Eigen::Matrix<Scalar, 2, 2>;
+    using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
+
+    // The angle theta (radians) past which the radial part folds over, at most pi.
+    static double valid_radius(std::span<const double> k) {
+        const double numerator[] = {1.0, k[0], k[1], k[4], k[5]};
+        const double denominator[] = {1.0};
+        return std::min(std::numbers::pi, radial_valid_radius(numerator, denominator));
+    }
+
+    static Parameters parameters(std::span<const double> k) { return lens_parameters<Scalar, 8>(k, valid_radius(k)); }
+
+    template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
+    static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
+                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
+        Vec2T u;
+        Jacobian23 d_u_d_point;
+        if (!FisheyeLens<Scalar>::equidistant_point(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
+        Jacobian22 d_m_d_u;
+        const bool in_domain = distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
+        if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
+        return in_domain & all_finite(m);  // &, not &&: no branch
+    }
+
+    // A ray through m (unit length), by the shared iterative solver.
+    static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
+        Vec2T u;
+        if (!solve_undistorted<ThinPrismFisheyeLens>(lens, m, u)) return false;
+        ray = ray_from_undistorted(lens, u);
+        return true;
+    }
+
+    // The unit ray at the angle theta = |u| from the axis, towards u.
+    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) {
+        return FisheyeLens<Scalar>::ray_from_equidistant(u);
+    }
+
+    // m of the equidistant point u; false outside the valid domain.
+    template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
+    static bool distort(const Parameters& lens, const Vec2T& u, Vec2T& m, UJacobianPtr d_m_d_u = nullptr,
+                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
+        const auto& k = lens.coefficients;
+        const Scalar s = u.squaredNorm(), two(2);
+        const bool in_domain = s < lens.valid_radius * lens.valid_radius;
+        const Scalar factor = stretch(lens, s);
+        const Vec2T prism(k(6), k(7));
+        m = u * factor + detail::decentering(k(2), k(3), u) + prism * s;
+        if constexpr (is_requested<UJacobianPtr>) {
+            *d_m_d_u = Jacobian22::Identity() * factor + (two * stretch_slope(lens, s)) * u * u.transpose() +
+                       detail::decentering_jacobian(k(2), k(3), u) + two * prism * u.transpose();
+        }
+        if constexpr (is_requested<CoefficientJacobianPtr>) {
+            const Scalar zero(0), s2 = s * s;
+            d_m_d_coefficients->col(0) = u * s;
+            d_m_d_coefficients->col(1) = u * s2;
+            d_m_d_coefficients->template middleCols<2>(2) = detail::decentering_coefficient_jacobian(u);
+            d_m_d_coefficients->col(4) = u * (s2 * s);
+            d_m_d_coefficients->col(5) = u * (s2 * s2);
+            d_m_d_coefficients->col(6) << s, zero;
+            d_m_d_coefficients->col(7) << zero, s;
+        }
+        return in_domain;
+    }
+
+    // The radial part alone, theta (1 + k1 theta^2 + ...), and its slope: the 1-D start
+    // of unproject.
+    static Scalar radial_distortion(const Parameters& lens, const Scalar& theta, Scalar& slope) {
+        const Scalar s = theta * theta;
+        const Scalar factor = stretch(lens, s);
+        slope = factor + Scalar(2) * s * stretch_slope(lens, s);
+        return theta * factor;
+    }
+
+private:
+    // 1 + k1 s + k2 s^2 + k3 s^3 + k4 s^4, and its derivative in s.
+    static Scalar stretch(const Parameters& lens, const Scalar& s) {
+        const auto& k = lens.coefficients;
+        return Scalar(1) + s * (k(0) + s * (k(1) + s * (k(4) + s * k(5))));
+    }
+    static Scalar stretch_slope(const Parameters& lens, const Scalar& s) {
+        const auto& k = lens.coefficients;
+        return k(0) + s * (Scalar(2) * k(1) + s * (Scalar(3) * k(4) + s * Scalar(4) * k(5)));
+    }
+};
+
+}  // namespace libcam
