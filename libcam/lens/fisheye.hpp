@@ -162,4 +162,41 @@ private:
     }
 };
 
+// What the models built on the equidistant point u share (THIN_PRISM_FISHEYE,
+// RAD_TAN_THIN_PRISM_FISHEYE): project is u, then the model's distort(u); unproject is
+// the shared solver, then the ray at the angle |u|. The model derives from this and
+// provides distort and radial_distortion.
+template <class Model, class Scalar>
+struct OnEquidistantPoint {
+    using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
+    using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
+
+    template <class Parameters, class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
+    static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
+                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
+        Vec2T u;
+        Eigen::Matrix<Scalar, 2, 3> d_u_d_point;
+        if (!FisheyeLens<Scalar>::equidistant_point(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
+        Eigen::Matrix<Scalar, 2, 2> d_m_d_u;
+        const bool in_domain = Model::distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
+        if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
+        return in_domain & all_finite(m);  // &, not &&: no branch
+    }
+
+    // A ray through m (unit length), by the shared iterative solver.
+    template <class Parameters>
+    static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
+        Vec2T u;
+        if (!solve_undistorted<Model>(lens, m, u)) return false;
+        ray = ray_from_undistorted(lens, u);
+        return true;
+    }
+
+    // The unit ray at the angle theta = |u| from the axis, towards u.
+    template <class Parameters>
+    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) {
+        return FisheyeLens<Scalar>::ray_from_equidistant(u);
+    }
+};
+
 }  // namespace libcam

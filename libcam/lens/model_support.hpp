@@ -5,6 +5,7 @@
 // by `if constexpr`).
 
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <cstddef>
 #include <limits>
@@ -82,6 +83,19 @@ Scalar smallest_normal() {
     } else {
         return Scalar(0);
     }
+}
+
+// 1 + c[0] s + c[1] s^2 + ... + c[N-1] s^N and its derivative in s, by Horner: the
+// radial stretch of the models polynomial in theta^2 (thin_prism_fisheye.hpp, ...).
+template <class Scalar, std::size_t N>
+Scalar stretch_polynomial(const std::array<Scalar, N>& c, const Scalar& s, Scalar& slope) {
+    Scalar value = c[N - 1], derivative = Scalar(static_cast<double>(N)) * c[N - 1];
+    for (std::size_t i = N - 1; i-- > 0;) {
+        value = c[i] + s * value;
+        derivative = Scalar(static_cast<double>(i + 1)) * c[i] + s * derivative;
+    }
+    slope = derivative;
+    return Scalar(1) + s * value;
 }
 
 // True when a Jacobian output pointer of type Ptr was passed (not the nullptr default).

@@ -26,6 +26,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <numbers>
 #include <span>
@@ -40,7 +41,7 @@
 namespace libcam {
 
 template <class Scalar>
-struct RadTanThinPrismFisheyeLens {
+struct RadTanThinPrismFisheyeLens : OnEquidistantPoint<RadTanThinPrismFisheyeLens<Scalar>, Scalar> {
     static constexpr LensType type = LensType::RadTanThinPrismFisheye;
     static constexpr int num_coefficients = 12;
     template <class Other>
@@ -49,7 +50,6 @@ struct RadTanThinPrismFisheyeLens {
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
     using Jacobian22 = Eigen::Matrix<Scalar, 2, 2>;
-    using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
 
     static constexpr int kRadial = 6;  // k0..k5
 
@@ -68,30 +68,7 @@ struct RadTanThinPrismFisheyeLens {
 
     static Parameters parameters(std::span<const double> k) { return lens_parameters<Scalar, 12>(k, valid_radius(k)); }
 
-    template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
-    static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
-                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
-        Vec2T u;
-        Jacobian23 d_u_d_point;
-        if (!FisheyeLens<Scalar>::equidistant_point(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
-        Jacobian22 d_m_d_u;
-        const bool in_domain = distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
-        if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
-        return in_domain & all_finite(m);  // &, not &&: no branch
-    }
-
-    // A ray through m (unit length), by the shared iterative solver.
-    static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        Vec2T u;
-        if (!solve_undistorted<RadTanThinPrismFisheyeLens>(lens, m, u)) return false;
-        ray = ray_from_undistorted(lens, u);
-        return true;
-    }
-
-    // The unit ray at the angle theta = |u| from the axis, towards u.
-    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) {
-        return FisheyeLens<Scalar>::ray_from_equidistant(u);
-    }
+    // project, unproject and ray_from_undistorted: OnEquidistantPoint's (fisheye.hpp).
 
     // m of the equidistant point u; false outside the valid domain.
     template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
@@ -100,7 +77,8 @@ struct RadTanThinPrismFisheyeLens {
         const auto& k = lens.coefficients;
         const Scalar s = u.squaredNorm(), two(2), four(4);
         const bool in_domain = s < lens.valid_radius * lens.valid_radius;
-        const Scalar factor = stretch(lens, s);
+        Scalar stretch_slope;
+        const Scalar factor = stretch(lens, s, stretch_slope);
         const Vec2T v = u * factor;
         const Scalar r2 = v.squaredNorm();
         // Decentering in OpenCV's naming: OpenCV's p1 is p1 (index 7), its p2 is p0 (index 6).
@@ -112,7 +90,7 @@ struct RadTanThinPrismFisheyeLens {
             d_m_d_v.row(1) += (two * k(10) + four * k(11) * r2) * v.transpose();
             if constexpr (is_requested<UJacobianPtr>) {
                 const Jacobian22 d_v_d_u =
-                    Jacobian22::Identity() * factor + (two * stretch_slope(lens, s)) * u * u.transpose();
+                    Jacobian22::Identity() * factor + (two * stretch_slope) * u * u.transpose();
                 *d_m_d_u = d_m_d_v * d_v_d_u;
             }
             if constexpr (is_requested<CoefficientJacobianPtr>) {
@@ -136,8 +114,9 @@ struct RadTanThinPrismFisheyeLens {
     // of unproject.
     static Scalar radial_distortion(const Parameters& lens, const Scalar& theta, Scalar& slope) {
         const Scalar s = theta * theta;
-        const Scalar factor = stretch(lens, s);
-        slope = factor + Scalar(2) * s * stretch_slope(lens, s);
+        Scalar stretch_slope;
+        const Scalar factor = stretch(lens, s, stretch_slope);
+        slope = factor + Scalar(2) * s * stretch_slope;
         return theta * factor;
     }
 
@@ -146,11 +125,10 @@ private:
     // rho (fold if it never reaches rho there), by bisection: the radial part increases
     // on [0, fold]. Once per camera.
     static double angle_of_radius(std::span<const double> k, double rho, double fold) {
+        const std::array<double, kRadial> c{k[0], k[1], k[2], k[3], k[4], k[5]};
         const auto radial = [&](double theta) {
-            const double s = theta * theta;
-            double value = k[kRadial - 1];
-            for (int i = kRadial - 2; i >= 0; --i) value = k[static_cast<std::size_t>(i)] + s * value;
-            return theta * (1.0 + s * value);
+            double slope = 0;
+            return theta * stretch_polynomial(c, theta * theta, slope);
         };
         if (!(radial(fold) > rho)) return fold;
         double low = 0.0, high = fold;
@@ -161,18 +139,10 @@ private:
         return low;
     }
 
-    // 1 + k0 s + k1 s^2 + ... + k5 s^6 and its derivative in s, by Horner.
-    static Scalar stretch(const Parameters& lens, const Scalar& s) {
+    // The radial stretch 1 + k s + ... in s = theta^2, and its derivative in s.
+    static Scalar stretch(const Parameters& lens, const Scalar& s, Scalar& slope) {
         const auto& k = lens.coefficients;
-        Scalar value = k(kRadial - 1);
-        for (int i = kRadial - 2; i >= 0; --i) value = k(i) + s * value;
-        return Scalar(1) + s * value;
-    }
-    static Scalar stretch_slope(const Parameters& lens, const Scalar& s) {
-        const auto& k = lens.coefficients;
-        Scalar value = Scalar(kRadial) * k(kRadial - 1);
-        for (int i = kRadial - 2; i >= 0; --i) value = Scalar(i + 1) * k(i) + s * value;
-        return value;
+        return stretch_polynomial(std::array<Scalar, 6>{k(0), k(1), k(2), k(3), k(4), k(5)}, s, slope);
     }
 };
 

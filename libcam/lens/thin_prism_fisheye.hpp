@@ -23,6 +23,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <numbers>
 #include <span>
@@ -37,7 +38,7 @@
 namespace libcam {
 
 template <class Scalar>
-struct ThinPrismFisheyeLens {
+struct ThinPrismFisheyeLens : OnEquidistantPoint<ThinPrismFisheyeLens<Scalar>, Scalar> {
     static constexpr LensType type = LensType::ThinPrismFisheye;
     static constexpr int num_coefficients = 8;
     template <class Other>
@@ -46,7 +47,6 @@ struct ThinPrismFisheyeLens {
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
     using Jacobian22 = Eigen::Matrix<Scalar, 2, 2>;
-    using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
 
     // The angle theta (radians) past which the radial part folds over, at most pi.
     static double valid_radius(std::span<const double> k) {
@@ -57,30 +57,7 @@ struct ThinPrismFisheyeLens {
 
     static Parameters parameters(std::span<const double> k) { return lens_parameters<Scalar, 8>(k, valid_radius(k)); }
 
-    template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
-    static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
-                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
-        Vec2T u;
-        Jacobian23 d_u_d_point;
-        if (!FisheyeLens<Scalar>::equidistant_point(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
-        Jacobian22 d_m_d_u;
-        const bool in_domain = distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
-        if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
-        return in_domain & all_finite(m);  // &, not &&: no branch
-    }
-
-    // A ray through m (unit length), by the shared iterative solver.
-    static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        Vec2T u;
-        if (!solve_undistorted<ThinPrismFisheyeLens>(lens, m, u)) return false;
-        ray = ray_from_undistorted(lens, u);
-        return true;
-    }
-
-    // The unit ray at the angle theta = |u| from the axis, towards u.
-    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) {
-        return FisheyeLens<Scalar>::ray_from_equidistant(u);
-    }
+    // project, unproject and ray_from_undistorted: OnEquidistantPoint's (fisheye.hpp).
 
     // m of the equidistant point u; false outside the valid domain.
     template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
@@ -89,11 +66,12 @@ struct ThinPrismFisheyeLens {
         const auto& k = lens.coefficients;
         const Scalar s = u.squaredNorm(), two(2);
         const bool in_domain = s < lens.valid_radius * lens.valid_radius;
-        const Scalar factor = stretch(lens, s);
+        Scalar stretch_slope;
+        const Scalar factor = stretch(lens, s, stretch_slope);
         const Vec2T prism(k(6), k(7));
         m = u * factor + detail::decentering(k(2), k(3), u) + prism * s;
         if constexpr (is_requested<UJacobianPtr>) {
-            *d_m_d_u = Jacobian22::Identity() * factor + (two * stretch_slope(lens, s)) * u * u.transpose() +
+            *d_m_d_u = Jacobian22::Identity() * factor + (two * stretch_slope) * u * u.transpose() +
                        detail::decentering_jacobian(k(2), k(3), u) + two * prism * u.transpose();
         }
         if constexpr (is_requested<CoefficientJacobianPtr>) {
@@ -113,20 +91,17 @@ struct ThinPrismFisheyeLens {
     // of unproject.
     static Scalar radial_distortion(const Parameters& lens, const Scalar& theta, Scalar& slope) {
         const Scalar s = theta * theta;
-        const Scalar factor = stretch(lens, s);
-        slope = factor + Scalar(2) * s * stretch_slope(lens, s);
+        Scalar stretch_slope;
+        const Scalar factor = stretch(lens, s, stretch_slope);
+        slope = factor + Scalar(2) * s * stretch_slope;
         return theta * factor;
     }
 
 private:
-    // 1 + k1 s + k2 s^2 + k3 s^3 + k4 s^4, and its derivative in s.
-    static Scalar stretch(const Parameters& lens, const Scalar& s) {
+    // The radial stretch 1 + k s + ... in s = theta^2, and its derivative in s.
+    static Scalar stretch(const Parameters& lens, const Scalar& s, Scalar& slope) {
         const auto& k = lens.coefficients;
-        return Scalar(1) + s * (k(0) + s * (k(1) + s * (k(4) + s * k(5))));
-    }
-    static Scalar stretch_slope(const Parameters& lens, const Scalar& s) {
-        const auto& k = lens.coefficients;
-        return k(0) + s * (Scalar(2) * k(1) + s * (Scalar(3) * k(4) + s * Scalar(4) * k(5)));
+        return stretch_polynomial(std::array<Scalar, 4>{k(0), k(1), k(4), k(5)}, s, slope);
     }
 };
 
