@@ -129,6 +129,11 @@ inline std::vector<LensCase> lens_cases() {
                                                  {0.024943212941115993, 0.0049984956352712093, 2e-4, -1e-4,
                                                   -0.017541641442409061, 0.0045520708951808514, 3e-4, -2e-4},
                                                  {3264, 3264}, {991, 991, 1611.5, 1616.5})},
+        // Strong decentering, made up: the valid radius is where p1 p2 sx1 sy1 could first
+        // fold the image (about 1.1 rad), well inside the radial part's fold.
+        {"THIN_PRISM_FISHEYE decentered",
+         lens_camera(LensType::ThinPrismFisheye, {0.02, 0.005, 0.04, -0.03, -0.01, 0.002, 0.01, -0.01}, {1600, 1200},
+                     300, 300)},
         {"RAD_TAN_THIN_PRISM_FISHEYE colmap",
          real_camera(LensType::RadTanThinPrismFisheye,
                      {-0.0232, 0.0924, -0.0591, 0.003, 0.0048, -0.0009, 0.0002, 0.0005, -0.0009, -0.0001, 0.00007, -0.00017},

@@ -16,9 +16,11 @@
 // as FISHEYE's does (the same map where both are defined). The pixel is K m; COLMAP's
 // pixel centres are at +0.5 (convert/colmap_models.hpp).
 //
-// Valid domain: theta < valid_radius() = min(pi, the first theta where the radial part
-// theta (1 + k1 theta^2 + ...) stops increasing); the decentering and prism terms are
-// taken to be small there, as for OpenCV's models. Points on the backward axis, or so
+// Valid domain: theta < valid_radius(), the smallest of pi, the first theta where the
+// radial part theta (1 + k1 theta^2 + ...) stops increasing, and the theta up to which
+// the decentering and prism terms provably cannot fold the image (their derivative,
+// bounded by (12 (|p1| + |p2|) + 2 (|sx1| + |sy1|)) theta, stays below the radial part's
+// smallest stretch). Points on the backward axis, or so
 // close to it that X^2 + Y^2 is not a normal number, are flagged (fisheye.hpp).
 
 #include <Eigen/Core>
@@ -48,11 +50,12 @@ struct ThinPrismFisheyeLens : OnEquidistantPoint<ThinPrismFisheyeLens<Scalar>, S
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
     using Jacobian22 = Eigen::Matrix<Scalar, 2, 2>;
 
-    // The angle theta (radians) past which the radial part folds over, at most pi.
+    // The angle theta (radians) that bounds the valid domain (above).
     static double valid_radius(std::span<const double> k) {
         const double numerator[] = {1.0, k[0], k[1], k[4], k[5]};
         const double denominator[] = {1.0};
-        return std::min(std::numbers::pi, radial_valid_radius(numerator, denominator));
+        const double fold = std::min(std::numbers::pi, radial_valid_radius(numerator, denominator));
+        return std::min(fold, injective_radius(k, fold));
     }
 
     static Parameters parameters(std::span<const double> k) { return lens_parameters<Scalar, 8>(k, valid_radius(k)); }
@@ -98,6 +101,29 @@ struct ThinPrismFisheyeLens : OnEquidistantPoint<ThinPrismFisheyeLens<Scalar>, S
     }
 
 private:
+    // The largest theta <= fold up to which the decentering and prism terms g(u) provably
+    // cannot fold the image: m = R(u) + g(u) with R the radial part is one-to-one where
+    // |dg/du| / sigma < 1, sigma the smallest singular value of dR/du over the disc so far
+    // (min(D, D + 2 s D'), the stretch across and along the radius) and |dg/du| <=
+    // (12 (|p1| + |p2|) + 2 (|sx1| + |sy1|)) theta. Scanned in steps of fold / 4096: once
+    // per camera.
+    static double injective_radius(std::span<const double> k, double fold) {
+        using std::abs;
+        const double growth = 12.0 * (abs(k[2]) + abs(k[3])) + 2.0 * (abs(k[6]) + abs(k[7]));
+        if (growth == 0.0) return fold;
+        const std::array<double, 4> c{k[0], k[1], k[4], k[5]};
+        constexpr int kSteps = 4096;
+        double sigma = 1.0;
+        for (int i = 1; i <= kSteps; ++i) {
+            const double theta = fold * i / kSteps, s = theta * theta;
+            double slope = 0;
+            const double stretch = stretch_polynomial(c, s, slope);
+            sigma = std::min(sigma, std::min(stretch, stretch + 2.0 * s * slope));
+            if (!(growth * theta < sigma)) return fold * (i - 1) / kSteps;
+        }
+        return fold;
+    }
+
     // The radial stretch 1 + k s + ... in s = theta^2, and its derivative in s.
     static Scalar stretch(const Parameters& lens, const Scalar& s, Scalar& slope) {
         const auto& k = lens.coefficients;
