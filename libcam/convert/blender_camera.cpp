@@ -39,11 +39,15 @@ double pixels_per_mm(const BlenderCamera& blender) {
     return static_cast<double>(fit.horizontal ? blender.size.width : blender.size.height) / fit.sensor_mm;
 }
 
-// A panoramic camera's principal point: the image centre (Cycles' U = V = 0.5), moved by
-// the shift in units of the image's width and height, in libcam's pixels.
-Intrinsics panoramic_intrinsics(const BlenderCamera& blender, double fx, double fy) {
+// A panoramic camera's K, its principal point where the optical axis falls: at Cycles'
+// (U, V) = (axis_u, axis_v) (V up from the bottom edge; the image centre for the
+// fisheyes), moved by the shift in units of the image's width and height, in libcam's
+// pixels (centres at integers, rows from the top).
+Intrinsics panoramic_intrinsics(const BlenderCamera& blender, double fx, double fy, double axis_u = 0.5,
+                                double axis_v = 0.5) {
     const auto width = static_cast<double>(blender.size.width), height = static_cast<double>(blender.size.height);
-    return {fx, fy, width / 2 - 0.5 - blender.shift_x * width, height / 2 - 0.5 + blender.shift_y * height, 0.0};
+    return {fx, fy, width * axis_u - 0.5 - blender.shift_x * width,
+            height * (1 - axis_v) - 0.5 + blender.shift_y * height, 0.0};
 }
 
 void require_field_of_view(double fov) {
@@ -92,10 +96,11 @@ Camera camera_from_blender(const BlenderCamera& blender) {
             const double lat_range = blender.latitude_max - blender.latitude_min;
             require_positive("longitude_max - longitude_min", lon_range);
             require_positive("latitude_max - latitude_min", lat_range);
-            camera.intrinsics = panoramic_intrinsics(blender, width / lon_range, height / lat_range);
-            // Longitude lon_min at the left edge, latitude lat_max (up) at the top edge.
-            camera.intrinsics.cx = -width * blender.longitude_min / lon_range - 0.5 - blender.shift_x * width;
-            camera.intrinsics.cy = height * blender.latitude_max / lat_range - 0.5 + blender.shift_y * height;
+            // Longitude lon_min at the left edge, latitude lat_min at the bottom edge: the
+            // axis (0, 0) lies at U = -lon_min / lon range, V = -lat_min / lat range.
+            camera.intrinsics = panoramic_intrinsics(blender, width / lon_range, height / lat_range,
+                                                     -blender.longitude_min / lon_range,
+                                                     -blender.latitude_min / lat_range);
             camera.lens = {LensType::Lonlat, {}};
             break;
         }

@@ -42,7 +42,7 @@ struct EquisolidLens {
         using std::sqrt;
         const Scalar rho2 = point.x() * point.x() + point.y() * point.y();
         const Scalar norm = sqrt(rho2 + point.z() * point.z());
-        const Scalar sum = point.z() >= Scalar(0) ? norm + point.z() : rho2 / (norm - point.z());  // |p| + Z
+        const Scalar sum = norm_plus_z(rho2, norm, point.z());  // |p| + Z
         const Scalar product = norm * sum;
         // Behind the camera, X^2 + Y^2 must be a normal number: |m| = rho sqrt(2 / product)
         // with product = |p| rho^2 / (|p| - Z) would otherwise mix rho and a rho^2 that has

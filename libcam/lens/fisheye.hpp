@@ -46,9 +46,16 @@ struct FisheyeLens {
 
     // The angle theta (radians) past which theta_d folds over, at most pi.
     static double valid_radius(std::span<const double> k) {
-        const double numerator[] = {1.0, k[0], k[1], k[2], k[3]};
+        const double stretch[] = {1.0, k[0], k[1], k[2], k[3]};
+        return angle_fold(stretch);
+    }
+
+    // The angle theta, at most pi, past which theta D(theta^2) stops increasing, for the
+    // stretch D given by its coefficients in theta^2 (1, k1, k2, ...): the valid radius of
+    // every model whose radial part is a polynomial in theta.
+    static double angle_fold(std::span<const double> stretch) {
         const double denominator[] = {1.0};
-        return std::min(std::numbers::pi, radial_valid_radius(numerator, denominator));
+        return std::min(std::numbers::pi, radial_valid_radius(stretch, denominator));
     }
 
     static Parameters parameters(std::span<const double> k) {

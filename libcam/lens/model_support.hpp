@@ -85,6 +85,13 @@ Scalar smallest_normal() {
     }
 }
 
+// |p| + Z of a point with X^2 + Y^2 = rho2 and |p| = norm, without cancellation: for
+// Z < 0 as rho2 / (|p| - Z) (STEREOGRAPHIC, EQUISOLID).
+template <class Scalar>
+Scalar norm_plus_z(const Scalar& rho2, const Scalar& norm, const Scalar& z) {
+    return z >= Scalar(0) ? norm + z : rho2 / (norm - z);
+}
+
 // 1 + c[0] s + c[1] s^2 + ... + c[N-1] s^N and its derivative in s, by Horner: the
 // radial stretch of the models polynomial in theta^2 (thin_prism_fisheye.hpp, ...).
 template <class Scalar, std::size_t N>

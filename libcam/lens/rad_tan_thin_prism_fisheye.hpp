@@ -55,9 +55,8 @@ struct RadTanThinPrismFisheyeLens : OnEquidistantPoint<RadTanThinPrismFisheyeLen
 
     // The angle theta (radians) that bounds the valid domain (above).
     static double valid_radius(std::span<const double> k) {
-        const double numerator[] = {1.0, k[0], k[1], k[2], k[3], k[4], k[5]};
-        const double denominator[] = {1.0};
-        const double fold = std::min(std::numbers::pi, radial_valid_radius(numerator, denominator));
+        const double stretch[] = {1.0, k[0], k[1], k[2], k[3], k[4], k[5]};
+        const double fold = FisheyeLens<double>::angle_fold(stretch);
         // rho*: where the bound on |dg/dv| reaches 1.
         using std::abs;
         const double bound[] = {-1.0, 12.0 * (abs(k[6]) + abs(k[7])) + 2.0 * (abs(k[8]) + abs(k[10])), 0.0,

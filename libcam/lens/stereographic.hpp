@@ -41,7 +41,7 @@ struct StereographicLens {
         using std::sqrt;
         const Scalar rho2 = point.x() * point.x() + point.y() * point.y();
         const Scalar norm = sqrt(rho2 + point.z() * point.z());
-        const Scalar denominator = point.z() >= Scalar(0) ? norm + point.z() : rho2 / (norm - point.z());
+        const Scalar denominator = norm_plus_z(rho2, norm, point.z());
         if (!(denominator > Scalar(0))) return false;
         const Scalar scale = Scalar(2) / denominator;
         m = Vec2T(point.x() * scale, point.y() * scale);

@@ -52,9 +52,8 @@ struct ThinPrismFisheyeLens : OnEquidistantPoint<ThinPrismFisheyeLens<Scalar>, S
 
     // The angle theta (radians) that bounds the valid domain (above).
     static double valid_radius(std::span<const double> k) {
-        const double numerator[] = {1.0, k[0], k[1], k[4], k[5]};
-        const double denominator[] = {1.0};
-        const double fold = std::min(std::numbers::pi, radial_valid_radius(numerator, denominator));
+        const double stretch[] = {1.0, k[0], k[1], k[4], k[5]};
+        const double fold = FisheyeLens<double>::angle_fold(stretch);
         return std::min(fold, injective_radius(k, fold));
     }
 
