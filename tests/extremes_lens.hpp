@@ -487,9 +487,14 @@ inline std::vector<Camera> sweep_cameras() {
     for (const LensCase& c : coefficient_extremes()) cameras.push_back(c.camera);
     for (const HandFold& fold : hand_folds()) cameras.push_back(fold.camera);
     for (const LensCase& c : fisheye_lenses()) cameras.push_back(c.camera);
-    // Focal lengths far from the usual: a 179.999-degree and a 1e-6-degree camera's.
+    // Focal lengths far from the usual: a 179.999-degree and a 1e-6-degree camera's, on
+    // the first camera of each model (each camera here builds the batch engine's table,
+    // a tenth of a second; once per model covers every model's code).
     const std::size_t usual = cameras.size();
+    std::vector<LensType> seen;
     for (std::size_t i = 0; i < usual; ++i) {
+        if (std::find(seen.begin(), seen.end(), cameras[i].lens.type) != seen.end()) continue;
+        seen.push_back(cameras[i].lens.type);
         for (double f : {4.4e-6, 5.7e12}) {
             Camera camera = cameras[i];
             camera.intrinsics.fx = camera.intrinsics.fy = f;
