@@ -253,6 +253,9 @@ inline std::vector<HandFold> hand_folds() {
     // theta_d = theta (1 - 0.2 theta^2): theta_d' = 1 - 0.6 theta^2.
     const Quad rf = sqrt(Quad(1) / (3 * k_fifth));
     folds.push_back({"FISHEYE k1 = -0.2", lens(LensType::Fisheye, {-0.2, 0, 0, 0}), rf, rf * (1 - k_fifth * rf * rf)});
+    // CAHVOR with its axis on z: tan(phi') = t (1 - 0.2 t^2), t = tan(phi) = |u|: the same
+    // fold as FISHEYE's above, in t.
+    folds.push_back({"CAHVOR r1 = -0.2", lens(LensType::Cahvor, {0, 0, 0, -0.2, 0}), rf, rf * (1 - k_fifth * rf * rf)});
     return folds;
 }
 

@@ -147,6 +147,13 @@ inline std::vector<LensCase> lens_cases() {
         // 1920 px: f = 560 px), and a short one that sees far behind itself.
         {"EQUISOLID blender", real_camera(LensType::Equisolid, {}, {1920, 1080}, {560, 560, 959.5, 539.5})},
         {"EQUISOLID wide", lens_camera(LensType::Equisolid, {}, {1600, 1200}, 250, 250)},
+        // mrcal's projection tests' CAHVOR (test-projections.py: a strong barrel lens,
+        // 1 + r0 = 0.363, its axis tilted by 2 mrad), on the image its principal point
+        // centres; and a made-up lens tilted by 22 mrad whose fold (t = 1.34, 53 degrees
+        // off the axis) lies inside the image.
+        {"CAHVOR mrcal", real_camera(LensType::Cahvor, {-0.001, 0.002, -0.637, -0.002, 0.016}, {3942, 2172},
+                                     {4842.918, 4842.771, 1970.528, 1085.302})},
+        {"CAHVOR folding", lens_camera(LensType::Cahvor, {0.02, -0.01, 0, -0.2, 0.005}, {1920, 1080}, 800, 800)},
     };
     return cases;
 }

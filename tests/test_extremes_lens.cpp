@@ -123,7 +123,7 @@ std::vector<Row> fold_rows() {
         });
         radius_ulps.update(ulps(computed, fold.r_max), [&] { return fold.name; });
     }
-    rows.push_back({"fold-over radius, OPENCV4/5/8/12/14 and FISHEYE (by hand)", "valid_radius vs r_max [ulp]",
+    rows.push_back({"fold-over radius, OPENCV4/5/8/12/14, FISHEYE and CAHVOR (by hand)", "valid_radius vs r_max [ulp]",
                     radius_ulps.value, kNotApplicable, 2, kNotApplicable,
                     "smallest positive root of d'(r)'s numerator: companion matrix, Newton-polished in long double",
                     radius_ulps.where});
@@ -140,7 +140,8 @@ std::vector<Row> fold_rows() {
             unproject_both(fold.name, fold.camera, out, inside);  // no ray: flagged, by the reference too
         }
         std::ostringstream extreme;
-        extreme << "fold radius: |m| = d_max (1 -+ " << delta << "), 6 lenses x 16 directions, inside and outside";
+        extreme << "fold radius: |m| = d_max (1 -+ " << delta << "), " << hand_folds().size()
+                << " lenses x 16 directions, inside and outside";
         const std::vector<Row> more =
             unprojection_rows(extreme.str(), inside, "the solver's bracket stops at valid_radius");
         rows.insert(rows.end(), more.begin(), more.end());

@@ -197,7 +197,9 @@ std::vector<Row> fold_method_rows() {
         }
         score_methods(fold.name, fold.camera, pixels, worst);
     }
-    return method_rows("batch: fold radius, |m| = d_max (1 -+ 1e-3, 1e-6, 1e-9), 6 lenses x 16 directions", worst,
+    return method_rows("batch: fold radius, |m| = d_max (1 -+ 1e-3, 1e-6, 1e-9), " + std::to_string(hand_folds().size()) +
+                           " lenses x 16 directions",
+                       worst,
                        "past the certified disc only the full solver answers");
 }
 

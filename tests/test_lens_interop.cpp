@@ -17,8 +17,8 @@ namespace {
 
 // Which formats hold which models, by hand: OpenCV's calibration file only its own
 // radial-tangential models (FISHEYE's four numbers would read back as OPENCV4);
-// mrcal has PINHOLE, OPENCV4/5/8/12, STEREOGRAPHIC, LONLAT and LATLON of libcam's
-// models; libcam's JSON holds every model.
+// mrcal has PINHOLE, OPENCV4/5/8/12, STEREOGRAPHIC, LONLAT, LATLON and CAHVOR of
+// libcam's models; libcam's JSON holds every model.
 bool holds(CameraFormat format, LensType type) {
     switch (format) {
         case CameraFormat::Json: return true;
@@ -29,7 +29,7 @@ bool holds(CameraFormat format, LensType type) {
         case CameraFormat::Cameramodel:
             return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
                    type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Stereographic ||
-                   type == LensType::Lonlat || type == LensType::Latlon;
+                   type == LensType::Lonlat || type == LensType::Latlon || type == LensType::Cahvor;
         case CameraFormat::Gl: return type == LensType::Pinhole;
     }
     return false;
@@ -90,7 +90,12 @@ TEST_CASE("mrcal's files: its lens models map by name, the ones libcam lacks are
         cameramodel("LENSMODEL_OPENCV8", "500, 501, 319.5, 239.5, -0.1, 0.02, 1e-4, -2e-4, 0.003, 0.05, 0.004, 1e-5"), "a");
     CHECK(opencv8.lens == Lens{LensType::Opencv8, {-0.1, 0.02, 1e-4, -2e-4, 0.003, 0.05, 0.004, 1e-5}});
     CHECK(parse_cameramodel(cameramodel("LENSMODEL_LATLON", "500, 501, 319.5, 239.5"), "b").lens.type == LensType::Latlon);
-    CHECK_THROWS_AS(parse_cameramodel(cameramodel("LENSMODEL_CAHVOR", "500, 501, 319.5, 239.5, 0, 0, 0, 0, 0"), "c"),
+    const Camera cahvor =
+        parse_cameramodel(cameramodel("LENSMODEL_CAHVOR", "500, 501, 319.5, 239.5, 0.01, -0.02, 0.1, 0.2, 0.3"), "c");
+    CHECK(cahvor.lens == Lens{LensType::Cahvor, {0.01, -0.02, 0.1, 0.2, 0.3}});
+    CHECK_THROWS_AS(parse_cameramodel(cameramodel("LENSMODEL_CAHVORE_linearity=1.00",
+                                                  "500, 501, 319.5, 239.5, 0, 0, 0, 0, 0, 0, 0, 0"),
+                                      "d"),
                     NotRepresentable);
     const Camera fisheye = lens_camera(LensType::Fisheye, {0.01, 0, 0, 0});
     CHECK_THROWS_WITH(format_cameramodel(fisheye), Catch::Contains("FISHEYE") && Catch::Contains("mrcal"));

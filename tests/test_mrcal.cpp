@@ -173,6 +173,27 @@ TEST_CASE("A hand-written .cameramodel reads into libcam with mrcal's meaning", 
     CHECK(std::abs(q.pixel.y() - (1100.25 * 3 / 8 + 359.5)) <= 1e-12);
 }
 
+TEST_CASE("A CAHVOR .cameramodel reads with mrcal's meaning and writes back as libmrcal reads it", "[mrcal]") {
+    const fs::path source = fs::path(LIBCAM_FUZZ_CORPUS) / "cameramodel" / "cahvor.cameramodel";
+    const Camera camera = read_camera_file(source).camera;
+    REQUIRE(camera.lens.type == LensType::Cahvor);
+    CHECK(camera.lens.coefficients == std::vector<double>{-0.001, 0.002, -0.637, -0.002, 0.016});
+    // The pixel mrcal's projection tests record for their point (-1.1, 0.3, 1) with these
+    // intrinsics (test-projections.py).
+    const Projection q = PreparedCamera(camera).project(Vec3(-1.1, 0.3, 1.0));
+    REQUIRE(q.valid);
+    CHECK((q.pixel - Vec2(-92.63813066, 1653.09646897)).norm() < 1e-7);
+
+    TempDir dir;
+    const fs::path path = dir.path() / "cahvor.cameramodel";
+    write_camera_file(path, camera, CameraFormat::Cameramodel);
+    const ModelPtr model = mrcal_read_file(path);
+    REQUIRE(model != nullptr);
+    CHECK(model->lensmodel.type == MRCAL_LENSMODEL_CAHVOR);
+    const double expected[] = {4842.918, 4842.771, 1970.528, 1085.302, -0.001, 0.002, -0.637, -0.002, 0.016};
+    for (int i = 0; i < 9; ++i) CHECK(model->intrinsics[i] == expected[i]);
+}
+
 TEST_CASE("mrcal_project of camera-frame points along each ray returns the pixel", "[mrcal]") {
     TempDir dir;
     int checked = 0;

@@ -36,7 +36,8 @@
     _(Fov, FovLens)                     \
     _(ThinPrismFisheye, ThinPrismFisheyeLens) \
     _(RadTanThinPrismFisheye, RadTanThinPrismFisheyeLens) \
-    _(Equisolid, EquisolidLens)
+    _(Equisolid, EquisolidLens) \
+    _(Cahvor, CahvorLens)
 
 namespace libcam {
 
@@ -78,6 +79,7 @@ enum class LensFamily {
     Fov,
     ThinPrismFisheye,  // not FISHEYE's: its coefficients interleave (k1 k2 p1 p2 k3 k4)
     Equisolid,
+    Cahvor,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -198,6 +200,12 @@ inline constexpr LensInfo kLensTable[] = {
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
      .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Equisolid, .family_rank = 0,
      .fit = FitCandidate::No},
+    // JPL's CAHVOR (the C, A, H, V of its files are the pinhole and pose; O the optical
+    // axis; R the radial terms).
+    {.type = LensType::Cahvor, .name = "CAHVOR", .coefficients = {"alpha", "beta", "r0", "r1", "r2"},
+     .num_coefficients = 5, .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None,
+     .mrcal = "LENSMODEL_CAHVOR", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Cahvor,
+     .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

@@ -38,6 +38,7 @@
 #include <utility>
 
 #include "libcam/error.hpp"
+#include "libcam/lens/cahvor.hpp"
 #include "libcam/lens/double_sphere.hpp"
 #include "libcam/lens/equisolid.hpp"
 #include "libcam/lens/eucm.hpp"

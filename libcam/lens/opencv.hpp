@@ -88,13 +88,12 @@ constexpr LensType opencv_lens_type(int n) {
 }  // namespace detail
 
 template <class Scalar, int N>
-struct OpenCvLens {
+struct OpenCvLens : OnPinholePoint<OpenCvLens<Scalar, N>, Scalar> {
     static_assert(N == 4 || N == 5 || N == 8 || N == 12 || N == 14, "OpenCV takes 4, 5, 8, 12 or 14 coefficients");
     static constexpr LensType type = detail::opencv_lens_type(N);
     static constexpr int num_coefficients = N;
     template <class Other>
     using InScalar = OpenCvLens<Other, N>;
-    static constexpr bool projects_ratios = true;  // through PinholeLens::project: x / z, y / z
     using Parameters = LensParameters<Scalar, N>;
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
@@ -115,32 +114,7 @@ struct OpenCvLens {
         return lens_parameters<Scalar, N>(k, valid_radius(k));
     }
 
-    // m for a camera point; false outside the valid domain (m then meaningless). Jacobians
-    // dm/d(X, Y, Z) (Jacobian23*) and dm/d(coefficients) (CoefficientJacobian*) on request.
-    template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
-    static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
-                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
-        Vec2T u;
-        Jacobian23 d_u_d_point;
-        const bool in_front = PinholeLens<Scalar>::project(point, u, pass_request<PointJacobianPtr>(&d_u_d_point));
-        Jacobian22 d_m_d_u;
-        const bool in_domain = distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
-        if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
-        // Also false where m overflows (the thin prism's r^4 past r ~ 1e77).
-        return in_front & in_domain & all_finite(m);  // &, not &&: no branch
-    }
-
-    // The ray (x, y, 1) through m, by the shared iterative solver; false where no
-    // accurate solution lies inside the valid domain.
-    static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        Vec2T u;
-        if (!solve_undistorted<OpenCvLens>(lens, m, u)) return false;
-        ray = ray_from_undistorted(lens, u);
-        return true;
-    }
-
-    // The ray through the undistorted point u: (x, y, 1).
-    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) { return Vec3T(u.x(), u.y(), Scalar(1)); }
+    // project, unproject and ray_from_undistorted: OnPinholePoint's (pinhole.hpp).
 
     // m = distort(u) for the pinhole-normalised point u = (X/Z, Y/Z); false outside the
     // valid domain (m then meaningless; evaluated without branches, see pinhole.hpp).

@@ -13,6 +13,7 @@
 
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
+#include "libcam/lens/undistort.hpp"
 
 namespace libcam {
 
@@ -62,6 +63,48 @@ struct PinholeLens {
         return project(point, m, d_m_d_point);
     }
     static bool unproject(const Parameters&, const Vec2T& m, Vec3T& ray) { return unproject(m, ray); }
+};
+
+// What a model that distorts the pinhole point u = (X/Z, Y/Z) shares (OpenCV's models,
+// CAHVOR): project through PINHOLE then Model::distort, unproject by the shared
+// iterative solver, and the ray (u, 1). The model derives from OnPinholePoint<Model,
+// Scalar> and writes distort and radial_distortion.
+template <class Model, class Scalar>
+struct OnPinholePoint {
+    using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
+    using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
+    static constexpr bool projects_ratios = true;  // through PinholeLens::project: x / z, y / z
+
+    // m for a camera point; false outside the valid domain (m then meaningless). Jacobians
+    // dm/d(X, Y, Z) and dm/d(coefficients) on request.
+    template <class Parameters, class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
+    static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
+                        CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
+        Vec2T u;
+        Eigen::Matrix<Scalar, 2, 3> d_u_d_point;
+        const bool in_front = PinholeLens<Scalar>::project(point, u, pass_request<PointJacobianPtr>(&d_u_d_point));
+        Eigen::Matrix<Scalar, 2, 2> d_m_d_u;
+        const bool in_domain = Model::distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
+        if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
+        // Also false where m overflows (the thin prism's r^4 past r ~ 1e77).
+        return in_front & in_domain & all_finite(m);  // &, not &&: no branch
+    }
+
+    // The ray (x, y, 1) through m, by the shared iterative solver; false where no
+    // accurate solution lies inside the valid domain.
+    template <class Parameters>
+    static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
+        Vec2T u;
+        if (!solve_undistorted<Model>(lens, m, u)) return false;
+        ray = ray_from_undistorted(lens, u);
+        return true;
+    }
+
+    // The ray through the undistorted point u: (x, y, 1).
+    template <class Parameters>
+    static Vec3T ray_from_undistorted(const Parameters&, const Vec2T& u) {
+        return Vec3T(u.x(), u.y(), Scalar(1));
+    }
 };
 
 }  // namespace libcam
