@@ -76,10 +76,7 @@ struct FisheyeLens {
 
     // A ray through m (unit length), by the shared iterative solver.
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        Vec2T u;
-        if (!solve_undistorted<FisheyeLens>(lens, m, u)) return false;
-        ray = ray_from_undistorted(lens, u);
-        return true;
+        return unproject_solved<FisheyeLens>(lens, m, ray);
     }
 
     // The unit ray at the angle theta = |u| from the axis, towards u.
@@ -193,10 +190,7 @@ struct OnEquidistantPoint {
     // A ray through m (unit length), by the shared iterative solver.
     template <class Parameters>
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        Vec2T u;
-        if (!solve_undistorted<Model>(lens, m, u)) return false;
-        ray = ray_from_undistorted(lens, u);
-        return true;
+        return unproject_solved<Model>(lens, m, ray);
     }
 
     // The unit ray at the angle theta = |u| from the axis, towards u.

@@ -104,10 +104,7 @@ struct MeiLens {
 
     // A unit ray through m, by the shared iterative solver.
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        Vec2T q;
-        if (!solve_undistorted<MeiLens>(lens, m, q)) return false;
-        ray = ray_from_undistorted(lens, q);
-        return true;
+        return unproject_solved<MeiLens>(lens, m, ray);
     }
 
     // The unit ray through q, by UCM's closed form (q inside the rim, as the solver's

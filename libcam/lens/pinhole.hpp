@@ -94,10 +94,7 @@ struct OnPinholePoint {
     // accurate solution lies inside the valid domain.
     template <class Parameters>
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        Vec2T u;
-        if (!solve_undistorted<Model>(lens, m, u)) return false;
-        ray = ray_from_undistorted(lens, u);
-        return true;
+        return unproject_solved<Model>(lens, m, ray);
     }
 
     // The ray through the undistorted point u: (x, y, 1).

@@ -151,4 +151,14 @@ bool solve_undistorted(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>
     return polish_undistorted<Model>(lens, m, u);
 }
 
+// A solved model's unproject: the ray through m is Model::ray_from_undistorted of the
+// solution; false (ray left as it was) where there is none.
+template <class Model, class Parameters, class Scalar>
+bool unproject_solved(const Parameters& lens, const Eigen::Matrix<Scalar, 2, 1>& m, Eigen::Matrix<Scalar, 3, 1>& ray) {
+    Eigen::Matrix<Scalar, 2, 1> u;
+    if (!solve_undistorted<Model>(lens, m, u)) return false;
+    ray = Model::ray_from_undistorted(lens, u);
+    return true;
+}
+
 }  // namespace libcam
