@@ -11,8 +11,8 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 jobs="$(nproc)"
 bash "$root/scripts/install-deps.sh"
 # Line tables only (-g1): enough for a sanitizer's or a debugger's backtrace with file and
-# line, and the three builds compile in about 40% less time than with full debug
-# information (-g).
+# line, and the build of step 1 takes a third less time than with full debug information
+# (-g): 231 s against 353 s on two cores.
 line_tables=(-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG")
 
 echo "== 1/3: build and test"
