@@ -77,21 +77,23 @@ struct CahvorLens : OnPinholePoint<CahvorLens<Scalar>, Scalar> {
         if (gamma == 0.0) return fold;  // the disc is the fold's cone
         const double half_turn = std::numbers::pi / 2;
         double phi_max = std::isinf(fold) ? half_turn : atan(fold);
-        {
-            // The stretched point stays in front of the camera while g(tan(phi)) < cot(gamma).
-            const double cot_gamma = 1.0 / tan(gamma);
-            double high = phi_max < half_turn ? tan(phi_max) : 1.0;
-            if (phi_max == half_turn) {
-                while (g(k, high) < cot_gamma && high < 1e300) high *= 2;
+        // The stretched point stays in front of the camera while g(tan(phi)) < cot(gamma).
+        const double cot_gamma = 1.0 / tan(gamma);
+        const auto g = [&](double t) {
+            double slope;
+            return axial_stretch(k, t, slope);
+        };
+        double high = phi_max < half_turn ? tan(phi_max) : 1.0;
+        if (phi_max == half_turn) {
+            while (g(high) < cot_gamma && high < 1e300) high *= 2;
+        }
+        if (g(high) >= cot_gamma) {
+            double low = 0.0;  // g(low) < cot_gamma <= g(high), g increasing between
+            for (int i = 0; i < 200 && high - low > 1e-16 * high; ++i) {
+                const double middle = low + (high - low) / 2;
+                (g(middle) < cot_gamma ? low : high) = middle;
             }
-            if (g(k, high) >= cot_gamma) {
-                double low = 0.0;  // g(low) < cot_gamma <= g(high), g increasing between
-                for (int i = 0; i < 200 && high - low > 1e-16 * high; ++i) {
-                    const double middle = low + (high - low) / 2;
-                    (g(k, middle) < cot_gamma ? low : high) = middle;
-                }
-                phi_max = std::min(phi_max, atan(low));
-            }
+            phi_max = std::min(phi_max, atan(low));
         }
         return phi_max > gamma ? tan(phi_max - gamma) : 0.0;
     }
@@ -162,10 +164,7 @@ struct CahvorLens : OnPinholePoint<CahvorLens<Scalar>, Scalar> {
     // The distortion as if the axis were z: g(r) = r (1 + r0 + r1 r^2 + r2 r^4) and its
     // slope, the 1-D start of unproject (exact for alpha = beta = 0).
     static Scalar radial_distortion(const Parameters& lens, const Scalar& r, Scalar& slope) {
-        const auto& k = lens.coefficients;
-        const Scalar s = r * r, one(1);
-        slope = one + k(2) + s * (Scalar(3) * k(3) + Scalar(5) * s * k(4));
-        return r * (one + k(2) + s * (k(3) + s * k(4)));
+        return axial_stretch(lens.coefficients, r, slope);
     }
 
 private:
@@ -184,9 +183,14 @@ private:
         return {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
     }
 
-    static double g(std::span<const double> k, double t) {
-        const double s = t * t;
-        return t * (1.0 + k[2] + s * (k[3] + s * k[4]));
+    // g(t) = t (1 + r0 + r1 t^2 + r2 t^4), tan of the stretched angle from the axis
+    // against tan of the angle, and its slope g'(t), from coefficients k (alpha beta r0 r1
+    // r2) in any container: the valid domain's (double) and the solver's start.
+    template <class T, class Coefficients>
+    static T axial_stretch(const Coefficients& k, const T& t, T& slope) {
+        const T s = t * t, one(1);
+        slope = one + T(k[2]) + s * (T(3) * T(k[3]) + T(5) * s * T(k[4]));
+        return t * (one + T(k[2]) + s * (T(k[3]) + s * T(k[4])));
     }
 };
 
