@@ -154,6 +154,15 @@ inline std::vector<LensCase> lens_cases() {
         {"CAHVOR mrcal", real_camera(LensType::Cahvor, {-0.001, 0.002, -0.637, -0.002, 0.016}, {3942, 2172},
                                      {4842.918, 4842.771, 1970.528, 1085.302})},
         {"CAHVOR folding", lens_camera(LensType::Cahvor, {0.02, -0.01, 0, -0.2, 0.005}, {1920, 1080}, 800, 800)},
+        // mrcal's projection tests' CAHVORE (the CAHVOR above with E = 0.01 0.02 0.03 and a
+        // linearity of 0.4), and a made-up fisheye, nearly equidistant (linearity 0.1: at
+        // exactly 0 chi switches from sin to tan, so its derivative in the linearity is 0 but
+        // a central difference across 0 is not), with a small tilt and entrance-pupil terms,
+        // whose image corners lie past 90 degrees.
+        {"CAHVORE mrcal", real_camera(LensType::Cahvore, {-0.001, 0.002, -0.637, -0.002, 0.016, 0.01, 0.02, 0.03, 0.4},
+                                      {3942, 2172}, {4842.918, 4842.771, 1970.528, 1085.302})},
+        {"CAHVORE fisheye", lens_camera(LensType::Cahvore, {0.003, -0.002, 0.0, 0.01, -0.001, 0.02, 0.01, 0.0, 0.1},
+                                        {1600, 1200}, 400, 400)},
     };
     return cases;
 }

@@ -17,8 +17,8 @@ namespace {
 
 // Which formats hold which models, by hand: OpenCV's calibration file only its own
 // radial-tangential models (FISHEYE's four numbers would read back as OPENCV4);
-// mrcal has PINHOLE, OPENCV4/5/8/12, STEREOGRAPHIC, LONLAT, LATLON and CAHVOR of
-// libcam's models; libcam's JSON holds every model.
+// mrcal has PINHOLE, OPENCV4/5/8/12, STEREOGRAPHIC, LONLAT, LATLON, CAHVOR and CAHVORE
+// of libcam's models; libcam's JSON holds every model.
 bool holds(CameraFormat format, LensType type) {
     switch (format) {
         case CameraFormat::Json: return true;
@@ -29,7 +29,8 @@ bool holds(CameraFormat format, LensType type) {
         case CameraFormat::Cameramodel:
             return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
                    type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Stereographic ||
-                   type == LensType::Lonlat || type == LensType::Latlon || type == LensType::Cahvor;
+                   type == LensType::Lonlat || type == LensType::Latlon || type == LensType::Cahvor ||
+                   type == LensType::Cahvore;
         case CameraFormat::Gl: return type == LensType::Pinhole;
     }
     return false;
@@ -93,9 +94,16 @@ TEST_CASE("mrcal's files: its lens models map by name, the ones libcam lacks are
     const Camera cahvor =
         parse_cameramodel(cameramodel("LENSMODEL_CAHVOR", "500, 501, 319.5, 239.5, 0.01, -0.02, 0.1, 0.2, 0.3"), "c");
     CHECK(cahvor.lens == Lens{LensType::Cahvor, {0.01, -0.02, 0.1, 0.2, 0.3}});
-    CHECK_THROWS_AS(parse_cameramodel(cameramodel("LENSMODEL_CAHVORE_linearity=1.00",
-                                                  "500, 501, 319.5, 239.5, 0, 0, 0, 0, 0, 0, 0, 0"),
-                                      "d"),
+    // CAHVORE's linearity is in mrcal's name, and is libcam's last coefficient.
+    const Camera cahvore = parse_cameramodel(
+        cameramodel("LENSMODEL_CAHVORE_linearity=0.25", "500, 501, 319.5, 239.5, 0.01, -0.02, 0.1, 0.2, 0.3, 1e-3, 2e-3, 3e-3"),
+        "d");
+    CHECK(cahvore.lens == Lens{LensType::Cahvore, {0.01, -0.02, 0.1, 0.2, 0.3, 1e-3, 2e-3, 3e-3, 0.25}});
+    std::string splined_intrinsics = "500, 501, 319.5, 239.5";
+    for (int i = 0; i < 2 * 4 * 4; ++i) splined_intrinsics += ", 0";
+    CHECK_THROWS_AS(parse_cameramodel(cameramodel("LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=4_Ny=4_fov_x_deg=100",
+                                                  splined_intrinsics),
+                                      "e"),
                     NotRepresentable);
     const Camera fisheye = lens_camera(LensType::Fisheye, {0.01, 0, 0, 0});
     CHECK_THROWS_WITH(format_cameramodel(fisheye), Catch::Contains("FISHEYE") && Catch::Contains("mrcal"));

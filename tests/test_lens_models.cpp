@@ -27,10 +27,16 @@ namespace {
 
 constexpr double kPixelTolerance = 1e-9;
 
+// mrcal's name for the model, with the configuration mrcal keeps in it (CAHVORE's
+// linearity, here 0.5).
+std::string mrcal_name_of(LensType type) {
+    const std::string name = "LENSMODEL_" + std::string(lens_info(type).name);
+    return type == LensType::Cahvore ? name + "_linearity=0.5" : name;
+}
+
 bool mrcal_has(LensType type) {
     mrcal_lensmodel_t model;
-    const std::string name = "LENSMODEL_" + std::string(lens_info(type).name);
-    return mrcal_lensmodel_from_name(&model, name.c_str());
+    return mrcal_lensmodel_from_name(&model, mrcal_name_of(type).c_str());
 }
 
 // Points spread over the model's valid domain (well inside the fold-over radius), at
@@ -80,8 +86,13 @@ TEST_CASE("The model table agrees with mrcal's metadata for every model both hav
         if (!mrcal_has(info.type)) continue;
         CHECK(info.mrcal == "LENSMODEL_" + std::string(info.name));
         mrcal_lensmodel_t model;
-        REQUIRE(mrcal_lensmodel_from_name(&model, ("LENSMODEL_" + std::string(info.name)).c_str()));
-        CHECK(mrcal_lensmodel_num_params(&model) == 4 + info.num_coefficients);
+        REQUIRE(mrcal_lensmodel_from_name(&model, mrcal_name_of(info.type).c_str()));
+        // CAHVORE's linearity is in mrcal's name, not its intrinsics.
+        const int in_name = info.type == LensType::Cahvore ? 1 : 0;
+        CHECK(mrcal_lensmodel_num_params(&model) == 4 + info.num_coefficients - in_name);
+        std::vector<double> zeros(static_cast<std::size_t>(info.num_coefficients), 0.0);
+        if (info.type == LensType::Cahvore) zeros.back() = 0.5;
+        CHECK(mrcal_lensmodel_name(Lens{info.type, zeros}) == mrcal_name_of(info.type));
         CHECK(mrcal_lensmodel_metadata(&model).can_project_behind_camera == info.sees_behind_camera);
     }
     CHECK_FALSE(mrcal_has(LensType::Fisheye));
@@ -136,6 +147,42 @@ TEST_CASE("CAHVOR gives the pixels mrcal's own projection tests record, and unpr
         REQUIRE(ray.valid);
         // The recorded pixels are rounded to 1e-8 px: about 1e-11 rad here.
         CHECK(angle_between(ray.direction, points[i]) < 1e-10);
+    }
+}
+
+TEST_CASE("CAHVORE: libcam's rays reproject through mrcal_project onto their pixels (mrcal 2.2 has no unproject for it)") {
+    std::vector<LensCase> cases;
+    for (const LensCase& c : lens_cases()) {
+        if (c.camera.lens.type != LensType::Cahvore) continue;
+        cases.push_back(c);
+        // mrcal's three forms of chi: tan(L theta) / L, theta (L = 0), sin(L theta) / L.
+        for (double linearity : {0.0, -0.3}) {
+            LensCase other = c;
+            other.camera.lens.coefficients.back() = linearity;
+            other.name += " with linearity " + std::to_string(linearity);
+            cases.push_back(other);
+        }
+    }
+    REQUIRE(cases.size() >= 6);
+    for (const LensCase& c : cases) {
+        INFO(c.name);
+        const PreparedCamera camera(c.camera);
+        const std::vector<Vec2> pixels = pixel_grid(c.camera.size, 61, 41);
+        const std::vector<Unprojection> rays = camera.unproject(pixels);
+        std::vector<Vec2> with_ray;
+        std::vector<Vec3> directions;
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            if (!rays[i].valid) continue;
+            with_ray.push_back(pixels[i]);
+            directions.push_back(rays[i].direction);
+        }
+        REQUIRE(with_ray.size() > pixels.size() / 2);
+        const std::vector<Vec2> back = mrcal_project_points(c.camera, directions);
+        double worst = 0;
+        for (std::size_t i = 0; i < with_ray.size(); ++i) worst = std::max(worst, (back[i] - with_ray[i]).norm());
+        WARN(c.name << ": " << with_ray.size() << " of " << pixels.size() << " pixels have a ray; worst through mrcal_project "
+                    << worst << " px");
+        CHECK(worst <= kPixelTolerance);
     }
 }
 

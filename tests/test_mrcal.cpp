@@ -374,3 +374,25 @@ TEST_CASE("The packed mrcal calls refuse partial points, mismatched outputs and 
     CHECK_THAT(test::error_of([&] { mrcal_project_packed(zero_fx, points, pixels); }), Contains("K.fx"));
     CHECK_THAT(test::error_of([&] { (void)mrcal_project_points(zero_fx, {Vec3(0, 0, 1)}); }), Contains("K.fx"));
 }
+
+TEST_CASE("mrcal_project_points: a point mrcal refuses gets a NaN pixel, the others mrcal's own") {
+    // CAHVORE with a linearity of 1.5: mrcal projects only where 1.5 theta < 90 degrees.
+    Camera camera = to_camera(FovCamera{});
+    camera.lens = Lens{LensType::Cahvore, {0, 0, 0, 0, 0, 0, 0, 0, 1.5}};
+    const double inside = radians_from_degrees(30), outside = radians_from_degrees(70);
+    const std::vector<Vec3> points{Vec3(std::sin(inside), 0, std::cos(inside)), Vec3(0, std::sin(outside), std::cos(outside))};
+    std::vector<double> alone(2);
+    mrcal_project_packed(camera, std::vector<double>{points[0].x(), points[0].y(), points[0].z()}, alone);
+    std::vector<double> both(4);
+    CHECK_THROWS_AS(mrcal_project_packed(camera, std::vector<double>{points[0].x(), points[0].y(), points[0].z(),
+                                                                      points[1].x(), points[1].y(), points[1].z()},
+                                         both),
+                    Error);
+    const std::vector<Vec2> pixels = mrcal_project_points(camera, points);
+    REQUIRE(pixels.size() == 2);
+    CHECK(pixels[0] == Vec2(alone[0], alone[1]));
+    // By hand: chi = tan(1.5 theta) / 1.5, the pixel fx chi from the centre along x.
+    CHECK(std::abs(pixels[0].x() - (camera.intrinsics.cx + camera.intrinsics.fx * std::tan(1.5 * inside) / 1.5)) < 1e-9);
+    CHECK(std::isnan(pixels[1].x()));
+    CHECK(std::isnan(pixels[1].y()));
+}

@@ -94,6 +94,9 @@ TEST_CASE("Unprojection agrees with mrcal_unproject and cv::undistortPoints wher
         // COLMAP's models have no independent inverse here; test_unprojector reprojects
         // their rays through COLMAP's formula instead.
         if (colmap_only(c.camera.lens.type)) continue;
+        // mrcal 2.2 cannot unproject CAHVORE; test_lens_models reprojects libcam's rays of
+        // it through mrcal_project instead.
+        if (c.camera.lens.type == LensType::Cahvore) continue;
         INFO(c.name);
         const GridResult grid = unproject_grid(c.camera, 121, 91);
         CHECK(grid.worst <= kPixelTolerance);

@@ -274,7 +274,7 @@ void add_opencv_unprojection(std::vector<Contender>& out, const Setup& setup, co
 
 void add_mrcal_unprojection(std::vector<Contender>& out, const Setup& setup, const std::vector<double>& packed, Workspace& work) {
     const Camera& camera = setup.bench_case.camera;
-    if (!mrcal_has(camera.lens)) return;
+    if (!mrcal_unprojects(camera.lens)) return;
     Contender c{row(setup, "unproject", "mrcal", "mrcal_unproject", "double"), setup.grid.size(), nullptr, nullptr};
     c.run = [&] {
         mrcal_unproject_packed(camera, packed, work.mrcal_unprojected);

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -15,10 +16,23 @@ namespace libcam {
 
 namespace {
 
+// How many of the lens's last coefficients mrcal keeps in the model's name rather than
+// in the intrinsics: CAHVORE's linearity (LENSMODEL_CAHVORE_linearity=L).
+std::size_t coefficients_in_name(LensType type) { return type == LensType::Cahvore ? 1 : 0; }
+
+// The model's name as mrcal writes it, configuration included.
+std::string configured_name(const Lens& lens) {
+    std::string name(lens_info(lens.type).mrcal);
+    if (lens.type == LensType::Cahvore && !lens.coefficients.empty()) {
+        name += "_linearity=" + format_number(lens.coefficients.back());
+    }
+    return name;
+}
+
 // The lens's mrcal model, by the name the table gives it.
 mrcal_lensmodel_t mrcal_lensmodel(const Lens& lens) {
     mrcal_lensmodel_t model{};
-    const std::string name(lens_info(lens.type).mrcal);
+    const std::string name = lens_info(lens.type).mrcal.empty() ? std::string() : configured_name(lens);
     if (name.empty() || !mrcal_lensmodel_from_name(&model, name.c_str()) || model.type < 0) {
         std::string has;
         for (const LensInfo& info : lens_models()) {
@@ -35,8 +49,13 @@ LensType lens_type_from_mrcal(const mrcal_lensmodel_t& model, const std::string&
     // (Appending, not "#" + std::to_string(...): GCC 12 at -O3 raises a false -Wrestrict on that.)
     const std::string mrcal_name =
         name != nullptr ? std::string(name) : std::string("#").append(std::to_string(static_cast<int>(model.type)));
+    // A configured model's unconfigured name goes on after the table's: "_linearity=...".
+    const auto names = [&](std::string_view table) {
+        return mrcal_name == table || (mrcal_name.size() > table.size() && mrcal_name.starts_with(table) &&
+                                       mrcal_name[table.size()] == '_' && mrcal_name.ends_with("=..."));
+    };
     for (const LensInfo& info : lens_models()) {
-        if (!info.mrcal.empty() && info.mrcal == mrcal_name) return info.type;
+        if (!info.mrcal.empty() && names(info.mrcal)) return info.type;
     }
     throw NotRepresentable(source + ": \"lensmodel\": " + mrcal_name + " is not a lens model libcam supports");
 }
@@ -49,7 +68,9 @@ std::vector<double> mrcal_intrinsics(const Camera& camera) {
     }
     const Intrinsics& k = camera.intrinsics;
     std::vector<double> values{k.fx, k.fy, k.cx, k.cy};
-    values.insert(values.end(), camera.lens.coefficients.begin(), camera.lens.coefficients.end());
+    const auto& coefficients = camera.lens.coefficients;
+    values.insert(values.end(), coefficients.begin(),
+                  coefficients.end() - static_cast<std::ptrdiff_t>(coefficients_in_name(camera.lens.type)));
     return values;
 }
 
@@ -147,9 +168,15 @@ std::string number_list(const double* values, int count) {
 
 }  // namespace
 
+bool mrcal_unprojects(const Lens& lens) {
+    if (lens_info(lens.type).mrcal.empty()) return false;
+    const mrcal_lensmodel_t model = mrcal_lensmodel(lens);
+    return mrcal_lensmodel_metadata(&model).has_gradients;
+}
+
 std::string mrcal_lensmodel_name(const Lens& lens) {
     mrcal_lensmodel(lens);  // throws for a lens mrcal lacks
-    return std::string(lens_info(lens.type).mrcal);
+    return configured_name(lens);
 }
 
 std::string format_cameramodel(const Camera& camera) {
@@ -174,6 +201,9 @@ std::string format_cameramodel(const Camera& camera) {
     bool same = check->imagersize[0] == camera.size.width && check->imagersize[1] == camera.size.height;
     for (std::size_t i = 0; i < intrinsics.size(); ++i) same = same && check->intrinsics[i] == intrinsics[i];
     for (int i = 0; i < 6; ++i) same = same && check->rt_cam_ref[i] == extrinsics[i];
+    if (camera.lens.type == LensType::Cahvore) {
+        same = same && check->lensmodel.LENSMODEL_CAHVORE__config.linearity == camera.lens.coefficients.back();
+    }
     if (!same) throw Error("internal: .cameramodel text does not read back through libmrcal bit for bit");
     return text;
 }
@@ -186,6 +216,9 @@ Camera parse_cameramodel(std::string_view text, const std::string& source) {
     const double* values = model->intrinsics;
     camera.intrinsics = Intrinsics{values[0], values[1], values[2], values[3], 0.0};
     camera.lens.coefficients.assign(values + 4, values + num_intrinsics);
+    if (camera.lens.type == LensType::Cahvore) {
+        camera.lens.coefficients.push_back(model->lensmodel.LENSMODEL_CAHVORE__config.linearity);
+    }
     camera.size = {static_cast<long>(model->imagersize[0]), static_cast<long>(model->imagersize[1])};
     const double* rt = model->rt_cam_ref;
     camera.pose = Pose::from_rvec(Vec3(rt[0], rt[1], rt[2]), Vec3(rt[3], rt[4], rt[5]));
@@ -242,7 +275,42 @@ std::vector<Vec2> mrcal_project_points(const Camera& camera, const std::vector<V
     in.reserve(3 * camera_points.size());
     for (const Vec3& p : camera_points) in.insert(in.end(), {p.x(), p.y(), p.z()});
     std::vector<double> out(2 * camera_points.size());
-    mrcal_project_packed(camera, in, out);
+    camera.validate();  // so that what the catches below see is mrcal's refusal alone
+    // mrcal refuses a whole call when one point is outside what it can project (CAHVORE
+    // past |L| theta = 90 degrees, saying so on stderr): then one point at a time, NaN
+    // for those, with mrcal's messages kept off stderr.
+    const auto project_each = [&] {
+        for (std::size_t i = 0; i < camera_points.size(); ++i) {
+            try {
+                mrcal_project_packed(camera, std::span<const double>(in).subspan(3 * i, 3),
+                                     std::span<double>(out).subspan(2 * i, 2));
+            } catch (const NotRepresentable&) {
+                throw;
+            } catch (const Error&) {
+                out[2 * i] = out[2 * i + 1] = std::numeric_limits<double>::quiet_NaN();
+            }
+        }
+    };
+    std::exception_ptr failure;  // nothing may leave capturing_stderr by an exception
+    const auto project = [&] {
+        try {
+            try {
+                mrcal_project_packed(camera, in, out);
+            } catch (const NotRepresentable&) {
+                throw;
+            } catch (const Error&) {
+                project_each();
+            }
+        } catch (...) {
+            failure = std::current_exception();
+        }
+    };
+    if (camera.lens.type == LensType::Cahvore) {
+        (void)capturing_stderr(project);
+    } else {
+        project();
+    }
+    if (failure) std::rethrow_exception(failure);
     std::vector<Vec2> pixels(camera_points.size());
     for (std::size_t i = 0; i < pixels.size(); ++i) pixels[i] = {out[2 * i], out[2 * i + 1]};
     return pixels;

@@ -34,8 +34,13 @@ void mrcal_project_packed(const Camera& camera, std::span<const double> points_x
 void mrcal_unproject_packed(const Camera& camera, std::span<const double> pixels_xy, std::span<double> directions_xyz);
 
 // Projects camera-frame points with mrcal_project. mrcal does not flag points behind
-// the camera; every result here is marked valid and the caller compares.
+// the camera; every result here is marked valid and the caller compares. A point mrcal
+// refuses to project (it refuses a whole call for one) gets a NaN pixel.
 std::vector<Vec2> mrcal_project_points(const Camera& camera, const std::vector<Vec3>& camera_points);
+
+// Whether mrcal_unproject handles the lens: mrcal has the model and its gradients (mrcal
+// 2.2 has none for CAHVORE, and its mrcal_unproject refuses that model).
+bool mrcal_unprojects(const Lens& lens);
 
 // Unprojects OpenCV pixels with mrcal_unproject: camera-frame directions, not normalised.
 std::vector<Vec3> mrcal_unproject_pixels(const Camera& camera, const std::vector<Vec2>& pixels);

@@ -334,6 +334,11 @@ std::vector<VerifyCheck> check_unproject_mrcal(const Camera& camera, const Sampl
     VerifyCheck agreement = new_check(verify_check::mrcal_vs_libcam,
                                       "mrcal_unproject vs libcam, both reprojected by libcam", kMrcalAgreementPx);
     if (lacks) return {skip(std::move(residual), *lacks), skip(std::move(agreement), *lacks)};
+    if (!mrcal_unprojects(camera.lens)) {
+        const std::string reason = "lens: mrcal_unproject does not handle model " +
+                                   std::string(lens_info(camera.lens.type).name) + " (mrcal has no gradients for it)";
+        return {skip(std::move(residual), reason), skip(std::move(agreement), reason)};
+    }
 
     const std::vector<Vec2> pixels = s.pixels_with_ray();
     const std::vector<Vec3> theirs = mrcal_unproject(camera, pixels, s.threads);

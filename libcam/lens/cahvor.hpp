@@ -46,6 +46,43 @@
 
 namespace libcam {
 
+namespace detail {
+
+// CAHVOR's and CAHVORE's optical axis o from alpha and beta: a unit vector.
+template <class T>
+Eigen::Matrix<T, 3, 1> cahvor_axis(const T& alpha, const T& beta) {
+    using std::cos;
+    using std::sin;
+    const T cb = cos(beta);
+    return {sin(alpha) * cb, sin(beta), cos(alpha) * cb};
+}
+
+// The angle between the axis and the camera's z axis.
+inline double cahvor_tilt(double alpha, double beta) {
+    const Eigen::Vector3d o = cahvor_axis(alpha, beta);
+    return std::atan2(std::hypot(o.x(), o.y()), o.z());
+}
+
+// The radius of the largest disc of pinhole points about z whose directions all lie
+// within phi_max of an axis tilted by gamma from z: tan(phi_max - gamma).
+inline double disc_within_angle(double phi_max, double gamma) {
+    return phi_max > gamma ? std::tan(phi_max - gamma) : 0.0;
+}
+
+// Left to right in every scalar type: Eigen's dot() pairs the terms differently in
+// double (SSE) than in Lane<double>, and the batch paths must give the same bits.
+template <class Vec3>
+auto dot3(const Vec3& a, const Vec3& b) {
+    return a.x() * b.x() + a.y() * b.y() + a.z() * b.z();
+}
+
+template <class Vec3>
+Vec3 cross3(const Vec3& a, const Vec3& b) {
+    return {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
+}
+
+}  // namespace detail
+
 template <class Scalar>
 struct CahvorLens : OnPinholePoint<CahvorLens<Scalar>, Scalar> {
     static constexpr LensType type = LensType::Cahvor;
@@ -72,8 +109,7 @@ struct CahvorLens : OnPinholePoint<CahvorLens<Scalar>, Scalar> {
         const double numerator[] = {1.0, r1 / stretch, r2 / stretch};
         const double denominator[] = {1.0};
         const double fold = radial_valid_radius(numerator, denominator);
-        const Eigen::Vector3d o = axis<double>(k[0], k[1]);
-        const double gamma = std::atan2(std::hypot(o.x(), o.y()), o.z());
+        const double gamma = detail::cahvor_tilt(k[0], k[1]);
         if (gamma == 0.0) return fold;  // the disc is the fold's cone
         const double half_turn = std::numbers::pi / 2;
         double phi_max = std::isinf(fold) ? half_turn : atan(fold);
@@ -95,7 +131,7 @@ struct CahvorLens : OnPinholePoint<CahvorLens<Scalar>, Scalar> {
             }
             phi_max = std::min(phi_max, atan(low));
         }
-        return phi_max > gamma ? tan(phi_max - gamma) : 0.0;
+        return detail::disc_within_angle(phi_max, gamma);
     }
 
     static Parameters parameters(std::span<const double> k) { return lens_parameters<Scalar, 5>(k, valid_radius(k)); }
@@ -110,17 +146,17 @@ struct CahvorLens : OnPinholePoint<CahvorLens<Scalar>, Scalar> {
         using std::sin;
         const auto& k = lens.coefficients;
         const Scalar one(1), two(2);
-        const Vec3T o = axis<Scalar>(k(0), k(1));
+        const Vec3T o = detail::cahvor_axis(k(0), k(1));
         const Vec3T p(u.x(), u.y(), one);
-        const Scalar omega = dot(p, o);
+        const Scalar omega = detail::dot3(p, o);
         const Scalar inverse_omega = one / omega;
         // tau and the part of p across the axis from c = p x o, each to a few roundings of
         // its own size: |p|^2 / omega^2 - 1 and p - omega o would cancel near the axis,
         // where a tilted lens's image centre comes from them (at f = 1e12 px, 1e-5 px).
-        const Vec3T c = cross(p, o);
-        const Scalar tau = dot(c, c) * inverse_omega * inverse_omega;
+        const Vec3T c = detail::cross3(p, o);
+        const Scalar tau = detail::dot3(c, c) * inverse_omega * inverse_omega;
         const Scalar mu = k(2) + tau * (k(3) + tau * k(4));
-        const Vec3T across = cross(o, c);  // p - omega o, o being a unit vector
+        const Vec3T across = detail::cross3(o, c);  // p - omega o, o being a unit vector
         const Vec3T stretched = p + mu * across;
         const Scalar inverse_z = one / stretched.z();
         m = Vec2T(stretched.x() * inverse_z, stretched.y() * inverse_z);
@@ -147,7 +183,7 @@ struct CahvorLens : OnPinholePoint<CahvorLens<Scalar>, Scalar> {
                 const Scalar sa = sin(k(0)), ca = cos(k(0)), sb = sin(k(1)), cb = cos(k(1));
                 const Vec3T d_o[2] = {Vec3T(ca * cb, Scalar(0), -sa * cb), Vec3T(-sa * sb, cb, -ca * sb)};
                 for (int j = 0; j < 2; ++j) {
-                    const Scalar d_omega = dot(p, d_o[j]);
+                    const Scalar d_omega = detail::dot3(p, d_o[j]);
                     const Scalar d_mu = d_mu_d_tau * d_tau_d_omega * d_omega;
                     const Vec3T d_across = -(d_omega * o + omega * d_o[j]);
                     d_m_d_coefficients->col(j) = d_m_d_stretched * (d_mu * across + mu * d_across);
@@ -168,21 +204,6 @@ struct CahvorLens : OnPinholePoint<CahvorLens<Scalar>, Scalar> {
     }
 
 private:
-    template <class T>
-    static Eigen::Matrix<T, 3, 1> axis(const T& alpha, const T& beta) {
-        using std::cos;
-        using std::sin;
-        const T cb = cos(beta);
-        return {sin(alpha) * cb, sin(beta), cos(alpha) * cb};
-    }
-
-    // Left to right in every scalar type: Eigen's dot() pairs the terms differently in
-    // double (SSE) than in Lane<double>, and the batch paths must give the same bits.
-    static Scalar dot(const Vec3T& a, const Vec3T& b) { return a.x() * b.x() + a.y() * b.y() + a.z() * b.z(); }
-    static Vec3T cross(const Vec3T& a, const Vec3T& b) {
-        return {a.y() * b.z() - a.z() * b.y(), a.z() * b.x() - a.x() * b.z(), a.x() * b.y() - a.y() * b.x()};
-    }
-
     // g(t) = t (1 + r0 + r1 t^2 + r2 t^4), tan of the stretched angle from the axis
     // against tan of the angle, and its slope g'(t), from coefficients k (alpha beta r0 r1
     // r2) in any container: the valid domain's (double) and the solver's start.

@@ -37,7 +37,8 @@
     _(ThinPrismFisheye, ThinPrismFisheyeLens) \
     _(RadTanThinPrismFisheye, RadTanThinPrismFisheyeLens) \
     _(Equisolid, EquisolidLens) \
-    _(Cahvor, CahvorLens)
+    _(Cahvor, CahvorLens) \
+    _(Cahvore, CahvoreLens)
 
 namespace libcam {
 
@@ -80,6 +81,7 @@ enum class LensFamily {
     ThinPrismFisheye,  // not FISHEYE's: its coefficients interleave (k1 k2 p1 p2 k3 k4)
     Equisolid,
     Cahvor,
+    Cahvore,  // not CAHVOR's: CAHVOR is CAHVORE with zero E and a linearity of 1, not 0
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -205,6 +207,13 @@ inline constexpr LensInfo kLensTable[] = {
     {.type = LensType::Cahvor, .name = "CAHVOR", .coefficients = {"alpha", "beta", "r0", "r1", "r2"},
      .num_coefficients = 5, .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None,
      .mrcal = "LENSMODEL_CAHVOR", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Cahvor,
+     .family_rank = 0, .fit = FitCandidate::No},
+    // JPL's CAHVORE as libmrcal 2.2 has it (central: see cahvore.hpp); mrcal keeps the
+    // linearity in the model's name, LENSMODEL_CAHVORE_linearity=L.
+    {.type = LensType::Cahvore, .name = "CAHVORE",
+     .coefficients = {"alpha", "beta", "r0", "r1", "r2", "e0", "e1", "e2", "linearity"}, .num_coefficients = 9,
+     .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None,
+     .mrcal = "LENSMODEL_CAHVORE", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Cahvore,
      .family_rank = 0, .fit = FitCandidate::No},
 };
 

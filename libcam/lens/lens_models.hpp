@@ -39,6 +39,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/lens/cahvor.hpp"
+#include "libcam/lens/cahvore.hpp"
 #include "libcam/lens/double_sphere.hpp"
 #include "libcam/lens/equisolid.hpp"
 #include "libcam/lens/eucm.hpp"
