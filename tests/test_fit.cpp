@@ -8,7 +8,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <optional>
+
+#include <nlohmann/json.hpp>
 
 #include "lens_cases.hpp"
 #include "libcam/convert/fov_convert.hpp"
@@ -341,4 +346,65 @@ TEST_CASE("a scene with no pixel that has a ray is refused") {
     CHECK(report.sampling.check.skipped > 0);
     CHECK(report.sampling.fit.skipped > 0);
     CHECK(chosen(report).fit.candidate.name == "OPENCV4");
+}
+
+// basalt's calibrations of the EuRoC and TUM-VI cameras (Double Sphere and EUCM), read
+// here from basalt's JSON by hand (fx fy cx cy and the model's two parameters).
+namespace {
+
+Camera basalt_camera(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    const nlohmann::json calibration = nlohmann::json::parse(in).at("value0");
+    const nlohmann::json& first = calibration.at("intrinsics").at(0);
+    const nlohmann::json& k = first.at("intrinsics");
+    Camera camera;
+    camera.size = {calibration.at("resolution").at(0).at(0).get<int>(), calibration.at("resolution").at(0).at(1).get<int>()};
+    camera.intrinsics = {k.at("fx").get<double>(), k.at("fy").get<double>(), k.at("cx").get<double>(), k.at("cy").get<double>(), 0.0};
+    const std::string type = first.at("camera_type").get<std::string>();
+    REQUIRE((type == "ds" || type == "eucm"));
+    camera.lens = type == "ds" ? Lens{LensType::DoubleSphere, {k.at("xi").get<double>(), k.at("alpha").get<double>()}}
+                               : Lens{LensType::Eucm, {k.at("alpha").get<double>(), k.at("beta").get<double>()}};
+    return camera;
+}
+
+}  // namespace
+
+TEST_CASE("basalt's Double Sphere and EUCM calibrations become a FISHEYE within 0.1 px, checked by the papers' formulas "
+          "and cv::fisheye",
+          "[real]") {
+    const std::filesystem::path folder = std::filesystem::path(LIBCAM_REAL_CAMERAS) / "basalt";
+    if (!std::filesystem::is_directory(folder)) {
+        WARN("skipped: no folder of real calibration files at " << folder.string());
+        return;
+    }
+    for (const char* name : {"euroc_ds_calib.json", "euroc_eucm_calib.json", "tumvi_512_ds_calib.json", "tumvi_512_eucm_calib.json"}) {
+        INFO(name);
+        const Camera source = basalt_camera(folder / name);
+        FitOptions options;
+        options.tolerance_px = 0.1;
+        const FitReport report = fit_scene(source, Scene::whole_image(), options);
+        const CandidateReport& result = chosen(report);
+        CHECK(result.fit.candidate.name == "FISHEYE");
+        // Independently: rays through a dense grid whose pixel the paper's formula for the
+        // source gives back (to 1e-9 px), projected by cv::fisheye through the fitted camera.
+        const std::vector<Vec2> pixels = test::pixel_grid(source.size, 151, 121);
+        const std::vector<Unprojection> rays = PreparedCamera(source).unproject(pixels);
+        std::vector<Vec3> directions;
+        std::vector<Vec2> expected;
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            if (!rays[i].valid) continue;
+            const std::optional<Vec2> paper = test::paper_pixel(source, rays[i].direction);
+            REQUIRE(paper.has_value());
+            REQUIRE((*paper - pixels[i]).norm() < 1e-9);
+            directions.push_back(result.fit.camera.pose.camera_from_world(rays[i].direction));
+            expected.push_back(pixels[i]);
+        }
+        REQUIRE(directions.size() > pixels.size() * 9 / 10);
+        const std::vector<Vec2> through_opencv = test::reference_project(result.fit.camera, directions);
+        double worst = 0.0;
+        for (std::size_t i = 0; i < directions.size(); ++i) worst = std::max(worst, (through_opencv[i] - expected[i]).norm());
+        WARN(name << ": " << report.candidates.size() << " candidates, FISHEYE within " << worst << " px over " << directions.size()
+                  << " pixels (fit's own check: " << result.max_px << " px)");
+        CHECK(worst <= 0.1);
+    }
 }
