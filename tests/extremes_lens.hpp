@@ -208,7 +208,7 @@ inline Camera scaled_camera(Camera camera, double scale) {
 // Every model's lens (mild and strong) on a 100000-pixel-wide sensor.
 inline std::vector<LensCase> large_image_cases() {
     std::vector<LensCase> cases;
-    for (const LensCase& c : lens_cases())
+    for (const LensCase& c : sanitized_subset(lens_cases()))
         cases.push_back({c.name, scaled_camera(c.camera, 100000.0 / static_cast<double>(c.camera.size.width))});
     return cases;
 }
@@ -486,7 +486,7 @@ inline std::vector<Vec2> sweep_pixels(const Camera& camera) {
 
 inline std::vector<Camera> sweep_cameras() {
     std::vector<Camera> cameras;
-    for (const LensCase& c : lens_cases()) cameras.push_back(c.camera);
+    for (const LensCase& c : sanitized_subset(lens_cases())) cameras.push_back(c.camera);
     for (const LensCase& c : coefficient_extremes()) cameras.push_back(c.camera);
     for (const HandFold& fold : hand_folds()) cameras.push_back(fold.camera);
     for (const LensCase& c : fisheye_lenses()) cameras.push_back(c.camera);

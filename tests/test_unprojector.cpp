@@ -85,7 +85,7 @@ std::vector<Vec2> grid_past_edges(const ImageSize& size, int nx, int ny) {
 }
 
 std::vector<LensCase> all_lens_cases() {
-    std::vector<LensCase> cases = lens_cases();
+    std::vector<LensCase> cases = sanitized_subset(lens_cases());
     for (const FoldCase& fold : fold_cases()) cases.push_back({fold.name, fold.camera});
     return cases;
 }
