@@ -1,7 +1,7 @@
 #pragma once
 // Blender's Cycles cameras as Cycles maps a pixel to a ray (intern/cycles/kernel/camera/
 // projection.h: fisheye_to_direction, fisheye_equisolid_to_direction,
-// equirectangular_range_to_direction; the viewplane and sensor of scene/camera.cpp and
+// fisheye_lens_polynomial_to_direction, equirectangular_range_to_direction; the viewplane and sensor of scene/camera.cpp and
 // blender/camera.cpp), written out again step by step in long double: the tests'
 // independent reference for libcam's Blender conversion.
 
@@ -68,6 +68,15 @@ inline std::optional<Eigen::Vector3d> blender_ray(const BlenderCamera& camera, d
             const Real lens = camera.fisheye_lens_mm;
             if (r > 2 * lens * std::sin(Real(camera.fisheye_fov) / 4)) return std::nullopt;
             return from_panorama_frame(fisheye_direction(2 * std::asin(r / (2 * lens)), x, y));
+        }
+        case BlenderCameraType::FisheyeLensPolynomial: {
+            const Real sw = horizontal ? S : S * W / H, sh = horizontal ? S * H / W : S;
+            const Real x = (U - Real(0.5)) * sw, y = (V - Real(0.5)) * sh, r = std::sqrt(x * x + y * y);
+            const auto& k = camera.fisheye_polynomial;
+            const Real r2 = r * r;
+            const Real theta = -(Real(k[0]) + Real(k[1]) * r + Real(k[2]) * r2 + Real(k[3]) * r2 * r + Real(k[4]) * r2 * r2);
+            if (std::abs(theta) > Real(camera.fisheye_fov) / 2) return std::nullopt;
+            return from_panorama_frame(fisheye_direction(theta, x, y));
         }
         case BlenderCameraType::Equirectangular: {
             const Real lon_min = camera.longitude_min, lon_max = camera.longitude_max;

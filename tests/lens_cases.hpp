@@ -164,6 +164,16 @@ inline std::vector<LensCase> lens_cases() {
                                       {3942, 2172}, {4842.918, 4842.771, 1970.528, 1085.302})},
         {"CAHVORE fisheye", lens_camera(LensType::Cahvore, {0.003, -0.002, 0.0, 0.01, -0.001, 0.02, 0.01, 0.0, 0.1},
                                         {1600, 1200}, 400, 400)},
+        // Blender's default FISHEYE_LENS_POLYNOMIAL (fitted by Blender to its 50 mm
+        // perspective camera; m in mm: f = 1920 px / 36 mm), and a fisheye whose corners
+        // lie 142 degrees off the axis (theta = 0.09 r + 4e-5 r^3, 1600 px over 36 mm).
+        {"FISHEYE_LENS_POLYNOMIAL blender",
+         real_camera(LensType::LensPolynomial,
+                     {-1.1735143712967577e-05, -0.019988736953434998, -3.3525322965709175e-06, 3.099275275886036e-06,
+                      -2.6064646454854524e-08},
+                     {1920, 1080}, {1920.0 / 36, 1920.0 / 36, 959.5, 539.5})},
+        {"FISHEYE_LENS_POLYNOMIAL fisheye", real_camera(LensType::LensPolynomial, {0.0, -0.09, 0.0, -4e-5, 0.0}, {1200, 1600},
+                                                        {1600.0 / 36, 1600.0 / 36, 599.5, 799.5})},
     };
     return cases;
 }

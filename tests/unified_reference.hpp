@@ -162,11 +162,73 @@ inline std::optional<Vec3> equisolid_paper_ray(const Camera& camera, const Vec2&
                 static_cast<double>(std::cos(theta)));
 }
 
+// Blender's FISHEYE_LENS_POLYNOMIAL (Cycles' fisheye_lens_polynomial_to_direction):
+// theta(r) = -(k0 + k1 r + ... + k4 r^4), the ray (sin(theta) m / r, cos(theta)).
+inline Long lens_polynomial_theta(const Camera& camera, Long r) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return -(Long(k[0]) + r * (Long(k[1]) + r * (Long(k[2]) + r * (Long(k[3]) + r * Long(k[4])))));
+}
+
+// Nothing past where theta stops being monotonic, reaches pi, or has the sign opposite to
+// its slope at the centre; and nothing at the centre unless k0 = 0.
+inline std::optional<Vec3> lens_polynomial_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const Intrinsics& k = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - k.cx) / k.fx, my = (Long(pixel.y()) - k.cy) / k.fy;
+    const Long r = std::hypot(mx, my);
+    const Long sigma = camera.lens.coefficients[1] < 0 ? 1 : -1;
+    // One-to-one up to r: theta' keeps sigma's sign on [0, r] (checked on a fine grid).
+    constexpr int kSteps = 2000;
+    for (int i = 1; i <= kSteps; ++i) {
+        const Long a = r * (i - 1) / kSteps, b = r * i / kSteps;
+        if (!(sigma * (lens_polynomial_theta(camera, b) - lens_polynomial_theta(camera, a)) > 0)) return std::nullopt;
+    }
+    const Long theta = lens_polynomial_theta(camera, r);
+    if (!(sigma * theta > 0) || !(std::abs(theta) < std::numbers::pi_v<Long>)) return std::nullopt;
+    if (r == 0) return Vec3(0, 0, 1);
+    return Vec3(static_cast<double>(std::sin(theta) * mx / r), static_cast<double>(std::sin(theta) * my / r),
+                static_cast<double>(std::cos(theta)));
+}
+
+// Projection: theta(r) = sigma times the point's angle, solved by bisection in long
+// double over the radii where the ray above exists.
+inline std::optional<Vec2> lens_polynomial_paper_pixel(const Camera& camera, const Vec3& point) {
+    const Long x = point.x(), y = point.y(), z = point.z(), rho = std::hypot(x, y);
+    if (rho == 0) {
+        if (!(z > 0) || camera.lens.coefficients[0] != 0) return std::nullopt;
+        return pixel_of(camera, 0, 0, 1);
+    }
+    const Long target = std::atan2(rho, z);
+    const Long sigma = camera.lens.coefficients[1] < 0 ? 1 : -1;
+    // The end of the one-to-one range: step out until theta turns or reaches pi.
+    Long high = 0, step = 1e-3;
+    while (true) {
+        const Long next = high + step;
+        if (!(sigma * (lens_polynomial_theta(camera, next) - lens_polynomial_theta(camera, high)) > 0) ||
+            !(std::abs(lens_polynomial_theta(camera, next)) < std::numbers::pi_v<Long>)) {
+            if (step < 1e-12) break;
+            step /= 2;
+            continue;
+        }
+        high = next;
+        step *= 2;
+    }
+    if (!(sigma * lens_polynomial_theta(camera, high) > target) || !(sigma * lens_polynomial_theta(camera, 0) < target)) {
+        return std::nullopt;
+    }
+    Long low = 0;
+    for (int i = 0; i < 200; ++i) {
+        const Long middle = (low + high) / 2;
+        (sigma * lens_polynomial_theta(camera, middle) < target ? low : high) = middle;
+    }
+    const Long r = (low + high) / 2;
+    return pixel_of(camera, sigma * x * r, sigma * y * r, rho);
+}
+
 // The papers' formulas for any model of the family; nullopt for a model outside it
 // (the outer optional), nothing for a point or pixel outside the domain (the inner).
 inline bool has_paper_formulas(LensType type) {
     return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov ||
-           type == LensType::Equisolid;
+           type == LensType::Equisolid || type == LensType::LensPolynomial;
 }
 
 inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
@@ -176,6 +238,7 @@ inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) 
         case LensType::Eucm: return eucm_paper_pixel(camera, point);
         case LensType::Fov: return fov_paper_pixel(camera, point);
         case LensType::Equisolid: return equisolid_paper_pixel(camera, point);
+        case LensType::LensPolynomial: return lens_polynomial_paper_pixel(camera, point);
         default: throw std::logic_error("paper_pixel: not a model with a paper's formulas here");
     }
 }
@@ -187,6 +250,7 @@ inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
         case LensType::Eucm: return eucm_paper_ray(camera, pixel);
         case LensType::Fov: return fov_paper_ray(camera, pixel);
         case LensType::Equisolid: return equisolid_paper_ray(camera, pixel);
+        case LensType::LensPolynomial: return lens_polynomial_paper_ray(camera, pixel);
         default: throw std::logic_error("paper_ray: not a model with a paper's formulas here");
     }
 }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "libcam/error.hpp"
 
@@ -89,6 +90,19 @@ Camera camera_from_blender(const BlenderCamera& blender) {
             const double f = blender.fisheye_lens_mm * pixels_per_mm(blender);
             camera.intrinsics = panoramic_intrinsics(blender, f, f);
             camera.lens = {LensType::Equisolid, {}};
+            break;
+        }
+        case BlenderCameraType::FisheyeLensPolynomial: {
+            const std::vector<double> k(blender.fisheye_polynomial.begin(), blender.fisheye_polynomial.end());
+            for (std::size_t i = 0; i < k.size(); ++i) {
+                require_finite(("fisheye_polynomial_k" + std::to_string(i)).c_str(), k[i]);
+            }
+            if (k[1] == 0) {
+                throw InvalidArgument("fisheye_polynomial_k1: must not be 0 (the angle must grow with the radius), got 0");
+            }
+            const double f = pixels_per_mm(blender);
+            camera.intrinsics = panoramic_intrinsics(blender, f, f);
+            camera.lens = {LensType::LensPolynomial, k};
             break;
         }
         case BlenderCameraType::Equirectangular: {

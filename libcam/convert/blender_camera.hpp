@@ -1,6 +1,7 @@
 #pragma once
 // Blender's cameras (Cycles) as libcam cameras: the perspective camera and the panoramic
-// FISHEYE_EQUIDISTANT, FISHEYE_EQUISOLID and EQUIRECTANGULAR, with Blender's own
+// FISHEYE_EQUIDISTANT, FISHEYE_EQUISOLID, FISHEYE_LENS_POLYNOMIAL and EQUIRECTANGULAR,
+// with Blender's own
 // parameters (lens and sensor in millimetres, sensor fit, shift, the fisheye's field of
 // view and lens, the equirectangular latitude and longitude ranges), as Cycles maps a
 // pixel to a ray (intern/cycles/kernel/camera/projection.h, scene/camera.cpp and
@@ -9,6 +10,8 @@
 //   perspective          PINHOLE
 //   FISHEYE_EQUIDISTANT  FISHEYE with zero coefficients: fx = W / fov, fy = H / fov
 //   FISHEYE_EQUISOLID    EQUISOLID: fx = lens W / sensor width, fy = lens H / sensor height
+//   FISHEYE_LENS_POLYNOMIAL  FISHEYE_LENS_POLYNOMIAL (k0..k4): fx = fy = W / sensor width,
+//                        pixels per millimetre of the fitted sensor, so that m is in mm
 //   EQUIRECTANGULAR      LONLAT: fx = W / (lon max - lon min), fy = H / (lat max - lat min)
 //
 // Pixels: Cycles samples pixel (i, j) at its centre (i + 0.5, j + 0.5), counting rows
@@ -17,11 +20,13 @@
 // camera's by shift times the fitted side (W for a horizontal fit).
 //
 // Blender's fisheyes render only inside the image circle theta <= fov / 2 (black
-// outside); the libcam camera images the lens model's whole domain.
+// outside; for FISHEYE_LENS_POLYNOMIAL, |theta| <= fov / 2); the libcam camera images the
+// lens model's whole domain.
 //
 // Axes: Blender's camera looks along its -Z with Y up; libcam's (OpenCV's) along +z with
 // y down: p_libcam = (X, -Y, -Z) of Blender's camera frame.
 
+#include <array>
 #include <numbers>
 
 #include "libcam/camera/camera.hpp"
@@ -29,7 +34,7 @@
 
 namespace libcam {
 
-enum class BlenderCameraType { Perspective, FisheyeEquidistant, FisheyeEquisolid, Equirectangular };
+enum class BlenderCameraType { Perspective, FisheyeEquidistant, FisheyeEquisolid, FisheyeLensPolynomial, Equirectangular };
 
 // Blender's sensor_fit: which side of the image the sensor size measures.
 enum class SensorFit { Auto, Horizontal, Vertical };
@@ -47,6 +52,10 @@ struct BlenderCamera {
     double shift_y = 0.0;
     double fisheye_fov = std::numbers::pi;  // FISHEYE_EQUIDISTANT and FISHEYE_EQUISOLID
     double fisheye_lens_mm = 10.5;          // FISHEYE_EQUISOLID
+    // FISHEYE_LENS_POLYNOMIAL's fisheye_polynomial_k0..k4 (theta in radians of the radius in
+    // mm); Blender's defaults fit its default 50 mm perspective camera.
+    std::array<double, 5> fisheye_polynomial{-1.1735143712967577e-05, -0.019988736953434998, -3.3525322965709175e-06,
+                                             3.099275275886036e-06, -2.6064646454854524e-08};
     double latitude_min = -std::numbers::pi / 2, latitude_max = std::numbers::pi / 2;  // EQUIRECTANGULAR
     double longitude_min = -std::numbers::pi, longitude_max = std::numbers::pi;
 };

@@ -38,7 +38,8 @@
     _(RadTanThinPrismFisheye, RadTanThinPrismFisheyeLens) \
     _(Equisolid, EquisolidLens) \
     _(Cahvor, CahvorLens) \
-    _(Cahvore, CahvoreLens)
+    _(Cahvore, CahvoreLens) \
+    _(LensPolynomial, LensPolynomialLens)
 
 namespace libcam {
 
@@ -82,6 +83,7 @@ enum class LensFamily {
     Equisolid,
     Cahvor,
     Cahvore,  // not CAHVOR's: CAHVOR is CAHVORE with zero E and a linearity of 1, not 0
+    LensPolynomial,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -215,6 +217,12 @@ inline constexpr LensInfo kLensTable[] = {
      .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None,
      .mrcal = "LENSMODEL_CAHVORE", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Cahvore,
      .family_rank = 0, .fit = FitCandidate::No},
+    // Blender's FISHEYE_LENS_POLYNOMIAL panoramic camera: the angle as a polynomial of the
+    // radius on the sensor, in millimetres (convert/blender_camera.hpp).
+    {.type = LensType::LensPolynomial, .name = "FISHEYE_LENS_POLYNOMIAL", .coefficients = {"k0", "k1", "k2", "k3", "k4"},
+     .num_coefficients = 5, .sees_behind_camera = true, .inverse = Inverse::ClosedForm,
+     .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
+     .family = LensFamily::LensPolynomial, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

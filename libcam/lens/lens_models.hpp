@@ -48,6 +48,7 @@
 #include "libcam/lens/lane.hpp"
 #include "libcam/lens/latlon.hpp"
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/lens/lens_polynomial.hpp"
 #include "libcam/lens/lonlat.hpp"
 #include "libcam/lens/mei.hpp"
 #include "libcam/lens/opencv.hpp"
