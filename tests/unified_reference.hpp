@@ -176,6 +176,10 @@ inline std::optional<Vec3> lens_polynomial_paper_ray(const Camera& camera, const
     const Long mx = (Long(pixel.x()) - k.cx) / k.fx, my = (Long(pixel.y()) - k.cy) / k.fy;
     const Long r = std::hypot(mx, my);
     const Long sigma = camera.lens.coefficients[1] < 0 ? 1 : -1;
+    if (r == 0) {
+        if (camera.lens.coefficients[0] != 0) return std::nullopt;
+        return Vec3(0, 0, 1);
+    }
     // One-to-one up to r: theta' keeps sigma's sign on [0, r] (checked on a fine grid).
     constexpr int kSteps = 2000;
     for (int i = 1; i <= kSteps; ++i) {
@@ -184,7 +188,6 @@ inline std::optional<Vec3> lens_polynomial_paper_ray(const Camera& camera, const
     }
     const Long theta = lens_polynomial_theta(camera, r);
     if (!(sigma * theta > 0) || !(std::abs(theta) < std::numbers::pi_v<Long>)) return std::nullopt;
-    if (r == 0) return Vec3(0, 0, 1);
     return Vec3(static_cast<double>(std::sin(theta) * mx / r), static_cast<double>(std::sin(theta) * my / r),
                 static_cast<double>(std::cos(theta)));
 }
