@@ -146,15 +146,18 @@ bool near_x_or_y_axis(const Vec3& direction) {
 }
 
 // The optical axis, a direction 2e-5 rad off it (FISHEYE's series there), and `count`
-// directions over the cap within max_angle of the axis, uniform in solid angle (cos theta
+// directions over the cap within max_angle of the axis (each axis_margin off it), uniform in solid angle (cos theta
 // evenly spaced, azimuth by the golden angle); each at a random distance in [0.2, 50].
-std::vector<Vec3> domain_points(double max_angle, int count) {
+std::vector<Vec3> domain_points(double max_angle, int count, double axis_margin = 0.0) {
     std::vector<Vec3> directions{{0, 0, 1}, {1e-5, -2e-5, 1}};
+    // Off the axis by axis_margin (lens_cases.hpp's axis_margin_of).
+    const auto seen = [&](const Vec3& d) { return axis_margin == 0.0 || std::atan2(d.head<2>().norm(), d.z()) > axis_margin; };
+    std::erase_if(directions, [&](const Vec3& d) { return !seen(d); });
     const double golden_angle = std::numbers::pi * (3 - std::sqrt(5.0));
     for (int i = 0; i < count; ++i) {
         const double cos_theta = 1 - (1 - std::cos(max_angle)) * (i + 0.5) / count;
         const Vec3 direction = direction_at(std::acos(cos_theta), golden_angle * i);
-        if (!near_x_or_y_axis(direction)) directions.push_back(direction);
+        if (!near_x_or_y_axis(direction) && seen(direction)) directions.push_back(direction);
     }
     std::mt19937_64 generator(20261121);
     std::vector<Vec3> points;
@@ -165,7 +168,7 @@ std::vector<Vec3> domain_points(double max_angle, int count) {
 constexpr int kPointsPerCase = 300;
 
 std::vector<Vec3> sample_points(const LensInfo& info, const Camera& camera) {
-    return domain_points(max_sample_angle(info, domain_edge_of(camera.lens)), kPointsPerCase);
+    return domain_points(max_sample_angle(info, domain_edge_of(camera.lens)), kPointsPerCase, axis_margin_of(camera.lens));
 }
 
 // The angle between two directions, in long double (atan2 of the cross and dot

@@ -67,6 +67,9 @@ std::vector<Vec3> sample_points(const Camera& camera, double max_degrees) {
             for (int j = 0; j <= 40; ++j) directions.emplace_back(reach * (i / 20.0 - 1), reach * (j / 20.0 - 1), 1.0);
         for (int i = 0; i < 300; ++i) directions.emplace_back(uniform(-reach, reach), uniform(-reach, reach), 1.0);
     }
+    // Off the axis where no pixel sees it (lens_cases.hpp's axis_margin_of).
+    const double margin = axis_margin_of(camera.lens);
+    std::erase_if(directions, [&](const Vec3& d) { return margin > 0 && std::atan2(d.head<2>().norm(), d.z()) <= margin; });
     std::vector<Vec3> points;
     for (const Vec3& d : directions) {
         if (type == LensType::Lonlat && std::hypot(d.x(), d.z()) < 1e-3) continue;  // the poles

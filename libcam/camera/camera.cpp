@@ -24,6 +24,7 @@ struct PreparedState {
     Camera camera;
     double valid_radius = 0;
     double valid_angle = 0;
+    double blind_angle = 0;
     std::once_flag unprojector_built;
     std::unique_ptr<const Unprojector<double>> unprojector;
 };
@@ -45,6 +46,8 @@ PreparedCamera::PreparedCamera(const Camera& camera) : state_(std::make_shared<d
     state_->valid_angle = visit_lens_model<double>(camera.lens.type, [&]<class Model>() {
         return libcam::valid_angle<Model>(camera.lens.coefficients, state_->valid_radius);
     });
+    state_->blind_angle = visit_lens_model<double>(
+        camera.lens.type, [&]<class Model>() { return libcam::blind_angle<Model>(camera.lens.coefficients); });
 }
 
 const Camera& PreparedCamera::camera() const { return state_->camera; }
@@ -52,6 +55,8 @@ const Camera& PreparedCamera::camera() const { return state_->camera; }
 double PreparedCamera::valid_radius() const { return state_->valid_radius; }
 
 double PreparedCamera::valid_angle() const { return state_->valid_angle; }
+
+double PreparedCamera::blind_angle() const { return state_->blind_angle; }
 
 std::vector<Projection> PreparedCamera::project_camera_points(std::span<const Vec3> camera_points) const {
     std::vector<Projection> projections(camera_points.size());

@@ -79,6 +79,9 @@ public:
     // The largest angle from the optical axis the lens images, radians (pi: every
     // direction but the backward axis; below pi/2 for a perspective lens).
     double valid_angle() const;
+    // The angle about the optical axis that no pixel sees, radians: 0 but for a
+    // FISHEYE_LENS_POLYNOMIAL lens with k0 != 0 (lens_models.hpp's blind_angle).
+    double blind_angle() const;
 
     // The pixel of a camera-frame point; invalid outside the lens model's domain
     // (behind the camera, past the radius where the distortion folds over, ...). Points

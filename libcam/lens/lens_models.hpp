@@ -125,6 +125,18 @@ double valid_angle(std::span<const double> coefficients, double valid_radius) {
     }
 }
 
+// The angle about the optical axis that no pixel sees (radians): 0 for every model but
+// one that says otherwise (Model::blind_angle: FISHEYE_LENS_POLYNOMIAL with k0 != 0,
+// whose centre pixel looks |k0| off the axis). Points there are flagged.
+template <class Model>
+double blind_angle(std::span<const double> coefficients) {
+    if constexpr (requires { Model::blind_angle(coefficients); }) {
+        return Model::blind_angle(coefficients);
+    } else {
+        return 0.0;
+    }
+}
+
 // Calls visitor.template operator()<Model>() with the implementation of `type` in
 // Scalar, e.g.  visit_lens_model<double>(lens.type, [&]<class Model>() { ... });
 template <class Scalar, class Visitor>

@@ -79,6 +79,12 @@ struct LensPolynomialLens {
         return std::min(std::abs(angle(k, radius, slope)), std::numbers::pi);
     }
 
+    // The angle about the axis no pixel sees: sigma theta(0) = sigma (-k0) when positive.
+    static double blind_angle(std::span<const double> k) {
+        const double sigma = k[1] < 0.0 ? 1.0 : -1.0;
+        return std::max(0.0, -sigma * k[0]);
+    }
+
     static Parameters parameters(std::span<const double> k) { return lens_parameters<Scalar, 5>(k, valid_radius(k)); }
 
     // sigma theta(r) and its slope: increasing on [0, valid_radius), the solver's d(r).
