@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <span>
 #include <opencv2/calib3d.hpp>
 #include <string>
@@ -51,6 +52,25 @@ inline Camera real_camera(LensType type, std::vector<double> coefficients, Image
 // The real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767 (the library's
 // example camera "wide", one copy for the command line, the benchmarks and the tests).
 inline Camera wide_reference_camera() { return example_camera("wide"); }
+
+// A SPLINED_STEREOGRAPHIC lens's coefficients (order, Nx, Ny, fov_x_deg, control
+// points): at each knot u (the grid's spacing and centre as mrcal lays them out) the
+// control point radial * u |u|^2 plus a wobble of the given size that varies from knot
+// to knot, as a fitted spline's do.
+inline std::vector<double> splined_coefficients(int order, int nx, int ny, int fov_x_deg, double radial, double wobble) {
+    const double u_edge = 2 * std::tan(fov_x_deg / 4.0 * std::numbers::pi / 180);
+    const double spacing = 2 * u_edge / (nx - 1 - (order == 2 ? 1 : 2));
+    std::vector<double> k{double(order), double(nx), double(ny), double(fov_x_deg)};
+    for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) {
+            const double ux = (i - (nx - 1) / 2.0) * spacing, uy = (j - (ny - 1) / 2.0) * spacing;
+            const double cubic = radial * (ux * ux + uy * uy);
+            k.push_back(cubic * ux + wobble * std::sin(1.7 * i + 0.3 * j));
+            k.push_back(cubic * uy + wobble * std::cos(0.9 * j - 1.1 * i));
+        }
+    }
+    return k;
+}
 
 // Every model at mild and strong distortion (the strong ones fold over inside or near
 // the image: the valid domain matters).
@@ -177,6 +197,16 @@ inline std::vector<LensCase> lens_cases() {
                      {1920, 1080}, {1920.0 / 36, 1920.0 / 36, 959.5, 539.5})},
         {"FISHEYE_LENS_POLYNOMIAL fisheye", real_camera(LensType::LensPolynomial, {-2e-6, -0.09, 0.0, -4e-5, 0.0}, {1200, 1600},
                                                         {1600.0 / 36, 1600.0 / 36, 599.5, 799.5})},
+        // mrcal's splined model: a cubic spline over 12 x 10 knots across 200 degrees
+        // (barrel, corners 113 degrees off the axis) and a quadratic one over 10 x 8 knots
+        // across 120 degrees (pincushion); see splined_coefficients. mrcal's own splined
+        // calibrations are checked in test_lens_models.
+        {"SPLINED_STEREOGRAPHIC cubic", real_camera(LensType::SplinedStereographic,
+                                                    splined_coefficients(3, 12, 10, 200, -0.01, 0.002), {1600, 1200},
+                                                    {500, 500, 799.5, 599.5})},
+        {"SPLINED_STEREOGRAPHIC quadratic", real_camera(LensType::SplinedStereographic,
+                                                        splined_coefficients(2, 10, 8, 120, 0.03, 0.001), {800, 600},
+                                                        {600, 600, 399.5, 299.5})},
     };
     return cases;
 }
@@ -255,10 +285,28 @@ inline double axis_margin_of(const Lens& lens) {
     });
 }
 
+// Where the domain ends towards azimuth phi, as an angle off the axis (lens_models.hpp's
+// edge_angle: valid_angle but for a domain that is not round, SPLINED_STEREOGRAPHIC's).
+inline double edge_angle_of(const Lens& lens, double azimuth) {
+    return visit_lens_model<double>(lens.type, [&]<class Model>() {
+        return edge_angle<Model>(lens.coefficients, valid_radius_of(lens), azimuth);
+    });
+}
+
 // The domain's edge as the tests sample it: the angle off the axis for a model that sees
-// behind the camera, the radius of (x/z, y/z) for a perspective one.
+// behind the camera (the nearest edge of a domain that is not round), the radius of
+// (x/z, y/z) for a perspective one.
 inline double domain_edge_of(const Lens& lens) {
-    return lens_info(lens.type).sees_behind_camera ? valid_angle_of(lens) : valid_radius_of(lens);
+    if (!lens_info(lens.type).sees_behind_camera) return valid_radius_of(lens);
+    return visit_lens_model<double>(lens.type, [&]<class Model>() {
+        if constexpr (requires { Model::edge_angle(std::span<const double>(lens.coefficients), 0.0); }) {
+            double nearest = std::numbers::pi;
+            for (int i = 0; i < 720; ++i) nearest = std::min(nearest, edge_angle_of(lens, std::numbers::pi * i / 360));
+            return nearest;
+        } else {
+            return valid_angle_of(lens);
+        }
+    });
 }
 
 // Which reference library has a model: the table says (test_lens_models checks the

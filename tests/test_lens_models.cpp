@@ -7,6 +7,9 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <numbers>
 #include <thread>
 #include <opencv2/calib3d.hpp>
@@ -31,7 +34,21 @@ constexpr double kPixelTolerance = 1e-9;
 // linearity, here 0.5).
 std::string mrcal_name_of(LensType type) {
     const std::string name = "LENSMODEL_" + std::string(lens_info(type).name);
-    return type == LensType::Cahvore ? name + "_linearity=0.5" : name;
+    if (type == LensType::Cahvore) return name + "_linearity=0.5";
+    if (type == LensType::SplinedStereographic) return name + "_order=3_Nx=4_Ny=5_fov_x_deg=120";
+    return name;
+}
+
+// A lens of the model with zero coefficients and the configuration mrcal_name_of names.
+std::vector<double> zero_coefficients(LensType type) {
+    if (type == LensType::SplinedStereographic) {
+        std::vector<double> k(4 + 2 * 4 * 5, 0.0);
+        k[0] = 3, k[1] = 4, k[2] = 5, k[3] = 120;
+        return k;
+    }
+    std::vector<double> k(static_cast<std::size_t>(lens_info(type).num_coefficients), 0.0);
+    if (type == LensType::Cahvore) k.back() = 0.5;
+    return k;
 }
 
 bool mrcal_has(LensType type) {
@@ -90,11 +107,11 @@ TEST_CASE("The model table agrees with mrcal's metadata for every model both hav
         CHECK(info.mrcal == "LENSMODEL_" + std::string(info.name));
         mrcal_lensmodel_t model;
         REQUIRE(mrcal_lensmodel_from_name(&model, mrcal_name_of(info.type).c_str()));
-        // CAHVORE's linearity is in mrcal's name, not its intrinsics.
-        const int in_name = info.type == LensType::Cahvore ? 1 : 0;
-        CHECK(mrcal_lensmodel_num_params(&model) == 4 + info.num_coefficients - in_name);
-        std::vector<double> zeros(static_cast<std::size_t>(info.num_coefficients), 0.0);
-        if (info.type == LensType::Cahvore) zeros.back() = 0.5;
+        // CAHVORE's linearity and SPLINED_STEREOGRAPHIC's grid are in mrcal's name, not its
+        // intrinsics.
+        const std::vector<double> zeros = zero_coefficients(info.type);
+        const int in_name = info.type == LensType::Cahvore ? 1 : info.type == LensType::SplinedStereographic ? 4 : 0;
+        CHECK(mrcal_lensmodel_num_params(&model) == 4 + static_cast<int>(zeros.size()) - in_name);
         CHECK(mrcal_lensmodel_name(Lens{info.type, zeros}) == mrcal_name_of(info.type));
         CHECK(mrcal_lensmodel_metadata(&model).can_project_behind_camera == info.sees_behind_camera);
     }
@@ -186,6 +203,65 @@ TEST_CASE("CAHVORE: libcam's rays reproject through mrcal_project onto their pix
         WARN(c.name << ": " << with_ray.size() << " of " << pixels.size() << " pixels have a ray; worst through mrcal_project "
                     << worst << " px");
         CHECK(worst <= kPixelTolerance);
+    }
+}
+
+namespace {
+
+// A .cameramodel file of mrcal's, read by libcam.
+Camera read_cameramodel(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return parse_cameramodel(text.str(), path.string());
+}
+
+}  // namespace
+
+TEST_CASE("SPLINED_STEREOGRAPHIC: mrcal's splined calibrations, rays through mrcal_project and mrcal_unproject", "[real]") {
+    const std::filesystem::path folder = std::filesystem::path(LIBCAM_REAL_CAMERAS) / "mrcal";
+    if (!std::filesystem::is_directory(folder)) {
+        WARN("skipped: no folder of real calibration files at " << folder.string());
+        return;
+    }
+    std::vector<LensCase> cases;
+    for (const char* name : {"cam0.splined.cameramodel", "splined-0.cameramodel"}) {
+        cases.push_back({name, read_cameramodel(folder / name)});
+    }
+    for (const LensCase& c : lens_cases()) {
+        if (c.camera.lens.type == LensType::SplinedStereographic) cases.push_back(c);
+    }
+    for (const LensCase& c : cases) {
+        INFO(c.name);
+        REQUIRE(c.camera.lens.type == LensType::SplinedStereographic);
+        const PreparedCamera camera(c.camera);
+        const std::vector<Vec2> pixels = pixel_grid(c.camera.size, 61, 41);
+        const std::vector<Unprojection> rays = camera.unproject(pixels);
+        std::vector<Vec2> with_ray;
+        std::vector<Vec3> directions;
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            if (!rays[i].valid) continue;
+            with_ray.push_back(pixels[i]);
+            directions.push_back(rays[i].direction);
+        }
+        REQUIRE(with_ray.size() > pixels.size() / 2);
+        // libcam's rays land on their pixels through mrcal's projection.
+        const std::vector<Vec2> back = mrcal_project_points(c.camera, directions);
+        double worst = 0;
+        for (std::size_t i = 0; i < with_ray.size(); ++i) worst = std::max(worst, (back[i] - with_ray[i]).norm());
+        // mrcal's own unprojection (converged to about 1e-8 px, its dogleg's tolerance):
+        // the angle between its ray and libcam's.
+        const std::vector<Vec3> theirs = mrcal_unproject_pixels(c.camera, with_ray);
+        double worst_angle = 0;
+        for (std::size_t i = 0; i < with_ray.size(); ++i) {
+            if (theirs[i].allFinite()) worst_angle = std::max(worst_angle, angle_between(theirs[i], directions[i]));
+        }
+        const double focal = c.camera.intrinsics.fx;
+        WARN(c.name << ": " << with_ray.size() << " of " << pixels.size() << " pixels have a ray; worst through "
+                    << "mrcal_project " << worst << " px; mrcal_unproject's rays within " << worst_angle << " rad ("
+                    << worst_angle * focal << " px at f)");
+        CHECK(worst <= kPixelTolerance);
+        CHECK(worst_angle * focal <= 1e-6);
     }
 }
 

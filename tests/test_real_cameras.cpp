@@ -41,6 +41,13 @@ const std::vector<Expected> kReadable{
      0.4791613797},
     {"mrcal/opencv8-1.cameramodel", LensType::Opencv8, {6016, 4016}, 2073.872915, 2077.452267, 3004.686823, 1997.377253,
      0.4791613797},
+    // mrcal's splined models: the first coefficient is the spline's order.
+    {"mrcal/cam0.splined.cameramodel", LensType::SplinedStereographic, {4000, 2200}, 1761.181055, 1761.250444,
+     1965.706996, 1087.518797, 3.0},
+    {"mrcal/splined-0.cameramodel", LensType::SplinedStereographic, {6016, 4016}, 2018.95821, 2058.977247, 3017.639608,
+     1957.291928, 3.0},
+    {"mrcal/splined-1.cameramodel", LensType::SplinedStereographic, {6016, 4016}, 2018.95821, 2058.977247, 3017.639608,
+     1957.291928, 3.0},
     {"mrcal/pinhole-narrow-yawed-left.cameramodel", LensType::Pinhole, {3008, 2008}, 2405.678127, 2453.362582,
      1508.569804, 978.395964, 0.0},
     {"mrcal/pinhole-narrow-yawed-right.cameramodel", LensType::Pinhole, {3008, 2008}, 2405.678127, 2453.362582,

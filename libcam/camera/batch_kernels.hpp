@@ -34,7 +34,11 @@ inline constexpr std::size_t kBlock = 128;
 template <class Model>
 typename Model::Parameters model_parameters(const Lens& lens, double valid_radius) {
     using Scalar = typename Model::Vec2T::Scalar;
-    return lens_parameters<Scalar, Model::num_coefficients>(lens.coefficients, valid_radius);
+    if constexpr (requires { Model::parameters(std::span<const double>(lens.coefficients), valid_radius); }) {
+        return Model::parameters(lens.coefficients, valid_radius);  // a model with more per camera
+    } else {
+        return lens_parameters<Scalar, Model::num_coefficients>(lens.coefficients, valid_radius);
+    }
 }
 
 // A camera's lens in Model's scalar (Lane<T>, for the vectorised loops) and in a plain

@@ -16,17 +16,42 @@ namespace libcam {
 
 namespace {
 
-// How many of the lens's last coefficients mrcal keeps in the model's name rather than
-// in the intrinsics: CAHVORE's linearity (LENSMODEL_CAHVORE_linearity=L).
-std::size_t coefficients_in_name(LensType type) { return type == LensType::Cahvore ? 1 : 0; }
+// The lens's coefficients that mrcal keeps in the model's name rather than in the
+// intrinsics: CAHVORE's linearity, the last (LENSMODEL_CAHVORE_linearity=L), and
+// SPLINED_STEREOGRAPHIC's configuration, the first four
+// (LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=16_Ny=11_fov_x_deg=120).
+struct InName {
+    std::size_t leading = 0, trailing = 0;
+};
+InName coefficients_in_name(LensType type) {
+    if (type == LensType::Cahvore) return {0, 1};
+    if (type == LensType::SplinedStereographic) return {4, 0};
+    return {};
+}
 
 // The model's name as mrcal writes it, configuration included.
 std::string configured_name(const Lens& lens) {
     std::string name(lens_info(lens.type).mrcal);
-    if (lens.type == LensType::Cahvore && !lens.coefficients.empty()) {
-        name += "_linearity=" + format_number(lens.coefficients.back());
+    const auto& k = lens.coefficients;
+    if (lens.type == LensType::Cahvore && !k.empty()) name += "_linearity=" + format_number(k.back());
+    if (lens.type == LensType::SplinedStereographic && k.size() >= 4) {
+        // Whole numbers (Lens::validate); mrcal reads each as an unsigned 16-bit integer.
+        const auto whole = [](double value) { return std::to_string(static_cast<long long>(value)); };
+        name += "_order=" + whole(k[0]) + "_Nx=" + whole(k[1]) + "_Ny=" + whole(k[2]) + "_fov_x_deg=" + whole(k[3]);
     }
     return name;
+}
+
+// SPLINED_STEREOGRAPHIC's configuration as mrcal parsed it from the name (empty for
+// every other model), and as the lens holds it.
+std::vector<double> mrcal_configuration(const mrcal_lensmodel_t& model) {
+    if (model.type != MRCAL_LENSMODEL_SPLINED_STEREOGRAPHIC) return {};
+    const auto& config = model.LENSMODEL_SPLINED_STEREOGRAPHIC__config;
+    return {double(config.order), double(config.Nx), double(config.Ny), double(config.fov_x_deg)};
+}
+std::vector<double> configuration_of(const Lens& lens) {
+    const std::size_t leading = coefficients_in_name(lens.type).leading;
+    return {lens.coefficients.begin(), lens.coefficients.begin() + static_cast<std::ptrdiff_t>(leading)};
 }
 
 // The lens's mrcal model, by the name the table gives it.
@@ -69,8 +94,9 @@ std::vector<double> mrcal_intrinsics(const Camera& camera) {
     const Intrinsics& k = camera.intrinsics;
     std::vector<double> values{k.fx, k.fy, k.cx, k.cy};
     const auto& coefficients = camera.lens.coefficients;
-    values.insert(values.end(), coefficients.begin(),
-                  coefficients.end() - static_cast<std::ptrdiff_t>(coefficients_in_name(camera.lens.type)));
+    const InName in_name = coefficients_in_name(camera.lens.type);
+    values.insert(values.end(), coefficients.begin() + static_cast<std::ptrdiff_t>(in_name.leading),
+                  coefficients.end() - static_cast<std::ptrdiff_t>(in_name.trailing));
     return values;
 }
 
@@ -204,6 +230,7 @@ std::string format_cameramodel(const Camera& camera) {
     if (camera.lens.type == LensType::Cahvore) {
         same = same && check->lensmodel.LENSMODEL_CAHVORE__config.linearity == camera.lens.coefficients.back();
     }
+    same = same && mrcal_configuration(check->lensmodel) == configuration_of(camera.lens);
     if (!same) throw Error("internal: .cameramodel text does not read back through libmrcal bit for bit");
     return text;
 }
@@ -215,7 +242,8 @@ Camera parse_cameramodel(std::string_view text, const std::string& source) {
     const int num_intrinsics = mrcal_lensmodel_num_params(&model->lensmodel);
     const double* values = model->intrinsics;
     camera.intrinsics = Intrinsics{values[0], values[1], values[2], values[3], 0.0};
-    camera.lens.coefficients.assign(values + 4, values + num_intrinsics);
+    camera.lens.coefficients = mrcal_configuration(model->lensmodel);
+    camera.lens.coefficients.insert(camera.lens.coefficients.end(), values + 4, values + num_intrinsics);
     if (camera.lens.type == LensType::Cahvore) {
         camera.lens.coefficients.push_back(model->lensmodel.LENSMODEL_CAHVORE__config.linearity);
     }

@@ -18,7 +18,9 @@ std::optional<LensType> lens_type_from_name(std::string_view name) {
 
 void Lens::validate(const char* field) const {
     const LensInfo& info = lens_info(type);
-    if (static_cast<int>(coefficients.size()) != info.num_coefficients) {
+    // A model with a variable count checks it itself (check_coefficients, below).
+    if (info.num_coefficients != kVariableCoefficientCount &&
+        static_cast<int>(coefficients.size()) != info.num_coefficients) {
         throw InvalidArgument(std::string(field) + ": model " + std::string(info.name) + " takes " +
                               std::to_string(info.num_coefficients) + " coefficients, got " +
                               std::to_string(coefficients.size()));

@@ -39,7 +39,8 @@
     _(Equisolid, EquisolidLens) \
     _(Cahvor, CahvorLens) \
     _(Cahvore, CahvoreLens) \
-    _(LensPolynomial, LensPolynomialLens)
+    _(LensPolynomial, LensPolynomialLens) \
+    _(SplinedStereographic, SplinedStereographicLens)
 
 namespace libcam {
 
@@ -50,6 +51,10 @@ enum class LensType {
 };
 
 inline constexpr int kMaxLensCoefficients = 14;
+// The coefficient count of a model whose count depends on its configuration
+// (SPLINED_STEREOGRAPHIC: 4 + 2 Nx Ny); its row names only the configuration values
+// that lead its coefficients, and the model checks the count (check_coefficients).
+inline constexpr int kVariableCoefficientCount = -1;
 
 // How a pixel's ray is found.
 enum class Inverse {
@@ -84,6 +89,7 @@ enum class LensFamily {
     Cahvor,
     Cahvore,  // not CAHVOR's: CAHVOR is CAHVORE with zero E and a linearity of 1, not 0
     LensPolynomial,
+    Splined,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -108,7 +114,7 @@ struct LensInfo {
     LensType type;
     std::string_view name;  // in libcam's files; mrcal's name without "LENSMODEL_" where mrcal has it
     CoefficientNames coefficients;
-    int num_coefficients;     // = coefficients.count (checked below)
+    int num_coefficients;     // = coefficients.count (checked below), or kVariableCoefficientCount
     bool sees_behind_camera;  // can project points with z <= 0 (mrcal's can_project_behind_camera)
     Inverse inverse;
     // The same model in other libraries; empty where the library lacks it.
@@ -223,6 +229,14 @@ inline constexpr LensInfo kLensTable[] = {
      .num_coefficients = 5, .sees_behind_camera = true, .inverse = Inverse::ClosedForm,
      .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
      .family = LensFamily::LensPolynomial, .family_rank = 0, .fit = FitCandidate::No},
+    // mrcal's splined model of a real lens; mrcal keeps the configuration (the first four
+    // coefficients) in the model's name, LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=..., and
+    // the control points in the intrinsics.
+    {.type = LensType::SplinedStereographic, .name = "SPLINED_STEREOGRAPHIC",
+     .coefficients = {"order", "Nx", "Ny", "fov_x_deg"}, .num_coefficients = kVariableCoefficientCount,
+     .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None,
+     .mrcal = "LENSMODEL_SPLINED_STEREOGRAPHIC", .colmap = "", .kalibr = "", .basalt = "",
+     .family = LensFamily::Splined, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {
@@ -230,8 +244,9 @@ constexpr bool lens_table_is_consistent() {
     std::size_t index = 0;
     for (const LensInfo& info : kLensTable) {
         if (static_cast<std::size_t>(info.type) != index++) return false;  // rows in LensType's order
-        if (info.coefficients.count != info.num_coefficients) return false;
-        for (int i = 0; i < info.num_coefficients; ++i) {
+        const bool variable = info.num_coefficients == kVariableCoefficientCount;
+        if (!variable && info.coefficients.count != info.num_coefficients) return false;
+        for (int i = 0; i < info.coefficients.count; ++i) {
             if (info.coefficients.names[static_cast<std::size_t>(i)].empty()) return false;
         }
     }

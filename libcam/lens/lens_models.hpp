@@ -9,7 +9,12 @@
 //
 //   type, num_coefficients            its row of the table
 //   InScalar<Other>                    the same model in another scalar type
-//   Vec2T, Vec3T, Parameters           Parameters = LensParameters<Scalar, num_coefficients>
+//   Vec2T, Vec3T, Parameters           Parameters = LensParameters<Scalar, num_coefficients>;
+//                                      a model with more to work out per camera (a
+//                                      variable coefficient count: num_coefficients =
+//                                      Eigen::Dynamic) has its own struct holding
+//                                      `coefficients` and `valid_radius` too, and
+//                                      parameters(coefficients, valid_radius)
 //   Parameters parameters(std::span<const double> coefficients)
 //                                      the coefficients and the valid domain, worked out
 //                                      once per camera (a polynomial root search for
@@ -54,11 +59,15 @@
 #include "libcam/lens/opencv.hpp"
 #include "libcam/lens/pinhole.hpp"
 #include "libcam/lens/rad_tan_thin_prism_fisheye.hpp"
+#include "libcam/lens/splined_stereographic.hpp"
 #include "libcam/lens/stereographic.hpp"
 #include "libcam/lens/thin_prism_fisheye.hpp"
 #include "libcam/lens/ucm.hpp"
 
 namespace libcam {
+
+static_assert(kVariableCoefficientCount == Eigen::Dynamic,
+              "a model with a variable coefficient count has num_coefficients = Eigen::Dynamic");
 
 template <class Model>
 concept LensModel = requires(const typename Model::Parameters& lens, const typename Model::Vec3T& point,
@@ -122,6 +131,19 @@ double valid_angle(std::span<const double> coefficients, double valid_radius) {
         return std::min(valid_radius, std::numbers::pi);
     } else {
         return std::atan(valid_radius);
+    }
+}
+
+// The angle from the optical axis at which the lens's domain ends towards azimuth phi
+// (radians; phi = atan2(Y, X) of the camera point): valid_angle for a model whose domain
+// is round about the axis, what the model says (Model::edge_angle) for one whose is not
+// (SPLINED_STEREOGRAPHIC's rectangle).
+template <class Model>
+double edge_angle(std::span<const double> coefficients, double valid_radius, double azimuth) {
+    if constexpr (requires { Model::edge_angle(coefficients, azimuth); }) {
+        return Model::edge_angle(coefficients, azimuth);
+    } else {
+        return valid_angle<Model>(coefficients, valid_radius);
     }
 }
 

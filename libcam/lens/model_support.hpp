@@ -85,6 +85,22 @@ Scalar smallest_normal() {
     }
 }
 
+// The value of a scalar of any type libcam evaluates models in, as a double: for the
+// few decisions a model takes on a value rather than computing with it (which spline
+// patch a point falls in). A ceres::Jet gives its value part.
+template <class Scalar>
+double value_as_double(const Scalar& x) {
+    if constexpr (std::is_arithmetic_v<Scalar>) {
+        return static_cast<double>(x);
+    } else if constexpr (is_lane_v<Scalar>) {
+        return static_cast<double>(lane_value(x));
+    } else if constexpr (requires { x.a; }) {
+        return value_as_double(x.a);
+    } else {
+        return static_cast<double>(x);
+    }
+}
+
 // |p| + Z of a point with X^2 + Y^2 = rho2 and |p| = norm, without cancellation: for
 // Z < 0 as rho2 / (|p| - Z) (STEREOGRAPHIC, EQUISOLID).
 template <class Scalar>
