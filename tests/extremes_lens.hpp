@@ -350,6 +350,14 @@ bool at_domain_edge(const Lens& lens, const Vec3Q& point) {
 template <class Scalar>
 Expect expected(const Projected<Quad>& reference, const Lens& lens, const Vec3Q& point) {
     if (at_domain_edge<Scalar>(lens, point)) return Expect::Either;
+    // FISHEYE_LENS_POLYNOMIAL measures its valid radius on the image: its edge is the
+    // angle valid_angle (pi for Blender's default, the backward axis's neighbourhood),
+    // which within a few ulps of Scalar may land on either side.
+    if (lens.type == LensType::LensPolynomial) {
+        const Quad angle = atan2(hypot(point.x(), point.y()), point.z());
+        const Quad edge(valid_angle_of(lens));
+        if (abs(angle - edge) <= 8 * ulp_of<Scalar>(edge)) return Expect::Either;
+    }
     if (const std::optional<Expect> near_axis = backward_axis_band<Scalar>(lens, point)) return *near_axis;
     const bool fits = reference.valid &&
                       reference.m.cwiseAbs().maxCoeff() <= Quad(std::numeric_limits<Scalar>::max()) &&

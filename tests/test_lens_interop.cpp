@@ -30,7 +30,7 @@ bool holds(CameraFormat format, LensType type) {
             return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
                    type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Stereographic ||
                    type == LensType::Lonlat || type == LensType::Latlon || type == LensType::Cahvor ||
-                   type == LensType::Cahvore;
+                   type == LensType::Cahvore || type == LensType::SplinedStereographic;
         case CameraFormat::Gl: return type == LensType::Pinhole;
     }
     return false;
@@ -82,7 +82,7 @@ TEST_CASE("OpenCV's file: the number of distortion coefficients names the model"
                       Catch::Contains("6.yaml") && Catch::Contains("4, 5, 8, 12 or 14"));
 }
 
-TEST_CASE("mrcal's files: its lens models map by name, the ones libcam lacks are refused") {
+TEST_CASE("mrcal's files: its lens models map by name, configurations included; bad ones are refused") {
     const auto cameramodel = [](const std::string& model, const std::string& intrinsics) {
         return "{\n 'lensmodel': '" + model + "',\n 'intrinsics': [ " + intrinsics +
                " ],\n 'imagersize': [ 640, 480 ],\n 'extrinsics': [ 0, 0, 0, 0, 0, 0 ]\n}\n";
@@ -99,12 +99,30 @@ TEST_CASE("mrcal's files: its lens models map by name, the ones libcam lacks are
         cameramodel("LENSMODEL_CAHVORE_linearity=0.25", "500, 501, 319.5, 239.5, 0.01, -0.02, 0.1, 0.2, 0.3, 1e-3, 2e-3, 3e-3"),
         "d");
     CHECK(cahvore.lens == Lens{LensType::Cahvore, {0.01, -0.02, 0.1, 0.2, 0.3, 1e-3, 2e-3, 3e-3, 0.25}});
+    // SPLINED_STEREOGRAPHIC's configuration is in mrcal's name, and is libcam's first four
+    // coefficients; the control points follow.
     std::string splined_intrinsics = "500, 501, 319.5, 239.5";
-    for (int i = 0; i < 2 * 4 * 4; ++i) splined_intrinsics += ", 0";
-    CHECK_THROWS_AS(parse_cameramodel(cameramodel("LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=4_Ny=4_fov_x_deg=100",
-                                                  splined_intrinsics),
-                                      "e"),
-                    NotRepresentable);
+    std::vector<double> splined{2, 3, 4, 100};
+    for (int i = 0; i < 2 * 3 * 4; ++i) {
+        splined_intrinsics += ", " + std::to_string(i) + "e-3";
+        splined.push_back(i * 1e-3);
+    }
+    const Camera spline = parse_cameramodel(
+        cameramodel("LENSMODEL_SPLINED_STEREOGRAPHIC_order=2_Nx=3_Ny=4_fov_x_deg=100", splined_intrinsics), "e");
+    CHECK(spline.lens == Lens{LensType::SplinedStereographic, splined});
+    // A configuration mrcal's name allows but its spline does not (order 4; a cubic
+    // over 3 knots) is refused by name before mrcal ever evaluates it.
+    CHECK_THROWS_WITH(parse_cameramodel(cameramodel("LENSMODEL_SPLINED_STEREOGRAPHIC_order=4_Nx=3_Ny=4_fov_x_deg=100",
+                                                    splined_intrinsics),
+                                        "order.cameramodel"),
+                      Catch::Contains("order.cameramodel") && Catch::Contains("order") && Catch::Contains("got 4"));
+    CHECK_THROWS_WITH(parse_cameramodel(cameramodel("LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=3_Ny=4_fov_x_deg=100",
+                                                    splined_intrinsics),
+                                        "knots.cameramodel"),
+                      Catch::Contains("knots.cameramodel") && Catch::Contains("Nx") && Catch::Contains("got 3"));
+    // A model mrcal itself does not know.
+    CHECK_THROWS_WITH(parse_cameramodel(cameramodel("LENSMODEL_OPENCV9", "500, 501, 319.5, 239.5"), "f.cameramodel"),
+                      Catch::Contains("f.cameramodel"));
     const Camera fisheye = lens_camera(LensType::Fisheye, {0.01, 0, 0, 0});
     CHECK_THROWS_WITH(format_cameramodel(fisheye), Catch::Contains("FISHEYE") && Catch::Contains("mrcal"));
     CHECK_THROWS_AS(mrcal_lensmodel_name(fisheye.lens), NotRepresentable);

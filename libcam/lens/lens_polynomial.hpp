@@ -117,7 +117,10 @@ struct LensPolynomialLens {
         m = Vec2T(sigma * scale * point.x(), sigma * scale * point.y());
         const Scalar tolerance = unprojection_tolerance(abs_of(target));
         const bool centre_ok = (r > zero) | (k(0) == zero);
-        const bool in_domain = (r < lens.valid_radius) & (reached >= zero) & centre_ok & (norm2 > zero) &
+        // The backward axis has no azimuth, so no pixel (it lies at |theta| = pi, on the
+        // domain's edge, where a rounded r can still land inside).
+        const bool not_backward = (rho > zero) | (point.z() > zero);
+        const bool in_domain = (r < lens.valid_radius) & (reached >= zero) & centre_ok & not_backward & (norm2 > zero) &
                                (abs_of(reached - target) <= tolerance) & all_finite(m);
         if constexpr (is_requested<PointJacobianPtr> || is_requested<CoefficientJacobianPtr>) {
             const Scalar d_r_d_target = Scalar(1) / slope;
