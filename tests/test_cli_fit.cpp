@@ -181,6 +181,9 @@ TEST_CASE("fit refuses bad scenes and flags, and says when no model meets the to
     check_refused({files.mild, "-o", (files.dir / "x").string(), "--to", "png"}, 2, "--to");
     // No candidate: not even OPENCV4, the lens itself, comes closer than rounding.
     check_refused({files.mild, "--radius", "200", "--tolerance", "1e-300"}, 1, "no candidate model meets the tolerance 1e-300 px");
+    // A splined source fitted on rays alone: the message suggests letting the camera rotate.
+    const std::string splined = std::string(LIBCAM_FUZZ_CORPUS) + "/cameramodel/splined.cameramodel";
+    check_refused({splined, "--tolerance", "1e-300"}, 1, "try --with-rotation");
 }
 
 TEST_CASE("a fit that runs past a second reports its progress on stderr") {

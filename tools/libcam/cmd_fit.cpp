@@ -235,15 +235,20 @@ std::string format_json(const Camera& source, const Scene& scene, const FitOptio
     return out.dump(2) + "\n";
 }
 
-// One line naming every candidate's largest error, for the failure message.
-std::string no_choice_message(const FitOptions& options, const FitReport& report) {
+// One line naming every candidate's largest error, for the failure message; for a
+// splined source fitted on rays alone, the hint that its spline may turn the image.
+std::string no_choice_message(const Camera& source, const FitOptions& options, const FitReport& report) {
     std::string errors;
     for (const CandidateReport& entry : report.candidates) {
         errors += (errors.empty() ? "" : ", ") + std::string(entry.fit.candidate.name) + " " +
                   (entry.covers_scene ? short_number(entry.max_px) + " px" : "does not cover the scene");
     }
-    return "no candidate model meets the tolerance " + format_number(options.tolerance_px) +
-           " px over the scene (largest errors: " + errors + ")";
+    std::string message = "no candidate model meets the tolerance " + format_number(options.tolerance_px) +
+                          " px over the scene (largest errors: " + errors + ")";
+    if (source.lens.type == LensType::SplinedStereographic && options.motion == CameraMotion::None) {
+        message += "; a splined model may also turn the image about its axis: try --with-rotation";
+    }
+    return message;
 }
 
 CameraFormat output_format(const FitFlags& flags) {
@@ -301,7 +306,7 @@ Runner add_fit(CLI::App& app) {
         ProgressPrinter printer;
         options.progress = [&](const FitProgress& progress) { printer(progress); };
         const FitReport report = fit_scene(source, scene, options);
-        if (!report.chosen) throw Error(no_choice_message(options, report));
+        if (!report.chosen) throw Error(no_choice_message(source, options, report));
         write_outputs(*flags, source, scene, options, report);
         emit(flags->json ? format_json(source, scene, options, report)
                          : format_table(flags->source, source, scene, options, report),
