@@ -350,6 +350,40 @@ TEST_CASE("a scene with no pixel that has a ray is refused") {
     CHECK(chosen(report).fit.candidate.name == "OPENCV4");
 }
 
+namespace {
+
+// The source camera's rays through a dense grid (151 x 121 pixels), those within
+// max_angle of its optical axis: what the [real] fits below are checked on.
+struct GridRays {
+    std::vector<Vec2> pixels;
+    std::vector<Vec3> rays;
+};
+
+GridRays grid_rays(const Camera& source, double max_angle = std::numbers::pi) {
+    const std::vector<Vec2> pixels = test::pixel_grid(source.size, 151, 121);
+    const std::vector<Unprojection> rays = PreparedCamera(source).unproject(pixels);
+    GridRays out;
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+        if (!rays[i].valid || std::atan2(rays[i].direction.head<2>().norm(), rays[i].direction.z()) > max_angle) continue;
+        out.pixels.push_back(pixels[i]);
+        out.rays.push_back(rays[i].direction);
+    }
+    return out;
+}
+
+// The farthest OpenCV (or the table's reference library) puts the rays, seen from the
+// fitted camera, from their source pixels.
+double worst_through_reference(const Camera& fitted, const GridRays& grid) {
+    std::vector<Vec3> directions;
+    for (const Vec3& ray : grid.rays) directions.push_back(fitted.pose.camera_from_world(ray));
+    const std::vector<Vec2> projected = test::reference_project(fitted, directions);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < directions.size(); ++i) worst = std::max(worst, (projected[i] - grid.pixels[i]).norm());
+    return worst;
+}
+
+}  // namespace
+
 // basalt's calibrations of the EuRoC and TUM-VI cameras (Double Sphere and EUCM), read
 // here from basalt's JSON by hand (fx fy cx cy and the model's two parameters).
 namespace {
@@ -389,23 +423,15 @@ TEST_CASE("basalt's Double Sphere and EUCM calibrations become a FISHEYE within 
         CHECK(result.fit.candidate.name == "FISHEYE");
         // Independently: rays through a dense grid whose pixel the paper's formula for the
         // source gives back (to 1e-9 px), projected by cv::fisheye through the fitted camera.
-        const std::vector<Vec2> pixels = test::pixel_grid(source.size, 151, 121);
-        const std::vector<Unprojection> rays = PreparedCamera(source).unproject(pixels);
-        std::vector<Vec3> directions;
-        std::vector<Vec2> expected;
-        for (std::size_t i = 0; i < pixels.size(); ++i) {
-            if (!rays[i].valid) continue;
-            const std::optional<Vec2> paper = test::paper_pixel(source, rays[i].direction);
+        const GridRays grid = grid_rays(source);
+        for (std::size_t i = 0; i < grid.rays.size(); ++i) {
+            const std::optional<Vec2> paper = test::paper_pixel(source, grid.rays[i]);
             REQUIRE(paper.has_value());
-            REQUIRE((*paper - pixels[i]).norm() < 1e-9);
-            directions.push_back(result.fit.camera.pose.camera_from_world(rays[i].direction));
-            expected.push_back(pixels[i]);
+            REQUIRE((*paper - grid.pixels[i]).norm() < 1e-9);
         }
-        REQUIRE(directions.size() > pixels.size() * 9 / 10);
-        const std::vector<Vec2> through_opencv = test::reference_project(result.fit.camera, directions);
-        double worst = 0.0;
-        for (std::size_t i = 0; i < directions.size(); ++i) worst = std::max(worst, (through_opencv[i] - expected[i]).norm());
-        WARN(name << ": " << report.candidates.size() << " candidates, FISHEYE within " << worst << " px over " << directions.size()
+        REQUIRE(grid.rays.size() > 151 * 121 * 9 / 10);
+        const double worst = worst_through_reference(result.fit.camera, grid);
+        WARN(name << ": " << report.candidates.size() << " candidates, FISHEYE within " << worst << " px over " << grid.rays.size()
                   << " pixels (fit's own check: " << result.max_px << " px)");
         CHECK(worst <= 0.1);
     }
@@ -448,27 +474,12 @@ TEST_CASE("mrcal's splined calibrations become an OpenCV model, checked by mrcal
         CHECK(lens_info(result.fit.camera.lens.type).opencv == OpenCvFunction::ProjectPoints);
         // Independently: rays through a dense grid that mrcal_project puts back on their
         // pixels (to 1e-9 px), projected by OpenCV through the fitted camera, in the scene.
-        const PreparedCamera prepared(source);
-        const double max_angle = radians_from_degrees(c.max_angle_deg);
-        const std::vector<Vec2> pixels = test::pixel_grid(source.size, 151, 121);
-        const std::vector<Unprojection> rays = prepared.unproject(pixels);
-        std::vector<Vec3> source_rays, directions;
-        std::vector<Vec2> expected;
-        for (std::size_t i = 0; i < pixels.size(); ++i) {
-            if (!rays[i].valid) continue;
-            const Vec3& ray = rays[i].direction;
-            if (std::atan2(ray.head<2>().norm(), ray.z()) > max_angle) continue;
-            source_rays.push_back(ray);
-            directions.push_back(result.fit.camera.pose.camera_from_world(ray));
-            expected.push_back(pixels[i]);
-        }
-        REQUIRE(expected.size() > 1000);
-        const std::vector<Vec2> through_mrcal = mrcal_project_points(source, source_rays);
-        for (std::size_t i = 0; i < expected.size(); ++i) REQUIRE((through_mrcal[i] - expected[i]).norm() < 1e-9);
-        const std::vector<Vec2> through_opencv = test::reference_project(result.fit.camera, directions);
-        double worst = 0.0;
-        for (std::size_t i = 0; i < directions.size(); ++i) worst = std::max(worst, (through_opencv[i] - expected[i]).norm());
-        WARN(name << ": " << result.fit.candidate.name << " within " << worst << " px over " << directions.size()
+        const GridRays grid = grid_rays(source, radians_from_degrees(c.max_angle_deg));
+        REQUIRE(grid.rays.size() > 1000);
+        const std::vector<Vec2> through_mrcal = mrcal_project_points(source, grid.rays);
+        for (std::size_t i = 0; i < grid.rays.size(); ++i) REQUIRE((through_mrcal[i] - grid.pixels[i]).norm() < 1e-9);
+        const double worst = worst_through_reference(result.fit.camera, grid);
+        WARN(name << ": " << result.fit.candidate.name << " within " << worst << " px over " << grid.rays.size()
                   << " grid pixels of the scene (fit's own check: " << result.max_px << " px, tolerance "
                   << c.tolerance_px << " px)");
         CHECK(worst <= c.tolerance_px);

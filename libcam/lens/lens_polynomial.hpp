@@ -80,10 +80,7 @@ struct LensPolynomialLens {
     }
 
     // The angle about the axis no pixel sees: sigma theta(0) = sigma (-k0) when positive.
-    static double blind_angle(std::span<const double> k) {
-        const double sigma = k[1] < 0.0 ? 1.0 : -1.0;
-        return std::max(0.0, -sigma * k[0]);
-    }
+    static double blind_angle(std::span<const double> k) { return std::max(0.0, -orientation(k[1]) * k[0]); }
 
     static Parameters parameters(std::span<const double> k) { return lens_parameters<Scalar, 5>(k, valid_radius(k)); }
 
@@ -187,7 +184,11 @@ private:
     }
 
     // sigma: +1 when theta grows with r at the centre (k1 < 0, Blender's default), else -1.
-    static Scalar orientation(const Parameters& lens) { return lens.coefficients(1) < Scalar(0) ? Scalar(1) : Scalar(-1); }
+    template <class T>
+    static T orientation(const T& k1) {
+        return k1 < T(0) ? T(1) : T(-1);
+    }
+    static Scalar orientation(const Parameters& lens) { return orientation(lens.coefficients(1)); }
 
     static Scalar abs_of(const Scalar& x) {
         using std::abs;
