@@ -4,7 +4,9 @@
 // sensor fits and shifts.
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -177,4 +179,65 @@ TEST_CASE("Blender cameras: a setting out of range is refused, naming it") {
     bad = BlenderCamera{};
     bad.shift_x = NAN;
     CHECK_THAT(test::error_of([&] { camera_from_blender(bad); }), Catch::Contains("shift_x: must be finite"));
+}
+
+TEST_CASE("Blender cameras back from libcam's: the same rays by Cycles' own mapping") {
+    // Each Blender case to a libcam camera and back: the settings may differ (the sensor is
+    // fitted horizontally, 36 mm wide where its size is free) but Cycles must trace the
+    // same ray through every pixel both cameras render.
+    for (const BlenderCase& c : blender_cases()) {
+        INFO(c.name);
+        const BlenderCamera back = blender_from_camera(camera_from_blender(c.camera));
+        CHECK(back.type == c.camera.type);
+        CHECK(back.size.width == c.camera.size.width);
+        CHECK(back.size.height == c.camera.size.height);
+        CHECK(back.sensor_fit == SensorFit::Horizontal);
+        double worst = 0;
+        int compared = 0;
+        const std::vector<Vec2> pixels = PixelGrid{97, 55}.pixels(c.camera.size);
+        for (const Vec2& pixel : pixels) {
+            const std::optional<Eigen::Vector3d> theirs = test::blender_ray(c.camera, pixel.x(), pixel.y());
+            const std::optional<Eigen::Vector3d> ours = test::blender_ray(back, pixel.x(), pixel.y());
+            if (!theirs || !ours) continue;
+            worst = std::max(worst, angle(*ours, *theirs));
+            ++compared;
+        }
+        INFO("worst " << worst << " rad over " << compared << " pixels");
+        CHECK(compared > static_cast<int>(pixels.size()) / 2);
+        CHECK(worst <= 1e-12);
+    }
+}
+
+TEST_CASE("Blender cameras back from libcam's: the settings worked by hand, and cameras Blender cannot draw") {
+    // A FISHEYE_LENS_POLYNOMIAL camera at 40 px per mm on a 1200x900 image, its axis at
+    // (610.5, 440.5): the sensor is 1200 / 40 = 30 mm wide; the axis is 11 px right of the
+    // centre (599.5) and 9 px above it (449.5). Cycles' shift moves the axis left and down
+    // (its U = u / W + shift_x, V = v / H + shift_y, v up): shift_x = -11 / 1200,
+    // shift_y = -9 / 900.
+    Camera camera;
+    camera.size = {1200, 900};
+    camera.intrinsics = {40.0, 40.0, 610.5, 440.5, 0.0};
+    camera.lens = {LensType::LensPolynomial, {0.0, -0.05, 0.0, -1e-5, 0.0}};
+    const BlenderCamera blender = blender_from_camera(camera);
+    CHECK(blender.type == BlenderCameraType::FisheyeLensPolynomial);
+    CHECK(blender.sensor_width_mm == Approx(30.0).epsilon(1e-15));
+    CHECK(blender.shift_x == Approx(-11.0 / 1200).epsilon(1e-13));
+    CHECK(blender.shift_y == Approx(-9.0 / 900).epsilon(1e-13));
+    CHECK(blender.fisheye_polynomial[1] == -0.05);
+    CHECK(blender.fisheye_polynomial[3] == -1e-5);
+    // theta = 0.05 r + 1e-5 r^3 is one-to-one up to pi at r = 44.8 mm (the root of
+    // 1e-5 r^3 + 0.05 r - pi): fisheye_fov covers the whole domain, 2 pi.
+    CHECK(blender.fisheye_fov == Approx(2 * std::numbers::pi).epsilon(1e-12));
+
+    camera.lens = {LensType::Opencv4, {0.1, 0.0, 0.0, 0.0}};
+    CHECK_THAT(test::error_of([&] { blender_from_camera(camera); }),
+               Catch::Contains("Blender has no camera for OPENCV4"));
+    camera.lens = {LensType::Pinhole, {}};
+    camera.intrinsics.fy = 41.0;
+    CHECK_THAT(test::error_of([&] { blender_from_camera(camera); }),
+               Catch::Contains("with square pixels and no skew, got fx 40, fy 41, skew 0"));
+    camera.intrinsics.fy = 40.0;
+    camera.lens = {LensType::Fisheye, {0.01, 0.0, 0.0, 0.0}};
+    CHECK_THAT(test::error_of([&] { blender_from_camera(camera); }),
+               Catch::Contains("FISHEYE_EQUIDISTANT is FISHEYE with zero coefficients"));
 }

@@ -159,6 +159,34 @@ TEST_CASE("fit --with-rotation --depth: the chosen camera reports its motion") {
     CHECK_THAT(out.at("scene").at("description").get<std::string>(), Contains("within 20 deg"));
 }
 
+TEST_CASE("fit --model FISHEYE_LENS_POLYNOMIAL: Blender's fisheye, and the settings that draw it") {
+    // An equidistant fisheye, f = 380 px on 1200x900 with its axis at (601.5, 444.5):
+    // Blender's polynomial on a 36 mm sensor (1200 / 36 px per mm) is theta = -k1 r with
+    // k1 = -(1200 / 36) / 380; the axis 2 px right of the centre and 5 px above it is
+    // shift_x = -2 / 1200, shift_y = -5 / 900 (Cycles' shift moves it left and down).
+    Files files;
+    const std::string fisheye = (files.dir / "fisheye.json").string();
+    write_whole_file(fisheye, R"({
+  "model": "FISHEYE", "image_size": [1200, 900],
+  "K": [[380, 0, 601.5], [0, 380, 444.5], [0, 0, 1]], "dist": [0, 0, 0, 0],
+  "R": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "t": [0, 0, 0]
+})");
+    const json out = fit_json({fisheye, "--model", "FISHEYE_LENS_POLYNOMIAL", "--tolerance", "1e-6"});
+    REQUIRE(out.at("candidates").size() == 1);
+    const json& chosen = out.at("chosen");
+    CHECK(chosen.at("model") == "FISHEYE_LENS_POLYNOMIAL");
+    const json& blender = chosen.at("blender");
+    CHECK(blender.at("sensor_width").get<double>() == Approx(36.0).epsilon(1e-12));
+    CHECK(blender.at("sensor_fit") == "HORIZONTAL");
+    CHECK(blender.at("shift_x").get<double>() == Approx(-2.0 / 1200).epsilon(1e-9));
+    CHECK(blender.at("shift_y").get<double>() == Approx(-5.0 / 900).epsilon(1e-9));
+    CHECK(blender.at("fisheye_polynomial")[1].get<double>() == Approx(-(1200.0 / 36) / 380).epsilon(1e-9));
+    const auto table = fit({fisheye, "--model", "FISHEYE_LENS_POLYNOMIAL", "--tolerance", "1e-6"});
+    INFO(table.describe());
+    CHECK_THAT(table.out, Contains("Blender: FISHEYE_LENS_POLYNOMIAL, resolution 1200x900, sensor fit horizontal, "
+                                   "sensor width 36 mm"));
+}
+
 TEST_CASE("fit refuses bad scenes and flags, and says when no model meets the tolerance") {
     Files files;
     // Values: exit 1.
@@ -179,6 +207,7 @@ TEST_CASE("fit refuses bad scenes and flags, and says when no model meets the to
     check_refused({files.mild, "--depth", "1,10"}, 2, "--depth");
     check_refused({files.mild, "--grid", "1x5"}, 2, "--grid");
     check_refused({files.mild, "-o", (files.dir / "x").string(), "--to", "png"}, 2, "--to");
+    check_refused({files.mild, "--model", "OPENCV4,LONLAT"}, 2, "--model: libcam fit cannot fit 'LONLAT'; it fits FOV, PINHOLE");
     // No candidate: not even OPENCV4, the lens itself, comes closer than rounding.
     check_refused({files.mild, "--radius", "200", "--tolerance", "1e-300"}, 1, "no candidate model meets the tolerance 1e-300 px");
     // A splined source fitted on rays alone: the message suggests letting the camera rotate.

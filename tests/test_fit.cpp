@@ -17,6 +17,8 @@
 #include <nlohmann/json.hpp>
 
 #include "lens_cases.hpp"
+#include "blender_reference.hpp"
+#include "libcam/convert/blender_camera.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/fit/fit.hpp"
@@ -254,6 +256,109 @@ TEST_CASE("candidates: simplest first, FISHEYE and STEREOGRAPHIC only for wide s
     CHECK(names(45.0) == wide);
     const std::vector<int> counts = {1, 4, 8, 9, 12, 16, 8, 4};
     for (std::size_t i = 0; i < counts.size(); ++i) CHECK(candidates_for(60.0)[i].num_params() == counts[i]);
+}
+
+TEST_CASE("models on request: named ones only, the others refused with the list") {
+    CHECK(candidate_named("FOV").fov_camera);
+    const Candidate polynomial = candidate_named("FISHEYE_LENS_POLYNOMIAL");
+    // cx cy and k1..k4: K's scale and k0 are held.
+    CHECK(polynomial.num_params() == 6);
+    CHECK(polynomial.sensor_width_mm == 36.0);
+    CHECK(candidate_named("DOUBLE_SPHERE").num_params() == 6);
+    for (const Candidate& c : candidates_for(180.0)) CHECK(c.name != "DOUBLE_SPHERE");
+    CHECK_THROWS_WITH(candidate_named("LONLAT"), Contains("libcam fit cannot fit 'LONLAT'") && Contains("EUCM"));
+    CHECK_THROWS_WITH(candidate_named("OPENCV"), Contains("unknown model 'OPENCV'"));
+}
+
+TEST_CASE("an equidistant fisheye is Blender's polynomial fisheye: theta = r / f, worked by hand") {
+    // FISHEYE with zero coefficients images angle theta at theta f pixels from its axis.
+    // Blender's polynomial at 1200 / 36 px per mm has r mm = r px / (1200 / 36), so
+    // theta = -k1 r with k1 = -(1200 / 36) / f, and k2 = k3 = k4 = 0. (The fit starts from
+    // the equidistant lens of the source's focal length, which is the answer here: this
+    // checks the scale and k0 held and the solver staying put; the next test fits.)
+    Camera source;
+    source.size = {1200, 900};
+    source.intrinsics = {380.0, 380.0, 601.3, 447.2, 0.0};
+    source.lens = {LensType::Fisheye, {0.0, 0.0, 0.0, 0.0}};
+    FitOptions options;
+    options.tolerance_px = 1e-6;
+    options.candidates = {candidate_named("FISHEYE_LENS_POLYNOMIAL")};
+    const FitReport report = fit_scene(source, Scene::whole_image(), options);
+    const CandidateReport& result = chosen(report);
+    const Camera& fitted = result.fit.camera;
+    CHECK(fitted.lens.type == LensType::LensPolynomial);
+    CHECK(fitted.intrinsics.fx == Approx(1200.0 / 36).epsilon(1e-15));
+    CHECK(fitted.intrinsics.fy == fitted.intrinsics.fx);
+    CHECK(fitted.intrinsics.cx == Approx(601.3).epsilon(1e-10));
+    CHECK(fitted.intrinsics.cy == Approx(447.2).epsilon(1e-10));
+    const std::vector<double> expected = {0.0, -(1200.0 / 36) / 380.0, 0.0, 0.0, 0.0};
+    for (std::size_t i = 0; i < 5; ++i) CHECK(fitted.lens.coefficients[i] == Approx(expected[i]).margin(1e-10));
+    CHECK(result.max_px < 1e-6);
+}
+
+TEST_CASE("a fisheye becomes Blender's polynomial fisheye, checked by Cycles' formula and cv::fisheye") {
+    // basalt's calibration of a RealSense T265's left fisheye (KB4, 848x800), up to 80
+    // degrees off its axis (its image circle). Blender's four-term polynomial follows it
+    // within 1.1 px there (a tolerance of 1.2 px). The fitted camera goes to Blender's
+    // settings, Cycles' own mapping (blender_reference.hpp) gives each pixel's ray, and
+    // cv::fisheye projects it through the source.
+    Camera source;
+    source.size = {848, 800};
+    source.intrinsics = {286.60144163375528, 286.4617087423328, 422.2765876951761, 395.2246466040553, 0.0};
+    source.lens = {LensType::Fisheye,
+                   {-0.006762412326815424, 0.045170283325720008, -0.043515167278210638, 0.008374959821591333}};
+    const double max_angle_deg = 80.0;
+    FitOptions options;
+    options.tolerance_px = 1.2;
+    options.candidates = {candidate_named("FISHEYE_LENS_POLYNOMIAL")};
+    const FitReport report = fit_scene(source, Scene::field_angle(max_angle_deg), options);
+    const CandidateReport& result = chosen(report);
+    const BlenderCamera blender = blender_from_camera(result.fit.camera);
+    std::vector<Vec2> pixels;
+    std::vector<Vec3> rays;
+    for (const Vec2& pixel : test::pixel_grid(source.size, 151, 121)) {
+        const std::optional<Eigen::Vector3d> ray = test::blender_ray(blender, pixel.x(), pixel.y());
+        // Outside the scene, or past the polynomial's domain (black in Blender's render).
+        if (!ray || std::atan2(ray->head<2>().norm(), ray->z()) > radians_from_degrees(max_angle_deg) - 0.01) continue;
+        pixels.push_back(pixel);
+        rays.push_back(*ray);
+    }
+    REQUIRE(pixels.size() > 10000);
+    const std::vector<Vec2> through_source = test::reference_project(source, rays);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < pixels.size(); ++i) worst = std::max(worst, (through_source[i] - pixels[i]).norm());
+    WARN("FISHEYE_LENS_POLYNOMIAL within " << worst << " px over " << pixels.size() << " pixels (fit's own check: "
+                                           << result.max_px << " px)");
+    CHECK(worst <= options.tolerance_px);
+}
+
+TEST_CASE("the unified models on request: UCM is EUCM with beta = 1, worked by hand, and reaches past 90 degrees") {
+    // UCM m = (x, y) / (z + xi |p|) = (x, y) / ((1 + xi) (alpha |p| + (1 - alpha) z)) with
+    // alpha = xi / (1 + xi): EUCM with that alpha, beta = 1 and focal length f / (1 + xi).
+    Camera source;
+    source.size = {1000, 800};
+    source.intrinsics = {300.0, 300.0, 505.0, 396.0, 0.0};
+    source.lens = {LensType::Ucm, {0.8}};
+    FitOptions options;
+    options.tolerance_px = 1e-6;
+    options.candidates = {candidate_named("EUCM")};
+    const FitReport report = fit_scene(source, Scene::whole_image(), options);
+    const CandidateReport& eucm = chosen(report);
+    CHECK(eucm.fit.camera.intrinsics.fx == Approx(300.0 / 1.8).epsilon(1e-9));
+    CHECK(eucm.fit.camera.intrinsics.cx == Approx(505.0).epsilon(1e-9));
+    CHECK(eucm.fit.camera.lens.coefficients[0] == Approx(0.8 / 1.8).epsilon(1e-9));
+    CHECK(eucm.fit.camera.lens.coefficients[1] == Approx(1.0).epsilon(1e-9));
+    // The 137-degree fisheye: a pinhole start reaches none of it past 90 degrees, and the
+    // fit widens until UCM and MEI cover it all.
+    const Camera fisheye =
+        libcam::test::lens_camera(LensType::Fisheye, {-0.013, -0.0057, 0.0023, -0.0009}, {1600, 1200}, 420, 421);
+    options.tolerance_px = 5.0;
+    options.candidates = {candidate_named("UCM"), candidate_named("MEI"), candidate_named("DOUBLE_SPHERE")};
+    const FitReport wide = fit_scene(fisheye, Scene::whole_image(), options);
+    for (const CandidateReport& entry : wide.candidates) {
+        INFO(entry.fit.candidate.name << ": max " << entry.max_px << " px");
+        CHECK(entry.covers_scene);
+    }
 }
 
 TEST_CASE("scene samples: the lattice inside the scene and its boundary, and a denser check set") {

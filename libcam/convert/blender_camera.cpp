@@ -1,10 +1,12 @@
 #include "libcam/convert/blender_camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "libcam/error.hpp"
+#include "libcam/lens/lens_polynomial.hpp"
 
 namespace libcam {
 
@@ -58,7 +60,91 @@ void require_field_of_view(double fov) {
     }
 }
 
+// Blender's default sensor width, given to the cameras whose sensor size is free.
+constexpr double kDefaultSensorWidthMm = 36.0;
+
+void require_square_pixels(const Camera& camera, const char* model) {
+    const Intrinsics& k = camera.intrinsics;
+    if (!(std::abs(k.fx - k.fy) <= 1e-9 * std::abs(k.fx)) || k.skew != 0.0) {
+        throw InvalidArgument(std::string("intrinsics: Blender draws ") + model + " with square pixels and no skew, got fx " +
+                              format_number(k.fx) + ", fy " + format_number(k.fy) + ", skew " + format_number(k.skew));
+    }
+}
+
+// The shift that moves a panoramic camera's axis from (axis_u, axis_v) to K's principal
+// point: the inverse of panoramic_intrinsics.
+void set_panoramic_shift(BlenderCamera& blender, const Intrinsics& k, double axis_u = 0.5, double axis_v = 0.5) {
+    const auto width = static_cast<double>(blender.size.width), height = static_cast<double>(blender.size.height);
+    blender.shift_x = (width * axis_u - 0.5 - k.cx) / width;
+    blender.shift_y = (k.cy - height * (1 - axis_v) + 0.5) / height;
+}
+
 }  // namespace
+
+BlenderCamera blender_from_camera(const Camera& camera) {
+    camera.validate();
+    const Intrinsics& k = camera.intrinsics;
+    const auto width = static_cast<double>(camera.size.width), height = static_cast<double>(camera.size.height);
+    BlenderCamera blender;
+    blender.size = camera.size;
+    blender.sensor_fit = SensorFit::Horizontal;
+    blender.sensor_width_mm = kDefaultSensorWidthMm;
+    const std::vector<double>& c = camera.lens.coefficients;
+    switch (camera.lens.type) {
+        case LensType::Pinhole:
+            require_square_pixels(camera, "a perspective camera");
+            blender.type = BlenderCameraType::Perspective;
+            blender.lens_mm = k.fx * blender.sensor_width_mm / width;
+            // A perspective shift is in units of the fitted side (the width).
+            blender.shift_x = (width / 2 - 0.5 - k.cx) / width;
+            blender.shift_y = (k.cy - height / 2 + 0.5) / width;
+            return blender;
+        case LensType::Fisheye:
+            if (std::any_of(c.begin(), c.end(), [](double value) { return value != 0.0; }) ||
+                !(std::abs(width / k.fx - height / k.fy) <= 1e-9 * width / k.fx) || k.skew != 0.0) {
+                throw InvalidArgument("lens: Blender's FISHEYE_EQUIDISTANT is FISHEYE with zero coefficients and "
+                                      "W / fx = H / fy, no skew");
+            }
+            blender.type = BlenderCameraType::FisheyeEquidistant;
+            blender.fisheye_fov = width / k.fx;
+            require_field_of_view(blender.fisheye_fov);
+            set_panoramic_shift(blender, k);
+            return blender;
+        case LensType::Equisolid:
+            require_square_pixels(camera, "FISHEYE_EQUISOLID");
+            blender.type = BlenderCameraType::FisheyeEquisolid;
+            blender.fisheye_lens_mm = k.fx * blender.sensor_width_mm / width;
+            blender.fisheye_fov = 2 * std::numbers::pi;
+            set_panoramic_shift(blender, k);
+            return blender;
+        case LensType::LensPolynomial: {
+            require_square_pixels(camera, "FISHEYE_LENS_POLYNOMIAL");
+            blender.type = BlenderCameraType::FisheyeLensPolynomial;
+            blender.sensor_width_mm = width / k.fx;
+            std::copy(c.begin(), c.end(), blender.fisheye_polynomial.begin());
+            const double radius = LensPolynomialLens<double>::valid_radius(c);
+            blender.fisheye_fov = 2 * LensPolynomialLens<double>::valid_angle(c, radius);
+            set_panoramic_shift(blender, k);
+            return blender;
+        }
+        case LensType::Lonlat: {
+            if (k.skew != 0.0) throw InvalidArgument("intrinsics: Blender's EQUIRECTANGULAR has no skew");
+            blender.type = BlenderCameraType::Equirectangular;
+            const double lon_range = width / k.fx, lat_range = height / k.fy;
+            // Inverse of camera_from_blender's: cx = W axis_u - 0.5, axis_u = -lon_min / range;
+            // cy = H (1 - axis_v) - 0.5, axis_v = -lat_min / range.
+            blender.longitude_min = -(k.cx + 0.5) / k.fx;
+            blender.longitude_max = blender.longitude_min + lon_range;
+            blender.latitude_min = -(height - k.cy - 0.5) / k.fy;
+            blender.latitude_max = blender.latitude_min + lat_range;
+            return blender;
+        }
+        default:
+            throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
+                                  " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "
+                                  "FISHEYE_LENS_POLYNOMIAL and LONLAT)");
+    }
+}
 
 Camera camera_from_blender(const BlenderCamera& blender) {
     blender.size.validate();

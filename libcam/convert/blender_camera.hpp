@@ -66,4 +66,15 @@ struct BlenderCamera {
 // of view outside (0, 2 pi]).
 Camera camera_from_blender(const BlenderCamera& blender);
 
+// The Blender camera that draws `camera`'s intrinsics and lens (its pose is not a
+// setting of Blender's camera data): the inverse of camera_from_blender, with the sensor
+// fitted horizontally. Perspective: PINHOLE with fx = fy and a 36 mm sensor.
+// FISHEYE_EQUIDISTANT: FISHEYE with zero coefficients and W / fx = H / fy.
+// FISHEYE_EQUISOLID: EQUISOLID with fx = fy, a 36 mm sensor and the field of view of its
+// whole domain (2 pi). FISHEYE_LENS_POLYNOMIAL: fx = fy, the sensor W / fx mm wide,
+// fisheye_fov twice the largest angle the polynomial images. EQUIRECTANGULAR: LONLAT.
+// Throws InvalidArgument saying why for a camera Blender cannot draw (another model,
+// non-square pixels, skew); fx = fy means within a relative 1e-9.
+BlenderCamera blender_from_camera(const Camera& camera);
+
 }  // namespace libcam

@@ -6,6 +6,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/fit/least_squares.hpp"
+#include "libcam/lens/lens_models.hpp"
 
 namespace libcam {
 
@@ -21,7 +22,12 @@ bool contains_model(const Candidate& candidate, LensType lens) {
     return !candidate.fov_camera && lens_contains(candidate.lens, lens);
 }
 
-Vec2 image_centre(const ImageSize& size) { return {size.centre_x(), size.centre_y()}; }
+// How many of a candidate's parameters belong to K: f for FOV, cx cy at a sensor's
+// fixed scale, fx fy cx cy otherwise.
+std::size_t core_count(const Candidate& candidate) {
+    if (candidate.fov_camera) return 1;
+    return candidate.sensor_width_mm > 0.0 ? 2 : 4;
+}
 
 // The camera that `params` describe, in the source camera's frame moved by `motion`.
 Camera camera_from_params(const Candidate& candidate, const ImageSize& size, const std::vector<double>& params,
@@ -32,10 +38,18 @@ Camera camera_from_params(const Candidate& candidate, const ImageSize& size, con
     if (candidate.fov_camera) {
         camera.intrinsics = {params[0], params[0], size.centre_x(), size.centre_y(), 0.0};
         camera.lens = {LensType::Pinhole, {}};
+        return camera;
+    }
+    const std::size_t core = core_count(candidate);
+    if (core == 2) {
+        const double f = candidate.sensor_pixels_per_mm(size.width);
+        camera.intrinsics = {f, f, params[0], params[1], 0.0};
     } else {
         camera.intrinsics = {params[0], params[1], params[2], params[3], 0.0};
-        camera.lens = {candidate.lens, std::vector<double>(params.begin() + 4, params.end())};
     }
+    std::vector<double> coefficients(static_cast<std::size_t>(candidate.held_coefficients), 0.0);
+    coefficients.insert(coefficients.end(), params.begin() + static_cast<long>(core), params.end());
+    camera.lens = {candidate.lens, std::move(coefficients)};
     return camera;
 }
 
@@ -45,20 +59,39 @@ Camera camera_from_state(const Candidate& candidate, const ImageSize& size, cons
 
 // `base` as a start for `candidate`, with its motion (pose) and the coefficients it
 // has (the candidate's further ones 0): exact when the candidate contains base's model.
+// A candidate that does not contain base's model starts from the model's own start
+// (fit_start, lens_models.hpp) with base's K.
 detail::LeastSquaresState start_from(const Candidate& candidate, const Camera& base) {
     detail::LeastSquaresState start;
     const Intrinsics& k = base.intrinsics;
     start.rotation = base.pose.rvec();
     start.shift = base.pose.t;
+    const double focal = std::sqrt(k.fx * k.fy);
     if (candidate.fov_camera) {
-        start.params = {std::sqrt(k.fx * k.fy)};
+        start.params = {focal};
         return start;
     }
-    start.params = {k.fx, k.fy, k.cx, k.cy};
+    const bool sensor_scale = candidate.sensor_width_mm > 0.0;
+    start.params = sensor_scale ? std::vector<double>{k.cx, k.cy} : std::vector<double>{k.fx, k.fy, k.cx, k.cy};
+    // At a sensor's scale m is in millimetres: one of them is (pixels per mm / focal) radians
+    // near the axis of base's camera.
+    const double radians_per_unit = sensor_scale ? candidate.sensor_pixels_per_mm(base.size.width) / focal : 1.0;
+    std::vector<double> coefficients;
     if (contains_model(candidate, base.lens.type)) {
-        start.params.insert(start.params.end(), base.lens.coefficients.begin(), base.lens.coefficients.end());
+        coefficients = base.lens.coefficients;
+        coefficients.resize(static_cast<std::size_t>(lens_info(candidate.lens).num_coefficients), 0.0);
+        if (sensor_scale) {
+            // r in base's millimetres is radians_per_unit times r in the candidate's.
+            double power = 1.0;
+            for (double& c : coefficients) {
+                c *= power;
+                power *= radians_per_unit;
+            }
+        }
+    } else {
+        coefficients = visit_lens_model<double>(candidate.lens, [&]<class Model>() { return fit_start<Model>(radians_per_unit); });
     }
-    start.params.resize(static_cast<std::size_t>(candidate.num_params()), 0.0);
+    start.params.insert(start.params.end(), coefficients.begin() + candidate.held_coefficients, coefficients.end());
     return start;
 }
 
@@ -104,18 +137,33 @@ struct Attempt {
     }
 };
 
+// A start whose model cannot reach every observation (a pinhole start of a model that
+// sees wider) is fitted to those it reaches, and again from that solution while it
+// reaches more: a few rounds at most.
+constexpr int kMaxWideningRounds = 8;
+
 Attempt attempt(const Candidate& candidate, const Camera& source, const std::vector<Observation>& observations,
                 detail::LeastSquaresState start, const SolveOptions& options, const detail::IterationHook& hook) {
-    const Camera start_camera = camera_from_state(candidate, source.size, start);
-    const std::vector<Observation> kept = representable(start_camera, observations);
+    Camera start_camera = camera_from_state(candidate, source.size, start);
+    std::vector<Observation> kept = representable(start_camera, observations);
     Attempt result{std::move(start), observations.size() - kept.size()};
     if (kept.empty()) return result;
-    // A guard the start cannot project could never be met; the check reports it.
-    SolveOptions guarded = options;
-    guarded.must_project = representable(start_camera, options.must_project);
-    result.state = detail::solve_least_squares(candidate, image_centre(source.size), kept, result.state, guarded, hook);
-    result.rms_px = measure(camera_from_state(candidate, source.size, result.state), kept).stats.rms_px;
-    return result;
+    for (int round = 1;; ++round) {
+        // A guard the start cannot project could never be met; the check reports it.
+        SolveOptions guarded = options;
+        guarded.must_project = representable(start_camera, options.must_project);
+        result.state =
+            detail::solve_least_squares(candidate, source.size, kept, result.state, guarded, hook);
+        const Camera solved = camera_from_state(candidate, source.size, result.state);
+        std::vector<Observation> reached = representable(solved, observations);
+        if (reached.size() <= kept.size() || round == kMaxWideningRounds) {
+            result.unrepresentable = observations.size() - kept.size();
+            result.rms_px = measure(solved, kept).stats.rms_px;
+            return result;
+        }
+        kept = std::move(reached);
+        start_camera = solved;
+    }
 }
 
 FittedModel fit_one(const Candidate& candidate, const Camera& source, const std::vector<Observation>& observations,
@@ -180,19 +228,49 @@ std::optional<std::size_t> choose(const std::vector<CandidateReport>& reports) {
 
 }  // namespace
 
-int Candidate::num_params() const { return fov_camera ? 1 : 4 + lens_info(lens).num_coefficients; }
+int Candidate::num_params() const {
+    if (fov_camera) return 1;
+    return static_cast<int>(core_count(*this)) + lens_info(lens).num_coefficients - held_coefficients;
+}
+
+namespace {
+const Candidate kFovCandidate{"FOV", LensType::Pinhole, true};
+
+Candidate candidate_of(const LensInfo& info) {
+    return {info.name, info.type, false, info.fit_sensor_width_mm, info.fit_held_coefficients};
+}
+}  // namespace
 
 std::vector<Candidate> candidates_for(double largest_angle_deg) {
     // The FOV camera first (one parameter), then the table's candidates in its order,
     // simplest first.
-    std::vector<Candidate> list = {{"FOV", LensType::Pinhole, true}};
+    std::vector<Candidate> list = {kFovCandidate};
     for (const LensInfo& info : lens_models()) {
         const bool wide = largest_angle_deg >= kWideSceneAngleDeg;
         if (info.fit == FitCandidate::Always || (info.fit == FitCandidate::WideScenes && wide)) {
-            list.push_back({info.name, info.type});
+            list.push_back(candidate_of(info));
         }
     }
     return list;
+}
+
+std::string candidate_names() {
+    std::string names(kFovCandidate.name);
+    for (const LensInfo& info : lens_models()) {
+        if (info.fit != FitCandidate::No) names += ", " + std::string(info.name);
+    }
+    return names;
+}
+
+Candidate candidate_named(std::string_view name) {
+    if (name == kFovCandidate.name) return kFovCandidate;
+    for (const LensInfo& info : lens_models()) {
+        if (info.name == name && info.fit != FitCandidate::No) return candidate_of(info);
+    }
+    const bool known = std::any_of(lens_models().begin(), lens_models().end(),
+                                   [&](const LensInfo& info) { return info.name == name; });
+    throw InvalidArgument("model: " + std::string(known ? "libcam fit cannot fit " : "unknown model ") + "'" +
+                          std::string(name) + "'; it fits " + candidate_names());
 }
 
 std::vector<Observation> observations_of(const ScenePixels& pixels, const std::vector<double>& depths) {
@@ -264,8 +342,9 @@ FitReport fit_scene(const Camera& source, const Scene& scene, const FitOptions& 
 
     const SolveOptions solve{options.motion, kNegligibleFraction * options.tolerance_px, options.progress,
                              observations_of(boundary_of(report.sampling.check), options.depths)};
-    const std::vector<FittedModel> fitted =
-        fit_candidates(source, fit_set, candidates_for(report.largest_angle_deg), solve);
+    const std::vector<FittedModel> fitted = fit_candidates(
+        source, fit_set, options.candidates.empty() ? candidates_for(report.largest_angle_deg) : options.candidates,
+        solve);
     for (const FittedModel& model : fitted) {
         CandidateReport entry;
         entry.fit = model;

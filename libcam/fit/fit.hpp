@@ -14,10 +14,17 @@
 //   PINHOLE   fx fy cx cy
 //   OPENCV4, OPENCV5, OPENCV8, OPENCV12   fx fy cx cy and OpenCV's k1 k2 p1 p2 ...
 //   FISHEYE, STEREOGRAPHIC   only for wide scenes (kWideSceneAngleDeg)
+// or the models the user names (FitOptions::candidates), among them those the table
+// offers on request only: DOUBLE_SPHERE, UCM, EUCM, MEI, EQUISOLID, the thin-prism
+// fisheyes and Blender's FISHEYE_LENS_POLYNOMIAL (at a fixed sensor scale, LensInfo).
 // Each candidate of the first chain starts from the solution of the one before it
 // (whose model it contains), so a richer model never fits worse than a simpler one;
 // a candidate that contains the source's own model also starts from the source, and
 // keeps the better of the two.
+//
+// A start that leaves some observations outside its model's domain (a pinhole start of
+// a model that can see wider) is fitted to the rest and fitted again from its solution,
+// while that brings more of them in.
 //
 // A candidate's model must be valid at every sample: a distortion that folds over
 // inside the scene (two rays on one pixel) is never accepted as a fit, although an
@@ -56,14 +63,30 @@ struct Candidate {
     std::string_view name;  // "FOV", or the lens model's name
     LensType lens = LensType::Pinhole;
     bool fov_camera = false;  // square pixels, centred principal point, one focal length
+    // From the table (LensInfo::fit_sensor_width_mm, fit_held_coefficients): for a model
+    // measured in millimetres on a sensor, square pixels held at image width / this pixels
+    // per millimetre (0: fx and fy fitted); and the leading coefficients held at 0.
+    double sensor_width_mm = 0.0;
+    int held_coefficients = 0;
 
-    // Free intrinsic parameters: 1 for FOV, else 4 (fx fy cx cy) + the lens's coefficients.
+    // The pixels per millimetre a sensor-scale candidate holds for an image `width` wide.
+    double sensor_pixels_per_mm(int width) const { return static_cast<double>(width) / sensor_width_mm; }
+    // Free intrinsic parameters, in this order: f for FOV; else fx fy cx cy (cx cy alone at
+    // sensor scale) and the lens's coefficients after the held ones.
     int num_params() const;
 };
 
 // The candidates for a scene whose rays reach `largest_angle_deg` from the optical axis,
 // in order of complexity (FISHEYE and STEREOGRAPHIC last, for wide scenes only).
 std::vector<Candidate> candidates_for(double largest_angle_deg);
+
+// The candidate a user names: "FOV" (the look-at camera) or a lens model the table lets
+// `libcam fit` fit (FitCandidate other than No; OnRequest models only this way). Throws
+// InvalidArgument for another name, listing the ones it takes.
+Candidate candidate_named(std::string_view name);
+
+// The names candidate_named takes, comma-separated, in the table's order.
+std::string candidate_names();
 
 // A pixel and the point that should land on it, in the source camera's frame (a unit
 // ray for a fit on rays alone, or a point at a depth along it).
@@ -141,6 +164,8 @@ struct FitOptions {
     std::vector<double> depths;
     // The fitting lattice (mrcal's --gridn); default: sized to the scene.
     std::optional<Lattice> lattice;
+    // The models to try (candidate_named), simplest first; empty: candidates_for the scene.
+    std::vector<Candidate> candidates;
     ProgressCallback progress;
 };
 

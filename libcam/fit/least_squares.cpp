@@ -20,54 +20,84 @@ double scalar_part(const ceres::Jet<double, N>& value) {
     return value.a;
 }
 
-// The lens parameters of Model in the solver's scalar T. The valid radius (where the
-// distortion folds over) is worked out from the coefficients' values and held fixed
-// while differentiating: it bounds the domain, it is not part of any residual.
-template <class Model, class T>
-typename LensInScalar<Model, T>::Parameters lens_parameters(const T* coefficients) {
+// The lens parameters of Model in the solver's scalar T, from its free coefficients
+// after kHeld leading ones held at 0. The valid radius (where the distortion folds over)
+// is worked out from the coefficients' values and held fixed while differentiating: it
+// bounds the domain, it is not part of any residual.
+template <class Model, int kHeld, class T>
+typename LensInScalar<Model, T>::Parameters lens_parameters(const T* free_coefficients) {
     constexpr int kCount = Model::num_coefficients;
     std::array<double, kCount> values{};
     typename LensInScalar<Model, T>::Parameters lens;
     for (int i = 0; i < kCount; ++i) {
-        values[static_cast<std::size_t>(i)] = scalar_part(coefficients[i]);
-        lens.coefficients(i) = coefficients[i];
+        const T value = i < kHeld ? T(0) : free_coefficients[i - kHeld];
+        values[static_cast<std::size_t>(i)] = scalar_part(value);
+        lens.coefficients(i) = value;
     }
     lens.valid_radius = T(static_cast<double>(Model::parameters(values).valid_radius));
     return lens;
 }
 
-// K without skew (geometry/intrinsics.hpp), in the solver's scalar: the FOV camera's
-// fx = fy = f with the principal point fixed at the image centre, or fx fy cx cy.
-template <bool kFovCore, class T>
-Eigen::Matrix<T, 2, 1> pixel_from_normalized(const T* core, const Vec2& image_centre, const Eigen::Matrix<T, 2, 1>& m) {
-    if constexpr (kFovCore) {
-        return {core[0] * m.x() + T(image_centre.x()), core[0] * m.y() + T(image_centre.y())};
+// How K's free parameters sit at the start of a candidate's parameters.
+enum class Core {
+    Focal,           // the FOV camera: f, the principal point at the image centre
+    PrincipalPoint,  // cx cy, square pixels at a sensor's fixed scale
+    Full,            // fx fy cx cy
+};
+
+// What the fit holds fixed: the FOV camera's principal point, a sensor's scale.
+struct HeldIntrinsics {
+    Vec2 image_centre = Vec2::Zero();
+    double focal = 0.0;
+};
+
+// K without skew (geometry/intrinsics.hpp), in the solver's scalar.
+template <Core kCore, class T>
+Eigen::Matrix<T, 2, 1> pixel_from_normalized(const T* core, const HeldIntrinsics& held, const Eigen::Matrix<T, 2, 1>& m) {
+    if constexpr (kCore == Core::Focal) {
+        return {core[0] * m.x() + T(held.image_centre.x()), core[0] * m.y() + T(held.image_centre.y())};
+    } else if constexpr (kCore == Core::PrincipalPoint) {
+        return {T(held.focal) * m.x() + core[0], T(held.focal) * m.y() + core[1]};
     } else {
         return {core[0] * m.x() + core[2], core[1] * m.y() + core[3]};
     }
 }
 
+// Are these coefficients the model's (DOUBLE_SPHERE's alpha in [0, 1], ...)? A step
+// that leaves them is rejected.
+template <class Model, std::size_t N>
+bool coefficients_allowed(const std::array<double, N>& values) {
+    try {
+        Lens{Model::type, std::vector<double>(values.begin(), values.end())}.validate("fit");
+        return true;
+    } catch (const InvalidArgument&) {
+        return false;
+    }
+}
+
 // Every observation's reprojection error at once (one residual block), so that the
 // lens's valid radius is worked out once per evaluation, not once per observation.
-template <class Model, bool kFovCore>
+template <class Model, Core kCore>
 class ReprojectionResiduals {
 public:
-    static constexpr int kCoreParams = kFovCore ? 1 : 4;
-    static constexpr int kParams = kCoreParams + Model::num_coefficients;
+    static constexpr int kCoreParams = kCore == Core::Focal ? 1 : kCore == Core::PrincipalPoint ? 2 : 4;
+    static constexpr int kHeld = lens_info(Model::type).fit_held_coefficients;
+    static constexpr int kParams = kCoreParams + Model::num_coefficients - kHeld;
 
     ReprojectionResiduals(const std::vector<Observation>& observations, const std::vector<Observation>& must_project,
-                          const Vec2& image_centre)
-        : observations_(observations), must_project_(must_project), image_centre_(image_centre) {}
+                          const HeldIntrinsics& held)
+        : observations_(observations), must_project_(must_project), held_(held) {}
 
-    // False when a point leaves the model's valid domain: Ceres then rejects the step.
+    // False when the coefficients leave the model's range or a point leaves its valid
+    // domain: Ceres then rejects the step.
     template <class T>
     bool operator()(const T* intrinsics, const T* rotation, const T* shift, T* residuals) const {
-        if (!all_project(intrinsics, rotation, shift)) return false;
-        const typename LensInScalar<Model, T>::Parameters lens = lens_parameters<Model>(intrinsics + kCoreParams);
+        if (!acceptable(intrinsics, rotation, shift)) return false;
+        const typename LensInScalar<Model, T>::Parameters lens = lens_parameters<Model, kHeld>(intrinsics + kCoreParams);
         for (std::size_t i = 0; i < observations_.size(); ++i) {
             Eigen::Matrix<T, 2, 1> m;
             if (!project(lens, observations_[i].point, rotation, shift, m)) return false;
-            const Eigen::Matrix<T, 2, 1> pixel = pixel_from_normalized<kFovCore>(intrinsics, image_centre_, m);
+            const Eigen::Matrix<T, 2, 1> pixel = pixel_from_normalized<kCore>(intrinsics, held_, m);
             residuals[2 * i] = pixel.x() - T(observations_[i].pixel.x());
             residuals[2 * i + 1] = pixel.y() - T(observations_[i].pixel.y());
         }
@@ -86,15 +116,21 @@ private:
         return LensInScalar<Model, T>::project(lens, camera_point, m);
     }
 
-    // Do the must_project points project? Only their validity matters, so in double.
+    // Are the coefficients in the model's range, and do the must_project points project?
+    // Only validity matters here, so in double.
     template <class T>
-    bool all_project(const T* intrinsics, const T* rotation, const T* shift) const {
-        if (must_project_.empty()) return true;
+    bool acceptable(const T* intrinsics, const T* rotation, const T* shift) const {
         std::array<double, kParams> values{};
         for (int i = 0; i < kParams; ++i) values[static_cast<std::size_t>(i)] = scalar_part(intrinsics[i]);
+        std::array<double, Model::num_coefficients> coefficients{};
+        for (int i = kHeld; i < Model::num_coefficients; ++i) {
+            coefficients[static_cast<std::size_t>(i)] = values[static_cast<std::size_t>(kCoreParams + i - kHeld)];
+        }
+        if (!coefficients_allowed<Model>(coefficients)) return false;
+        if (must_project_.empty()) return true;
         const double turn[3] = {scalar_part(rotation[0]), scalar_part(rotation[1]), scalar_part(rotation[2])};
         const double move[3] = {scalar_part(shift[0]), scalar_part(shift[1]), scalar_part(shift[2])};
-        const typename Model::Parameters lens = lens_parameters<Model>(values.data() + kCoreParams);
+        const typename Model::Parameters lens = lens_parameters<Model, kHeld>(values.data() + kCoreParams);
         Vec2 m;
         for (const Observation& guard : must_project_) {
             if (!project<double>(lens, guard.point, turn, move, m)) return false;
@@ -104,7 +140,7 @@ private:
 
     const std::vector<Observation>& observations_;
     const std::vector<Observation>& must_project_;
-    Vec2 image_centre_;
+    HeldIntrinsics held_;
 };
 
 // Reports each iteration, and ends the solve once the RMS error is negligible.
@@ -142,16 +178,16 @@ ceres::Solver::Options solver_options() {
     return options;
 }
 
-template <class Model, bool kFovCore>
-LeastSquaresState solve_with(const Vec2& image_centre, const std::vector<Observation>& observations,
+template <class Model, Core kCore>
+LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<Observation>& observations,
                              LeastSquaresState state, const SolveOptions& settings, const IterationHook& hook) {
-    using Residuals = ReprojectionResiduals<Model, kFovCore>;
+    using Residuals = ReprojectionResiduals<Model, kCore>;
     if (state.params.size() != static_cast<std::size_t>(Residuals::kParams)) {
         throw InvalidArgument("fit: a start with " + std::to_string(state.params.size()) + " parameters for a model with " +
                               std::to_string(Residuals::kParams));
     }
     auto* cost = new ceres::AutoDiffCostFunction<Residuals, ceres::DYNAMIC, Residuals::kParams, 3, 3>(
-        new Residuals(observations, settings.must_project, image_centre), static_cast<int>(2 * observations.size()));
+        new Residuals(observations, settings.must_project, held), static_cast<int>(2 * observations.size()));
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, state.params.data(), state.rotation.data(), state.shift.data());
     if (settings.motion == CameraMotion::None) problem.SetParameterBlockConstant(state.rotation.data());
@@ -172,20 +208,25 @@ LeastSquaresState solve_with(const Vec2& image_centre, const std::vector<Observa
 
 }  // namespace
 
-LeastSquaresState solve_least_squares(const Candidate& candidate, const Vec2& image_centre,
+LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSize& size,
                                       const std::vector<Observation>& observations, LeastSquaresState start,
                                       const SolveOptions& options, const IterationHook& hook) {
-    const auto solve = [&]<class Model, bool kFovCore>() {
-        return solve_with<Model, kFovCore>(image_centre, observations, std::move(start), options, hook);
+    HeldIntrinsics held;
+    held.image_centre = {size.centre_x(), size.centre_y()};
+    if (candidate.sensor_width_mm > 0.0) held.focal = candidate.sensor_pixels_per_mm(size.width);
+    const auto solve = [&]<class Model, Core kCore>() {
+        return solve_with<Model, kCore>(held, observations, std::move(start), options, hook);
     };
-    if (candidate.fov_camera) return solve.template operator()<PinholeLens<double>, true>();
+    if (candidate.fov_camera) return solve.template operator()<PinholeLens<double>, Core::Focal>();
     return visit_lens_model<double>(candidate.lens, [&]<class Model>() -> LeastSquaresState {
         // Only the table's candidates are compiled for the solver (each is a Ceres
         // instantiation of its own).
-        if constexpr (lens_info(Model::type).fit != FitCandidate::No) {
-            return solve.template operator()<Model, false>();
+        constexpr LensInfo info = lens_info(Model::type);
+        if constexpr (info.fit != FitCandidate::No) {
+            constexpr Core kCore = info.fit_sensor_width_mm > 0.0 ? Core::PrincipalPoint : Core::Full;
+            return solve.template operator()<Model, kCore>();
         } else {
-            throw InvalidArgument("fit: " + std::string(lens_info(candidate.lens).name) + " is not a fit candidate");
+            throw InvalidArgument("fit: " + std::string(info.name) + " is not a fit candidate");
         }
     });
 }

@@ -2,8 +2,9 @@
 // One candidate's nonlinear least-squares fit, by Ceres (fit.cpp's engine; Ceres
 // stays out of the headers).
 //
-// Unknowns: the candidate's free intrinsics (f for FOV; fx fy cx cy and the lens
-// coefficients otherwise), a rotation (Rodrigues vector) and a shift of the camera.
+// Unknowns: the candidate's free intrinsics (f for FOV; fx fy cx cy, or cx cy alone at
+// a sensor's fixed scale, and the lens coefficients otherwise), a rotation (Rodrigues
+// vector) and a shift of the camera.
 // Residuals, two per observation, in pixels:
 //     K lens(R(rotation) point + shift) - pixel
 // Every observation, and every point of options.must_project, must project at the
@@ -28,9 +29,10 @@ struct LeastSquaresState {
 using IterationHook = std::function<void(int)>;
 
 // Fits `candidate` from `start`; only the unknowns options.motion allows move besides
-// the intrinsics. `image_centre` is the FOV camera's fixed principal point. Calls
+// the intrinsics. The image's size gives what K holds fixed: the FOV camera's principal
+// point (the image centre), a sensor-scale candidate's pixels per millimetre. Calls
 // `hook` after each iteration (options.progress is fit_candidates' business).
-LeastSquaresState solve_least_squares(const Candidate& candidate, const Vec2& image_centre,
+LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSize& size,
                                       const std::vector<Observation>& observations, LeastSquaresState start,
                                       const SolveOptions& options, const IterationHook& hook);
 

@@ -35,6 +35,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
@@ -67,6 +68,11 @@ struct DoubleSphereLens {
     }
 
     static Parameters parameters(std::span<const double> c) { return lens_parameters<Scalar, 2>(c, valid_radius(c)); }
+
+    // Where `libcam fit` starts (lens_models.hpp's fit_start): xi = 0, alpha = 1/2, the
+    // stereographic projection 2 tan(theta / 2) with K's focal length, which reaches every
+    // direction but the backward axis, so that a wide scene projects from the start.
+    static std::array<double, 2> fit_start() { return {0.0, 0.5}; }
 
     // The paper's bounds (see above); InvalidArgument naming the coefficient otherwise.
     static void check_coefficients(std::span<const double> c, const char* field) {

@@ -30,6 +30,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <span>
@@ -59,6 +60,10 @@ struct EucmLens {
     }
 
     static Parameters parameters(std::span<const double> c) { return lens_parameters<Scalar, 2>(c, valid_radius(c)); }
+
+    // Where `libcam fit` starts (lens_models.hpp's fit_start): alpha = 1/2, beta = 1, the
+    // stereographic projection 2 tan(theta / 2) with K's focal length (as DOUBLE_SPHERE's).
+    static std::array<double, 2> fit_start() { return {0.5, 1.0}; }
 
     // basalt's bounds (see above); InvalidArgument naming the coefficient otherwise.
     static void check_coefficients(std::span<const double> c, const char* field) {

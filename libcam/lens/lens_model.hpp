@@ -97,6 +97,7 @@ enum class FitCandidate {
     No,
     Always,
     WideScenes,  // only for a scene reaching kWideSceneAngleDeg (fit/fit.hpp) off the axis
+    OnRequest,   // only when the user names it (libcam fit --model): not in the simplest-first chain
 };
 
 // The names of a model's coefficients, in the model's order.
@@ -126,6 +127,14 @@ struct LensInfo {
     LensFamily family;
     int family_rank;  // see LensFamily
     FitCandidate fit;
+    // A model that measures m in millimetres on a sensor (FISHEYE_LENS_POLYNOMIAL) trades the
+    // scale of K for its coefficients, which the data cannot tell apart: a fit holds square
+    // pixels at (image width / this) pixels per millimetre and fits cx, cy and the
+    // coefficients. 0 (every other model): fx and fy are fitted.
+    double fit_sensor_width_mm = 0.0;
+    // Leading coefficients a fit holds at 0 (FISHEYE_LENS_POLYNOMIAL's k0, which would leave
+    // the directions about the axis without a pixel).
+    int fit_held_coefficients = 0;
 };
 
 // The table. Its order is the order of LensType, and among fit candidates the order from
@@ -174,21 +183,21 @@ inline constexpr LensInfo kLensTable[] = {
     {.type = LensType::DoubleSphere, .name = "DOUBLE_SPHERE", .coefficients = {"xi", "alpha"}, .num_coefficients = 2,
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
      .colmap = "", .kalibr = "ds-none", .basalt = "ds", .family = LensFamily::DoubleSphere, .family_rank = 0,
-     .fit = FitCandidate::No},
+     .fit = FitCandidate::OnRequest},
     // basalt's "ucm" is this model with another K (its alpha = xi / (1 + xi), its focal
     // length 1 / (1 + xi) times this one's): not the same numbers, so not named here.
     {.type = LensType::Ucm, .name = "UCM", .coefficients = {"xi"}, .num_coefficients = 1, .sees_behind_camera = true,
      .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::Omnidir, .mrcal = "", .colmap = "", .kalibr = "omni-none",
-     .basalt = "", .family = LensFamily::Unified, .family_rank = 0, .fit = FitCandidate::No},
+     .basalt = "", .family = LensFamily::Unified, .family_rank = 0, .fit = FitCandidate::OnRequest},
     {.type = LensType::Eucm, .name = "EUCM", .coefficients = {"alpha", "beta"}, .num_coefficients = 2,
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
      .colmap = "", .kalibr = "eucm-none", .basalt = "eucm", .family = LensFamily::Eucm, .family_rank = 0,
-     .fit = FitCandidate::No},
+     .fit = FitCandidate::OnRequest},
     // camodocal and VINS call it "MEI".
     {.type = LensType::Mei, .name = "MEI", .coefficients = {"xi", "k1", "k2", "p1", "p2"}, .num_coefficients = 5,
      .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::Omnidir, .mrcal = "",
      .colmap = "", .kalibr = "omni-radtan", .basalt = "", .family = LensFamily::Unified, .family_rank = 1,
-     .fit = FitCandidate::No},
+     .fit = FitCandidate::OnRequest},
     // COLMAP's and Kalibr's take points in front of the camera only; basalt's and this
     // one go on behind it (the same map where both are defined).
     {.type = LensType::Fov, .name = "FOV", .coefficients = {"omega"}, .num_coefficients = 1, .sees_behind_camera = true,
@@ -198,18 +207,18 @@ inline constexpr LensInfo kLensTable[] = {
      .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "sx1", "sy1"}, .num_coefficients = 8,
      .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None, .mrcal = "",
      .colmap = "THIN_PRISM_FISHEYE", .kalibr = "", .basalt = "", .family = LensFamily::ThinPrismFisheye,
-     .family_rank = 0, .fit = FitCandidate::No},
+     .family_rank = 0, .fit = FitCandidate::OnRequest},
     // Project Aria calls it Fisheye624.
     {.type = LensType::RadTanThinPrismFisheye, .name = "RAD_TAN_THIN_PRISM_FISHEYE",
      .coefficients = {"k0", "k1", "k2", "k3", "k4", "k5", "p0", "p1", "s0", "s1", "s2", "s3"},
      .num_coefficients = 12, .sees_behind_camera = true, .inverse = Inverse::Solved,
      .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "RAD_TAN_THIN_PRISM_FISHEYE", .kalibr = "",
-     .basalt = "", .family = LensFamily::Fisheye, .family_rank = 1, .fit = FitCandidate::No},
+     .basalt = "", .family = LensFamily::Fisheye, .family_rank = 1, .fit = FitCandidate::OnRequest},
     // Blender's FISHEYE_EQUISOLID panoramic camera (convert/blender_camera.hpp).
     {.type = LensType::Equisolid, .name = "EQUISOLID", .coefficients = {}, .num_coefficients = 0,
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
      .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Equisolid, .family_rank = 0,
-     .fit = FitCandidate::No},
+     .fit = FitCandidate::OnRequest},
     // JPL's CAHVOR (the C, A, H, V of its files are the pinhole and pose; O the optical
     // axis; R the radial terms).
     {.type = LensType::Cahvor, .name = "CAHVOR", .coefficients = {"alpha", "beta", "r0", "r1", "r2"},
@@ -228,7 +237,8 @@ inline constexpr LensInfo kLensTable[] = {
     {.type = LensType::LensPolynomial, .name = "FISHEYE_LENS_POLYNOMIAL", .coefficients = {"k0", "k1", "k2", "k3", "k4"},
      .num_coefficients = 5, .sees_behind_camera = true, .inverse = Inverse::ClosedForm,
      .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
-     .family = LensFamily::LensPolynomial, .family_rank = 0, .fit = FitCandidate::No},
+     .family = LensFamily::LensPolynomial, .family_rank = 0, .fit = FitCandidate::OnRequest,
+     .fit_sensor_width_mm = 36.0, .fit_held_coefficients = 1},
     // mrcal's splined model of a real lens; mrcal keeps the configuration (the first four
     // coefficients) in the model's name, LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=..., and
     // the control points in the intrinsics.

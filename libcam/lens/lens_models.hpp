@@ -41,6 +41,7 @@
 #include <span>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "libcam/error.hpp"
 #include "libcam/lens/cahvor.hpp"
@@ -156,6 +157,25 @@ double blind_angle(std::span<const double> coefficients) {
         return Model::blind_angle(coefficients);
     } else {
         return 0.0;
+    }
+}
+
+// The coefficients `libcam fit` starts a model from when it has no camera of that model
+// to start from: what the model says (Model::fit_start: a start that reaches as wide as
+// the model can), else all 0 (the pinhole camera or the equidistant lens most models
+// reduce to). `radians_per_unit` is the source's angle from the axis per unit of m near
+// the axis, for a model whose m is not in units of the focal length
+// (FISHEYE_LENS_POLYNOMIAL's millimetres); 1 for the others.
+template <class Model>
+std::vector<double> fit_start(double radians_per_unit) {
+    if constexpr (requires { Model::fit_start(radians_per_unit); }) {
+        const auto start = Model::fit_start(radians_per_unit);
+        return {start.begin(), start.end()};
+    } else if constexpr (requires { Model::fit_start(); }) {
+        const auto start = Model::fit_start();
+        return {start.begin(), start.end()};
+    } else {
+        return std::vector<double>(static_cast<std::size_t>(std::max(0, Model::num_coefficients)), 0.0);
     }
 }
 

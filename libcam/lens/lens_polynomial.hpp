@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -59,6 +60,10 @@ struct LensPolynomialLens {
                                   "at the centre), got " + format_number(k[1]));
         }
     }
+
+    // Where `libcam fit` starts (lens_models.hpp's fit_start): the equidistant lens
+    // theta = radians_per_unit r (k1 = -radians_per_unit), whose domain reaches pi.
+    static std::array<double, 5> fit_start(double radians_per_unit) { return {0.0, -radians_per_unit, 0.0, 0.0, 0.0}; }
 
     // The radius (in m's units) below which theta is one-to-one and within pi of the axis.
     static double valid_radius(std::span<const double> k) {

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "libcam/convert/blender_camera.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/fit/fit.hpp"
@@ -21,6 +22,8 @@ namespace libcam::cli {
 
 namespace {
 
+using Json = nlohmann::ordered_json;  // keys in the documented order
+
 struct FitFlags {
     std::string source;
     std::string radius;
@@ -31,6 +34,7 @@ struct FitFlags {
     bool with_rotation = false;
     std::string depth;
     std::string grid;
+    std::string models;
     bool json = false;
     std::string output;
     std::string to;
@@ -55,6 +59,11 @@ void add_flags(CLI::App& command, FitFlags& flags) {
     command.add_option("--grid", flags.grid,
                        "Fitting lattice COLSxROWS over the image's pixel centres (mrcal's --gridn); default: "
                        "sized to the scene. The error is checked on a lattice 4x denser");
+    command.add_option("--model", flags.models,
+                       "Fit only these models, comma-separated, simplest first (default: FOV, PINHOLE, OPENCV4, "
+                       "OPENCV5, OPENCV8, OPENCV12, and FISHEYE, STEREOGRAPHIC for wide scenes). Also on request: "
+                       "DOUBLE_SPHERE, UCM, EUCM, MEI, EQUISOLID, the thin-prism fisheyes, and Blender's "
+                       "FISHEYE_LENS_POLYNOMIAL (square pixels, sensor 36 mm wide)");
     command.add_flag("--json", flags.json, "Print JSON");
     command.add_option("-o,--output", flags.output, "Write the chosen camera to this file (written atomically)");
     command.add_option("--to", flags.to,
@@ -143,6 +152,42 @@ std::string fov_text(const Camera& camera) {
     return out.str();
 }
 
+// A fitted Blender camera (FISHEYE_LENS_POLYNOMIAL) as Blender's settings. Its
+// fisheye_fov is twice the scene's largest angle: Blender renders black past it, where
+// the polynomial was not fitted to the lens.
+BlenderCamera blender_of(const Camera& camera, const FitReport& report) {
+    BlenderCamera blender = blender_from_camera(camera);
+    blender.fisheye_fov = std::min(blender.fisheye_fov, 2 * radians_from_degrees(report.largest_angle_deg));
+    return blender;
+}
+
+std::string blender_text(const Camera& camera, const FitReport& report) {
+    const BlenderCamera blender = blender_of(camera, report);
+    std::ostringstream out;
+    out << "  Blender: FISHEYE_LENS_POLYNOMIAL, resolution " << blender.size.width << "x" << blender.size.height
+        << ", sensor fit horizontal, sensor width " << format_number(blender.sensor_width_mm) << " mm, shift_x "
+        << format_number(blender.shift_x) << ", shift_y " << format_number(blender.shift_y) << ", fisheye_fov "
+        << format_number(degrees_from_radians(blender.fisheye_fov)) << " deg\n";
+    out << "  fisheye_polynomial_k0..k4: ";
+    for (std::size_t i = 0; i < blender.fisheye_polynomial.size(); ++i) {
+        out << (i == 0 ? "" : " ") << format_number(blender.fisheye_polynomial[i]);
+    }
+    out << "\n";
+    return out.str();
+}
+
+Json blender_json(const Camera& camera, const FitReport& report) {
+    const BlenderCamera blender = blender_of(camera, report);
+    return {{"type", "FISHEYE_LENS_POLYNOMIAL"},
+            {"resolution", {blender.size.width, blender.size.height}},
+            {"sensor_fit", "HORIZONTAL"},
+            {"sensor_width", blender.sensor_width_mm},
+            {"shift_x", blender.shift_x},
+            {"shift_y", blender.shift_y},
+            {"fisheye_fov", blender.fisheye_fov},
+            {"fisheye_polynomial", blender.fisheye_polynomial}};
+}
+
 // What was fitted: the source, the scene and its samples, the motion, the tolerance.
 std::string format_setup(const std::string& source_name, const Camera& source, const Scene& scene,
                          const FitOptions& options, const FitReport& report) {
@@ -160,11 +205,15 @@ std::string format_setup(const std::string& source_name, const Camera& source, c
 }
 
 std::string format_candidates(const FitReport& report) {
+    int name_width = 15;  // "STEREOGRAPHIC" and a gap; wider for a longer name asked for
+    for (const CandidateReport& entry : report.candidates) {
+        name_width = std::max(name_width, static_cast<int>(entry.fit.candidate.name.size()) + 2);
+    }
     std::ostringstream out;
-    out << std::left << std::setw(15) << "model" << std::right << std::setw(7) << "params" << std::setw(12) << "rms_px"
+    out << std::left << std::setw(name_width) << "model" << std::right << std::setw(7) << "params" << std::setw(12) << "rms_px"
         << std::setw(12) << "max_px" << std::setw(8) << "covers" << std::setw(6) << "pass" << "\n";
     for (const CandidateReport& entry : report.candidates) {
-        out << std::left << std::setw(15) << entry.fit.candidate.name << std::right << std::setw(7)
+        out << std::left << std::setw(name_width) << entry.fit.candidate.name << std::right << std::setw(7)
             << entry.fit.candidate.num_params() << std::setw(12) << short_number(entry.rms_px) << std::setw(12)
             << short_number(entry.max_px) << std::setw(8) << (entry.covers_scene ? "yes" : "no") << std::setw(6)
             << (entry.pass ? "yes" : "no") << "\n";
@@ -181,6 +230,7 @@ std::string format_choice(const Camera& source, const FitOptions& options, const
     out << "chosen: " << chosen.fit.candidate.name << " (" << params << (params == 1 ? " parameter" : " parameters")
         << "), max error " << short_number(chosen.max_px) << " px <= " << format_number(options.tolerance_px) << " px\n";
     if (chosen.fit.candidate.fov_camera) out << fov_text(camera_in_world(chosen.fit, source));
+    if (chosen.fit.candidate.lens == LensType::LensPolynomial) out << blender_text(chosen.fit.camera, report);
     return out.str();
 }
 
@@ -190,11 +240,9 @@ std::string format_table(const std::string& source_name, const Camera& source, c
            format_choice(source, options, report);
 }
 
-using Json = nlohmann::ordered_json;  // keys in the documented order
-
 Json number_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
-Json chosen_json(const CandidateReport& chosen, const Camera& source, const FitOptions& options) {
+Json chosen_json(const CandidateReport& chosen, const Camera& source, const FitOptions& options, const FitReport& report) {
     Json out = {{"model", chosen.fit.candidate.name},
                           {"params", chosen.fit.params},
                           {"rms_px", number_or_null(chosen.rms_px)},
@@ -211,12 +259,13 @@ Json chosen_json(const CandidateReport& chosen, const Camera& source, const FitO
                           {"diagonal", fov.fov_deg.diagonal}};
         out["image_size"] = {source.size.width, source.size.height};
     }
+    if (chosen.fit.candidate.lens == LensType::LensPolynomial) out["blender"] = blender_json(chosen.fit.camera, report);
     return out;
 }
 
 std::string format_json(const Camera& source, const Scene& scene, const FitOptions& options, const FitReport& report) {
     Json out;
-    out["chosen"] = chosen_json(report.candidates[*report.chosen], source, options);
+    out["chosen"] = chosen_json(report.candidates[*report.chosen], source, options, report);
     out["candidates"] = Json::array();
     for (const CandidateReport& entry : report.candidates) {
         out["candidates"].push_back({{"model", entry.fit.candidate.name},
@@ -260,6 +309,23 @@ CameraFormat output_format(const FitFlags& flags) {
     return camera_format_from_path(flags.output).value_or(CameraFormat::Json);
 }
 
+std::vector<Candidate> candidates_from(const std::string& text) {
+    std::vector<Candidate> candidates;
+    if (text.empty()) return candidates;
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+        const std::size_t end = std::min(text.find(',', begin), text.size());
+        const std::string name = text.substr(begin, end - begin);
+        try {
+            candidates.push_back(candidate_named(name));
+        } catch (const InvalidArgument&) {
+            throw UsageError("--model: libcam fit cannot fit '" + name + "'; it fits " + candidate_names());
+        }
+        begin = end + 1;
+    }
+    return candidates;
+}
+
 FitOptions options_from(const FitFlags& flags) {
     FitOptions options;
     options.tolerance_px = parse_number("--tolerance", flags.tolerance);
@@ -274,6 +340,7 @@ FitOptions options_from(const FitFlags& flags) {
                      : options.depths.empty() ? CameraMotion::Rotation
                                               : CameraMotion::RotationAndShift;
     if (!flags.grid.empty()) options.lattice = lattice_from(flags.grid);
+    options.candidates = candidates_from(flags.models);
     return options;
 }
 
