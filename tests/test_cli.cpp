@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
@@ -710,4 +711,56 @@ TEST_CASE("rays --from a file written by convert gives the rays of the flags") {
     run_to_file(Args{"convert"} + kConvertCases[0].flags, file);
     const json r = rays({"--from", file.string()}, {"0,0"});
     check_ray(r[0], Vector3d(-2.0 / 3, -kSqrt2 / 3 - 1 / kSqrt2, kSqrt2 / 3 - 1 / kSqrt2), Vector3d(0, 5, 5));
+}
+
+TEST_CASE("info lists every camera of a rig file, and --camera picks one for convert") {
+    // A Kalibr camchain: cam0 an OPENCV4 camera, cam1 an equidistant fisheye (Kalibr's
+    // pinhole-equi, zero coefficients) 0.1 to its right. The fisheye's horizontal field of
+    // view through the lens, edge to edge: the edges -0.5 and 639.5 are 320 px from cx on
+    // each side, so 2 x 320 / 200 radians = 183.35 degrees (r = f theta).
+    TempDir dir;
+    const std::string chain = (dir.path() / "camchain.yaml").string();
+    std::ofstream(chain) << R"(cam0:
+  camera_model: pinhole
+  distortion_model: radtan
+  intrinsics: [400, 400, 319.5, 239.5]
+  distortion_coeffs: [-0.1, 0.01, 0.0, 0.0]
+  resolution: [640, 480]
+cam1:
+  T_cn_cnm1:
+  - [1, 0, 0, -0.1]
+  - [0, 1, 0, 0]
+  - [0, 0, 1, 0]
+  - [0, 0, 0, 1]
+  camera_model: pinhole
+  distortion_model: equidistant
+  intrinsics: [200, 200, 319.5, 239.5]
+  distortion_coeffs: [0, 0, 0, 0]
+  resolution: [640, 480]
+)";
+    const CliResult info = run_libcam({"info", chain, "--json"});
+    INFO(info.describe());
+    REQUIRE(info.exit_code == 0);
+    const nlohmann::json out = nlohmann::json::parse(info.out);
+    CHECK(out.at("format") == "kalibr");
+    REQUIRE(out.at("cameras").size() == 2);
+    CHECK(out.at("cameras")[1].at("name") == "cam1");
+    CHECK(out.at("cameras")[1].at("model") == "FISHEYE");
+    CHECK(out.at("cameras")[1].at("fov_deg").at("horizontal").get<double>() ==
+          Approx(640.0 / 200 * 180 / std::numbers::pi).epsilon(1e-9));
+    CHECK(out.at("cameras")[1].at("camera_center")[0].get<double>() == Approx(0.1).epsilon(1e-15));
+
+    const CliResult table = run_libcam({"info", chain});
+    CHECK_THAT(table.out, Catch::Contains("camchain.yaml: kalibr, 2 cameras"));
+    CHECK_THAT(table.out, Catch::Contains("camera 1: cam1"));
+
+    const CliResult picked = run_libcam({"convert", "--from", chain, "--camera", "cam1"});
+    REQUIRE(picked.exit_code == 0);
+    CHECK(nlohmann::json::parse(picked.out).at("model") == "FISHEYE");
+    const CliResult missing = run_libcam({"convert", "--from", chain, "--camera", "2"});
+    CHECK(missing.exit_code == 1);
+    CHECK_THAT(missing.err, Catch::Contains("no camera '2'; it holds 2 cameras: 0 (cam0), 1 (cam1)"));
+    const CliResult bad_format = run_libcam({"info", chain, "--from-format", "colmap"});
+    CHECK(bad_format.exit_code == 2);
+    CHECK_THAT(bad_format.err, Catch::Contains("--from-format"));
 }

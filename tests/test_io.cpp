@@ -128,3 +128,110 @@ TEST_CASE("io alone: writing an mrcal file fails the same way and leaves no file
                         "writing", "mrcal .cameramodel");
     CHECK(fs::is_empty(dir.path()));
 }
+
+TEST_CASE("io alone: rig files, with every camera, their names, and poses worked by hand") {
+    // A Kalibr camchain without an IMU: cam0 is the rig's frame; cam1 sits 0.1 to cam0's
+    // right (X_cam1 = X_cam0 + (-0.1, 0, 0)), a UCM camera (Kalibr's omni-none: xi first).
+    const std::string chain = R"(cam0:
+  camera_model: pinhole
+  distortion_model: radtan
+  intrinsics: [400, 401, 320, 240]
+  distortion_coeffs: [-0.1, 0.01, 0.001, -0.002]
+  resolution: [640, 480]
+cam1:
+  T_cn_cnm1:
+  - [1, 0, 0, -0.1]
+  - [0, 1, 0, 0]
+  - [0, 0, 1, 0]
+  - [0, 0, 0, 1]
+  camera_model: omni
+  distortion_model: none
+  intrinsics: [0.9, 700, 701, 321, 241]
+  resolution: [640, 480]
+)";
+    const CameraSet set = parse_camera_set(chain, CameraFormat::Kalibr, "chain.yaml");
+    REQUIRE(set.cameras.size() == 2);
+    CHECK(set.cameras[0].name == "cam0");
+    CHECK(set.cameras[0].file.camera.lens.type == LensType::Opencv4);
+    CHECK(set.cameras[0].file.camera.pose.t == Vec3::Zero());
+    const Camera& cam1 = set.cameras[1].file.camera;
+    CHECK(cam1.lens.type == LensType::Ucm);
+    CHECK(cam1.lens.coefficients == std::vector<double>{0.9});
+    CHECK(cam1.intrinsics.fx == 700);
+    CHECK(cam1.intrinsics.cy == 241);
+    CHECK(cam1.pose.t == Vec3(-0.1, 0, 0));
+    CHECK(select_camera(set, "1", "chain.yaml").name == "cam1");
+
+    // basalt: T_imu_cam is the camera in the IMU frame; a half turn about z (qz = 1) at
+    // (1, 2, 3): R = diag(-1, -1, 1) both ways, t = -R (1, 2, 3) = (1, 2, -3). basalt's
+    // ucm alpha = 0.5 is libcam's UCM with xi = 1 and twice the focal lengths.
+    const std::string basalt = R"({"value0": {
+  "T_imu_cam": [{"px": 1, "py": 2, "pz": 3, "qx": 0, "qy": 0, "qz": 1, "qw": 0}],
+  "intrinsics": [{"camera_type": "ucm", "intrinsics": {"fx": 200, "fy": 201, "cx": 320, "cy": 240, "alpha": 0.5}}],
+  "resolution": [[640, 480]]}})";
+    const Camera ucm = parse_camera(basalt, CameraFormat::Basalt, "calib.json").camera;
+    CHECK(ucm.lens.type == LensType::Ucm);
+    CHECK(ucm.lens.coefficients[0] == 1.0);
+    CHECK(ucm.intrinsics.fx == 400);
+    CHECK(ucm.intrinsics.fy == 402);
+    CHECK((ucm.pose.t - Vec3(1, 2, -3)).norm() < 1e-15);
+
+    // camodocal's KANNALA_BRANDT: k2..k5 are OpenCV fisheye's k1..k4, mu mv its fx fy.
+    const std::string camodocal = R"(%YAML:1.0
+---
+model_type: KANNALA_BRANDT
+camera_name: left
+image_width: 640
+image_height: 480
+projection_parameters:
+   k2: 0.01
+   k3: -0.002
+   k4: 0.0003
+   k5: -0.00004
+   mu: 300
+   mv: 301
+   u0: 320
+   v0: 240
+)";
+    const CameraSet single = parse_camera_set(camodocal, CameraFormat::Camodocal, "left.yaml");
+    CHECK(single.cameras[0].name == "left");
+    CHECK(single.cameras[0].file.camera.lens.type == LensType::Fisheye);
+    CHECK(single.cameras[0].file.camera.lens.coefficients == std::vector<double>{0.01, -0.002, 0.0003, -0.00004});
+    CHECK(single.cameras[0].file.camera.intrinsics.fy == 301);
+}
+
+TEST_CASE("io alone: rig files that are wrong are refused, naming the file, line and key") {
+    const auto error = [](const std::string& text, CameraFormat format) {
+        try {
+            (void)parse_camera_set(text, format, "rig.yaml");
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK_THAT(error("cam0:\n  camera_model: fisheye\n", CameraFormat::Kalibr),
+               Catch::Contains("rig.yaml: line 2: \"cam0.camera_model\": must be pinhole, omni, ds or eucm, got 'fisheye'"));
+    CHECK_THAT(error("cam0:\n  camera_model: pinhole\n  distortion_model: radtan\n  intrinsics: [1, 2, 3]\n"
+                     "  resolution: [640, 480]\n",
+                     CameraFormat::Kalibr),
+               Catch::Contains("\"cam0.intrinsics\": a pinhole camera has 4 numbers, got 3"));
+    CHECK_THAT(error("cam0:\n  camera_model: ds\n  distortion_model: radtan\n  intrinsics: [0.1, 0.5, 1, 2, 3, 4]\n",
+                     CameraFormat::Kalibr),
+               Catch::Contains("libcam has no model for Kalibr's ds camera with radtan distortion"));
+    CHECK_THAT(error("cam1:\n  camera_model: pinhole\n  distortion_model: none\n  intrinsics: [400, 400, 320, 240]\n"
+                     "  resolution: [640, 480]\n  T_cam_imu:\n  - [1, 0, 0, 0]\n  - [0, 2, 0, 0]\n  - [0, 0, 1, 0]\n"
+                     "  - [0, 0, 0, 1]\n",
+                     CameraFormat::Kalibr),
+               Catch::Contains("not a rotation matrix"));
+    CHECK_THAT(error("model_type: SCARAMUZZA\nimage_width: 10\nimage_height: 10\nprojection_parameters:\n  a: 1\n",
+                     CameraFormat::Camodocal),
+               Catch::Contains("must be PINHOLE, MEI or KANNALA_BRANDT (libcam has no model for 'SCARAMUZZA')"));
+    CHECK_THAT(error(R"({"value0": {"intrinsics": [{"camera_type": "kb4", "intrinsics": {"fx": 1}}], "resolution": [[4, 4]]}})",
+                     CameraFormat::Basalt),
+               Catch::Contains("\"value0.intrinsics[0].intrinsics.fy\": missing"));
+    // Written: libcam reads these formats but does not write them.
+    Camera camera;
+    camera.size = {4, 4};
+    camera.intrinsics = {2, 2, 1.5, 1.5, 0};
+    CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Kalibr), Catch::Contains("does not write them"));
+}

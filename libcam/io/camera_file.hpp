@@ -7,6 +7,12 @@
 //                image_width, image_height) plus rvec and tvec (io/opencv_storage.hpp)
 //   cameramodel  mrcal's .cameramodel, checked by libmrcal's own parser
 //   gl           JSON holding an OpenGL projection, view matrix and viewport
+//   kalibr       Kalibr's camchain YAML (io/rig_formats.hpp): read only
+//   basalt       basalt's calibration JSON: read only
+//   camodocal    camodocal's YAML (VINS-Mono, VINS-Fusion): read only
+//
+// A file may hold several cameras (a stereo pair, a rig): read_camera_set gives every
+// one with the file's name for it; read_camera_file gives one, the first by default.
 //
 // Every reader validates what it reads and throws FileError (unreadable, malformed)
 // or InvalidArgument (a value out of range) with the file, the key and the value.
@@ -20,6 +26,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "libcam/camera/camera.hpp"
 #include "libcam/convert/opengl.hpp"
@@ -27,18 +34,33 @@
 
 namespace libcam {
 
-enum class CameraFormat { Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl };
+enum class CameraFormat { Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal };
 
 std::string_view to_string(CameraFormat format);
 CameraFormat camera_format_from_string(std::string_view text);  // throws InvalidArgument
 // By extension (.json, .yaml/.yml, .xml, .cameramodel); nullopt when unknown.
 std::optional<CameraFormat> camera_format_from_path(const std::filesystem::path& path);
+// Every format's name, comma-separated (for messages and help).
+std::string camera_format_names();
 
 // What a file holds: the calibrated camera, and the FOV camera it was made from when
 // the file says so (libcam JSON records the fov axis).
 struct CameraFile {
     Camera camera;
     std::optional<FovCamera> fov_camera;
+};
+
+// One camera of a file: the file's name for it (cam0, a camodocal camera_name), or empty
+// where the file names none.
+struct NamedCamera {
+    std::string name;
+    CameraFile file;
+};
+
+// Every camera a file holds, in the file's order (at least one).
+struct CameraSet {
+    CameraFormat format = CameraFormat::Json;
+    std::vector<NamedCamera> cameras;
 };
 
 struct WriteOptions {
@@ -55,8 +77,21 @@ std::string format_camera(const Camera& camera, CameraFormat format, const Write
 // Parses `text` as `format`; `source` names the file in error messages.
 CameraFile parse_camera(std::string_view text, CameraFormat format, const std::string& source);
 
-// Reads a file, choosing the format from its extension or, failing that, its contents.
-CameraFile read_camera_file(const std::filesystem::path& path);
+// Every camera of `text` as `format`.
+CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std::string& source);
+
+// Reads every camera of a file, in `format` or else the format its extension and
+// contents say: .json is libcam's, gl or basalt's by its keys; .yaml/.yml OpenCV's,
+// Kalibr's or camodocal's; without a known extension, the contents alone.
+CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format = std::nullopt);
+
+// The camera `selector` names: a camera's name in the file, or its position counting
+// from 0; the first camera when empty. Throws InvalidArgument listing the cameras.
+const NamedCamera& select_camera(const CameraSet& set, std::string_view selector, const std::string& source);
+
+// Reads one camera of a file (read_camera_set, then select_camera).
+CameraFile read_camera_file(const std::filesystem::path& path, std::string_view camera = {},
+                            std::optional<CameraFormat> format = std::nullopt);
 
 // Writes atomically (io/atomic_write.hpp).
 void write_camera_file(const std::filesystem::path& path, const Camera& camera, CameraFormat format,

@@ -15,6 +15,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "libcam/io/camera_file.hpp"
 
@@ -22,6 +23,8 @@ namespace libcam {
 
 // Parses a file's text; `source` names the file in error messages.
 using CameraReader = CameraFile (*)(std::string_view text, const std::string& source);
+// Parses every camera of a file that may hold several (io/rig_formats.hpp).
+using CameraSetReader = std::vector<NamedCamera> (*)(std::string_view text, const std::string& source);
 // The text of a file holding the camera (which format_camera has validated).
 using CameraWriter = std::string (*)(const Camera& camera, const WriteOptions& options);
 

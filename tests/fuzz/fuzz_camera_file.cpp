@@ -1,9 +1,9 @@
 // libFuzzer target for one camera-file reader (chosen at compile time by
 // LIBCAM_FUZZ_FORMAT). Properties checked on every input:
-//   - the reader returns a camera or throws a libcam::Error; anything else (a crash, a
+//   - the reader returns its cameras or throws a libcam::Error; anything else (a crash, a
 //     sanitizer report, another exception type, a leak) fails the run;
-//   - a camera it returns is valid, and writing it in the same format and reading that
-//     back gives the same camera.
+//   - every camera it returns is valid, and writing the first in the same format (where
+//     libcam writes it) and reading that back gives the same camera.
 
 #include <cstddef>
 #include <cstdint>
@@ -34,13 +34,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     using namespace libcam;
     const std::string_view text(reinterpret_cast<const char*>(data), size);
     const CameraFormat format = LIBCAM_FUZZ_FORMAT;
-    CameraFile file;
+    CameraSet set;
     try {
-        file = parse_camera(text, format, "fuzz input");
+        set = parse_camera_set(text, format, "fuzz input");
     } catch (const Error&) {
         return 0;  // refused with a message: the expected outcome for most inputs
     }
-    file.camera.validate();  // a camera that was accepted must be valid (throws otherwise)
+    if (set.cameras.empty()) std::abort();
+    // Every camera that was accepted must be valid (throws otherwise).
+    for (const NamedCamera& camera : set.cameras) camera.file.camera.validate();
+    const CameraFile& file = set.cameras.front().file;
     std::string written;
     try {
         written = format_camera(file.camera, format);

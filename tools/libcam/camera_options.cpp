@@ -1,12 +1,36 @@
 #include "camera_options.hpp"
 
 #include "libcam/convert/fov_convert.hpp"
+#include "libcam/error.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
 
+void FileSelection::add_to(CLI::App& command) {
+    command.add_option("--camera", camera,
+                       "Which camera of a file holding several: its name in the file (cam1) or its position "
+                       "counting from 0 (default: the first)");
+    command.add_option("--from-format", format,
+                       "The file's format, when its extension and contents do not say: " + camera_format_names());
+}
+
+std::optional<CameraFormat> FileSelection::chosen_format() const {
+    if (format.empty()) return std::nullopt;
+    try {
+        return camera_format_from_string(format);
+    } catch (const InvalidArgument& error) {
+        throw UsageError(std::string("--from-format: ") + error.what());
+    }
+}
+
+CameraFile FileSelection::read(const std::string& path) const {
+    return read_camera_file(path, camera, chosen_format());
+}
+
 void CameraOptions::add_to(CLI::App& command) {
-    auto* from_option = command.add_option("--from", from, "Camera file (.json, .yaml/.yml/.xml, .cameramodel)");
+    auto* from_option = command.add_option(
+        "--from", from, "Camera file (libcam JSON, OpenCV YAML/XML, .cameramodel, Kalibr, basalt, camodocal)");
+    selection.add_to(command);
     std::vector<CLI::Option*> fov_flags = {
         command.add_option("--fov", fov, "Field of view in degrees, in (0, 180)"),
         command.add_option("--fov-axis", fov_axis,
@@ -35,7 +59,7 @@ PixelOrigin CameraOptions::origin() const {
 }
 
 CameraFile CameraOptions::camera() const {
-    if (!from.empty()) return read_camera_file(from);
+    if (!from.empty()) return selection.read(from);
     if (fov.empty()) throw UsageError("--fov: required (or give a camera file with --from)");
     if (size.empty()) throw UsageError("--size: required (or give a camera file with --from)");
     if (fov_axis != "horizontal" && fov_axis != "vertical" && fov_axis != "diagonal" && fov_axis != "both") {

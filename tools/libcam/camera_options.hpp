@@ -10,7 +10,18 @@
 
 namespace libcam::cli {
 
+// Which camera of a file, and in which format: --camera NAME|INDEX and --from-format.
+struct FileSelection {
+    std::string camera;
+    std::string format;
+
+    void add_to(CLI::App& command);
+    std::optional<CameraFormat> chosen_format() const;  // throws UsageError for an unknown name
+    CameraFile read(const std::string& path) const;
+};
+
 struct CameraOptions {
+    FileSelection selection;
     std::string from;
     std::string fov;
     std::string fov_axis = "both";

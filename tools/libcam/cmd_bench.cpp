@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "bench_cases.hpp"
+#include "camera_options.hpp"
 #include "commands.hpp"
 #include "libcam/interop/bench.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -25,6 +26,7 @@ namespace {
 
 struct BenchFlags {
     std::string from;
+    FileSelection selection;
     std::vector<std::string> cases;
     std::string grid = "601x401";
     int repeat = 5;
@@ -47,7 +49,7 @@ std::string case_names(const std::vector<BenchCase>& cases, const std::string& l
 }
 
 std::vector<BenchCase> chosen_cases(const BenchFlags& flags) {
-    if (!flags.from.empty()) return {{flags.from, read_camera_file(flags.from).camera}};
+    if (!flags.from.empty()) return {{flags.from, flags.selection.read(flags.from).camera}};
     std::vector<BenchCase> all = builtin_bench_cases();
     if (flags.cases.empty()) return all;
     std::vector<BenchCase> chosen;
@@ -168,6 +170,7 @@ Runner add_bench(CLI::App& app) {
         "bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal");
     auto flags = std::make_shared<BenchFlags>();
     command->add_option("--from", flags->from, "Camera file to measure (default: the built-in cases)");
+    flags->selection.add_to(*command);
     command->add_option("--case", flags->cases,
                         "Built-in cases to run: " + case_names(builtin_bench_cases(), ", ") + " (default: all)")
         ->excludes("--from");

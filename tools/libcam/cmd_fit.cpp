@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "camera_options.hpp"
 #include "commands.hpp"
 #include "libcam/convert/blender_camera.hpp"
 #include "libcam/convert/fov_convert.hpp"
@@ -35,6 +36,7 @@ struct FitFlags {
     std::string depth;
     std::string grid;
     std::string models;
+    FileSelection selection;
     bool json = false;
     std::string output;
     std::string to;
@@ -42,7 +44,9 @@ struct FitFlags {
 };
 
 void add_flags(CLI::App& command, FitFlags& flags) {
-    command.add_option("source", flags.source, "Camera file (.json, .yaml/.yml/.xml, .cameramodel)")->required();
+    command.add_option("source", flags.source, "Camera file (any format libcam reads: libcam info lists its cameras)")
+        ->required();
+    flags.selection.add_to(command);
     auto* radius = command.add_option("--radius", flags.radius, "Scene: a circle of this radius in pixels ...");
     command.add_option("--center", flags.center, "... around this pixel x,y (default: the image centre)")->needs(radius);
     auto* roi = command.add_option("--roi", flags.roi, "Scene: the rectangle x0,y0,x1,y1 (OpenCV pixels)");
@@ -368,7 +372,7 @@ Runner add_fit(CLI::App& app) {
     return [flags] {
         FitOptions options = options_from(*flags);
         if (!flags->to.empty()) output_format(*flags);  // a bad --to is a usage error before any work
-        const Camera source = read_camera_file(flags->source).camera;
+        const Camera source = flags->selection.read(flags->source).camera;
         const Scene scene = scene_from(*flags, source.size);
         ProgressPrinter printer;
         options.progress = [&](const FitProgress& progress) { printer(progress); };

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "camera_options.hpp"
 #include "commands.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/verify.hpp"
@@ -209,10 +210,12 @@ Runner add_verify(CLI::App& app) {
         bool json = false;
         std::string heatmap;
         std::string check = std::string(verify_check::unproject_libcam);
+        FileSelection selection;
     };
     auto flags = std::make_shared<Flags>();
-    command->add_option("FILE", flags->file, "Camera file: libcam JSON, OpenCV YAML/XML, .cameramodel or gl")
+    command->add_option("FILE", flags->file, "Camera file (any format libcam reads: libcam info lists its cameras)")
         ->required();
+    flags->selection.add_to(*command);
     command->add_option("--grid", flags->grid, "COLUMNSxROWS pixel centres from edge to edge, each in [2, 2000]")
         ->capture_default_str();
     command->add_flag("--json", flags->json,
@@ -226,7 +229,7 @@ Runner add_verify(CLI::App& app) {
     return [flags] {
         const VerifyOptions options = options_from_flags(flags->grid);
         require_check_name(flags->check);
-        const Camera camera = read_camera_file(flags->file).camera;
+        const Camera camera = flags->selection.read(flags->file).camera;
         const VerifyReport report = verify_camera(camera, options);
         // The picture first: a failure to write it leaves nothing on stdout.
         if (!flags->heatmap.empty()) write_png(flags->heatmap, verify_heatmap(report, flags->check));

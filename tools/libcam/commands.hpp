@@ -16,6 +16,7 @@ Runner add_demo(CLI::App& app);
 Runner add_verify(CLI::App& app);
 Runner add_fit(CLI::App& app);
 Runner add_bench(CLI::App& app);
+Runner add_info(CLI::App& app);
 
 // Writes text to stdout, or atomically to `path` when it is not empty.
 void emit(const std::string& text, const std::string& path);

@@ -1,0 +1,341 @@
+#include "libcam/io/rig_formats.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "libcam/error.hpp"
+#include "libcam/io/document.hpp"
+#include "libcam/lens/lens_model.hpp"
+
+namespace libcam {
+
+namespace {
+
+// A camera a reader has put together, validated; an error names the file and the camera.
+NamedCamera checked(std::string name, Camera camera, const std::string& where) {
+    try {
+        camera.validate();
+    } catch (const InvalidArgument& error) {
+        throw FileError(where + ": " + error.what());
+    }
+    return {std::move(name), {std::move(camera), std::nullopt}};
+}
+
+ImageSize size_of(const Field& width, const Field& height) {
+    return {static_cast<int>(width.integer(1, kMaxImageSide)), static_cast<int>(height.integer(1, kMaxImageSide))};
+}
+
+// ---- Kalibr ----------------------------------------------------------------------------
+
+// Rig files print rotations with as few as five decimals (OpenVINS's KAIST chain), so
+// that R^T R is I only to 2e-5. A matrix that close to a rotation is read as the nearest
+// rotation (by SVD, what the rounding moved it from); one farther off is refused.
+constexpr double kRoundedRotationTolerance = 1e-4;
+
+Mat3 nearest_rotation_if_rounded(const Mat3& R) {
+    const double off = (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff();
+    // Within libcam's own tolerance the file's numbers are kept as they are.
+    if (off <= kRotationTolerance || !(off <= kRoundedRotationTolerance) || !(R.determinant() > 0)) return R;
+    const Eigen::JacobiSVD<Mat3> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    return svd.matrixU() * svd.matrixV().transpose();
+}
+
+// A 4x4 homogeneous transform [R t; 0 0 0 1] as a pose (X_to = R X_from + t).
+Pose read_transform(const Field& field) {
+    const DocumentNode& node = field.node();
+    if (node.kind != DocumentNode::Kind::Sequence || node.items.size() != 4) field.fail("expected 4 rows of 4 numbers");
+    Eigen::Matrix4d m;
+    for (int r = 0; r < 4; ++r) {
+        const Field row(node.items[static_cast<std::size_t>(r)], field.name() + "[" + std::to_string(r) + "]",
+                        field.source());
+        const std::vector<double> values = row.numbers(4);
+        if (values.size() != 4) row.fail("expected 4 numbers, got " + std::to_string(values.size()));
+        for (int c = 0; c < 4; ++c) m(r, c) = values[static_cast<std::size_t>(c)];
+    }
+    if ((m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) {
+        field.fail("the last row must be 0 0 0 1");
+    }
+    Pose pose{m.topLeftCorner<3, 3>(), m.topRightCorner<3, 1>()};
+    pose.R = nearest_rotation_if_rounded(pose.R);
+    try {
+        pose.validate(field.name().c_str());
+    } catch (const InvalidArgument& error) {
+        field.fail(error.what());
+    }
+    return pose;
+}
+
+Pose inverse(const Pose& pose) { return {pose.R.transpose(), -(pose.R.transpose() * pose.t)}; }
+Pose compose(const Pose& outer, const Pose& inner) { return {outer.R * inner.R, outer.R * inner.t + outer.t}; }
+
+// Kalibr's distortion_model as the table's kalibr names spell it (camera-distortion).
+std::string kalibr_distortion_short(const Field& field) {
+    const std::string model = field.text();
+    if (model == "radtan" || model == "fov" || model == "none") return model;
+    if (model == "equidistant" || model == "equi") return "equi";
+    field.fail("must be radtan, equidistant, fov or none, got '" + model + "'");
+}
+
+// How many of Kalibr's intrinsics lead K for each camera_model: omni's xi, ds's xi and
+// alpha, eucm's alpha and beta (Kalibr's order, which is libcam's coefficient order).
+int leading_coefficients(const std::string& camera_model) {
+    if (camera_model == "pinhole") return 0;
+    if (camera_model == "omni") return 1;
+    return 2;  // ds, eucm
+}
+
+NamedCamera read_kalibr_camera(const std::string& name, const Field& cam, const std::optional<Pose>& previous,
+                               const std::string& source) {
+    const Field camera_model = cam.at({"camera_model"});
+    const std::string projection = camera_model.text();
+    if (projection != "pinhole" && projection != "omni" && projection != "ds" && projection != "eucm") {
+        camera_model.fail("must be pinhole, omni, ds or eucm, got '" + projection + "'");
+    }
+    const Field distortion_model = cam.at({"distortion_model"});
+    const std::string kalibr_name = projection + "-" + kalibr_distortion_short(distortion_model);
+    const auto row = std::find_if(lens_models().begin(), lens_models().end(),
+                                  [&](const LensInfo& info) { return info.kalibr == kalibr_name; });
+    if (row == lens_models().end()) {
+        distortion_model.fail("libcam has no model for Kalibr's " + projection + " camera with " +
+                              distortion_model.text() + " distortion");
+    }
+    const int leading = leading_coefficients(projection);
+    const Field intrinsics_field = cam.at({"intrinsics"});
+    const std::vector<double> intrinsics = intrinsics_field.numbers(8);
+    if (static_cast<int>(intrinsics.size()) != leading + 4) {
+        intrinsics_field.fail("a " + projection + " camera has " + std::to_string(leading + 4) + " numbers, got " +
+                              std::to_string(intrinsics.size()));
+    }
+    std::vector<double> coefficients(intrinsics.begin(), intrinsics.begin() + leading);
+    if (const std::optional<Field> distortion = cam.find({"distortion_coeffs"})) {
+        const std::vector<double> values = distortion->numbers(kMaxLensCoefficients);
+        coefficients.insert(coefficients.end(), values.begin(), values.end());
+    }
+    const Field resolution = cam.at({"resolution"});
+    const DocumentNode& sizes = resolution.node();
+    if (sizes.kind != DocumentNode::Kind::Sequence || sizes.items.size() != 2) resolution.fail("expected [width, height]");
+    const ImageSize size = size_of(Field(sizes.items[0], resolution.name() + "[0]", source),
+                                   Field(sizes.items[1], resolution.name() + "[1]", source));
+
+    Camera camera;
+    camera.size = size;
+    const std::size_t k = static_cast<std::size_t>(leading);
+    camera.intrinsics = {intrinsics[k], intrinsics[k + 1], intrinsics[k + 2], intrinsics[k + 3], 0.0};
+    camera.lens = {row->type, std::move(coefficients)};
+    if (const std::optional<Field> to_camera = cam.find({"T_cam_imu"})) {
+        camera.pose = read_transform(*to_camera);
+    } else if (const std::optional<Field> to_imu = cam.find({"T_imu_cam"})) {
+        camera.pose = inverse(read_transform(*to_imu));
+    } else if (const std::optional<Field> chain = cam.find({"T_cn_cnm1"})) {
+        if (!previous) chain->fail("the first camera has no camera before it");
+        camera.pose = compose(read_transform(*chain), *previous);
+    } else if (previous) {
+        cam.fail("no T_cam_imu, T_imu_cam or T_cn_cnm1: where this camera is in the rig is not known");
+    }
+    const std::string where = source + ": line " + std::to_string(cam.node().line) + ": \"" + name + "\"";
+    return checked(name, std::move(camera), where);
+}
+
+bool is_kalibr_camera_key(std::string_view key) {
+    return key.size() > 3 && key.starts_with("cam") &&
+           std::all_of(key.begin() + 3, key.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// ---- camodocal ---------------------------------------------------------------------------
+
+NamedCamera read_camodocal(const Field& file, const std::string& source) {
+    const Field model_type = file.at({"model_type"});
+    const std::string model = model_type.text();
+    const std::string name = file.find({"camera_name"}) ? file.at({"camera_name"}).text() : std::string();
+    Camera camera;
+    camera.size = size_of(file.at({"image_width"}), file.at({"image_height"}));
+    const Field projection = file.at({"projection_parameters"});
+    const auto number = [](const Field& section, std::string_view key) { return section.at({key}).number(); };
+    if (model == "PINHOLE" || model == "MEI") {
+        const Field distortion = file.at({"distortion_parameters"});
+        std::vector<double> coefficients = {number(distortion, "k1"), number(distortion, "k2"), number(distortion, "p1"),
+                                            number(distortion, "p2")};
+        if (model == "PINHOLE") {
+            camera.intrinsics = {number(projection, "fx"), number(projection, "fy"), number(projection, "cx"),
+                                 number(projection, "cy"), 0.0};
+            camera.lens = {LensType::Opencv4, std::move(coefficients)};
+        } else {
+            // Mei's model is cv::omnidir's: gamma1 gamma2 u0 v0 are K.
+            coefficients.insert(coefficients.begin(), number(file.at({"mirror_parameters"}), "xi"));
+            camera.intrinsics = {number(projection, "gamma1"), number(projection, "gamma2"), number(projection, "u0"),
+                                 number(projection, "v0"), 0.0};
+            camera.lens = {LensType::Mei, std::move(coefficients)};
+        }
+    } else if (model == "KANNALA_BRANDT") {
+        // camodocal's k2..k5 are theta's coefficients of theta^3..theta^9 (OpenCV fisheye's k1..k4).
+        camera.intrinsics = {number(projection, "mu"), number(projection, "mv"), number(projection, "u0"),
+                             number(projection, "v0"), 0.0};
+        camera.lens = {LensType::Fisheye,
+                       {number(projection, "k2"), number(projection, "k3"), number(projection, "k4"),
+                        number(projection, "k5")}};
+    } else {
+        model_type.fail("must be PINHOLE, MEI or KANNALA_BRANDT (libcam has no model for '" + model + "')");
+    }
+    return checked(name, std::move(camera), source);
+}
+
+// ---- basalt -------------------------------------------------------------------------------
+
+using nlohmann::json;
+
+// Reading basalt's JSON: every accessor names the file and the key path in its error.
+struct JsonField {
+    const json& value;
+    std::string name;
+    const std::string& source;
+
+    [[noreturn]] void fail(const std::string& what) const { throw FileError(source + ": \"" + name + "\": " + what); }
+    JsonField at(std::string_view key) const {
+        if (!value.is_object()) fail("expected an object");
+        const auto found = value.find(key);
+        if (found == value.end()) JsonField{value, name + "." + std::string(key), source}.fail("missing");
+        return {*found, name + "." + std::string(key), source};
+    }
+    JsonField at(std::size_t index) const {
+        if (!value.is_array() || index >= value.size()) fail("expected an array of at least " + std::to_string(index + 1));
+        return {value[index], name + "[" + std::to_string(index) + "]", source};
+    }
+    bool has(std::string_view key) const { return value.is_object() && value.contains(key); }
+    double number() const {
+        if (!value.is_number()) fail("expected a number, got " + value.dump());
+        const double x = value.get<double>();
+        if (!std::isfinite(x)) fail("must be finite, got " + value.dump());
+        return x;
+    }
+    int integer(long long min, long long max) const {
+        if (!value.is_number_integer()) fail("expected an integer, got " + value.dump());
+        const long long x = value.get<long long>();
+        if (x < min || x > max) fail("must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + value.dump());
+        return static_cast<int>(x);
+    }
+    std::string text() const {
+        if (!value.is_string()) fail("expected a string, got " + value.dump());
+        return value.get<std::string>();
+    }
+    std::size_t size() const {
+        if (!value.is_array()) fail("expected an array");
+        return value.size();
+    }
+};
+
+// basalt's T_imu_cam: camera to IMU, px py pz and the unit quaternion qx qy qz qw.
+Pose basalt_pose(const JsonField& transform) {
+    const Eigen::Vector3d position(transform.at("px").number(), transform.at("py").number(), transform.at("pz").number());
+    Eigen::Quaterniond q(transform.at("qw").number(), transform.at("qx").number(), transform.at("qy").number(),
+                         transform.at("qz").number());
+    if (std::abs(q.norm() - 1.0) > 1e-6) transform.fail("the quaternion's norm is " + std::to_string(q.norm()) + ", not 1");
+    q.normalize();
+    const Mat3 camera_to_imu = q.toRotationMatrix();
+    return {camera_to_imu.transpose(), -(camera_to_imu.transpose() * position)};
+}
+
+Camera basalt_camera(const JsonField& entry) {
+    const std::string type = entry.at("camera_type").text();
+    const JsonField k = entry.at("intrinsics");
+    const auto value = [&](std::string_view key) { return k.at(key).number(); };
+    Camera camera;
+    camera.intrinsics = {value("fx"), value("fy"), value("cx"), value("cy"), 0.0};
+    if (type == "pinhole") {
+        camera.lens = {LensType::Pinhole, {}};
+    } else if (type == "kb4") {
+        camera.lens = {LensType::Fisheye, {value("k1"), value("k2"), value("k3"), value("k4")}};
+    } else if (type == "ds") {
+        camera.lens = {LensType::DoubleSphere, {value("xi"), value("alpha")}};
+    } else if (type == "eucm") {
+        camera.lens = {LensType::Eucm, {value("alpha"), value("beta")}};
+    } else if (type == "ucm") {
+        // basalt's m = (x, y) / (alpha d + (1 - alpha) z) = UCM's (x, y) / (z + xi d) times
+        // 1 / (1 - alpha), with xi = alpha / (1 - alpha).
+        const double alpha = value("alpha");
+        if (!(alpha >= 0 && alpha < 1)) k.at("alpha").fail("must be in [0, 1), got " + std::to_string(alpha));
+        const double scale = 1.0 / (1.0 - alpha);
+        camera.intrinsics.fx *= scale;
+        camera.intrinsics.fy *= scale;
+        camera.lens = {LensType::Ucm, {alpha / (1.0 - alpha)}};
+    } else if (type == "fov") {
+        camera.lens = {LensType::Fov, {value("w")}};
+    } else if (type == "pinhole-radtan8") {
+        camera.lens = {LensType::Opencv8,
+                       {value("k1"), value("k2"), value("p1"), value("p2"), value("k3"), value("k4"), value("k5"),
+                        value("k6")}};
+    } else {
+        entry.at("camera_type").fail("must be pinhole, kb4, ds, eucm, ucm, fov or pinhole-radtan8, got '" + type + "'");
+    }
+    return camera;
+}
+
+}  // namespace
+
+std::vector<NamedCamera> parse_kalibr_camchain(std::string_view text, const std::string& source) {
+    const DocumentNode tree = parse_yaml_document(text, source);
+    if (tree.kind != DocumentNode::Kind::Map) throw FileError(source + ": expected Kalibr's keys cam0, cam1, ...");
+    const Field file(tree, "", source);
+    std::vector<NamedCamera> cameras;
+    for (const std::string& key : tree.keys) {
+        if (!is_kalibr_camera_key(key)) continue;
+        const std::optional<Pose> previous =
+            cameras.empty() ? std::nullopt : std::optional<Pose>(cameras.back().file.camera.pose);
+        cameras.push_back(read_kalibr_camera(key, file.at({key}), previous, source));
+    }
+    if (cameras.empty()) throw FileError(source + ": no camera: expected Kalibr's keys cam0, cam1, ...");
+    return cameras;
+}
+
+std::vector<NamedCamera> parse_camodocal(std::string_view text, const std::string& source) {
+    const DocumentNode tree = parse_yaml_document(text, source);
+    if (tree.kind != DocumentNode::Kind::Map) throw FileError(source + ": expected camodocal's keys (model_type, ...)");
+    return {read_camodocal(Field(tree, "", source), source)};
+}
+
+std::vector<NamedCamera> parse_basalt_calibration(std::string_view text, const std::string& source) {
+    json root;
+    try {
+        root = json::parse(text.begin(), text.end());
+    } catch (const json::exception& error) {
+        throw FileError(source + ": not valid JSON: " + error.what());
+    }
+    if (!root.is_object() || !root.contains("value0")) throw FileError(source + ": expected basalt's \"value0\" object");
+    const JsonField calibration{root["value0"], "value0", source};
+    const JsonField intrinsics = calibration.at("intrinsics");
+    const JsonField resolution = calibration.at("resolution");
+    const bool has_poses = calibration.has("T_imu_cam");
+    const std::size_t count = intrinsics.size();
+    if (count == 0) intrinsics.fail("no camera");
+    if (resolution.size() != count) resolution.fail("expected one [width, height] per camera (" + std::to_string(count) + ")");
+    std::vector<NamedCamera> cameras;
+    for (std::size_t i = 0; i < count; ++i) {
+        Camera camera = basalt_camera(intrinsics.at(i));
+        const JsonField size = resolution.at(i);
+        camera.size = {size.at(0).integer(1, kMaxImageSide), size.at(1).integer(1, kMaxImageSide)};
+        if (has_poses) camera.pose = basalt_pose(calibration.at("T_imu_cam").at(i));
+        const std::string name = "cam" + std::to_string(i);
+        cameras.push_back(checked(name, std::move(camera), source + ": \"value0.intrinsics[" + std::to_string(i) + "]\""));
+    }
+    return cameras;
+}
+
+std::optional<CameraFormat> rig_format_of_yaml(std::string_view text, const std::string& source) {
+    const DocumentNode tree = parse_yaml_document(text, source);
+    if (tree.kind != DocumentNode::Kind::Map) return std::nullopt;
+    if (tree.find("model_type") != nullptr) return CameraFormat::Camodocal;
+    for (std::size_t i = 0; i < tree.keys.size(); ++i) {
+        if (is_kalibr_camera_key(tree.keys[i]) && tree.items[i].find("camera_model") != nullptr) return CameraFormat::Kalibr;
+    }
+    return std::nullopt;
+}
+
+std::optional<CameraFormat> rig_format_of_json(std::string_view text) {
+    const json root = json::parse(text.begin(), text.end(), nullptr, false);
+    if (root.is_object() && root.contains("value0")) return CameraFormat::Basalt;
+    return std::nullopt;
+}
+
+}  // namespace libcam

@@ -1,0 +1,45 @@
+#pragma once
+// Calibration files of other tools that hold a rig: several cameras, each with its pose
+// in the rig's reference frame. Each reader returns every camera, in the file's order,
+// with poses world-to-camera (X_cam = R X + t) where the "world" is the file's reference
+// frame:
+//
+//   Kalibr camchain / camchain-imucam YAML (also as OpenVINS ships it, with a %YAML:1.0
+//   line): keys cam0, cam1, ... each with camera_model (pinhole, omni, ds, eucm),
+//   distortion_model (radtan, equidistant, fov, none), intrinsics, distortion_coeffs,
+//   resolution. The world is the IMU frame: T_cam_imu as it is, T_imu_cam (OpenVINS)
+//   inverted; a file without either is in cam0's frame, each later camera placed by
+//   T_cn_cnm1 (camera n from camera n-1). Names: the keys (cam0, ...).
+//
+//   basalt calibration JSON (cereal's "value0"): T_imu_cam (camera to IMU, a quaternion
+//   and a position: inverted), intrinsics with camera_type pinhole, kb4, ds, eucm, ucm,
+//   fov or pinhole-radtan8, resolution. The world is the IMU frame. Names: cam0, cam1, ...
+//   by position. basalt's ucm is libcam's UCM with xi = alpha / (1 - alpha) and the focal
+//   lengths divided by (1 - alpha).
+//
+//   camodocal YAML (VINS-Mono and VINS-Fusion): model_type PINHOLE, MEI or
+//   KANNALA_BRANDT with its projection_parameters, distortion_parameters and
+//   mirror_parameters, image_width and image_height. One camera, no pose (identity).
+//   Name: camera_name.
+//
+// Each throws FileError naming the file, the line (YAML), the key and the value.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "libcam/io/camera_file.hpp"
+
+namespace libcam {
+
+std::vector<NamedCamera> parse_kalibr_camchain(std::string_view text, const std::string& source);
+std::vector<NamedCamera> parse_basalt_calibration(std::string_view text, const std::string& source);
+std::vector<NamedCamera> parse_camodocal(std::string_view text, const std::string& source);
+
+// What a YAML or JSON file's keys say it is, for a file whose extension is shared by
+// several formats: Kalibr (a camN key holding camera_model), camodocal (model_type),
+// basalt (value0). nullopt: none of these (OpenCV's YAML, libcam's JSON).
+std::optional<CameraFormat> rig_format_of_yaml(std::string_view text, const std::string& source);
+std::optional<CameraFormat> rig_format_of_json(std::string_view text);
+
+}  // namespace libcam

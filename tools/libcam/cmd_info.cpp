@@ -1,0 +1,122 @@
+// libcam info FILE: every camera a file holds, with what a user checks first: name,
+// model, size, K, coefficients, the field of view through the lens, where it has rays,
+// and the pose.
+
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "camera_options.hpp"
+#include "commands.hpp"
+#include "libcam/camera/field_of_view.hpp"
+#include "libcam/lens/lens_model.hpp"
+#include "libcam/text/number_format.hpp"
+
+namespace libcam::cli {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::string list_text(const std::vector<double>& values) {
+    std::string out;
+    for (const double value : values) out += (out.empty() ? "" : " ") + format_number(value);
+    return out;
+}
+
+std::string vec_text(const Vec3& v) { return format_number(v.x() + 0.0) + " " + format_number(v.y() + 0.0) + " " + format_number(v.z() + 0.0); }
+
+std::string axis_text(const AxisFieldOfView& axis) {
+    return format_short(axis.degrees, 5) + " deg" + (axis.edge_to_edge ? "" : " (to the last pixel with a ray)");
+}
+
+std::string camera_text(std::size_t index, const NamedCamera& named) {
+    const Camera& camera = named.file.camera;
+    const PreparedCamera prepared(camera);
+    const FieldOfView fov = field_of_view(prepared);
+    const LensInfo& lens = lens_info(camera.lens.type);
+    const Intrinsics& k = camera.intrinsics;
+    std::ostringstream out;
+    out << "camera " << index << (named.name.empty() ? "" : ": " + named.name) << "\n";
+    out << "  model     " << lens.name << "\n";
+    out << "  size      " << camera.size.width << "x" << camera.size.height << "\n";
+    out << "  K         fx " << format_number(k.fx) << ", fy " << format_number(k.fy) << ", cx " << format_number(k.cx)
+        << ", cy " << format_number(k.cy) << ", skew " << format_number(k.skew) << "\n";
+    if (!camera.lens.coefficients.empty()) {
+        out << "  dist      ";
+        const auto names = lens.coefficients.view();
+        for (std::size_t i = 0; i < camera.lens.coefficients.size(); ++i) {
+            const std::string name = i < names.size() ? std::string(names[i]) : "c" + std::to_string(i);
+            if (i > 0) out << ", ";
+            if (i == 12 && camera.lens.type == LensType::SplinedStereographic) {
+                out << "... (" << camera.lens.coefficients.size() - 4 << " control values)";
+                break;
+            }
+            out << name << " " << format_number(camera.lens.coefficients[i]);
+        }
+        out << "\n";
+    }
+    out << "  fov       horizontal " << axis_text(fov.horizontal) << ", vertical " << axis_text(fov.vertical)
+        << " (through the lens, edge to edge)\n";
+    out << "  rays      up to " << format_short(fov.valid_angle_deg, 5) << " deg from the optical axis; "
+        << (fov.rayless_fraction == 0 ? std::string("every pixel has one")
+                                      : format_short(100 * fov.rayless_fraction, 3) + "% of the pixels have none")
+        << "\n";
+    out << "  pose      world to camera: rvec " << vec_text(camera.pose.rvec()) << ", t " << vec_text(camera.pose.t)
+        << "; centre " << vec_text(camera.pose.centre()) << "\n";
+    return out.str();
+}
+
+Json camera_json(std::size_t index, const NamedCamera& named) {
+    const Camera& camera = named.file.camera;
+    const FieldOfView fov = field_of_view(PreparedCamera(camera));
+    const Intrinsics& k = camera.intrinsics;
+    const auto vec = [](const Vec3& v) { return Json::array({v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}); };
+    return {{"index", index},
+            {"name", named.name},
+            {"model", lens_info(camera.lens.type).name},
+            {"image_size", {camera.size.width, camera.size.height}},
+            {"K", {{k.fx, k.skew, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}}},
+            {"dist", camera.lens.coefficients},
+            {"fov_deg", {{"horizontal", fov.horizontal.degrees}, {"vertical", fov.vertical.degrees}}},
+            {"fov_edge_to_edge", {{"horizontal", fov.horizontal.edge_to_edge}, {"vertical", fov.vertical.edge_to_edge}}},
+            {"valid_angle_deg", fov.valid_angle_deg},
+            {"rayless_fraction", fov.rayless_fraction},
+            {"rvec", vec(camera.pose.rvec())},
+            {"t", vec(camera.pose.t)},
+            {"camera_center", vec(camera.pose.centre())}};
+}
+
+}  // namespace
+
+Runner add_info(CLI::App& app) {
+    CLI::App* command = app.add_subcommand("info", "Every camera a file holds: model, size, K, field of view, pose");
+    struct Flags {
+        std::string file;
+        std::string format;
+        bool json = false;
+    };
+    auto flags = std::make_shared<Flags>();
+    command->add_option("FILE", flags->file, "Camera file (any format libcam reads)")->required();
+    command->add_option("--from-format", flags->format,
+                        "The file's format, when its extension and contents do not say: " + camera_format_names());
+    command->add_flag("--json", flags->json, "Print {\"file\", \"format\", \"cameras\": [...]}");
+    return [flags] {
+        FileSelection selection;
+        selection.format = flags->format;
+        const CameraSet set = read_camera_set(flags->file, selection.chosen_format());
+        if (flags->json) {
+            Json out = {{"file", flags->file}, {"format", to_string(set.format)}, {"cameras", Json::array()}};
+            for (std::size_t i = 0; i < set.cameras.size(); ++i) out["cameras"].push_back(camera_json(i, set.cameras[i]));
+            emit(out.dump(2) + "\n", "");
+            return 0;
+        }
+        std::ostringstream out;
+        out << flags->file << ": " << to_string(set.format) << ", " << set.cameras.size()
+            << (set.cameras.size() == 1 ? " camera" : " cameras") << "\n";
+        for (std::size_t i = 0; i < set.cameras.size(); ++i) out << "\n" << camera_text(i, set.cameras[i]);
+        emit(out.str(), "");
+        return 0;
+    };
+}
+
+}  // namespace libcam::cli
