@@ -287,7 +287,7 @@ std::vector<Observation> observations_of(const ScenePixels& pixels, const std::v
 Camera camera_in_world(const FittedModel& fitted, const Camera& source) {
     // world -> source camera -> fitted camera: R = R_fit R_src, t = R_fit t_src + t_fit.
     Camera camera = fitted.camera;
-    camera.pose = {fitted.camera.pose.R * source.pose.R, fitted.camera.pose.R * source.pose.t + fitted.camera.pose.t};
+    camera.pose = fitted.camera.pose.after(source.pose);
     return camera;
 }
 

@@ -45,6 +45,13 @@ struct Pose {
     Vec3 centre() const { return centre_from_translation<double>(R, t); }
     Mat34 matrix() const;  // [R | t]
 
+    // The transform back (X_world = R^T X_cam - R^T t), as a pose: a file's "camera in
+    // the reference frame" turned into libcam's world-to-camera, and the other way.
+    Pose inverse() const { return {R.transpose(), -(R.transpose() * t)}; }
+    // This transform applied after `first`: X -> R (R_first X + t_first) + t (a camera
+    // placed relative to another, or moved after its pose).
+    Pose after(const Pose& first) const { return {R * first.R, R * first.t + t}; }
+
     Vec3 camera_from_world(const Vec3& world) const { return R * world + t; }
     Vec3 world_direction_from_camera(const Vec3& direction) const { return R.transpose() * direction; }
 

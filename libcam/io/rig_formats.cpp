@@ -68,9 +68,6 @@ Pose read_transform(const Field& field) {
     return pose;
 }
 
-Pose inverse(const Pose& pose) { return {pose.R.transpose(), -(pose.R.transpose() * pose.t)}; }
-Pose compose(const Pose& outer, const Pose& inner) { return {outer.R * inner.R, outer.R * inner.t + outer.t}; }
-
 // Kalibr's distortion_model as the table's kalibr names spell it (camera-distortion).
 std::string kalibr_distortion_short(const Field& field) {
     const std::string model = field.text();
@@ -128,10 +125,10 @@ NamedCamera read_kalibr_camera(const std::string& name, const Field& cam, const 
     if (const std::optional<Field> to_camera = cam.find({"T_cam_imu"})) {
         camera.pose = read_transform(*to_camera);
     } else if (const std::optional<Field> to_imu = cam.find({"T_imu_cam"})) {
-        camera.pose = inverse(read_transform(*to_imu));
+        camera.pose = read_transform(*to_imu).inverse();
     } else if (const std::optional<Field> chain = cam.find({"T_cn_cnm1"})) {
         if (!previous) chain->fail("the first camera has no camera before it");
-        camera.pose = compose(read_transform(*chain), *previous);
+        camera.pose = read_transform(*chain).after(*previous);
     } else if (previous) {
         cam.fail("no T_cam_imu, T_imu_cam or T_cn_cnm1: where this camera is in the rig is not known");
     }
@@ -233,8 +230,7 @@ Pose basalt_pose(const JsonField& transform) {
                          transform.at("qz").number());
     if (std::abs(q.norm() - 1.0) > 1e-6) transform.fail("the quaternion's norm is " + std::to_string(q.norm()) + ", not 1");
     q.normalize();
-    const Mat3 camera_to_imu = q.toRotationMatrix();
-    return {camera_to_imu.transpose(), -(camera_to_imu.transpose() * position)};
+    return Pose{q.toRotationMatrix(), position}.inverse();
 }
 
 Camera basalt_camera(const JsonField& entry) {
