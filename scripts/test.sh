@@ -29,6 +29,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 (cd "$root/build-asan" && ctest --output-on-failure --parallel "$jobs" --timeout 1800 -E install_consumer)
 
 echo "== 3/3: fuzzing every reader and the number parser"
-CXX=clang++ bash "$root/scripts/build.sh" "$root/build-fuzz" "${line_tables[@]}" -DLIBCAM_FUZZ=ON -DLIBCAM_BUILD_TESTS=OFF \
+CXX=clang++ LIBCAM_BUILD_TARGET=fuzzers bash "$root/scripts/build.sh" "$root/build-fuzz" "${line_tables[@]}" -DLIBCAM_FUZZ=ON -DLIBCAM_BUILD_TESTS=OFF \
   -DLIBCAM_BUILD_TOOLS=OFF -DLIBCAM_BUILD_BENCHMARKS=OFF -DLIBCAM_FUZZ_SECONDS="${LIBCAM_FUZZ_SECONDS:-12}"
-(cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz --timeout 600)
+# Two at a time: each fuzzer is one process on one core.
+(cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz --parallel "$jobs" --timeout 600)
