@@ -18,6 +18,7 @@ packages=(
   libceres-dev           # model fitting
   libboost-dev           # multiprecision reference
   clang libclang-rt-14-dev   # libFuzzer and its sanitizer runtimes
+  colmap                 # reference: COLMAP's own program reads the models libcam writes
 )
 
 missing=()

@@ -760,7 +760,7 @@ cam1:
     const CliResult missing = run_libcam({"convert", "--from", chain, "--camera", "2"});
     CHECK(missing.exit_code == 1);
     CHECK_THAT(missing.err, Catch::Contains("no camera '2'; it holds 2 cameras: 0 (cam0), 1 (cam1)"));
-    const CliResult bad_format = run_libcam({"info", chain, "--from-format", "colmap"});
+    const CliResult bad_format = run_libcam({"info", chain, "--from-format", "nerfstudio"});
     CHECK(bad_format.exit_code == 2);
     CHECK_THAT(bad_format.err, Catch::Contains("--from-format"));
 }

@@ -11,9 +11,11 @@
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/format_table.hpp"
+#include "error_message.hpp"
 #include "temp_dir.hpp"
 
 using namespace libcam;
+using libcam::test::file_error_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -25,18 +27,6 @@ Camera wide_camera() {
     camera.lens = {LensType::Opencv5, {0.03, -0.01, -1e-4, 2e-4, 0.002}};
     camera.pose = Pose::from_rvec({0.1, -0.2, 0.3}, {1, 2, 3});
     return camera;
-}
-
-// The FileError message of `read`, which must throw one.
-template <class Read>
-std::string file_error_of(Read&& read) {
-    try {
-        read();
-    } catch (const FileError& error) {
-        return error.what();
-    }
-    FAIL("no FileError");
-    return {};
 }
 
 // What the message of an uninstalled format says: the file, what was asked, the format,

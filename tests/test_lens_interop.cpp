@@ -25,7 +25,8 @@ bool holds(CameraFormat format, LensType type) {
         case CameraFormat::OpenCvYaml:
         case CameraFormat::OpenCvXml:
             return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
-                   type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Opencv14;
+                   type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Opencv14 ||
+                   type == LensType::Fisheye;
         case CameraFormat::Cameramodel:
             return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
                    type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Stereographic ||
@@ -82,7 +83,7 @@ TEST_CASE("OpenCV's file: the number of distortion coefficients names the model"
                       Catch::Contains("6.yaml") && Catch::Contains("4, 5, 8, 12 or 14"));
 }
 
-TEST_CASE("mrcal's files: its lens models map by name, configurations included; bad ones are refused") {
+TEST_CASE("mrcal's files: its lens models map by name, configurations included, and bad ones are refused") {
     const auto cameramodel = [](const std::string& model, const std::string& intrinsics) {
         return "{\n 'lensmodel': '" + model + "',\n 'intrinsics': [ " + intrinsics +
                " ],\n 'imagersize': [ 640, 480 ],\n 'extrinsics': [ 0, 0, 0, 0, 0, 0 ]\n}\n";
@@ -104,8 +105,10 @@ TEST_CASE("mrcal's files: its lens models map by name, configurations included; 
     std::string splined_intrinsics = "500, 501, 319.5, 239.5";
     std::vector<double> splined{2, 3, 4, 100};
     for (int i = 0; i < 2 * 3 * 4; ++i) {
-        splined_intrinsics += ", " + std::to_string(i) + "e-3";
-        splined.push_back(i * 1e-3);
+        // The number the text says (9 * 1e-3 is not the double nearest 9e-3).
+        const std::string control = std::to_string(i) + "e-3";
+        splined_intrinsics += ", " + control;
+        splined.push_back(std::stod(control));
     }
     const Camera spline = parse_cameramodel(
         cameramodel("LENSMODEL_SPLINED_STEREOGRAPHIC_order=2_Nx=3_Ny=4_fov_x_deg=100", splined_intrinsics), "e");

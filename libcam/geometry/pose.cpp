@@ -1,12 +1,20 @@
 #include "libcam/geometry/pose.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <cmath>
 #include <string>
 
 #include "libcam/error.hpp"
 
 namespace libcam {
+
+Mat3 nearest_rotation_if_rounded(const Mat3& R) {
+    const double off = (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff();
+    if (off <= kRotationTolerance || !(off <= kRoundedRotationTolerance) || !(R.determinant() > 0)) return R;
+    const Eigen::JacobiSVD<Mat3> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    return svd.matrixU() * svd.matrixV().transpose();
+}
 
 namespace {
 

@@ -23,6 +23,15 @@ Mat3 rotation_from_rvec(const Vec3& rvec);
 // Largest |R^T R - I| and |det R - 1| accepted for a rotation read from outside.
 inline constexpr double kRotationTolerance = 1e-9;
 
+// Files that print rotations with few digits (five decimals in OpenVINS's rig files,
+// float32 in NeRF's transforms.json) give an R whose R^T R is I only to about 1e-5.
+// Such a matrix, within kRoundedRotationTolerance of a rotation, is read as the nearest
+// rotation (by SVD: what the rounding moved it from); one within kRotationTolerance, or
+// farther off than kRoundedRotationTolerance, is returned as it is (validate() refuses
+// the latter).
+inline constexpr double kRoundedRotationTolerance = 1e-4;
+Mat3 nearest_rotation_if_rounded(const Mat3& R);
+
 // t = -R C for a camera at centre C, and back C = -R^T t.
 template <class Scalar>
 Vec3T<Scalar> translation_from_centre(const Mat3T<Scalar>& R, const Vec3T<Scalar>& centre) {

@@ -11,7 +11,11 @@
 #include "libcam/io/format_table.hpp"
 #include "libcam/io/json_format.hpp"
 #include "libcam/io/opencv_storage.hpp"
+#include "libcam/io/cahvor_format.hpp"
+#include "libcam/io/colmap_format.hpp"
+#include "libcam/io/nerf_transforms.hpp"
 #include "libcam/io/rig_formats.hpp"
+#include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
 
@@ -23,6 +27,11 @@ std::string write_json(const Camera& camera, const WriteOptions& options) {
 }
 
 std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
+    // A projection matrix is linear: it holds a pinhole, nothing more.
+    if (camera.lens.type != LensType::Pinhole) {
+        throw NotRepresentable("gl holds a pinhole camera only (an OpenGL projection matrix has no distortion); this "
+                               "camera's lens is " + std::string(lens_info(camera.lens.type).name));
+    }
     return format_gl_json(to_opengl(camera, options.gl_near, options.gl_far, options.gl_depth_range), camera.size);
 }
 
@@ -41,8 +50,9 @@ std::string write_opencv_xml(const Camera& camera, const WriteOptions&) {
 
 // One row per format (io/format_table.hpp). The rows of the formats io implements
 // are filled here; the others start empty until `library` fills them (`installer`).
-// A format whose files hold several cameras has a set reader instead; one libcam
-// reads but does not write has no writer and says so.
+// A format whose files hold several cameras has a set reader instead; one written as
+// several files into a folder has a files writer; one libcam reads but does not write
+// has no writer and says so.
 struct FormatRow {
     CameraFormat format;
     std::string_view name;   // what --to and camera_format_from_string take
@@ -53,26 +63,41 @@ struct FormatRow {
     std::atomic<CameraWriter> writer;
     CameraSetReader set_reader = nullptr;
     bool read_only = false;
+    CameraFilesWriter files_writer = nullptr;
+    bool binary = false;  // also has a binary form: its reader checks the text itself
 };
 
 constexpr std::string_view kInterop = "libcam::interop";
 constexpr std::string_view kRegisterInterop = "libcam::register_interop_formats()";
 
+// The rig readers take only the file's name from the context.
+template <std::vector<NamedCamera> (*parse)(std::string_view, const std::string&)>
+std::vector<NamedCamera> read_with_source(std::string_view text, const ReadContext& context) {
+    return parse(text, context.source);
+}
+
 // libcam JSON and gl JSON share a reader: the keys tell which (io/json_format.hpp);
 // OpenCV's YAML and XML share one too (io/opencv_storage.hpp).
 // constinit: filled before any code runs, so a registration made from another file's
 // static initialiser cannot find it unready.
-constinit std::array<FormatRow, 8> format_table = {{
+constinit std::array<FormatRow, 11> format_table = {{
     {CameraFormat::Json, "json", "libcam JSON", "libcam::io", "", parse_json_camera, write_json},
     {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", "libcam::io", "", read_opencv_storage, write_opencv_yaml},
     {CameraFormat::OpenCvXml, "opencv-xml", "OpenCV XML", "libcam::io", "", read_opencv_storage, write_opencv_xml},
     {CameraFormat::Cameramodel, "cameramodel", "mrcal .cameramodel", kInterop, kRegisterInterop, nullptr, nullptr},
     {CameraFormat::Gl, "gl", "gl JSON", "libcam::io", "", parse_json_camera, write_gl_json},
-    {CameraFormat::Kalibr, "kalibr", "Kalibr camchain YAML", "libcam::io", "", nullptr, nullptr, parse_kalibr_camchain,
-     true},
+    {CameraFormat::Kalibr, "kalibr", "Kalibr camchain YAML", "libcam::io", "", nullptr, nullptr,
+     read_with_source<parse_kalibr_camchain>, true},
     {CameraFormat::Basalt, "basalt", "basalt calibration JSON", "libcam::io", "", nullptr, nullptr,
-     parse_basalt_calibration, true},
-    {CameraFormat::Camodocal, "camodocal", "camodocal YAML", "libcam::io", "", nullptr, nullptr, parse_camodocal, true},
+     read_with_source<parse_basalt_calibration>, true},
+    {CameraFormat::Camodocal, "camodocal", "camodocal YAML", "libcam::io", "", nullptr, nullptr,
+     read_with_source<parse_camodocal>, true},
+    {CameraFormat::Colmap, "colmap", "COLMAP model", "libcam::io", "", nullptr, nullptr, read_colmap_model, false,
+     write_colmap_model, true},
+    {CameraFormat::Nerf, "nerf", "NeRF transforms.json", "libcam::io", "", nullptr, write_nerf_transforms,
+     read_nerf_transforms},
+    {CameraFormat::Cahvor, "cahvor", "JPL .cahvor", "libcam::io", "", nullptr, nullptr, read_with_source<parse_cahvor>,
+     true},
 }};
 
 FormatRow& row_of(CameraFormat format) {
@@ -96,21 +121,31 @@ CameraReader reader_for(CameraFormat format, const std::string& source) {
     return reader;
 }
 
-CameraWriter writer_for(CameraFormat format, const std::string& destination) {
+// The names of the formats libcam writes, for messages.
+std::string written_format_names() {
+    std::string names;
+    for (const FormatRow& row : format_table) {
+        if (!row.read_only) names += (names.empty() ? "" : ", ") + std::string(row.name);
+    }
+    return names;
+}
+
+// Every file of the format holding the camera (validated first).
+std::vector<CameraFileText> format_files(const Camera& camera, CameraFormat format, const WriteOptions& options,
+                                         const std::string& destination) {
     const FormatRow& row = row_of(format);
     if (row.read_only) {
         throw NotRepresentable(destination + ": libcam reads " + std::string(row.title) +
-                               " files but does not write them (it writes json, opencv-yaml, opencv-xml, cameramodel "
-                               "and gl)");
+                               " files but does not write them (it writes " + written_format_names() + ")");
+    }
+    if (row.files_writer != nullptr) {
+        camera.validate();
+        return row.files_writer(camera, options);
     }
     const CameraWriter writer = row.writer.load(std::memory_order_acquire);
     if (writer == nullptr) throw_not_installed(row, "writing", destination);
-    return writer;
-}
-
-std::string format_camera_with(CameraWriter writer, const Camera& camera, const WriteOptions& options) {
     camera.validate();
-    return writer(camera, options);
+    return {{std::string(), writer(camera, options)}};
 }
 
 }  // namespace
@@ -156,10 +191,19 @@ std::optional<CameraFormat> camera_format_from_path(const std::filesystem::path&
 }
 
 std::string format_camera(const Camera& camera, CameraFormat format, const WriteOptions& options) {
-    return format_camera_with(writer_for(format, "format " + std::string(to_string(format))), camera, options);
+    const std::string destination = "format " + std::string(to_string(format));
+    if (row_of(format).files_writer != nullptr) {
+        throw NotRepresentable(destination + ": written as several files into a folder: give the folder");
+    }
+    return format_files(camera, format, options, destination).front().text;
 }
 
-namespace {
+std::vector<CameraFileText> format_camera_files(const Camera& camera, CameraFormat format,
+                                                const WriteOptions& options) {
+    return format_files(camera, format, options, "format " + std::string(to_string(format)));
+}
+
+bool camera_format_writes_folder(CameraFormat format) { return row_of(format).files_writer != nullptr; }
 
 // Camera files are text: UTF-8 without NUL bytes. Checked before any parser sees the
 // bytes, because OpenCV's XML parser and libmrcal's parser crash on some binary input
@@ -188,27 +232,38 @@ void check_text(std::string_view text, const std::string& source) {
     }
 }
 
-}  // namespace
+namespace {
 
-CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std::string& source) {
+CameraSet parse_in_context(std::string_view text, CameraFormat format, const ReadContext& context) {
     const FormatRow& row = row_of(format);
     if (row.set_reader != nullptr) {
-        check_text(text, source);
-        return {format, row.set_reader(text, source)};
+        if (!row.binary) check_text(text, context.source);
+        return {format, row.set_reader(text, context)};
     }
-    const CameraReader reader = reader_for(format, source);
-    check_text(text, source);
-    return {format, {{std::string(), reader(text, source)}}};
+    const CameraReader reader = reader_for(format, context.source);
+    check_text(text, context.source);
+    return {format, {{std::string(), reader(text, context.source)}}};
 }
 
-CameraFile parse_camera(std::string_view text, CameraFormat format, const std::string& source) {
-    return parse_camera_set(text, format, source).cameras.front().file;
+}  // namespace
+
+CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std::string& source,
+                           const ReadOptions& options) {
+    return parse_in_context(text, format, {source, {}, options});
+}
+
+CameraFile parse_camera(std::string_view text, CameraFormat format, const std::string& source,
+                        const ReadOptions& options) {
+    return parse_camera_set(text, format, source, options).cameras.front().file;
 }
 
 const NamedCamera& select_camera(const CameraSet& set, std::string_view selector, const std::string& source) {
     if (selector.empty()) return set.cameras.front();
     for (const NamedCamera& camera : set.cameras) {
         if (!camera.name.empty() && camera.name == selector) return camera;
+    }
+    for (const NamedCamera& camera : set.cameras) {
+        if (!camera.intrinsics_name.empty() && camera.intrinsics_name == selector) return camera;
     }
     const bool digits = std::all_of(selector.begin(), selector.end(), [](char c) { return c >= '0' && c <= '9'; });
     if (digits && selector.size() <= 6) {
@@ -227,38 +282,79 @@ const NamedCamera& select_camera(const CameraSet& set, std::string_view selector
 
 namespace {
 
+// The first line that is not blank and not a # comment (mrcal and COLMAP write comments
+// first), without its leading blanks.
+std::string_view first_content_line(std::string_view text) {
+    std::size_t at = 0;
+    while (at < text.size()) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        std::string_view line = text.substr(at, end - at);
+        const auto start = line.find_first_not_of(" \t\r");
+        if (start != std::string_view::npos && line[start] != '#') return line.substr(start);
+        at = end + 1;
+    }
+    return {};
+}
+
+bool starts_with_word_then(std::string_view line, char separator) {
+    const auto end = line.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.");
+    if (end == 0 || end == std::string_view::npos) return false;
+    const auto next = line.find_first_not_of(" \t", end);
+    return next != std::string_view::npos && line[next] == separator && (separator != ':' || next == end);
+}
+
 // For a file without a known extension: JSON starts with '{' and quotes its keys,
 // OpenCV's YAML starts with %YAML and its XML with <?xml; mrcal's text is a Python dict;
-// other YAML starts with a key and a colon (Kalibr's camchains: "cam0:").
+// other YAML starts with a key and a colon (Kalibr's camchains: "cam0:"); JPL's cahvor
+// with "key = value"; COLMAP's cameras.txt with a camera id and a model name, and its
+// cameras.bin is binary.
 CameraFormat sniff_format(std::string_view text, const std::string& source) {
-    const auto start = text.find_first_not_of(" \t\r\n");
-    if (start == std::string_view::npos) throw FileError(source + ": file is empty");
-    const std::string_view body = text.substr(start);
+    if (text.find('\0') != std::string_view::npos) return CameraFormat::Colmap;
+    const std::string_view body = first_content_line(text);
+    if (body.empty()) {
+        if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) throw FileError(source + ": file is empty");
+        return CameraFormat::Cameramodel;  // only comments: mrcal's parser says what is missing
+    }
     if (body.starts_with("%YAML") || body.starts_with("---")) return CameraFormat::OpenCvYaml;
     if (body.starts_with("<?xml") || body.starts_with("<opencv_storage>")) return CameraFormat::OpenCvXml;
     if (body.starts_with("{")) {
-        const auto quote = body.find_first_of("\"'");
-        if (quote != std::string_view::npos && body[quote] == '"') return CameraFormat::Json;
-        return CameraFormat::Cameramodel;
+        // JSON has no comments and quotes its keys with '"'; mrcal writes comments and ''.
+        const bool commented = body.data() != text.data() + text.find_first_not_of(" \t\r\n");
+        const std::string_view rest = text.substr(static_cast<std::size_t>(body.data() - text.data()));
+        const auto quote = rest.find_first_of("\"'");
+        const bool double_quoted = quote != std::string_view::npos && rest[quote] == '"';
+        return !commented && double_quoted ? CameraFormat::Json : CameraFormat::Cameramodel;
     }
-    if (body.starts_with("#")) return CameraFormat::Cameramodel;  // mrcal writes comments first
-    const std::string_view first_line = body.substr(0, body.find('\n'));
-    const auto colon = first_line.find(':');
-    const bool key_first = colon != std::string_view::npos && colon > 0 &&
-                           std::all_of(first_line.begin(), first_line.begin() + static_cast<long>(colon), [](char c) {
-                               return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
-                           });
-    if (key_first) return CameraFormat::OpenCvYaml;
-    throw FileError(source + ": unknown camera file format (expected JSON, YAML, OpenCV's XML or mrcal's .cameramodel; "
-                    "--from-format names it: " + camera_format_names() + ")");
+    if (starts_with_word_then(body, '=')) return CameraFormat::Cahvor;
+    if (starts_with_word_then(body, ':')) return CameraFormat::OpenCvYaml;
+    if (body.front() >= '0' && body.front() <= '9') return CameraFormat::Colmap;
+    throw FileError(source + ": unknown camera file format (not JSON, YAML, XML, mrcal's .cameramodel or .cahvor, or "
+                    "COLMAP's cameras.txt; --from-format names it: " + camera_format_names() + ")");
+}
+
+// The formats an extension names; nullopt for the extensions several formats share in
+// ways only the contents tell (.txt), or none.
+std::optional<CameraFormat> format_of_extension(const std::filesystem::path& path) {
+    const std::string extension = path.extension().string();
+    if (extension == ".bin") return CameraFormat::Colmap;
+    if (extension == ".cahvor" || extension == ".cahvore") return CameraFormat::Cahvor;
+    return camera_format_from_path(path);
+}
+
+// What a JSON file's keys say it is: basalt's (value0), NeRF's (frames, camera_angle_x,
+// fl_x), or else libcam's or gl.
+std::optional<CameraFormat> json_format_of(std::string_view text) {
+    if (const std::optional<CameraFormat> rig = rig_format_of_json(text)) return rig;
+    if (is_nerf_transforms(text)) return CameraFormat::Nerf;
+    return std::nullopt;
 }
 
 // The format of a file: by extension, else by its first characters; then, for the
 // extensions several formats share, by its keys (a YAML file that does not parse is
 // left to the OpenCV reader, which says where it is broken).
 CameraFormat detect_format(std::string_view text, const std::filesystem::path& path, const std::string& source) {
-    const CameraFormat by_look = camera_format_from_path(path).value_or(sniff_format(text, source));
-    if (by_look == CameraFormat::Json) return rig_format_of_json(text).value_or(CameraFormat::Json);
+    const CameraFormat by_look = format_of_extension(path).value_or(sniff_format(text, source));
+    if (by_look == CameraFormat::Json) return json_format_of(text).value_or(CameraFormat::Json);
     if (by_look == CameraFormat::OpenCvYaml) {
         try {
             check_text(text, source);
@@ -271,22 +367,49 @@ CameraFormat detect_format(std::string_view text, const std::filesystem::path& p
 
 }  // namespace
 
-CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format) {
-    const std::string text = read_text_file(path);
+CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format,
+                          const ReadOptions& options) {
     const std::string source = path.string();
-    if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw FileError(source + ": file is empty");
-    return parse_camera_set(text, format ? *format : detect_format(text, path, source), source);
+    std::filesystem::path file = path;
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error)) {
+        // A COLMAP model's folder (sparse/0): its cameras file, binary first as COLMAP writes.
+        file = colmap_cameras_file_in(path);
+        if (file.empty()) {
+            throw FileError(source + ": a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)");
+        }
+        if (!format) format = CameraFormat::Colmap;
+    }
+    const std::string text = read_text_file(file);
+    const std::string file_source = file.string();
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw FileError(file_source + ": file is empty");
+    const CameraFormat chosen = format ? *format : detect_format(text, file, file_source);
+    return parse_in_context(text, chosen, {file_source, file.parent_path().empty() ? "." : file.parent_path(), options});
 }
 
 CameraFile read_camera_file(const std::filesystem::path& path, std::string_view camera,
-                            std::optional<CameraFormat> format) {
-    const CameraSet set = read_camera_set(path, format);
+                            std::optional<CameraFormat> format, const ReadOptions& options) {
+    const CameraSet set = read_camera_set(path, format, options);
     return select_camera(set, camera, path.string()).file;
 }
 
 void write_camera_file(const std::filesystem::path& path, const Camera& camera, CameraFormat format,
                        const WriteOptions& options) {
-    write_file_atomically(path, format_camera_with(writer_for(format, path.string()), camera, options));
+    const std::vector<CameraFileText> files = format_files(camera, format, options, path.string());
+    if (!camera_format_writes_folder(format)) {
+        write_file_atomically(path, files.front().text);
+        return;
+    }
+    // The folder: the path itself, or the folder of one of the format's files named in it.
+    std::filesystem::path folder = path;
+    for (const CameraFileText& file : files) {
+        if (path.filename() == file.name) folder = path.parent_path();
+    }
+    if (folder.empty()) folder = ".";
+    std::error_code error;
+    std::filesystem::create_directories(folder, error);
+    if (error) throw FileError(folder.string() + ": cannot create the folder: " + error.message());
+    for (const CameraFileText& file : files) write_file_atomically(folder / file.name, file.text);
 }
 
 }  // namespace libcam

@@ -10,6 +10,11 @@
 //   kalibr       Kalibr's camchain YAML (io/rig_formats.hpp): read only
 //   basalt       basalt's calibration JSON: read only
 //   camodocal    camodocal's YAML (VINS-Mono, VINS-Fusion): read only
+//   colmap       COLMAP's cameras.txt / cameras.bin, with images.txt / images.bin beside
+//                them for the poses (io/colmap_format.hpp); written as cameras.txt,
+//                images.txt and points3D.txt into a folder
+//   nerf         NeRF's transforms.json (instant-ngp, nerfstudio; io/nerf_transforms.hpp)
+//   cahvor       JPL's .cahvor / .cahvore text, as mrcal reads and writes it: read only
 //
 // A file may hold several cameras (a stereo pair, a rig): read_camera_set gives every
 // one with the file's name for it; read_camera_file gives one, the first by default.
@@ -34,7 +39,7 @@
 
 namespace libcam {
 
-enum class CameraFormat { Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal };
+enum class CameraFormat { Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor };
 
 std::string_view to_string(CameraFormat format);
 CameraFormat camera_format_from_string(std::string_view text);  // throws InvalidArgument
@@ -50,11 +55,14 @@ struct CameraFile {
     std::optional<FovCamera> fov_camera;
 };
 
-// One camera of a file: the file's name for it (cam0, a camodocal camera_name), or empty
-// where the file names none.
+// One camera of a file: the file's name for it (cam0, a camodocal camera_name, a COLMAP
+// image's name), or empty where the file names none.
 struct NamedCamera {
     std::string name;
     CameraFile file;
+    // Where the file holds several views taken with one set of intrinsics (COLMAP's
+    // images of one camera), the name of those intrinsics ("id:2"); else empty.
+    std::string intrinsics_name = {};
 };
 
 // Every camera a file holds, in the file's order (at least one).
@@ -68,32 +76,72 @@ struct WriteOptions {
     double gl_near = 0.1;
     double gl_far = 1000.0;
     DepthRange gl_depth_range = DepthRange::MinusOneToOne;
+    // The image the camera's pose belongs to, in formats that list images (COLMAP's
+    // images.txt NAME, transforms.json's file_path).
+    std::string image_name = "image.png";
+};
+
+// Where NeRF's transforms.json puts the principal point when it gives none (only
+// camera_angle_x, as NeRF's synthetic scenes).
+enum class NerfPrincipalPoint {
+    ImageCentre,  // (W - 1) / 2, (H - 1) / 2: the image's centre, where Blender rendered them (default)
+    HalfSize,     // W / 2, H / 2 in libcam's pixels: where NeRF's own ray code puts it, half a pixel off
+};
+
+struct ReadOptions {
+    // The image size, for a file that does not record it (NeRF's synthetic scenes);
+    // a size the file records must agree with it.
+    std::optional<ImageSize> size;
+    NerfPrincipalPoint nerf_principal_point = NerfPrincipalPoint::ImageCentre;
+};
+
+// One file of a format's output: its name in the output folder (COLMAP's "cameras.txt"),
+// empty for a format written as one file, and its text.
+struct CameraFileText {
+    std::string name;
+    std::string text;
 };
 
 // The file's text in `format`. Throws NotRepresentable when the format cannot hold the
-// camera (skew in .cameramodel, distortion in gl).
+// camera (skew in .cameramodel, distortion in gl), or is written as several files.
 std::string format_camera(const Camera& camera, CameraFormat format, const WriteOptions& options = {});
 
-// Parses `text` as `format`; `source` names the file in error messages.
-CameraFile parse_camera(std::string_view text, CameraFormat format, const std::string& source);
+// Every file of `format` holding the camera: one unnamed file, or the named files of a
+// format written into a folder (COLMAP: cameras.txt and images.txt).
+std::vector<CameraFileText> format_camera_files(const Camera& camera, CameraFormat format,
+                                                const WriteOptions& options = {});
 
-// Every camera of `text` as `format`.
-CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std::string& source);
+// Whether the format is written as several files into a folder.
+bool camera_format_writes_folder(CameraFormat format);
+
+// Parses `text` as `format`; `source` names the file in error messages.
+CameraFile parse_camera(std::string_view text, CameraFormat format, const std::string& source,
+                        const ReadOptions& options = {});
+
+// Every camera of `text` as `format`. Files beside it (COLMAP's images.txt, NeRF's
+// images) are not looked at: read_camera_set does that.
+CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std::string& source,
+                           const ReadOptions& options = {});
 
 // Reads every camera of a file, in `format` or else the format its extension and
-// contents say: .json is libcam's, gl or basalt's by its keys; .yaml/.yml OpenCV's,
-// Kalibr's or camodocal's; without a known extension, the contents alone.
-CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format = std::nullopt);
+// contents say: .json is libcam's, gl, basalt's or NeRF's by its keys; .yaml/.yml
+// OpenCV's, Kalibr's or camodocal's; .txt and .bin COLMAP's; without a known extension,
+// the contents alone. A folder holding cameras.txt or cameras.bin is a COLMAP model.
+CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format = std::nullopt,
+                          const ReadOptions& options = {});
 
-// The camera `selector` names: a camera's name in the file, or its position counting
-// from 0; the first camera when empty. Throws InvalidArgument listing the cameras.
+// The camera `selector` names: a camera's name in the file, the first view of the
+// intrinsics it names (a COLMAP camera id, "id:2"), or its position counting from 0;
+// the first camera when empty. Throws InvalidArgument listing the cameras.
 const NamedCamera& select_camera(const CameraSet& set, std::string_view selector, const std::string& source);
 
 // Reads one camera of a file (read_camera_set, then select_camera).
 CameraFile read_camera_file(const std::filesystem::path& path, std::string_view camera = {},
-                            std::optional<CameraFormat> format = std::nullopt);
+                            std::optional<CameraFormat> format = std::nullopt, const ReadOptions& options = {});
 
-// Writes atomically (io/atomic_write.hpp).
+// Writes atomically (io/atomic_write.hpp). A format written into a folder
+// (camera_format_writes_folder) takes the folder, created when missing, or the path of
+// one of its files (".../cameras.txt"); every file's text is made before any is written.
 void write_camera_file(const std::filesystem::path& path, const Camera& camera, CameraFormat format,
                        const WriteOptions& options = {});
 

@@ -13,6 +13,7 @@
 // libcam::interop: the linker drops an object file of a static library that nothing
 // references, initialiser and all, and the formats would be missing without a word.
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,10 +24,22 @@ namespace libcam {
 
 // Parses a file's text; `source` names the file in error messages.
 using CameraReader = CameraFile (*)(std::string_view text, const std::string& source);
+// What a reader of a file that may hold several cameras is given besides the text.
+struct ReadContext {
+    std::string source;           // names the file in error messages
+    std::filesystem::path folder;  // the file's folder, for the files beside it; empty: none
+    ReadOptions options;
+};
+
 // Parses every camera of a file that may hold several (io/rig_formats.hpp).
-using CameraSetReader = std::vector<NamedCamera> (*)(std::string_view text, const std::string& source);
+using CameraSetReader = std::vector<NamedCamera> (*)(std::string_view text, const ReadContext& context);
 // The text of a file holding the camera (which format_camera has validated).
 using CameraWriter = std::string (*)(const Camera& camera, const WriteOptions& options);
+// The files of a format written into a folder (io/colmap_format.hpp).
+using CameraFilesWriter = std::vector<CameraFileText> (*)(const Camera& camera, const WriteOptions& options);
+
+// Throws FileError "<source>: byte N: ..." unless `text` is UTF-8 without NUL bytes.
+void check_text(std::string_view text, const std::string& source);
 
 // Fills a format's row; filling it again with the same functions changes nothing.
 // Safe to call while other threads read files.

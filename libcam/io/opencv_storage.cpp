@@ -185,10 +185,10 @@ DocumentNode parse_tree(std::string_view text, const std::string& source) {
 
 std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
     camera.validate();
-    if (lens_info(camera.lens.type).opencv != OpenCvFunction::ProjectPoints) {
-        // FISHEYE's four coefficients would read back as OPENCV4: refuse, never convert silently.
-        throw NotRepresentable("lens: OpenCV's camera file holds only OpenCV's radial-tangential models, not " +
-                               std::string(lens_info(camera.lens.type).name));
+    const OpenCvFunction function = lens_info(camera.lens.type).opencv;
+    if (function != OpenCvFunction::ProjectPoints && function != OpenCvFunction::Fisheye) {
+        throw NotRepresentable("lens: OpenCV's camera file holds OpenCV's radial-tangential models and cv::fisheye's, "
+                               "not " + std::string(lens_info(camera.lens.type).name));
     }
     const Intrinsics& k = camera.intrinsics;
     const Matrix K{3, 3, {k.fx, k.skew, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0}};
@@ -197,13 +197,19 @@ std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
     const Matrix r = column({rvec.x(), rvec.y(), rvec.z()});
     const Matrix t = column({camera.pose.t.x(), camera.pose.t.y(), camera.pose.t.z()});
     const std::string width = std::to_string(camera.size.width), height = std::to_string(camera.size.height);
+    // cv::fisheye's four coefficients would read as OPENCV4 without a word saying whose
+    // they are: the calibration sample's fisheye_model, and ROS's distortion_model.
+    const bool fisheye = function == OpenCvFunction::Fisheye;
     if (storage == OpenCvStorage::Yaml) {
-        return "%YAML:1.0\n---\nimage_width: " + width + "\nimage_height: " + height + "\n" + yaml_matrix("camera_matrix", K) +
+        return "%YAML:1.0\n---\nimage_width: " + width + "\nimage_height: " + height + "\n" +
+               (fisheye ? "fisheye_model: 1\ndistortion_model: equidistant\n" : "") + yaml_matrix("camera_matrix", K) +
                yaml_matrix("distortion_coefficients", dist) + yaml_matrix("rvec", r) + yaml_matrix("tvec", t);
     }
     return "<?xml version=\"1.0\"?>\n<opencv_storage>\n<image_width>" + width + "</image_width>\n<image_height>" + height +
-           "</image_height>\n" + xml_matrix("camera_matrix", K) + xml_matrix("distortion_coefficients", dist) +
-           xml_matrix("rvec", r) + xml_matrix("tvec", t) + "</opencv_storage>\n";
+           "</image_height>\n" +
+           (fisheye ? "<fisheye_model>1</fisheye_model>\n<distortion_model>equidistant</distortion_model>\n" : "") +
+           xml_matrix("camera_matrix", K) + xml_matrix("distortion_coefficients", dist) + xml_matrix("rvec", r) +
+           xml_matrix("tvec", t) + "</opencv_storage>\n";
 }
 
 Camera parse_opencv_storage(std::string_view text, const std::string& source) {

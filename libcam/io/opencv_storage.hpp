@@ -35,8 +35,9 @@ enum class OpenCvStorage { Yaml, Xml };
 
 // The text of such a file for `camera`, every number written so that it reads back to
 // the same double. A PINHOLE lens is written as five zero coefficients, as
-// cv::calibrateCamera does; OPENCV4..14 as their coefficients. Other models throw
-// NotRepresentable (FISHEYE's four coefficients would read back as OPENCV4).
+// cv::calibrateCamera does; OPENCV4..14 as their coefficients; FISHEYE as its four with
+// `fisheye_model: 1` and `distortion_model: equidistant` (without them they would read
+// back as OPENCV4). Other models throw NotRepresentable.
 std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage);
 
 // Reads such a file (XML when its first character is '<', YAML otherwise). rvec and

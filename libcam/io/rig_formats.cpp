@@ -1,13 +1,13 @@
 #include "libcam/io/rig_formats.hpp"
 
 #include <Eigen/Geometry>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "libcam/error.hpp"
 #include "libcam/io/document.hpp"
+#include "libcam/io/json_field.hpp"
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
@@ -29,19 +29,6 @@ ImageSize size_of(const Field& width, const Field& height) {
 }
 
 // ---- Kalibr ----------------------------------------------------------------------------
-
-// Rig files print rotations with as few as five decimals (OpenVINS's KAIST chain), so
-// that R^T R is I only to 2e-5. A matrix that close to a rotation is read as the nearest
-// rotation (by SVD, what the rounding moved it from); one farther off is refused.
-constexpr double kRoundedRotationTolerance = 1e-4;
-
-Mat3 nearest_rotation_if_rounded(const Mat3& R) {
-    const double off = (R.transpose() * R - Mat3::Identity()).cwiseAbs().maxCoeff();
-    // Within libcam's own tolerance the file's numbers are kept as they are.
-    if (off <= kRotationTolerance || !(off <= kRoundedRotationTolerance) || !(R.determinant() > 0)) return R;
-    const Eigen::JacobiSVD<Mat3> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    return svd.matrixU() * svd.matrixV().transpose();
-}
 
 // A 4x4 homogeneous transform [R t; 0 0 0 1] as a pose (X_to = R X_from + t).
 Pose read_transform(const Field& field) {
@@ -182,46 +169,6 @@ NamedCamera read_camodocal(const Field& file, const std::string& source) {
 // ---- basalt -------------------------------------------------------------------------------
 
 using nlohmann::json;
-
-// Reading basalt's JSON: every accessor names the file and the key path in its error.
-struct JsonField {
-    const json& value;
-    std::string name;
-    const std::string& source;
-
-    [[noreturn]] void fail(const std::string& what) const { throw FileError(source + ": \"" + name + "\": " + what); }
-    JsonField at(std::string_view key) const {
-        if (!value.is_object()) fail("expected an object");
-        const auto found = value.find(key);
-        if (found == value.end()) JsonField{value, name + "." + std::string(key), source}.fail("missing");
-        return {*found, name + "." + std::string(key), source};
-    }
-    JsonField at(std::size_t index) const {
-        if (!value.is_array() || index >= value.size()) fail("expected an array of at least " + std::to_string(index + 1));
-        return {value[index], name + "[" + std::to_string(index) + "]", source};
-    }
-    bool has(std::string_view key) const { return value.is_object() && value.contains(key); }
-    double number() const {
-        if (!value.is_number()) fail("expected a number, got " + value.dump());
-        const double x = value.get<double>();
-        if (!std::isfinite(x)) fail("must be finite, got " + value.dump());
-        return x;
-    }
-    int integer(long long min, long long max) const {
-        if (!value.is_number_integer()) fail("expected an integer, got " + value.dump());
-        const long long x = value.get<long long>();
-        if (x < min || x > max) fail("must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + value.dump());
-        return static_cast<int>(x);
-    }
-    std::string text() const {
-        if (!value.is_string()) fail("expected a string, got " + value.dump());
-        return value.get<std::string>();
-    }
-    std::size_t size() const {
-        if (!value.is_array()) fail("expected an array");
-        return value.size();
-    }
-};
 
 // basalt's T_imu_cam: camera to IMU, px py pz and the unit quaternion qx qy qz qw.
 Pose basalt_pose(const JsonField& transform) {

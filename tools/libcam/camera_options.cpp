@@ -12,6 +12,28 @@ void FileSelection::add_to(CLI::App& command) {
                        "counting from 0 (default: the first)");
     command.add_option("--from-format", format,
                        "The file's format, when its extension and contents do not say: " + camera_format_names());
+    command.add_option("--image-size", image_size,
+                       "The image size WIDTHxHEIGHT, for a file that does not record it (NeRF's synthetic scenes)");
+    command.add_option("--nerf-principal-point", nerf_principal_point,
+                       "transforms.json without cx, cy: centre (the image's centre, where Blender rendered NeRF's "
+                       "synthetic scenes) or half-size (W/2, H/2 with pixel centres at integers, where NeRF's own "
+                       "ray code puts it, half a pixel off)")
+        ->capture_default_str();
+}
+
+ReadOptions FileSelection::read_options() const {
+    ReadOptions options;
+    if (!image_size.empty()) options.size = parse_size("--image-size", image_size);
+    if (nerf_principal_point == "half-size") {
+        options.nerf_principal_point = NerfPrincipalPoint::HalfSize;
+    } else if (nerf_principal_point != "centre") {
+        throw UsageError("--nerf-principal-point: expected centre or half-size, got '" + nerf_principal_point + "'");
+    }
+    return options;
+}
+
+CameraSet FileSelection::read_set(const std::string& path) const {
+    return read_camera_set(path, chosen_format(), read_options());
 }
 
 std::optional<CameraFormat> FileSelection::chosen_format() const {
@@ -24,12 +46,13 @@ std::optional<CameraFormat> FileSelection::chosen_format() const {
 }
 
 CameraFile FileSelection::read(const std::string& path) const {
-    return read_camera_file(path, camera, chosen_format());
+    return read_camera_file(path, camera, chosen_format(), read_options());
 }
 
 void CameraOptions::add_to(CLI::App& command) {
     auto* from_option = command.add_option(
-        "--from", from, "Camera file (libcam JSON, OpenCV YAML/XML, .cameramodel, Kalibr, basalt, camodocal)");
+        "--from", from, "Camera file (libcam JSON, OpenCV YAML/XML, .cameramodel, .cahvor, Kalibr, basalt, camodocal, COLMAP, "
+        "transforms.json)");
     selection.add_to(command);
     std::vector<CLI::Option*> fov_flags = {
         command.add_option("--fov", fov, "Field of view in degrees, in (0, 180)"),

@@ -10,14 +10,19 @@
 
 namespace libcam::cli {
 
-// Which camera of a file, and in which format: --camera NAME|INDEX and --from-format.
+// Which camera of a file, and in which format: --camera NAME|INDEX and --from-format;
+// and what the file may leave out: --image-size and --nerf-principal-point.
 struct FileSelection {
     std::string camera;
     std::string format;
+    std::string image_size;
+    std::string nerf_principal_point = "centre";
 
     void add_to(CLI::App& command);
     std::optional<CameraFormat> chosen_format() const;  // throws UsageError for an unknown name
+    ReadOptions read_options() const;                  // throws UsageError for malformed flags
     CameraFile read(const std::string& path) const;
+    CameraSet read_set(const std::string& path) const;
 };
 
 struct CameraOptions {

@@ -17,12 +17,20 @@ Runner add_convert(CLI::App& app) {
         std::string near = "0.1";
         std::string far = "1000";
         std::string depth_range = "minus-one-to-one";
+        std::string image_name = "image.png";
     };
     auto flags = std::make_shared<Flags>();
     flags->camera.add_to(*command);
-    command->add_option("--to", flags->to, "Output format: json, opencv-yaml, opencv-xml, cameramodel, gl")
+    command->add_option("--to", flags->to,
+                        "Output format: json, opencv-yaml, opencv-xml, cameramodel, gl, nerf (transforms.json), or "
+                        "colmap (cameras.txt and images.txt, into the folder -o names)")
         ->capture_default_str();
-    command->add_option("-o,--output", flags->output, "Output file (written atomically); default stdout");
+    command->add_option("-o,--output", flags->output,
+                        "Output file (written atomically; for colmap, a folder); default stdout");
+    command->add_option("--image-name", flags->image_name,
+                        "colmap, nerf: the name of the image the pose belongs to (images.txt's NAME, "
+                        "transforms.json's file_path)")
+        ->capture_default_str();
     command->add_option("--near", flags->near, "gl: near plane distance")->capture_default_str();
     command->add_option("--far", flags->far, "gl: far plane distance")->capture_default_str();
     command->add_option("--depth-range", flags->depth_range,
@@ -45,8 +53,16 @@ Runner add_convert(CLI::App& app) {
         options.gl_far = parse_number("--far", flags->far);
         options.gl_depth_range =
             flags->depth_range == "zero-to-one" ? DepthRange::ZeroToOne : DepthRange::MinusOneToOne;
+        options.image_name = flags->image_name;
         const CameraFile file = flags->camera.camera();
         options.fov_camera = file.fov_camera;
+        if (camera_format_writes_folder(format)) {
+            if (flags->output.empty()) {
+                throw UsageError("--to " + flags->to + ": writes several files: give the folder to write them into (-o)");
+            }
+            write_camera_file(flags->output, file.camera, format, options);
+            return 0;
+        }
         emit(format_camera(file.camera, format, options), flags->output);
         return 0;
     };

@@ -36,7 +36,8 @@ std::string camera_text(std::size_t index, const NamedCamera& named) {
     const LensInfo& lens = lens_info(camera.lens.type);
     const Intrinsics& k = camera.intrinsics;
     std::ostringstream out;
-    out << "camera " << index << (named.name.empty() ? "" : ": " + named.name) << "\n";
+    out << "camera " << index << (named.name.empty() ? "" : ": " + named.name)
+        << (named.intrinsics_name.empty() ? "" : " (intrinsics " + named.intrinsics_name + ")") << "\n";
     out << "  model     " << lens.name << "\n";
     out << "  size      " << camera.size.width << "x" << camera.size.height << "\n";
     out << "  K         fx " << format_number(k.fx) << ", fy " << format_number(k.fy) << ", cx " << format_number(k.cx)
@@ -73,6 +74,7 @@ Json camera_json(std::size_t index, const NamedCamera& named) {
     const auto vec = [](const Vec3& v) { return Json::array({v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}); };
     return {{"index", index},
             {"name", named.name},
+            {"intrinsics_name", named.intrinsics_name},
             {"model", lens_info(camera.lens.type).name},
             {"image_size", {camera.size.width, camera.size.height}},
             {"K", {{k.fx, k.skew, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}}},
@@ -92,28 +94,34 @@ Runner add_info(CLI::App& app) {
     CLI::App* command = app.add_subcommand("info", "Every camera a file holds: model, size, K, field of view, pose");
     struct Flags {
         std::string file;
-        std::string format;
+        FileSelection selection;
         bool json = false;
     };
     auto flags = std::make_shared<Flags>();
-    command->add_option("FILE", flags->file, "Camera file (any format libcam reads)")->required();
-    command->add_option("--from-format", flags->format,
-                        "The file's format, when its extension and contents do not say: " + camera_format_names());
+    command->add_option("FILE", flags->file, "Camera file, or a COLMAP model's folder (any format libcam reads)")
+        ->required();
+    flags->selection.add_to(*command);
     command->add_flag("--json", flags->json, "Print {\"file\", \"format\", \"cameras\": [...]}");
     return [flags] {
-        FileSelection selection;
-        selection.format = flags->format;
-        const CameraSet set = read_camera_set(flags->file, selection.chosen_format());
+        CameraSet set = flags->selection.read_set(flags->file);
+        std::size_t first = 0;
+        if (!flags->selection.camera.empty()) {
+            // Only the camera asked for, keeping its index in the file.
+            const NamedCamera& chosen = select_camera(set, flags->selection.camera, flags->file);
+            const std::size_t index = static_cast<std::size_t>(&chosen - set.cameras.data());
+            set.cameras = {chosen};
+            first = index;
+        }
         if (flags->json) {
             Json out = {{"file", flags->file}, {"format", to_string(set.format)}, {"cameras", Json::array()}};
-            for (std::size_t i = 0; i < set.cameras.size(); ++i) out["cameras"].push_back(camera_json(i, set.cameras[i]));
+            for (std::size_t i = 0; i < set.cameras.size(); ++i) out["cameras"].push_back(camera_json(first + i, set.cameras[i]));
             emit(out.dump(2) + "\n", "");
             return 0;
         }
         std::ostringstream out;
         out << flags->file << ": " << to_string(set.format) << ", " << set.cameras.size()
             << (set.cameras.size() == 1 ? " camera" : " cameras") << "\n";
-        for (std::size_t i = 0; i < set.cameras.size(); ++i) out << "\n" << camera_text(i, set.cameras[i]);
+        for (std::size_t i = 0; i < set.cameras.size(); ++i) out << "\n" << camera_text(first + i, set.cameras[i]);
         emit(out.str(), "");
         return 0;
     };

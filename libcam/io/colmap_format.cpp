@@ -1,0 +1,497 @@
+#include "libcam/io/colmap_format.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <optional>
+
+#include "libcam/error.hpp"
+#include "libcam/io/atomic_write.hpp"
+#include "libcam/lens/lens_model.hpp"
+#include "libcam/text/number_format.hpp"
+
+namespace libcam {
+
+namespace {
+
+// COLMAP's camera models: its id (cameras.bin), its name, the libcam model holding it,
+// whether it has one focal length, and how many coefficients follow the focal lengths
+// and the principal point (in libcam's order, which is COLMAP's).
+struct ColmapModel {
+    int id;
+    std::string_view name;
+    LensType type;
+    bool single_focal;
+    int coefficients;
+};
+
+constexpr ColmapModel kColmapModels[] = {
+    {0, "SIMPLE_PINHOLE", LensType::Pinhole, true, 0},
+    {1, "PINHOLE", LensType::Pinhole, false, 0},
+    {2, "SIMPLE_RADIAL", LensType::Opencv4, true, 1},
+    {3, "RADIAL", LensType::Opencv4, true, 2},
+    {4, "OPENCV", LensType::Opencv4, false, 4},
+    {5, "OPENCV_FISHEYE", LensType::Fisheye, false, 4},
+    {6, "FULL_OPENCV", LensType::Opencv8, false, 8},
+    {7, "FOV", LensType::Fov, false, 1},
+    {8, "SIMPLE_RADIAL_FISHEYE", LensType::Fisheye, true, 1},
+    {9, "RADIAL_FISHEYE", LensType::Fisheye, true, 2},
+    {10, "THIN_PRISM_FISHEYE", LensType::ThinPrismFisheye, false, 8},
+    {11, "RAD_TAN_THIN_PRISM_FISHEYE", LensType::RadTanThinPrismFisheye, false, 12},
+};
+
+int parameter_count(const ColmapModel& model) { return (model.single_focal ? 3 : 4) + model.coefficients; }
+
+std::string model_names() {
+    std::string names;
+    for (const ColmapModel& model : kColmapModels) names += (names.empty() ? "" : ", ") + std::string(model.name);
+    return names;
+}
+
+// COLMAP's pixel (0, 0) is the image's top-left corner; libcam's is the centre of the
+// top-left pixel.
+constexpr double kPixelCentre = 0.5;
+
+// A camera from a model's parameters.
+Camera camera_from_parameters(const ColmapModel& model, ImageSize size, const std::vector<double>& parameters) {
+    Camera camera;
+    camera.size = size;
+    std::size_t at = 0;
+    const double fx = parameters[at++];
+    const double fy = model.single_focal ? fx : parameters[at++];
+    const double cx = parameters[at++];
+    const double cy = parameters[at++];
+    camera.intrinsics = {fx, fy, cx - kPixelCentre, cy - kPixelCentre, 0.0};
+    std::vector<double> coefficients(parameters.begin() + static_cast<long>(at), parameters.end());
+    coefficients.resize(static_cast<std::size_t>(lens_info(model.type).num_coefficients), 0.0);
+    camera.lens = {model.type, std::move(coefficients)};
+    return camera;
+}
+
+// A camera read, validated; an error names where it was read.
+Camera checked(Camera camera, const std::string& where) {
+    try {
+        camera.validate();
+    } catch (const InvalidArgument& error) {
+        throw FileError(where + ": " + error.what());
+    }
+    return camera;
+}
+
+// COLMAP's pose: the quaternion (w first) and translation of world-to-camera.
+Pose pose_from(const Eigen::Vector4d& q_wxyz, const Vec3& t, const std::string& where) {
+    const Eigen::Quaterniond q(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3));
+    if (!(std::abs(q.norm() - 1.0) <= 1e-6)) {
+        throw FileError(where + ": the quaternion's norm is " + format_number(q.norm()) + ", not 1");
+    }
+    Pose pose{q.normalized().toRotationMatrix(), t};
+    try {
+        pose.validate("pose");
+    } catch (const InvalidArgument& error) {
+        throw FileError(where + ": " + error.what());
+    }
+    return pose;
+}
+
+struct ColmapCamera {
+    std::uint64_t id;
+    Camera camera;
+};
+
+struct ColmapImage {
+    std::uint64_t id;
+    std::uint64_t camera_id;
+    std::string name;
+    Pose pose;
+    std::string where;
+};
+
+// ---- text --------------------------------------------------------------------------------
+
+// The words of one line of a COLMAP text file, with the line's number for messages.
+class TextLine {
+public:
+    TextLine(std::string_view line, int number, const std::string& source) : number_(number), source_(source) {
+        std::size_t at = 0;
+        while (true) {
+            at = line.find_first_not_of(" \t\r", at);
+            if (at == std::string_view::npos) break;
+            const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
+            words_.push_back(line.substr(at, end - at));
+            at = end;
+        }
+    }
+
+    std::size_t size() const { return words_.size(); }
+    std::string_view word(std::size_t i) const { return words_[i]; }
+    std::string where() const { return source_ + ": line " + std::to_string(number_); }
+
+    [[noreturn]] void fail(const std::string& field, const std::string& what) const {
+        throw FileError(where() + ": " + field + ": " + what);
+    }
+
+    double number(std::size_t i, const std::string& field) const {
+        const std::string_view text = words_[i];
+        double value = 0.0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+            fail(field, "expected a finite number, got '" + std::string(text) + "'");
+        }
+        return value;
+    }
+
+    std::uint64_t integer(std::size_t i, const std::string& field, std::uint64_t min, std::uint64_t max) const {
+        const std::string_view text = words_[i];
+        std::uint64_t value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc() || end != text.data() + text.size() || value < min || value > max) {
+            fail(field, "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" +
+                            std::string(text) + "'");
+        }
+        return value;
+    }
+
+private:
+    std::vector<std::string_view> words_;
+    int number_;
+    const std::string& source_;
+};
+
+constexpr std::uint64_t kMaxId = 0xFFFFFFFFu;  // COLMAP's ids are 32-bit
+
+// Calls `each` with every line that is not blank or a comment; `each` returns whether
+// the line after it belongs to it (images.txt's line of points) and is to be skipped.
+template <class Each>
+void for_each_line(std::string_view text, const std::string& source, Each&& each) {
+    std::size_t at = 0;
+    int number = 0;
+    bool skip_next = false;
+    while (at < text.size()) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::string_view line = text.substr(at, end - at);
+        at = end + 1;
+        ++number;
+        if (skip_next) {
+            skip_next = false;
+            continue;
+        }
+        const auto start = line.find_first_not_of(" \t\r");
+        if (start == std::string_view::npos || line[start] == '#') continue;
+        skip_next = each(TextLine(line, number, source));
+    }
+}
+
+const ColmapModel& model_named(const TextLine& line) {
+    const std::string_view name = line.word(1);
+    for (const ColmapModel& model : kColmapModels) {
+        if (model.name == name) return model;
+    }
+    line.fail("MODEL", "must be one of " + model_names() + ", got '" + std::string(name) + "'");
+}
+
+std::vector<ColmapCamera> read_cameras_text(std::string_view text, const std::string& source) {
+    std::vector<ColmapCamera> cameras;
+    for_each_line(text, source, [&](const TextLine& line) {
+        if (line.size() < 4) line.fail("CAMERA_ID MODEL WIDTH HEIGHT PARAMS", "expected at least 4 words");
+        const std::uint64_t id = line.integer(0, "CAMERA_ID", 0, kMaxId);
+        const ColmapModel& model = model_named(line);
+        const ImageSize size{static_cast<long>(line.integer(2, "WIDTH", 1, kMaxImageSide)),
+                             static_cast<long>(line.integer(3, "HEIGHT", 1, kMaxImageSide))};
+        const std::size_t count = static_cast<std::size_t>(parameter_count(model));
+        if (line.size() != 4 + count) {
+            line.fail("PARAMS", std::string(model.name) + " has " + std::to_string(count) + " parameters, got " +
+                                    std::to_string(line.size() - 4));
+        }
+        std::vector<double> parameters;
+        for (std::size_t i = 0; i < count; ++i) parameters.push_back(line.number(4 + i, "PARAMS[" + std::to_string(i) + "]"));
+        const std::string where = line.where() + ": camera " + std::to_string(id);
+        cameras.push_back({id, checked(camera_from_parameters(model, size, parameters), where)});
+        return false;
+    });
+    return cameras;
+}
+
+std::vector<ColmapImage> read_images_text(std::string_view text, const std::string& source) {
+    std::vector<ColmapImage> images;
+    for_each_line(text, source, [&](const TextLine& line) {
+        if (line.size() < 10) {
+            line.fail("IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME", "expected 10 words, got " + std::to_string(line.size()));
+        }
+        ColmapImage image;
+        image.id = line.integer(0, "IMAGE_ID", 0, kMaxId);
+        const char* const kNames[] = {"QW", "QX", "QY", "QZ", "TX", "TY", "TZ"};
+        double values[7];
+        for (std::size_t i = 0; i < 7; ++i) values[i] = line.number(1 + i, kNames[i]);
+        image.camera_id = line.integer(8, "CAMERA_ID", 0, kMaxId);
+        // The name is the rest of the line (COLMAP 3.8 stops at a space; later versions do not).
+        const std::string_view first = line.word(9);
+        const std::string_view last = line.word(line.size() - 1);
+        image.name = std::string(first.data(), static_cast<std::size_t>(last.data() + last.size() - first.data()));
+        image.where = line.where() + ": image " + std::to_string(image.id);
+        image.pose = pose_from({values[0], values[1], values[2], values[3]}, {values[4], values[5], values[6]}, image.where);
+        images.push_back(std::move(image));
+        return true;  // the next line holds its 2-D points
+    });
+    return images;
+}
+
+// ---- binary ------------------------------------------------------------------------------
+
+// Little-endian records of a .bin file, each read checked against the bytes left.
+class BinaryReader {
+public:
+    BinaryReader(std::string_view bytes, const std::string& source) : bytes_(bytes), source_(source) {}
+
+    template <class T>
+    T read(const std::string& what) {
+        T value;
+        need(sizeof(T), what);
+        std::memcpy(&value, bytes_.data() + at_, sizeof(T));
+        at_ += sizeof(T);
+        return value;
+    }
+
+    // A count of records of at least `record_bytes` each, no more than the bytes left hold.
+    std::uint64_t count(const std::string& what, std::size_t record_bytes) {
+        const auto n = read<std::uint64_t>(what);
+        if (n > remaining() / record_bytes) fail(what + " is " + std::to_string(n) + ", more than the file holds");
+        return n;
+    }
+
+    std::string text(const std::string& what) {
+        const std::size_t end = bytes_.find('\0', at_);
+        if (end == std::string_view::npos) fail(what + ": the file ends inside it");
+        std::string value(bytes_.substr(at_, end - at_));
+        at_ = end + 1;
+        return value;
+    }
+
+    void skip(std::uint64_t bytes, const std::string& what) {
+        need(bytes, what);
+        at_ += static_cast<std::size_t>(bytes);
+    }
+
+    std::size_t remaining() const { return bytes_.size() - at_; }
+    std::string where() const { return source_ + ": byte " + std::to_string(at_); }
+    [[noreturn]] void fail(const std::string& what) const { throw FileError(where() + ": " + what); }
+
+private:
+    void need(std::uint64_t bytes, const std::string& what) const {
+        if (bytes > remaining()) fail(what + ": the file ends inside it");
+    }
+
+    std::string_view bytes_;
+    const std::string& source_;
+    std::size_t at_ = 0;
+};
+
+static_assert(std::endian::native == std::endian::little, "COLMAP's .bin files are little-endian");
+
+std::vector<ColmapCamera> read_cameras_binary(std::string_view bytes, const std::string& source) {
+    BinaryReader in(bytes, source);
+    constexpr std::size_t kSmallestRecord = 4 + 4 + 8 + 8 + 3 * 8;
+    const std::uint64_t count = in.count("the number of cameras", kSmallestRecord);
+    std::vector<ColmapCamera> cameras;
+    for (std::uint64_t i = 0; i < count; ++i) {
+        const std::string what = "camera " + std::to_string(i);
+        const std::string where = in.where() + ": " + what;
+        const auto id = in.read<std::uint32_t>(what + " id");
+        const auto model_id = in.read<std::int32_t>(what + " model");
+        const auto found = std::find_if(std::begin(kColmapModels), std::end(kColmapModels),
+                                        [&](const ColmapModel& model) { return model.id == model_id; });
+        if (found == std::end(kColmapModels)) {
+            throw FileError(where + ": model id " + std::to_string(model_id) + " is not one of COLMAP's (0 to 11)");
+        }
+        const auto width = in.read<std::uint64_t>(what + " width");
+        const auto height = in.read<std::uint64_t>(what + " height");
+        for (const std::uint64_t side : {width, height}) {
+            if (side < 1 || side > static_cast<std::uint64_t>(kMaxImageSide)) {
+                throw FileError(where + ": image side " + std::to_string(side) + " is not in [1, " +
+                                std::to_string(kMaxImageSide) + "]");
+            }
+        }
+        std::vector<double> parameters;
+        for (int k = 0; k < parameter_count(*found); ++k) {
+            const auto value = in.read<double>(what + " parameter " + std::to_string(k));
+            if (!std::isfinite(value)) {
+                throw FileError(where + ": parameter " + std::to_string(k) + " is " + format_number(value));
+            }
+            parameters.push_back(value);
+        }
+        const ImageSize size{static_cast<long>(width), static_cast<long>(height)};
+        cameras.push_back({id, checked(camera_from_parameters(*found, size, parameters), where)});
+    }
+    if (in.remaining() != 0) in.fail("bytes after the last camera");
+    return cameras;
+}
+
+std::vector<ColmapImage> read_images_binary(std::string_view bytes, const std::string& source) {
+    BinaryReader in(bytes, source);
+    constexpr std::size_t kSmallestRecord = 4 + 7 * 8 + 4 + 1 + 8;
+    const std::uint64_t count = in.count("the number of images", kSmallestRecord);
+    std::vector<ColmapImage> images;
+    for (std::uint64_t i = 0; i < count; ++i) {
+        const std::string what = "image " + std::to_string(i);
+        ColmapImage image;
+        image.where = in.where() + ": " + what;
+        image.id = in.read<std::uint32_t>(what + " id");
+        double values[7];
+        for (double& value : values) {
+            value = in.read<double>(what + " pose");
+            if (!std::isfinite(value)) throw FileError(image.where + ": a pose number is " + format_number(value));
+        }
+        image.camera_id = in.read<std::uint32_t>(what + " camera id");
+        image.name = in.text(what + " name");
+        const std::uint64_t points = in.count(what + " number of points", 24);
+        in.skip(points * 24, what + " points");
+        image.pose = pose_from({values[0], values[1], values[2], values[3]}, {values[4], values[5], values[6]}, image.where);
+        images.push_back(std::move(image));
+    }
+    if (in.remaining() != 0) in.fail("bytes after the last image");
+    return images;
+}
+
+// ---- the set -----------------------------------------------------------------------------
+
+std::string id_name(std::uint64_t id) { return "id:" + std::to_string(id); }
+
+std::vector<NamedCamera> camera_set(const std::vector<ColmapCamera>& cameras, const std::vector<ColmapImage>& images,
+                                    const std::string& source) {
+    std::map<std::uint64_t, const ColmapCamera*> by_id;
+    for (const ColmapCamera& camera : cameras) {
+        if (!by_id.emplace(camera.id, &camera).second) {
+            throw FileError(source + ": camera id " + std::to_string(camera.id) + " appears more than once");
+        }
+    }
+    std::vector<NamedCamera> set;
+    std::map<std::uint64_t, bool> used;
+    std::map<std::uint64_t, bool> image_ids;
+    for (const ColmapImage& image : images) {
+        if (!image_ids.emplace(image.id, true).second) {
+            throw FileError(image.where + ": image id " + std::to_string(image.id) + " appears more than once");
+        }
+        const auto found = by_id.find(image.camera_id);
+        if (found == by_id.end()) {
+            throw FileError(image.where + ": CAMERA_ID " + std::to_string(image.camera_id) +
+                            " is not in the cameras file");
+        }
+        Camera camera = found->second->camera;
+        camera.pose = image.pose;
+        set.push_back({image.name, {std::move(camera), std::nullopt}, id_name(image.camera_id)});
+        used[image.camera_id] = true;
+    }
+    for (const ColmapCamera& camera : cameras) {
+        if (!used.contains(camera.id)) set.push_back({id_name(camera.id), {camera.camera, std::nullopt}});
+    }
+    if (set.empty()) throw FileError(source + ": no camera");
+    return set;
+}
+
+}  // namespace
+
+std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder) {
+    std::error_code error;
+    for (const char* name : {"cameras.bin", "cameras.txt"}) {
+        if (std::filesystem::is_regular_file(folder / name, error)) return folder / name;
+    }
+    return {};
+}
+
+std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadContext& context) {
+    const bool binary = text.find('\0') != std::string_view::npos;
+    if (!binary) check_text(text, context.source);
+    const std::vector<ColmapCamera> cameras =
+        binary ? read_cameras_binary(text, context.source) : read_cameras_text(text, context.source);
+    std::vector<ColmapImage> images;
+    if (!context.folder.empty()) {
+        const std::filesystem::path images_file = context.folder / (binary ? "images.bin" : "images.txt");
+        std::error_code error;
+        if (std::filesystem::is_regular_file(images_file, error)) {
+            const std::string bytes = read_text_file(images_file);
+            const std::string images_source = images_file.string();
+            if (binary) {
+                images = read_images_binary(bytes, images_source);
+            } else {
+                check_text(bytes, images_source);
+                images = read_images_text(bytes, images_source);
+            }
+        }
+    }
+    return camera_set(cameras, images, context.source);
+}
+
+namespace {
+
+// The COLMAP model holding a libcam camera's lens, or NotRepresentable.
+const ColmapModel& colmap_model_for(const Lens& lens) {
+    LensType type = lens.type;
+    const int count = static_cast<int>(lens.coefficients.size());
+    if (type == LensType::Opencv5) type = LensType::Opencv8;
+    if (type == LensType::Opencv12 || type == LensType::Opencv14) {
+        const bool extra_zero = std::all_of(lens.coefficients.begin() + std::min(count, 8), lens.coefficients.end(),
+                                            [](double c) { return c == 0.0; });
+        if (!extra_zero) {
+            throw NotRepresentable("COLMAP's richest OpenCV model (FULL_OPENCV) has 8 coefficients; this " +
+                                   std::string(lens_info(lens.type).name) + " lens has more that are not 0");
+        }
+        type = LensType::Opencv8;
+    }
+    for (const ColmapModel& model : kColmapModels) {
+        if (model.type == type && !model.single_focal) return model;
+    }
+    throw NotRepresentable("COLMAP has no model for a " + std::string(lens_info(lens.type).name) +
+                           " lens (its models: " + model_names() + ")");
+}
+
+std::string joined(const std::vector<double>& values) {
+    std::string out;
+    for (const double value : values) out += " " + format_number(value + 0.0);
+    return out;
+}
+
+}  // namespace
+
+std::vector<CameraFileText> write_colmap_model(const Camera& camera, const WriteOptions& options) {
+    if (camera.intrinsics.skew != 0.0) {
+        throw NotRepresentable("COLMAP's models have no skew; this camera's is " + format_number(camera.intrinsics.skew));
+    }
+    const ColmapModel& model = colmap_model_for(camera.lens);
+    // COLMAP 3.8 reads a name up to its first space.
+    if (options.image_name.empty() || options.image_name.find_first_of(" \t\r\n") != std::string::npos) {
+        throw InvalidArgument("image name: must be one word without spaces, got '" + options.image_name + "'");
+    }
+    std::vector<double> parameters = {camera.intrinsics.fx, camera.intrinsics.fy, camera.intrinsics.cx + kPixelCentre,
+                                      camera.intrinsics.cy + kPixelCentre};
+    std::vector<double> coefficients = camera.lens.coefficients;
+    coefficients.resize(static_cast<std::size_t>(model.coefficients), 0.0);
+    parameters.insert(parameters.end(), coefficients.begin(), coefficients.end());
+
+    std::string cameras = "# Camera list with one line of data per camera:\n"
+                          "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n"
+                          "# Number of cameras: 1\n";
+    cameras += "1 " + std::string(model.name) + " " + std::to_string(camera.size.width) + " " +
+               std::to_string(camera.size.height) + joined(parameters) + "\n";
+
+    // The rotation as a unit quaternion with w >= 0 (q and -q are the same rotation).
+    Eigen::Quaterniond q(camera.pose.R);
+    q.normalize();
+    if (q.w() < 0) q.coeffs() *= -1.0;
+    std::string images = "# Image list with two lines of data per image:\n"
+                         "#   IMAGE_ID, QW, QX, QY, QZ, TX, TY, TZ, CAMERA_ID, NAME\n"
+                         "#   POINTS2D[] as (X, Y, POINT3D_ID)\n"
+                         "# Number of images: 1, mean observations per image: 0\n";
+    images += "1" + joined({q.w(), q.x(), q.y(), q.z(), camera.pose.t.x(), camera.pose.t.y(), camera.pose.t.z()}) +
+              " 1 " + options.image_name + "\n\n";
+    // COLMAP's programs load a model only with its (here empty) list of 3-D points.
+    const std::string points = "# 3D point list with one line of data per point:\n"
+                               "#   POINT3D_ID, X, Y, Z, R, G, B, ERROR, TRACK[] as (IMAGE_ID, POINT2D_IDX)\n"
+                               "# Number of points: 0, mean track length: 0\n";
+    return {{"cameras.txt", cameras}, {"images.txt", images}, {"points3D.txt", points}};
+}
+
+}  // namespace libcam

@@ -1,0 +1,49 @@
+#pragma once
+// COLMAP's sparse model: cameras.txt or cameras.bin (the intrinsics, one line or record
+// per camera id), with images.txt or images.bin beside it (each image's pose and the id
+// of the camera that took it).
+//
+//   cameras.txt   CAMERA_ID MODEL WIDTH HEIGHT PARAMS...      (# comments)
+//   images.txt    IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME, then a line of 2-D points
+//
+// Conventions: COLMAP's pixel (0, 0) is the top-left corner of the image, so its cx, cy
+// are libcam's plus 0.5 (libcam's pixel centres are at integers). The pose is
+// world-to-camera (X_cam = R(q) X + t), libcam's own direction, with the quaternion
+// written w first. Models: SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV,
+// FULL_OPENCV, OPENCV_FISHEYE, SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, FOV,
+// THIN_PRISM_FISHEYE and RAD_TAN_THIN_PRISM_FISHEYE, each read as the libcam model that
+// holds it exactly (SIMPLE_RADIAL is OPENCV4 with k2 = p1 = p2 = 0, RADIAL_FISHEYE is
+// FISHEYE with k3 = k4 = 0, ...).
+//
+// Reading gives one camera per image, named by the image's name, with its camera's
+// intrinsics (intrinsics_name "id:N") and its pose; cameras no image uses, and every
+// camera when there is no images file, are named "id:N" and have no pose.
+//
+// Writing gives cameras.txt and images.txt: camera 1 and image 1 (named by
+// WriteOptions::image_name) holding the camera and its pose, and an empty points3D.txt
+// (COLMAP's programs load a model only with one). PINHOLE, OPENCV4, OPENCV5
+// and OPENCV8 (as FULL_OPENCV with the missing coefficients 0), OPENCV12 and OPENCV14
+// when their extra coefficients are 0, FISHEYE, FOV, THIN_PRISM_FISHEYE and
+// RAD_TAN_THIN_PRISM_FISHEYE (COLMAP 3.10 and later); skew and any other model are
+// refused.
+
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+#include "libcam/io/format_table.hpp"
+
+namespace libcam {
+
+// Every camera of a cameras.txt or cameras.bin (told apart by a NUL byte, which text
+// never has), with the images file of the same kind beside it when context.folder has one.
+std::vector<NamedCamera> read_colmap_model(std::string_view cameras, const ReadContext& context);
+
+// cameras.txt, images.txt and points3D.txt holding the camera. Throws NotRepresentable for what
+// COLMAP cannot hold.
+std::vector<CameraFileText> write_colmap_model(const Camera& camera, const WriteOptions& options);
+
+// The cameras file of a COLMAP model folder (cameras.bin, else cameras.txt), or empty.
+std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder);
+
+}  // namespace libcam

@@ -1,0 +1,329 @@
+#include "libcam/io/nerf_transforms.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <optional>
+
+#include "libcam/error.hpp"
+#include "libcam/io/json_field.hpp"
+#include "libcam/lens/lens_model.hpp"
+#include "libcam/text/number_format.hpp"
+
+namespace libcam {
+
+namespace {
+
+using nlohmann::json;
+
+// transforms.json's pixel (0, 0) is the image's top-left corner (COLMAP's convention,
+// which instant-ngp's and nerfstudio's ray code follow: pixel i's centre is at i + 0.5).
+constexpr double kPixelCentre = 0.5;
+
+// OpenGL's camera axes (x right, y up, z backwards) to OpenCV's (x right, y down, z forwards).
+const Mat3 kGlToCv = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+
+// A key of the frame, else of the file's top level (per-frame intrinsics override).
+struct Keys {
+    JsonField frame;
+    JsonField top;
+
+    std::optional<JsonField> find(std::string_view key) const {
+        if (frame.has(key)) return frame.at(key);
+        if (top.has(key)) return top.at(key);
+        return std::nullopt;
+    }
+    double number_or(std::string_view key, double fallback) const {
+        const std::optional<JsonField> field = find(key);
+        return field ? field->number() : fallback;
+    }
+};
+
+// ---- the image size, when the file does not record it ------------------------------------
+
+// The size in a PNG's or a JPEG's header; nullopt for other files or a damaged header.
+std::optional<ImageSize> image_header_size(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::string head(64 * 1024, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    const auto byte = [&](std::size_t i) { return static_cast<unsigned>(static_cast<unsigned char>(head[i])); };
+    const auto big16 = [&](std::size_t i) { return (byte(i) << 8) | byte(i + 1); };
+    const auto big32 = [&](std::size_t i) { return (static_cast<unsigned long>(big16(i)) << 16) | big16(i + 2); };
+    const auto in_range = [](unsigned long w, unsigned long h) -> std::optional<ImageSize> {
+        if (w < 1 || h < 1 || w > static_cast<unsigned long>(kMaxImageSide) ||
+            h > static_cast<unsigned long>(kMaxImageSide)) {
+            return std::nullopt;
+        }
+        return ImageSize{static_cast<long>(w), static_cast<long>(h)};
+    };
+    // PNG: the signature, then the IHDR chunk's width and height.
+    if (head.size() >= 24 && head.starts_with("\x89PNG\r\n\x1a\n") && head.substr(12, 4) == "IHDR") {
+        return in_range(big32(16), big32(20));
+    }
+    // JPEG: the first start-of-frame segment (SOF0..SOF15 but DHT, JPG and DAC) holds height, width.
+    if (head.size() < 4 || byte(0) != 0xFF || byte(1) != 0xD8) return std::nullopt;
+    std::size_t at = 2;
+    while (at + 9 <= head.size()) {
+        if (byte(at) != 0xFF) return std::nullopt;
+        const unsigned marker = byte(at + 1);
+        if (marker == 0xFF) {
+            ++at;
+            continue;
+        }
+        const bool start_of_frame = marker >= 0xC0 && marker <= 0xCF && marker != 0xC4 && marker != 0xC8 && marker != 0xCC;
+        if (start_of_frame) return in_range(big16(at + 7), big16(at + 5));
+        at += 2 + big16(at + 2);
+    }
+    return std::nullopt;
+}
+
+// The image a frame names, relative to the file's folder; NeRF's synthetic scenes leave
+// out the ".png".
+std::optional<ImageSize> frame_image_size(const JsonField& frame, const std::filesystem::path& folder) {
+    if (folder.empty() || !frame.has("file_path") || !frame.at("file_path").value.is_string()) return std::nullopt;
+    const std::filesystem::path image = folder / frame.at("file_path").text();
+    std::error_code error;
+    for (const std::filesystem::path& candidate : {image, std::filesystem::path(image.string() + ".png")}) {
+        if (std::filesystem::is_regular_file(candidate, error)) return image_header_size(candidate);
+    }
+    return std::nullopt;
+}
+
+// ---- intrinsics -----------------------------------------------------------------------------
+
+ImageSize read_size(const Keys& keys, const JsonField& first_frame, const ReadContext& context) {
+    const std::optional<JsonField> w = keys.find("w");
+    const std::optional<JsonField> h = keys.find("h");
+    if (w.has_value() != h.has_value()) (w ? *w : *h).fail("given without \"" + std::string(w ? "h" : "w") + "\"");
+    if (w) {
+        const ImageSize size{w->whole_number(1, kMaxImageSide), h->whole_number(1, kMaxImageSide)};
+        if (context.options.size && !(*context.options.size == size)) {
+            w->fail("the file says " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                    ", the image size given is " + std::to_string(context.options.size->width) + "x" +
+                    std::to_string(context.options.size->height));
+        }
+        return size;
+    }
+    if (context.options.size) return *context.options.size;
+    if (const std::optional<ImageSize> size = frame_image_size(first_frame, context.folder)) return *size;
+    throw FileError(context.source + ": \"w\", \"h\": missing: the file does not record the image size, and the first "
+                    "frame's image is not there to read it from; give the size (--image-size WxH)");
+}
+
+// A focal length: fl_x, else from the edge-to-edge angle.
+std::optional<double> focal_length(const Keys& keys, std::string_view focal_key, std::string_view angle_key, long side) {
+    if (const std::optional<JsonField> focal = keys.find(focal_key)) return focal->number();
+    if (const std::optional<JsonField> angle = keys.find(angle_key)) {
+        const double radians = angle->number();
+        if (!(radians > 0 && radians < std::numbers::pi)) angle->fail("must be in (0, pi), got " + angle->value.dump());
+        return static_cast<double>(side) / (2.0 * std::tan(radians / 2.0));
+    }
+    return std::nullopt;
+}
+
+Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& context) {
+    const std::string model = keys.find("camera_model") ? keys.find("camera_model")->text() : "OPENCV";
+    for (const char* unsupported : {"is_fisheye", "ftheta_p0", "latlong", "equirectangular"}) {
+        if (const std::optional<JsonField> key = keys.find(unsupported); key && !(key->value == false)) {
+            key->fail("instant-ngp's special lenses are not read by libcam");
+        }
+    }
+    const std::optional<double> fx = focal_length(keys, "fl_x", "camera_angle_x", size.width);
+    const std::optional<double> fy_given = focal_length(keys, "fl_y", "camera_angle_y", size.height);
+    if (!fx && !fy_given) keys.top.at("fl_x").fail("missing (and no camera_angle_x)");
+    const double fy = fy_given.value_or(*fx);
+    // Without cx, cy: the image centre, or NeRF's W / 2 on request.
+    const double unstated_shift =
+        context.options.nerf_principal_point == NerfPrincipalPoint::HalfSize ? 0.0 : kPixelCentre;
+    const auto centre = [&](std::string_view key, long side) {
+        const std::optional<JsonField> given = keys.find(key);
+        return given ? given->number() - kPixelCentre : static_cast<double>(side) / 2.0 - unstated_shift;
+    };
+    Camera camera;
+    camera.size = size;
+    camera.intrinsics = {fx.value_or(fy), fy, centre("cx", size.width), centre("cy", size.height), 0.0};
+    const auto coefficient = [&](std::string_view key) { return keys.number_or(key, 0.0); };
+    if (model == "OPENCV" || model == "PINHOLE" || model == "SIMPLE_PINHOLE") {
+        if (const std::optional<JsonField> k4 = keys.find("k4"); k4 && k4->number() != 0.0) {
+            k4->fail("nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
+        }
+        const std::vector<double> opencv5 = {coefficient("k1"), coefficient("k2"), coefficient("p1"), coefficient("p2"),
+                                             coefficient("k3")};
+        if (std::all_of(opencv5.begin(), opencv5.end(), [](double c) { return c == 0.0; })) {
+            camera.lens = {LensType::Pinhole, {}};
+        } else if (opencv5[4] == 0.0) {
+            camera.lens = {LensType::Opencv4, {opencv5.begin(), opencv5.begin() + 4}};
+        } else {
+            camera.lens = {LensType::Opencv5, opencv5};
+        }
+    } else if (model == "OPENCV_FISHEYE") {
+        for (const char* tangential : {"p1", "p2"}) {
+            if (const std::optional<JsonField> p = keys.find(tangential); p && p->number() != 0.0) {
+                p->fail("OPENCV_FISHEYE has no tangential coefficients");
+            }
+        }
+        camera.lens = {LensType::Fisheye, {coefficient("k1"), coefficient("k2"), coefficient("k3"), coefficient("k4")}};
+    } else if (model == "EQUIRECTANGULAR") {
+        // nerfstudio's longitude is pi (x - cx) / fl_x and its latitude pi (y - cy) / fl_y.
+        camera.intrinsics.fx /= std::numbers::pi;
+        camera.intrinsics.fy /= std::numbers::pi;
+        camera.lens = {LensType::Lonlat, {}};
+    } else {
+        keys.find("camera_model")->fail("must be OPENCV, PINHOLE, SIMPLE_PINHOLE, OPENCV_FISHEYE or EQUIRECTANGULAR, got '" +
+                                        model + "'");
+    }
+    return camera;
+}
+
+// A frame's camera-to-world matrix in OpenGL's axes, as libcam's world-to-camera pose.
+Pose read_pose(const JsonField& matrix) {
+    if (matrix.size() != 4 && matrix.size() != 3) matrix.fail("expected 4 rows of 4 numbers");
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    for (std::size_t r = 0; r < matrix.size(); ++r) {
+        const JsonField row = matrix.at(r);
+        if (row.size() != 4) row.fail("expected 4 numbers");
+        for (std::size_t c = 0; c < 4; ++c) m(static_cast<long>(r), static_cast<long>(c)) = row.at(c).number();
+    }
+    if ((m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) matrix.fail("the last row must be 0 0 0 1");
+    const Mat3 camera_to_world = nearest_rotation_if_rounded(m.topLeftCorner<3, 3>()) * kGlToCv;
+    const Pose pose = Pose::from_centre(camera_to_world.transpose(), m.topRightCorner<3, 1>());
+    try {
+        pose.validate("transform_matrix");
+    } catch (const InvalidArgument& error) {
+        matrix.fail(std::string(error.what()) + " (a scaled or sheared matrix is not a camera pose)");
+    }
+    return pose;
+}
+
+}  // namespace
+
+bool is_nerf_transforms(std::string_view text) {
+    const json root = json::parse(text.begin(), text.end(), nullptr, false);
+    if (!root.is_object() || root.contains("K")) return false;
+    return root.contains("frames") || root.contains("camera_angle_x") || root.contains("fl_x");
+}
+
+std::vector<NamedCamera> read_nerf_transforms(std::string_view text, const ReadContext& context) {
+    json root;
+    try {
+        root = json::parse(text.begin(), text.end());
+    } catch (const json::exception& error) {
+        throw FileError(context.source + ": not valid JSON: " + error.what());
+    }
+    const JsonField top{root, "", context.source};
+    if (!root.is_object()) top.fail("expected an object");
+    const json no_frames = json::array();
+    const JsonField frames = top.has("frames") ? top.at("frames") : JsonField{no_frames, "frames", context.source};
+    const std::size_t count = frames.size();
+    const json empty = json::object();
+    const JsonField first_frame = count > 0 ? frames.at(0) : JsonField{empty, "frames[0]", context.source};
+    std::vector<NamedCamera> cameras;
+    const auto read_camera = [&](const JsonField& frame) {
+        if (!frame.value.is_object()) frame.fail("expected an object");
+        const Keys keys{frame, top};
+        Camera camera = read_intrinsics(keys, read_size(keys, first_frame, context), context);
+        std::string name;
+        if (frame.has("transform_matrix")) camera.pose = read_pose(frame.at("transform_matrix"));
+        if (frame.has("file_path")) name = frame.at("file_path").text();
+        try {
+            camera.validate();
+        } catch (const InvalidArgument& error) {
+            frame.fail(error.what());
+        }
+        cameras.push_back({std::move(name), {std::move(camera), std::nullopt}});
+    };
+    if (count == 0) read_camera(JsonField{empty, "frames[0]", context.source});
+    for (std::size_t i = 0; i < count; ++i) read_camera(frames.at(i));
+    return cameras;
+}
+
+namespace {
+
+// The coefficients of a lens beyond the first `kept`, which must all be 0.
+void require_zero_after(const Lens& lens, std::size_t kept, std::string_view holds) {
+    for (std::size_t i = kept; i < lens.coefficients.size(); ++i) {
+        if (lens.coefficients[i] != 0.0) {
+            throw NotRepresentable("transforms.json holds " + std::string(holds) + "; this " +
+                                   std::string(lens_info(lens.type).name) + " lens's " +
+                                   std::string(lens_info(lens.type).coefficients.names[i]) + " is " +
+                                   format_number(lens.coefficients[i]));
+        }
+    }
+}
+
+}  // namespace
+
+std::string write_nerf_transforms(const Camera& camera, const WriteOptions& options) {
+    if (camera.intrinsics.skew != 0.0) {
+        throw NotRepresentable("transforms.json has no skew; this camera's is " + format_number(camera.intrinsics.skew));
+    }
+    nlohmann::ordered_json out;
+    const Lens& lens = camera.lens;
+    double fl_x = camera.intrinsics.fx;
+    double fl_y = camera.intrinsics.fy;
+    std::string model = "OPENCV";
+    std::vector<std::pair<std::string, double>> coefficients;
+    switch (lens.type) {
+        case LensType::Pinhole:
+            break;
+        case LensType::Opencv4:
+        case LensType::Opencv5:
+        case LensType::Opencv8:
+        case LensType::Opencv12:
+        case LensType::Opencv14: {
+            require_zero_after(lens, 5, "OpenCV's k1 k2 p1 p2 k3 only");
+            const char* names[] = {"k1", "k2", "p1", "p2", "k3"};
+            for (std::size_t i = 0; i < std::min<std::size_t>(5, lens.coefficients.size()); ++i) {
+                coefficients.emplace_back(names[i], lens.coefficients[i]);
+            }
+            break;
+        }
+        case LensType::Fisheye:
+            model = "OPENCV_FISHEYE";
+            for (std::size_t i = 0; i < 4; ++i) coefficients.emplace_back("k" + std::to_string(i + 1), lens.coefficients[i]);
+            break;
+        case LensType::Lonlat:
+            model = "EQUIRECTANGULAR";
+            fl_x *= std::numbers::pi;
+            fl_y *= std::numbers::pi;
+            break;
+        default:
+            throw NotRepresentable("transforms.json has no model for a " + std::string(lens_info(lens.type).name) +
+                                   " lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE and LONLAT)");
+    }
+    out["camera_model"] = model;
+    out["w"] = camera.size.width;
+    out["h"] = camera.size.height;
+    out["fl_x"] = fl_x;
+    out["fl_y"] = fl_y;
+    out["cx"] = camera.intrinsics.cx + kPixelCentre;
+    out["cy"] = camera.intrinsics.cy + kPixelCentre;
+    if (lens.type != LensType::Lonlat) {
+        // What NeRF's own loader reads (it assumes the principal point at the centre).
+        out["camera_angle_x"] = 2.0 * std::atan(static_cast<double>(camera.size.width) / (2.0 * camera.intrinsics.fx));
+        out["camera_angle_y"] = 2.0 * std::atan(static_cast<double>(camera.size.height) / (2.0 * camera.intrinsics.fy));
+    }
+    for (const auto& [name, value] : coefficients) out[name] = value + 0.0;
+    // The camera-to-world matrix with OpenGL's camera axes.
+    const Mat3 camera_to_world = camera.pose.R.transpose() * kGlToCv;
+    const Vec3 centre = camera.pose.centre();
+    nlohmann::ordered_json matrix = nlohmann::ordered_json::array();
+    for (int r = 0; r < 4; ++r) {
+        nlohmann::ordered_json row = nlohmann::ordered_json::array();
+        for (int c = 0; c < 4; ++c) {
+            const double value = r == 3 ? (c == 3 ? 1.0 : 0.0) : c == 3 ? centre(r) : camera_to_world(r, c);
+            row.push_back(value + 0.0);
+        }
+        matrix.push_back(row);
+    }
+    nlohmann::ordered_json frame;
+    frame["file_path"] = options.image_name;
+    frame["transform_matrix"] = matrix;
+    out["frames"] = nlohmann::ordered_json::array({frame});
+    return out.dump(2) + "\n";
+}
+
+}  // namespace libcam

@@ -1,0 +1,178 @@
+// Round trips between every pair of formats that can hold a camera, and COLMAP's own
+// program reading what libcam writes (colmap model_converter, text to binary and back).
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli_runner.hpp"
+#include "libcam/error.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "libcam/lens/lens_model.hpp"
+#include "temp_dir.hpp"
+
+using namespace libcam;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr CameraFormat kWritten[] = {CameraFormat::Json, CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml,
+                                     CameraFormat::Cameramodel, CameraFormat::Gl, CameraFormat::Colmap,
+                                     CameraFormat::Nerf};
+
+struct Case {
+    const char* what;
+    Camera camera;
+    std::vector<CameraFormat> holders;  // the formats that can hold it (the others refuse it)
+};
+
+Camera camera_with(const Lens& lens, double skew = 0.0) {
+    Camera camera;
+    camera.size = {1280, 720};
+    camera.intrinsics = {1001.123456789012, 987.6543210987654, 700.25, 300.125, skew};
+    camera.lens = lens;
+    camera.pose = Pose::from_rvec(Vec3(0.3, -2.1, 0.7), Vec3(-12.5, 0.001, 1e4));
+    return camera;
+}
+
+std::vector<Case> cases() {
+    using F = CameraFormat;
+    return {
+        {"pinhole", camera_with({LensType::Pinhole, {}}),
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Gl, F::Colmap, F::Nerf}},
+        {"skewed pinhole", camera_with({LensType::Pinhole, {}}, 3.5), {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Gl}},
+        {"OPENCV4", camera_with({LensType::Opencv4, {-0.2, 0.05, 1e-3, -2e-3}}),
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf}},
+        {"OPENCV5", camera_with({LensType::Opencv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}}),
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf}},
+        {"OPENCV8", camera_with({LensType::Opencv8, {0.4, 0.05, 1e-3, -2e-3, 0.01, 0.7, 0.1, 0.02}}),
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap}},
+        {"FISHEYE", camera_with({LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}}),
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf}},
+        {"LONLAT", camera_with({LensType::Lonlat, {}}), {F::Json, F::Cameramodel, F::Nerf}},
+        {"MEI", camera_with({LensType::Mei, {1.1, -0.1, 0.01, 1e-3, -1e-3}}), {F::Json}},
+    };
+}
+
+// Where a format's file (or folder) goes.
+fs::path place(const fs::path& dir, const std::string& stem, CameraFormat format) {
+    switch (format) {
+        case CameraFormat::Json: return dir / (stem + ".json");
+        case CameraFormat::OpenCvYaml: return dir / (stem + ".yaml");
+        case CameraFormat::OpenCvXml: return dir / (stem + ".xml");
+        case CameraFormat::Cameramodel: return dir / (stem + ".cameramodel");
+        case CameraFormat::Gl: return dir / (stem + ".gl.json");
+        case CameraFormat::Colmap: return dir / (stem + "-colmap");
+        case CameraFormat::Nerf: return dir / (stem + "-transforms.json");
+        default: return dir / stem;
+    }
+}
+
+bool holds(const Case& c, CameraFormat format) {
+    return std::find(c.holders.begin(), c.holders.end(), format) != c.holders.end();
+}
+
+// The same camera: K and the pose to `tolerance` (COLMAP's and NeRF's pixel corner adds
+// and takes 0.5; COLMAP's quaternion; gl's matrices), the same model or one that nests it
+// (COLMAP's FULL_OPENCV holds OPENCV5 with k4 = k5 = k6 = 0) with the same coefficients.
+void check_same(const Camera& got, const Camera& expected, double tolerance) {
+    CHECK(got.size == expected.size);
+    CHECK((got.intrinsics.K() - expected.intrinsics.K()).cwiseAbs().maxCoeff() <=
+          tolerance * expected.intrinsics.K().cwiseAbs().maxCoeff());
+    CHECK((got.pose.R - expected.pose.R).cwiseAbs().maxCoeff() <= tolerance);
+    CHECK((got.pose.t - expected.pose.t).cwiseAbs().maxCoeff() <= tolerance * expected.pose.t.cwiseAbs().maxCoeff());
+    const LensInfo& a = lens_info(got.lens.type);
+    const LensInfo& b = lens_info(expected.lens.type);
+    CHECK(a.family == b.family);
+    std::vector<double> padded = expected.lens.coefficients;
+    padded.resize(got.lens.coefficients.size(), 0.0);
+    CHECK(got.lens.coefficients == padded);
+}
+
+}  // namespace
+
+TEST_CASE("Round trips between every pair of formats that can hold a camera", "[files]") {
+    test::TempDir dir;
+    int trips = 0;
+    for (const Case& c : cases()) {
+        for (const CameraFormat first : kWritten) {
+            CAPTURE(c.what, to_string(first));
+            const fs::path first_path = place(dir.path(), std::string(c.what) + "-a", first);
+            if (!holds(c, first)) {
+                // Refused, naming what does not fit, and nothing written.
+                CHECK_THROWS_AS(write_camera_file(first_path, c.camera, first), NotRepresentable);
+                CHECK_FALSE(fs::exists(first_path));
+                continue;
+            }
+            write_camera_file(first_path, c.camera, first);
+            const Camera once = read_camera_file(first_path).camera;
+            const double first_tolerance = first == CameraFormat::Gl ? 1e-9 : 1e-12;
+            check_same(once, c.camera, first_tolerance);
+            for (const CameraFormat second : kWritten) {
+                if (!holds(c, second)) continue;
+                CAPTURE(to_string(second));
+                const fs::path second_path = place(dir.path(), std::string(c.what) + "-b", second);
+                write_camera_file(second_path, once, second);
+                const Camera twice = read_camera_file(second_path).camera;
+                check_same(twice, c.camera, first == CameraFormat::Gl || second == CameraFormat::Gl ? 1e-9 : 1e-12);
+                ++trips;
+            }
+        }
+    }
+    CHECK(trips == 7 * 7 + 4 * 4 + 6 * 6 * 2 + 5 * 5 + 5 * 5 + 3 * 3 + 1);
+}
+
+TEST_CASE("COLMAP's own program reads libcam's model, and libcam reads COLMAP's binary and text back the same",
+          "[files][colmap]") {
+    const fs::path colmap = "/usr/bin/colmap";
+    if (!fs::exists(colmap)) {
+        WARN("skipped: COLMAP's program is not installed (Debian's colmap package)");
+        return;
+    }
+    const std::vector<Lens> lenses = {
+        {LensType::Pinhole, {}},
+        {LensType::Opencv4, {-0.2, 0.05, 1e-3, -2e-3}},
+        {LensType::Opencv8, {0.4, 0.05, 1e-3, -2e-3, 0.01, 0.7, 0.1, 0.02}},
+        {LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}},
+        {LensType::Fov, {0.9}},
+        {LensType::ThinPrismFisheye, {0.01, -0.002, 1e-4, -2e-4, 3e-4, -4e-5, 1e-4, 2e-4}},
+    };
+    for (const Lens& lens : lenses) {
+        CAPTURE(lens_info(lens.type).name);
+        test::TempDir dir;
+        Camera camera = camera_with(lens);
+        WriteOptions options;
+        options.image_name = "frame_0001.jpg";
+        write_camera_file(dir.path() / "text", camera, CameraFormat::Colmap, options);
+        fs::create_directories(dir.path() / "binary");
+        fs::create_directories(dir.path() / "again");
+        const test::CliResult to_binary = test::run_program(
+            colmap.string(), {"model_converter", "--input_path", (dir.path() / "text").string(), "--output_path",
+                              (dir.path() / "binary").string(), "--output_type", "BIN"});
+        REQUIRE(to_binary.exit_code == 0);
+        const test::CliResult to_text = test::run_program(
+            colmap.string(), {"model_converter", "--input_path", (dir.path() / "binary").string(), "--output_path",
+                              (dir.path() / "again").string(), "--output_type", "TXT"});
+        REQUIRE(to_text.exit_code == 0);
+        const CameraSet text = read_camera_set(dir.path() / "text");
+        const CameraSet binary = read_camera_set(dir.path() / "binary");
+        const CameraSet again = read_camera_set(dir.path() / "again");
+        REQUIRE(binary.cameras.size() == 1);
+        REQUIRE(again.cameras.size() == 1);
+        CHECK(binary.cameras[0].name == "frame_0001.jpg");
+        CHECK(binary.cameras[0].intrinsics_name == "id:1");
+        // COLMAP parses the text to the same doubles and writes them back with 17 digits.
+        for (const CameraSet* set : {&binary, &again}) {
+            const Camera& got = set->cameras[0].file.camera;
+            const Camera& expected = text.cameras[0].file.camera;
+            CHECK(got.lens == expected.lens);
+            CHECK(got.intrinsics.K() == expected.intrinsics.K());
+            CHECK(got.size == expected.size);
+            CHECK((got.pose.R - expected.pose.R).cwiseAbs().maxCoeff() <= 1e-15);
+            CHECK(got.pose.t == expected.pose.t);
+        }
+        check_same(text.cameras[0].file.camera, camera, 1e-12);
+    }
+}

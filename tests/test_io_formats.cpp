@@ -1,0 +1,437 @@
+// COLMAP models, NeRF's transforms.json and JPL's .cahvor with libcam::io alone: every
+// expected number is worked by hand from the text of the fixture (COLMAP's and NeRF's
+// pixel (0, 0) is the image's corner, so libcam's cx is theirs minus 0.5; a quaternion
+// of a quarter turn about z; OpenGL's camera axes flipped to OpenCV's).
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "libcam/error.hpp"
+#include "libcam/io/atomic_write.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "error_message.hpp"
+#include "temp_dir.hpp"
+
+using namespace libcam;
+using libcam::test::file_error_of;
+namespace fs = std::filesystem;
+
+namespace {
+
+void check_intrinsics(const Camera& camera, double fx, double fy, double cx, double cy) {
+    CHECK(camera.intrinsics.fx == fx);
+    CHECK(camera.intrinsics.fy == fy);
+    CHECK(camera.intrinsics.cx == cx);
+    CHECK(camera.intrinsics.cy == cy);
+}
+
+// A quarter turn about z: x -> y, y -> -x.
+const Mat3 kQuarterTurnZ = (Mat3() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
+
+}  // namespace
+
+TEST_CASE("COLMAP cameras.txt: every model as the libcam model that holds it, pixel centres moved by 0.5") {
+    const std::string text = R"(# Camera list with one line of data per camera:
+#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]
+1 SIMPLE_PINHOLE 640 480 500 320 240
+2 PINHOLE 640 480 500 510 320 240
+3 SIMPLE_RADIAL 640 480 500 320 240 0.1
+4 RADIAL 640 480 500 320 240 0.1 -0.02
+5 OPENCV 640 480 500 510 320 240 0.1 -0.02 0.001 0.002
+6 OPENCV_FISHEYE 640 480 300 301 320 240 0.01 0.02 0.03 0.04
+7 FULL_OPENCV 640 480 500 510 320 240 1 2 3 4 5 6 7 8
+8 FOV 640 480 500 510 320 240 0.9
+9 SIMPLE_RADIAL_FISHEYE 640 480 300 320 240 0.05
+10 RADIAL_FISHEYE 640 480 300 320 240 0.05 0.06
+11 THIN_PRISM_FISHEYE 640 480 300 301 320 240 1 2 3 4 5 6 7 8
+12 RAD_TAN_THIN_PRISM_FISHEYE 640 480 300 301 320 240 1 2 3 4 5 6 7 8 9 10 11 12
+)";
+    const CameraSet set = parse_camera_set(text, CameraFormat::Colmap, "cameras.txt");
+    REQUIRE(set.cameras.size() == 12);
+    struct Expected {
+        LensType type;
+        double fx, fy;
+        std::vector<double> coefficients;
+    };
+    const std::vector<Expected> expected = {
+        {LensType::Pinhole, 500, 500, {}},
+        {LensType::Pinhole, 500, 510, {}},
+        {LensType::Opencv4, 500, 500, {0.1, 0, 0, 0}},
+        {LensType::Opencv4, 500, 500, {0.1, -0.02, 0, 0}},
+        {LensType::Opencv4, 500, 510, {0.1, -0.02, 0.001, 0.002}},
+        {LensType::Fisheye, 300, 301, {0.01, 0.02, 0.03, 0.04}},
+        {LensType::Opencv8, 500, 510, {1, 2, 3, 4, 5, 6, 7, 8}},
+        {LensType::Fov, 500, 510, {0.9}},
+        {LensType::Fisheye, 300, 300, {0.05, 0, 0, 0}},
+        {LensType::Fisheye, 300, 300, {0.05, 0.06, 0, 0}},
+        {LensType::ThinPrismFisheye, 300, 301, {1, 2, 3, 4, 5, 6, 7, 8}},
+        {LensType::RadTanThinPrismFisheye, 300, 301, {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}},
+    };
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        const NamedCamera& named = set.cameras[i];
+        CAPTURE(i);
+        CHECK(named.name == "id:" + std::to_string(i + 1));
+        CHECK(named.file.camera.lens.type == expected[i].type);
+        check_intrinsics(named.file.camera, expected[i].fx, expected[i].fy, 319.5, 239.5);
+        CHECK(named.file.camera.lens.coefficients == expected[i].coefficients);
+        CHECK(named.file.camera.size == ImageSize{640, 480});
+    }
+    CHECK(select_camera(set, "id:7", "cameras.txt").file.camera.lens.type == LensType::Opencv8);
+}
+
+TEST_CASE("COLMAP model folder: each image with its camera's intrinsics and its world-to-camera pose") {
+    test::TempDir dir;
+    write_file_atomically(dir.path() / "cameras.txt", "1 PINHOLE 640 480 500 510 320 240\n"
+                                                      "2 SIMPLE_RADIAL 800 600 700 400 300 -0.1\n"
+                                                      "3 PINHOLE 100 100 50 50 50 50\n");
+    // A quarter turn about z: q = (cos 45, 0, 0, sin 45). Image 7 has an empty points line,
+    // image 9 a line of points; COLMAP writes the header comments first.
+    const double h = std::sqrt(0.5);
+    write_file_atomically(dir.path() / "images.txt",
+                          "# Image list with two lines of data per image:\n"
+                          "7 " + std::to_string(h) + " 0 0 " + std::to_string(h) + " 1 2 3 2 left.png\n"
+                          "\n"
+                          "9 1 0 0 0 -1 0 0.5 1 right.png\n"
+                          "10.5 20.5 -1 30 40 7\n");
+    const CameraSet set = read_camera_set(dir.path());
+    CHECK(set.format == CameraFormat::Colmap);
+    REQUIRE(set.cameras.size() == 3);
+    // Image order, then the camera no image uses.
+    CHECK(set.cameras[0].name == "left.png");
+    CHECK(set.cameras[0].intrinsics_name == "id:2");
+    CHECK(set.cameras[1].name == "right.png");
+    CHECK(set.cameras[2].name == "id:3");
+    const Camera& left = set.cameras[0].file.camera;
+    CHECK(left.lens.type == LensType::Opencv4);
+    check_intrinsics(left, 700, 700, 399.5, 299.5);
+    CHECK((left.pose.R - kQuarterTurnZ).cwiseAbs().maxCoeff() < 1e-6);  // the text printed 6 decimals
+    CHECK(left.pose.t == Vec3(1, 2, 3));
+    const Camera& right = set.cameras[1].file.camera;
+    CHECK(right.pose.R == Mat3::Identity());
+    CHECK(right.pose.centre() == Vec3(1, 0, -0.5));
+    // --camera by image name, by COLMAP camera id (its first image), by position.
+    CHECK(select_camera(set, "right.png", "m").file.camera.pose.t == Vec3(-1, 0, 0.5));
+    CHECK(select_camera(set, "id:1", "m").name == "right.png");
+    CHECK(select_camera(set, "2", "m").name == "id:3");
+    // The cameras file named directly reads the images beside it too.
+    CHECK(read_camera_set(dir.path() / "cameras.txt").cameras.size() == 3);
+}
+
+TEST_CASE("COLMAP cameras.bin and images.bin, as COLMAP lays out the bytes") {
+    // cameras.bin: count (u64), then id (u32), model id (i32), width, height (u64), params (f64).
+    std::string cameras;
+    const auto put = [](std::string& out, const auto& value) {
+        out.append(reinterpret_cast<const char*>(&value), sizeof(value));
+    };
+    put(cameras, std::uint64_t{1});
+    put(cameras, std::uint32_t{4});
+    put(cameras, std::int32_t{5});  // OPENCV_FISHEYE
+    put(cameras, std::uint64_t{1280});
+    put(cameras, std::uint64_t{720});
+    for (const double p : {400.0, 401.0, 640.0, 360.0, 0.1, 0.2, 0.3, 0.4}) put(cameras, p);
+    // images.bin: count, then id (u32), qw qx qy qz tx ty tz (f64), camera id (u32), the
+    // name ending in NUL, the number of points (u64) and 24 bytes per point.
+    std::string images;
+    put(images, std::uint64_t{1});
+    put(images, std::uint32_t{3});
+    for (const double v : {1.0, 0.0, 0.0, 0.0, 5.0, 6.0, 7.0}) put(images, v);
+    put(images, std::uint32_t{4});
+    images += std::string("frame.jpg") + '\0';
+    put(images, std::uint64_t{1});
+    for (const double v : {1.0, 2.0}) put(images, v);
+    put(images, std::uint64_t{99});
+
+    test::TempDir dir;
+    write_file_atomically(dir.path() / "cameras.bin", cameras);
+    write_file_atomically(dir.path() / "images.bin", images);
+    const CameraSet set = read_camera_set(dir.path());
+    REQUIRE(set.cameras.size() == 1);
+    CHECK(set.cameras[0].name == "frame.jpg");
+    const Camera& camera = set.cameras[0].file.camera;
+    CHECK(camera.lens.type == LensType::Fisheye);
+    CHECK(camera.size == ImageSize{1280, 720});
+    check_intrinsics(camera, 400, 401, 639.5, 359.5);
+    CHECK(camera.lens.coefficients == std::vector<double>{0.1, 0.2, 0.3, 0.4});
+    CHECK(camera.pose.t == Vec3(5, 6, 7));
+
+    // Cut short anywhere: refused, naming the byte.
+    for (const std::size_t cut : {std::size_t{4}, std::size_t{20}, cameras.size() - 1}) {
+        const std::string message =
+            file_error_of([&] { (void)parse_camera_set(cameras.substr(0, cut), CameraFormat::Colmap, "cameras.bin"); });
+        CHECK(message.starts_with("cameras.bin: byte "));
+    }
+    // A count larger than the file could hold is refused before anything is allocated.
+    std::string huge;
+    put(huge, std::uint64_t{1} << 60);
+    CHECK_THAT(file_error_of([&] { (void)parse_camera_set(huge, CameraFormat::Colmap, "cameras.bin"); }),
+               Catch::Contains("more than the file holds"));
+}
+
+TEST_CASE("COLMAP files that are wrong are refused, naming the file, line and field") {
+    const auto error_of = [](const std::string& text) {
+        return file_error_of([&] { (void)parse_camera_set(text, CameraFormat::Colmap, "cameras.txt"); });
+    };
+    CHECK(error_of("1 PINHOLE 640 480 500 510 320\n") ==
+          "cameras.txt: line 1: PARAMS: PINHOLE has 4 parameters, got 3");
+    CHECK_THAT(error_of("1 FISH 640 480 1 2 3\n"), Catch::StartsWith("cameras.txt: line 1: MODEL: must be one of"));
+    CHECK(error_of("# c\n1 PINHOLE 640 480 500 nan 320 240\n") ==
+          "cameras.txt: line 2: PARAMS[1]: expected a finite number, got 'nan'");
+    CHECK(error_of("1 PINHOLE 0 480 500 510 320 240\n") ==
+          "cameras.txt: line 1: WIDTH: expected an integer in [1, 1000000], got '0'");
+    CHECK_THAT(error_of("1 PINHOLE 640 480 -5 510 320 240\n"), Catch::StartsWith("cameras.txt: line 1: camera 1: "));
+    CHECK(error_of("1 PINHOLE 640 480 500 510 320 240\n1 PINHOLE 640 480 500 510 320 240\n") ==
+          "cameras.txt: camera id 1 appears more than once");
+    CHECK(error_of("# only comments\n") == "cameras.txt: no camera");
+
+    test::TempDir dir;
+    write_file_atomically(dir.path() / "cameras.txt", "1 PINHOLE 640 480 500 510 320 240\n");
+    write_file_atomically(dir.path() / "images.txt", "1 1 0 0 0 0 0 0 2 a.png\n\n");
+    CHECK(file_error_of([&] { (void)read_camera_set(dir.path()); }) ==
+          (dir.path() / "images.txt").string() + ": line 1: image 1: CAMERA_ID 2 is not in the cameras file");
+    write_file_atomically(dir.path() / "images.txt", "1 2 0 0 0 0 0 0 1 a.png\n\n");
+    CHECK(file_error_of([&] { (void)read_camera_set(dir.path()); }) ==
+          (dir.path() / "images.txt").string() + ": line 1: image 1: the quaternion's norm is 2, not 1");
+    CHECK_THAT(file_error_of([&] { (void)read_camera_set(dir.path() / "missing"); }), Catch::Contains("missing"));
+}
+
+TEST_CASE("COLMAP is written as cameras.txt and images.txt, and refuses what it cannot hold") {
+    Camera camera;
+    camera.size = {640, 480};
+    camera.intrinsics = {500.0, 510.0, 319.5, 239.5, 0.0};
+    camera.lens = {LensType::Opencv5, {0.1, -0.02, 0.001, 0.002, 0.003}};
+    camera.pose = {kQuarterTurnZ, Vec3(1, 2, 3)};
+    const std::vector<CameraFileText> files = format_camera_files(camera, CameraFormat::Colmap);
+    REQUIRE(files.size() == 3);
+    CHECK(files[2].name == "points3D.txt");
+    CHECK(files[0].name == "cameras.txt");
+    // OPENCV5 is FULL_OPENCV with k4 = k5 = k6 = 0; COLMAP's cx is libcam's plus 0.5.
+    CHECK_THAT(files[0].text, Catch::EndsWith("\n1 FULL_OPENCV 640 480 500 510 320 240 0.1 -0.02 0.001 0.002 0.003 0 0 0\n"));
+    // q = (cos 45, 0, 0, sin 45) for the quarter turn.
+    CHECK_THAT(files[1].text, Catch::Contains("\n1 0.7071067811865476 0 0 0.7071067811865475 1 2 3 1 image.png\n"));
+    CHECK_THROWS_AS(format_camera(camera, CameraFormat::Colmap), NotRepresentable);
+
+    test::TempDir dir;
+    write_camera_file(dir.path() / "model", camera, CameraFormat::Colmap);
+    const Camera back = read_camera_file(dir.path() / "model").camera;
+    CHECK(back.lens.type == LensType::Opencv8);
+    CHECK(back.intrinsics.cx == camera.intrinsics.cx);
+    CHECK((back.pose.R - camera.pose.R).cwiseAbs().maxCoeff() < 1e-15);
+
+    Camera skewed = camera;
+    skewed.intrinsics.skew = 0.5;
+    CHECK_THROWS_WITH(format_camera_files(skewed, CameraFormat::Colmap), "COLMAP's models have no skew; this camera's is 0.5");
+    Camera mei = camera;
+    mei.lens = {LensType::Mei, {1.2, 0, 0, 0, 0}};
+    CHECK_THROWS_WITH(format_camera_files(mei, CameraFormat::Colmap), Catch::StartsWith("COLMAP has no model for a MEI lens"));
+    Camera prism = camera;
+    prism.lens = {LensType::Opencv12, {0, 0, 0, 0, 0, 0, 0, 0, 0.01, 0, 0, 0}};
+    CHECK_THROWS_AS(format_camera_files(prism, CameraFormat::Colmap), NotRepresentable);
+    CHECK_FALSE(fs::exists(dir.path() / "prism"));
+}
+
+TEST_CASE("transforms.json: a NeRF synthetic scene's camera_angle_x, its centre, and Blender's camera-to-world") {
+    // NeRF's lego scene writes only the horizontal angle and camera-to-world matrices in
+    // OpenGL's axes. This camera sits at (0, -4, 0) looking along +y (its -z), z up.
+    const std::string text = R"({
+  "camera_angle_x": 0.5,
+  "frames": [
+    {"file_path": "./train/r_0", "transform_matrix": [[1, 0, 0, 0], [0, 0, -1, -4], [0, 1, 0, 0], [0, 0, 0, 1]]}
+  ]
+})";
+    CHECK_THAT(file_error_of([&] { (void)parse_camera_set(text, CameraFormat::Nerf, "t.json"); }),
+               Catch::Contains("give the size (--image-size WxH)"));
+    ReadOptions options;
+    options.size = ImageSize{800, 600};
+    const CameraSet set = parse_camera_set(text, CameraFormat::Nerf, "t.json", options);
+    REQUIRE(set.cameras.size() == 1);
+    CHECK(set.cameras[0].name == "./train/r_0");
+    const Camera& camera = set.cameras[0].file.camera;
+    const double f = 400.0 / std::tan(0.25);
+    check_intrinsics(camera, f, f, 399.5, 299.5);
+    CHECK(camera.lens.type == LensType::Pinhole);
+    // OpenCV axes in the world: x (1,0,0), y down (0,0,-1), z forward (0,1,0).
+    const Mat3 expected = (Mat3() << 1, 0, 0, 0, 0, -1, 0, 1, 0).finished();
+    CHECK(camera.pose.R == expected);
+    CHECK(camera.pose.centre() == Vec3(0, -4, 0));
+    // NeRF's own ray code puts the principal point at W / 2 with pixel centres at integers.
+    options.nerf_principal_point = NerfPrincipalPoint::HalfSize;
+    check_intrinsics(parse_camera(text, CameraFormat::Nerf, "t.json", options).camera, f, f, 400, 300);
+}
+
+TEST_CASE("transforms.json: instant-ngp's and nerfstudio's intrinsics, per frame, and their models") {
+    const std::string text = R"({
+  "fl_x": 1000, "fl_y": 1001, "cx": 540, "cy": 960, "w": 1080.0, "h": 1920,
+  "k1": 0.1, "k2": -0.01, "p1": 0.001, "p2": 0.002,
+  "frames": [
+    {"file_path": "a.jpg", "transform_matrix": [[1, 0, 0, 1], [0, 1, 0, 2], [0, 0, 1, 3], [0, 0, 0, 1]]},
+    {"file_path": "b.jpg", "fl_x": 900, "k3": 0.5, "transform_matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}
+  ]
+})";
+    const CameraSet set = parse_camera_set(text, CameraFormat::Nerf, "t.json");
+    REQUIRE(set.cameras.size() == 2);
+    const Camera& a = set.cameras[0].file.camera;
+    CHECK(a.lens.type == LensType::Opencv4);
+    CHECK(a.lens.coefficients == std::vector<double>{0.1, -0.01, 0.001, 0.002});
+    check_intrinsics(a, 1000, 1001, 539.5, 959.5);
+    CHECK(a.size == ImageSize{1080, 1920});
+    // An identity camera-to-world in OpenGL's axes: the camera looks along the world's -z.
+    CHECK(a.pose.R == Mat3(Eigen::Vector3d(1, -1, -1).asDiagonal()));
+    CHECK(a.pose.centre() == Vec3(1, 2, 3));
+    const Camera& b = set.cameras[1].file.camera;
+    CHECK(b.lens.type == LensType::Opencv5);
+    CHECK(b.intrinsics.fx == 900);
+
+    const auto error_of = [](const std::string& json) {
+        return file_error_of([&] { (void)parse_camera_set(json, CameraFormat::Nerf, "t.json"); });
+    };
+    CHECK(error_of(R"({"fl_x": 500, "w": 640, "h": 480, "k4": 0.1})") ==
+          "t.json: \"k4\": nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
+    CHECK(error_of(R"({"fl_x": 500, "w": 640})") == "t.json: \"w\": given without \"h\"");
+    CHECK(error_of(R"({"fl_x": 500, "w": 640.5, "h": 480})") ==
+          "t.json: \"w\": expected a whole number in [1, 1000000], got 640.5");
+    CHECK(error_of(R"({"fl_x": 500, "w": 640, "h": 480, "camera_model": "VR180"})") ==
+          "t.json: \"camera_model\": must be OPENCV, PINHOLE, SIMPLE_PINHOLE, OPENCV_FISHEYE or EQUIRECTANGULAR, got "
+          "'VR180'");
+    CHECK(error_of(R"({"fl_x": 500, "w": 640, "h": 480, "frames": [{"transform_matrix": [[2, 0, 0, 0], [0, 2, 0, 0], [0, 0, 2, 0], [0, 0, 0, 1]]}]})")
+              .starts_with("t.json: \"frames[0].transform_matrix\": "));
+    ReadOptions other_size;
+    other_size.size = ImageSize{100, 100};
+    CHECK(file_error_of([&] {
+              (void)parse_camera_set(R"({"fl_x": 500, "w": 640, "h": 480})", CameraFormat::Nerf, "t.json", other_size);
+          }) == "t.json: \"w\": the file says 640x480, the image size given is 100x100");
+
+    // nerfstudio's EQUIRECTANGULAR: fl_x = W / 2 spans pi over half the width, so it is
+    // LONLAT with fx = fl_x / pi.
+    const Camera pano =
+        parse_camera(R"({"camera_model": "EQUIRECTANGULAR", "fl_x": 1000, "fl_y": 500, "cx": 1000, "cy": 500, "w": 2000, "h": 1000})",
+                     CameraFormat::Nerf, "t.json")
+            .camera;
+    CHECK(pano.lens.type == LensType::Lonlat);
+    check_intrinsics(pano, 1000 / std::numbers::pi, 500 / std::numbers::pi, 999.5, 499.5);
+}
+
+TEST_CASE("transforms.json without a size takes it from the first frame's image, as a PNG or JPEG header says") {
+    test::TempDir dir;
+    fs::create_directories(dir.path() / "train");
+    // A PNG's signature and IHDR chunk: width 320 and height 200, big-endian.
+    std::string png = "\x89PNG\r\n\x1a\n";
+    png += std::string("\0\0\0\x0dIHDR", 8);
+    png += std::string("\0\0\x01\x40\0\0\0\xc8", 8);
+    png += std::string(13, '\0');
+    write_file_atomically(dir.path() / "train" / "r_0.png", png);
+    write_file_atomically(dir.path() / "transforms.json",
+                          R"({"camera_angle_x": 1.0, "frames": [{"file_path": "./train/r_0"}]})");
+    const Camera camera = read_camera_file(dir.path() / "transforms.json").camera;
+    CHECK(camera.size == ImageSize{320, 200});
+    CHECK(camera.intrinsics.cx == 159.5);
+
+    // A JPEG: SOI, an APP0 segment of 4 bytes, then SOF0 with height 240 and width 352.
+    const std::string jpeg = std::string("\xff\xd8\xff\xe0\x00\x04\x00\x00\xff\xc0\x00\x11\x08\x00\xf0\x01\x60\x03", 18) +
+                             std::string(16, '\0');
+    write_file_atomically(dir.path() / "photo.jpg", jpeg);
+    write_file_atomically(dir.path() / "transforms.json", R"({"fl_x": 300, "frames": [{"file_path": "photo.jpg"}]})");
+    CHECK(read_camera_file(dir.path() / "transforms.json").camera.size == ImageSize{352, 240});
+}
+
+TEST_CASE("transforms.json is written with COLMAP's pixel corner, OpenGL's camera-to-world, and NeRF's angles") {
+    Camera camera;
+    camera.size = {640, 480};
+    camera.intrinsics = {500.0, 500.0, 319.5, 239.5, 0.0};
+    camera.lens = {LensType::Fisheye, {0.1, 0.2, 0.3, 0.4}};
+    camera.pose = Pose::from_centre(Mat3::Identity(), Vec3(1, 2, 3));
+    WriteOptions options;
+    options.image_name = "images/0001.png";
+    const std::string text = format_camera(camera, CameraFormat::Nerf, options);
+    CHECK_THAT(text, Catch::Contains("\"camera_model\": \"OPENCV_FISHEYE\""));
+    CHECK_THAT(text, Catch::Contains("\"cx\": 320.0"));
+    CHECK_THAT(text, Catch::Contains("\"file_path\": \"images/0001.png\""));
+    // camera_angle_x = 2 atan(320 / 500).
+    const auto angle_at = text.find("\"camera_angle_x\": ");
+    REQUIRE(angle_at != std::string::npos);
+    CHECK(std::stod(text.substr(angle_at + 18)) == 2.0 * std::atan(320.0 / 500.0));
+    const Camera back = parse_camera(text, CameraFormat::Nerf, "t.json").camera;
+    CHECK(back.lens.coefficients == camera.lens.coefficients);
+    CHECK(back.intrinsics.cx == camera.intrinsics.cx);
+    CHECK(back.pose.R == camera.pose.R);
+    CHECK(back.pose.centre() == camera.pose.centre());
+
+    Camera mei = camera;
+    mei.lens = {LensType::Mei, {1.2, 0, 0, 0, 0}};
+    CHECK_THROWS_WITH(format_camera(mei, CameraFormat::Nerf),
+                      "transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE and LONLAT)");
+    Camera rational = camera;
+    rational.lens = {LensType::Opencv8, {0, 0, 0, 0, 0, 0.1, 0, 0}};
+    CHECK_THROWS_WITH(format_camera(rational, CameraFormat::Nerf),
+                      "transforms.json holds OpenCV's k1 k2 p1 p2 k3 only; this OPENCV8 lens's k4 is 0.1");
+}
+
+TEST_CASE(".cahvor: JPL's C, A, H, V as K and the camera's placement, and CAHVOR's O and R") {
+    // A camera at C = (1, 2, 3) whose axes are the reference's turned a quarter about z:
+    // H' = (0, 1, 0), V' = (-1, 0, 0), A = (0, 0, 1); fx 1000, fy 1100, cx 320, cy 240, so
+    // H = 1000 H' + 320 A and V = 1100 V' + 240 A.
+    const std::string text = "# a comment\n"
+                             "Dimensions = 640 480\n"
+                             "Model = CAHV = perspective, linear\n"
+                             "C = 1 2 3\n"
+                             "A = 0 0 1\n"
+                             "H = 0 1000 320\n"
+                             "V = -1100 0 240\n"
+                             "Hs = 1000\n"
+                             "Theta = -1.5707963267948966 (-90.0 deg)\n";
+    const Camera camera = parse_camera(text, CameraFormat::Cahvor, "c.cahvor").camera;
+    CHECK(camera.lens.type == LensType::Pinhole);
+    check_intrinsics(camera, 1000, 1100, 320, 240);
+    // The rows of R are the camera's axes in the reference frame.
+    CHECK(camera.pose.R == (Mat3() << 0, 1, 0, -1, 0, 0, 0, 0, 1).finished());
+    CHECK(camera.pose.centre() == Vec3(1, 2, 3));
+
+    // CAHVOR: O along the camera's axis turned by alpha about V' and beta up: with the
+    // identity placement, O = (sin a cos b, sin b, cos a cos b).
+    const double a = 0.01;
+    const double b = -0.02;
+    const std::string cahvor = "Dimensions = 640 480\nModel = CAHVOR = perspective, distortion\nC = 0 0 0\nA = 0 0 1\n"
+                               "H = 1000 0 320\nV = 0 1000 240\n" +
+                               ("O = " + std::to_string(std::sin(a) * std::cos(b)) + " " + std::to_string(std::sin(b)) +
+                                " " + std::to_string(std::cos(a) * std::cos(b)) + "\n") +
+                               "R = 0 -0.1 0.01\n";
+    const Camera distorted = parse_camera(cahvor, CameraFormat::Cahvor, "c.cahvor").camera;
+    REQUIRE(distorted.lens.type == LensType::Cahvor);
+    CHECK(distorted.lens.coefficients[0] == Approx(a).margin(1e-6));
+    CHECK(distorted.lens.coefficients[1] == Approx(b).margin(1e-6));
+    CHECK(distorted.lens.coefficients[3] == -0.1);
+    // mrcal's OpenCV lens in a CAHV file.
+    const Camera opencv = parse_camera(text + "LENSMODEL_OPENCV4 = 0.1 0.2 0.3 0.4\n", CameraFormat::Cahvor, "c").camera;
+    CHECK(opencv.lens.type == LensType::Opencv4);
+    CHECK(opencv.lens.coefficients == std::vector<double>{0.1, 0.2, 0.3, 0.4});
+
+    const auto error_of = [](const std::string& t) {
+        return file_error_of([&] { (void)parse_camera(t, CameraFormat::Cahvor, "c.cahvor"); });
+    };
+    CHECK(error_of("Dimensions = 640 480\nC = 0 0 0\nA = 0 0 1\nH = 1000 0 320\n") == "c.cahvor: \"V\": missing");
+    CHECK(error_of("Dimensions = 640\n") == "c.cahvor: line 1: \"Dimensions\": expected 2 numbers, got '640'");
+    CHECK(error_of("C = 0 0 0\nC = 1 1 1\n") == "c.cahvor: line 2: \"C\" given more than once");
+    CHECK(error_of("just words\n") == "c.cahvor: line 1: expected \"key = value\"");
+    CHECK(error_of("Dimensions = 640 480\nC = 0 0 0\nA = 0 0 1\nH = 0 0 320\nV = 0 1000 240\n") ==
+          "c.cahvor: \"H\", \"V\": parallel to \"A\": no focal length");
+}
+
+TEST_CASE("The format is told from the contents where the extension is shared or missing") {
+    test::TempDir dir;
+    write_file_atomically(dir.path() / "cams.txt", "# Camera list\n1 PINHOLE 640 480 500 510 320 240\n");
+    CHECK(read_camera_set(dir.path() / "cams.txt").format == CameraFormat::Colmap);
+    write_file_atomically(dir.path() / "model", "Dimensions = 640 480\nC = 0 0 0\nA = 0 0 1\nH = 1000 0 320\nV = 0 1000 240\n");
+    CHECK(read_camera_set(dir.path() / "model").format == CameraFormat::Cahvor);
+    write_file_atomically(dir.path() / "transforms.json", R"({"fl_x": 500, "w": 640, "h": 480})");
+    CHECK(read_camera_set(dir.path() / "transforms.json").format == CameraFormat::Nerf);
+    fs::create_directories(dir.path() / "empty");
+    CHECK_THAT(file_error_of([&] { (void)read_camera_set(dir.path() / "empty"); }),
+               Catch::EndsWith("a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)"));
+    write_file_atomically(dir.path() / "odd", "!!! nothing\n");
+    CHECK_THAT(file_error_of([&] { (void)read_camera_set(dir.path() / "odd"); }),
+               Catch::Contains("unknown camera file format"));
+}
