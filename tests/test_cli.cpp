@@ -764,3 +764,43 @@ cam1:
     CHECK(bad_format.exit_code == 2);
     CHECK_THAT(bad_format.err, Catch::Contains("--from-format"));
 }
+
+TEST_CASE("convert writes a COLMAP model into a folder, info lists its image, and NeRF's sizes come from flags") {
+    TempDir dir;
+    const std::string model = (dir.path() / "sparse").string();
+    // A 60-degree FOV camera: COLMAP's cx is libcam's 319.5 plus 0.5.
+    const CliResult written = run_libcam({"convert", "--fov", "60", "--fov-axis", "horizontal", "--size", "640x480",
+                                          "--to", "colmap", "-o", model, "--image-name", "frame_7.png"});
+    INFO(written.describe());
+    REQUIRE(written.exit_code == 0);
+    CHECK(written.out.empty());
+    CHECK_THAT(read_whole_file(dir.path() / "sparse" / "cameras.txt"), Catch::Contains("\n1 PINHOLE 640 480 "));
+    CHECK_THAT(read_whole_file(dir.path() / "sparse" / "cameras.txt"), Catch::Contains(" 320 240\n"));
+    const CliResult info = run_libcam({"info", model, "--json"});
+    REQUIRE(info.exit_code == 0);
+    const nlohmann::json out = nlohmann::json::parse(info.out);
+    CHECK(out.at("format") == "colmap");
+    CHECK(out.at("cameras").at(0).at("name") == "frame_7.png");
+    CHECK(out.at("cameras").at(0).at("intrinsics_name") == "id:1");
+    // Several files need a folder; a camera_info holds no pose unless told to drop it.
+    const CliResult to_stdout = run_libcam({"convert", "--fov", "60", "--size", "640x480", "--to", "colmap"});
+    CHECK(to_stdout.exit_code == 2);
+    CHECK_THAT(to_stdout.err, Catch::Contains("give the folder"));
+    const std::vector<std::string> posed = {"convert", "--fov", "60", "--size", "640x480", "--eye", "1,2,3", "--to", "ros"};
+    const CliResult refused = run_libcam(posed);
+    CHECK(refused.exit_code == 1);
+    CHECK_THAT(refused.err, Catch::Contains("--no-pose"));
+    std::vector<std::string> dropped = posed;
+    dropped.push_back("--no-pose");
+    CHECK(run_libcam(dropped).exit_code == 0);
+    // NeRF's synthetic scenes record no size: --image-size gives it.
+    const std::string nerf = (dir.path() / "transforms_train.json").string();
+    std::ofstream(nerf) << R"({"camera_angle_x": 0.6911112070083618, "frames": []})";
+    const CliResult unsized = run_libcam({"info", nerf});
+    CHECK(unsized.exit_code == 1);
+    CHECK_THAT(unsized.err, Catch::Contains("--image-size WxH"));
+    const CliResult sized = run_libcam({"convert", "--from", nerf, "--image-size", "800x800"});
+    INFO(sized.describe());
+    REQUIRE(sized.exit_code == 0);
+    CHECK(nlohmann::json::parse(sized.out).at("K").at(0).at(2) == 399.5);
+}

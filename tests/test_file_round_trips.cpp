@@ -18,9 +18,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr CameraFormat kWritten[] = {CameraFormat::Json, CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml,
+// Every format libcam writes but ROS's camera_info, which holds no pose (its round trips
+// are in test_io_formats.cpp).
+constexpr CameraFormat kWritten[] = {CameraFormat::Json,   CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml,
                                      CameraFormat::Cameramodel, CameraFormat::Gl, CameraFormat::Colmap,
-                                     CameraFormat::Nerf};
+                                     CameraFormat::Nerf,   CameraFormat::Kalibr,     CameraFormat::Open3d};
 
 struct Case {
     const char* what;
@@ -41,18 +43,19 @@ std::vector<Case> cases() {
     using F = CameraFormat;
     return {
         {"pinhole", camera_with({LensType::Pinhole, {}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Gl, F::Colmap, F::Nerf}},
-        {"skewed pinhole", camera_with({LensType::Pinhole, {}}, 3.5), {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Gl}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Gl, F::Colmap, F::Nerf, F::Kalibr, F::Open3d}},
+        {"skewed pinhole", camera_with({LensType::Pinhole, {}}, 3.5),
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Gl, F::Open3d}},
         {"OPENCV4", camera_with({LensType::Opencv4, {-0.2, 0.05, 1e-3, -2e-3}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf, F::Kalibr}},
         {"OPENCV5", camera_with({LensType::Opencv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}}),
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf}},
         {"OPENCV8", camera_with({LensType::Opencv8, {0.4, 0.05, 1e-3, -2e-3, 0.01, 0.7, 0.1, 0.02}}),
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap}},
         {"FISHEYE", camera_with({LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf, F::Kalibr}},
         {"LONLAT", camera_with({LensType::Lonlat, {}}), {F::Json, F::Cameramodel, F::Nerf}},
-        {"MEI", camera_with({LensType::Mei, {1.1, -0.1, 0.01, 1e-3, -1e-3}}), {F::Json}},
+        {"MEI", camera_with({LensType::Mei, {1.1, -0.1, 0.01, 1e-3, -1e-3}}), {F::Json, F::Kalibr}},
     };
 }
 
@@ -66,6 +69,8 @@ fs::path place(const fs::path& dir, const std::string& stem, CameraFormat format
         case CameraFormat::Gl: return dir / (stem + ".gl.json");
         case CameraFormat::Colmap: return dir / (stem + "-colmap");
         case CameraFormat::Nerf: return dir / (stem + "-transforms.json");
+        case CameraFormat::Kalibr: return dir / (stem + "-camchain.yaml");
+        case CameraFormat::Open3d: return dir / (stem + "-open3d.json");
         default: return dir / stem;
     }
 }
@@ -121,7 +126,7 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
             }
         }
     }
-    CHECK(trips == 7 * 7 + 4 * 4 + 6 * 6 * 2 + 5 * 5 + 5 * 5 + 3 * 3 + 1);
+    CHECK(trips == 9 * 9 + 5 * 5 + 7 * 7 + 6 * 6 + 5 * 5 + 6 * 6 + 3 * 3 + 2 * 2);
 }
 
 TEST_CASE("COLMAP's own program reads libcam's model, and libcam reads COLMAP's binary and text back the same",

@@ -435,3 +435,239 @@ TEST_CASE("The format is told from the contents where the extension is shared or
     CHECK_THAT(file_error_of([&] { (void)read_camera_set(dir.path() / "odd"); }),
                Catch::Contains("unknown camera file format"));
 }
+
+TEST_CASE("ROS camera_info: the raw camera, and the rectified one its P describes, in the pair's rectified frame") {
+    // A right camera of a stereo pair: R turns its raw frame a quarter about z into the
+    // rectified one; P = K' [I | t] with Tx = -fx' * 0.1 (a baseline of 0.1).
+    const std::string text = R"(image_width: 640
+image_height: 480
+camera_name: right
+camera_matrix:
+  rows: 3
+  cols: 3
+  data: [500, 0, 320, 0, 501, 240, 0, 0, 1]
+distortion_model: plumb_bob
+distortion_coefficients:
+  rows: 1
+  cols: 5
+  data: [-0.1, 0.01, 0.001, -0.002, 0]
+rectification_matrix:
+  rows: 3
+  cols: 3
+  data: [0, -1, 0, 1, 0, 0, 0, 0, 1]
+projection_matrix:
+  rows: 3
+  cols: 4
+  data: [400, 0, 330, -40, 0, 400, 250, 0, 0, 0, 1, 0]
+)";
+    const CameraSet set = parse_camera_set(text, CameraFormat::Ros, "right.yaml");
+    REQUIRE(set.cameras.size() == 2);
+    CHECK(set.cameras[0].name == "right");
+    CHECK(set.cameras[1].name == "right/rectified");
+    const Camera& raw = set.cameras[0].file.camera;
+    CHECK(raw.lens.type == LensType::Opencv5);  // plumb_bob's five, as OpenCV's own files
+    check_intrinsics(raw, 500, 501, 320, 240);
+    const Camera& rectified = set.cameras[1].file.camera;
+    CHECK(rectified.lens.type == LensType::Pinhole);
+    check_intrinsics(rectified, 400, 400, 330, 250);
+    // The rectified camera sits 0.1 to the right of the first: X_rect = X + (-0.1, 0, 0).
+    CHECK(rectified.pose.R == Mat3::Identity());
+    CHECK(rectified.pose.t == Vec3(-0.1, 0, 0));
+    // The raw camera: the same centre, X_raw = R^T X_rect.
+    CHECK(raw.pose.R == kQuarterTurnZ.transpose());
+    CHECK((raw.pose.centre() - Vec3(0.1, 0, 0)).norm() < 1e-16);
+
+    // Written: K, D with its distortion_model, R = I, P = [K | 0]; numbers as PyYAML reads floats.
+    Camera camera;
+    camera.size = {640, 480};
+    camera.intrinsics = {500.0, 501.0, 319.5, 239.5, 0.0};
+    camera.lens = {LensType::Fisheye, {0.1, 0.01, 0.001, 1e-9}};
+    const std::string written = format_camera(camera, CameraFormat::Ros);
+    CHECK_THAT(written, Catch::Contains("distortion_model: equidistant\n"));
+    CHECK_THAT(written, Catch::Contains("  data: [0.1, 0.01, 0.001, 1.0e-09]\n"));
+    CHECK_THAT(written, Catch::Contains("  data: [500.0, 0.0, 319.5, 0.0, 0.0, 501.0, 239.5, 0.0, 0.0, 0.0, 1.0, 0.0]\n"));
+    const CameraSet back = parse_camera_set(written, CameraFormat::Ros, "back.yaml");
+    CHECK(back.cameras[0].file.camera.lens == camera.lens);
+    CHECK(back.cameras[0].file.camera.intrinsics.K() == camera.intrinsics.K());
+    // camera_info holds no pose.
+    camera.pose.t = Vec3(1, 0, 0);
+    CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Ros), Catch::Contains("holds no pose") && Catch::Contains("--no-pose"));
+    WriteOptions drop;
+    drop.drop_pose = true;
+    CHECK_NOTHROW(format_camera(camera, CameraFormat::Ros, drop));
+    camera.lens = {LensType::Mei, {1.0, 0, 0, 0, 0}};
+    CHECK_THROWS_AS(format_camera(camera, CameraFormat::Ros, drop), NotRepresentable);
+}
+
+TEST_CASE("Kalibr camchain written: each model's Kalibr names, its leading coefficients first, read back the same") {
+    Camera camera;
+    camera.size = {752, 480};
+    camera.intrinsics = {460.0, 459.0, 365.5, 249.5, 0.0};
+    camera.lens = {LensType::Mei, {1.5, -0.2, 0.03, 1e-4, -2e-4}};
+    camera.pose = {kQuarterTurnZ, Vec3(0.01, -0.02, 0.03)};
+    const std::string text = format_camera(camera, CameraFormat::Kalibr);
+    CHECK_THAT(text, Catch::Contains("  camera_model: omni\n"));
+    CHECK_THAT(text, Catch::Contains("  distortion_model: radtan\n"));
+    CHECK_THAT(text, Catch::Contains("  intrinsics: [1.5, 460.0, 459.0, 365.5, 249.5]\n"));
+    CHECK_THAT(text, Catch::Contains("  distortion_coeffs: [-0.2, 0.03, 1.0e-04, -2.0e-04]\n"));
+    CHECK_THAT(text, Catch::Contains("  - [0.0, -1.0, 0.0, 0.01]\n"));
+    const NamedCamera back = parse_camera_set(text, CameraFormat::Kalibr, "chain.yaml").cameras.front();
+    CHECK(back.name == "cam0");
+    CHECK(back.file.camera.lens == camera.lens);
+    CHECK(back.file.camera.intrinsics.K() == camera.intrinsics.K());
+    CHECK(back.file.camera.pose.R == camera.pose.R);
+    CHECK(back.file.camera.pose.t == camera.pose.t);
+    camera.lens = {LensType::Fisheye, {0.1, 0.01, 0.001, 1e-4}};
+    CHECK_THAT(format_camera(camera, CameraFormat::Kalibr), Catch::Contains("  distortion_model: equidistant\n"));
+    camera.lens = {LensType::Opencv8, {0.1, 0.01, 0.001, 1e-4, 0, 0, 0, 0}};
+    CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Kalibr), Catch::StartsWith("Kalibr has no model for a OPENCV8 lens"));
+}
+
+TEST_CASE("Open3D's camera JSON: Eigen's column-major matrices, world-to-camera extrinsic, and trajectories") {
+    // Open3D's default PrimeSense camera, as write_pinhole_camera_intrinsic writes it.
+    const std::string intrinsic = R"({
+	"height" : 480,
+	"intrinsic_matrix" : [ 525.0, 0.0, 0.0, 0.0, 525.0, 0.0, 319.5, 239.5, 1.0 ],
+	"width" : 640
+})";
+    const Camera primesense = parse_camera(intrinsic, CameraFormat::Open3d, "o3d.json").camera;
+    check_intrinsics(primesense, 525, 525, 319.5, 239.5);
+    CHECK(primesense.size == ImageSize{640, 480});
+    // A trajectory of two cameras; the second's extrinsic, column by column, is the quarter
+    // turn about z and t = (1, 2, 3).
+    const std::string trajectory = R"({"class_name": "PinholeCameraTrajectory", "parameters": [
+  {"class_name": "PinholeCameraParameters", "extrinsic": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1],
+   "intrinsic": {"width": 640, "height": 480, "intrinsic_matrix": [500,0,0, 0,500,0, 320,240,1]}},
+  {"class_name": "PinholeCameraParameters", "extrinsic": [0,1,0,0, -1,0,0,0, 0,0,1,0, 1,2,3,1],
+   "intrinsic": {"width": 640, "height": 480, "intrinsic_matrix": [500,0,0, 0,500,0, 320,240,1]}}]})";
+    const CameraSet set = parse_camera_set(trajectory, CameraFormat::Open3d, "traj.json");
+    REQUIRE(set.cameras.size() == 2);
+    CHECK(set.cameras[1].file.camera.pose.R == kQuarterTurnZ);
+    CHECK(set.cameras[1].file.camera.pose.t == Vec3(1, 2, 3));
+    // Written as PinholeCameraParameters, and read back.
+    Camera camera = set.cameras[1].file.camera;
+    camera.intrinsics.skew = 0.25;
+    const std::string written = format_camera(camera, CameraFormat::Open3d);
+    CHECK_THAT(written, Catch::Contains("\"class_name\": \"PinholeCameraParameters\""));
+    const Camera back = parse_camera(written, CameraFormat::Open3d, "back.json").camera;
+    CHECK(back.intrinsics.K() == camera.intrinsics.K());
+    CHECK(back.pose.R == camera.pose.R);
+    CHECK(back.pose.t == camera.pose.t);
+    camera.lens = {LensType::Opencv4, {0.1, 0, 0, 0}};
+    CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Open3d), "Open3D's cameras have no distortion; this camera's lens is OPENCV4");
+    CHECK(file_error_of([&] { (void)parse_camera(R"({"width": 640, "height": 480, "intrinsic_matrix": [1, 2, 3]})",
+                                                  CameraFormat::Open3d, "o.json"); }) ==
+          "o.json: \"intrinsic_matrix\": expected 9 numbers, got 3");
+}
+
+TEST_CASE("EuRoC's sensor.yaml: the camera in the body frame, inverted") {
+    // The camera at (1, 2, 3) in the body frame, turned a quarter about z.
+    const std::string text = R"(# General sensor definitions.
+sensor_type: camera
+comment: VI-Sensor cam0 (MT9M034)
+T_BS:
+  cols: 4
+  rows: 4
+  data: [0.0, -1.0, 0.0, 1.0,
+         1.0, 0.0, 0.0, 2.0,
+         0.0, 0.0, 1.0, 3.0,
+         0.0, 0.0, 0.0, 1.0]
+rate_hz: 20
+resolution: [752, 480]
+camera_model: pinhole
+intrinsics: [458.654, 457.296, 367.215, 248.375] #fu, fv, cu, cv
+distortion_model: radial-tangential
+distortion_coefficients: [-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05]
+)";
+    test::TempDir dir;
+    write_file_atomically(dir.path() / "sensor.yaml", text);
+    const CameraSet set = read_camera_set(dir.path() / "sensor.yaml");
+    CHECK(set.format == CameraFormat::Euroc);
+    const NamedCamera& named = set.cameras.front();
+    CHECK(named.name == "VI-Sensor cam0 (MT9M034)");
+    check_intrinsics(named.file.camera, 458.654, 457.296, 367.215, 248.375);
+    CHECK(named.file.camera.lens.coefficients.front() == -0.28340811);
+    CHECK(named.file.camera.pose.R == kQuarterTurnZ.transpose());
+    CHECK(named.file.camera.pose.centre() == Vec3(1, 2, 3));
+}
+
+TEST_CASE("OpenCV's other layouts: ORB-SLAM's settings and stereo files, each camera placed") {
+    // ORB-SLAM3 1.0: Camera1, Camera2 and Stereo.T_c1_c2 (camera 2 in camera 1's frame: 0.11 to its right).
+    const std::string orb3 = R"(%YAML:1.0
+File.version: "1.0"
+Camera.type: "KannalaBrandt8"
+Camera1.fx: 190.97
+Camera1.fy: 190.97
+Camera1.cx: 254.93
+Camera1.cy: 256.89
+Camera1.k1: 0.0034
+Camera1.k2: 0.0007
+Camera1.k3: -0.0020
+Camera1.k4: 0.0002
+Camera2.fx: 190.44
+Camera2.fy: 190.43
+Camera2.cx: 252.59
+Camera2.cy: 254.91
+Camera2.k1: 0.0034
+Camera2.k2: 0.0008
+Camera2.k3: -0.0020
+Camera2.k4: 0.0002
+Camera.width: 512
+Camera.height: 512
+Stereo.T_c1_c2: !!opencv-matrix
+  rows: 4
+  cols: 4
+  dt: f
+  data: [1, 0, 0, 0.11, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]
+)";
+    const CameraSet set = parse_camera_set(orb3, CameraFormat::OpenCvYaml, "tumvi.yaml");
+    REQUIRE(set.cameras.size() == 2);
+    CHECK(set.cameras[0].name == "Camera1");
+    CHECK(set.cameras[0].file.camera.lens == Lens{LensType::Fisheye, {0.0034, 0.0007, -0.0020, 0.0002}});
+    CHECK(set.cameras[0].file.camera.size == ImageSize{512, 512});
+    CHECK(set.cameras[1].file.camera.pose.centre() == Vec3(0.11, 0, 0));
+    // ORB-SLAM2: Camera.*, no size in the file: --image-size.
+    const std::string orb2 = "%YAML:1.0\nCamera.fx: 517.3\nCamera.fy: 516.5\nCamera.cx: 318.6\nCamera.cy: 255.3\n"
+                             "Camera.k1: 0.2624\nCamera.k2: -0.9531\nCamera.p1: -0.0054\nCamera.p2: 0.0026\nCamera.k3: 1.1633\n";
+    CHECK_THAT(file_error_of([&] { (void)parse_camera_set(orb2, CameraFormat::OpenCvYaml, "tum1.yaml"); }),
+               Catch::Contains("\"Camera.width\": missing"));
+    ReadOptions sized;
+    sized.size = ImageSize{640, 480};
+    const Camera tum = parse_camera(orb2, CameraFormat::OpenCvYaml, "tum1.yaml", sized).camera;
+    CHECK(tum.lens == Lens{LensType::Opencv5, {0.2624, -0.9531, -0.0054, 0.0026, 1.1633}});
+    // OpenCV's stereo_calib sample: M1 D1 M2 D2 and R T (camera 2 from camera 1).
+    const std::string stereo = R"(%YAML:1.0
+M1: !!opencv-matrix
+   rows: 3
+   cols: 3
+   dt: d
+   data: [ 500., 0., 320., 0., 500., 240., 0., 0., 1. ]
+D1: !!opencv-matrix
+   rows: 1
+   cols: 5
+   dt: d
+   data: [ -0.1, 0.01, 0., 0., 0. ]
+M2: !!opencv-matrix
+   rows: 3
+   cols: 3
+   dt: d
+   data: [ 510., 0., 321., 0., 510., 241., 0., 0., 1. ]
+D2: !!opencv-matrix
+   rows: 1
+   cols: 5
+   dt: d
+   data: [ -0.11, 0.02, 0., 0., 0.001 ]
+R: !!opencv-matrix
+   rows: 3
+   cols: 3
+   dt: d
+   data: [ 0., -1., 0., 1., 0., 0., 0., 0., 1. ]
+T: [ -0.12, 0., 0.001 ]
+)";
+    const CameraSet pair = parse_camera_set(stereo, CameraFormat::OpenCvYaml, "intrinsics.yml", sized);
+    REQUIRE(pair.cameras.size() == 2);
+    CHECK(pair.cameras[0].file.camera.lens == Lens{LensType::Opencv5, {-0.1, 0.01, 0, 0, 0}});
+    CHECK(pair.cameras[1].file.camera.lens.type == LensType::Opencv5);
+    CHECK(pair.cameras[1].file.camera.pose.R == kQuarterTurnZ);
+    CHECK(pair.cameras[1].file.camera.pose.t == Vec3(-0.12, 0, 0.001));
+}

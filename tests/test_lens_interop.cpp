@@ -33,8 +33,8 @@ bool holds(CameraFormat format, LensType type) {
                    type == LensType::Lonlat || type == LensType::Latlon || type == LensType::Cahvor ||
                    type == LensType::Cahvore || type == LensType::SplinedStereographic;
         case CameraFormat::Gl: return type == LensType::Pinhole;
+        default: return false;  // the formats this test does not write
     }
-    return false;
 }
 
 Camera posed(Camera camera) {

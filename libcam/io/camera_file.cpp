@@ -14,6 +14,7 @@
 #include "libcam/io/cahvor_format.hpp"
 #include "libcam/io/colmap_format.hpp"
 #include "libcam/io/nerf_transforms.hpp"
+#include "libcam/io/open3d_format.hpp"
 #include "libcam/io/rig_formats.hpp"
 #include "libcam/lens/lens_model.hpp"
 
@@ -35,9 +36,13 @@ std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
     return format_gl_json(to_opengl(camera, options.gl_near, options.gl_far, options.gl_depth_range), camera.size);
 }
 
-// OpenCV's files record no FOV camera and take no options.
-CameraFile read_opencv_storage(std::string_view text, const std::string& source) {
-    return {parse_opencv_storage(text, source), std::nullopt};
+// OpenCV's files (one camera, a stereo pair, ORB-SLAM's settings) record no FOV camera.
+std::vector<NamedCamera> read_opencv_storage(std::string_view text, const ReadContext& context) {
+    return parse_opencv_storage_set(text, context.source, context.options);
+}
+
+std::string write_ros_camera_info(const Camera& camera, const WriteOptions& options) {
+    return format_ros_camera_info(camera, options);
 }
 
 std::string write_opencv_yaml(const Camera& camera, const WriteOptions&) {
@@ -80,14 +85,15 @@ std::vector<NamedCamera> read_with_source(std::string_view text, const ReadConte
 // OpenCV's YAML and XML share one too (io/opencv_storage.hpp).
 // constinit: filled before any code runs, so a registration made from another file's
 // static initialiser cannot find it unready.
-constinit std::array<FormatRow, 11> format_table = {{
+constinit std::array<FormatRow, 14> format_table = {{
     {CameraFormat::Json, "json", "libcam JSON", "libcam::io", "", parse_json_camera, write_json},
-    {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", "libcam::io", "", read_opencv_storage, write_opencv_yaml},
-    {CameraFormat::OpenCvXml, "opencv-xml", "OpenCV XML", "libcam::io", "", read_opencv_storage, write_opencv_xml},
+    {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", "libcam::io", "", nullptr, write_opencv_yaml,
+     read_opencv_storage},
+    {CameraFormat::OpenCvXml, "opencv-xml", "OpenCV XML", "libcam::io", "", nullptr, write_opencv_xml, read_opencv_storage},
     {CameraFormat::Cameramodel, "cameramodel", "mrcal .cameramodel", kInterop, kRegisterInterop, nullptr, nullptr},
     {CameraFormat::Gl, "gl", "gl JSON", "libcam::io", "", parse_json_camera, write_gl_json},
-    {CameraFormat::Kalibr, "kalibr", "Kalibr camchain YAML", "libcam::io", "", nullptr, nullptr,
-     read_with_source<parse_kalibr_camchain>, true},
+    {CameraFormat::Kalibr, "kalibr", "Kalibr camchain YAML", "libcam::io", "", nullptr, format_kalibr_camchain,
+     read_with_source<parse_kalibr_camchain>},
     {CameraFormat::Basalt, "basalt", "basalt calibration JSON", "libcam::io", "", nullptr, nullptr,
      read_with_source<parse_basalt_calibration>, true},
     {CameraFormat::Camodocal, "camodocal", "camodocal YAML", "libcam::io", "", nullptr, nullptr,
@@ -98,6 +104,12 @@ constinit std::array<FormatRow, 11> format_table = {{
      read_nerf_transforms},
     {CameraFormat::Cahvor, "cahvor", "JPL .cahvor", "libcam::io", "", nullptr, nullptr, read_with_source<parse_cahvor>,
      true},
+    {CameraFormat::Ros, "ros", "ROS camera_info YAML", "libcam::io", "", nullptr, write_ros_camera_info,
+     read_with_source<parse_ros_camera_info>},
+    {CameraFormat::Open3d, "open3d", "Open3D camera JSON", "libcam::io", "", nullptr, format_open3d_camera,
+     read_with_source<parse_open3d_camera>},
+    {CameraFormat::Euroc, "euroc", "EuRoC sensor.yaml", "libcam::io", "", nullptr, nullptr,
+     read_with_source<parse_euroc_sensor>, true},
 }};
 
 FormatRow& row_of(CameraFormat format) {
@@ -158,7 +170,9 @@ void install_camera_format(CameraFormat format, CameraReader reader, CameraWrite
 
 bool camera_format_installed(CameraFormat format) {
     const FormatRow& row = row_of(format);
-    return row.reader.load(std::memory_order_acquire) != nullptr && row.writer.load(std::memory_order_acquire) != nullptr;
+    const bool reads = row.set_reader != nullptr || row.reader.load(std::memory_order_acquire) != nullptr;
+    const bool writes = row.read_only || row.files_writer != nullptr || row.writer.load(std::memory_order_acquire) != nullptr;
+    return reads && writes;
 }
 
 std::string_view to_string(CameraFormat format) {
@@ -346,6 +360,7 @@ std::optional<CameraFormat> format_of_extension(const std::filesystem::path& pat
 std::optional<CameraFormat> json_format_of(std::string_view text) {
     if (const std::optional<CameraFormat> rig = rig_format_of_json(text)) return rig;
     if (is_nerf_transforms(text)) return CameraFormat::Nerf;
+    if (is_open3d_camera(text)) return CameraFormat::Open3d;
     return std::nullopt;
 }
 

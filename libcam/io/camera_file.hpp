@@ -7,7 +7,7 @@
 //                image_width, image_height) plus rvec and tvec (io/opencv_storage.hpp)
 //   cameramodel  mrcal's .cameramodel, checked by libmrcal's own parser
 //   gl           JSON holding an OpenGL projection, view matrix and viewport
-//   kalibr       Kalibr's camchain YAML (io/rig_formats.hpp): read only
+//   kalibr       Kalibr's camchain YAML (io/rig_formats.hpp)
 //   basalt       basalt's calibration JSON: read only
 //   camodocal    camodocal's YAML (VINS-Mono, VINS-Fusion): read only
 //   colmap       COLMAP's cameras.txt / cameras.bin, with images.txt / images.bin beside
@@ -15,6 +15,9 @@
 //                images.txt and points3D.txt into a folder
 //   nerf         NeRF's transforms.json (instant-ngp, nerfstudio; io/nerf_transforms.hpp)
 //   cahvor       JPL's .cahvor / .cahvore text, as mrcal reads and writes it: read only
+//   ros          ROS's camera_info YAML (io/opencv_storage.hpp)
+//   open3d       Open3D's PinholeCameraIntrinsic / PinholeCameraParameters JSON
+//   euroc        the EuRoC (ASL) dataset's sensor.yaml of a camera: read only
 //
 // A file may hold several cameras (a stereo pair, a rig): read_camera_set gives every
 // one with the file's name for it; read_camera_file gives one, the first by default.
@@ -39,7 +42,9 @@
 
 namespace libcam {
 
-enum class CameraFormat { Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor };
+enum class CameraFormat {
+    Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor, Ros, Open3d, Euroc
+};
 
 std::string_view to_string(CameraFormat format);
 CameraFormat camera_format_from_string(std::string_view text);  // throws InvalidArgument
@@ -79,6 +84,11 @@ struct WriteOptions {
     // The image the camera's pose belongs to, in formats that list images (COLMAP's
     // images.txt NAME, transforms.json's file_path).
     std::string image_name = "image.png";
+    // The camera's name in formats that name it (ROS's camera_name).
+    std::string camera_name = "camera";
+    // Formats that hold no pose (ROS's camera_info) refuse a camera whose pose is not the
+    // identity, unless this says to write its intrinsics alone.
+    bool drop_pose = false;
 };
 
 // Where NeRF's transforms.json puts the principal point when it gives none (only

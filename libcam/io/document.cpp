@@ -17,6 +17,7 @@
 #include <unordered_set>
 
 #include "libcam/error.hpp"
+#include "libcam/text/number_format.hpp"
 
 namespace libcam {
 
@@ -328,6 +329,14 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
 }
 
 }  // namespace
+
+std::string yaml_number(double value) {
+    std::string text = format_number(value + 0.0);
+    if (text.find_first_of("ni") != std::string::npos) return text;  // nan, inf: not camera values
+    const auto exponent = text.find('e');
+    if (text.find('.') == std::string::npos) text.insert(exponent == std::string::npos ? text.size() : exponent, ".0");
+    return text;
+}
 
 DocumentNode parse_yaml_document(std::string_view text, const std::string& source) {
     const std::string yaml = without_yaml_header(text);

@@ -46,6 +46,12 @@ DocumentNode parse_yaml_document(std::string_view text, const std::string& sourc
 // holds several whitespace-separated words; the attribute type_id becomes the tag.
 DocumentNode parse_opencv_xml_document(std::string_view text, const std::string& source);
 
+// A double as YAML that every YAML reader takes as a float, Python's (PyYAML, which Kalibr
+// and ROS's Python tools read with) included: every digit that matters, with a '.' in
+// the mantissa ("1.0e-09", "500.0", not "1e-09" or "500", which PyYAML reads as a string
+// and an integer).
+std::string yaml_number(double value);
+
 // A node with the name a user knows it by ("camera_matrix.data") and the file it came
 // from, for reading values with messages that say where a bad value is:
 // "<source>: line 7: \"camera_matrix.data\"[3]: must be finite, got .inf".

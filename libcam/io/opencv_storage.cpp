@@ -7,6 +7,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/document.hpp"
+#include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
 namespace libcam {
@@ -80,12 +81,14 @@ Matrix read_matrix(const Field& field) {
         field.fail("declares " + std::to_string(m.rows) + "x" + std::to_string(m.cols) + " (at most " +
                    std::to_string(kMaxMatrixElements) + " elements)");
     }
-    const Field dt = field.at({"dt"});
-    // One channel of any element type: the numbers are read as doubles whatever it is.
-    static constexpr std::string_view kSingleChannel[] = {"d", "f", "i", "u", "s", "w", "c", "h"};
-    const std::string type = dt.text();
-    if (std::find(std::begin(kSingleChannel), std::end(kSingleChannel), type) == std::end(kSingleChannel)) {
-        dt.fail("expected a one-channel element type (d, f, i, u, s, w, c or h), got '" + type + "'");
+    // ROS's camera_info writes rows, cols and data without OpenCV's tag and dt.
+    if (const std::optional<Field> dt = node.tag.empty() ? field.find({"dt"}) : std::optional<Field>(field.at({"dt"}))) {
+        // One channel of any element type: the numbers are read as doubles whatever it is.
+        static constexpr std::string_view kSingleChannel[] = {"d", "f", "i", "u", "s", "w", "c", "h"};
+        const std::string type = dt->text();
+        if (std::find(std::begin(kSingleChannel), std::end(kSingleChannel), type) == std::end(kSingleChannel)) {
+            dt->fail("expected a one-channel element type (d, f, i, u, s, w, c or h), got '" + type + "'");
+        }
     }
     if (m.rows * m.cols == 0) return m;
     const Field data = field.at({"data"});
@@ -212,12 +215,29 @@ std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
            xml_matrix("tvec", t) + "</opencv_storage>\n";
 }
 
-Camera parse_opencv_storage(std::string_view text, const std::string& source) {
-    const DocumentNode tree = parse_tree(text, source);
-    const Field file(tree, "", source);
+namespace {
+
+// A camera validated, its errors naming the file.
+Camera validated(Camera camera, const std::string& source) {
+    try {
+        camera.validate();
+    } catch (const InvalidArgument& error) {
+        throw FileError(source + ": " + error.what());
+    }
+    return camera;
+}
+
+// The calibration sample's layout (and cv::fisheye's, and ROS's camera_info).
+Camera read_single(const Field& file, const ReadOptions& options, const std::string& source) {
     Camera camera;
-    camera.size = {static_cast<long>(file.at({"image_width", "image_Width"}).integer(1, kMaxImageSide)),
-                   static_cast<long>(file.at({"image_height", "image_Height"}).integer(1, kMaxImageSide))};
+    const std::optional<Field> width = file.find({"image_width", "image_Width"});
+    const std::optional<Field> height = file.find({"image_height", "image_Height"});
+    if (width || height || !options.size) {
+        camera.size = {static_cast<long>(file.at({"image_width", "image_Width"}).integer(1, kMaxImageSide)),
+                       static_cast<long>(file.at({"image_height", "image_Height"}).integer(1, kMaxImageSide))};
+    } else {
+        camera.size = *options.size;
+    }
     camera.intrinsics = read_camera_matrix(file.at({"camera_matrix", "Camera_Matrix"}));
     const CoefficientFamily family = coefficient_family(file);
     if (const std::optional<Field> dist = file.find({"distortion_coefficients", "Distortion_Coefficients"})) {
@@ -227,12 +247,251 @@ Camera parse_opencv_storage(std::string_view text, const std::string& source) {
     }
     if (const std::optional<Field> rvec = file.find({"rvec"})) camera.pose.R = rotation_from_rvec(read_vector3(*rvec));
     if (const std::optional<Field> tvec = file.find({"tvec"})) camera.pose.t = read_vector3(*tvec);
-    try {
-        camera.validate();
-    } catch (const InvalidArgument& error) {
-        throw FileError(source + ": " + error.what());
+    return validated(camera, source);
+}
+
+// The image size of a file that may leave it out: its keys, else --image-size.
+ImageSize size_from(const Field& file, std::initializer_list<std::string_view> width_keys,
+                    std::initializer_list<std::string_view> height_keys, const ReadOptions& options) {
+    const std::optional<Field> width = file.find(width_keys);
+    const std::optional<Field> height = file.find(height_keys);
+    if (width && height) {
+        return {static_cast<long>(width->integer(1, kMaxImageSide)), static_cast<long>(height->integer(1, kMaxImageSide))};
     }
-    return camera;
+    if (options.size) return *options.size;
+    file.at(width ? height_keys : width_keys);  // throws "missing"
+    return {};
+}
+
+// A 4x4 (or 3x4) transform [R t] from a matrix key.
+Pose read_transform(const Field& field) {
+    const Matrix m = read_matrix(field);
+    if (m.cols != 4 || (m.rows != 4 && m.rows != 3)) {
+        field.fail("expected a 4x4 transform, got " + std::to_string(m.rows) + "x" + std::to_string(m.cols));
+    }
+    Pose pose;
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) pose.R(r, c) = m.values[static_cast<std::size_t>(4 * r + c)];
+        pose.t(r) = m.values[static_cast<std::size_t>(4 * r + 3)];
+    }
+    // ORB-SLAM's settings print rotations as float (dt: f).
+    pose.R = nearest_rotation_if_rounded(pose.R);
+    try {
+        pose.validate(field.name().c_str());
+    } catch (const InvalidArgument& error) {
+        throw FileError(field.source() + ": " + error.what());
+    }
+    return pose;
+}
+
+// ---- ORB-SLAM's settings: Camera.fx (ORB-SLAM2, ORB-SLAM3 before 1.0) or Camera1.fx ----
+
+bool is_orb_slam(const DocumentNode& tree) {
+    return tree.find("Camera.fx") != nullptr || tree.find("Camera1.fx") != nullptr;
+}
+
+Camera orb_slam_camera(const Field& file, const std::string& prefix, const std::string& type, ImageSize size,
+                       const std::string& source) {
+    const auto value = [&](const char* key) { return file.at({prefix + key}).number(); };
+    const auto optional = [&](const char* key) {
+        const std::optional<Field> field = file.find({prefix + key});
+        return field ? field->number() : 0.0;
+    };
+    Camera camera;
+    camera.size = size;
+    camera.intrinsics = {value("fx"), value("fy"), value("cx"), value("cy"), 0.0};
+    if (type == "KannalaBrandt8") {
+        camera.lens = {LensType::Fisheye, {value("k1"), value("k2"), value("k3"), value("k4")}};
+    } else if (type == "Rectified") {
+        camera.lens = {LensType::Pinhole, {}};
+    } else {
+        const std::vector<double> coefficients = {optional("k1"), optional("k2"), optional("p1"), optional("p2"),
+                                                  optional("k3")};
+        if (std::all_of(coefficients.begin(), coefficients.end(), [](double c) { return c == 0.0; })) {
+            camera.lens = {LensType::Pinhole, {}};
+        } else {
+            camera.lens = {coefficients[4] == 0.0 ? LensType::Opencv4 : LensType::Opencv5,
+                           {coefficients.begin(), coefficients.begin() + (coefficients[4] == 0.0 ? 4 : 5)}};
+        }
+    }
+    return validated(camera, source);
+}
+
+std::vector<NamedCamera> read_orb_slam(const Field& file, const ReadOptions& options, const std::string& source) {
+    std::string type = "PinHole";
+    if (const std::optional<Field> field = file.find({"Camera.type"})) type = field->text();
+    if (type != "PinHole" && type != "KannalaBrandt8" && type != "Rectified") {
+        file.at({"Camera.type"}).fail("must be PinHole, KannalaBrandt8 or Rectified, got '" + type + "'");
+    }
+    const ImageSize size = size_from(file, {"Camera.width"}, {"Camera.height"}, options);
+    const bool numbered = file.node().find("Camera1.fx") != nullptr;
+    std::vector<NamedCamera> cameras;
+    cameras.push_back({"Camera1", {orb_slam_camera(file, numbered ? "Camera1." : "Camera.", type, size, source), std::nullopt}});
+    // The second camera: its own intrinsics and Stereo.T_c1_c2 (camera 2 in camera 1's
+    // frame; Tlr before ORB-SLAM3 1.0), or a rectified pair's baseline Stereo.b.
+    if (numbered && file.node().find("Camera2.fx") != nullptr) {
+        Camera second = orb_slam_camera(file, "Camera2.", type, size, source);
+        if (const std::optional<Field> transform = file.find({"Stereo.T_c1_c2", "Tlr"})) {
+            second.pose = read_transform(*transform).inverse();
+        } else {
+            file.at({"Stereo.T_c1_c2"});  // throws "missing": where the second camera is is not known
+        }
+        cameras.push_back({"Camera2", {validated(second, source), std::nullopt}});
+    } else if (type == "Rectified" && file.node().find("Stereo.b") != nullptr) {
+        Camera second = cameras.front().file.camera;
+        second.pose.t = Vec3(-file.at({"Stereo.b"}).number(), 0.0, 0.0);
+        cameras.push_back({"Camera2", {validated(second, source), std::nullopt}});
+    }
+    return cameras;
+}
+
+// ---- stereo files: M1 D1 M2 D2 (OpenCV's stereo_calib sample), or K1 D1 K2 D2; R and T ----
+
+bool is_stereo(const DocumentNode& tree) {
+    return (tree.find("M1") != nullptr || tree.find("K1") != nullptr) && tree.find("D1") != nullptr &&
+           tree.find("camera_matrix") == nullptr;
+}
+
+std::vector<NamedCamera> read_stereo(const Field& file, const ReadOptions& options, const std::string& source) {
+    const ImageSize size = size_from(file, {"image_width", "imageWidth", "width"}, {"image_height", "imageHeight", "height"},
+                                     options);
+    std::vector<NamedCamera> cameras;
+    for (const int index : {1, 2}) {
+        const std::string n = std::to_string(index);
+        Camera camera;
+        camera.size = size;
+        camera.intrinsics = read_camera_matrix(file.at({"M" + n, "K" + n}));
+        camera.lens = read_distortion(file.at({"D" + n}), CoefficientFamily::RadialTangential);
+        cameras.push_back({"camera" + n, {camera, std::nullopt}});
+    }
+    // R, T: camera 2 from camera 1 (X2 = R X1 + T), as cv::stereoCalibrate gives them.
+    const std::optional<Field> R = file.find({"R"});
+    const std::optional<Field> T = file.find({"T"});
+    if (R.has_value() != T.has_value()) file.at({R ? "T" : "R"});  // throws "missing"
+    if (R) {
+        const Matrix m = read_matrix(*R);
+        if (m.values.size() != 9) R->fail("expected a 3x3 rotation, got " + std::to_string(m.values.size()) + " numbers");
+        Mat3 rotation;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) rotation(r, c) = m.values[static_cast<std::size_t>(3 * r + c)];
+        cameras[1].file.camera.pose = {nearest_rotation_if_rounded(rotation), read_vector3(*T)};
+    }
+    for (NamedCamera& camera : cameras) camera.file.camera = validated(camera.file.camera, source);
+    return cameras;
+}
+
+}  // namespace
+
+Camera parse_opencv_storage(std::string_view text, const std::string& source) {
+    return parse_opencv_storage_set(text, source, {}).front().file.camera;
+}
+
+std::vector<NamedCamera> parse_opencv_storage_set(std::string_view text, const std::string& source,
+                                                  const ReadOptions& options) {
+    const DocumentNode tree = parse_tree(text, source);
+    const Field file(tree, "", source);
+    if (is_orb_slam(tree)) return read_orb_slam(file, options, source);
+    if (is_stereo(tree)) return read_stereo(file, options, source);
+    return {{std::string(), {read_single(file, options, source), std::nullopt}}};
+}
+
+// ---- ROS camera_info ------------------------------------------------------------------
+
+namespace {
+
+// ROS's distortion_model for a lens, and its coefficients (plumb_bob has five).
+std::pair<std::string, std::vector<double>> ros_distortion(const Lens& lens) {
+    std::vector<double> coefficients = lens.coefficients;
+    const auto zero_after = [&](std::size_t kept) {
+        return std::all_of(coefficients.begin() + static_cast<long>(std::min(kept, coefficients.size())), coefficients.end(),
+                           [](double c) { return c == 0.0; });
+    };
+    switch (lens.type) {
+        case LensType::Pinhole:
+        case LensType::Opencv4:
+        case LensType::Opencv5:
+            coefficients.resize(5, 0.0);
+            return {"plumb_bob", coefficients};
+        case LensType::Opencv8:
+        case LensType::Opencv12:
+        case LensType::Opencv14:
+            if (!zero_after(8)) break;
+            coefficients.resize(8, 0.0);
+            return {"rational_polynomial", coefficients};
+        case LensType::Fisheye:
+            return {"equidistant", coefficients};
+        default:
+            break;
+    }
+    throw NotRepresentable("ROS's camera_info holds plumb_bob, rational_polynomial and equidistant lenses, not this " +
+                           std::string(lens_info(lens.type).name) + " lens");
+}
+
+std::string ros_matrix(const std::string& key, long long rows, long long cols, const std::vector<double>& values) {
+    std::string out = key + ":\n  rows: " + std::to_string(rows) + "\n  cols: " + std::to_string(cols) + "\n  data: [";
+    for (std::size_t i = 0; i < values.size(); ++i) out += (i == 0 ? "" : ", ") + yaml_number(values[i]);
+    return out + "]\n";
+}
+
+}  // namespace
+
+std::vector<NamedCamera> parse_ros_camera_info(std::string_view text, const std::string& source) {
+    const DocumentNode tree = parse_tree(text, source);
+    const Field file(tree, "", source);
+    Camera raw = read_single(file, {}, source);
+    const std::string name = file.find({"camera_name"}) ? file.at({"camera_name"}).text() : std::string();
+    // R rotates the raw camera's frame into the rectified one; P = K' [I | t] projects
+    // points of the stereo pair's rectified frame (the first camera's), which is the
+    // world: t = (Tx / fx', Ty / fy', 0), and the raw camera has the rectified camera's
+    // centre, turned by R^T.
+    Mat3 R = Mat3::Identity();
+    if (const std::optional<Field> rectification = file.find({"rectification_matrix"})) {
+        const Matrix m = read_matrix(*rectification);
+        if (m.rows != 3 || m.cols != 3) rectification->fail("expected a 3x3 matrix");
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) R(r, c) = m.values[static_cast<std::size_t>(3 * r + c)];
+        R = nearest_rotation_if_rounded(R);
+    }
+    std::vector<NamedCamera> cameras;
+    const std::optional<Field> projection = file.find({"projection_matrix"});
+    if (!projection) {
+        raw.pose = {R.transpose(), Vec3::Zero()};
+        cameras.push_back({name, {validated(raw, source), std::nullopt}});
+        return cameras;
+    }
+    const Matrix P = read_matrix(*projection);
+    if (P.rows != 3 || P.cols != 4) projection->fail("expected a 3x4 matrix");
+    const auto p = [&](int r, int c) { return P.values[static_cast<std::size_t>(4 * r + c)]; };
+    if (p(1, 0) != 0.0 || p(2, 0) != 0.0 || p(2, 1) != 0.0 || p(2, 2) != 1.0 || p(2, 3) != 0.0) {
+        projection->fail("expected [fx' s cx' Tx; 0 fy' cy' Ty; 0 0 1 0]");
+    }
+    Camera rectified;
+    rectified.size = raw.size;
+    rectified.intrinsics = {p(0, 0), p(1, 1), p(0, 2), p(1, 2), p(0, 1)};
+    if (!(rectified.intrinsics.fx > 0) || !(rectified.intrinsics.fy > 0)) projection->fail("fx' and fy' must be > 0");
+    rectified.pose.t = Vec3((p(0, 3) - rectified.intrinsics.skew * p(1, 3) / rectified.intrinsics.fy) / rectified.intrinsics.fx,
+                            p(1, 3) / rectified.intrinsics.fy, 0.0);
+    raw.pose = Pose{R.transpose(), Vec3::Zero()}.after(rectified.pose);
+    cameras.push_back({name, {validated(raw, source), std::nullopt}});
+    cameras.push_back({name.empty() ? "rectified" : name + "/rectified", {validated(rectified, source), std::nullopt}});
+    return cameras;
+}
+
+std::string format_ros_camera_info(const Camera& camera, const WriteOptions& options) {
+    camera.validate();
+    if (!options.drop_pose && (camera.pose.R != Mat3::Identity() || camera.pose.t != Vec3::Zero())) {
+        throw NotRepresentable("ROS's camera_info holds no pose (ROS keeps poses in tf); this camera's is not the "
+                               "identity: write its intrinsics alone with --no-pose");
+    }
+    const auto [model, coefficients] = ros_distortion(camera.lens);
+    const Intrinsics& k = camera.intrinsics;
+    return "image_width: " + std::to_string(camera.size.width) + "\nimage_height: " + std::to_string(camera.size.height) +
+           "\ncamera_name: " + options.camera_name + "\n" +
+           ros_matrix("camera_matrix", 3, 3, {k.fx, k.skew, k.cx, 0.0, k.fy, k.cy, 0.0, 0.0, 1.0}) +
+           "distortion_model: " + model + "\n" +
+           ros_matrix("distortion_coefficients", 1, static_cast<long long>(coefficients.size()), coefficients) +
+           ros_matrix("rectification_matrix", 3, 3, {1, 0, 0, 0, 1, 0, 0, 0, 1}) +
+           ros_matrix("projection_matrix", 3, 4, {k.fx, k.skew, k.cx, 0.0, 0.0, k.fy, k.cy, 0.0, 0.0, 0.0, 1.0, 0.0});
 }
 
 }  // namespace libcam

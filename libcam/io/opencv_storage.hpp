@@ -28,6 +28,7 @@
 #include <string_view>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/io/camera_file.hpp"
 
 namespace libcam {
 
@@ -46,5 +47,32 @@ std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage);
 // which they equal exactly. cv::fisheye's are FISHEYE (4, even when all zero: that is
 // the equidistant lens). Throws FileError naming the file, line, key and value.
 Camera parse_opencv_storage(std::string_view text, const std::string& source);
+
+// Every camera of such a file, and of the other layouts cv::FileStorage files come in:
+//   - OpenCV's stereo_calib sample (M1 D1 M2 D2, or K1 D1 K2 D2, with R and T: camera 2
+//     from camera 1, X2 = R X1 + T): "camera1", "camera2", in camera 1's frame. The
+//     sample writes no image size: image_width/image_height, else ReadOptions::size.
+//   - ORB-SLAM's settings (Camera.fx ... of ORB-SLAM2, Camera1.fx ... of ORB-SLAM3 1.0;
+//     Camera.type PinHole (k1 k2 p1 p2 [k3]), KannalaBrandt8 (k1..k4: FISHEYE) or
+//     Rectified; Camera.width, Camera.height): "Camera1", and "Camera2" placed by
+//     Stereo.T_c1_c2 (Tlr before 1.0: camera 2 in camera 1's frame, inverted), or for a
+//     Rectified pair by the baseline Stereo.b along x.
+// A camera the file does not size takes ReadOptions::size; without it, refused.
+std::vector<NamedCamera> parse_opencv_storage_set(std::string_view text, const std::string& source,
+                                                  const ReadOptions& options);
+
+// ROS's camera_info YAML (camera_calibration_parsers): image_width, image_height,
+// camera_name, camera_matrix, distortion_model (plumb_bob, rational_polynomial,
+// equidistant), distortion_coefficients, rectification_matrix R, projection_matrix P.
+// Gives the raw camera (K, D), named camera_name, and, where P is given, the rectified
+// camera (P's K', no distortion) named "<camera_name>/rectified". The world is the
+// stereo pair's rectified frame, the first camera's, where P projects: the rectified
+// camera is at t = (Tx / fx', Ty / fy', 0) (0 for the first camera), the raw camera at
+// the same centre turned by R^T.
+std::vector<NamedCamera> parse_ros_camera_info(std::string_view text, const std::string& source);
+
+// A camera_info of `camera`: R = I, P = [K | 0]. ROS keeps poses in tf, not here: a
+// camera whose pose is not the identity is refused unless WriteOptions::drop_pose.
+std::string format_ros_camera_info(const Camera& camera, const WriteOptions& options);
 
 }  // namespace libcam

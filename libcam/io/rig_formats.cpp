@@ -215,7 +215,104 @@ Camera basalt_camera(const JsonField& entry) {
     return camera;
 }
 
+// ---- EuRoC (ASL) sensor.yaml ----------------------------------------------------------
+
+NamedCamera read_euroc_sensor(const Field& file, const std::string& source) {
+    const Field sensor_type = file.at({"sensor_type"});
+    if (sensor_type.text() != "camera") sensor_type.fail("must be camera, got '" + sensor_type.text() + "'");
+    const Field camera_model = file.at({"camera_model"});
+    if (camera_model.text() != "pinhole") camera_model.fail("must be pinhole, got '" + camera_model.text() + "'");
+    const Field distortion_model = file.at({"distortion_model"});
+    const std::string distortion = distortion_model.text();
+    LensType type = LensType::Opencv4;
+    if (distortion == "equidistant") {
+        type = LensType::Fisheye;
+    } else if (distortion != "radial-tangential" && distortion != "radtan") {
+        distortion_model.fail("must be radial-tangential or equidistant, got '" + distortion + "'");
+    }
+    const Field intrinsics = file.at({"intrinsics"});
+    const std::vector<double> k = intrinsics.numbers(4);
+    if (k.size() != 4) intrinsics.fail("expected fu, fv, cu, cv");
+    const Field resolution = file.at({"resolution"});
+    const DocumentNode& sizes = resolution.node();
+    if (sizes.kind != DocumentNode::Kind::Sequence || sizes.items.size() != 2) resolution.fail("expected [width, height]");
+    Camera camera;
+    camera.size = size_of(Field(sizes.items[0], resolution.name() + "[0]", source),
+                          Field(sizes.items[1], resolution.name() + "[1]", source));
+    camera.intrinsics = {k[0], k[1], k[2], k[3], 0.0};
+    const Field coefficients = file.at({"distortion_coefficients"});
+    camera.lens = {type, coefficients.numbers(4)};
+    if (camera.lens.coefficients.size() != 4) coefficients.fail("expected 4 coefficients");
+    // T_BS: the sensor (camera) in the body (IMU) frame, a 4x4 given as rows, cols, data.
+    const Field transform = file.at({"T_BS"});
+    const Field data = transform.at({"data"});
+    const std::vector<double> values = data.numbers(16);
+    if (values.size() != 16) data.fail("expected 16 numbers, got " + std::to_string(values.size()));
+    Eigen::Matrix4d m;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) m(r, c) = values[static_cast<std::size_t>(4 * r + c)];
+    if ((m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) data.fail("the last row must be 0 0 0 1");
+    Pose in_body{nearest_rotation_if_rounded(m.topLeftCorner<3, 3>()), m.topRightCorner<3, 1>()};
+    try {
+        in_body.validate("T_BS");
+    } catch (const InvalidArgument& error) {
+        data.fail(error.what());
+    }
+    camera.pose = in_body.inverse();
+    const std::string name = file.find({"comment"}) ? file.at({"comment"}).text() : std::string();
+    return checked(name, std::move(camera), source);
+}
+
+// ---- writing Kalibr -------------------------------------------------------------------------
+
+std::string yaml_list(const std::vector<double>& values) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) out += (i == 0 ? "" : ", ") + yaml_number(values[i]);
+    return out + "]";
+}
+
 }  // namespace
+
+std::string format_kalibr_camchain(const Camera& camera, const WriteOptions&) {
+    if (camera.intrinsics.skew != 0.0) {
+        throw NotRepresentable("Kalibr's cameras have no skew; this camera's is " + yaml_number(camera.intrinsics.skew));
+    }
+    const LensInfo& info = lens_info(camera.lens.type);
+    if (info.kalibr.empty()) {
+        throw NotRepresentable("Kalibr has no model for a " + std::string(info.name) +
+                               " lens (it holds pinhole, omni, ds and eucm cameras with radtan, equidistant, fov or no "
+                               "distortion)");
+    }
+    const std::string_view kalibr = info.kalibr;
+    const std::string projection(kalibr.substr(0, kalibr.find('-')));
+    const std::string short_distortion(kalibr.substr(kalibr.find('-') + 1));
+    const std::string distortion = short_distortion == "equi" ? "equidistant" : short_distortion;
+    const std::size_t leading = static_cast<std::size_t>(leading_coefficients(projection));
+    const std::vector<double>& c = camera.lens.coefficients;
+    std::vector<double> intrinsics(c.begin(), c.begin() + static_cast<long>(leading));
+    const Intrinsics& k = camera.intrinsics;
+    intrinsics.insert(intrinsics.end(), {k.fx, k.fy, k.cx, k.cy});
+    const std::vector<double> distortion_coeffs(c.begin() + static_cast<long>(leading), c.end());
+    std::string out = "cam0:\n  T_cam_imu:\n";
+    for (int r = 0; r < 4; ++r) {
+        const std::vector<double> row = r < 3 ? std::vector<double>{camera.pose.R(r, 0), camera.pose.R(r, 1),
+                                                                     camera.pose.R(r, 2), camera.pose.t(r)}
+                                              : std::vector<double>{0.0, 0.0, 0.0, 1.0};
+        out += "  - " + yaml_list(row) + "\n";
+    }
+    out += "  camera_model: " + projection + "\n";
+    out += "  distortion_coeffs: " + yaml_list(distortion_coeffs) + "\n";
+    out += "  distortion_model: " + distortion + "\n";
+    out += "  intrinsics: " + yaml_list(intrinsics) + "\n";
+    out += "  resolution: [" + std::to_string(camera.size.width) + ", " + std::to_string(camera.size.height) + "]\n";
+    return out;
+}
+
+std::vector<NamedCamera> parse_euroc_sensor(std::string_view text, const std::string& source) {
+    const DocumentNode tree = parse_yaml_document(text, source);
+    if (tree.kind != DocumentNode::Kind::Map) throw FileError(source + ": expected EuRoC's keys (sensor_type, T_BS, ...)");
+    return {read_euroc_sensor(Field(tree, "", source), source)};
+}
 
 std::vector<NamedCamera> parse_kalibr_camchain(std::string_view text, const std::string& source) {
     const DocumentNode tree = parse_yaml_document(text, source);
@@ -269,6 +366,8 @@ std::optional<CameraFormat> rig_format_of_yaml(std::string_view text, const std:
     const DocumentNode tree = parse_yaml_document(text, source);
     if (tree.kind != DocumentNode::Kind::Map) return std::nullopt;
     if (tree.find("model_type") != nullptr) return CameraFormat::Camodocal;
+    if (tree.find("sensor_type") != nullptr && tree.find("T_BS") != nullptr) return CameraFormat::Euroc;
+    if (tree.find("projection_matrix") != nullptr || tree.find("rectification_matrix") != nullptr) return CameraFormat::Ros;
     for (std::size_t i = 0; i < tree.keys.size(); ++i) {
         if (is_kalibr_camera_key(tree.keys[i]) && tree.items[i].find("camera_model") != nullptr) return CameraFormat::Kalibr;
     }

@@ -22,6 +22,11 @@
 //   mirror_parameters, image_width and image_height. One camera, no pose (identity).
 //   Name: camera_name.
 //
+//   EuRoC (ASL) dataset sensor.yaml of a camera: sensor_type camera, camera_model
+//   pinhole, distortion_model radial-tangential (OPENCV4) or equidistant (FISHEYE),
+//   intrinsics fu fv cu cv, distortion_coefficients, resolution, and T_BS (the camera in
+//   the body frame, inverted: the world is the body, the IMU). Name: comment.
+//
 // Each throws FileError naming the file, the line (YAML), the key and the value.
 
 #include <string>
@@ -35,6 +40,14 @@ namespace libcam {
 std::vector<NamedCamera> parse_kalibr_camchain(std::string_view text, const std::string& source);
 std::vector<NamedCamera> parse_basalt_calibration(std::string_view text, const std::string& source);
 std::vector<NamedCamera> parse_camodocal(std::string_view text, const std::string& source);
+std::vector<NamedCamera> parse_euroc_sensor(std::string_view text, const std::string& source);
+
+// A Kalibr camchain of one camera, cam0: camera_model and distortion_model from the lens
+// model's Kalibr names, intrinsics (the model's leading coefficients, then fu fv pu pv),
+// distortion_coeffs, resolution, and T_cam_imu (the pose: the world is the IMU frame).
+// Numbers as PyYAML (Kalibr's reader) reads floats. Throws NotRepresentable for skew
+// and for a model Kalibr lacks.
+std::string format_kalibr_camchain(const Camera& camera, const WriteOptions& options);
 
 // What a YAML or JSON file's keys say it is, for a file whose extension is shared by
 // several formats: Kalibr (a camN key holding camera_model), camodocal (model_type),

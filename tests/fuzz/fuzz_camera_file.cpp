@@ -14,11 +14,22 @@
 #include "libcam/error.hpp"
 #include "libcam/interop/formats.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/lens/lens_model.hpp"
 
 namespace {
 
+// The same lens, or the same in a model that nests it (ROS's plumb_bob writes OPENCV4 with
+// k3 = 0, which reads back as OPENCV5).
+bool same_lens(const libcam::Lens& a, const libcam::Lens& b) {
+    if (libcam::lens_info(a.type).family != libcam::lens_info(b.type).family) return false;
+    std::vector<double> shorter = a.coefficients.size() < b.coefficients.size() ? a.coefficients : b.coefficients;
+    const std::vector<double>& longer = a.coefficients.size() < b.coefficients.size() ? b.coefficients : a.coefficients;
+    shorter.resize(longer.size(), 0.0);
+    return shorter == longer;
+}
+
 bool same_camera(const libcam::Camera& a, const libcam::Camera& b) {
-    return a.size == b.size && a.lens == b.lens && a.intrinsics.K().isApprox(b.intrinsics.K(), 1e-12) &&
+    return a.size == b.size && same_lens(a.lens, b.lens) && a.intrinsics.K().isApprox(b.intrinsics.K(), 1e-12) &&
            a.pose.R.isApprox(b.pose.R, 1e-9) && (a.pose.t - b.pose.t).norm() <= 1e-9 * (1 + a.pose.t.norm());
 }
 

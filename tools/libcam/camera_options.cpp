@@ -52,7 +52,7 @@ CameraFile FileSelection::read(const std::string& path) const {
 void CameraOptions::add_to(CLI::App& command) {
     auto* from_option = command.add_option(
         "--from", from, "Camera file (libcam JSON, OpenCV YAML/XML, .cameramodel, .cahvor, Kalibr, basalt, camodocal, COLMAP, "
-        "transforms.json)");
+        "transforms.json, ROS camera_info, Open3D, EuRoC sensor.yaml, ORB-SLAM settings)");
     selection.add_to(command);
     std::vector<CLI::Option*> fov_flags = {
         command.add_option("--fov", fov, "Field of view in degrees, in (0, 180)"),

@@ -18,12 +18,14 @@ Runner add_convert(CLI::App& app) {
         std::string far = "1000";
         std::string depth_range = "minus-one-to-one";
         std::string image_name = "image.png";
+        bool no_pose = false;
     };
     auto flags = std::make_shared<Flags>();
     flags->camera.add_to(*command);
     command->add_option("--to", flags->to,
-                        "Output format: json, opencv-yaml, opencv-xml, cameramodel, gl, nerf (transforms.json), or "
-                        "colmap (cameras.txt and images.txt, into the folder -o names)")
+                        "Output format: json, opencv-yaml, opencv-xml, cameramodel, gl, nerf (transforms.json), kalibr, "
+                        "ros (camera_info), open3d, or colmap (cameras.txt, images.txt and points3D.txt, into the "
+                        "folder -o names)")
         ->capture_default_str();
     command->add_option("-o,--output", flags->output,
                         "Output file (written atomically; for colmap, a folder); default stdout");
@@ -36,6 +38,9 @@ Runner add_convert(CLI::App& app) {
     command->add_option("--depth-range", flags->depth_range,
                         "gl: NDC depth range, minus-one-to-one (OpenGL) or zero-to-one (Direct3D/Vulkan)")
         ->capture_default_str();
+    command->add_flag("--no-pose", flags->no_pose,
+                      "ros: write the camera's intrinsics alone (camera_info holds no pose; without this flag a "
+                      "camera whose pose is not the identity is refused)");
 
     return [flags] {
         const CameraFormat format = [&] {
@@ -54,6 +59,7 @@ Runner add_convert(CLI::App& app) {
         options.gl_depth_range =
             flags->depth_range == "zero-to-one" ? DepthRange::ZeroToOne : DepthRange::MinusOneToOne;
         options.image_name = flags->image_name;
+        options.drop_pose = flags->no_pose;
         const CameraFile file = flags->camera.camera();
         options.fov_camera = file.fov_camera;
         if (camera_format_writes_folder(format)) {

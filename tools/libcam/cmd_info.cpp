@@ -17,12 +17,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-std::string list_text(const std::vector<double>& values) {
-    std::string out;
-    for (const double value : values) out += (out.empty() ? "" : " ") + format_number(value);
-    return out;
-}
-
 std::string vec_text(const Vec3& v) { return format_number(v.x() + 0.0) + " " + format_number(v.y() + 0.0) + " " + format_number(v.z() + 0.0); }
 
 std::string axis_text(const AxisFieldOfView& axis) {
