@@ -671,3 +671,44 @@ T: [ -0.12, 0., 0.001 ]
     CHECK(pair.cameras[1].file.camera.pose.R == kQuarterTurnZ);
     CHECK(pair.cameras[1].file.camera.pose.t == Vec3(-0.12, 0, 0.001));
 }
+
+TEST_CASE("OpenImuCameraCalibrator's JSON, as UMI ships its GoPro calibration: fy is the aspect ratio times f") {
+    // The numbers of UMI's example/calibration/gopro_intrinsics_2_7k.json.
+    const std::string text = R"({
+    "final_reproj_error": 0.2916398582648,
+    "fps": 59.94005994005994,
+    "image_height": 2028,
+    "image_width": 2704,
+    "intrinsic_type": "FISHEYE",
+    "intrinsics": {
+        "aspect_ratio": 1.0029788958491257,
+        "focal_length": 796.8544625226342,
+        "principal_pt_x": 1354.4265245977356,
+        "principal_pt_y": 1011.4847310011687,
+        "radial_distortion_1": -0.02196117964405394,
+        "radial_distortion_2": -0.018959717016668237,
+        "radial_distortion_3": 0.001693880829392453,
+        "radial_distortion_4": -0.00016807228608000285,
+        "skew": 0.0
+    },
+    "nr_calib_images": 59,
+    "stabelized": false
+})";
+    test::TempDir dir;
+    write_file_atomically(dir.path() / "gopro_intrinsics_2_7k.json", text);
+    const CameraSet set = read_camera_set(dir.path() / "gopro_intrinsics_2_7k.json");
+    CHECK(set.format == CameraFormat::Openicc);
+    const Camera& camera = set.cameras.front().file.camera;
+    CHECK(camera.size == ImageSize{2704, 2028});
+    check_intrinsics(camera, 796.8544625226342, 1.0029788958491257 * 796.8544625226342, 1354.4265245977356,
+                     1011.4847310011687);
+    CHECK(camera.lens == Lens{LensType::Fisheye,
+                              {-0.02196117964405394, -0.018959717016668237, 0.001693880829392453,
+                               -0.00016807228608000285}});
+    CHECK(file_error_of([&] {
+              (void)parse_camera(R"({"intrinsic_type": "DIVISION_UNDISTORTION", "intrinsics": {}})", CameraFormat::Openicc,
+                                 "d.json");
+          }) == "d.json: \"intrinsic_type\": libcam reads the FISHEYE type (cv::fisheye's model), not "
+                "'DIVISION_UNDISTORTION'");
+    CHECK_THROWS_AS(format_camera(camera, CameraFormat::Openicc), NotRepresentable);
+}

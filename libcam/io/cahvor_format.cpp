@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "libcam/error.hpp"
+#include "libcam/io/format_table.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -184,12 +185,7 @@ std::vector<NamedCamera> parse_cahvor(std::string_view text, const std::string& 
             camera.lens = {LensType::Cahvor, {alpha, beta, R.x(), R.y(), R.z()}};
         }
     }
-    try {
-        camera.validate();
-    } catch (const InvalidArgument& error) {
-        throw FileError(source + ": " + error.what());
-    }
-    return {{std::string(), {std::move(camera), std::nullopt}}};
+    return {{std::string(), {validated_camera(std::move(camera), source), std::nullopt}}};
 }
 
 }  // namespace libcam

@@ -15,6 +15,7 @@
 #include "libcam/io/colmap_format.hpp"
 #include "libcam/io/nerf_transforms.hpp"
 #include "libcam/io/open3d_format.hpp"
+#include "libcam/io/openicc_format.hpp"
 #include "libcam/io/rig_formats.hpp"
 #include "libcam/lens/lens_model.hpp"
 
@@ -85,7 +86,7 @@ std::vector<NamedCamera> read_with_source(std::string_view text, const ReadConte
 // OpenCV's YAML and XML share one too (io/opencv_storage.hpp).
 // constinit: filled before any code runs, so a registration made from another file's
 // static initialiser cannot find it unready.
-constinit std::array<FormatRow, 14> format_table = {{
+constinit std::array<FormatRow, 15> format_table = {{
     {CameraFormat::Json, "json", "libcam JSON", "libcam::io", "", parse_json_camera, write_json},
     {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", "libcam::io", "", nullptr, write_opencv_yaml,
      read_opencv_storage},
@@ -110,6 +111,8 @@ constinit std::array<FormatRow, 14> format_table = {{
      read_with_source<parse_open3d_camera>},
     {CameraFormat::Euroc, "euroc", "EuRoC sensor.yaml", "libcam::io", "", nullptr, nullptr,
      read_with_source<parse_euroc_sensor>, true},
+    {CameraFormat::Openicc, "openicc", "OpenImuCameraCalibrator JSON", "libcam::io", "", nullptr, nullptr,
+     read_with_source<parse_openicc_camera>, true},
 }};
 
 FormatRow& row_of(CameraFormat format) {
@@ -218,6 +221,15 @@ std::vector<CameraFileText> format_camera_files(const Camera& camera, CameraForm
 }
 
 bool camera_format_writes_folder(CameraFormat format) { return row_of(format).files_writer != nullptr; }
+
+Camera validated_camera(Camera camera, const std::string& where) {
+    try {
+        camera.validate();
+    } catch (const InvalidArgument& error) {
+        throw FileError(where + ": " + error.what());
+    }
+    return camera;
+}
 
 // Camera files are text: UTF-8 without NUL bytes. Checked before any parser sees the
 // bytes, because OpenCV's XML parser and libmrcal's parser crash on some binary input
@@ -361,6 +373,7 @@ std::optional<CameraFormat> json_format_of(std::string_view text) {
     if (const std::optional<CameraFormat> rig = rig_format_of_json(text)) return rig;
     if (is_nerf_transforms(text)) return CameraFormat::Nerf;
     if (is_open3d_camera(text)) return CameraFormat::Open3d;
+    if (is_openicc_camera(text)) return CameraFormat::Openicc;
     return std::nullopt;
 }
 

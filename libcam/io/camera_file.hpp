@@ -18,6 +18,7 @@
 //   ros          ROS's camera_info YAML (io/opencv_storage.hpp)
 //   open3d       Open3D's PinholeCameraIntrinsic / PinholeCameraParameters JSON
 //   euroc        the EuRoC (ASL) dataset's sensor.yaml of a camera: read only
+//   openicc      OpenImuCameraCalibrator's JSON, as UMI ships it: read only
 //
 // A file may hold several cameras (a stereo pair, a rig): read_camera_set gives every
 // one with the file's name for it; read_camera_file gives one, the first by default.
@@ -43,7 +44,8 @@
 namespace libcam {
 
 enum class CameraFormat {
-    Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor, Ros, Open3d, Euroc
+    Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor, Ros, Open3d, Euroc,
+    Openicc
 };
 
 std::string_view to_string(CameraFormat format);

@@ -73,16 +73,6 @@ Camera camera_from_parameters(const ColmapModel& model, ImageSize size, const st
     return camera;
 }
 
-// A camera read, validated; an error names where it was read.
-Camera checked(Camera camera, const std::string& where) {
-    try {
-        camera.validate();
-    } catch (const InvalidArgument& error) {
-        throw FileError(where + ": " + error.what());
-    }
-    return camera;
-}
-
 // COLMAP's pose: the quaternion (w first) and translation of world-to-camera.
 Pose pose_from(const Eigen::Vector4d& q_wxyz, const Vec3& t, const std::string& where) {
     const Eigen::Quaterniond q(q_wxyz(0), q_wxyz(1), q_wxyz(2), q_wxyz(3));
@@ -210,7 +200,7 @@ std::vector<ColmapCamera> read_cameras_text(std::string_view text, const std::st
         std::vector<double> parameters;
         for (std::size_t i = 0; i < count; ++i) parameters.push_back(line.number(4 + i, "PARAMS[" + std::to_string(i) + "]"));
         const std::string where = line.where() + ": camera " + std::to_string(id);
-        cameras.push_back({id, checked(camera_from_parameters(model, size, parameters), where)});
+        cameras.push_back({id, validated_camera(camera_from_parameters(model, size, parameters), where)});
         return false;
     });
     return cameras;
@@ -324,7 +314,7 @@ std::vector<ColmapCamera> read_cameras_binary(std::string_view bytes, const std:
             parameters.push_back(value);
         }
         const ImageSize size{static_cast<long>(width), static_cast<long>(height)};
-        cameras.push_back({id, checked(camera_from_parameters(*found, size, parameters), where)});
+        cameras.push_back({id, validated_camera(camera_from_parameters(*found, size, parameters), where)});
     }
     if (in.remaining() != 0) in.fail("bytes after the last camera");
     return cameras;

@@ -38,6 +38,10 @@ using CameraWriter = std::string (*)(const Camera& camera, const WriteOptions& o
 // The files of a format written into a folder (io/colmap_format.hpp).
 using CameraFilesWriter = std::vector<CameraFileText> (*)(const Camera& camera, const WriteOptions& options);
 
+// The camera a reader put together, validated (Camera::validate): a value out of range
+// throws FileError "<where>: <what>", `where` naming the file and the line or key.
+Camera validated_camera(Camera camera, const std::string& where);
+
 // Throws FileError "<source>: byte N: ..." unless `text` is UTF-8 without NUL bytes.
 void check_text(std::string_view text, const std::string& source);
 

@@ -7,6 +7,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/document.hpp"
+#include "libcam/io/format_table.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -217,16 +218,6 @@ std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
 
 namespace {
 
-// A camera validated, its errors naming the file.
-Camera validated(Camera camera, const std::string& source) {
-    try {
-        camera.validate();
-    } catch (const InvalidArgument& error) {
-        throw FileError(source + ": " + error.what());
-    }
-    return camera;
-}
-
 // The calibration sample's layout (and cv::fisheye's, and ROS's camera_info).
 Camera read_single(const Field& file, const ReadOptions& options, const std::string& source) {
     Camera camera;
@@ -247,7 +238,7 @@ Camera read_single(const Field& file, const ReadOptions& options, const std::str
     }
     if (const std::optional<Field> rvec = file.find({"rvec"})) camera.pose.R = rotation_from_rvec(read_vector3(*rvec));
     if (const std::optional<Field> tvec = file.find({"tvec"})) camera.pose.t = read_vector3(*tvec);
-    return validated(camera, source);
+    return validated_camera(camera, source);
 }
 
 // The image size of a file that may leave it out: its keys, else --image-size.
@@ -314,7 +305,7 @@ Camera orb_slam_camera(const Field& file, const std::string& prefix, const std::
                            {coefficients.begin(), coefficients.begin() + (coefficients[4] == 0.0 ? 4 : 5)}};
         }
     }
-    return validated(camera, source);
+    return validated_camera(camera, source);
 }
 
 std::vector<NamedCamera> read_orb_slam(const Field& file, const ReadOptions& options, const std::string& source) {
@@ -336,11 +327,11 @@ std::vector<NamedCamera> read_orb_slam(const Field& file, const ReadOptions& opt
         } else {
             file.at({"Stereo.T_c1_c2"});  // throws "missing": where the second camera is is not known
         }
-        cameras.push_back({"Camera2", {validated(second, source), std::nullopt}});
+        cameras.push_back({"Camera2", {validated_camera(second, source), std::nullopt}});
     } else if (type == "Rectified" && file.node().find("Stereo.b") != nullptr) {
         Camera second = cameras.front().file.camera;
         second.pose.t = Vec3(-file.at({"Stereo.b"}).number(), 0.0, 0.0);
-        cameras.push_back({"Camera2", {validated(second, source), std::nullopt}});
+        cameras.push_back({"Camera2", {validated_camera(second, source), std::nullopt}});
     }
     return cameras;
 }
@@ -376,7 +367,7 @@ std::vector<NamedCamera> read_stereo(const Field& file, const ReadOptions& optio
             for (int c = 0; c < 3; ++c) rotation(r, c) = m.values[static_cast<std::size_t>(3 * r + c)];
         cameras[1].file.camera.pose = {nearest_rotation_if_rounded(rotation), read_vector3(*T)};
     }
-    for (NamedCamera& camera : cameras) camera.file.camera = validated(camera.file.camera, source);
+    for (NamedCamera& camera : cameras) camera.file.camera = validated_camera(camera.file.camera, source);
     return cameras;
 }
 
@@ -456,7 +447,7 @@ std::vector<NamedCamera> parse_ros_camera_info(std::string_view text, const std:
     const std::optional<Field> projection = file.find({"projection_matrix"});
     if (!projection) {
         raw.pose = {R.transpose(), Vec3::Zero()};
-        cameras.push_back({name, {validated(raw, source), std::nullopt}});
+        cameras.push_back({name, {validated_camera(raw, source), std::nullopt}});
         return cameras;
     }
     const Matrix P = read_matrix(*projection);
@@ -472,8 +463,8 @@ std::vector<NamedCamera> parse_ros_camera_info(std::string_view text, const std:
     rectified.pose.t = Vec3((p(0, 3) - rectified.intrinsics.skew * p(1, 3) / rectified.intrinsics.fy) / rectified.intrinsics.fx,
                             p(1, 3) / rectified.intrinsics.fy, 0.0);
     raw.pose = Pose{R.transpose(), Vec3::Zero()}.after(rectified.pose);
-    cameras.push_back({name, {validated(raw, source), std::nullopt}});
-    cameras.push_back({name.empty() ? "rectified" : name + "/rectified", {validated(rectified, source), std::nullopt}});
+    cameras.push_back({name, {validated_camera(raw, source), std::nullopt}});
+    cameras.push_back({name.empty() ? "rectified" : name + "/rectified", {validated_camera(rectified, source), std::nullopt}});
     return cameras;
 }
 

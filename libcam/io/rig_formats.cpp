@@ -7,6 +7,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/document.hpp"
+#include "libcam/io/format_table.hpp"
 #include "libcam/io/json_field.hpp"
 #include "libcam/lens/lens_model.hpp"
 
@@ -16,12 +17,7 @@ namespace {
 
 // A camera a reader has put together, validated; an error names the file and the camera.
 NamedCamera checked(std::string name, Camera camera, const std::string& where) {
-    try {
-        camera.validate();
-    } catch (const InvalidArgument& error) {
-        throw FileError(where + ": " + error.what());
-    }
-    return {std::move(name), {std::move(camera), std::nullopt}};
+    return {std::move(name), {validated_camera(std::move(camera), where), std::nullopt}};
 }
 
 ImageSize size_of(const Field& width, const Field& height) {

@@ -1,0 +1,28 @@
+#pragma once
+// OpenImuCameraCalibrator's camera JSON, as the Universal Manipulation Interface (UMI)
+// ships its GoPro calibrations:
+//
+//   {"image_width": 2704, "image_height": 2028, "intrinsic_type": "FISHEYE",
+//    "intrinsics": {"focal_length": f, "aspect_ratio": a, "principal_pt_x": cx,
+//                   "principal_pt_y": cy, "radial_distortion_1".."_4": k1..k4, "skew": s},
+//    "fps": ..., "final_reproj_error": ..., "nr_calib_images": ..., "stabelized": ...}
+//
+// FISHEYE is cv::fisheye's model (FISHEYE), with fx = f and fy = a f (the calibrator's
+// aspect ratio is fy / fx; UMI's own loader uses f for both, which differs from the
+// calibration by the aspect ratio). Pixel centres are at integers. The other intrinsic
+// types (DIVISION_UNDISTORTION, ...) are refused naming the type. Read only.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "libcam/io/camera_file.hpp"
+
+namespace libcam {
+
+std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::string& source);
+
+// Whether a JSON text is OpenImuCameraCalibrator's: an object with "intrinsic_type".
+bool is_openicc_camera(std::string_view text);
+
+}  // namespace libcam
