@@ -22,7 +22,8 @@ namespace {
 // are in test_io_formats.cpp).
 constexpr CameraFormat kWritten[] = {CameraFormat::Json,   CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml,
                                      CameraFormat::Cameramodel, CameraFormat::Gl, CameraFormat::Colmap,
-                                     CameraFormat::Nerf,   CameraFormat::Kalibr,     CameraFormat::Open3d};
+                                     CameraFormat::Nerf,   CameraFormat::Kalibr,     CameraFormat::Open3d,
+                                     CameraFormat::Basalt};
 
 struct Case {
     const char* what;
@@ -43,19 +44,23 @@ std::vector<Case> cases() {
     using F = CameraFormat;
     return {
         {"pinhole", camera_with({LensType::Pinhole, {}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Gl, F::Colmap, F::Nerf, F::Kalibr, F::Open3d}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Gl, F::Colmap, F::Nerf, F::Kalibr, F::Open3d,
+          F::Basalt}},
         {"skewed pinhole", camera_with({LensType::Pinhole, {}}, 3.5),
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Gl, F::Open3d}},
         {"OPENCV4", camera_with({LensType::Opencv4, {-0.2, 0.05, 1e-3, -2e-3}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf, F::Kalibr}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf, F::Kalibr, F::Basalt}},
         {"OPENCV5", camera_with({LensType::Opencv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf, F::Basalt}},
         {"OPENCV8", camera_with({LensType::Opencv8, {0.4, 0.05, 1e-3, -2e-3, 0.01, 0.7, 0.1, 0.02}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Basalt}},
         {"FISHEYE", camera_with({LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf, F::Kalibr}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf, F::Kalibr, F::Basalt}},
         {"LONLAT", camera_with({LensType::Lonlat, {}}), {F::Json, F::Cameramodel, F::Nerf}},
         {"MEI", camera_with({LensType::Mei, {1.1, -0.1, 0.01, 1e-3, -1e-3}}), {F::Json, F::Kalibr}},
+        {"DOUBLE_SPHERE", camera_with({LensType::DoubleSphere, {-0.24, 0.57}}), {F::Json, F::Kalibr, F::Basalt}},
+        {"EUCM", camera_with({LensType::Eucm, {0.59, 1.1}}), {F::Json, F::Kalibr, F::Basalt}},
+        {"FOV", camera_with({LensType::Fov, {0.92}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
     };
 }
 
@@ -71,6 +76,7 @@ fs::path place(const fs::path& dir, const std::string& stem, CameraFormat format
         case CameraFormat::Nerf: return dir / (stem + "-transforms.json");
         case CameraFormat::Kalibr: return dir / (stem + "-camchain.yaml");
         case CameraFormat::Open3d: return dir / (stem + "-open3d.json");
+        case CameraFormat::Basalt: return dir / (stem + "-basalt.json");
         default: return dir / stem;
     }
 }
@@ -126,7 +132,7 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
             }
         }
     }
-    CHECK(trips == 9 * 9 + 5 * 5 + 7 * 7 + 6 * 6 + 5 * 5 + 6 * 6 + 3 * 3 + 2 * 2);
+    CHECK(trips == 10 * 10 + 5 * 5 + 8 * 8 + 7 * 7 + 6 * 6 + 7 * 7 + 3 * 3 + 2 * 2 + 3 * 3 + 3 * 3 + 4 * 4);
 }
 
 TEST_CASE("COLMAP's own program reads libcam's model, and libcam reads COLMAP's binary and text back the same",

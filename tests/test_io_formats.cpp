@@ -519,7 +519,10 @@ TEST_CASE("Kalibr camchain written: each model's Kalibr names, its leading coeff
     CHECK(back.file.camera.pose.t == camera.pose.t);
     camera.lens = {LensType::Fisheye, {0.1, 0.01, 0.001, 1e-4}};
     CHECK_THAT(format_camera(camera, CameraFormat::Kalibr), Catch::Contains("  distortion_model: equidistant\n"));
+    // An OPENCV8 whose k3..k6 are 0 is an OPENCV4 (radtan); with k6 set it is refused.
     camera.lens = {LensType::Opencv8, {0.1, 0.01, 0.001, 1e-4, 0, 0, 0, 0}};
+    CHECK_THAT(format_camera(camera, CameraFormat::Kalibr), Catch::Contains("  distortion_model: radtan\n"));
+    camera.lens = {LensType::Opencv8, {0.1, 0.01, 0.001, 1e-4, 0, 0, 0, 0.5}};
     CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Kalibr), Catch::StartsWith("Kalibr has no model for a OPENCV8 lens"));
 }
 
@@ -711,4 +714,50 @@ TEST_CASE("OpenImuCameraCalibrator's JSON, as UMI ships its GoPro calibration: f
           }) == "d.json: \"intrinsic_type\": libcam reads the FISHEYE type (cv::fisheye's model), not "
                 "'DIVISION_UNDISTORTION'");
     CHECK_THROWS_AS(format_camera(camera, CameraFormat::Openicc), NotRepresentable);
+}
+
+TEST_CASE("basalt's calibration JSON written: every key basalt's loader asks for, UCM in basalt's parametrisation") {
+    Camera camera;
+    camera.size = {512, 512};
+    camera.intrinsics = {380.0, 379.5, 255.5, 256.25, 0.0};
+    camera.lens = {LensType::Ucm, {1.5}};
+    camera.pose = {kQuarterTurnZ, Vec3(0.01, -0.02, 0.03)};
+    const std::string text = format_camera(camera, CameraFormat::Basalt);
+    // The keys of basalt's serialize(Calibration) (basalt/serialization/headers_serialization.h).
+    for (const char* key : {"\"T_imu_cam\"", "\"intrinsics\"", "\"resolution\"", "\"calib_accel_bias\"",
+                            "\"calib_gyro_bias\"", "\"imu_update_rate\"", "\"accel_noise_std\"", "\"gyro_noise_std\"",
+                            "\"accel_bias_std\"", "\"gyro_bias_std\"", "\"cam_time_offset_ns\"", "\"vignette\""}) {
+        CHECK_THAT(text, Catch::Contains(key));
+    }
+    // basalt's ucm: alpha = xi / (1 + xi) = 0.6, f / (1 + xi) = 152 and 151.8.
+    CHECK_THAT(text, Catch::Contains("\"camera_type\": \"ucm\""));
+    CHECK_THAT(text, Catch::Contains("\"alpha\": 0.6"));
+    CHECK_THAT(text, Catch::Contains("\"fx\": 152.0"));
+    // The camera in the IMU frame: R^T is a quarter turn the other way, qz = -sin(45 deg);
+    // its centre -R^T t = (0.02, 0.01, -0.03).
+    CHECK_THAT(text, Catch::Contains("\"px\": 0.02"));
+    CHECK_THAT(text, Catch::Contains("\"py\": 0.01"));
+    CHECK_THAT(text, Catch::Contains("\"pz\": -0.03"));
+    const Camera back = parse_camera(text, CameraFormat::Basalt, "calib.json").camera;
+    CHECK(back.lens.type == LensType::Ucm);
+    CHECK_THAT(back.lens.coefficients[0], Catch::WithinRel(1.5, 1e-15));
+    CHECK_THAT(back.intrinsics.fx, Catch::WithinRel(380.0, 1e-15));
+    CHECK((back.pose.R - camera.pose.R).cwiseAbs().maxCoeff() < 1e-15);
+    CHECK((back.pose.t - camera.pose.t).cwiseAbs().maxCoeff() < 1e-15);
+
+    camera.lens = {LensType::Opencv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}};
+    const std::string radtan8 = format_camera(camera, CameraFormat::Basalt);
+    CHECK_THAT(radtan8, Catch::Contains("\"camera_type\": \"pinhole-radtan8\""));
+    CHECK_THAT(radtan8, Catch::Contains("\"k3\": 0.01"));
+    CHECK_THAT(radtan8, Catch::Contains("\"k6\": 0.0"));
+    camera.lens = {LensType::Fov, {0.9}};
+    CHECK_THAT(format_camera(camera, CameraFormat::Basalt), Catch::Contains("\"w\": 0.9"));
+    camera.lens = {LensType::Mei, {1.5, -0.2, 0.03, 1e-4, -2e-4}};
+    CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Basalt), Catch::StartsWith("basalt has no model for a MEI lens"));
+    // A MEI without distortion is a UCM, and written as one.
+    camera.lens = {LensType::Mei, {1.5, 0, 0, 0, 0}};
+    CHECK_THAT(format_camera(camera, CameraFormat::Basalt), Catch::Contains("\"camera_type\": \"ucm\""));
+    camera.lens = {LensType::Pinhole, {}};
+    camera.intrinsics.skew = 0.5;
+    CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Basalt), Catch::Contains("no skew"));
 }

@@ -555,3 +555,18 @@ TEST_CASE("a lens with the wrong number of coefficients is refused and never rea
     REQUIRE_THROWS_AS(Unprojector<double>(camera), InvalidArgument);
     REQUIRE_THROWS_AS(Projector<double>(camera), InvalidArgument);
 }
+
+TEST_CASE("The simplest equal lens drops only coefficients that are exactly 0, within the model's family") {
+    using L = LensType;
+    CHECK(simplest_equal_lens({L::Opencv8, {0.1, 0.2, 0.3, 0.4, 0, 0, 0, 0}}) == Lens{L::Opencv4, {0.1, 0.2, 0.3, 0.4}});
+    CHECK(simplest_equal_lens({L::Opencv8, {0.1, 0.2, 0.3, 0.4, 0.5, 0, 0, 0}}) ==
+          Lens{L::Opencv5, {0.1, 0.2, 0.3, 0.4, 0.5}});
+    CHECK(simplest_equal_lens({L::Opencv8, {0, 0, 0, 0, 0, 0, 0, 0}}) == Lens{L::Pinhole, {}});
+    // k6 alone keeps OPENCV8: k4..k6 go together; a tiny value is not 0.
+    CHECK(simplest_equal_lens({L::Opencv8, {0.1, 0, 0, 0, 0, 0, 0, 1e-300}}).type == L::Opencv8);
+    CHECK(simplest_equal_lens({L::Mei, {1.2, 0, 0, 0, 0}}) == Lens{L::Ucm, {1.2}});
+    // FISHEYE is the smallest of its family; the other fisheye's coefficients are not its prefix.
+    CHECK(simplest_equal_lens({L::Fisheye, {0, 0, 0, 0}}).type == L::Fisheye);
+    CHECK(simplest_equal_lens({L::RadTanThinPrismFisheye, std::vector<double>(12, 0.0)}).type ==
+          L::RadTanThinPrismFisheye);
+}

@@ -95,8 +95,8 @@ constinit std::array<FormatRow, 15> format_table = {{
     {CameraFormat::Gl, "gl", "gl JSON", "libcam::io", "", parse_json_camera, write_gl_json},
     {CameraFormat::Kalibr, "kalibr", "Kalibr camchain YAML", "libcam::io", "", nullptr, format_kalibr_camchain,
      read_with_source<parse_kalibr_camchain>},
-    {CameraFormat::Basalt, "basalt", "basalt calibration JSON", "libcam::io", "", nullptr, nullptr,
-     read_with_source<parse_basalt_calibration>, true},
+    {CameraFormat::Basalt, "basalt", "basalt calibration JSON", "libcam::io", "", nullptr, format_basalt_calibration,
+     read_with_source<parse_basalt_calibration>},
     {CameraFormat::Camodocal, "camodocal", "camodocal YAML", "libcam::io", "", nullptr, nullptr,
      read_with_source<parse_camodocal>, true},
     {CameraFormat::Colmap, "colmap", "COLMAP model", "libcam::io", "", nullptr, nullptr, read_colmap_model, false,
@@ -153,14 +153,30 @@ std::vector<CameraFileText> format_files(const Camera& camera, CameraFormat form
         throw NotRepresentable(destination + ": libcam reads " + std::string(row.title) +
                                " files but does not write them (it writes " + written_format_names() + ")");
     }
-    if (row.files_writer != nullptr) {
-        camera.validate();
-        return row.files_writer(camera, options);
-    }
     const CameraWriter writer = row.writer.load(std::memory_order_acquire);
-    if (writer == nullptr) throw_not_installed(row, "writing", destination);
+    if (row.files_writer == nullptr && writer == nullptr) throw_not_installed(row, "writing", destination);
     camera.validate();
-    return {{std::string(), writer(camera, options)}};
+    const auto write = [&](const Camera& held) -> std::vector<CameraFileText> {
+        if (row.files_writer != nullptr) return row.files_writer(held, options);
+        return {{std::string(), writer(held, options)}};
+    };
+    try {
+        return write(camera);
+    } catch (const NotRepresentable&) {
+        // A format that lacks the model may still hold the lens as a smaller one when the
+        // terms between are exactly 0 (an OPENCV8 read from basalt's pinhole-radtan8 with
+        // k3..k6 = 0, written to Kalibr as radtan). Nothing is dropped; otherwise the
+        // refusal stands as the writer said it.
+        const Lens simplest = simplest_equal_lens(camera.lens);
+        if (simplest.type == camera.lens.type) throw;
+        Camera smaller = camera;
+        smaller.lens = simplest;
+        try {
+            return write(smaller);
+        } catch (const NotRepresentable&) {
+        }
+        throw;
+    }
 }
 
 }  // namespace

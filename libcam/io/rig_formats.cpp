@@ -267,7 +267,93 @@ std::string yaml_list(const std::vector<double>& values) {
     return out + "]";
 }
 
+// ---- writing basalt -------------------------------------------------------------------------
+
+// basalt's camera_type and intrinsics for a camera: the table's basalt name with K and the
+// coefficients under basalt's names; OPENCV4 and OPENCV5 as pinhole-radtan8 with the
+// higher terms 0; UCM in basalt's parametrisation (alpha = xi / (1 + xi), focal lengths
+// divided by 1 + xi: the inverse of basalt_camera's conversion).
+nlohmann::ordered_json basalt_intrinsics(const Camera& camera) {
+    const Intrinsics& k = camera.intrinsics;
+    const std::vector<double>& c = camera.lens.coefficients;
+    nlohmann::ordered_json values;
+    values["fx"] = k.fx;
+    values["fy"] = k.fy;
+    values["cx"] = k.cx;
+    values["cy"] = k.cy;
+    std::string type(lens_info(camera.lens.type).basalt);
+    if (camera.lens.type == LensType::Ucm) {
+        const double xi = c[0];
+        values["fx"] = k.fx / (1.0 + xi);
+        values["fy"] = k.fy / (1.0 + xi);
+        values["alpha"] = xi / (1.0 + xi);
+        type = "ucm";
+    } else if (lens_contains(LensType::Opencv8, camera.lens.type) && camera.lens.type != LensType::Pinhole) {
+        std::vector<double> radtan8 = c;
+        radtan8.resize(8, 0.0);
+        type = lens_info(LensType::Opencv8).basalt;
+        const char* names[] = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"};
+        for (std::size_t i = 0; i < 8; ++i) values[names[i]] = radtan8[i];
+    } else {
+        const std::span<const std::string_view> names = lens_info(camera.lens.type).coefficients.view();
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            // basalt's FOV coefficient is w (libcam's omega).
+            values[names[i] == "omega" ? std::string("w") : std::string(names[i])] = c[i];
+        }
+    }
+    nlohmann::ordered_json entry;
+    entry["camera_type"] = type;
+    entry["intrinsics"] = values;
+    return entry;
+}
+
+nlohmann::ordered_json triple(double value) { return {value, value, value}; }
+
 }  // namespace
+
+std::string format_basalt_calibration(const Camera& camera, const WriteOptions&) {
+    if (camera.intrinsics.skew != 0.0) {
+        throw NotRepresentable("basalt's cameras have no skew; this camera's is " + yaml_number(camera.intrinsics.skew));
+    }
+    const LensType type = camera.lens.type;
+    if (lens_info(type).basalt.empty() && type != LensType::Ucm && !lens_contains(LensType::Opencv8, type)) {
+        throw NotRepresentable("basalt has no model for a " + std::string(lens_info(type).name) +
+                               " lens (it holds pinhole, kb4 (FISHEYE), ds, eucm, ucm, fov and pinhole-radtan8 "
+                               "(OPENCV8) cameras)");
+    }
+    // T_imu_cam: the camera in the IMU frame (the world), the inverse of the pose; the
+    // quaternion with qw >= 0, one of the two that mean the rotation.
+    const Pose in_imu = camera.pose.inverse();
+    Eigen::Quaterniond q(in_imu.R);
+    if (q.w() < 0) q.coeffs() = -q.coeffs();
+    nlohmann::ordered_json transform;
+    transform["px"] = in_imu.t.x() + 0.0;
+    transform["py"] = in_imu.t.y() + 0.0;
+    transform["pz"] = in_imu.t.z() + 0.0;
+    transform["qx"] = q.x() + 0.0;
+    transform["qy"] = q.y() + 0.0;
+    transform["qz"] = q.z() + 0.0;
+    transform["qw"] = q.w() + 0.0;
+    nlohmann::ordered_json calibration;
+    calibration["T_imu_cam"] = {transform};
+    calibration["intrinsics"] = {basalt_intrinsics(camera)};
+    calibration["resolution"] = {{camera.size.width, camera.size.height}};
+    // basalt's loader requires its IMU fields too. These are the values basalt's own
+    // Calibration starts with (basalt/calibration/calibration.hpp), which its camera-only
+    // calibration writes as they are: no bias, 200 Hz, its default noise densities.
+    calibration["calib_accel_bias"] = std::vector<double>(9, 0.0);
+    calibration["calib_gyro_bias"] = std::vector<double>(12, 0.0);
+    calibration["imu_update_rate"] = 200.0;
+    calibration["accel_noise_std"] = triple(0.016);
+    calibration["gyro_noise_std"] = triple(0.000282);
+    calibration["accel_bias_std"] = triple(0.001);
+    calibration["gyro_bias_std"] = triple(0.0001);
+    calibration["cam_time_offset_ns"] = 0;
+    calibration["vignette"] = nlohmann::ordered_json::array();
+    nlohmann::ordered_json out;
+    out["value0"] = calibration;
+    return out.dump(4) + "\n";
+}
 
 std::string format_kalibr_camchain(const Camera& camera, const WriteOptions&) {
     if (camera.intrinsics.skew != 0.0) {

@@ -49,6 +49,15 @@ std::vector<NamedCamera> parse_euroc_sensor(std::string_view text, const std::st
 // and for a model Kalibr lacks.
 std::string format_kalibr_camchain(const Camera& camera, const WriteOptions& options);
 
+// basalt's calibration JSON of one camera, cam0, as basalt's loader (cereal) reads it:
+// T_imu_cam (the inverse of the pose: the world is the IMU frame), intrinsics with the
+// table's camera_type (OPENCV4 and OPENCV5 as pinhole-radtan8 with the higher terms 0, UCM
+// in basalt's parametrisation), resolution, and the IMU fields basalt requires with the
+// values its own camera-only calibration writes (no bias, 200 Hz, basalt's default noise).
+// No rpmax for pinhole-radtan8: basalt estimates it. Throws NotRepresentable for skew and
+// for a model basalt lacks.
+std::string format_basalt_calibration(const Camera& camera, const WriteOptions& options);
+
 // What a YAML or JSON file's keys say it is, for a file whose extension is shared by
 // several formats: Kalibr (a camN key holding camera_model), camodocal (model_type),
 // basalt (value0). nullopt: none of these (OpenCV's YAML, libcam's JSON).

@@ -1,5 +1,6 @@
 #include "libcam/lens/lens_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "libcam/error.hpp"
@@ -14,6 +15,22 @@ std::optional<LensType> lens_type_from_name(std::string_view name) {
         if (info.name == name) return info.type;
     }
     return std::nullopt;
+}
+
+Lens simplest_equal_lens(const Lens& lens) {
+    const LensInfo& info = lens_info(lens.type);
+    if (info.num_coefficients == kVariableCoefficientCount) return lens;
+    for (const LensInfo& smaller : kLensTable) {
+        if (smaller.family != info.family || smaller.family_rank >= info.family_rank) continue;
+        const std::span<const std::string_view> names = smaller.coefficients.view();
+        const std::span<const std::string_view> ours = info.coefficients.view();
+        if (!std::equal(names.begin(), names.end(), ours.begin())) continue;
+        const auto dropped = lens.coefficients.begin() + static_cast<long>(names.size());
+        if (std::all_of(dropped, lens.coefficients.end(), [](double c) { return c == 0.0; })) {
+            return {smaller.type, std::vector<double>(lens.coefficients.begin(), dropped)};
+        }
+    }
+    return lens;
 }
 
 void Lens::validate(const char* field) const {

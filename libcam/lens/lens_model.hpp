@@ -155,7 +155,7 @@ inline constexpr LensInfo kLensTable[] = {
     {.type = LensType::Opencv8, .name = "OPENCV8", .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"},
      .num_coefficients = 8, .sees_behind_camera = false, .inverse = Inverse::Solved,
      .opencv = OpenCvFunction::ProjectPoints, .mrcal = "LENSMODEL_OPENCV8", .colmap = "FULL_OPENCV", .kalibr = "",
-     .basalt = "", .family = LensFamily::Perspective, .family_rank = 3, .fit = FitCandidate::Always},
+     .basalt = "pinhole-radtan8", .family = LensFamily::Perspective, .family_rank = 3, .fit = FitCandidate::Always},
     {.type = LensType::Opencv12, .name = "OPENCV12",
      .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6", "s1", "s2", "s3", "s4"}, .num_coefficients = 12,
      .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::ProjectPoints,
@@ -278,6 +278,13 @@ constexpr bool lens_contains(LensType container, LensType model) {
     const LensInfo &a = lens_info(container), &b = lens_info(model);
     return a.family == b.family && a.family_rank >= b.family_rank;
 }
+
+struct Lens;
+// The simplest model of the lens's family that is this very lens: a model below it whose
+// coefficients are its leading ones, the rest exactly 0 (OPENCV8 with k3..k6 = 0 is
+// OPENCV4; PINHOLE when every coefficient is 0). The lens itself when there is none.
+// Writers use it to hold a lens in a format that lacks its model, dropping nothing.
+Lens simplest_equal_lens(const Lens& lens);
 
 // A lens: which model, and its distortion coefficients in the model's order
 // (OpenCV's order for OpenCV's models).
