@@ -14,6 +14,7 @@ packages=(
   nlohmann-json3-dev     # JSON camera files
   libyaml-cpp-dev        # YAML camera files (OpenCV, and the YAML of other tools)
   libpugixml-dev         # OpenCV's XML camera files
+  libopenexr-dev         # remap maps written as two-channel EXR images
   libbenchmark-dev       # micro-benchmarks
   libceres-dev           # model fitting
   libboost-dev           # multiprecision reference

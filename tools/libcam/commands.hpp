@@ -17,6 +17,8 @@ Runner add_verify(CLI::App& app);
 Runner add_fit(CLI::App& app);
 Runner add_bench(CLI::App& app);
 Runner add_info(CLI::App& app);
+Runner add_remap(CLI::App& app);
+Runner add_derive(CLI::App& app);
 
 // Writes text to stdout, or atomically to `path` when it is not empty.
 void emit(const std::string& text, const std::string& path);

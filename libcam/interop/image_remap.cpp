@@ -1,0 +1,132 @@
+#include "libcam/interop/image_remap.hpp"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+#include <ImfStdIO.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "libcam/error.hpp"
+#include "libcam/io/atomic_write.hpp"
+
+namespace libcam {
+
+namespace {
+
+// The map's coordinates as float32 pairs, `none` where there is no source; with
+// `clamp`, on-image coordinates in the outer half pixel moved onto the edge pixel.
+cv::Mat float_map(const RemapMap& map, float none, bool clamp) {
+    cv::Mat out(static_cast<int>(map.size.height), static_cast<int>(map.size.width), CV_32FC2);
+    const double right = static_cast<double>(map.source_size.width - 1);
+    const double bottom = static_cast<double>(map.source_size.height - 1);
+    auto* xy = out.ptr<float>();
+    for (std::size_t i = 0; i < map.x.size(); ++i) {
+        if (!map.has_source(i)) {
+            xy[2 * i] = xy[2 * i + 1] = none;
+            continue;
+        }
+        const double x = clamp ? std::clamp(map.x[i], 0.0, right) : map.x[i];
+        const double y = clamp ? std::clamp(map.y[i], 0.0, bottom) : map.y[i];
+        xy[2 * i] = static_cast<float>(x);
+        xy[2 * i + 1] = static_cast<float>(y);
+    }
+    return out;
+}
+
+std::string exr_bytes(const RemapMap& map) {
+    const int width = static_cast<int>(map.size.width), height = static_cast<int>(map.size.height);
+    const cv::Mat xy = float_map(map, std::numeric_limits<float>::quiet_NaN(), false);
+    Imf::Header header(width, height);
+    header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+    header.channels().insert("G", Imf::Channel(Imf::FLOAT));
+    std::ostringstream bytes;
+    Imf::StdOSStream stream;
+    {
+        Imf::OutputFile file(stream, header);
+        Imf::FrameBuffer frame;
+        char* base = const_cast<char*>(reinterpret_cast<const char*>(xy.ptr<float>()));
+        const std::size_t pixel = 2 * sizeof(float);
+        frame.insert("R", Imf::Slice(Imf::FLOAT, base, pixel, pixel * static_cast<std::size_t>(width)));
+        frame.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), pixel, pixel * static_cast<std::size_t>(width)));
+        file.setFrameBuffer(frame);
+        file.writePixels(height);
+    }
+    return stream.str();
+}
+
+// NumPy's .npy, version 1.0: magic, header length, a Python dict padded to 64 bytes.
+std::string npy_bytes(const RemapMap& map) {
+    std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(map.size.height) +
+                         ", " + std::to_string(map.size.width) + ", 2), }";
+    const std::size_t preamble = 10;
+    header.append(63 - (preamble + header.size()) % 64, ' ');
+    header += '\n';
+    std::string out = "\x93NUMPY";
+    out += '\x01';
+    out += '\x00';
+    out += static_cast<char>(header.size() & 0xff);
+    out += static_cast<char>(header.size() >> 8);
+    out += header;
+    const cv::Mat xy = float_map(map, std::numeric_limits<float>::quiet_NaN(), false);
+    static_assert(std::endian::native == std::endian::little, "the .npy writer assumes a little-endian machine");
+    out.append(reinterpret_cast<const char*>(xy.ptr<float>()), xy.total() * 2 * sizeof(float));
+    return out;
+}
+
+}  // namespace
+
+Interpolation interpolation_from_string(std::string_view name) {
+    if (name == "nearest") return Interpolation::Nearest;
+    if (name == "linear") return Interpolation::Linear;
+    if (name == "cubic") return Interpolation::Cubic;
+    if (name == "lanczos") return Interpolation::Lanczos;
+    throw InvalidArgument("interpolation: must be nearest, linear, cubic or lanczos, got '" + std::string(name) + "'");
+}
+
+cv::Mat opencv_map(const RemapMap& map) { return float_map(map, kNoSourceCoordinate, false); }
+
+std::pair<cv::Mat, cv::Mat> opencv_fixed_point_map(const RemapMap& map) {
+    std::pair<cv::Mat, cv::Mat> fixed;
+    cv::convertMaps(opencv_map(map), cv::Mat(), fixed.first, fixed.second, CV_16SC2);
+    return fixed;
+}
+
+cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolation interpolation) {
+    if (source_image.cols != map.source_size.width || source_image.rows != map.source_size.height) {
+        throw InvalidArgument("image: " + std::to_string(source_image.cols) + "x" + std::to_string(source_image.rows) +
+                              " pixels, but the source camera's image is " + std::to_string(map.source_size.width) +
+                              "x" + std::to_string(map.source_size.height));
+    }
+    const int flags[] = {cv::INTER_NEAREST, cv::INTER_LINEAR, cv::INTER_CUBIC, cv::INTER_LANCZOS4};
+    cv::Mat target;
+    cv::remap(source_image, target, float_map(map, kNoSourceCoordinate, true), cv::Mat(),
+              flags[static_cast<int>(interpolation)], cv::BORDER_CONSTANT, cv::Scalar::all(0));
+    return target;
+}
+
+void write_map_file(const std::filesystem::path& path, const RemapMap& map) {
+    const std::string extension = path.extension().string();
+    if (extension == ".npy") {
+        write_file_atomically(path, npy_bytes(map));
+    } else if (extension == ".exr") {
+        std::string bytes;
+        try {
+            bytes = exr_bytes(map);
+        } catch (const std::exception& error) {
+            throw FileError(path.string() + ": OpenEXR could not write the map: " + error.what());
+        }
+        write_file_atomically(path, bytes);
+    } else {
+        throw FileError(path.string() + ": a map is written as .exr or .npy, not '" + extension + "'");
+    }
+}
+
+}  // namespace libcam

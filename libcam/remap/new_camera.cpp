@@ -1,0 +1,253 @@
+#include "libcam/remap/new_camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+
+#include "libcam/camera/field_of_view.hpp"
+#include "libcam/camera/parallel.hpp"
+#include "libcam/camera/projector.hpp"
+#include "libcam/camera/unprojector.hpp"
+#include "libcam/error.hpp"
+#include "libcam/remap/remap_map.hpp"
+#include "libcam/text/number_format.hpp"
+
+namespace libcam {
+
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+// The target of scale f (pixels per unit of the model's normalised coordinate: per unit
+// of tangent for PINHOLE, per radian for LONLAT), square pixels, centred.
+Camera centred_camera(LensType model, double f, const ImageSize& size, const Pose& pose) {
+    Camera camera;
+    camera.size = size;
+    camera.intrinsics = {f, f, size.centre_x(), size.centre_y(), 0.0};
+    camera.lens = {model, {}};
+    camera.pose = pose;
+    return camera;
+}
+
+// The target's pose: the source's centre, its axes turned by `rotation`.
+Pose target_pose(const Camera& source, const Mat3& rotation) {
+    return {rotation * source.pose.R, rotation * source.pose.t};
+}
+
+// What the source's rays span in the target's frame: the largest |m| on each axis of the
+// target model's normalised coordinates, and the largest angle off the target's axis.
+struct Span {
+    double m_x = 0, m_y = 0;
+    double off_axis = 0;  // radians
+    std::size_t rays = 0;
+};
+
+// Every source pixel's ray (the exact method), in the target's frame.
+Span span_of_source(const PreparedCamera& source, LensType model, const Mat3& rotation, int threads) {
+    const Camera& camera = source.camera();
+    const std::size_t width = static_cast<std::size_t>(camera.size.width);
+    const std::size_t n = width * static_cast<std::size_t>(camera.size.height);
+    const Unprojector<double>& unprojector = source.unprojector();
+    const Projector<double> unit(PreparedCamera(centred_camera(model, 1.0, {1, 1}, {})));
+    constexpr std::size_t kStep = 8192;
+    Span all;
+    std::mutex merging;
+    parallel_chunks(n, threads, kStep, [&](std::size_t begin, std::size_t end) {
+        Span span;
+        Points2<double> pixels, m;
+        Points3<double> rays;
+        ValidFlags has_ray, projected;
+        for (std::size_t first = begin; first < end; first += kStep) {
+            const std::size_t count = std::min(kStep, end - first);
+            pixels.resize(count);
+            for (std::size_t j = 0; j < count; ++j) {
+                pixels.x[j] = static_cast<double>((first + j) % width);
+                pixels.y[j] = static_cast<double>((first + j) / width);
+            }
+            unprojector.unproject(pixels, UnprojectMethod::Exact, rays, has_ray);
+            for (std::size_t j = 0; j < count; ++j) {
+                const Vec3 d = rotation * Vec3(rays.x[j], rays.y[j], rays.z[j]);
+                rays.x[j] = d.x();
+                rays.y[j] = d.y();
+                rays.z[j] = d.z();
+                if (has_ray[j] != 0) {
+                    span.off_axis = std::max(span.off_axis, std::atan2(std::hypot(d.x(), d.y()), d.z()));
+                    ++span.rays;
+                }
+            }
+            unit.project(rays, m, projected);
+            for (std::size_t j = 0; j < count; ++j) {
+                if (has_ray[j] == 0 || projected[j] == 0) continue;
+                span.m_x = std::max(span.m_x, std::abs(m.x[j]));
+                span.m_y = std::max(span.m_y, std::abs(m.y[j]));
+            }
+        }
+        const std::lock_guard<std::mutex> lock(merging);
+        all.m_x = std::max(all.m_x, span.m_x);
+        all.m_y = std::max(all.m_y, span.m_y);
+        all.off_axis = std::max(all.off_axis, span.off_axis);
+        all.rays += span.rays;
+    });
+    return all;
+}
+
+// Whether every pixel of the target (on its border, and on a lattice every 16 pixels
+// inside) has a source pixel at least half a pixel inside the source image.
+bool sees_only_source(const Camera& target, const PreparedCamera& source, const Projector<double>& projector,
+                      const Mat3& to_source) {
+    Points2<double> pixels;
+    const long w = target.size.width, h = target.size.height;
+    const auto add = [&](long x, long y) {
+        pixels.x.push_back(static_cast<double>(x));
+        pixels.y.push_back(static_cast<double>(y));
+    };
+    for (long x = 0; x < w; ++x) {
+        add(x, 0);
+        add(x, h - 1);
+    }
+    for (long y = 0; y < h; ++y) {
+        add(0, y);
+        add(w - 1, y);
+    }
+    for (long y = 8; y < h; y += 16)
+        for (long x = 8; x < w; x += 16) add(x, y);
+    Points3<double> rays;
+    ValidFlags has_ray, projected;
+    Unprojector<double>(target).unproject(pixels, UnprojectMethod::Exact, rays, has_ray);
+    for (std::size_t j = 0; j < rays.size(); ++j) {
+        const Vec3 d = to_source * Vec3(rays.x[j], rays.y[j], rays.z[j]);
+        rays.x[j] = d.x();
+        rays.y[j] = d.y();
+        rays.z[j] = d.z();
+    }
+    Points2<double> source_pixels;
+    projector.project(rays, source_pixels, projected);
+    for (std::size_t j = 0; j < rays.size(); ++j) {
+        if (has_ray[j] == 0 || projected[j] == 0 ||
+            !on_image(source_pixels.x[j], source_pixels.y[j], source.camera().size, -0.5)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// The widest target with no pixel lacking a source: the smallest f that passes
+// sees_only_source, by bisection on log f (a larger f sees a narrower view, inside a
+// wider one that passed, for a valid region that is star-shaped about the axis, as a
+// lens's is).
+double widest_valid_scale(LensType model, const ImageSize& size, const PreparedCamera& source, const Pose& pose,
+                          const Mat3& to_source) {
+    const Projector<double> projector(source);
+    const auto passes = [&](double f) {
+        return sees_only_source(centred_camera(model, f, size, pose), source, projector, to_source);
+    };
+    const double half_w = 0.5 * static_cast<double>(size.width), half_h = 0.5 * static_cast<double>(size.height);
+    // The widest view the model holds usefully: a pinhole's corners kWidestPinholeDeg / 2
+    // off the axis, the whole sphere for LONLAT.
+    const double widest = model == LensType::Pinhole
+                              ? std::hypot(half_w, half_h) / std::tan(0.5 * kWidestPinholeDeg * kDegree)
+                              : std::max(half_w / std::numbers::pi, half_h / (0.5 * std::numbers::pi));
+    if (passes(widest)) return widest;
+    double narrow = std::max(source.camera().intrinsics.fx, widest);
+    for (int doubling = 0; !passes(narrow); ++doubling) {
+        if (doubling == 60) {
+            throw InvalidArgument(
+                "new camera: the source camera sees nothing along the target's axis (no view, however narrow, has a "
+                "source for every pixel)");
+        }
+        narrow *= 2.0;
+    }
+    double wide = widest;
+    while (narrow / wide > 1.0 + 1e-12) {
+        const double middle = std::sqrt(wide * narrow);
+        (passes(middle) ? narrow : wide) = middle;
+    }
+    return narrow;
+}
+
+// f for a field of view across the image on an axis, edge to edge.
+double scale_for_fov(LensType model, double fov_deg, FovAxis axis, const ImageSize& size) {
+    if (axis == FovAxis::Both) {
+        throw InvalidArgument("new camera: fov_axis both gives each axis its own focal length; the new camera has "
+                              "square pixels: use horizontal, vertical or diagonal");
+    }
+    const double width = static_cast<double>(size.width), height = static_cast<double>(size.height);
+    if (model == LensType::Pinhole) {
+        if (!(fov_deg > 0 && fov_deg < 180)) {
+            throw InvalidArgument("new camera: a pinhole's fov must be in (0, 180) degrees, got " + format_number(fov_deg));
+        }
+        const Vec2 tangents = half_tangents_of_fov<double>(fov_deg, axis, size);
+        return width / (2.0 * tangents.x());
+    }
+    if (axis == FovAxis::Diagonal) throw InvalidArgument("new camera: LONLAT takes its fov across or down, not diagonally");
+    const double limit = axis == FovAxis::Horizontal ? 360.0 : 180.0;
+    if (!(fov_deg > 0 && fov_deg <= limit)) {
+        throw InvalidArgument("new camera: a LONLAT camera's " + std::string(to_string(axis)) + " fov must be in (0, " +
+                              format_number(limit) + "] degrees, got " + format_number(fov_deg));
+    }
+    return (axis == FovAxis::Horizontal ? width : height) / (fov_deg * kDegree);
+}
+
+// "101.2 x 97.5 deg": the target's view, edge to edge.
+std::string view_of(const Camera& camera) {
+    const double f = camera.intrinsics.fx;
+    const double w = static_cast<double>(camera.size.width), h = static_cast<double>(camera.size.height);
+    const auto across = [&](double side) {
+        return camera.lens.type == LensType::Pinhole ? 2.0 * std::atan(0.5 * side / f) / kDegree : side / f / kDegree;
+    };
+    return format_short(across(w), 4) + " x " + format_short(across(h), 4) + " deg";
+}
+
+std::string size_text(const ImageSize& size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
+
+}  // namespace
+
+NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest& request) {
+    if (request.model != LensType::Pinhole && request.model != LensType::Lonlat) {
+        throw InvalidArgument("new camera: the model must be PINHOLE or LONLAT, got " +
+                              std::string(lens_info(request.model).name));
+    }
+    Pose{request.rotation, Vec3::Zero()}.validate("rotation");
+    const ImageSize size = request.size.value_or(source.camera().size);
+    size.validate("size");
+    const Pose pose = target_pose(source.camera(), request.rotation);
+    const Mat3 to_source = request.rotation.transpose();
+    LensType model = request.model;
+    std::string why;
+    double f = 0;
+    if (!request.keep) {
+        f = scale_for_fov(model, request.fov_deg, request.fov_axis, size);
+        why = "the " + std::string(to_string(request.fov_axis)) + " field of view asked for";
+    } else if (*request.keep == Keep::Valid) {
+        f = widest_valid_scale(model, size, source, pose, to_source);
+        why = "the widest view with a source pixel for every pixel (no black borders)";
+        const double half_diagonal = 0.5 * std::hypot(static_cast<double>(size.width), static_cast<double>(size.height));
+        if (model == LensType::Pinhole && std::atan(half_diagonal / f) >= 0.5 * kWidestPinholeDeg * kDegree * (1 - 1e-12)) {
+            why += ", up to " + format_short(kWidestPinholeDeg, 3) +
+                   " deg across the diagonal (a wider pinhole stretches its edges beyond use; --to-lonlat keeps more)";
+        }
+    } else {
+        Span span = span_of_source(source, model, request.rotation, request.threads);
+        if (span.rays == 0) throw InvalidArgument("new camera: no pixel of the source camera has a ray");
+        if (model == LensType::Pinhole && span.off_axis > 0.5 * kWidestPinholeDeg * kDegree) {
+            why = "the lens sees " + format_short(span.off_axis / kDegree, 4) +
+                  " deg off the axis, more than a pinhole holds without stretching its edges beyond use (" +
+                  format_short(0.5 * kWidestPinholeDeg, 3) + " deg), so LONLAT; ";
+            model = LensType::Lonlat;
+            span = span_of_source(source, model, request.rotation, request.threads);
+        }
+        // The source pixels farthest out land on the target's outermost pixel centres.
+        const double half_w = std::max(0.5 * static_cast<double>(size.width - 1), 0.5);
+        const double half_h = std::max(0.5 * static_cast<double>(size.height - 1), 0.5);
+        const double tiny = 1e-300;
+        f = std::min(half_w / std::max(span.m_x, tiny), half_h / std::max(span.m_y, tiny));
+        why += "the narrowest view that keeps every source pixel with a ray";
+    }
+    NewCamera chosen{centred_camera(model, f, size, pose), ""};
+    chosen.why = std::string(lens_info(model).name) + " " + size_text(size) + ", " + view_of(chosen.camera) +
+                 ", f " + format_short(f, 6) + " px, principal point at the centre: " + why;
+    return chosen;
+}
+
+}  // namespace libcam

@@ -1,0 +1,56 @@
+#pragma once
+// The camera to turn a lens's images into, chosen for the user: a pinhole (square
+// pixels, principal point at the image centre, so also a field-of-view camera a renderer
+// takes) or, for a lens that sees more than a pinhole can hold, an equirectangular
+// LONLAT camera (mrcal's: longitude along x, latitude along y, square pixels per radian).
+//
+//   const NewCamera chosen = choose_new_camera(PreparedCamera(fisheye), {.keep = Keep::Valid});
+//   chosen.camera  // the pinhole;  chosen.why  // what was chosen and why, in a sentence
+//
+// What it keeps:
+//   Keep::Valid  every target pixel has a source pixel, at least half a pixel inside the
+//                source image ("no black borders"): the widest such view (for a pinhole,
+//                no wider than kWidestPinholeDeg across its diagonal);
+//   Keep::All    every source pixel that has a ray lands on the target image
+//                ("everything the lens saw"): the narrowest such view;
+//   a field of view on an axis (horizontal, vertical or diagonal, edge to edge).
+// It works from the lens's real valid region (the rays the batch engine gives each pixel
+// and the source lens's domain), so the result is never NaN nor degenerate: where a
+// request cannot be met it throws InvalidArgument saying why. The target keeps the
+// source's centre and, turned by `rotation`, its axes.
+
+#include <optional>
+#include <string>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/fov/fov_camera.hpp"
+
+namespace libcam {
+
+enum class Keep { Valid, All };
+
+struct NewCameraRequest {
+    // PINHOLE or LONLAT. A pinhole asked to keep everything of a lens that sees more
+    // than kWidestPinholeDeg across becomes LONLAT (NewCamera::why says so).
+    LensType model = LensType::Pinhole;
+    std::optional<Keep> keep = Keep::Valid;  // nullopt: fov_deg says the view
+    double fov_deg = 0;                      // with keep = nullopt: the view on fov_axis
+    FovAxis fov_axis = FovAxis::Horizontal;  // Horizontal, Vertical or Diagonal (pinhole)
+    std::optional<ImageSize> size;           // default: the source's size
+    Mat3 rotation = Mat3::Identity();        // the target's axes relative to the source's (remap_map.hpp)
+    int threads = 1;
+};
+
+// The widest pinhole target chosen: a pinhole's edges stretch without bound towards 180
+// degrees. Keep::Valid stops at this angle across the diagonal; Keep::All of a lens that
+// sees past half of it off the axis becomes LONLAT.
+inline constexpr double kWidestPinholeDeg = 150.0;
+
+struct NewCamera {
+    Camera camera;
+    std::string why;
+};
+
+NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest& request);
+
+}  // namespace libcam

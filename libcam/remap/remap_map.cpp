@@ -1,0 +1,78 @@
+#include "libcam/remap/remap_map.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "libcam/camera/parallel.hpp"
+#include "libcam/camera/projector.hpp"
+#include "libcam/camera/unprojector.hpp"
+#include "libcam/error.hpp"
+
+namespace libcam {
+
+namespace {
+
+// Pixels per step of a worker: the batch calls' buffers stay in cache.
+constexpr std::size_t kStep = 8192;
+
+// One worker's buffers, reused step after step.
+struct Scratch {
+    Points2<double> pixels;
+    Points3<double> rays;
+    ValidFlags has_ray;
+    Points2<double> source_pixels;
+    ValidFlags projected;
+};
+
+}  // namespace
+
+Mat3 rotation_between(const Camera& target, const Camera& source) { return target.pose.R * source.pose.R.transpose(); }
+
+RemapMap build_remap_map(const PreparedCamera& target, const PreparedCamera& source, const RemapOptions& options) {
+    // Validated as a pose's rotation is.
+    Pose{options.rotation, Vec3::Zero()}.validate("rotation");
+    const Unprojector<double>& unprojector = target.unprojector();
+    const Projector<double> projector(source);
+    const Mat3 to_source = options.rotation.transpose();
+    const bool turned = !options.rotation.isIdentity(0.0);
+
+    RemapMap map;
+    map.size = target.camera().size;
+    map.source_size = source.camera().size;
+    const std::size_t width = static_cast<std::size_t>(map.size.width);
+    const std::size_t n = width * static_cast<std::size_t>(map.size.height);
+    map.x.assign(n, std::numeric_limits<double>::quiet_NaN());
+    map.y.assign(n, std::numeric_limits<double>::quiet_NaN());
+
+    parallel_chunks(n, options.threads, kStep, [&](std::size_t begin, std::size_t end) {
+        Scratch s;
+        for (std::size_t first = begin; first < end; first += kStep) {
+            const std::size_t m = std::min(kStep, end - first);
+            s.pixels.resize(m);
+            for (std::size_t j = 0; j < m; ++j) {
+                s.pixels.x[j] = static_cast<double>((first + j) % width);
+                s.pixels.y[j] = static_cast<double>((first + j) / width);
+            }
+            unprojector.unproject(s.pixels, options.method, s.rays, s.has_ray);
+            if (turned) {
+                for (std::size_t j = 0; j < m; ++j) {
+                    const Vec3 d = to_source * Vec3(s.rays.x[j], s.rays.y[j], s.rays.z[j]);
+                    s.rays.x[j] = d.x();
+                    s.rays.y[j] = d.y();
+                    s.rays.z[j] = d.z();
+                }
+            }
+            projector.project(s.rays, s.source_pixels, s.projected);
+            for (std::size_t j = 0; j < m; ++j) {
+                const double x = s.source_pixels.x[j], y = s.source_pixels.y[j];
+                if (s.has_ray[j] == 0 || s.projected[j] == 0 || !on_image(x, y, map.source_size)) continue;
+                map.x[first + j] = x;
+                map.y[first + j] = y;
+            }
+        }
+    });
+    for (std::size_t i = 0; i < n; ++i) map.with_source += map.has_source(i) ? 1 : 0;
+    return map;
+}
+
+}  // namespace libcam

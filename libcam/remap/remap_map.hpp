@@ -1,0 +1,62 @@
+#pragma once
+// The map that turns an image of one camera (the source) into an image of another (the
+// target): for each target pixel, the source pixel that sees the same ray.
+//
+//   const RemapMap map = build_remap_map(PreparedCamera(pinhole), PreparedCamera(fisheye));
+//   // map.x[y * width + x], map.y[...]: where to sample the fisheye image; NaN: nowhere
+//
+// Each target pixel is unprojected through the target camera (the batch engine's exact
+// or fast method), turned by the rotation between the cameras, and projected through the
+// source camera. A target pixel has no source, and gets NaN, when it has no ray, when its
+// ray is outside the source lens's valid domain (behind it, past its fold-over radius),
+// or when the ray lands off the source image (outside [-0.5, W - 0.5] x [-0.5, H - 0.5],
+// the pixels' own area). With the exact method each source coordinate is the one the
+// rays give to about 1e-9 px; fast is within about 0.01 px (unprojector.hpp).
+//
+// Undistorting an image is the map from a pinhole target to the lens; distorting a
+// render to look as the real lens took it is the map from the lens (target) to the
+// pinhole the render was made with (source). Both go through this one function.
+
+#include <cstddef>
+#include <vector>
+
+#include "libcam/camera/batch.hpp"
+#include "libcam/camera/camera.hpp"
+
+namespace libcam {
+
+struct RemapOptions {
+    // The target camera's axes relative to the source's: a direction d in the source
+    // camera's frame is rotation * d in the target's (OpenCV's R of
+    // cv::initUndistortRectifyMap: rectification, or a virtual camera looking elsewhere).
+    Mat3 rotation = Mat3::Identity();
+    UnprojectMethod method = UnprojectMethod::Exact;
+    int threads = 1;
+};
+
+struct RemapMap {
+    ImageSize size;           // the target image
+    ImageSize source_size;    // the source image
+    std::vector<double> x, y;  // source pixel of target pixel (i % width, i / width); NaN: no source
+    std::size_t with_source = 0;
+
+    bool has_source(std::size_t i) const { return x[i] == x[i]; }
+};
+
+// Throws InvalidArgument for a rotation that is not one (naming "rotation").
+RemapMap build_remap_map(const PreparedCamera& target, const PreparedCamera& source, const RemapOptions& options = {});
+
+// The rotation between two cameras' poses: X_target = R X_source for a direction, so
+// R = R_target R_source^T (their rotations from the same world).
+Mat3 rotation_between(const Camera& target, const Camera& source);
+
+// Whether a source pixel lies on an image of `size`: within the pixels' own area,
+// [-0.5, W - 0.5] x [-0.5, H - 0.5], widened by `margin` (negative: narrowed; -0.5 keeps
+// to the span of the pixel centres, where interpolation never reads past the edge).
+inline bool on_image(double x, double y, const ImageSize& size, double margin = 0.0) {
+    const double edge = 0.5 + margin;
+    return x >= -edge && y >= -edge && x <= static_cast<double>(size.width) - 1.0 + edge &&
+           y <= static_cast<double>(size.height) - 1.0 + edge;
+}
+
+}  // namespace libcam

@@ -1,0 +1,294 @@
+// libcam remap: images from one camera to another (undistort a photo into a pinhole or
+// LONLAT camera chosen for it, or distort a render to the real lens), and libcam derive:
+// the camera of a resized, cropped, padded, binned or turned image.
+
+#include <filesystem>
+#include <iostream>
+#include <opencv2/imgcodecs.hpp>
+#include <thread>
+
+#include "camera_options.hpp"
+#include "commands.hpp"
+#include "libcam/error.hpp"
+#include "libcam/interop/image_remap.hpp"
+#include "libcam/io/atomic_write.hpp"
+#include "libcam/remap/derived_camera.hpp"
+#include "libcam/remap/new_camera.hpp"
+#include "libcam/text/number_format.hpp"
+#include "parse.hpp"
+
+namespace libcam::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RemapFlags {
+    FileSelection source;
+    std::string from;
+    std::string to;
+    std::string to_pinhole;
+    std::string to_fov;
+    std::string to_fov_axis = "horizontal";
+    std::string to_lonlat;
+    std::string size;
+    std::string rotate;
+    bool inverse = false;
+    std::string method = "exact";
+    std::string interpolation = "linear";
+    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    std::string map_out;
+    std::string camera_out;
+    std::string camera_format = "json";
+    std::string output;
+    std::vector<std::string> images;
+};
+
+Keep keep_from(const std::string& flag, const std::string& value) {
+    if (value == "valid") return Keep::Valid;
+    if (value == "all") return Keep::All;
+    throw UsageError(flag + ": expected valid (no pixel without a source) or all (every source pixel kept), got '" +
+                     value + "'");
+}
+
+// The camera the images go into (or, with --inverse, come from): a file, or one chosen.
+NewCamera target_camera(const RemapFlags& flags, const PreparedCamera& source, const Mat3& rotation) {
+    const int given = !flags.to.empty() + !flags.to_pinhole.empty() + !flags.to_fov.empty() + !flags.to_lonlat.empty();
+    if (given > 1) throw UsageError("give one of --to, --to-pinhole, --to-fov and --to-lonlat");
+    if (!flags.to.empty()) {
+        if (!flags.size.empty()) throw UsageError("--size: the camera --to names has its own size");
+        const CameraFile file = read_camera_file(flags.to);
+        return {file.camera, "the camera in " + flags.to};
+    }
+    NewCameraRequest request;
+    request.rotation = rotation;
+    request.threads = flags.threads;
+    if (!flags.size.empty()) request.size = parse_size("--size", flags.size);
+    if (!flags.to_fov.empty()) {
+        request.keep.reset();
+        request.fov_deg = parse_number("--to-fov", flags.to_fov);
+        try {
+            request.fov_axis = fov_axis_from_string(flags.to_fov_axis);
+        } catch (const InvalidArgument& error) {
+            throw UsageError(std::string("--to-fov-axis: ") + error.what());
+        }
+    } else if (!flags.to_lonlat.empty()) {
+        request.model = LensType::Lonlat;
+        request.keep = keep_from("--to-lonlat", flags.to_lonlat);
+    } else {
+        request.keep = keep_from("--to-pinhole", flags.to_pinhole.empty() ? "valid" : flags.to_pinhole);
+    }
+    return choose_new_camera(source, request);
+}
+
+UnprojectMethod method_from(const std::string& text) {
+    if (text == "exact") return UnprojectMethod::Exact;
+    if (text == "fast") return UnprojectMethod::Fast;
+    throw UsageError("--method: expected exact or fast, got '" + text + "'");
+}
+
+// An image read whole, or a one-line error naming it.
+cv::Mat read_image(const std::string& path) {
+    if (!fs::is_regular_file(path)) throw FileError(path + ": no such image file");
+    cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (image.empty()) throw FileError(path + ": not an image OpenCV can read");
+    return image;
+}
+
+void write_image(const fs::path& path, const cv::Mat& image) {
+    std::vector<unsigned char> bytes;
+    bool encoded = false;
+    try {
+        encoded = cv::imencode(path.extension().string(), image, bytes);
+    } catch (const cv::Exception&) {
+        encoded = false;
+    }
+    if (!encoded) throw FileError(path.string() + ": OpenCV cannot write an image of this type as " + path.extension().string());
+    write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+std::string percent(std::size_t part, std::size_t whole) {
+    return format_short(100.0 * static_cast<double>(part) / static_cast<double>(std::max<std::size_t>(whole, 1)), 4) + "%";
+}
+
+int run_remap(const RemapFlags& flags) {
+    if (flags.images.empty() && flags.map_out.empty() && flags.camera_out.empty()) {
+        throw UsageError("nothing to write: give images (with -o), --map-out or --camera-out");
+    }
+    if (!flags.images.empty() && flags.output.empty()) throw UsageError("-o: give the folder to write the images into");
+    if (flags.threads < 1) throw UsageError("--threads: expected 1 or more");
+    const Interpolation interpolation = [&] {
+        try {
+            return interpolation_from_string(flags.interpolation);
+        } catch (const InvalidArgument& error) {
+            throw UsageError(std::string("--") + error.what());
+        }
+    }();
+    const Mat3 rotation = flags.rotate.empty() ? Mat3::Identity() : rotation_from_rvec(parse_vec3("--rotate", flags.rotate));
+    const PreparedCamera lens(flags.source.read(flags.from).camera);
+    const NewCamera chosen = target_camera(flags, lens, rotation);
+    const PreparedCamera other(chosen.camera);
+    std::cout << "camera: " << chosen.why << "\n";
+
+    // Undistorting: each pixel of the chosen camera from the lens. --inverse: each pixel
+    // of the lens from the chosen camera (a render made with it).
+    RemapOptions options;
+    options.method = method_from(flags.method);
+    options.threads = flags.threads;
+    // The new camera's axes are the lens's turned by --rotate (a camera from --to too:
+    // files from different tools seldom share a world).
+    options.rotation = flags.inverse ? Mat3(rotation.transpose()) : rotation;
+    const RemapMap map = flags.inverse ? build_remap_map(lens, other, options) : build_remap_map(other, lens, options);
+    const std::size_t pixels = map.x.size();
+    std::cout << "map: " << map.size.width << "x" << map.size.height << " from " << map.source_size.width << "x"
+              << map.source_size.height << ", " << percent(map.with_source, pixels) << " of its pixels have a source ("
+              << pixels - map.with_source << " without)\n";
+
+    if (!flags.camera_out.empty()) {
+        CameraFormat format;
+        try {
+            format = camera_format_from_string(flags.camera_format);
+        } catch (const InvalidArgument& error) {
+            throw UsageError(std::string("--camera-format: ") + error.what());
+        }
+        write_camera_file(flags.camera_out, chosen.camera, format);
+    }
+    if (!flags.map_out.empty()) write_map_file(flags.map_out, map);
+    if (flags.images.empty()) return 0;
+
+    fs::create_directories(flags.output);
+    for (std::size_t i = 0; i < flags.images.size(); ++i) {
+        const std::string& path = flags.images[i];
+        const fs::path out = fs::path(flags.output) / fs::path(path).filename();
+        if (fs::exists(out) && fs::equivalent(out, path)) {
+            throw FileError(out.string() + ": is the input image itself: give another output folder");
+        }
+        const cv::Mat image = read_image(path);
+        cv::Mat result;
+        try {
+            result = remap_image(image, map, interpolation);
+        } catch (const InvalidArgument& error) {
+            throw FileError(path + ": " + error.what());
+        }
+        write_image(out, result);
+        if (flags.images.size() > 1) std::cerr << "[" << i + 1 << "/" << flags.images.size() << "] " << out.string() << "\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+Runner add_remap(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "remap", "Turn images from one camera into another: undistort into a pinhole or LONLAT camera chosen for the "
+                 "lens, or (--inverse) distort renders to the real lens");
+    auto flags = std::make_shared<RemapFlags>();
+    command->add_option("--from", flags->from, "The lens's camera file (the camera the images were taken with)")
+        ->required();
+    flags->source.add_to(*command);
+    command->add_option("--to", flags->to,
+                        "A camera file to turn the images into (its axes are the lens's, turned by --rotate)");
+    command->add_option("--to-pinhole", flags->to_pinhole,
+                        "A pinhole chosen for the lens (the default, valid): valid = the widest view with a source "
+                        "for every pixel (no black borders); all = the narrowest that keeps every pixel of the lens "
+                        "(LONLAT instead when the lens sees past 75 degrees off its axis)");
+    command->add_option("--to-fov", flags->to_fov, "A pinhole with this field of view in degrees, edge to edge");
+    command->add_option("--to-fov-axis", flags->to_fov_axis, "--to-fov's axis: horizontal, vertical or diagonal")
+        ->capture_default_str();
+    command->add_option("--to-lonlat", flags->to_lonlat,
+                        "An equirectangular (LONLAT) camera chosen for the lens: valid or all, as for --to-pinhole");
+    command->add_option("--size", flags->size, "The new camera's image size WIDTHxHEIGHT (default: the lens's)");
+    command->add_option("--rotate", flags->rotate,
+                        "Turn the new camera by this rotation vector (radians, x,y,z in the lens's camera frame)");
+    command->add_flag("--inverse", flags->inverse,
+                      "The images are of the new camera (renders made with it, see --camera-out): turn them into "
+                      "images of the lens");
+    command->add_option("--method", flags->method,
+                        "Unprojection: exact (to 1e-9 px) or fast (within about 0.01 px)")
+        ->capture_default_str();
+    command->add_option("--interpolation", flags->interpolation, "nearest, linear, cubic or lanczos (cv::remap)")
+        ->capture_default_str();
+    command->add_option("--threads", flags->threads, "Threads that build the map")->capture_default_str();
+    command->add_option("--map-out", flags->map_out,
+                        "Write the map: source x, y per pixel, NaN where none (.exr: channels R, G; .npy: H x W x 2)");
+    command->add_option("--camera-out", flags->camera_out, "Write the new camera (--camera-format)");
+    command->add_option("--camera-format", flags->camera_format,
+                        "--camera-out's format: " + camera_format_names())
+        ->capture_default_str();
+    command->add_option("-o,--output", flags->output, "Folder for the images (each keeps its file name)");
+    command->add_option("images", flags->images, "Images to turn");
+    return [flags] { return run_remap(*flags); };
+}
+
+Runner add_derive(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "derive", "The camera of a resized, cropped, padded, binned or quarter-turned image (one operation a call)");
+    struct Flags {
+        CameraOptions camera;
+        std::string resize, crop, pad, bin, rotate90;
+        std::string to = "json";
+        std::string output;
+    };
+    auto flags = std::make_shared<Flags>();
+    flags->camera.add_to(*command);
+    command->add_option("--resize", flags->resize, "A scale (0.5) or a new size WIDTHxHEIGHT");
+    command->add_option("--crop", flags->crop, "The pixels x0,y0,x1,y1 kept (x1, y1 excluded, as image[y0:y1, x0:x1])");
+    command->add_option("--pad", flags->pad, "Pixels added left,top,right,bottom");
+    command->add_option("--bin", flags->bin, "Each N x N block of pixels made one");
+    command->add_option("--rotate90", flags->rotate90, "Turn the image: cw, ccw or 180");
+    command->add_option("--to", flags->to, "Output format: " + camera_format_names())->capture_default_str();
+    command->add_option("-o,--output", flags->output, "Output file (written atomically); default stdout");
+    return [flags] {
+        const int given = !flags->resize.empty() + !flags->crop.empty() + !flags->pad.empty() + !flags->bin.empty() +
+                          !flags->rotate90.empty();
+        if (given != 1) throw UsageError("give one of --resize, --crop, --pad, --bin and --rotate90");
+        const Camera camera = flags->camera.camera().camera;
+        const auto longs = [](const std::string& flag, const std::string& text) {
+            std::vector<long> values;
+            for (const double v : parse_numbers(flag, text, 4)) {
+                if (v != std::floor(v) || std::abs(v) > 1e9) throw UsageError(flag + ": expected whole pixels, got '" + text + "'");
+                values.push_back(static_cast<long>(v));
+            }
+            return values;
+        };
+        Camera derived;
+        if (!flags->resize.empty()) {
+            derived = flags->resize.find('x') != std::string::npos
+                          ? resized(camera, parse_size("--resize", flags->resize))
+                          : scaled(camera, parse_number("--resize", flags->resize));
+        } else if (!flags->crop.empty()) {
+            const std::vector<long> v = longs("--crop", flags->crop);
+            derived = cropped(camera, v[0], v[1], v[2], v[3]);
+        } else if (!flags->pad.empty()) {
+            const std::vector<long> v = longs("--pad", flags->pad);
+            derived = padded(camera, v[0], v[1], v[2], v[3]);
+        } else if (!flags->bin.empty()) {
+            const double factor = parse_number("--bin", flags->bin);
+            if (factor != std::floor(factor) || factor < 1 || factor > 1e6) {
+                throw UsageError("--bin: expected a whole number of pixels, 1 or more, got '" + flags->bin + "'");
+            }
+            derived = binned(camera, static_cast<int>(factor));
+        } else {
+            const std::string& turn = flags->rotate90;
+            if (turn != "cw" && turn != "ccw" && turn != "180") {
+                throw UsageError("--rotate90: expected cw, ccw or 180, got '" + turn + "'");
+            }
+            derived = quarter_turns(camera, turn == "cw" ? 1 : turn == "180" ? 2 : 3);
+        }
+        CameraFormat format;
+        try {
+            format = camera_format_from_string(flags->to);
+        } catch (const InvalidArgument& error) {
+            throw UsageError(std::string("--to: ") + error.what());
+        }
+        if (camera_format_writes_folder(format)) {
+            if (flags->output.empty()) throw UsageError("--to " + flags->to + ": give the folder to write into (-o)");
+            write_camera_file(flags->output, derived, format);
+            return 0;
+        }
+        emit(format_camera(derived, format), flags->output);
+        return 0;
+    };
+}
+
+}  // namespace libcam::cli
