@@ -42,10 +42,11 @@ ImageSize checked_size(long width, long height, const std::string& what) {
 Lens lens_turned(const Lens& lens) {
     Lens out = lens;
     std::vector<double>& c = out.coefficients;
-    const auto tangential = [&](std::size_t p1) {
+    // OpenCV's p1 at index p1 and its p2 at p2.
+    const auto tangential = [&](std::size_t p1, std::size_t p2) {
         const double old_p1 = c[p1];
-        c[p1] = c[p1 + 1];
-        c[p1 + 1] = -old_p1;
+        c[p1] = c[p2];
+        c[p2] = -old_p1;
     };
     const auto prism = [&](std::size_t s1, std::size_t count) {
         if (count == 4) {
@@ -72,18 +73,18 @@ Lens lens_turned(const Lens& lens) {
         case LensType::LensPolynomial: return out;
         case LensType::Opencv4:
         case LensType::Opencv5:
-        case LensType::Opencv8: tangential(2); return out;
+        case LensType::Opencv8: tangential(2, 3); return out;
         case LensType::Opencv12:
-            tangential(2);
+            tangential(2, 3);
             prism(8, 4);
             return out;
-        case LensType::Mei: tangential(3); return out;
+        case LensType::Mei: tangential(3, 4); return out;
         case LensType::ThinPrismFisheye:  // k1 k2 p1 p2 k3 k4 sx1 sy1
-            tangential(2);
+            tangential(2, 3);
             prism(6, 2);
             return out;
-        case LensType::RadTanThinPrismFisheye:  // k0..k5 p0 p1 s0..s3
-            tangential(6);
+        case LensType::RadTanThinPrismFisheye:  // k0..k5 p0 p1 s0..s3; its p0 is OpenCV's p2
+            tangential(7, 6);
             prism(8, 4);
             return out;
         default:

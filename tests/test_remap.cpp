@@ -1,0 +1,476 @@
+// libcam's remap maps against OpenCV's (cv::initUndistortRectifyMap, cv::fisheye's and
+// cv::omnidir's), the inverse map checked by projecting, the new camera chosen for real
+// lenses, and the derived cameras against the pixel arithmetic worked by hand.
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/LU>
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/ccalib/omnidir.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "libcam/camera/example_cameras.hpp"
+#include "libcam/camera/unprojector.hpp"
+#include "libcam/error.hpp"
+#include "libcam/interop/image_remap.hpp"
+#include "libcam/interop/opencv.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "libcam/remap/derived_camera.hpp"
+#include "libcam/remap/new_camera.hpp"
+#include "cli_runner.hpp"
+#include "temp_dir.hpp"
+
+using namespace libcam;
+using libcam::test::CliResult;
+using libcam::test::read_whole_file;
+using libcam::test::run_program;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kRealCameras = LIBCAM_REAL_CAMERAS;
+
+Mat3 small_rotation() { return rotation_from_rvec(Vec3(0.02, -0.03, 0.01)); }
+
+cv::Mat cv_matrix(const Mat3& m) {
+    cv::Mat out(3, 3, CV_64F);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out.at<double>(r, c) = m(r, c);
+    return out;
+}
+
+struct Comparison {
+    double worst = 0;       // px, where both have a source
+    std::size_t both = 0;   // pixels compared
+    std::size_t opencv_only = 0;  // libcam flags, OpenCV gives a coordinate on the image
+    double worst_opencv_only_ray_error = 0;  // rad: how far OpenCV's pixel's ray is from the target's
+};
+
+// libcam's map against OpenCV's (CV_32FC1 x and y), and for each pixel libcam flags while
+// OpenCV gives a coordinate on the image, the angle between the target pixel's ray and
+// the ray of OpenCV's source pixel (libcam's exact unprojection): who is right.
+Comparison compare(const RemapMap& map, const cv::Mat& map_x, const cv::Mat& map_y, const PreparedCamera& target,
+                   const PreparedCamera& source, const Mat3& rotation) {
+    Comparison c;
+    const long width = map.size.width;
+    for (long y = 0; y < map.size.height; ++y) {
+        for (long x = 0; x < width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y * width + x);
+            const double ox = map_x.at<float>(static_cast<int>(y), static_cast<int>(x));
+            const double oy = map_y.at<float>(static_cast<int>(y), static_cast<int>(x));
+            if (map.has_source(i)) {
+                c.worst = std::max(c.worst, std::hypot(map.x[i] - ox, map.y[i] - oy));
+                ++c.both;
+            } else if (on_image(ox, oy, map.source_size)) {
+                ++c.opencv_only;
+                const Unprojection target_ray = target.unproject(Vec2(double(x), double(y)));
+                const Unprojection opencv_ray = source.unproject(Vec2(ox, oy));
+                if (target_ray.valid && opencv_ray.valid) {
+                    const Vec3 a = (rotation.transpose() * target_ray.direction).normalized();
+                    c.worst_opencv_only_ray_error =
+                        std::max(c.worst_opencv_only_ray_error, std::acos(std::clamp(a.dot(opencv_ray.direction.normalized()), -1.0, 1.0)));
+                } else {
+                    c.worst_opencv_only_ray_error = M_PI;
+                }
+            }
+        }
+    }
+    return c;
+}
+
+Camera real_camera(const std::string& file, const std::string& name = "") {
+    return read_camera_file(kRealCameras / file, name).camera;
+}
+
+bool real_cameras_present() {
+    if (fs::exists(kRealCameras)) return true;
+    WARN("skipped: the real calibration files are not at " << kRealCameras.string());
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("OPENCV8 lens to a pinhole: libcam's map is cv::initUndistortRectifyMap's wherever OpenCV's forward model holds",
+          "[remap][opencv]") {
+    for (const char* name : {"wide", "strong"}) {
+        CAPTURE(name);
+        Camera lens = example_camera(name);
+        if (lens.size.width > 2000) lens = binned(lens, 4);  // the wide lens: 1504x1004
+        const PreparedCamera source(lens);
+        NewCameraRequest request;
+        request.rotation = small_rotation();
+        const Camera pinhole = choose_new_camera(source, request).camera;
+        const PreparedCamera target(pinhole);
+        RemapOptions options;
+        options.rotation = request.rotation;
+        options.threads = 2;
+        const RemapMap map = build_remap_map(target, source, options);
+        CHECK(map.with_source == map.x.size());  // "valid": every pixel has a source
+
+        cv::Mat map_x, map_y;
+        cv::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens),
+                                    cv_matrix(request.rotation), opencv_camera_matrix(pinhole.intrinsics),
+                                    cv::Size(int(pinhole.size.width), int(pinhole.size.height)), CV_32FC1, map_x, map_y);
+        const Comparison c = compare(map, map_x, map_y, target, source, request.rotation);
+        INFO("worst " << c.worst << " px over " << c.both << " pixels");
+        CHECK(c.both == map.x.size());
+        CHECK(c.worst < 1e-3);  // OpenCV's map is float32
+
+        // A wider pinhole ("all") reaches past the strong lens's fold-over radius: there
+        // libcam has no source, and OpenCV's forward model lands on pixels that see other rays.
+        NewCameraRequest all = request;
+        all.keep = Keep::All;
+        const Camera wide_pinhole = choose_new_camera(source, all).camera;
+        if (wide_pinhole.lens.type != LensType::Pinhole) continue;
+        const PreparedCamera wide_target(wide_pinhole);
+        const RemapMap wide_map = build_remap_map(wide_target, source, options);
+        cv::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens),
+                                    cv_matrix(request.rotation), opencv_camera_matrix(wide_pinhole.intrinsics),
+                                    cv::Size(int(wide_pinhole.size.width), int(wide_pinhole.size.height)), CV_32FC1, map_x,
+                                    map_y);
+        const Comparison w = compare(wide_map, map_x, map_y, wide_target, source, request.rotation);
+        WARN(name << " to the pinhole that keeps everything: maps agree to " << w.worst << " px over " << w.both
+                  << " pixels; OpenCV gives " << w.opencv_only << " pixels a source libcam flags, whose rays are up to "
+                  << w.worst_opencv_only_ray_error * 180 / M_PI << " deg from the pixel's own");
+        CHECK(w.worst < 1e-3);
+        if (w.opencv_only > 0) CHECK(w.worst_opencv_only_ray_error > 1e-3);
+    }
+}
+
+TEST_CASE("FISHEYE and MEI lenses to a pinhole: libcam's map is cv::fisheye's and cv::omnidir's", "[remap][opencv][real]") {
+    if (!real_cameras_present()) return;
+    SECTION("FISHEYE: the RealSense T265 (basalt's calibration)") {
+        const Camera lens = real_camera("basalt/t265_kb4_calib.json");
+        const PreparedCamera source(lens);
+        NewCameraRequest request;
+        request.rotation = small_rotation();
+        const Camera pinhole = choose_new_camera(source, request).camera;
+        const PreparedCamera target(pinhole);
+        const RemapMap map = build_remap_map(target, source, {request.rotation, UnprojectMethod::Exact, 2});
+        cv::Mat map_x, map_y;
+        cv::fisheye::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens),
+                                             cv_matrix(request.rotation), opencv_camera_matrix(pinhole.intrinsics),
+                                             cv::Size(int(pinhole.size.width), int(pinhole.size.height)), CV_32FC1,
+                                             map_x, map_y);
+        const Comparison c = compare(map, map_x, map_y, target, source, request.rotation);
+        INFO("worst " << c.worst << " px over " << c.both << " pixels");
+        CHECK(c.both == map.x.size());
+        CHECK(c.worst < 1e-3);
+    }
+    SECTION("MEI: the EuRoC camera VINS-Fusion calibrated (camodocal)") {
+        const Camera lens = real_camera("vins-fusion/euroc/cam0_mei.yaml");
+        const PreparedCamera source(lens);
+        NewCameraRequest request;
+        request.rotation = small_rotation();
+        const Camera pinhole = choose_new_camera(source, request).camera;
+        const PreparedCamera target(pinhole);
+        const RemapMap map = build_remap_map(target, source, {request.rotation, UnprojectMethod::Exact, 2});
+        cv::Mat map_x, map_y;
+        cv::omnidir::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens),
+                                             cv::Mat(1, 1, CV_64F, cv::Scalar(opencv_xi(lens.lens))),
+                                             cv_matrix(request.rotation), opencv_camera_matrix(pinhole.intrinsics),
+                                             cv::Size(int(pinhole.size.width), int(pinhole.size.height)), CV_32FC1,
+                                             map_x, map_y, cv::omnidir::RECTIFY_PERSPECTIVE);
+        const Comparison c = compare(map, map_x, map_y, target, source, request.rotation);
+        INFO("worst " << c.worst << " px over " << c.both << " pixels");
+        CHECK(c.both == map.x.size());
+        CHECK(c.worst < 1e-3);
+    }
+}
+
+TEST_CASE("The inverse map (pinhole render to the lens): each source pixel's ray projects back onto its lens pixel "
+          "within 1e-6 px, where cv::initInverseRectificationMap is off by more",
+          "[remap][opencv]") {
+    const Camera lens = example_camera("mild");
+    const PreparedCamera prepared_lens(lens);
+    NewCameraRequest request;
+    request.keep = Keep::All;
+    const Camera pinhole = choose_new_camera(prepared_lens, request).camera;
+    REQUIRE(pinhole.lens.type == LensType::Pinhole);
+    const PreparedCamera render(pinhole);
+    // Target: the lens; source: the pinhole render.
+    const RemapMap map = build_remap_map(prepared_lens, render, {Mat3::Identity(), UnprojectMethod::Exact, 2});
+    ValidFlags has_ray;
+    Points3<double> rays;
+    prepared_lens.unprojector().unproject_image(UnprojectMethod::Exact, rays, has_ray, 2);
+    std::size_t with_ray = 0;
+    for (const std::uint8_t v : has_ray) with_ray += v;
+    CHECK(map.with_source == with_ray);  // "all": every lens pixel with a ray is in the render
+
+    double worst = 0;
+    const Mat3 k_inverse = pinhole.intrinsics.K().inverse();
+    for (std::size_t i = 0; i < map.x.size(); i += 7) {
+        if (!map.has_source(i)) continue;
+        const Vec3 ray = k_inverse * Vec3(map.x[i], map.y[i], 1.0);
+        const Projection back = prepared_lens.project_camera_point(ray);
+        REQUIRE(back.valid);
+        const Vec2 pixel(double(i % std::size_t(lens.size.width)), double(i / std::size_t(lens.size.width)));
+        worst = std::max(worst, (back.pixel - pixel).norm());
+    }
+    INFO("worst reprojection " << worst << " px");
+    CHECK(worst < 1e-6);
+
+    cv::Mat map_x, map_y;
+    cv::initInverseRectificationMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens), cv::Mat(),
+                                    opencv_camera_matrix(pinhole.intrinsics),
+                                    cv::Size(int(lens.size.width), int(lens.size.height)), CV_32FC1, map_x, map_y);
+    double opencv_worst = 0;
+    for (std::size_t i = 0; i < map.x.size(); ++i) {
+        if (!map.has_source(i)) continue;
+        const int x = int(i % std::size_t(lens.size.width)), y = int(i / std::size_t(lens.size.width));
+        opencv_worst = std::max(opencv_worst, std::hypot(map.x[i] - map_x.at<float>(y, x), map.y[i] - map_y.at<float>(y, x)));
+    }
+    WARN("cv::initInverseRectificationMap is up to " << opencv_worst << " px from libcam's inverse map (whose pixels "
+                                                       "reproject within " << worst << " px)");
+    CHECK(opencv_worst > worst);
+}
+
+TEST_CASE("The new camera for real lenses: 'valid' leaves no pixel without a source, 'all' loses no lens pixel",
+          "[remap][real]") {
+    if (!real_cameras_present()) return;
+    struct Lens {
+        const char* file;
+        int bin;
+    };
+    for (const Lens& entry : {Lens{"basalt/t265_kb4_calib.json", 1}, Lens{"vins-fusion/mynteye/left_mei.yaml", 1},
+                              Lens{"mrcal/splined-0.cameramodel", 8}, Lens{"colmap-fiord-fisheye/cameras.txt", 4}}) {
+        CAPTURE(entry.file);
+        Camera lens = real_camera(entry.file);
+        lens.pose = {};
+        if (entry.bin > 1) lens = binned(lens, entry.bin);
+        const PreparedCamera source(lens);
+        for (const LensType model : {LensType::Pinhole, LensType::Lonlat}) {
+            for (const Keep keep : {Keep::Valid, Keep::All}) {
+                NewCameraRequest request;
+                request.model = model;
+                request.keep = keep;
+                request.threads = 2;
+                const NewCamera chosen = choose_new_camera(source, request);
+                CAPTURE(chosen.why);
+                const double f = chosen.camera.intrinsics.fx;
+                CHECK(std::isfinite(f));
+                CHECK(f > 0.05 * lens.intrinsics.fx);
+                CHECK(f < 20 * lens.intrinsics.fx);
+                const PreparedCamera target(chosen.camera);
+                if (keep == Keep::Valid) {
+                    const RemapMap map = build_remap_map(target, source, {Mat3::Identity(), UnprojectMethod::Exact, 2});
+                    CHECK(map.with_source == map.x.size());
+                    bool inside = true;  // and half a pixel inside: interpolation never reads the border
+                    for (std::size_t i = 0; i < map.x.size(); ++i) inside = inside && on_image(map.x[i], map.y[i], map.source_size, -0.5);
+                    CHECK(inside);
+                } else {
+                    const RemapMap map = build_remap_map(source, target, {Mat3::Identity(), UnprojectMethod::Exact, 2});
+                    ValidFlags has_ray;
+                    Points3<double> rays;
+                    source.unprojector().unproject_image(UnprojectMethod::Exact, rays, has_ray, 2);
+                    std::size_t with_ray = 0;
+                    for (const std::uint8_t v : has_ray) with_ray += v;
+                    CHECK(map.with_source == with_ray);
+                }
+            }
+        }
+    }
+}
+
+TEST_CASE("The new camera with a field of view has it, edge to edge, and impossible requests say why", "[remap]") {
+    const PreparedCamera lens(example_camera("fisheye"));
+    NewCameraRequest request;
+    request.keep.reset();
+    request.fov_deg = 90;
+    request.size = ImageSize{800, 600};
+    const Camera pinhole = choose_new_camera(lens, request).camera;
+    // 90 degrees across 800 pixels, edge to edge: f = 400 / tan 45 = 400; centre 399.5, 299.5.
+    CHECK_THAT(pinhole.intrinsics.fx, Catch::WithinRel(400.0, 1e-15));
+    CHECK(pinhole.intrinsics.fy == pinhole.intrinsics.fx);
+    CHECK(pinhole.intrinsics.cx == 399.5);
+    CHECK(pinhole.intrinsics.cy == 299.5);
+    request.model = LensType::Lonlat;
+    request.fov_deg = 180;
+    // LONLAT: 180 degrees across 800 pixels: f = 800 / pi per radian.
+    CHECK_THAT(choose_new_camera(lens, request).camera.intrinsics.fx, Catch::WithinRel(800.0 / M_PI, 1e-15));
+    request.fov_axis = FovAxis::Diagonal;
+    CHECK_THROWS_WITH(choose_new_camera(lens, request), Catch::Contains("not diagonally"));
+    request.model = LensType::Pinhole;
+    request.fov_axis = FovAxis::Horizontal;
+    request.fov_deg = 180;
+    CHECK_THROWS_WITH(choose_new_camera(lens, request), Catch::Contains("must be in (0, 180)"));
+    // A target looking backwards sees nothing of a lens that sees 100 degrees off its axis at most.
+    NewCameraRequest away;
+    away.rotation = rotation_from_rvec(Vec3(0, M_PI, 0));
+    CHECK_THROWS_WITH(choose_new_camera(PreparedCamera(example_camera("mild")), away),
+                      Catch::Contains("sees nothing along the target's axis"));
+}
+
+TEST_CASE("Derived cameras: the half-pixel rule for resizing and binning, crops and pads move the centre", "[remap]") {
+    Camera camera;
+    camera.size = {640, 480};
+    camera.intrinsics = {500, 510, 319.5, 239.5, 0};
+    // Half size: the edges (-0.5, 639.5) go to (-0.5, 319.5): cx' = 0.5 (319.5 + 0.5) - 0.5 = 159.5.
+    const Camera half = scaled(camera, 0.5);
+    CHECK(half.size == ImageSize{320, 240});
+    CHECK(half.intrinsics.fx == 250);
+    CHECK(half.intrinsics.fy == 255);
+    CHECK(half.intrinsics.cx == 159.5);
+    CHECK(half.intrinsics.cy == 119.5);
+    // Binning 3 of 640: 213 columns (one dropped), cx' = (319.5 + 0.5) / 3 - 0.5.
+    const Camera bin3 = binned(camera, 3);
+    CHECK(bin3.size == ImageSize{213, 160});
+    CHECK(bin3.intrinsics.cx == Approx(320.0 / 3 - 0.5).epsilon(1e-15));
+    // Resizing each axis by its own factor: 1280 x 240.
+    const Camera stretched = resized(camera, {1280, 240});
+    CHECK(stretched.intrinsics.fx == 1000);
+    CHECK(stretched.intrinsics.cx == 639.5);
+    CHECK(stretched.intrinsics.fy == 255);
+    const Camera crop = cropped(camera, 100, 50, 300, 250);
+    CHECK(crop.size == ImageSize{200, 200});
+    CHECK(crop.intrinsics.cx == 219.5);
+    CHECK(crop.intrinsics.cy == 189.5);
+    const Camera pad = padded(camera, 10, 20, 30, 40);
+    CHECK(pad.size == ImageSize{680, 540});
+    CHECK(pad.intrinsics.cx == 329.5);
+    CHECK(pad.intrinsics.cy == 259.5);
+    CHECK_THROWS_WITH(cropped(camera, 10, 10, 10, 20), Catch::Contains("x1 must exceed x0"));
+    CHECK_THROWS_WITH(binned(camera, 1000), Catch::Contains("0x0"));
+}
+
+TEST_CASE("A quarter turn of the camera is the quarter turn of its image: pixel (x, y) goes to (H - 1 - y, x)",
+          "[remap]") {
+    Camera camera;
+    camera.size = {640, 480};
+    camera.intrinsics = {500, 510, 300.25, 250.75, 0};
+    camera.pose = Pose::from_rvec(Vec3(0.1, 0.2, -0.3), Vec3(1, 2, 3));
+    const std::vector<Lens> lenses = {
+        {LensType::Opencv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}},
+        {LensType::Opencv12, {-0.2, 0.05, 1e-3, -2e-3, 0.01, 0.1, 0.01, 0.001, 1e-3, -2e-4, 3e-3, -4e-4}},
+        {LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}},
+        {LensType::Mei, {1.2, -0.1, 0.01, 2e-3, -1e-3}},
+        {LensType::ThinPrismFisheye, {0.01, -0.002, 1e-3, -2e-3, 3e-4, -4e-5, 2e-3, -1e-3}},
+        {LensType::RadTanThinPrismFisheye, {0.01, -0.002, 3e-4, -4e-5, 1e-5, -1e-6, 1e-3, -2e-3, 1e-3, -2e-4, 3e-3, -4e-4}},
+        {LensType::DoubleSphere, {-0.2, 0.6}},
+    };
+    for (const Lens& lens : lenses) {
+        CAPTURE(lens_info(lens.type).name);
+        camera.lens = lens;
+        const PreparedCamera original(camera);
+        const PreparedCamera once(quarter_turns(camera, 1));
+        const PreparedCamera half(quarter_turns(camera, 2));
+        const PreparedCamera back(quarter_turns(camera, 4));
+        CHECK(once.camera().size == ImageSize{480, 640});
+        double worst = 0;
+        for (int i = 0; i < 50; ++i) {
+            const Vec3 world(0.3 * std::sin(i), 0.2 * std::cos(3 * i), 0) ;
+            const Vec3 point = camera.pose.R.transpose() * (Vec3(world.x(), world.y(), 1.0) - camera.pose.t);
+            const Projection p = original.project(point);
+            const Projection q = once.project(point);
+            const Projection r = half.project(point);
+            REQUIRE(p.valid);
+            REQUIRE(q.valid);
+            worst = std::max(worst, (q.pixel - Vec2(479 - p.pixel.y(), p.pixel.x())).norm());
+            worst = std::max(worst, (r.pixel - Vec2(639 - p.pixel.x(), 479 - p.pixel.y())).norm());
+            worst = std::max(worst, (back.project(point).pixel - p.pixel).norm());
+        }
+        CHECK(worst < 1e-9);
+    }
+    camera.lens = {LensType::Lonlat, {}};
+    CHECK_THROWS_WITH(quarter_turns(camera, 1), Catch::Contains("LONLAT lens does not look the same turned"));
+    camera.lens = {};
+    camera.intrinsics.skew = 1;
+    CHECK_THROWS_WITH(quarter_turns(camera, 3), Catch::Contains("skew"));
+}
+
+TEST_CASE("Maps for cv::remap: float and fixed point sample the same image, and a source-less pixel stays black",
+          "[remap][opencv]") {
+    const Camera lens = binned(example_camera("wide"), 8);
+    const PreparedCamera source(lens);
+    NewCameraRequest request;
+    request.keep = Keep::All;
+    const PreparedCamera target(choose_new_camera(source, request).camera);
+    const RemapMap map = build_remap_map(target, source);
+    cv::Mat image(int(lens.size.height), int(lens.size.width), CV_8UC3);
+    cv::randu(image, 10, 250);
+    const cv::Mat ours = remap_image(image, map, Interpolation::Linear);
+    const auto [fixed_xy, fixed_a] = opencv_fixed_point_map(map);
+    CHECK(fixed_xy.type() == CV_16SC2);
+    CHECK(fixed_a.type() == CV_16UC1);
+    cv::Mat theirs;
+    cv::remap(image, theirs, fixed_xy, fixed_a, cv::INTER_LINEAR, cv::BORDER_CONSTANT);
+    std::size_t black = 0, differ = 0;
+    for (std::size_t i = 0; i < map.x.size(); ++i) {
+        const cv::Vec3b a = ours.at<cv::Vec3b>(int(i / std::size_t(map.size.width)), int(i % std::size_t(map.size.width)));
+        if (!map.has_source(i)) {
+            black += a == cv::Vec3b(0, 0, 0) ? 1 : 0;
+            continue;
+        }
+        const cv::Vec3b b = theirs.at<cv::Vec3b>(int(i / std::size_t(map.size.width)), int(i % std::size_t(map.size.width)));
+        differ += cv::norm(a, b, cv::NORM_INF) > 1 && on_image(map.x[i], map.y[i], map.source_size, -0.5) ? 1 : 0;
+    }
+    CHECK(black == map.x.size() - map.with_source);
+    CHECK(differ == 0);
+    CHECK_THROWS_WITH(remap_image(cv::Mat(3, 3, CV_8UC1), map, Interpolation::Linear), Catch::Contains("3x3 pixels"));
+}
+
+TEST_CASE("libcam remap and derive, as a user runs them: images, the map, the camera, and one-line errors",
+          "[remap][cli]") {
+    test::TempDir dir;
+    const fs::path lens_file = dir.path() / "lens.json";
+    Camera lens = binned(example_camera("wide"), 16);  // 376x251
+    write_camera_file(lens_file, lens, CameraFormat::Json);
+    cv::Mat image(int(lens.size.height), int(lens.size.width), CV_8UC3, cv::Scalar(40, 120, 200));
+    cv::imwrite((dir.path() / "photo.png").string(), image);
+    const std::string exe = LIBCAM_EXE;
+    const fs::path out = dir.path() / "out";
+    CliResult r = run_program(exe, {"remap", "--from", lens_file.string(), "--to-pinhole", "valid", "--camera-out",
+                                    (dir.path() / "pinhole.yaml").string(), "--camera-format", "opencv-yaml",
+                                    "--map-out", (dir.path() / "map.npy").string(), (dir.path() / "photo.png").string(),
+                                    "-o", out.string()});
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("camera: PINHOLE 376x251"));
+    CHECK_THAT(r.out, Catch::Contains("100% of its pixels have a source (0 without)"));
+    const cv::Mat written = cv::imread((out / "photo.png").string());
+    REQUIRE(!written.empty());
+    CHECK(cv::norm(written, cv::Mat(written.size(), CV_8UC3, cv::Scalar(40, 120, 200)), cv::NORM_INF) <= 1);
+    // The .npy: NumPy's header for a (251, 376, 2) float32 array, then the data.
+    const std::string npy = read_whole_file(dir.path() / "map.npy");
+    CHECK(npy.substr(0, 6) == "\x93NUMPY");
+    CHECK_THAT(npy, Catch::Contains("'descr': '<f4', 'fortran_order': False, 'shape': (251, 376, 2)"));
+    CHECK(npy.size() == 128 + 251 * 376 * 2 * 4);
+    CHECK(read_camera_file(dir.path() / "pinhole.yaml").camera.lens.type == LensType::Pinhole);
+    // The EXR: OpenEXR's magic number, and its two float channels R and G in the header.
+    r = run_program(exe, {"remap", "--from", lens_file.string(), "--to-lonlat", "all", "--map-out",
+                          (dir.path() / "map.exr").string()});
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("camera: LONLAT"));
+    const std::string exr = read_whole_file(dir.path() / "map.exr");
+    CHECK(exr.substr(0, 4) == std::string("\x76\x2f\x31\x01", 4));
+    CHECK(exr.find(std::string("R\0\x02\0\0\0", 6)) != std::string::npos);  // channel R, FLOAT (2)
+    CHECK(exr.find(std::string("G\0\x02\0\0\0", 6)) != std::string::npos);
+
+    // Errors: one line, non-zero, nothing written.
+    r = run_program(exe, {"remap", "--from", lens_file.string(), (dir.path() / "missing.png").string(), "-o",
+                          (dir.path() / "out2").string()});
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Catch::Contains("missing.png: no such image file"));
+    cv::imwrite((dir.path() / "small.png").string(), cv::Mat(10, 10, CV_8UC1, cv::Scalar(0)));
+    r = run_program(exe, {"remap", "--from", lens_file.string(), (dir.path() / "small.png").string(), "-o",
+                          (dir.path() / "out3").string()});
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Catch::Contains("small.png: image: 10x10 pixels, but the source camera's image is 376x251"));
+    CHECK_FALSE(fs::exists(dir.path() / "out3" / "small.png"));
+    r = run_program(exe, {"remap", "--from", lens_file.string(), "--to-pinhole", "some", "--map-out", "m.npy"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("--to-pinhole: expected valid"));
+    r = run_program(exe, {"remap", "--from", lens_file.string(), "--map-out", (dir.path() / "map.png").string()});
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Catch::Contains("a map is written as .exr or .npy"));
+
+    r = run_program(exe, {"derive", "--from", lens_file.string(), "--bin", "2"});
+    REQUIRE(r.exit_code == 0);
+    CHECK(parse_camera(r.out, CameraFormat::Json, "stdout").camera.size == ImageSize{188, 125});
+    r = run_program(exe, {"derive", "--from", lens_file.string(), "--bin", "2", "--crop", "0,0,2,2"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("give one of --resize"));
+}
