@@ -13,6 +13,16 @@
 
 namespace libcam {
 
+// The JSON document of another tool's file; FileError "<source>: not valid JSON: ..."
+// otherwise.
+inline nlohmann::json parse_json_document(std::string_view text, const std::string& source) {
+    try {
+        return nlohmann::json::parse(text.begin(), text.end());
+    } catch (const nlohmann::json::exception& error) {
+        throw FileError(source + ": not valid JSON: " + error.what());
+    }
+}
+
 struct JsonField {
     const nlohmann::json& value;
     std::string name;

@@ -207,12 +207,7 @@ bool is_nerf_transforms(std::string_view text) {
 }
 
 std::vector<NamedCamera> read_nerf_transforms(std::string_view text, const ReadContext& context) {
-    json root;
-    try {
-        root = json::parse(text.begin(), text.end());
-    } catch (const json::exception& error) {
-        throw FileError(context.source + ": not valid JSON: " + error.what());
-    }
+    const json root = parse_json_document(text, context.source);
     const JsonField top{root, "", context.source};
     if (!root.is_object()) top.fail("expected an object");
     const json no_frames = json::array();

@@ -78,12 +78,7 @@ bool is_open3d_camera(std::string_view text) {
 }
 
 std::vector<NamedCamera> parse_open3d_camera(std::string_view text, const std::string& source) {
-    json root;
-    try {
-        root = json::parse(text.begin(), text.end());
-    } catch (const json::exception& error) {
-        throw FileError(source + ": not valid JSON: " + error.what());
-    }
+    const json root = parse_json_document(text, source);
     const JsonField top{root, "", source};
     if (!root.is_object()) top.fail("expected an object");
     const std::string kind = top.has("class_name") ? top.at("class_name").text() : std::string();

@@ -13,12 +13,7 @@ bool is_openicc_camera(std::string_view text) {
 }
 
 std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::string& source) {
-    nlohmann::json root;
-    try {
-        root = nlohmann::json::parse(text.begin(), text.end());
-    } catch (const nlohmann::json::exception& error) {
-        throw FileError(source + ": not valid JSON: " + error.what());
-    }
+    const nlohmann::json root = parse_json_document(text, source);
     const JsonField top{root, "", source};
     if (!root.is_object()) top.fail("expected an object");
     const JsonField type = top.at("intrinsic_type");

@@ -418,14 +418,9 @@ std::vector<NamedCamera> parse_camodocal(std::string_view text, const std::strin
 }
 
 std::vector<NamedCamera> parse_basalt_calibration(std::string_view text, const std::string& source) {
-    json root;
-    try {
-        root = json::parse(text.begin(), text.end());
-    } catch (const json::exception& error) {
-        throw FileError(source + ": not valid JSON: " + error.what());
-    }
+    const json root = parse_json_document(text, source);
     if (!root.is_object() || !root.contains("value0")) throw FileError(source + ": expected basalt's \"value0\" object");
-    const JsonField calibration{root["value0"], "value0", source};
+    const JsonField calibration{root.at("value0"), "value0", source};
     const JsonField intrinsics = calibration.at("intrinsics");
     const JsonField resolution = calibration.at("resolution");
     const bool has_poses = calibration.has("T_imu_cam");
