@@ -10,6 +10,7 @@
 #include "libcam/camera/projector.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/error.hpp"
+#include "libcam/remap/detail/batches.hpp"
 #include "libcam/remap/remap_map.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -35,21 +36,39 @@ Pose target_pose(const Camera& source, const Mat3& rotation) {
     return {rotation * source.pose.R, rotation * source.pose.t};
 }
 
-// What the source's rays span in the target's frame: the largest |m| on each axis of the
-// target model's normalised coordinates, and the largest angle off the target's axis.
+// What the source's rays span in the target's frame, for a PINHOLE and a LONLAT target at
+// once: the largest |m| on each axis of each model's normalised coordinates, and the
+// largest angle off the target's axis.
 struct Span {
-    double m_x = 0, m_y = 0;
+    Vec2 pinhole = Vec2::Zero(), lonlat = Vec2::Zero();
     double off_axis = 0;  // radians
     std::size_t rays = 0;
+
+    const Vec2& of(LensType model) const { return model == LensType::Pinhole ? pinhole : lonlat; }
+    void merge(const Span& other) {
+        pinhole = pinhole.cwiseMax(other.pinhole);
+        lonlat = lonlat.cwiseMax(other.lonlat);
+        off_axis = std::max(off_axis, other.off_axis);
+        rays += other.rays;
+    }
 };
 
+// The largest |m| of the rays that have one and project.
+void widen(Vec2& extent, const Points2<double>& m, const ValidFlags& has_ray, const ValidFlags& projected) {
+    for (std::size_t j = 0; j < m.size(); ++j) {
+        if (has_ray[j] == 0 || projected[j] == 0) continue;
+        extent = extent.cwiseMax(Vec2(std::abs(m.x[j]), std::abs(m.y[j])));
+    }
+}
+
 // Every source pixel's ray (the exact method), in the target's frame.
-Span span_of_source(const PreparedCamera& source, LensType model, const Mat3& rotation, int threads) {
+Span span_of_source(const PreparedCamera& source, const Mat3& rotation, int threads) {
     const Camera& camera = source.camera();
     const std::size_t width = static_cast<std::size_t>(camera.size.width);
     const std::size_t n = width * static_cast<std::size_t>(camera.size.height);
     const Unprojector<double>& unprojector = source.unprojector();
-    const Projector<double> unit(PreparedCamera(centred_camera(model, 1.0, {1, 1}, {})));
+    const Projector<double> unit_pinhole(PreparedCamera(centred_camera(LensType::Pinhole, 1.0, {1, 1}, {})));
+    const Projector<double> unit_lonlat(PreparedCamera(centred_camera(LensType::Lonlat, 1.0, {1, 1}, {})));
     constexpr std::size_t kStep = 8192;
     Span all;
     std::mutex merging;
@@ -59,35 +78,21 @@ Span span_of_source(const PreparedCamera& source, LensType model, const Mat3& ro
         Points3<double> rays;
         ValidFlags has_ray, projected;
         for (std::size_t first = begin; first < end; first += kStep) {
-            const std::size_t count = std::min(kStep, end - first);
-            pixels.resize(count);
-            for (std::size_t j = 0; j < count; ++j) {
-                pixels.x[j] = static_cast<double>((first + j) % width);
-                pixels.y[j] = static_cast<double>((first + j) / width);
-            }
+            detail::image_pixels(pixels, first, std::min(kStep, end - first), width);
             unprojector.unproject(pixels, UnprojectMethod::Exact, rays, has_ray);
-            for (std::size_t j = 0; j < count; ++j) {
-                const Vec3 d = rotation * Vec3(rays.x[j], rays.y[j], rays.z[j]);
-                rays.x[j] = d.x();
-                rays.y[j] = d.y();
-                rays.z[j] = d.z();
-                if (has_ray[j] != 0) {
-                    span.off_axis = std::max(span.off_axis, std::atan2(std::hypot(d.x(), d.y()), d.z()));
-                    ++span.rays;
-                }
+            detail::turn(rays, rotation);
+            for (std::size_t j = 0; j < rays.size(); ++j) {
+                if (has_ray[j] == 0) continue;
+                span.off_axis = std::max(span.off_axis, std::atan2(std::hypot(rays.x[j], rays.y[j]), rays.z[j]));
+                ++span.rays;
             }
-            unit.project(rays, m, projected);
-            for (std::size_t j = 0; j < count; ++j) {
-                if (has_ray[j] == 0 || projected[j] == 0) continue;
-                span.m_x = std::max(span.m_x, std::abs(m.x[j]));
-                span.m_y = std::max(span.m_y, std::abs(m.y[j]));
-            }
+            unit_pinhole.project(rays, m, projected);
+            widen(span.pinhole, m, has_ray, projected);
+            unit_lonlat.project(rays, m, projected);
+            widen(span.lonlat, m, has_ray, projected);
         }
         const std::lock_guard<std::mutex> lock(merging);
-        all.m_x = std::max(all.m_x, span.m_x);
-        all.m_y = std::max(all.m_y, span.m_y);
-        all.off_axis = std::max(all.off_axis, span.off_axis);
-        all.rays += span.rays;
+        all.merge(span);
     });
     return all;
 }
@@ -115,12 +120,7 @@ bool sees_only_source(const Camera& target, const PreparedCamera& source, const 
     Points3<double> rays;
     ValidFlags has_ray, projected;
     Unprojector<double>(target).unproject(pixels, UnprojectMethod::Exact, rays, has_ray);
-    for (std::size_t j = 0; j < rays.size(); ++j) {
-        const Vec3 d = to_source * Vec3(rays.x[j], rays.y[j], rays.z[j]);
-        rays.x[j] = d.x();
-        rays.y[j] = d.y();
-        rays.z[j] = d.z();
-    }
+    detail::turn(rays, to_source);
     Points2<double> source_pixels;
     projector.project(rays, source_pixels, projected);
     for (std::size_t j = 0; j < rays.size(); ++j) {
@@ -228,20 +228,20 @@ NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest
                    " deg across the diagonal (a wider pinhole stretches its edges beyond use; --to-lonlat keeps more)";
         }
     } else {
-        Span span = span_of_source(source, model, request.rotation, request.threads);
+        const Span span = span_of_source(source, request.rotation, request.threads);
         if (span.rays == 0) throw InvalidArgument("new camera: no pixel of the source camera has a ray");
         if (model == LensType::Pinhole && span.off_axis > 0.5 * kWidestPinholeDeg * kDegree) {
             why = "the lens sees " + format_short(span.off_axis / kDegree, 4) +
                   " deg off the axis, more than a pinhole holds without stretching its edges beyond use (" +
                   format_short(0.5 * kWidestPinholeDeg, 3) + " deg), so LONLAT; ";
             model = LensType::Lonlat;
-            span = span_of_source(source, model, request.rotation, request.threads);
         }
         // The source pixels farthest out land on the target's outermost pixel centres.
         const double half_w = std::max(0.5 * static_cast<double>(size.width - 1), 0.5);
         const double half_h = std::max(0.5 * static_cast<double>(size.height - 1), 0.5);
         const double tiny = 1e-300;
-        f = std::min(half_w / std::max(span.m_x, tiny), half_h / std::max(span.m_y, tiny));
+        const Vec2& extent = span.of(model);
+        f = std::min(half_w / std::max(extent.x(), tiny), half_h / std::max(extent.y(), tiny));
         why += "the narrowest view that keeps every source pixel with a ray";
     }
     NewCamera chosen{centred_camera(model, f, size, pose), ""};

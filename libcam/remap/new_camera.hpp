@@ -4,7 +4,7 @@
 // takes) or, for a lens that sees more than a pinhole can hold, an equirectangular
 // LONLAT camera (mrcal's: longitude along x, latitude along y, square pixels per radian).
 //
-//   const NewCamera chosen = choose_new_camera(PreparedCamera(fisheye), {.keep = Keep::Valid});
+//   const NewCamera chosen = choose_new_camera(PreparedCamera(fisheye), NewCameraRequest{});
 //   chosen.camera  // the pinhole;  chosen.why  // what was chosen and why, in a sentence
 //
 // What it keeps:

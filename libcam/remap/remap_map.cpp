@@ -7,6 +7,7 @@
 #include "libcam/camera/projector.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/error.hpp"
+#include "libcam/remap/detail/batches.hpp"
 
 namespace libcam {
 
@@ -48,20 +49,9 @@ RemapMap build_remap_map(const PreparedCamera& target, const PreparedCamera& sou
         Scratch s;
         for (std::size_t first = begin; first < end; first += kStep) {
             const std::size_t m = std::min(kStep, end - first);
-            s.pixels.resize(m);
-            for (std::size_t j = 0; j < m; ++j) {
-                s.pixels.x[j] = static_cast<double>((first + j) % width);
-                s.pixels.y[j] = static_cast<double>((first + j) / width);
-            }
+            detail::image_pixels(s.pixels, first, m, width);
             unprojector.unproject(s.pixels, options.method, s.rays, s.has_ray);
-            if (turned) {
-                for (std::size_t j = 0; j < m; ++j) {
-                    const Vec3 d = to_source * Vec3(s.rays.x[j], s.rays.y[j], s.rays.z[j]);
-                    s.rays.x[j] = d.x();
-                    s.rays.y[j] = d.y();
-                    s.rays.z[j] = d.z();
-                }
-            }
+            if (turned) detail::turn(s.rays, to_source);
             projector.project(s.rays, s.source_pixels, s.projected);
             for (std::size_t j = 0; j < m; ++j) {
                 const double x = s.source_pixels.x[j], y = s.source_pixels.y[j];
