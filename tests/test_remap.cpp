@@ -36,6 +36,14 @@ const fs::path kRealCameras = LIBCAM_REAL_CAMERAS;
 
 Mat3 small_rotation() { return rotation_from_rvec(Vec3(0.02, -0.03, 0.01)); }
 
+// A new camera turned by small_rotation(), keeping `keep`.
+NewCameraRequest turned_request(Keep keep) {
+    NewCameraRequest request;
+    request.keep = keep;
+    request.rotation = small_rotation();
+    return request;
+}
+
 cv::Mat cv_matrix(const Mat3& m) {
     cv::Mat out(3, 3, CV_64F);
     for (int r = 0; r < 3; ++r)
@@ -92,6 +100,35 @@ bool real_cameras_present() {
     return false;
 }
 
+// The "valid" pinhole chosen for a lens, turned by small_rotation(), and libcam's map from
+// it to the lens: what each comparison with OpenCV starts from.
+struct Undistortion {
+    explicit Undistortion(const Camera& lens_camera)
+        : lens(lens_camera),
+          source(lens),
+          pinhole(choose_new_camera(source, turned_request(Keep::Valid)).camera),
+          target(pinhole),
+          map(build_remap_map(target, source, {small_rotation(), UnprojectMethod::Exact, 2})) {}
+
+    // OpenCV's arguments: the new camera's K and size, and R.
+    cv::Mat new_K() const { return opencv_camera_matrix(pinhole.intrinsics); }
+    cv::Size new_size() const { return {int(pinhole.size.width), int(pinhole.size.height)}; }
+    static cv::Mat R() { return cv_matrix(small_rotation()); }
+    // libcam's map against OpenCV's: every pixel compared, within float32's rounding.
+    void check_against(const cv::Mat& map_x, const cv::Mat& map_y) const {
+        const Comparison c = compare(map, map_x, map_y, target, source, small_rotation());
+        INFO("worst " << c.worst << " px over " << c.both << " pixels");
+        CHECK(c.both == map.x.size());
+        CHECK(c.worst < 1e-3);  // OpenCV's map is float32
+    }
+
+    Camera lens;
+    PreparedCamera source;
+    Camera pinhole;
+    PreparedCamera target;
+    RemapMap map;
+};
+
 }  // namespace
 
 TEST_CASE("OPENCV8 lens to a pinhole: libcam's map is cv::initUndistortRectifyMap's wherever OpenCV's forward model holds",
@@ -100,39 +137,24 @@ TEST_CASE("OPENCV8 lens to a pinhole: libcam's map is cv::initUndistortRectifyMa
         CAPTURE(name);
         Camera lens = example_camera(name);
         if (lens.size.width > 2000) lens = binned(lens, 4);  // the wide lens: 1504x1004
-        const PreparedCamera source(lens);
-        NewCameraRequest request;
-        request.rotation = small_rotation();
-        const Camera pinhole = choose_new_camera(source, request).camera;
-        const PreparedCamera target(pinhole);
-        RemapOptions options;
-        options.rotation = request.rotation;
-        options.threads = 2;
-        const RemapMap map = build_remap_map(target, source, options);
-        CHECK(map.with_source == map.x.size());  // "valid": every pixel has a source
-
+        const Undistortion u(lens);
+        CHECK(u.map.with_source == u.map.x.size());  // "valid": every pixel has a source
         cv::Mat map_x, map_y;
-        cv::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens),
-                                    cv_matrix(request.rotation), opencv_camera_matrix(pinhole.intrinsics),
-                                    cv::Size(int(pinhole.size.width), int(pinhole.size.height)), CV_32FC1, map_x, map_y);
-        const Comparison c = compare(map, map_x, map_y, target, source, request.rotation);
-        INFO("worst " << c.worst << " px over " << c.both << " pixels");
-        CHECK(c.both == map.x.size());
-        CHECK(c.worst < 1e-3);  // OpenCV's map is float32
+        cv::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens), u.R(),
+                                    u.new_K(), u.new_size(), CV_32FC1, map_x, map_y);
+        u.check_against(map_x, map_y);
 
         // A wider pinhole ("all") reaches past the strong lens's fold-over radius: there
         // libcam has no source, and OpenCV's forward model lands on pixels that see other rays.
-        NewCameraRequest all = request;
-        all.keep = Keep::All;
-        const Camera wide_pinhole = choose_new_camera(source, all).camera;
+        const Camera wide_pinhole = choose_new_camera(u.source, turned_request(Keep::All)).camera;
         if (wide_pinhole.lens.type != LensType::Pinhole) continue;
         const PreparedCamera wide_target(wide_pinhole);
-        const RemapMap wide_map = build_remap_map(wide_target, source, options);
-        cv::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens),
-                                    cv_matrix(request.rotation), opencv_camera_matrix(wide_pinhole.intrinsics),
+        const RemapMap wide_map = build_remap_map(wide_target, u.source, {small_rotation(), UnprojectMethod::Exact, 2});
+        cv::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens), u.R(),
+                                    opencv_camera_matrix(wide_pinhole.intrinsics),
                                     cv::Size(int(wide_pinhole.size.width), int(wide_pinhole.size.height)), CV_32FC1, map_x,
                                     map_y);
-        const Comparison w = compare(wide_map, map_x, map_y, wide_target, source, request.rotation);
+        const Comparison w = compare(wide_map, map_x, map_y, wide_target, u.source, small_rotation());
         WARN(name << " to the pinhole that keeps everything: maps agree to " << w.worst << " px over " << w.both
                   << " pixels; OpenCV gives " << w.opencv_only << " pixels a source libcam flags, whose rays are up to "
                   << w.worst_opencv_only_ray_error * 180 / M_PI << " deg from the pixel's own");
@@ -144,41 +166,20 @@ TEST_CASE("OPENCV8 lens to a pinhole: libcam's map is cv::initUndistortRectifyMa
 TEST_CASE("FISHEYE and MEI lenses to a pinhole: libcam's map is cv::fisheye's and cv::omnidir's", "[remap][opencv][real]") {
     if (!real_cameras_present()) return;
     SECTION("FISHEYE: the RealSense T265 (basalt's calibration)") {
-        const Camera lens = real_camera("basalt/t265_kb4_calib.json");
-        const PreparedCamera source(lens);
-        NewCameraRequest request;
-        request.rotation = small_rotation();
-        const Camera pinhole = choose_new_camera(source, request).camera;
-        const PreparedCamera target(pinhole);
-        const RemapMap map = build_remap_map(target, source, {request.rotation, UnprojectMethod::Exact, 2});
+        const Undistortion u(real_camera("basalt/t265_kb4_calib.json"));
         cv::Mat map_x, map_y;
-        cv::fisheye::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens),
-                                             cv_matrix(request.rotation), opencv_camera_matrix(pinhole.intrinsics),
-                                             cv::Size(int(pinhole.size.width), int(pinhole.size.height)), CV_32FC1,
-                                             map_x, map_y);
-        const Comparison c = compare(map, map_x, map_y, target, source, request.rotation);
-        INFO("worst " << c.worst << " px over " << c.both << " pixels");
-        CHECK(c.both == map.x.size());
-        CHECK(c.worst < 1e-3);
+        cv::fisheye::initUndistortRectifyMap(opencv_camera_matrix(u.lens.intrinsics), opencv_distortion(u.lens.lens),
+                                             u.R(), u.new_K(), u.new_size(), CV_32FC1, map_x, map_y);
+        u.check_against(map_x, map_y);
     }
     SECTION("MEI: the EuRoC camera VINS-Fusion calibrated (camodocal)") {
-        const Camera lens = real_camera("vins-fusion/euroc/cam0_mei.yaml");
-        const PreparedCamera source(lens);
-        NewCameraRequest request;
-        request.rotation = small_rotation();
-        const Camera pinhole = choose_new_camera(source, request).camera;
-        const PreparedCamera target(pinhole);
-        const RemapMap map = build_remap_map(target, source, {request.rotation, UnprojectMethod::Exact, 2});
+        const Undistortion u(real_camera("vins-fusion/euroc/cam0_mei.yaml"));
         cv::Mat map_x, map_y;
-        cv::omnidir::initUndistortRectifyMap(opencv_camera_matrix(lens.intrinsics), opencv_distortion(lens.lens),
-                                             cv::Mat(1, 1, CV_64F, cv::Scalar(opencv_xi(lens.lens))),
-                                             cv_matrix(request.rotation), opencv_camera_matrix(pinhole.intrinsics),
-                                             cv::Size(int(pinhole.size.width), int(pinhole.size.height)), CV_32FC1,
-                                             map_x, map_y, cv::omnidir::RECTIFY_PERSPECTIVE);
-        const Comparison c = compare(map, map_x, map_y, target, source, request.rotation);
-        INFO("worst " << c.worst << " px over " << c.both << " pixels");
-        CHECK(c.both == map.x.size());
-        CHECK(c.worst < 1e-3);
+        cv::omnidir::initUndistortRectifyMap(opencv_camera_matrix(u.lens.intrinsics), opencv_distortion(u.lens.lens),
+                                             cv::Mat(1, 1, CV_64F, cv::Scalar(opencv_xi(u.lens.lens))), u.R(),
+                                             u.new_K(), u.new_size(), CV_32FC1, map_x, map_y,
+                                             cv::omnidir::RECTIFY_PERSPECTIVE);
+        u.check_against(map_x, map_y);
     }
 }
 
