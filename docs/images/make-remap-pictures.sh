@@ -3,10 +3,16 @@
 # a checkerboard drawn on a 160-degree pinhole, seen through the RealSense T265's fisheye
 # (basalt's calibration, --inverse), then undistorted to the pinhole "valid" chooses and
 # to the LONLAT camera that keeps every pixel.
-# Usage: docs/images/make-remap-pictures.sh [build/tools/libcam] [folder of real calibration files]
+# Usage: docs/images/make-remap-pictures.sh LIBCAM T265_CALIBRATION
+#   LIBCAM: the program (build/tools/libcam); T265_CALIBRATION: basalt's calibration of
+#   the RealSense T265 (t265_kb4_calib.json, from basalt's repository).
 set -euo pipefail
-libcam=${1:-build/tools/libcam}
-lens=${2:-../shared/real-cameras}/basalt/t265_kb4_calib.json
+if [ $# -ne 2 ]; then
+  echo "usage: $0 LIBCAM T265_CALIBRATION (basalt's t265_kb4_calib.json)" >&2
+  exit 2
+fi
+libcam=$1
+lens=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 here=$(cd "$(dirname "$0")" && pwd)
