@@ -335,9 +335,16 @@ std::string format_basalt_calibration(const Camera& camera, const WriteOptions&)
     transform["qz"] = q.z() + 0.0;
     transform["qw"] = q.w() + 0.0;
     nlohmann::ordered_json calibration;
-    calibration["T_imu_cam"] = {transform};
-    calibration["intrinsics"] = {basalt_intrinsics(camera)};
-    calibration["resolution"] = {{camera.size.width, camera.size.height}};
+    // One-element lists built explicitly: a braced list of one JSON value is the value
+    // itself to one compiler (clang) and a list of it to another (GCC).
+    const auto list_of = [](nlohmann::ordered_json element) {
+        nlohmann::ordered_json list = nlohmann::ordered_json::array();
+        list.push_back(std::move(element));
+        return list;
+    };
+    calibration["T_imu_cam"] = list_of(transform);
+    calibration["intrinsics"] = list_of(basalt_intrinsics(camera));
+    calibration["resolution"] = list_of(nlohmann::ordered_json::array({camera.size.width, camera.size.height}));
     // basalt's loader requires its IMU fields too. These are the values basalt's own
     // Calibration starts with (basalt/calibration/calibration.hpp), which its camera-only
     // calibration writes as they are: no bias, 200 Hz, its default noise densities.
