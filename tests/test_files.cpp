@@ -22,10 +22,12 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "temp_dir.hpp"
+#include "libcam/camera/camera.hpp"
 #include "libcam/camera/example_cameras.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
@@ -276,6 +278,99 @@ TEST_CASE("A file written by cv::FileStorage reads back through read_camera_file
     CHECK(intrinsics_only.intrinsics.fx == fx);
     CHECK(intrinsics_only.pose.R == Mat3::Identity());
     CHECK(intrinsics_only.pose.t == Vec3::Zero());
+}
+
+TEST_CASE("Stereo files written by cv::FileStorage: stereo_calib's pair and ORB-SLAM2's rectified pair, placed as "
+          "cv::stereoRectify placed them",
+          "[files][opencv]") {
+    // A stereo calibration, rectified by OpenCV; both layouts written by cv::FileStorage.
+    const cv::Size size(752, 480);
+    const cv::Mat K1 = cv_K(458.654, 457.296, 367.215, 248.375), K2 = cv_K(457.587, 456.134, 379.999, 255.238);
+    const cv::Mat D1 = (cv::Mat_<double>(1, 5) << -0.28340811, 0.07395907, 0.00019359, 1.76187114e-05, 0.0);
+    const cv::Mat D2 = (cv::Mat_<double>(4, 1) << -0.28368365, 0.07451284, -0.00010473, -3.55590700e-05);
+    cv::Mat R;
+    cv::Rodrigues(cv::Mat((cv::Mat_<double>(3, 1) << 0.0031, -0.0143, 0.0021)), R);
+    const cv::Mat T = (cv::Mat_<double>(3, 1) << -0.110074, 0.000399, -0.000853);
+    cv::Mat R1, R2, P1, P2, Q;
+    cv::stereoRectify(K1, D1, K2, D2, size, R, T, R1, R2, P1, P2, Q, cv::CALIB_ZERO_DISPARITY, 0);
+
+    TempDir dir;
+    const fs::path stereo_calib = dir.path() / "intrinsics.yml";
+    {
+        cv::FileStorage out(stereo_calib.string(), cv::FileStorage::WRITE);
+        out << "M1" << K1 << "D1" << D1 << "M2" << K2 << "D2" << D2 << "R" << R << "T" << T;
+    }
+    ReadOptions sized;
+    sized.size = ImageSize{size.width, size.height};
+    const CameraSet pair = read_camera_set(stereo_calib, std::nullopt, sized);
+    REQUIRE(pair.cameras.size() == 2);
+    for (int r = 0; r < 3; ++r) {
+        CHECK(pair.cameras[1].file.camera.pose.t(r) == T.at<double>(r));
+        for (int c = 0; c < 3; ++c) CHECK(pair.cameras[1].file.camera.pose.R(r, c) == R.at<double>(r, c));
+    }
+
+    // ORB-SLAM2's stereo settings: Camera.* the rectified left camera (P1's K), Camera.bf
+    // the baseline times fx, and the raw cameras with cv::stereoRectify's R and P.
+    // cv::FileStorage refuses to write keys with a '.', which OpenCV reads and ORB-SLAM's
+    // settings use: written with '_', then the prefix's '_' turned into the '.'.
+    std::string text;
+    {
+        cv::FileStorage out("settings.yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+        out << "Camera_fx" << P1.at<double>(0, 0) << "Camera_fy" << P1.at<double>(1, 1) << "Camera_cx"
+            << P1.at<double>(0, 2) << "Camera_cy" << P1.at<double>(1, 2);
+        out << "Camera_k1" << 0.0 << "Camera_k2" << 0.0 << "Camera_p1" << 0.0 << "Camera_p2" << 0.0;
+        out << "Camera_width" << size.width << "Camera_height" << size.height;
+        out << "Camera_bf" << -P2.at<double>(0, 3) << "ThDepth" << 35;
+        out << "LEFT_height" << size.height << "LEFT_width" << size.width << "LEFT_D" << D1 << "LEFT_K" << K1
+            << "LEFT_R" << R1 << "LEFT_P" << P1;
+        out << "RIGHT_height" << size.height << "RIGHT_width" << size.width << "RIGHT_D" << D2 << "RIGHT_K" << K2
+            << "RIGHT_R" << R2 << "RIGHT_P" << P2;
+        text = out.releaseAndGetString();
+    }
+    std::istringstream lines(text);
+    std::string dotted;
+    for (std::string line; std::getline(lines, line);) {
+        for (const std::string prefix : {"Camera_", "LEFT_", "RIGHT_"}) {
+            if (line.starts_with(prefix)) line[prefix.size() - 1] = '.';
+        }
+        dotted += line + "\n";
+    }
+    const fs::path orb = dir.path() / "EuRoC.yaml";
+    write_text(orb, dotted);
+    const CameraSet settings = read_camera_set(orb);
+    REQUIRE(settings.cameras.size() == 4);
+    CHECK(settings.cameras[0].name == "Camera1");
+    CHECK(settings.cameras[1].name == "Camera2");
+    CHECK(settings.cameras[2].name == "LEFT");
+    CHECK(settings.cameras[3].name == "RIGHT");
+    const Camera& left = settings.cameras[2].file.camera;
+    const Camera& right = settings.cameras[3].file.camera;
+    CHECK(left.lens.type == LensType::Opencv5);
+    CHECK(right.lens.type == LensType::Opencv4);
+    // The rectified right camera sits the baseline along x; the raw pair is the calibration's.
+    const double baseline = -P2.at<double>(0, 3) / P2.at<double>(0, 0);
+    CHECK(settings.cameras[1].file.camera.pose.centre().isApprox(Vec3(baseline, 0, 0), 1e-15));
+    CHECK(std::abs(baseline - cv::norm(T)) <= 1e-12);
+    const Pose right_from_left = right.pose.after(left.pose.inverse());
+    for (int r = 0; r < 3; ++r) {
+        CHECK(std::abs(right_from_left.t(r) - T.at<double>(r)) <= 1e-14);
+        for (int c = 0; c < 3; ++c) CHECK(std::abs(right_from_left.R(r, c) - R.at<double>(r, c)) <= 1e-14);
+    }
+    // A point of the rectified frame seen by each raw camera: cv::undistortPoints with
+    // that camera's R and P takes its pixel to P [X; 1], where the rectified camera sees it.
+    const Vec3 point(0.4, -0.3, 3.0);
+    for (const auto& [raw, K, D, Rr, P] :
+         {std::tuple{left, K1, D1, R1, P1}, std::tuple{right, K2, D2, R2, P2}}) {
+        const Projection seen = PreparedCamera(raw).project(point);
+        REQUIRE(seen.valid);
+        std::vector<cv::Point2d> rectified;
+        cv::undistortPoints(std::vector<cv::Point2d>{{seen.pixel.x(), seen.pixel.y()}}, rectified, K, D, Rr, P,
+                            cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 100, 1e-15));
+        const cv::Mat homogeneous = P * cv::Mat((cv::Mat_<double>(4, 1) << point.x(), point.y(), point.z(), 1.0));
+        const double w = homogeneous.at<double>(2);
+        CHECK(std::abs(rectified[0].x - homogeneous.at<double>(0) / w) <= 1e-9);
+        CHECK(std::abs(rectified[0].y - homogeneous.at<double>(1) / w) <= 1e-9);
+    }
 }
 
 TEST_CASE("A file written by libcam's opencv-yaml/xml reads back through cv::FileStorage", "[files][opencv]") {

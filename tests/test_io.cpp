@@ -219,6 +219,23 @@ TEST_CASE("io alone: rig files that are wrong are refused, naming the file, line
     CHECK_THAT(error(R"({"value0": {"intrinsics": [{"camera_type": "kb4", "intrinsics": {"fx": 1}}], "resolution": [[4, 4]]}})",
                      CameraFormat::Basalt),
                Catch::Contains("\"value0.intrinsics[0].intrinsics.fy\": missing"));
+    // A key given twice: yaml-cpp keeps one without a word, and which one a reader sees
+    // differs between readers, so the file is refused, naming both lines.
+    CHECK_THAT(error("cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+                     "  camera_model: omni\n",
+                     CameraFormat::Kalibr),
+               Catch::Contains("rig.yaml: line 4: the key \"camera_model\" appears twice (first on line 2)"));
+    CHECK_THAT(error("<?xml version=\"1.0\"?>\n<opencv_storage>\n<image_width>640</image_width>\n"
+                     "<image_width>320</image_width>\n</opencv_storage>\n",
+                     CameraFormat::OpenCvXml),
+               Catch::Contains("rig.yaml: line 4: the element <image_width> appears twice (first on line 3)"));
+    // A quote never closed: yaml-cpp alone would read it to the end of the file.
+    CHECK_THAT(error("cam0:\n  camera_model: pinhole\n  intrinsics: [400, 400, 320, 240]\n"
+                     "  resolution: [640, 480]\n  distortion_model: \"none\n",
+                     CameraFormat::Kalibr),
+               Catch::Contains("rig.yaml: line 5: a value opened with \" and never closed"));
+    CHECK_THAT(error("cam0:\n  camera_model: 'pinhole''s\n", CameraFormat::Kalibr),
+               Catch::Contains("rig.yaml: line 2: a value opened with ' and never closed"));
     // Written: libcam reads these formats but does not write them.
     Camera camera;
     camera.size = {4, 4};

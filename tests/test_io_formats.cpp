@@ -638,6 +638,20 @@ Stereo.T_c1_c2: !!opencv-matrix
     sized.size = ImageSize{640, 480};
     const Camera tum = parse_camera(orb2, CameraFormat::OpenCvYaml, "tum1.yaml", sized).camera;
     CHECK(tum.lens == Lens{LensType::Opencv5, {0.2624, -0.9531, -0.0054, 0.0026, 1.1633}});
+    // ORB-SLAM2's RGB-D settings: Camera.bf next to DepthMapFactor is the depth sensor's
+    // baseline, not a second image; KITTI's stereo settings (no DepthMapFactor) have one.
+    const std::string rgbd = "%YAML:1.0\nCamera.fx: 400\nCamera.fy: 400\nCamera.cx: 320\nCamera.cy: 240\n"
+                             "Camera.width: 640\nCamera.height: 480\nCamera.bf: 40.0\n";
+    CHECK(parse_camera_set(rgbd + "DepthMapFactor: 5000.0\n", CameraFormat::OpenCvYaml, "TUM1.yaml").cameras.size() == 1);
+    const CameraSet kitti = parse_camera_set(rgbd, CameraFormat::OpenCvYaml, "KITTI00-02.yaml");
+    REQUIRE(kitti.cameras.size() == 2);
+    CHECK(kitti.cameras[1].file.camera.pose.centre() == Vec3(0.1, 0, 0));  // 40 / 400
+    CHECK_THAT(file_error_of([&] {
+                   (void)parse_camera_set("%YAML:1.0\nCamera.fx: 400\nCamera.fy: 400\nCamera.cx: 320\nCamera.cy: 240\n"
+                                          "Camera.width: 640\nCamera.height: 480\nCamera.bf: -40.0\n",
+                                          CameraFormat::OpenCvYaml, "bad.yaml");
+               }),
+               Catch::Contains("bad.yaml: line 8: \"Camera.bf\": must be > 0 (the baseline times fx), got -40.0"));
     // OpenCV's stereo_calib sample: M1 D1 M2 D2 and R T (camera 2 from camera 1).
     const std::string stereo = R"(%YAML:1.0
 M1: !!opencv-matrix

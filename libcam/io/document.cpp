@@ -14,7 +14,7 @@
 #include <sstream>
 #include <pugixml.hpp>
 #include <system_error>
-#include <unordered_set>
+#include <unordered_map>
 
 #include "libcam/error.hpp"
 #include "libcam/text/number_format.hpp"
@@ -85,7 +85,7 @@ int depth_below(const DocumentNode& node) {
 // of the node its anchor named, counted again.
 class TreeBuilder : public YAML::EventHandler {
 public:
-    explicit TreeBuilder(TreeBudget& budget) : budget_(budget) {}
+    TreeBuilder(TreeBudget& budget, std::string_view text) : budget_(budget), text_(text) {}
 
     DocumentNode take() { return std::move(root_); }
 
@@ -100,6 +100,7 @@ public:
         add(DocumentNode(found->second), YAML::NullAnchor);
     }
     void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor, const std::string& value) override {
+        if (tag == "!") check_quote_closed(mark);
         add(leaf(mark, DocumentNode::Kind::Scalar, tag, value), anchor);
     }
     void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
@@ -117,10 +118,31 @@ private:
         DocumentNode node;
         YAML::anchor_t anchor;
         std::optional<std::string> key;  // a map's key waiting for its value
-        std::unordered_set<std::string> keys_seen;  // a map's keys so far (a file may hold many)
+        std::unordered_map<std::string, int> keys_seen;  // a map's keys so far, with their lines
     };
 
     static int line_of(const YAML::Mark& mark) { return mark.is_null() ? 0 : mark.line + 1; }
+
+    // yaml-cpp reads a quoted value whose closing quote never comes as running to the
+    // end of the file, so `name: "left` as a file's last line reads as "left ". A YAML
+    // parser must refuse that; this one is told to.
+    void check_quote_closed(const YAML::Mark& mark) const {
+        if (mark.is_null() || mark.pos < 0 || static_cast<std::size_t>(mark.pos) >= text_.size()) return;
+        const char quote = text_[static_cast<std::size_t>(mark.pos)];
+        if (quote != '"' && quote != '\'') return;  // a tag or block scalar, not a quote
+        for (std::size_t i = static_cast<std::size_t>(mark.pos) + 1; i < text_.size(); ++i) {
+            if (quote == '"' && text_[i] == '\\') {
+                ++i;  // an escaped character, \" among them
+            } else if (text_[i] == quote) {
+                if (quote == '\'' && i + 1 < text_.size() && text_[i + 1] == '\'') {
+                    ++i;  // '' is a quote inside single quotes
+                } else {
+                    return;
+                }
+            }
+        }
+        budget_.refuse(line_of(mark), std::string("a value opened with ") + quote + " and never closed");
+    }
 
     DocumentNode leaf(const YAML::Mark& mark, DocumentNode::Kind kind, const std::string& tag, const std::string& text) {
         budget_.enter(static_cast<int>(open_.size()), line_of(mark));
@@ -161,8 +183,12 @@ private:
             if (node.kind != DocumentNode::Kind::Scalar && node.kind != DocumentNode::Kind::Null) {
                 budget_.refuse(node.line, "a key that is not text");
             }
-            if (!parent.keys_seen.insert(node.text).second) {
-                budget_.refuse(node.line, "the key \"" + node.text + "\" appears twice");
+            // yaml-cpp takes a repeated key without a word; which value a reader then
+            // sees depends on the reader, so the file is refused.
+            const auto [first, is_new] = parent.keys_seen.emplace(node.text, node.line);
+            if (!is_new) {
+                budget_.refuse(node.line, "the key \"" + node.text + "\" appears twice (first on line " +
+                                              std::to_string(first->second) + ")");
             }
             parent.key = std::move(node.text);
         } else {
@@ -173,6 +199,7 @@ private:
     }
 
     TreeBudget& budget_;
+    std::string_view text_;  // what the parser reads, for the quote check
     std::vector<Open> open_;
     std::map<YAML::anchor_t, DocumentNode> anchors_;
     DocumentNode root_;
@@ -287,12 +314,15 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
         const bool sequence =
             std::all_of(children.begin(), children.end(), [](const pugi::xml_node& c) { return std::string_view(c.name()) == "_"; });
         out.kind = sequence ? DocumentNode::Kind::Sequence : DocumentNode::Kind::Map;
-        std::unordered_set<std::string> keys_seen;
+        std::unordered_map<std::string, int> keys_seen;  // with their lines
         for (const pugi::xml_node& child : children) {
             if (!sequence) {
                 const std::string key = child.name();
-                if (!keys_seen.insert(key).second) {
-                    budget.refuse(lines.line_of(child.offset_debug()), "the element <" + key + "> appears twice");
+                const int line = lines.line_of(child.offset_debug());
+                const auto [first, is_new] = keys_seen.emplace(key, line);
+                if (!is_new) {
+                    budget.refuse(line, "the element <" + key + "> appears twice (first on line " +
+                                            std::to_string(first->second) + ")");
                 }
                 out.keys.push_back(key);
             }
@@ -346,7 +376,7 @@ DocumentNode parse_yaml_document(std::string_view text, const std::string& sourc
     try {
         std::istringstream stream(yaml);
         YAML::Parser parser(stream);
-        TreeBuilder builder(budget);
+        TreeBuilder builder(budget, yaml);
         if (parser.HandleNextDocument(builder)) tree = builder.take();
         // Whatever the parser did not take as the first document must be nothing. (One
         // more call, never a loop: yaml-cpp 0.7's LoadAll loops forever on some malformed

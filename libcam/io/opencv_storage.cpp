@@ -107,6 +107,38 @@ Vec3 read_vector3(const Field& field) {
     return {m.values[0], m.values[1], m.values[2]};
 }
 
+// A 3x3 rotation, snapped to the nearest rotation when the file printed it rounded.
+Mat3 read_rotation(const Field& field) {
+    const Matrix m = read_matrix(field);
+    if (m.values.size() != 9) field.fail("expected a 3x3 rotation, got " + std::to_string(m.values.size()) + " numbers");
+    Mat3 rotation;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) rotation(r, c) = m.values[static_cast<std::size_t>(3 * r + c)];
+    return nearest_rotation_if_rounded(rotation);
+}
+
+// One camera of a rectified stereo pair, as ROS's camera_info and ORB-SLAM2's stereo
+// settings describe it: the raw camera, R turning its frame into the rectified one, and
+// P = K' [I | t] projecting points of the pair's rectified frame (the first camera's),
+// which is the world: t = (Tx / fx', Ty / fy', 0). Returns the rectified camera P
+// describes and places the raw camera: the rectified camera's centre, turned by R^T.
+Camera place_in_rectified_pair(Camera& raw, const Mat3& R, const Field& projection) {
+    const Matrix P = read_matrix(projection);
+    if (P.rows != 3 || P.cols != 4) projection.fail("expected a 3x4 matrix");
+    const auto p = [&](int r, int c) { return P.values[static_cast<std::size_t>(4 * r + c)]; };
+    if (p(1, 0) != 0.0 || p(2, 0) != 0.0 || p(2, 1) != 0.0 || p(2, 2) != 1.0 || p(2, 3) != 0.0) {
+        projection.fail("expected [fx' s cx' Tx; 0 fy' cy' Ty; 0 0 1 0]");
+    }
+    Camera rectified;
+    rectified.size = raw.size;
+    rectified.intrinsics = {p(0, 0), p(1, 1), p(0, 2), p(1, 2), p(0, 1)};
+    if (!(rectified.intrinsics.fx > 0) || !(rectified.intrinsics.fy > 0)) projection.fail("fx' and fy' must be > 0");
+    rectified.pose.t = Vec3((p(0, 3) - rectified.intrinsics.skew * p(1, 3) / rectified.intrinsics.fy) / rectified.intrinsics.fx,
+                            p(1, 3) / rectified.intrinsics.fy, 0.0);
+    raw.pose = Pose{R.transpose(), Vec3::Zero()}.after(rectified.pose);
+    return rectified;
+}
+
 Intrinsics read_camera_matrix(const Field& field) {
     const Matrix m = read_matrix(field);
     if (m.rows != 3 || m.cols != 3) {
@@ -332,6 +364,35 @@ std::vector<NamedCamera> read_orb_slam(const Field& file, const ReadOptions& opt
         Camera second = cameras.front().file.camera;
         second.pose.t = Vec3(-file.at({"Stereo.b"}).number(), 0.0, 0.0);
         cameras.push_back({"Camera2", {validated_camera(second, source), std::nullopt}});
+    } else if (!numbered && file.node().find("Camera.bf") != nullptr && file.node().find("DepthMapFactor") == nullptr) {
+        // ORB-SLAM2's stereo settings: Camera.* is the rectified left camera and
+        // Camera.bf its baseline times fx. (An RGB-D file's Camera.bf, next to its
+        // DepthMapFactor, is the depth sensor's baseline: no second image.)
+        Camera second = cameras.front().file.camera;
+        const Field bf = file.at({"Camera.bf"});
+        if (!(bf.number() > 0)) bf.fail("must be > 0 (the baseline times fx), got " + bf.text());
+        second.pose.t = Vec3(-bf.number() / second.intrinsics.fx, 0.0, 0.0);
+        cameras.push_back({"Camera2", {validated_camera(second, source), std::nullopt}});
+    }
+    // ORB-SLAM2's stereo settings also hold the raw cameras it rectifies with
+    // cv::initUndistortRectifyMap: LEFT.K, LEFT.D, LEFT.R, LEFT.P and the same for RIGHT,
+    // placed in the rectified left camera's frame as ROS's camera_info places them.
+    for (const std::string side : {"LEFT", "RIGHT"}) {
+        if (file.node().find(side + ".K") == nullptr) continue;
+        Camera raw;
+        raw.size = file.node().find(side + ".width") != nullptr
+                       ? size_from(file, {side + ".width"}, {side + ".height"}, options)
+                       : size;
+        raw.intrinsics = read_camera_matrix(file.at({side + ".K"}));
+        raw.lens = read_distortion(file.at({side + ".D"}), CoefficientFamily::RadialTangential);
+        const std::optional<Field> rectification = file.find({side + ".R"});
+        const Mat3 R = rectification ? read_rotation(*rectification) : Mat3::Identity();
+        if (const std::optional<Field> projection = file.find({side + ".P"})) {
+            (void)place_in_rectified_pair(raw, R, *projection);
+        } else {
+            raw.pose = {R.transpose(), Vec3::Zero()};
+        }
+        cameras.push_back({side, {validated_camera(raw, source), std::nullopt}});
     }
     return cameras;
 }
@@ -359,14 +420,7 @@ std::vector<NamedCamera> read_stereo(const Field& file, const ReadOptions& optio
     const std::optional<Field> R = file.find({"R"});
     const std::optional<Field> T = file.find({"T"});
     if (R.has_value() != T.has_value()) file.at({R ? "T" : "R"});  // throws "missing"
-    if (R) {
-        const Matrix m = read_matrix(*R);
-        if (m.values.size() != 9) R->fail("expected a 3x3 rotation, got " + std::to_string(m.values.size()) + " numbers");
-        Mat3 rotation;
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) rotation(r, c) = m.values[static_cast<std::size_t>(3 * r + c)];
-        cameras[1].file.camera.pose = {nearest_rotation_if_rounded(rotation), read_vector3(*T)};
-    }
+    if (R) cameras[1].file.camera.pose = {read_rotation(*R), read_vector3(*T)};
     for (NamedCamera& camera : cameras) camera.file.camera = validated_camera(camera.file.camera, source);
     return cameras;
 }
@@ -431,18 +485,8 @@ std::vector<NamedCamera> parse_ros_camera_info(std::string_view text, const std:
     const Field file(tree, "", source);
     Camera raw = read_single(file, {}, source);
     const std::string name = file.find({"camera_name"}) ? file.at({"camera_name"}).text() : std::string();
-    // R rotates the raw camera's frame into the rectified one; P = K' [I | t] projects
-    // points of the stereo pair's rectified frame (the first camera's), which is the
-    // world: t = (Tx / fx', Ty / fy', 0), and the raw camera has the rectified camera's
-    // centre, turned by R^T.
-    Mat3 R = Mat3::Identity();
-    if (const std::optional<Field> rectification = file.find({"rectification_matrix"})) {
-        const Matrix m = read_matrix(*rectification);
-        if (m.rows != 3 || m.cols != 3) rectification->fail("expected a 3x3 matrix");
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) R(r, c) = m.values[static_cast<std::size_t>(3 * r + c)];
-        R = nearest_rotation_if_rounded(R);
-    }
+    const std::optional<Field> rectification = file.find({"rectification_matrix"});
+    const Mat3 R = rectification ? read_rotation(*rectification) : Mat3::Identity();
     std::vector<NamedCamera> cameras;
     const std::optional<Field> projection = file.find({"projection_matrix"});
     if (!projection) {
@@ -450,19 +494,7 @@ std::vector<NamedCamera> parse_ros_camera_info(std::string_view text, const std:
         cameras.push_back({name, {validated_camera(raw, source), std::nullopt}});
         return cameras;
     }
-    const Matrix P = read_matrix(*projection);
-    if (P.rows != 3 || P.cols != 4) projection->fail("expected a 3x4 matrix");
-    const auto p = [&](int r, int c) { return P.values[static_cast<std::size_t>(4 * r + c)]; };
-    if (p(1, 0) != 0.0 || p(2, 0) != 0.0 || p(2, 1) != 0.0 || p(2, 2) != 1.0 || p(2, 3) != 0.0) {
-        projection->fail("expected [fx' s cx' Tx; 0 fy' cy' Ty; 0 0 1 0]");
-    }
-    Camera rectified;
-    rectified.size = raw.size;
-    rectified.intrinsics = {p(0, 0), p(1, 1), p(0, 2), p(1, 2), p(0, 1)};
-    if (!(rectified.intrinsics.fx > 0) || !(rectified.intrinsics.fy > 0)) projection->fail("fx' and fy' must be > 0");
-    rectified.pose.t = Vec3((p(0, 3) - rectified.intrinsics.skew * p(1, 3) / rectified.intrinsics.fy) / rectified.intrinsics.fx,
-                            p(1, 3) / rectified.intrinsics.fy, 0.0);
-    raw.pose = Pose{R.transpose(), Vec3::Zero()}.after(rectified.pose);
+    const Camera rectified = place_in_rectified_pair(raw, R, *projection);
     cameras.push_back({name, {validated_camera(raw, source), std::nullopt}});
     cameras.push_back({name.empty() ? "rectified" : name + "/rectified", {validated_camera(rectified, source), std::nullopt}});
     return cameras;
