@@ -722,11 +722,30 @@ TEST_CASE("OpenImuCameraCalibrator's JSON, as UMI ships its GoPro calibration: f
     CHECK(camera.lens == Lens{LensType::Fisheye,
                               {-0.02196117964405394, -0.018959717016668237, 0.001693880829392453,
                                -0.00016807228608000285}});
+    // The calibrator's other types, each with the parameters its writer puts in the file
+    // (theia's models: Double Sphere and EUCM as Usenko's papers define them).
+    const auto with = [](const std::string& type, const std::string& parameters) {
+        return R"({"image_width": 960, "image_height": 540, "intrinsic_type": ")" + type +
+               R"(", "intrinsics": {"focal_length": 400.0, "aspect_ratio": 1.25, "principal_pt_x": 480.5,
+               "principal_pt_y": 270.25, "skew": 0.0)" + parameters + "}}";
+    };
+    const Camera ds = parse_camera(with("DOUBLE_SPHERE", R"(, "xi": -0.09694, "alpha": 0.52873)"), CameraFormat::Openicc,
+                                   "ds.json").camera;
+    check_intrinsics(ds, 400.0, 500.0, 480.5, 270.25);
+    CHECK(ds.lens == Lens{LensType::DoubleSphere, {-0.09694, 0.52873}});
+    const Camera eucm = parse_camera(with("EXTENDED_UNIFIED", R"(, "alpha": 0.6, "beta": 1.1)"), CameraFormat::Openicc,
+                                     "eucm.json").camera;
+    CHECK(eucm.lens == Lens{LensType::Eucm, {0.6, 1.1}});
+    CHECK(parse_camera(with("PINHOLE", ""), CameraFormat::Openicc, "p.json").camera.lens.type == LensType::Pinhole);
     CHECK(file_error_of([&] {
-              (void)parse_camera(R"({"intrinsic_type": "DIVISION_UNDISTORTION", "intrinsics": {}})", CameraFormat::Openicc,
-                                 "d.json");
-          }) == "d.json: \"intrinsic_type\": libcam reads the FISHEYE type (cv::fisheye's model), not "
-                "'DIVISION_UNDISTORTION'");
+              (void)parse_camera(with("DIVISION_UNDISTORTION", R"(, "div_undist_distortion": -3.588e-07)"),
+                                 CameraFormat::Openicc, "d.json");
+          }) == "d.json: \"intrinsic_type\": libcam has no model for the division undistortion lens (FISHEYE, "
+                "DOUBLE_SPHERE, EXTENDED_UNIFIED and PINHOLE are read)");
+    CHECK_THAT(file_error_of([&] { (void)parse_camera(with("FOV", ""), CameraFormat::Openicc, "f.json"); }),
+               Catch::Contains("\"intrinsic_type\": must be FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED or PINHOLE"));
+    CHECK_THAT(file_error_of([&] { (void)parse_camera(with("DOUBLE_SPHERE", R"(, "xi": 0.1)"), CameraFormat::Openicc, "x.json"); }),
+               Catch::Contains("x.json: \"intrinsics.alpha\": missing"));
     CHECK_THROWS_AS(format_camera(camera, CameraFormat::Openicc), NotRepresentable);
 }
 

@@ -6,6 +6,8 @@
 #include <cctype>
 #include <cstdint>
 
+#include <nlohmann/json.hpp>
+
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/format_table.hpp"
@@ -386,10 +388,13 @@ std::optional<CameraFormat> format_of_extension(const std::filesystem::path& pat
 // What a JSON file's keys say it is: basalt's (value0), NeRF's (frames, camera_angle_x,
 // fl_x), or else libcam's or gl.
 std::optional<CameraFormat> json_format_of(std::string_view text) {
-    if (const std::optional<CameraFormat> rig = rig_format_of_json(text)) return rig;
-    if (is_nerf_transforms(text)) return CameraFormat::Nerf;
-    if (is_open3d_camera(text)) return CameraFormat::Open3d;
-    if (is_openicc_camera(text)) return CameraFormat::Openicc;
+    // Parsed once here, without throwing: a file that does not parse is left to the
+    // reader its extension names, which says where it is broken.
+    const nlohmann::json root = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+    if (const std::optional<CameraFormat> rig = rig_format_of_json(root)) return rig;
+    if (is_nerf_transforms(root)) return CameraFormat::Nerf;
+    if (is_open3d_camera(root)) return CameraFormat::Open3d;
+    if (is_openicc_camera(root)) return CameraFormat::Openicc;
     return std::nullopt;
 }
 

@@ -200,8 +200,7 @@ Pose read_pose(const JsonField& matrix) {
 
 }  // namespace
 
-bool is_nerf_transforms(std::string_view text) {
-    const json root = json::parse(text.begin(), text.end(), nullptr, false);
+bool is_nerf_transforms(const nlohmann::json& root) {
     if (!root.is_object() || root.contains("K")) return false;
     return root.contains("frames") || root.contains("camera_angle_x") || root.contains("fl_x");
 }

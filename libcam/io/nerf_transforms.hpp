@@ -28,6 +28,7 @@
 // coefficients: PINHOLE, the OPENCV models up to k3 (higher ones when their extra
 // coefficients are 0), FISHEYE and LONLAT; skew is refused.
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,8 +40,8 @@ namespace libcam {
 std::vector<NamedCamera> read_nerf_transforms(std::string_view text, const ReadContext& context);
 std::string write_nerf_transforms(const Camera& camera, const WriteOptions& options);
 
-// Whether a JSON text is a transforms.json: an object with "frames", "camera_angle_x" or
+// Whether a parsed JSON file is a transforms.json: an object with "frames", "camera_angle_x" or
 // "fl_x" and without libcam's "K".
-bool is_nerf_transforms(std::string_view text);
+bool is_nerf_transforms(const nlohmann::json& root);
 
 }  // namespace libcam

@@ -68,8 +68,7 @@ NamedCamera checked(std::string name, Camera camera, const JsonField& where) {
 
 }  // namespace
 
-bool is_open3d_camera(std::string_view text) {
-    const json root = json::parse(text.begin(), text.end(), nullptr, false);
+bool is_open3d_camera(const nlohmann::json& root) {
     if (!root.is_object()) return false;
     if (root.contains("intrinsic_matrix")) return true;
     const auto name = root.find("class_name");

@@ -16,6 +16,7 @@
 //
 // Written as PinholeCameraParameters (which holds the pose); a distorted lens is refused.
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,7 +28,7 @@ namespace libcam {
 std::vector<NamedCamera> parse_open3d_camera(std::string_view text, const std::string& source);
 std::string format_open3d_camera(const Camera& camera, const WriteOptions& options);
 
-// Whether a JSON text is Open3D's: intrinsic_matrix at the top, or Open3D's class_name.
-bool is_open3d_camera(std::string_view text);
+// Whether a parsed JSON file is Open3D's: intrinsic_matrix at the top, or Open3D's class_name.
+bool is_open3d_camera(const nlohmann::json& root);
 
 }  // namespace libcam

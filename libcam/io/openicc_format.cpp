@@ -7,8 +7,7 @@
 
 namespace libcam {
 
-bool is_openicc_camera(std::string_view text) {
-    const nlohmann::json root = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
+bool is_openicc_camera(const nlohmann::json& root) {
     return root.is_object() && root.contains("intrinsic_type");
 }
 
@@ -17,17 +16,34 @@ std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::
     const JsonField top{root, "", source};
     if (!root.is_object()) top.fail("expected an object");
     const JsonField type = top.at("intrinsic_type");
-    if (type.text() != "FISHEYE") type.fail("libcam reads the FISHEYE type (cv::fisheye's model), not '" + type.text() + "'");
     const JsonField k = top.at("intrinsics");
-    const double focal = k.at("focal_length").number();
-    const double aspect = k.has("aspect_ratio") ? k.at("aspect_ratio").number() : 1.0;
+    const auto value = [&](const char* key) { return k.at(key).number(); };
+    // The calibrator's writer puts each type's own parameters next to f, a, cx, cy and
+    // skew; for any other type it writes none, so those files hold no lens to read.
+    Lens lens;
+    if (type.text() == "FISHEYE") {
+        lens = {LensType::Fisheye, {value("radial_distortion_1"), value("radial_distortion_2"),
+                                    value("radial_distortion_3"), value("radial_distortion_4")}};
+    } else if (type.text() == "DOUBLE_SPHERE") {
+        lens = {LensType::DoubleSphere, {value("xi"), value("alpha")}};
+    } else if (type.text() == "EXTENDED_UNIFIED") {
+        lens = {LensType::Eucm, {value("alpha"), value("beta")}};
+    } else if (type.text() == "PINHOLE") {
+        lens = {LensType::Pinhole, {}};  // the calibrator writes no distortion for it
+    } else if (type.text() == "DIVISION_UNDISTORTION") {
+        type.fail("libcam has no model for the division undistortion lens (FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED "
+                  "and PINHOLE are read)");
+    } else {
+        type.fail("must be FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED or PINHOLE (the types the calibrator writes with "
+                  "their parameters), got '" + type.text() + "'");
+    }
+    const double focal = value("focal_length");
+    const double aspect = k.has("aspect_ratio") ? value("aspect_ratio") : 1.0;
     Camera camera;
     camera.size = {top.at("image_width").integer(1, kMaxImageSide), top.at("image_height").integer(1, kMaxImageSide)};
-    camera.intrinsics = {focal, aspect * focal, k.at("principal_pt_x").number(), k.at("principal_pt_y").number(),
-                         k.has("skew") ? k.at("skew").number() : 0.0};
-    camera.lens = {LensType::Fisheye,
-                   {k.at("radial_distortion_1").number(), k.at("radial_distortion_2").number(),
-                    k.at("radial_distortion_3").number(), k.at("radial_distortion_4").number()}};
+    camera.intrinsics = {focal, aspect * focal, value("principal_pt_x"), value("principal_pt_y"),
+                         k.has("skew") ? value("skew") : 0.0};
+    camera.lens = std::move(lens);
     try {
         camera.validate();
     } catch (const InvalidArgument& error) {

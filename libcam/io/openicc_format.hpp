@@ -7,11 +7,15 @@
 //                   "principal_pt_y": cy, "radial_distortion_1".."_4": k1..k4, "skew": s},
 //    "fps": ..., "final_reproj_error": ..., "nr_calib_images": ..., "stabelized": ...}
 //
-// FISHEYE is cv::fisheye's model (FISHEYE), with fx = f and fy = a f (the calibrator's
-// aspect ratio is fy / fx; UMI's own loader uses f for both, which differs from the
-// calibration by the aspect ratio). Pixel centres are at integers. The other intrinsic
-// types (DIVISION_UNDISTORTION, ...) are refused naming the type. Read only.
+// fx = f and fy = a f (the calibrator's aspect ratio is fy / fx; UMI's own loader uses f
+// for both, which differs from the calibration by the aspect ratio); pixel centres are at
+// integers. The types: FISHEYE is cv::fisheye's model (FISHEYE, "radial_distortion_1".."_4"),
+// DOUBLE_SPHERE is DOUBLE_SPHERE ("xi", "alpha"), EXTENDED_UNIFIED is EUCM ("alpha",
+// "beta"), PINHOLE has no distortion (the calibrator writes none for it). The rest
+// (DIVISION_UNDISTORTION, and the types the calibrator writes without their parameters)
+// are refused naming the type. Read only.
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,7 +26,7 @@ namespace libcam {
 
 std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::string& source);
 
-// Whether a JSON text is OpenImuCameraCalibrator's: an object with "intrinsic_type".
-bool is_openicc_camera(std::string_view text);
+// Whether a parsed JSON file is OpenImuCameraCalibrator's: an object with "intrinsic_type".
+bool is_openicc_camera(const nlohmann::json& root);
 
 }  // namespace libcam

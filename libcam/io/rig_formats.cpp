@@ -458,8 +458,7 @@ std::optional<CameraFormat> rig_format_of_yaml(std::string_view text, const std:
     return std::nullopt;
 }
 
-std::optional<CameraFormat> rig_format_of_json(std::string_view text) {
-    const json root = json::parse(text.begin(), text.end(), nullptr, false);
+std::optional<CameraFormat> rig_format_of_json(const nlohmann::json& root) {
     if (root.is_object() && root.contains("value0")) return CameraFormat::Basalt;
     return std::nullopt;
 }

@@ -29,6 +29,7 @@
 //
 // Each throws FileError naming the file, the line (YAML), the key and the value.
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -62,6 +63,6 @@ std::string format_basalt_calibration(const Camera& camera, const WriteOptions& 
 // several formats: Kalibr (a camN key holding camera_model), camodocal (model_type),
 // basalt (value0). nullopt: none of these (OpenCV's YAML, libcam's JSON).
 std::optional<CameraFormat> rig_format_of_yaml(std::string_view text, const std::string& source);
-std::optional<CameraFormat> rig_format_of_json(std::string_view text);
+std::optional<CameraFormat> rig_format_of_json(const nlohmann::json& root);
 
 }  // namespace libcam
