@@ -103,6 +103,49 @@ TEST_CASE("bench --plot writes a PNG and --save-json the JSON beside the table, 
     CHECK(out["rows"][0]["model"] == "PINHOLE");
 }
 
+TEST_CASE("bench --maps: libcam's maps both ways with each method, and OpenCV's for the lenses it has them for") {
+    TempDir dir;
+    const auto camera_file = [&](const std::string& name, const std::string& distortion) {
+        const std::string path = (dir / name).string();
+        write_whole_file(path, "%YAML:1.0\nimage_width: 160\nimage_height: 120\ncamera_matrix: !!opencv-matrix\n"
+                               "  rows: 3\n  cols: 3\n  dt: d\n  data: [100, 0, 79.5, 0, 100, 59.5, 0, 0, 1]\n" +
+                                   distortion);
+        return path;
+    };
+    const std::string radial = camera_file(
+        "radial.yaml", "distortion_coefficients: !!opencv-matrix\n  rows: 1\n  cols: 5\n  dt: d\n"
+                       "  data: [-0.3, 0.1, 0.001, -0.0005, 0.0]\n");
+    const std::string fisheye = camera_file(
+        "fisheye.yaml", "distortion_model: fisheye\ndistortion_coefficients: !!opencv-matrix\n  rows: 4\n  cols: 1\n"
+                        "  dt: d\n  data: [0.05, -0.01, 0.002, -0.0003]\n");
+    for (const auto& [path, opencv_maps] :
+         {std::pair{radial, std::vector<std::string>{"initUndistortRectifyMap", "initInverseRectificationMap"}},
+          std::pair{fisheye, std::vector<std::string>{"fisheye::initUndistortRectifyMap"}}}) {
+        INFO(path);
+        const json out = bench_json({"--from", path, "--maps", "--threads", "1,2"});
+        std::set<std::string> maps;
+        for (const json& row : out["rows"]) {
+            if (row["op"] != "map") continue;
+            maps.insert(row["library"].get<std::string>() + " " + row["method"].get<std::string>() + " " +
+                        std::to_string(row["threads"].get<int>()));
+            CHECK(row["ns_per_point"].get<double>() > 0);
+            if (row["library"] == "libcam") {
+                // Each map entry sent back through the target lands on its pixel: exact to
+                // rounding, fast within its documented 0.01 px.
+                CHECK(row["max_px"].get<double>() <= (row["method"].get<std::string>().ends_with("fast") ? 0.01 : 1e-9));
+            }
+        }
+        std::set<std::string> expected;
+        for (const char* method : {"exact", "fast", "inverse-exact", "inverse-fast"}) {
+            for (const char* threads : {"1", "2"}) expected.insert(std::string("libcam ") + method + " " + threads);
+        }
+        for (const std::string& method : opencv_maps) {
+            for (const char* threads : {"1", "2"}) expected.insert("opencv " + method + " " + threads);
+        }
+        CHECK(maps == expected);
+    }
+}
+
 TEST_CASE("bench usage errors exit 2 with one line on stderr and nothing on stdout") {
     for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
              {"bench", "--repeat", "2"},

@@ -17,6 +17,7 @@
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/lens/lens_models.hpp"
+#include "libcam/remap/remap_map.hpp"
 
 namespace libcam {
 
@@ -172,6 +173,8 @@ struct Workspace {
     Points3<double> frame_double;  // every pixel's ray
     Points3<float> frame_float;
     ValidFlags frame_valid;
+    RemapMap map;     // the last libcam map built
+    cv::Mat cv_map, cv_map_y;  // the last OpenCV map built: CV_32FC2, or x and y as CV_32F
 };
 
 // The camera measured, by name.
@@ -501,6 +504,136 @@ std::vector<BenchRow> full_frame_rows(const Setup& setup, const Unprojector<doub
     return measure(candidates, setup.settings.repeat);
 }
 
+// ---------------------------------------------------------------------------------
+// Remap maps: every pixel of a target image and the source pixel that sees its ray.
+
+// How far each target pixel of a sample of about 100,000 is sent back by the source
+// pixel its map gives: the source pixel unprojected (exact) and projected by the
+// target, against the target pixel. A pixel without a source, or with one off the
+// source image, counts as no result.
+template <class SourceOf>
+Outcome map_outcome(const PreparedCamera& target, const PreparedCamera& source, SourceOf source_of) {
+    const ImageSize size = target.camera().size;
+    const std::size_t width = static_cast<std::size_t>(size.width);
+    const std::size_t n = width * static_cast<std::size_t>(size.height);
+    const std::size_t stride = std::max<std::size_t>(1, n / 100'000) | 1;  // odd: not aligned with rows
+    std::vector<Vec2> targets, sources;
+    for (std::size_t k = 0; k < n; k += stride) {
+        const Vec2 at = source_of(k);
+        if (!at.allFinite() || !on_image(at.x(), at.y(), source.camera().size)) continue;
+        targets.emplace_back(double(k % width), double(k / width));
+        sources.push_back(at);
+    }
+    Outcome outcome;
+    outcome.total = (n + stride - 1) / stride;
+    const std::vector<Unprojection> rays = source.unproject(sources);
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        if (!rays[i].valid) continue;
+        const Projection back = target.project_camera_point(rays[i].direction);
+        if (back.valid) outcome.errors_px.push_back((back.pixel - targets[i]).norm());
+    }
+    return outcome;
+}
+
+// The map from a pinhole with the lens's K (undistorting) and the one from the lens to
+// that pinhole (distorting a render), built by libcam with each method, and OpenCV's
+// maps for the lenses OpenCV has them for, each allocated afresh as a user's first call
+// would. OpenCV runs on as many threads as libcam in the same row.
+void add_maps(std::vector<Contender>& out, const Setup& setup, const PreparedCamera& lens, const PreparedCamera& pinhole,
+              Workspace& work) {
+    const Camera& camera = lens.camera();
+    const std::size_t n = static_cast<std::size_t>(camera.size.width) * static_cast<std::size_t>(camera.size.height);
+    const auto libcam_source = [&work](std::size_t k) { return Vec2(work.map.x[k], work.map.y[k]); };
+    for (const bool inverse : {false, true}) {
+        const PreparedCamera& target = inverse ? lens : pinhole;
+        const PreparedCamera& source = inverse ? pinhole : lens;
+        for (UnprojectMethod method : {UnprojectMethod::Exact, UnprojectMethod::Fast}) {
+            for (int threads : setup.settings.threads) {
+                const std::string name = std::string(inverse ? "inverse-" : "") + std::string(method_name(method));
+                Contender c{row(setup, "map", "libcam", name, "double", threads), n, nullptr, nullptr};
+                c.run = [&, method, threads] {
+                    RemapOptions options;
+                    options.method = method;
+                    options.threads = threads;
+                    work.map = RemapMap();  // freed first, as OpenCV's rows free theirs
+                    work.map = build_remap_map(target, source, options);
+                };
+                c.outcome = [&, libcam_source] { return map_outcome(target, source, libcam_source); };
+                out.push_back(std::move(c));
+            }
+        }
+    }
+    const OpenCvFunction function = lens_info(camera.lens.type).opencv;
+    if (function != OpenCvFunction::ProjectPoints && function != OpenCvFunction::Fisheye) return;
+    const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
+    const cv::Mat D = opencv_distortion(camera.lens);
+    const cv::Size size(static_cast<int>(camera.size.width), static_cast<int>(camera.size.height));
+    const auto opencv_source = [&work](std::size_t k) {
+        const int i = static_cast<int>(k);
+        if (work.cv_map_y.empty()) return Vec2(work.cv_map.at<cv::Vec2f>(i)[0], work.cv_map.at<cv::Vec2f>(i)[1]);
+        return Vec2(work.cv_map.at<float>(i), work.cv_map_y.at<float>(i));
+    };
+    struct OpenCvMap {
+        const char* name;
+        bool inverse;
+        std::function<void()> build;
+    };
+    std::vector<OpenCvMap> maps;
+    if (function == OpenCvFunction::ProjectPoints) {
+        maps.push_back({"initUndistortRectifyMap", false, [&, K, D, size] {
+                            work.cv_map = cv::Mat();
+                            cv::initUndistortRectifyMap(K, D, cv::noArray(), K, size, CV_32FC2, work.cv_map, cv::noArray());
+                        }});
+        maps.push_back({"initInverseRectificationMap", true, [&, K, D, size] {
+                            work.cv_map = cv::Mat();
+                            cv::initInverseRectificationMap(K, D, cv::noArray(), K, size, CV_32FC2, work.cv_map, cv::noArray());
+                        }});
+    } else {
+        // cv::fisheye's takes no CV_32FC2: x and y in two maps.
+        maps.push_back({"fisheye::initUndistortRectifyMap", false, [&, K, D, size] {
+                            work.cv_map = cv::Mat();
+                            work.cv_map_y = cv::Mat();
+                            cv::fisheye::initUndistortRectifyMap(K, D, cv::Matx33d::eye(), K, size, CV_32F, work.cv_map,
+                                                                 work.cv_map_y);
+                        }});
+    }
+    for (const OpenCvMap& map : maps) {
+        for (int threads : setup.settings.threads) {
+            Contender c{row(setup, "map", "opencv", map.name, "float", threads), n, nullptr, nullptr};
+            c.run = [build = map.build, threads] {
+                const OpenCvThreads using_threads(threads);
+                build();
+            };
+            const PreparedCamera& target = map.inverse ? lens : pinhole;
+            const PreparedCamera& source = map.inverse ? pinhole : lens;
+            c.outcome = [&, opencv_source] {
+                // The map as one row of n pixels, whatever shape OpenCV gave it.
+                work.cv_map = work.cv_map.reshape(0, 1);
+                if (!work.cv_map_y.empty()) work.cv_map_y = work.cv_map_y.reshape(0, 1);
+                return map_outcome(target, source, opencv_source);
+            };
+            out.push_back(std::move(c));
+        }
+    }
+}
+
+// The maps between the lens and a pinhole with the same K and size.
+std::vector<BenchRow> map_rows(const Setup& setup, Workspace& work) {
+    Camera pinhole = setup.bench_case.camera;
+    pinhole.lens = Lens{};
+    const PreparedCamera lens(setup.bench_case.camera);
+    const PreparedCamera prepared_pinhole(pinhole);
+    lens.unprojector();  // tables built before timing, as in the other rows
+    prepared_pinhole.unprojector();
+    std::vector<Contender> candidates;
+    add_maps(candidates, setup, lens, prepared_pinhole, work);
+    std::vector<BenchRow> rows = measure(candidates, setup.settings.repeat);
+    work.map = RemapMap();
+    work.cv_map.release();
+    work.cv_map_y.release();
+    return rows;
+}
+
 }  // namespace
 
 BenchResult run_bench(const std::string& name, const Camera& camera, const BenchSettings& settings) {
@@ -522,6 +655,10 @@ BenchResult run_bench(const std::string& name, const Camera& camera, const Bench
     if (settings.full_frame) {
         std::vector<BenchRow> frame = full_frame_rows(setup, *unprojector_double, *unprojector_float, work);
         result.rows.insert(result.rows.end(), frame.begin(), frame.end());
+    }
+    if (settings.maps) {
+        std::vector<BenchRow> maps = map_rows(setup, work);
+        result.rows.insert(result.rows.end(), maps.begin(), maps.end());
     }
     return result;
 }

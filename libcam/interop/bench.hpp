@@ -18,7 +18,7 @@ namespace libcam {
 
 struct BenchRow {
     std::string camera;   // the camera's name
-    std::string op;       // "unproject", "project", "rays_full_frame"
+    std::string op;       // "unproject", "project", "rays_full_frame", "map"
     std::string library;  // "libcam", "opencv", "mrcal", "memset"
     std::string method;
     std::string scalar;  // "double", "float"
@@ -34,6 +34,7 @@ struct BenchSettings {
     int repeat = 5;                  // timed repetitions, interleaved across the candidates
     std::vector<int> threads{1, 2};  // thread counts for libcam's batch paths
     bool full_frame = false;         // also every pixel's ray, and the memset reference
+    bool maps = false;               // also the remap maps between the lens and a pinhole with its K
 };
 
 struct BenchResult {

@@ -1,6 +1,7 @@
 #include "libcam/remap/remap_map.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <limits>
 
 #include "libcam/camera/parallel.hpp"
@@ -13,8 +14,10 @@ namespace libcam {
 
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 // Pixels per step of a worker: the batch calls' buffers stay in cache.
-constexpr std::size_t kStep = 8192;
+constexpr std::size_t kStep = 1024;
 
 // One worker's buffers, reused step after step.
 struct Scratch {
@@ -42,26 +45,32 @@ RemapMap build_remap_map(const PreparedCamera& target, const PreparedCamera& sou
     map.source_size = source.camera().size;
     const std::size_t width = static_cast<std::size_t>(map.size.width);
     const std::size_t n = width * static_cast<std::size_t>(map.size.height);
-    map.x.assign(n, std::numeric_limits<double>::quiet_NaN());
-    map.y.assign(n, std::numeric_limits<double>::quiet_NaN());
+    map.x.resize(n);  // uninitialised: every entry is written once below
+    map.y.resize(n);
 
+    std::atomic<std::size_t> with_source{0};
     parallel_chunks(n, options.threads, kStep, [&](std::size_t begin, std::size_t end) {
         Scratch s;
+        std::size_t found = 0;
         for (std::size_t first = begin; first < end; first += kStep) {
             const std::size_t m = std::min(kStep, end - first);
             detail::image_pixels(s.pixels, first, m, width);
             unprojector.unproject(s.pixels, options.method, s.rays, s.has_ray);
             if (turned) detail::turn(s.rays, to_source);
             projector.project(s.rays, s.source_pixels, s.projected);
-            for (std::size_t j = 0; j < m; ++j) {
+            double* out_x = map.x.data() + first;
+            double* out_y = map.y.data() + first;
+            for (std::size_t j = 0; j < m; ++j) {  // no branch: it vectorises
                 const double x = s.source_pixels.x[j], y = s.source_pixels.y[j];
-                if (s.has_ray[j] == 0 || s.projected[j] == 0 || !on_image(x, y, map.source_size)) continue;
-                map.x[first + j] = x;
-                map.y[first + j] = y;
+                const bool has = (s.has_ray[j] != 0) & (s.projected[j] != 0) & on_image(x, y, map.source_size);
+                out_x[j] = has ? x : kNaN;
+                out_y[j] = has ? y : kNaN;
+                found += has ? 1 : 0;
             }
         }
+        with_source += found;
     });
-    for (std::size_t i = 0; i < n; ++i) map.with_source += map.has_source(i) ? 1 : 0;
+    map.with_source = with_source;
     return map;
 }
 

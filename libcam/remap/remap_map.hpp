@@ -18,6 +18,8 @@
 // pinhole the render was made with (source). Both go through this one function.
 
 #include <cstddef>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "libcam/camera/batch.hpp"
@@ -34,10 +36,36 @@ struct RemapOptions {
     int threads = 1;
 };
 
+// A std::allocator whose new elements are left uninitialised: a map's millions of
+// coordinates are each written once, by the thread that computes them, instead of
+// being zeroed first by one thread (which took longer than computing them).
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+    using value_type = T;
+    template <class U>
+    struct rebind {
+        using other = UninitialisedAllocator<U>;
+    };
+    UninitialisedAllocator() = default;
+    template <class U>
+    UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept {
+        ::new (static_cast<void*>(p)) U;  // default-initialised: no value for a double
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+        ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+};
+
+// One coordinate of every target pixel, row by row.
+using MapCoordinates = std::vector<double, UninitialisedAllocator<double>>;
+
 struct RemapMap {
     ImageSize size;           // the target image
     ImageSize source_size;    // the source image
-    std::vector<double> x, y;  // source pixel of target pixel (i % width, i / width); NaN: no source
+    MapCoordinates x, y;      // source pixel of target pixel (i % width, i / width); NaN: no source
     std::size_t with_source = 0;
 
     bool has_source(std::size_t i) const { return x[i] == x[i]; }

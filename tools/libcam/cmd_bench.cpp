@@ -32,6 +32,7 @@ struct BenchFlags {
     int repeat = 5;
     std::string threads = "1,2";
     bool full_frame = false;
+    bool maps = false;
     bool json = false;
     std::string json_file;
     std::string plot;
@@ -80,6 +81,7 @@ BenchSettings settings_from(const BenchFlags& flags) {
     }
     if (settings.threads.empty()) throw UsageError("--threads: expected a list such as 1,2");
     settings.full_frame = flags.full_frame;
+    settings.maps = flags.maps;
     return settings;
 }
 
@@ -143,14 +145,18 @@ std::string format_table(const std::vector<CaseResult>& results, const BenchSett
             << settings.repeat << " interleaved runs; libcam table built in " << number_text(r.result.table_build_ms_double, 3)
             << " ms (double), " << number_text(r.result.table_build_ms_float, 3) << " ms (float)\n";
         // The model column fits the longest name (RAD_TAN_THIN_PRISM_FISHEYE) and a space.
-        int model_width = 15;
-        for (const BenchRow& row : r.result.rows) model_width = std::max(model_width, static_cast<int>(row.model.size()) + 2);
-        out << std::setw(16) << "op" << std::setw(8) << "library" << std::setw(23) << "method" << std::setw(7) << "scalar"
+        // The method column fits the longest (OpenCV's map functions), and a space.
+        int model_width = 15, method_width = 23;
+        for (const BenchRow& row : r.result.rows) {
+            model_width = std::max(model_width, static_cast<int>(row.model.size()) + 2);
+            method_width = std::max(method_width, static_cast<int>(row.method.size()) + 2);
+        }
+        out << std::setw(16) << "op" << std::setw(8) << "library" << std::setw(method_width) << "method" << std::setw(7) << "scalar"
             << std::setw(8) << "threads" << std::setw(model_width) << "model" << std::setw(11) << "ns/point" << std::setw(11)
             << "median px" << std::setw(11) << "p99 px" << std::setw(11) << "max px"
             << "invalid\n";
         for (const BenchRow& row : r.result.rows) {
-            out << std::setw(16) << row.op << std::setw(8) << row.library << std::setw(23) << row.method << std::setw(7)
+            out << std::setw(16) << row.op << std::setw(8) << row.library << std::setw(method_width) << row.method << std::setw(7)
                 << row.scalar << std::setw(8) << row.threads << std::setw(model_width) << row.model << std::setw(11)
                 << number_text(row.ns_per_point, 4) << std::setw(11) << error_text(row, &ErrorStats::median_px)
                 << std::setw(11) << error_text(row, &ErrorStats::p99_px) << std::setw(11)
@@ -160,6 +166,14 @@ std::string format_table(const std::vector<CaseResult>& results, const BenchSett
     }
     out << "error: distance in px from the pixel to the projection of the result by libcam (checked against OpenCV "
            "and mrcal in the tests); invalid: flagged, not finite, or a ray outside the lens's domain\n";
+    const bool has_maps = std::any_of(results.begin(), results.end(), [](const CaseResult& r) {
+        return std::any_of(r.result.rows.begin(), r.result.rows.end(), [](const BenchRow& row) { return row.op == "map"; });
+    });
+    if (has_maps) {
+        out << "map: ns per target pixel; error: distance in px from a target pixel to where the source pixel its map "
+               "gives is sent back (unprojected exactly, projected by the target); invalid: no source on the source "
+               "image\n";
+    }
     return out.str();
 }
 
@@ -179,6 +193,9 @@ Runner add_bench(CLI::App& app) {
     command->add_option("--threads", flags->threads, "Thread counts for libcam's batch paths (default 1,2)");
     command->add_flag("--full-frame", flags->full_frame,
                       "Also time every pixel's ray for the lens and for a pinhole with the same K, against memset");
+    command->add_flag("--maps", flags->maps,
+                      "Also time building the remap maps between the lens and a pinhole with the same K and size: "
+                      "undistorting (exact, fast) and distorting (inverse-exact, inverse-fast), against OpenCV's maps");
     command->add_flag("--json", flags->json, "Print JSON: {\"rows\": [...], \"cameras\": [...]}");
     command->add_option("--save-json", flags->json_file, "Also write the JSON to this file (the table still goes to stdout)");
     command->add_option("--plot", flags->plot, "Write a PNG: time per point against worst error, per camera");
