@@ -60,9 +60,9 @@ RemapMap build_remap_map(const PreparedCamera& target, const PreparedCamera& sou
             projector.project(s.rays, s.source_pixels, s.projected);
             double* out_x = map.x.data() + first;
             double* out_y = map.y.data() + first;
-            for (std::size_t j = 0; j < m; ++j) {  // no branch: it vectorises
+            for (std::size_t j = 0; j < m; ++j) {  // every entry written, NaN or not
                 const double x = s.source_pixels.x[j], y = s.source_pixels.y[j];
-                const bool has = (s.has_ray[j] != 0) & (s.projected[j] != 0) & on_image(x, y, map.source_size);
+                const bool has = s.has_ray[j] != 0 && s.projected[j] != 0 && on_image(x, y, map.source_size);
                 out_x[j] = has ? x : kNaN;
                 out_y[j] = has ? y : kNaN;
                 found += has ? 1 : 0;
