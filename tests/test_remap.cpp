@@ -4,10 +4,16 @@
 
 #include <catch2/catch.hpp>
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+
 #include <Eigen/LU>
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/ccalib/omnidir.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -432,6 +438,108 @@ TEST_CASE("A quarter turn of the camera is the quarter turn of its image: pixel 
     CHECK_THROWS_WITH(quarter_turns(camera, 3), Catch::Contains("skew"));
 }
 
+namespace {
+
+// An OpenEXR file's float channels, by name, row by row.
+std::map<std::string, std::vector<float>> read_exr_channels(const fs::path& path) {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
+    std::map<std::string, std::vector<float>> channels;
+    Imf::FrameBuffer frame;
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+        std::vector<float>& data = channels[it.name()];
+        data.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+        frame.insert(it.name(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(data.data()), sizeof(float),
+                                          sizeof(float) * static_cast<std::size_t>(width)));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    return channels;
+}
+
+}  // namespace
+
+TEST_CASE("STMap: u, v of the source's format with Nuke's pixel centres and y up, and the format inside an overscan",
+          "[remap]") {
+    // Two target pixels: one from source pixel (0, 2) of a 4x3 source, one with no source.
+    RemapMap map;
+    map.size = {2, 1};
+    map.source_size = {4, 3};
+    map.x = {0.0, std::numeric_limits<double>::quiet_NaN()};
+    map.y = {2.0, std::numeric_limits<double>::quiet_NaN()};
+    map.with_source = 1;
+    test::TempDir dir;
+    write_stmap_file(dir.path() / "whole.exr", map, {{4, 3}, 0, 0});
+    auto channels = read_exr_channels(dir.path() / "whole.exr");
+    REQUIRE(channels.size() == 4);
+    // Pixel (0, 2)'s centre is at Nuke's (0.5, 0.5) of a 4x3 format: u = 0.5 / 4, v = 0.5 / 3.
+    CHECK(channels["R"][0] == Approx(0.125).margin(1e-7));
+    CHECK(channels["G"][0] == Approx(1.0 / 6.0).margin(1e-7));
+    CHECK(channels["B"][0] == 0.0f);
+    CHECK(channels["A"][0] == 1.0f);
+    CHECK(channels["R"][1] == -1.0f);
+    CHECK(channels["G"][1] == -1.0f);
+    CHECK(channels["A"][1] == 0.0f);
+    // The same source with a margin of 1 pixel left and top around a 2x1 format: the pixel
+    // is in the left margin (u < 0) and below the format (v < 0, Nuke's y is up).
+    write_stmap_file(dir.path() / "overscan.exr", map, {{2, 1}, 1, 1});
+    channels = read_exr_channels(dir.path() / "overscan.exr");
+    CHECK(channels["R"][0] == Approx(-0.25).margin(1e-7));
+    CHECK(channels["G"][0] == Approx(-0.5).margin(1e-7));
+    CHECK_THROWS_WITH(write_stmap_file(dir.path() / "map.png", map, {{4, 3}, 0, 0}),
+                      Catch::Contains("map.png: an STMap is written as .exr"));
+    CHECK_FALSE(fs::exists(dir.path() / "map.png"));
+}
+
+TEST_CASE("Overscan: the least margin around a render that gives every lens pixel with a ray a source", "[remap]") {
+    // A radial-tangential lens (EuRoC's cam0) and a centred 80-degree pinhole of its size.
+    Camera lens_camera;
+    lens_camera.size = {752, 480};
+    lens_camera.intrinsics = {458.654, 457.296, 367.215, 248.375, 0.0};
+    lens_camera.lens = {LensType::Opencv4, {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05}};
+    const PreparedCamera lens(lens_camera);
+    NewCameraRequest request;
+    request.keep.reset();
+    request.fov_deg = 80;
+    const Camera render = choose_new_camera(lens, request).camera;
+    for (const Mat3& rotation : {Mat3(Mat3::Identity()), small_rotation()}) {
+        const Overscan margins = overscan_for(lens, render, rotation, 2);
+        INFO("left " << margins.left << ", top " << margins.top << ", right " << margins.right << ", bottom " << margins.bottom);
+        CHECK(margins.left > 0);
+        CHECK(margins.top > 0);
+        CHECK(margins.right > 0);
+        CHECK(margins.bottom > 0);
+        const Camera with_margins = padded(render, margins.left, margins.top, margins.right, margins.bottom);
+        RemapOptions options;
+        options.rotation = rotation.transpose();
+        const RemapMap map = build_remap_map(lens, PreparedCamera(with_margins), options);
+        CHECK(map.with_source == pixels_with_a_ray(lens));
+        // Every source on the span of the render's pixel centres, and each margin the least:
+        // a pixel less on any side leaves some source off it.
+        double low_x = 1e300, low_y = 1e300, high_x = -1e300, high_y = -1e300;
+        for (std::size_t i = 0; i < map.x.size(); ++i) {
+            if (!map.has_source(i)) continue;
+            low_x = std::min(low_x, map.x[i]);
+            low_y = std::min(low_y, map.y[i]);
+            high_x = std::max(high_x, map.x[i]);
+            high_y = std::max(high_y, map.y[i]);
+        }
+        const double last_x = double(with_margins.size.width - 1), last_y = double(with_margins.size.height - 1);
+        CHECK(low_x >= 0);
+        CHECK(low_x < 1);
+        CHECK(low_y >= 0);
+        CHECK(low_y < 1);
+        CHECK(high_x <= last_x);
+        CHECK(high_x > last_x - 1);
+        CHECK(high_y <= last_y);
+        CHECK(high_y > last_y - 1);
+    }
+    // A fisheye that sees past 90 degrees: no pinhole margin holds it, and the error says so.
+    Camera fisheye = example_camera("fisheye");
+    CHECK_THROWS_WITH(overscan_for(PreparedCamera(fisheye), render), Catch::Contains("give the render a wider view"));
+}
+
 TEST_CASE("Maps for cv::remap: float and fixed point sample the same image, and a source-less pixel stays black",
           "[remap][opencv]") {
     const Camera lens = binned(example_camera("wide"), 8);
@@ -516,6 +624,22 @@ TEST_CASE("libcam remap and derive, as a user runs them: images, the map, the ca
     r = run_program(exe, {"remap", "--from", lens_file.string(), "--map-out", (dir.path() / "map.png").string()});
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.err, Catch::Contains("a map is written as .exr or .npy"));
+    r = run_program(exe, {"remap", "--from", lens_file.string(), "--overscan", "auto", "--stmap-out",
+                          (dir.path() / "st.exr").string()});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("--overscan: the margins of a render, for --inverse"));
+    // Distorting a 60-degree render to a lens, with the margins it needs and the STMap.
+    const fs::path mild_file = dir.path() / "mild.json";
+    write_camera_file(mild_file, binned(example_camera("mild"), 4), CameraFormat::Json);  // 400x300
+    r = run_program(exe, {"remap", "--from", mild_file.string(), "--to-fov", "60", "--inverse", "--overscan", "auto",
+                          "--stmap-out", (dir.path() / "st.exr").string(), "--camera-out",
+                          (dir.path() / "render.json").string()});
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("overscan: left "));
+    CHECK_THAT(r.out, Catch::Contains("for a 400x300 format"));
+    CHECK_THAT(r.out, Catch::Contains("100% of its pixels have a source"));
+    CHECK(read_exr_channels(dir.path() / "st.exr").size() == 4);
+    CHECK(read_camera_file(dir.path() / "render.json").camera.size.width > 400);
 
     r = run_program(exe, {"derive", "--from", lens_file.string(), "--bin", "2"});
     REQUIRE(r.exit_code == 0);

@@ -13,6 +13,7 @@
 #include <limits>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
+#include <vector>
 
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -41,25 +42,47 @@ cv::Mat float_map(const RemapMap& map, float none, bool clamp) {
     return out;
 }
 
-std::string exr_bytes(const RemapMap& map) {
-    const int width = static_cast<int>(map.size.width), height = static_cast<int>(map.size.height);
-    const cv::Mat xy = float_map(map, std::numeric_limits<float>::quiet_NaN(), false);
+// An OpenEXR image of float channels, each `width` x `height` row by row.
+std::string exr_of_channels(int width, int height, const std::vector<std::pair<const char*, const float*>>& channels) {
     Imf::Header header(width, height);
-    header.channels().insert("R", Imf::Channel(Imf::FLOAT));
-    header.channels().insert("G", Imf::Channel(Imf::FLOAT));
-    std::ostringstream bytes;
+    for (const auto& [name, data] : channels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
     Imf::StdOSStream stream;
     {
         Imf::OutputFile file(stream, header);
         Imf::FrameBuffer frame;
-        char* base = const_cast<char*>(reinterpret_cast<const char*>(xy.ptr<float>()));
-        const std::size_t pixel = 2 * sizeof(float);
-        frame.insert("R", Imf::Slice(Imf::FLOAT, base, pixel, pixel * static_cast<std::size_t>(width)));
-        frame.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), pixel, pixel * static_cast<std::size_t>(width)));
+        for (const auto& [name, data] : channels) {
+            char* base = const_cast<char*>(reinterpret_cast<const char*>(data));
+            frame.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * static_cast<std::size_t>(width)));
+        }
         file.setFrameBuffer(frame);
         file.writePixels(height);
     }
     return stream.str();
+}
+
+std::string exr_bytes(const RemapMap& map) {
+    const std::size_t n = map.x.size();
+    std::vector<float> x(n), y(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        x[i] = static_cast<float>(map.x[i]);  // NaN stays NaN
+        y[i] = static_cast<float>(map.y[i]);
+    }
+    return exr_of_channels(static_cast<int>(map.size.width), static_cast<int>(map.size.height),
+                           {{"R", x.data()}, {"G", y.data()}});
+}
+
+std::string stmap_bytes(const RemapMap& map, const StmapFormat& format) {
+    const std::size_t n = map.x.size();
+    std::vector<float> u(n), v(n), blue(n, 0.0f), alpha(n);
+    const double width = static_cast<double>(format.size.width), height = static_cast<double>(format.size.height);
+    for (std::size_t i = 0; i < n; ++i) {
+        const bool has = map.has_source(i);
+        u[i] = has ? static_cast<float>((map.x[i] + 0.5 - static_cast<double>(format.left)) / width) : -1.0f;
+        v[i] = has ? static_cast<float>(1.0 - (map.y[i] + 0.5 - static_cast<double>(format.top)) / height) : -1.0f;
+        alpha[i] = has ? 1.0f : 0.0f;
+    }
+    return exr_of_channels(static_cast<int>(map.size.width), static_cast<int>(map.size.height),
+                           {{"R", u.data()}, {"G", v.data()}, {"B", blue.data()}, {"A", alpha.data()}});
 }
 
 // NumPy's .npy, version 1.0: magic, header length, a Python dict padded to 64 bytes.
@@ -127,6 +150,23 @@ void write_map_file(const std::filesystem::path& path, const RemapMap& map) {
     } else {
         throw FileError(path.string() + ": a map is written as .exr or .npy, not '" + extension + "'");
     }
+}
+
+void write_stmap_file(const std::filesystem::path& path, const RemapMap& map, const StmapFormat& format) {
+    if (format.size.width < 1 || format.size.height < 1) {
+        throw InvalidArgument("STMap format: must be at least 1x1, got " + std::to_string(format.size.width) + "x" +
+                              std::to_string(format.size.height));
+    }
+    if (path.extension() != ".exr") {
+        throw FileError(path.string() + ": an STMap is written as .exr, not '" + path.extension().string() + "'");
+    }
+    std::string bytes;
+    try {
+        bytes = stmap_bytes(map, format);
+    } catch (const std::exception& error) {
+        throw FileError(path.string() + ": OpenEXR could not write the STMap: " + error.what());
+    }
+    write_file_atomically(path, bytes);
 }
 
 }  // namespace libcam

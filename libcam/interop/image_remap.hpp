@@ -43,4 +43,20 @@ cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolat
 // written atomically. Throws FileError naming the file.
 void write_map_file(const std::filesystem::path& path, const RemapMap& map);
 
+// The map as a compositor's STMap (Nuke's STMap node, and the UV maps of other
+// compositors): an OpenEXR image, for each target pixel where to sample the source as a
+// fraction of the source's format, with Nuke's pixel centres (+0.5) and its y pointing up:
+//   R = u = (x + 0.5 - left) / width,   G = v = 1 - (y + 0.5 - top) / height,
+// (x, y) the source pixel (libcam's, y down) and the format the width x height rectangle
+// whose top-left pixel is (left, top) of the source image: the source itself when it has
+// no overscan, the image inside the margins when it does (overscan pixels then get u or v
+// outside [0, 1], as Nuke places them outside the format). B = 0; A = 1 where the target
+// pixel has a source, and 0 with u = v = -1 where it has none. Written atomically; throws
+// FileError naming the file (which must end in .exr), InvalidArgument for an empty format.
+struct StmapFormat {
+    ImageSize size;         // the format: the source image without its overscan
+    long left = 0, top = 0;  // the format's top-left pixel in the source image
+};
+void write_stmap_file(const std::filesystem::path& path, const RemapMap& map, const StmapFormat& format);
+
 }  // namespace libcam

@@ -10,6 +10,7 @@
 #include "libcam/camera/projector.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/error.hpp"
+#include "libcam/remap/derived_camera.hpp"
 #include "libcam/remap/detail/batches.hpp"
 #include "libcam/remap/remap_map.hpp"
 #include "libcam/text/number_format.hpp"
@@ -248,6 +249,44 @@ NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest
     chosen.why = std::string(lens_info(model).name) + " " + size_text(size) + ", " + view_of(chosen.camera) +
                  ", f " + format_short(f, 6) + " px, principal point at the centre: " + why;
     return chosen;
+}
+
+Overscan overscan_for(const PreparedCamera& lens, const Camera& render, const Mat3& rotation, int threads) {
+    // The lens's pixels through a render twice its own size bigger on every side: where
+    // each lands on the plain render, and which land nowhere.
+    const long reach_x = 2 * render.size.width, reach_y = 2 * render.size.height;
+    const PreparedCamera wide(padded(render, reach_x, reach_y, reach_x, reach_y));
+    RemapOptions options;
+    options.rotation = rotation.transpose();  // the lens's axes relative to the render's
+    options.threads = threads;
+    const RemapMap map = build_remap_map(lens, wide, options);
+    Points3<double> rays;
+    ValidFlags has_ray;
+    lens.unprojector().unproject_image(UnprojectMethod::Exact, rays, has_ray, threads);
+    double low_x = 0, low_y = 0, high_x = 0, high_y = 0;  // beyond the render's centre span
+    const double last_x = static_cast<double>(render.size.width - 1), last_y = static_cast<double>(render.size.height - 1);
+    std::size_t beyond = 0;
+    for (std::size_t i = 0; i < map.x.size(); ++i) {
+        if (has_ray[i] == 0) continue;  // nothing to render for a pixel that sees nothing
+        if (!map.has_source(i)) {
+            ++beyond;
+            continue;
+        }
+        const double x = map.x[i] - static_cast<double>(reach_x), y = map.y[i] - static_cast<double>(reach_y);
+        low_x = std::max(low_x, -x);
+        low_y = std::max(low_y, -y);
+        high_x = std::max(high_x, x - last_x);
+        high_y = std::max(high_y, y - last_y);
+    }
+    if (beyond > 0) {
+        throw InvalidArgument("overscan: " + std::to_string(beyond) +
+                              " pixels of the lens see rays the render cannot hold with any margin (behind its camera, "
+                              "past its lens's domain, or more than twice its size beyond its edges): give the render "
+                              "a wider view");
+    }
+    // Whole pixels; a coordinate within rounding of a whole number needs no pixel more.
+    const auto margin = [](double needed) { return static_cast<long>(std::ceil(needed - 1e-9)); };
+    return {margin(low_x), margin(low_y), margin(high_x), margin(high_y)};
 }
 
 }  // namespace libcam

@@ -53,4 +53,19 @@ struct NewCamera {
 
 NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest& request);
 
+// The margins, in whole pixels, to render around `render` (a camera of a renderer, whose
+// axes are the lens's turned by `rotation`: d_render = rotation d_lens) so that the
+// render, distorted to the lens (the map from the lens to the render with the margins),
+// gives every pixel of the lens that has a ray a source on the span of the render's pixel
+// centres: compositing's overscan. Zero on a side the render already covers. The render
+// with them is padded(render, left, top, right, bottom) (derived_camera.hpp). Throws
+// InvalidArgument when no margin can do it: a lens pixel's ray behind the render's
+// camera or past its lens's domain, or further out than twice the render's size beyond
+// an edge (give the render a wider view).
+struct Overscan {
+    long left = 0, top = 0, right = 0, bottom = 0;
+};
+Overscan overscan_for(const PreparedCamera& lens, const Camera& render, const Mat3& rotation = Mat3::Identity(),
+                      int threads = 1);
+
 }  // namespace libcam

@@ -2,6 +2,7 @@
 // LONLAT camera chosen for it, or distort a render to the real lens), and libcam derive:
 // the camera of a resized, cropped, padded, binned or turned image.
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
@@ -38,6 +39,8 @@ struct RemapFlags {
     std::string interpolation = "linear";
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     std::string map_out;
+    std::string stmap_out;
+    std::string overscan;
     std::string camera_out;
     std::string camera_format = "json";
     std::string output;
@@ -81,6 +84,25 @@ NewCamera target_camera(const RemapFlags& flags, const PreparedCamera& source, c
     return choose_new_camera(source, request);
 }
 
+// --overscan: none, a number of pixels on every side, or auto (the least that gives every
+// lens pixel with a ray a source in the render).
+Overscan render_margins(const RemapFlags& flags, const PreparedCamera& lens, const Camera& render, const Mat3& rotation) {
+    if (flags.overscan.empty()) return {};
+    if (flags.overscan == "auto") {
+        try {
+            return overscan_for(lens, render, rotation, flags.threads);
+        } catch (const InvalidArgument& error) {
+            throw UsageError(std::string("--") + error.what());
+        }
+    }
+    const double pixels = parse_number("--overscan", flags.overscan);
+    if (pixels < 0 || pixels > 100000 || pixels != std::floor(pixels)) {
+        throw UsageError("--overscan: expected auto or whole pixels from 0 to 100000, got '" + flags.overscan + "'");
+    }
+    const long each = static_cast<long>(pixels);
+    return {each, each, each, each};
+}
+
 UnprojectMethod method_from(const std::string& text) {
     if (text == "exact") return UnprojectMethod::Exact;
     if (text == "fast") return UnprojectMethod::Fast;
@@ -112,8 +134,11 @@ std::string percent(std::size_t part, std::size_t whole) {
 }
 
 int run_remap(const RemapFlags& flags) {
-    if (flags.images.empty() && flags.map_out.empty() && flags.camera_out.empty()) {
-        throw UsageError("nothing to write: give images (with -o), --map-out or --camera-out");
+    if (flags.images.empty() && flags.map_out.empty() && flags.stmap_out.empty() && flags.camera_out.empty()) {
+        throw UsageError("nothing to write: give images (with -o), --map-out, --stmap-out or --camera-out");
+    }
+    if (!flags.overscan.empty() && !flags.inverse) {
+        throw UsageError("--overscan: the margins of a render, for --inverse (distorting renders to the lens)");
     }
     if (!flags.images.empty() && flags.output.empty()) throw UsageError("-o: give the folder to write the images into");
     if (flags.threads < 1) throw UsageError("--threads: expected 1 or more");
@@ -126,9 +151,19 @@ int run_remap(const RemapFlags& flags) {
     }();
     const Mat3 rotation = flags.rotate.empty() ? Mat3::Identity() : rotation_from_rvec(parse_vec3("--rotate", flags.rotate));
     const PreparedCamera lens(flags.source.read(flags.from).camera);
-    const NewCamera chosen = target_camera(flags, lens, rotation);
-    const PreparedCamera other(chosen.camera);
+    NewCamera chosen = target_camera(flags, lens, rotation);
     std::cout << "camera: " << chosen.why << "\n";
+    // The render's margins: its image grows by them, its format (the STMap's) stays.
+    const Camera format_camera = chosen.camera;
+    const Overscan margins = render_margins(flags, lens, chosen.camera, rotation);
+    if (!flags.overscan.empty()) {
+        chosen.camera = padded(chosen.camera, margins.left, margins.top, margins.right, margins.bottom);
+        std::cout << "overscan: left " << margins.left << ", top " << margins.top << ", right " << margins.right
+                  << ", bottom " << margins.bottom << " px: render " << chosen.camera.size.width << "x"
+                  << chosen.camera.size.height << " for a " << format_camera.size.width << "x"
+                  << format_camera.size.height << " format\n";
+    }
+    const PreparedCamera other(chosen.camera);
 
     // Undistorting: each pixel of the chosen camera from the lens. --inverse: each pixel
     // of the lens from the chosen camera (a render made with it).
@@ -154,6 +189,12 @@ int run_remap(const RemapFlags& flags) {
         write_camera_file(flags.camera_out, chosen.camera, format);
     }
     if (!flags.map_out.empty()) write_map_file(flags.map_out, map);
+    if (!flags.stmap_out.empty()) {
+        // The format: the photo when undistorting, the render without its margins when not.
+        const StmapFormat format = flags.inverse ? StmapFormat{format_camera.size, margins.left, margins.top}
+                                                 : StmapFormat{map.source_size, 0, 0};
+        write_stmap_file(flags.stmap_out, map, format);
+    }
     if (flags.images.empty()) return 0;
 
     fs::create_directories(flags.output);
@@ -211,6 +252,12 @@ Runner add_remap(CLI::App& app) {
     command->add_option("--threads", flags->threads, "Threads that build the map")->capture_default_str();
     command->add_option("--map-out", flags->map_out,
                         "Write the map: source x, y per pixel, NaN where none (.exr: channels R, G; .npy: H x W x 2)");
+    command->add_option("--stmap-out", flags->stmap_out,
+                        "Write the map as a compositor's STMap (.exr: R, G = u, v of the source's format with Nuke's "
+                        "y up, A = 1 where there is a source)");
+    command->add_option("--overscan", flags->overscan,
+                        "With --inverse: render this many pixels more on every side, or auto: the least that gives "
+                        "every lens pixel a source (the new camera written is the render's; the STMap's format stays)");
     command->add_option("--camera-out", flags->camera_out, "Write the new camera (--camera-format)");
     command->add_option("--camera-format", flags->camera_format,
                         "--camera-out's format: " + camera_format_names())
