@@ -4,6 +4,7 @@
 
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
+#include "libcam/io/json_field.hpp"
 
 namespace libcam {
 
@@ -58,57 +59,52 @@ std::string layout(const ordered& object) {
     return out + "}\n";
 }
 
-// Reading: every accessor names the file and the key in its error.
+// Reading: the file's keys through JsonField (json_field.hpp), whose errors name the file
+// and the key, with the shapes this format uses: vectors, matrices, image sizes.
 class Reader {
 public:
-    Reader(const json& root, std::string source) : root_(root), source_(std::move(source)) {}
+    Reader(const json& root, std::string source) : source_(std::move(source)), top_{root, "", source_} {}
+    Reader(const Reader&) = delete;  // top_ refers to this reader's source_
+    Reader& operator=(const Reader&) = delete;
 
-    bool has(const char* key) const { return root_.contains(key) && !root_.at(key).is_null(); }
+    bool has(const char* key) const { return top_.has(key); }
 
-    const json& at(const char* key) const {
-        if (!has(key)) fail(key, "missing");
-        return root_.at(key);
+    // A key with a value (null counts as missing).
+    JsonField field(const char* key) const {
+        if (!has(key)) top_.at(key).fail("missing");  // at() names the key; null is missing too
+        return top_.at(key);
     }
+    const json& at(const char* key) const { return field(key).value; }
 
-    double number(const json& value, const std::string& key) const {
-        if (!value.is_number()) fail(key, "expected a number, got " + value.dump());
-        const double x = value.get<double>();
-        if (!std::isfinite(x)) fail(key, "must be finite, got " + value.dump());
-        return x;
-    }
-
-    double number(const char* key) const { return number(at(key), key); }
+    double number(const char* key) const { return field(key).number(); }
+    // A number of a nested value (fov_deg.horizontal), named as given.
+    double number(const json& value, const std::string& name) const { return JsonField{value, name, source_}.number(); }
 
     Eigen::VectorXd vector(const char* key, long expected = -1) const {
-        const json& value = at(key);
-        if (!value.is_array()) fail(key, "expected an array of numbers, got " + value.dump());
-        if (expected >= 0 && static_cast<long>(value.size()) != expected) {
-            fail(key, "expected " + std::to_string(expected) + " numbers, got " + std::to_string(value.size()));
+        const JsonField values = field(key);
+        if (!values.value.is_array()) values.fail("expected an array of numbers, got " + values.value.dump());
+        if (expected >= 0 && static_cast<long>(values.size()) != expected) {
+            values.fail("expected " + std::to_string(expected) + " numbers, got " + std::to_string(values.size()));
         }
-        Eigen::VectorXd v(static_cast<Eigen::Index>(value.size()));
-        for (std::size_t i = 0; i < value.size(); ++i) {
-            v(static_cast<Eigen::Index>(i)) = number(value[i], std::string(key) + "[" + std::to_string(i) + "]");
-        }
+        Eigen::VectorXd v(static_cast<Eigen::Index>(values.size()));
+        for (std::size_t i = 0; i < values.size(); ++i) v(static_cast<Eigen::Index>(i)) = values.at(i).number();
         return v;
     }
 
     Eigen::MatrixXd matrix(const char* key, long rows, long cols) const {
-        const json& value = at(key);
+        const JsonField value = field(key);
         const std::string shape = std::to_string(rows) + "x" + std::to_string(cols);
-        if (!value.is_array() || static_cast<long>(value.size()) != rows) {
-            fail(key, "expected " + shape + " nested arrays of numbers");
+        if (!value.value.is_array() || static_cast<long>(value.value.size()) != rows) {
+            value.fail("expected " + shape + " nested arrays of numbers");
         }
         Eigen::MatrixXd m(rows, cols);
         for (long r = 0; r < rows; ++r) {
-            const json& row = value[static_cast<std::size_t>(r)];
-            if (!row.is_array() || static_cast<long>(row.size()) != cols) {
-                fail(key, "expected " + shape + " nested arrays of numbers; row " + std::to_string(r) + " is " +
-                              row.dump());
+            const JsonField row = value.at(static_cast<std::size_t>(r));
+            if (!row.value.is_array() || static_cast<long>(row.value.size()) != cols) {
+                value.fail("expected " + shape + " nested arrays of numbers; row " + std::to_string(r) + " is " +
+                           row.value.dump());
             }
-            for (long c = 0; c < cols; ++c) {
-                m(r, c) = number(row[static_cast<std::size_t>(c)],
-                                 std::string(key) + "[" + std::to_string(r) + "][" + std::to_string(c) + "]");
-            }
+            for (long c = 0; c < cols; ++c) m(r, c) = row.at(static_cast<std::size_t>(c)).number();
         }
         return m;
     }
@@ -117,26 +113,21 @@ public:
         const Eigen::VectorXd v = vector(key, 2);
         for (int i = 0; i < 2; ++i) {
             if (v(i) != std::floor(v(i)) || v(i) < 1 || v(i) > static_cast<double>(kMaxImageSide)) {
-                fail(key, "expected two integers in [1, " + std::to_string(kMaxImageSide) + "], got " +
-                              at(key).dump());
+                fail(key, "expected two integers in [1, " + std::to_string(kMaxImageSide) + "], got " + at(key).dump());
             }
         }
         return {static_cast<long>(v(0)), static_cast<long>(v(1))};
     }
 
-    std::string string(const char* key) const {
-        const json& value = at(key);
-        if (!value.is_string()) fail(key, "expected a string, got " + value.dump());
-        return value.get<std::string>();
-    }
+    std::string string(const char* key) const { return field(key).text(); }
 
     [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-        throw FileError(source_ + ": \"" + key + "\": " + what);
+        JsonField{top_.value, key, source_}.fail(what);
     }
 
 private:
-    const json& root_;
     std::string source_;
+    JsonField top_;  // refers to source_: declared after it
 };
 
 // Runs a core validation and re-raises its message with the file name in front.

@@ -38,7 +38,7 @@ struct RemapOptions {
 
 // A std::allocator whose new elements are left uninitialised: a map's millions of
 // coordinates are each written once, by the thread that computes them, instead of
-// being zeroed first by one thread (which took longer than computing them).
+// first being zeroed by one thread (a pass over the whole map the threads wait for).
 template <class T>
 struct UninitialisedAllocator : std::allocator<T> {
     using value_type = T;
