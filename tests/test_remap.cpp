@@ -624,6 +624,12 @@ TEST_CASE("libcam remap and derive, as a user runs them: images, the map, the ca
     r = run_program(exe, {"remap", "--from", lens_file.string(), "--map-out", (dir.path() / "map.png").string()});
     CHECK(r.exit_code == 1);
     CHECK_THAT(r.err, Catch::Contains("a map is written as .exr or .npy"));
+    // A bad STMap name is found before anything is written: no camera file either.
+    r = run_program(exe, {"remap", "--from", lens_file.string(), "--camera-out", (dir.path() / "early.json").string(),
+                          "--stmap-out", (dir.path() / "st.tif").string()});
+    CHECK(r.exit_code == 1);
+    CHECK_THAT(r.err, Catch::Contains("st.tif: an STMap is written as .exr, not '.tif'"));
+    CHECK_FALSE(fs::exists(dir.path() / "early.json"));
     r = run_program(exe, {"remap", "--from", lens_file.string(), "--overscan", "auto", "--stmap-out",
                           (dir.path() / "st.exr").string()});
     CHECK(r.exit_code == 2);

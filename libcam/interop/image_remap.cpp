@@ -135,21 +135,32 @@ cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolat
     return target;
 }
 
-void write_map_file(const std::filesystem::path& path, const RemapMap& map) {
+void check_map_file_name(const std::filesystem::path& path) {
     const std::string extension = path.extension().string();
-    if (extension == ".npy") {
-        write_file_atomically(path, npy_bytes(map));
-    } else if (extension == ".exr") {
-        std::string bytes;
-        try {
-            bytes = exr_bytes(map);
-        } catch (const std::exception& error) {
-            throw FileError(path.string() + ": OpenEXR could not write the map: " + error.what());
-        }
-        write_file_atomically(path, bytes);
-    } else {
+    if (extension != ".npy" && extension != ".exr") {
         throw FileError(path.string() + ": a map is written as .exr or .npy, not '" + extension + "'");
     }
+}
+
+void check_stmap_file_name(const std::filesystem::path& path) {
+    if (path.extension() != ".exr") {
+        throw FileError(path.string() + ": an STMap is written as .exr, not '" + path.extension().string() + "'");
+    }
+}
+
+void write_map_file(const std::filesystem::path& path, const RemapMap& map) {
+    check_map_file_name(path);
+    if (path.extension() == ".npy") {
+        write_file_atomically(path, npy_bytes(map));
+        return;
+    }
+    std::string bytes;
+    try {
+        bytes = exr_bytes(map);
+    } catch (const std::exception& error) {
+        throw FileError(path.string() + ": OpenEXR could not write the map: " + error.what());
+    }
+    write_file_atomically(path, bytes);
 }
 
 void write_stmap_file(const std::filesystem::path& path, const RemapMap& map, const StmapFormat& format) {
@@ -157,9 +168,7 @@ void write_stmap_file(const std::filesystem::path& path, const RemapMap& map, co
         throw InvalidArgument("STMap format: must be at least 1x1, got " + std::to_string(format.size.width) + "x" +
                               std::to_string(format.size.height));
     }
-    if (path.extension() != ".exr") {
-        throw FileError(path.string() + ": an STMap is written as .exr, not '" + path.extension().string() + "'");
-    }
+    check_stmap_file_name(path);
     std::string bytes;
     try {
         bytes = stmap_bytes(map, format);

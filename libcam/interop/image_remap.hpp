@@ -42,6 +42,10 @@ cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolat
 // NumPy .npy array of shape (height, width, 2). Chosen by the extension (.exr, .npy);
 // written atomically. Throws FileError naming the file.
 void write_map_file(const std::filesystem::path& path, const RemapMap& map);
+// The same checks of the file's name alone, for a caller that checks before it works:
+// FileError unless it ends in .exr or .npy (map) or .exr (STMap).
+void check_map_file_name(const std::filesystem::path& path);
+void check_stmap_file_name(const std::filesystem::path& path);
 
 // The map as a compositor's STMap (Nuke's STMap node, and the UV maps of other
 // compositors): an OpenEXR image, for each target pixel where to sample the source as a

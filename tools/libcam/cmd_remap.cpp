@@ -141,6 +141,9 @@ int run_remap(const RemapFlags& flags) {
         throw UsageError("--overscan: the margins of a render, for --inverse (distorting renders to the lens)");
     }
     if (!flags.images.empty() && flags.output.empty()) throw UsageError("-o: give the folder to write the images into");
+    // Output names checked before any work, so that a bad one leaves nothing half written.
+    if (!flags.map_out.empty()) check_map_file_name(flags.map_out);
+    if (!flags.stmap_out.empty()) check_stmap_file_name(flags.stmap_out);
     if (flags.threads < 1) throw UsageError("--threads: expected 1 or more");
     const Interpolation interpolation = [&] {
         try {
