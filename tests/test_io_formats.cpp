@@ -476,6 +476,12 @@ projection_matrix:
     // The raw camera: the same centre, X_raw = R^T X_rect.
     CHECK(raw.pose.R == kQuarterTurnZ.transpose());
     CHECK((raw.pose.centre() - Vec3(0.1, 0, 0)).norm() < 1e-16);
+    // R must be 3x3: nine numbers in another shape are refused.
+    const std::string square = "rectification_matrix:\n  rows: 3\n  cols: 3";
+    std::string column = text;
+    column.replace(column.find(square), square.size(), "rectification_matrix:\n  rows: 9\n  cols: 1");
+    CHECK_THAT(file_error_of([&] { (void)parse_camera_set(column, CameraFormat::Ros, "right.yaml"); }),
+               Catch::Contains("right.yaml: line 14: \"rectification_matrix\": expected a 3x3 matrix"));
 
     // Written: K, D with its distortion_model, R = I, P = [K | 0]; numbers as PyYAML reads floats.
     Camera camera;

@@ -107,9 +107,13 @@ Vec3 read_vector3(const Field& field) {
     return {m.values[0], m.values[1], m.values[2]};
 }
 
-// A 3x3 rotation, snapped to the nearest rotation when the file printed it rounded.
-Mat3 read_rotation(const Field& field) {
+// A rotation, snapped to the nearest rotation when the file printed it rounded. How
+// strict the shape is differs by layout: ROS's camera_info and ORB-SLAM2's R must be
+// 3x3 (`exactly_3x3`); the stereo layout's R has always been taken as any 9 numbers in
+// row order (a plain list among them).
+Mat3 read_rotation(const Field& field, bool exactly_3x3) {
     const Matrix m = read_matrix(field);
+    if (exactly_3x3 && (m.rows != 3 || m.cols != 3)) field.fail("expected a 3x3 matrix");
     if (m.values.size() != 9) field.fail("expected a 3x3 rotation, got " + std::to_string(m.values.size()) + " numbers");
     Mat3 rotation;
     for (int r = 0; r < 3; ++r)
@@ -386,7 +390,7 @@ std::vector<NamedCamera> read_orb_slam(const Field& file, const ReadOptions& opt
         raw.intrinsics = read_camera_matrix(file.at({side + ".K"}));
         raw.lens = read_distortion(file.at({side + ".D"}), CoefficientFamily::RadialTangential);
         const std::optional<Field> rectification = file.find({side + ".R"});
-        const Mat3 R = rectification ? read_rotation(*rectification) : Mat3::Identity();
+        const Mat3 R = rectification ? read_rotation(*rectification, true) : Mat3::Identity();
         if (const std::optional<Field> projection = file.find({side + ".P"})) {
             (void)place_in_rectified_pair(raw, R, *projection);
         } else {
@@ -420,7 +424,7 @@ std::vector<NamedCamera> read_stereo(const Field& file, const ReadOptions& optio
     const std::optional<Field> R = file.find({"R"});
     const std::optional<Field> T = file.find({"T"});
     if (R.has_value() != T.has_value()) file.at({R ? "T" : "R"});  // throws "missing"
-    if (R) cameras[1].file.camera.pose = {read_rotation(*R), read_vector3(*T)};
+    if (R) cameras[1].file.camera.pose = {read_rotation(*R, false), read_vector3(*T)};
     for (NamedCamera& camera : cameras) camera.file.camera = validated_camera(camera.file.camera, source);
     return cameras;
 }
@@ -486,7 +490,7 @@ std::vector<NamedCamera> parse_ros_camera_info(std::string_view text, const std:
     Camera raw = read_single(file, {}, source);
     const std::string name = file.find({"camera_name"}) ? file.at({"camera_name"}).text() : std::string();
     const std::optional<Field> rectification = file.find({"rectification_matrix"});
-    const Mat3 R = rectification ? read_rotation(*rectification) : Mat3::Identity();
+    const Mat3 R = rectification ? read_rotation(*rectification, true) : Mat3::Identity();
     std::vector<NamedCamera> cameras;
     const std::optional<Field> projection = file.find({"projection_matrix"});
     if (!projection) {
