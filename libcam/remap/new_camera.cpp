@@ -4,6 +4,7 @@
 #include <cmath>
 #include <mutex>
 #include <numbers>
+#include <vector>
 
 #include "libcam/camera/field_of_view.hpp"
 #include "libcam/camera/parallel.hpp"
@@ -260,16 +261,13 @@ Overscan overscan_for(const PreparedCamera& lens, const Camera& render, const Ma
     options.rotation = rotation.transpose();  // the lens's axes relative to the render's
     options.threads = threads;
     const RemapMap map = build_remap_map(lens, wide, options);
-    Points3<double> rays;
-    ValidFlags has_ray;
-    lens.unprojector().unproject_image(UnprojectMethod::Exact, rays, has_ray, threads);
     double low_x = 0, low_y = 0, high_x = 0, high_y = 0;  // beyond the render's centre span
     const double last_x = static_cast<double>(render.size.width - 1), last_y = static_cast<double>(render.size.height - 1);
-    std::size_t beyond = 0;
+    const std::size_t width = static_cast<std::size_t>(map.size.width);
+    std::vector<Vec2> without_source;  // lens pixels the map gives nothing: no ray, or one beyond any margin
     for (std::size_t i = 0; i < map.x.size(); ++i) {
-        if (has_ray[i] == 0) continue;  // nothing to render for a pixel that sees nothing
         if (!map.has_source(i)) {
-            ++beyond;
+            without_source.emplace_back(static_cast<double>(i % width), static_cast<double>(i / width));
             continue;
         }
         const double x = map.x[i] - static_cast<double>(reach_x), y = map.y[i] - static_cast<double>(reach_y);
@@ -278,6 +276,10 @@ Overscan overscan_for(const PreparedCamera& lens, const Camera& render, const Ma
         high_x = std::max(high_x, x - last_x);
         high_y = std::max(high_y, y - last_y);
     }
+    // Of those, the ones with a ray (the map's own exact unprojection: the same answer)
+    // are the ones no margin can hold; a pixel that sees nothing needs nothing rendered.
+    std::size_t beyond = 0;
+    for (const Unprojection& ray : lens.unproject(without_source, threads)) beyond += ray.valid ? 1 : 0;
     if (beyond > 0) {
         throw InvalidArgument("overscan: " + std::to_string(beyond) +
                               " pixels of the lens see rays the render cannot hold with any margin (behind its camera, "
