@@ -42,17 +42,26 @@ cv::Mat float_map(const RemapMap& map, float none, bool clamp) {
     return out;
 }
 
+// One float channel of an OpenEXR image: its name, its first value, and the floats from
+// one pixel's value to the next (2 for a channel of interleaved x, y pairs).
+struct ExrChannel {
+    const char* name;
+    const float* data;
+    std::size_t stride = 1;
+};
+
 // An OpenEXR image of float channels, each `width` x `height` row by row.
-std::string exr_of_channels(int width, int height, const std::vector<std::pair<const char*, const float*>>& channels) {
+std::string exr_of_channels(int width, int height, const std::vector<ExrChannel>& channels) {
     Imf::Header header(width, height);
-    for (const auto& [name, data] : channels) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    for (const ExrChannel& channel : channels) header.channels().insert(channel.name, Imf::Channel(Imf::FLOAT));
     Imf::StdOSStream stream;
     {
         Imf::OutputFile file(stream, header);
         Imf::FrameBuffer frame;
-        for (const auto& [name, data] : channels) {
-            char* base = const_cast<char*>(reinterpret_cast<const char*>(data));
-            frame.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * static_cast<std::size_t>(width)));
+        for (const ExrChannel& channel : channels) {
+            char* base = const_cast<char*>(reinterpret_cast<const char*>(channel.data));
+            const std::size_t pixel = channel.stride * sizeof(float);
+            frame.insert(channel.name, Imf::Slice(Imf::FLOAT, base, pixel, pixel * static_cast<std::size_t>(width)));
         }
         file.setFrameBuffer(frame);
         file.writePixels(height);
@@ -61,14 +70,9 @@ std::string exr_of_channels(int width, int height, const std::vector<std::pair<c
 }
 
 std::string exr_bytes(const RemapMap& map) {
-    const std::size_t n = map.x.size();
-    std::vector<float> x(n), y(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        x[i] = static_cast<float>(map.x[i]);  // NaN stays NaN
-        y[i] = static_cast<float>(map.y[i]);
-    }
+    const cv::Mat xy = float_map(map, std::numeric_limits<float>::quiet_NaN(), false);
     return exr_of_channels(static_cast<int>(map.size.width), static_cast<int>(map.size.height),
-                           {{"R", x.data()}, {"G", y.data()}});
+                           {{"R", xy.ptr<float>(), 2}, {"G", xy.ptr<float>() + 1, 2}});
 }
 
 std::string stmap_bytes(const RemapMap& map, const StmapFormat& format) {
