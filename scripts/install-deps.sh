@@ -21,6 +21,7 @@ packages=(
   clang libclang-rt-14-dev   # libFuzzer and its sanitizer runtimes
   colmap                 # reference: COLMAP's own program reads the models libcam writes
   python3-numpy python3-opencv   # reference: the remap tests against mrcal's and COLMAP's maps
+  blender                # reference: Cycles renders through the cameras libcam writes for Blender
 )
 
 missing=()

@@ -35,7 +35,9 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # that do run here, at values chosen for their numbers, not for new paths through memory.
 # So does the comparison with mrcal's maps (277 s under the sanitizers, 17 s in step 1):
 # eight full maps through the remap code the remap tests run here on smaller images.
-asan_skipped="install_consumer|peers: libcam's remap maps against mrcal|extremes: nothing is NaN or infinite without the invalid flag|extremes: the fold-over radius of each OpenCV model|rays both ways agree on every pixel of a 1920x1080 image|CAHVORE: libcam's rays reproject through mrcal_project"
+# And Blender's renders (50 s in step 1): the time is Blender's, and the libcam code they
+# run (the Blender camera files, projection) is tested here by the file and model tests.
+asan_skipped="install_consumer|test_blender_render|peers: libcam's remap maps against mrcal|extremes: nothing is NaN or infinite without the invalid flag|extremes: the fold-over radius of each OpenCV model|rays both ways agree on every pixel of a 1920x1080 image|CAHVORE: libcam's rays reproject through mrcal_project"
 (cd "$root/build-asan" && ctest --output-on-failure --parallel "$jobs" --timeout 1800 -E "$asan_skipped")
 
 echo "== 3/3: fuzzing every reader and the number parser"

@@ -43,10 +43,13 @@ inline std::optional<Eigen::Vector3d> blender_ray(const BlenderCamera& camera, d
     const Real W = static_cast<Real>(camera.size.width), H = static_cast<Real>(camera.size.height);
     // Cycles' raster: the bottom-left corner is (0, 0), y up, pixel centres at +0.5.
     const Real xr = Real(u) + Real(0.5), yr = H - Real(0.5) - Real(v);
-    const bool horizontal = camera.sensor_fit == SensorFit::Auto ? W > H : camera.sensor_fit == SensorFit::Horizontal;
+    // blender_camera_viewplane: the sides in pixels times their aspect.
+    const Real xratio = W * Real(camera.pixel_aspect_x), yratio = H * Real(camera.pixel_aspect_y);
+    const bool horizontal =
+        camera.sensor_fit == SensorFit::Auto ? xratio > yratio : camera.sensor_fit == SensorFit::Horizontal;
     const Real S = camera.sensor_fit == SensorFit::Vertical ? camera.sensor_height_mm : camera.sensor_width_mm;
     if (camera.type == BlenderCameraType::Perspective) {
-        const Real aspect = horizontal ? W / H : H / W;
+        const Real aspect = horizontal ? xratio / yratio : yratio / xratio;
         const Real ax = horizontal ? aspect : 1, ay = horizontal ? 1 : aspect;
         const Real tan_half_fov = Real(0.5) * S / Real(camera.lens_mm) / aspect;
         const Real left = -ax + 2 * aspect * Real(camera.shift_x), right = ax + 2 * aspect * Real(camera.shift_x);

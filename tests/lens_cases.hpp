@@ -210,6 +210,10 @@ inline std::vector<LensCase> lens_cases() {
         {"SPLINED_STEREOGRAPHIC quadratic", real_camera(LensType::SplinedStereographic,
                                                         splined_coefficients(2, 11, 9, 120, 0.03, 0.001), {800, 600},
                                                         {600, 600, 399.5, 299.5})},
+        // A full turn across 2000 px (f = 318 px per radian: 360 degrees) and 57.5 degrees
+        // up and down; and a 120 x 64 degree panorama of a 1920x1080 render.
+        {"CYLINDRICAL 360", lens_camera(LensType::Cylindrical, {}, {2000, 1000}, 318, 318)},
+        {"CYLINDRICAL 120", real_camera(LensType::Cylindrical, {}, {1920, 1080}, {916.7, 916.7, 959.5, 539.5})},
     };
     return cases;
 }

@@ -48,6 +48,19 @@ std::vector<BlenderCase> blender_cases() {
     vertical.sensor_height_mm = 15.6;
     vertical.shift_y = 0.2;
     cases.push_back({"perspective, vertical fit, shifted", vertical});
+    // Pixel aspect (fy = fx pixel_aspect_x / pixel_aspect_y), with the shift in each axis's
+    // own pixels; and AUTO fitting the height because the pixels are tall.
+    BlenderCamera wide_pixels = with(BlenderCameraType::Perspective, {1280, 720});
+    wide_pixels.sensor_fit = SensorFit::Horizontal;
+    wide_pixels.pixel_aspect_x = 2;
+    wide_pixels.shift_x = -0.07;
+    wide_pixels.shift_y = 0.11;
+    cases.push_back({"perspective, pixel aspect 2 : 1, shifted", wide_pixels});
+    BlenderCamera tall_pixels = with(BlenderCameraType::Perspective, {1000, 800});
+    tall_pixels.pixel_aspect_y = 1.5;
+    tall_pixels.shift_x = 0.05;
+    tall_pixels.shift_y = -0.08;
+    cases.push_back({"perspective, pixel aspect 1 : 1.5, AUTO fits the height", tall_pixels});
     cases.push_back({"FISHEYE_EQUIDISTANT 180 degrees", with(BlenderCameraType::FisheyeEquidistant, {1920, 1080})});
     BlenderCamera equidistant = with(BlenderCameraType::FisheyeEquidistant, {1200, 1200});
     equidistant.fisheye_fov = 1.5 * pi;
@@ -232,10 +245,19 @@ TEST_CASE("Blender cameras back from libcam's: the settings worked by hand, and 
     camera.lens = {LensType::Opencv4, {0.1, 0.0, 0.0, 0.0}};
     CHECK_THAT(test::error_of([&] { blender_from_camera(camera); }),
                Catch::Contains("Blender has no camera for OPENCV4"));
+    // A pinhole with fy = 41 / 40 fx: to Blender, pixels 1.025 times wider than tall (fewer
+    // pixels per unit across than down).
     camera.lens = {LensType::Pinhole, {}};
     camera.intrinsics.fy = 41.0;
+    const BlenderCamera tall = blender_from_camera(camera);
+    CHECK(tall.pixel_aspect_x == Approx(1.025).epsilon(1e-15));
+    CHECK(tall.pixel_aspect_y == 1.0);
+    camera.intrinsics.fy = 39.0;
+    CHECK(blender_from_camera(camera).pixel_aspect_y == Approx(40.0 / 39.0).epsilon(1e-15));
+    camera.intrinsics.skew = 0.5;
     CHECK_THAT(test::error_of([&] { blender_from_camera(camera); }),
-               Catch::Contains("with square pixels and no skew, got fx 40, fy 41, skew 0"));
+               Catch::Contains("Blender's perspective camera has no skew, got 0.5"));
+    camera.intrinsics.skew = 0.0;
     camera.intrinsics.fy = 40.0;
     camera.lens = {LensType::Fisheye, {0.01, 0.0, 0.0, 0.0}};
     CHECK_THAT(test::error_of([&] { blender_from_camera(camera); }),

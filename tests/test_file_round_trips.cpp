@@ -23,7 +23,7 @@ namespace {
 constexpr CameraFormat kWritten[] = {CameraFormat::Json,   CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml,
                                      CameraFormat::Cameramodel, CameraFormat::Gl, CameraFormat::Colmap,
                                      CameraFormat::Nerf,   CameraFormat::Kalibr,     CameraFormat::Open3d,
-                                     CameraFormat::Basalt};
+                                     CameraFormat::Basalt, CameraFormat::BlenderJson};
 
 struct Case {
     const char* what;
@@ -45,7 +45,7 @@ std::vector<Case> cases() {
     return {
         {"pinhole", camera_with({LensType::Pinhole, {}}),
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Gl, F::Colmap, F::Nerf, F::Kalibr, F::Open3d,
-          F::Basalt}},
+          F::Basalt, F::BlenderJson}},
         {"skewed pinhole", camera_with({LensType::Pinhole, {}}, 3.5),
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Gl, F::Open3d}},
         {"OPENCV4", camera_with({LensType::Opencv4, {-0.2, 0.05, 1e-3, -2e-3}}),
@@ -56,7 +56,8 @@ std::vector<Case> cases() {
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Basalt}},
         {"FISHEYE", camera_with({LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}}),
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf, F::Kalibr, F::Basalt}},
-        {"LONLAT", camera_with({LensType::Lonlat, {}}), {F::Json, F::Cameramodel, F::Nerf}},
+        {"LONLAT", camera_with({LensType::Lonlat, {}}), {F::Json, F::Cameramodel, F::Nerf, F::BlenderJson}},
+        {"CYLINDRICAL", camera_with({LensType::Cylindrical, {}}), {F::Json}},
         {"MEI", camera_with({LensType::Mei, {1.1, -0.1, 0.01, 1e-3, -1e-3}}), {F::Json, F::Kalibr}},
         {"DOUBLE_SPHERE", camera_with({LensType::DoubleSphere, {-0.24, 0.57}}), {F::Json, F::Kalibr, F::Basalt}},
         {"EUCM", camera_with({LensType::Eucm, {0.59, 1.1}}), {F::Json, F::Kalibr, F::Basalt}},
@@ -77,6 +78,7 @@ fs::path place(const fs::path& dir, const std::string& stem, CameraFormat format
         case CameraFormat::Kalibr: return dir / (stem + "-camchain.yaml");
         case CameraFormat::Open3d: return dir / (stem + "-open3d.json");
         case CameraFormat::Basalt: return dir / (stem + "-basalt.json");
+        case CameraFormat::BlenderJson: return dir / (stem + "-blender.json");
         default: return dir / stem;
     }
 }
@@ -132,7 +134,7 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
             }
         }
     }
-    CHECK(trips == 10 * 10 + 5 * 5 + 8 * 8 + 7 * 7 + 6 * 6 + 7 * 7 + 3 * 3 + 2 * 2 + 3 * 3 + 3 * 3 + 4 * 4);
+    CHECK(trips == 11 * 11 + 5 * 5 + 8 * 8 + 7 * 7 + 6 * 6 + 7 * 7 + 4 * 4 + 1 * 1 + 2 * 2 + 3 * 3 + 3 * 3 + 4 * 4);
 }
 
 TEST_CASE("COLMAP's own program reads libcam's model, and libcam reads COLMAP's binary and text back the same",

@@ -800,3 +800,64 @@ TEST_CASE("basalt's calibration JSON written: every key basalt's loader asks for
     camera.intrinsics.skew = 0.5;
     CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Basalt), Catch::Contains("no skew"));
 }
+
+TEST_CASE("Blender's camera JSON: bpy's settings to K and the pose, worked by hand, and what it refuses") {
+    const std::string text = R"({"format": "libcam Blender cameras", "cameras": [
+      {"name": "Side", "frame": 7, "resolution_x": 1600, "resolution_y": 1200, "resolution_percentage": 50,
+       "type": "PERSP", "lens": 35, "sensor_fit": "VERTICAL", "sensor_height": 20, "pixel_aspect_y": 1.5,
+       "shift_x": 0.1, "shift_y": -0.2,
+       "matrix_world": [[2, 0, 0, 1], [0, 0, -2, 2], [0, 2, 0, 3], [0, 0, 0, 1]]}]})";
+    const CameraSet set = parse_camera_set(text, CameraFormat::BlenderJson, "b.json");
+    REQUIRE(set.cameras.size() == 1);
+    CHECK(set.cameras[0].name == "Side@7");
+    const Camera& camera = set.cameras[0].file.camera;
+    // 1600x1200 at 50%: 800x600. The sensor fitted down: fy = 35 x 600 / 20 = 1050; pixels
+    // 1.5 times taller than wide: fx = 1.5 fy = 1575. The shift is in units of the fitted
+    // side, each axis in its own pixels: 0.1 x 20 / 35 x 1575 = 90 across, -0.2 x 600 = -120
+    // down (Blender's y up): cx = 399.5 - 90, cy = 299.5 - 120.
+    CHECK(camera.size == ImageSize{800, 600});
+    CHECK(camera.intrinsics.fy == Approx(1050).epsilon(1e-15));
+    CHECK(camera.intrinsics.fx == Approx(1575).epsilon(1e-15));
+    CHECK(camera.intrinsics.cx == Approx(309.5).epsilon(1e-15));
+    CHECK(camera.intrinsics.cy == Approx(179.5).epsilon(1e-15));
+    // The object scaled by 2 (Blender renders without the scale) and turned a quarter about
+    // X: it looks along +Y with +Z up, at (1, 2, 3).
+    Mat3 expected_R;
+    expected_R << 1, 0, 0, 0, 0, -1, 0, 1, 0;
+    CHECK((camera.pose.R - expected_R).cwiseAbs().maxCoeff() < 1e-15);
+    CHECK((camera.pose.centre() - Vec3(1, 2, 3)).norm() < 1e-15);
+    // Written back: the same camera (the sensor fitted across, 36 mm wide).
+    const Camera back = parse_camera(format_camera(camera, CameraFormat::BlenderJson), CameraFormat::BlenderJson, "c.json").camera;
+    CHECK(back.intrinsics.K().isApprox(camera.intrinsics.K(), 1e-14));
+    CHECK(back.pose.R.isApprox(camera.pose.R, 1e-14));
+    CHECK(back.pose.t.isApprox(camera.pose.t, 1e-14));
+
+    const auto refused = [](const std::string& camera_json) {
+        return file_error_of([&] {
+            (void)parse_camera_set(R"({"format": "libcam Blender cameras", "cameras": [)" + camera_json + "]}",
+                                   CameraFormat::BlenderJson, "bad.json");
+        });
+    };
+    CHECK_THAT(refused(R"({"type": "ORTHO", "resolution_x": 10, "resolution_y": 10})"),
+               Catch::Contains("bad.json: \"cameras[0].type\": an orthographic camera"));
+    CHECK_THAT(refused(R"({"type": "PANO", "panorama_type": "MIRRORBALL", "resolution_x": 10, "resolution_y": 10})"),
+               Catch::Contains("\"cameras[0].panorama_type\": libcam reads FISHEYE_EQUIDISTANT") &&
+                   Catch::Contains("got 'MIRRORBALL'"));
+    CHECK_THAT(refused(R"({"type": "PERSP", "lens": 50, "resolution_x": 10, "resolution_y": 10, "pixel_aspect_x": 0.5})"),
+               Catch::Contains("pixel_aspect_x: Blender takes 1 or more, got 0.5"));
+    CHECK_THAT(refused(R"({"type": "PERSP", "lens": 50, "resolution_x": 10, "resolution_y": 10, "sensor_fit": "WIDE"})"),
+               Catch::Contains("\"cameras[0].sensor_fit\": expected AUTO, HORIZONTAL or VERTICAL, got 'WIDE'"));
+    CHECK_THAT(refused(R"({"type": "PERSP", "lens": 50, "resolution_x": 10, "resolution_y": 10,
+                         "matrix_world": [[-1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]})"),
+               Catch::Contains("\"cameras[0].matrix_world\""));
+    CHECK_THAT(refused(R"({"type": "PERSP", "resolution_x": 10, "resolution_y": 10})"), Catch::Contains("lens"));
+    CHECK_THAT(file_error_of([&] { (void)parse_camera_set("import bpy\n", CameraFormat::Blender, "camera.py"); }),
+               Catch::Contains("camera.py: a Blender script is not read back"));
+    // Written: a skewed pinhole and a distorted lens are not Blender's.
+    Camera skewed = camera;
+    skewed.intrinsics.skew = 2;
+    CHECK_THROWS_AS(format_camera(skewed, CameraFormat::Blender), NotRepresentable);
+    Camera distorted = camera;
+    distorted.lens = {LensType::Opencv4, {0.1, 0, 0, 0}};
+    CHECK_THROWS_AS(format_camera(distorted, CameraFormat::BlenderJson), NotRepresentable);
+}

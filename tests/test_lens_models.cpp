@@ -346,6 +346,8 @@ TEST_CASE("Points behind the camera and on its plane are flagged, not mirrored a
         {LensType::Stereographic, {1e-3, 0, -1}, true},  {LensType::Lonlat, {0, 1, 0}, false},
         {LensType::Lonlat, {0, 0, -1}, true},            {LensType::Lonlat, {0.2, -1, -0.3}, true},
         {LensType::Latlon, {-1, 0, 0}, false},           {LensType::Latlon, {0, 0, -1}, true},
+        {LensType::Cylindrical, {0, -2, 0}, false},      {LensType::Cylindrical, {0, 0, -1}, true},
+        {LensType::Cylindrical, {1e-170, 1, 0}, false},  // x^2 + z^2 underflows: on the Y axis as far as double tells
     };
     for (const Expectation& e : expectations) {
         const Camera c = lens_camera(e.type, std::vector<double>(static_cast<std::size_t>(lens_info(e.type).num_coefficients), 0.0));

@@ -18,6 +18,7 @@
 #include <opencv2/ccalib/omnidir.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/stitching/warpers.hpp>
 
 #include "libcam/camera/example_cameras.hpp"
 #include "libcam/camera/unprojector.hpp"
@@ -199,6 +200,40 @@ TEST_CASE("FISHEYE and MEI lenses to a pinhole: libcam's map is cv::fisheye's an
     }
 }
 
+TEST_CASE("A pinhole to a CYLINDRICAL panorama: libcam's map is OpenCV's stitching warper's (cv::CylindricalWarper)",
+          "[remap][opencv]") {
+    // A photo (fx != fy, principal point off centre) onto a cylinder of 700 px per radian,
+    // the camera turned by R (d_cylinder = R d_photo, as libcam's rotation). OpenCV computes
+    // in float: K and R are given to both as floats.
+    const Mat3 R_float_rounded = small_rotation().cast<float>().cast<double>();
+    const Mat3 R = nearest_rotation_if_rounded(R_float_rounded);  // within 3e-8 rad of OpenCV's
+    Camera photo;
+    photo.size = {1280, 960};
+    photo.intrinsics = {900, 880, 650.25, 470.75, 0};
+    const float scale = 700;
+    cv::Mat_<float> K(3, 3, 0.0f), R_float(3, 3, 0.0f);
+    K(0, 0) = 900, K(1, 1) = 880, K(0, 2) = 650.25f, K(1, 2) = 470.75f, K(2, 2) = 1;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) R_float(r, c) = static_cast<float>(R(r, c));
+    cv::Mat map_x, map_y;
+    const cv::Rect roi = cv::detail::CylindricalWarper(scale).buildMaps(cv::Size(1280, 960), K, R_float, map_x, map_y);
+    // OpenCV's cylinder pixel (x, y) is at u = roi.x + x, v = roi.y + y (longitude u / scale,
+    // height v / scale): libcam's CYLINDRICAL with f = scale and the principal point at -roi's corner.
+    Camera cylinder;
+    cylinder.size = {roi.width, roi.height};
+    cylinder.intrinsics = {scale, scale, -double(roi.x), -double(roi.y), 0};
+    cylinder.lens = {LensType::Cylindrical, {}};
+    const PreparedCamera target(cylinder), source(photo);
+    const RemapMap map = build_remap_map(target, source, {R, UnprojectMethod::Exact, 2});
+    const Comparison c = compare(map, map_x, map_y, target, source, R);
+    WARN("CYLINDRICAL " << roi.width << "x" << roi.height << " from a pinhole photo: libcam's map and OpenCV's agree to "
+                        << c.worst << " px over " << c.both << " pixels; OpenCV alone gives " << c.opencv_only
+                        << " a source on the photo");
+    CHECK(c.both > map.x.size() / 2);
+    CHECK(c.worst < 1e-3);  // OpenCV's float arithmetic
+    CHECK(c.opencv_only == 0);
+}
+
 TEST_CASE("The inverse map (pinhole render to the lens): each source pixel's ray projects back onto its lens pixel "
           "within 1e-6 px, where cv::initInverseRectificationMap is off by more",
           "[remap][opencv]") {
@@ -243,13 +278,13 @@ TEST_CASE("The inverse map (pinhole render to the lens): each source pixel's ray
 
 namespace {
 
-// The new cameras chosen for a lens, pinhole and LONLAT, "valid" and "all": finite and
+// The new cameras chosen for a lens, pinhole, LONLAT and CYLINDRICAL, "valid" and "all": finite and
 // not degenerate; "valid" gives every pixel a source, half a pixel inside the lens's
 // image (interpolation never reads its border); "all" keeps every lens pixel that has a
 // ray (the map back from the lens to the new camera finds each of them a source).
 void check_new_cameras(const Camera& lens) {
     const PreparedCamera source(lens);
-    for (const LensType model : {LensType::Pinhole, LensType::Lonlat}) {
+    for (const LensType model : {LensType::Pinhole, LensType::Lonlat, LensType::Cylindrical}) {
         for (const Keep keep : {Keep::Valid, Keep::All}) {
             NewCameraRequest request;
             request.model = model;
@@ -348,6 +383,15 @@ TEST_CASE("The new camera with a field of view has it, edge to edge, and impossi
     request.fov_deg = 180;
     // LONLAT: 180 degrees across 800 pixels: f = 800 / pi per radian.
     CHECK_THAT(choose_new_camera(lens, request).camera.intrinsics.fx, Catch::WithinRel(800.0 / M_PI, 1e-15));
+    // CYLINDRICAL: across, as LONLAT; 90 degrees down 600 pixels, as a pinhole: f = 300 / tan 45.
+    request.model = LensType::Cylindrical;
+    CHECK_THAT(choose_new_camera(lens, request).camera.intrinsics.fx, Catch::WithinRel(800.0 / M_PI, 1e-15));
+    request.fov_axis = FovAxis::Vertical;
+    request.fov_deg = 90;
+    CHECK_THAT(choose_new_camera(lens, request).camera.intrinsics.fx, Catch::WithinRel(300.0, 1e-15));
+    request.fov_deg = 180;
+    CHECK_THROWS_WITH(choose_new_camera(lens, request), Catch::Contains("vertical fov must be in (0, 180)"));
+    request.model = LensType::Lonlat;
     request.fov_axis = FovAxis::Diagonal;
     CHECK_THROWS_WITH(choose_new_camera(lens, request), Catch::Contains("not diagonally"));
     request.model = LensType::Pinhole;
@@ -606,6 +650,12 @@ TEST_CASE("libcam remap and derive, as a user runs them: images, the map, the ca
     CHECK(exr.substr(0, 4) == std::string("\x76\x2f\x31\x01", 4));
     CHECK(exr.find(std::string("R\0\x02\0\0\0", 6)) != std::string::npos);  // channel R, FLOAT (2)
     CHECK(exr.find(std::string("G\0\x02\0\0\0", 6)) != std::string::npos);
+    // A cylinder that keeps the whole lens: the camera file says so.
+    r = run_program(exe, {"remap", "--from", lens_file.string(), "--to-cylindrical", "all", "--map-out",
+                          (dir.path() / "cylinder.npy").string(), "--camera-out", (dir.path() / "cylinder.json").string()});
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("camera: CYLINDRICAL"));
+    CHECK(read_camera_file(dir.path() / "cylinder.json").camera.lens.type == LensType::Cylindrical);
 
     // Errors: one line, non-zero, nothing written.
     r = run_program(exe, {"remap", "--from", lens_file.string(), (dir.path() / "missing.png").string(), "-o",

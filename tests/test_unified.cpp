@@ -61,8 +61,10 @@ std::vector<Vec2> omnidir_pixels(const Camera& camera, const std::vector<Vec3>& 
 // xi < 1) it grows without bound, as m goes to infinity: no evaluation in double gives
 // m there to better than eps times it.
 double denominator_cancellation(const Camera& camera, const Vec3& point) {
-    // FOV: an angle; EQUISOLID: |p| + z in a form that does not cancel. No denominator cancels.
-    if (camera.lens.type == LensType::Fov || camera.lens.type == LensType::Equisolid) return 1.0;
+    // FOV: an angle; EQUISOLID: |p| + z in a form that does not cancel; CYLINDRICAL: a sum
+    // of squares. No denominator cancels.
+    const LensType type = camera.lens.type;
+    if (type == LensType::Fov || type == LensType::Equisolid || type == LensType::Cylindrical) return 1.0;
     const std::vector<double>& c = camera.lens.coefficients;
     const long double x = point.x(), y = point.y(), z = point.z();
     const long double d1 = std::sqrt(x * x + y * y + z * z);
@@ -91,7 +93,8 @@ double agreement_px(const Camera& camera, const Vec3& point, const Vec2& pixel) 
                       denominator_cancellation(camera, point);
 }
 
-TEST_CASE("DOUBLE_SPHERE, UCM, EUCM, FOV and EQUISOLID project as their formulas, and flag what they exclude") {
+TEST_CASE("DOUBLE_SPHERE, UCM, EUCM, FOV, EQUISOLID and CYLINDRICAL project as their formulas, and flag what they "
+          "exclude") {
     constexpr double eps = std::numeric_limits<double>::epsilon();
     for (const LensCase& c : lens_cases()) {
         if (!in_unified_family(c)) continue;

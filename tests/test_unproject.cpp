@@ -177,6 +177,34 @@ TEST_CASE("Closed forms: STEREOGRAPHIC, LONLAT and LATLON against their formulas
     }
 }
 
+TEST_CASE("Closed forms: CYLINDRICAL against its formula, worked by hand") {
+    // A full turn across 2000 px and then some (f = 300 px per radian: 382 degrees): a
+    // pixel has a ray exactly when |lon| <= pi, lon = (x - cx) / fx; its ray has
+    // longitude lon and rises tan(latitude) = (y - cy) / fy.
+    const Camera cylinder = lens_camera(LensType::Cylindrical, {}, {2000, 1000}, 300, 300);
+    const GridResult grid = unproject_grid(cylinder, 161, 121);
+    CHECK(grid.worst <= kPixelTolerance);
+    for (std::size_t i = 0; i < grid.pixels.size(); ++i) {
+        const Vec2 m = cylinder.intrinsics.normalized_from_pixel(grid.pixels[i]);
+        REQUIRE(grid.rays[i].valid == (std::abs(m.x()) <= std::numbers::pi));
+        if (!grid.rays[i].valid) continue;
+        const Vec3& ray = grid.rays[i].direction;
+        const double across = std::hypot(ray.x(), ray.z());
+        CHECK(std::abs(std::atan2(ray.x(), ray.z()) - m.x()) < 1e-14);
+        CHECK(std::abs(ray.y() / across - m.y()) < 1e-14 * std::max(1.0, std::abs(m.y())));
+    }
+    // The point (1, 1, 1): 45 degrees across, 1 / sqrt(2) up the unit cylinder; (-1, 0, -1)
+    // behind the camera: 135 degrees the other way.
+    const PreparedCamera prepared(cylinder);
+    const Projection corner = prepared.project_camera_point(Vec3(1, 1, 1));
+    REQUIRE(corner.valid);
+    CHECK(std::abs(corner.pixel.x() - (cylinder.intrinsics.cx + 300 * std::numbers::pi / 4)) < 1e-12);
+    CHECK(std::abs(corner.pixel.y() - (cylinder.intrinsics.cy + 300 / std::sqrt(2.0))) < 1e-12);
+    const Projection behind = prepared.project_camera_point(Vec3(-1, 0, -1));
+    REQUIRE(behind.valid);
+    CHECK(std::abs(behind.pixel.x() - (cylinder.intrinsics.cx - 300 * 3 * std::numbers::pi / 4)) < 1e-12);
+}
+
 TEST_CASE("The one solver runs in float and long double too") {
     const Camera camera = wide_reference_camera();
     const auto check = [&]<class Scalar>(Scalar tolerance) {

@@ -9,6 +9,8 @@
 //   solved here from the ellipsoid's equation, not with the paper's closed form.
 // - FOV: Devernay and Faugeras, "Straight lines have to be straight", MVA 2001, in
 //   basalt's form that goes on behind the camera; its inverse through the undistorted angle.
+// - CYLINDRICAL: as OpenCV's stitching module writes it (cv::detail::CylindricalProjector:
+//   u = atan2(x, z), v = y / sqrt(x^2 + z^2); back: (sin u, v, cos u)).
 
 #include <cmath>
 #include <limits>
@@ -229,9 +231,29 @@ inline std::optional<Vec2> lens_polynomial_paper_pixel(const Camera& camera, con
 
 // The papers' formulas for any model of the family; nullopt for a model outside it
 // (the outer optional), nothing for a point or pixel outside the domain (the inner).
+// CYLINDRICAL: the longitude and the height on the unit cylinder about the Y axis;
+// nothing on that axis.
+inline std::optional<Vec2> cylindrical_paper_pixel(const Camera& camera, const Vec3& point) {
+    const Long x = point.x(), y = point.y(), z = point.z(), across = std::hypot(x, z);
+    if (!(across > 0)) return std::nullopt;
+    const Long height = y / across;
+    if (!std::isfinite(static_cast<double>(height))) return std::nullopt;
+    return pixel_of(camera, std::atan2(x, z), height, 1);
+}
+
+// The unit ray (sin(lon), height, cos(lon)) / |.|; nothing past |lon| = pi.
+inline std::optional<Vec3> cylindrical_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const Intrinsics& k = camera.intrinsics;
+    const Long lon = (Long(pixel.x()) - k.cx) / k.fx, height = (Long(pixel.y()) - k.cy) / k.fy;
+    if (!(std::abs(lon) <= std::numbers::pi_v<Long>)) return std::nullopt;
+    const Long norm = std::hypot(Long(1), height);
+    return Vec3(static_cast<double>(std::sin(lon) / norm), static_cast<double>(height / norm),
+                static_cast<double>(std::cos(lon) / norm));
+}
+
 inline bool has_paper_formulas(LensType type) {
     return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov ||
-           type == LensType::Equisolid || type == LensType::LensPolynomial;
+           type == LensType::Equisolid || type == LensType::LensPolynomial || type == LensType::Cylindrical;
 }
 
 inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
@@ -242,6 +264,7 @@ inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) 
         case LensType::Fov: return fov_paper_pixel(camera, point);
         case LensType::Equisolid: return equisolid_paper_pixel(camera, point);
         case LensType::LensPolynomial: return lens_polynomial_paper_pixel(camera, point);
+        case LensType::Cylindrical: return cylindrical_paper_pixel(camera, point);
         default: throw std::logic_error("paper_pixel: not a model with a paper's formulas here");
     }
 }
@@ -254,6 +277,7 @@ inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
         case LensType::Fov: return fov_paper_ray(camera, pixel);
         case LensType::Equisolid: return equisolid_paper_ray(camera, pixel);
         case LensType::LensPolynomial: return lens_polynomial_paper_ray(camera, pixel);
+        case LensType::Cylindrical: return cylindrical_paper_ray(camera, pixel);
         default: throw std::logic_error("paper_ray: not a model with a paper's formulas here");
     }
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libcam/error.hpp"
@@ -18,7 +19,7 @@ void require_positive(const char* field, double value) {
 }
 
 // Which side the sensor size measures (blender/camera.cpp): AUTO fits the longer side
-// but measures it with sensor_width either way.
+// (in pixels times their aspect) but measures it with sensor_width either way.
 struct Fit {
     bool horizontal;
     double sensor_mm;
@@ -27,15 +28,15 @@ struct Fit {
 Fit fit_of(const BlenderCamera& blender) {
     const auto width = static_cast<double>(blender.size.width), height = static_cast<double>(blender.size.height);
     switch (blender.sensor_fit) {
-        case SensorFit::Auto: return {width > height, blender.sensor_width_mm};
+        case SensorFit::Auto:
+            return {width * blender.pixel_aspect_x > height * blender.pixel_aspect_y, blender.sensor_width_mm};
         case SensorFit::Horizontal: return {true, blender.sensor_width_mm};
         case SensorFit::Vertical: return {false, blender.sensor_height_mm};
     }
     throw InvalidArgument("sensor_fit: unknown value");
 }
 
-// Pixels per millimetre of the sensor fitted to the image (the same across and down:
-// square pixels).
+// Pixels per millimetre of the sensor fitted to the image, along the fitted side.
 double pixels_per_mm(const BlenderCamera& blender) {
     const Fit fit = fit_of(blender);
     require_positive(fit.horizontal ? "sensor_width" : "sensor_height", fit.sensor_mm);
@@ -62,6 +63,18 @@ void require_field_of_view(double fov) {
 
 // Blender's default sensor width, given to the cameras whose sensor size is free.
 constexpr double kDefaultSensorWidthMm = 36.0;
+
+void require_pixel_aspect(const BlenderCamera& blender) {
+    for (const auto& [field, value] : {std::pair{"pixel_aspect_x", blender.pixel_aspect_x},
+                                       std::pair{"pixel_aspect_y", blender.pixel_aspect_y}}) {
+        require_finite(field, value);
+        if (!(value >= 1)) throw InvalidArgument(std::string(field) + ": Blender takes 1 or more, got " + format_number(value));
+    }
+    if (blender.type != BlenderCameraType::Perspective && blender.pixel_aspect_x != blender.pixel_aspect_y) {
+        throw InvalidArgument("pixel_aspect_x: libcam reads Blender's panoramic cameras with square pixels, got " +
+                              format_number(blender.pixel_aspect_x) + " : " + format_number(blender.pixel_aspect_y));
+    }
+}
 
 void require_square_pixels(const Camera& camera, const char* model) {
     const Intrinsics& k = camera.intrinsics;
@@ -92,12 +105,18 @@ BlenderCamera blender_from_camera(const Camera& camera) {
     const std::vector<double>& c = camera.lens.coefficients;
     switch (camera.lens.type) {
         case LensType::Pinhole:
-            require_square_pixels(camera, "a perspective camera");
+            if (k.skew != 0.0) {
+                throw InvalidArgument("intrinsics: Blender's perspective camera has no skew, got " + format_number(k.skew));
+            }
             blender.type = BlenderCameraType::Perspective;
             blender.lens_mm = k.fx * blender.sensor_width_mm / width;
-            // A perspective shift is in units of the fitted side (the width).
+            // fy / fx = pixel_aspect_x / pixel_aspect_y, the smaller 1.
+            blender.pixel_aspect_x = std::max(k.fy / k.fx, 1.0);
+            blender.pixel_aspect_y = std::max(k.fx / k.fy, 1.0);
+            // A perspective shift is in units of the fitted side (the width), each axis in
+            // its own pixels: W across, W fy / fx down.
             blender.shift_x = (width / 2 - 0.5 - k.cx) / width;
-            blender.shift_y = (k.cy - height / 2 + 0.5) / width;
+            blender.shift_y = (k.cy - height / 2 + 0.5) / (width * k.fy / k.fx);
             return blender;
         case LensType::Fisheye:
             if (std::any_of(c.begin(), c.end(), [](double value) { return value != 0.0; }) ||
@@ -148,6 +167,7 @@ BlenderCamera blender_from_camera(const Camera& camera) {
 
 Camera camera_from_blender(const BlenderCamera& blender) {
     blender.size.validate();
+    require_pixel_aspect(blender);
     require_finite("shift_x", blender.shift_x);
     require_finite("shift_y", blender.shift_y);
     const auto width = static_cast<double>(blender.size.width), height = static_cast<double>(blender.size.height);
@@ -157,10 +177,14 @@ Camera camera_from_blender(const BlenderCamera& blender) {
         case BlenderCameraType::Perspective: {
             require_positive("lens", blender.lens_mm);
             const Fit fit = fit_of(blender);
-            const double f = blender.lens_mm * pixels_per_mm(blender);
-            const double side = fit.horizontal ? width : height;  // the perspective shift's unit
-            camera.intrinsics = {f, f, width / 2 - 0.5 - blender.shift_x * side, height / 2 - 0.5 + blender.shift_y * side,
-                                 0.0};
+            // The fitted side's focal length, the other's by the pixel aspect.
+            const double fitted = blender.lens_mm * pixels_per_mm(blender);
+            const double aspect = blender.pixel_aspect_x / blender.pixel_aspect_y;  // fy / fx
+            const double fx = fit.horizontal ? fitted : fitted / aspect, fy = fit.horizontal ? fitted * aspect : fitted;
+            // The shift's unit: the fitted sensor's size in each axis's own pixels.
+            const double sensor_over_lens = fit.sensor_mm / blender.lens_mm;
+            camera.intrinsics = {fx, fy, width / 2 - 0.5 - blender.shift_x * fx * sensor_over_lens,
+                                 height / 2 - 0.5 + blender.shift_y * fy * sensor_over_lens, 0.0};
             camera.lens = {LensType::Pinhole, {}};
             break;
         }

@@ -17,7 +17,12 @@
 // Pixels: Cycles samples pixel (i, j) at its centre (i + 0.5, j + 0.5), counting rows
 // from the bottom; libcam (as OpenCV) puts pixel centres at integers, rows from the top.
 // A panoramic camera's shift moves the image by shift_x W and shift_y H; a perspective
-// camera's by shift times the fitted side (W for a horizontal fit).
+// camera's by shift times the fitted side (W for a horizontal fit), each axis's measured
+// in its own pixels: shift_x fx S / lens and shift_y fy S / lens, S the fitted sensor size.
+//
+// Pixel aspect (render.pixel_aspect_x, pixel_aspect_y; Blender wants both >= 1): a
+// perspective camera's fy = fx pixel_aspect_x / pixel_aspect_y (the fitted side keeps
+// lens W / S, or lens H / S). The panoramic cameras here take square pixels.
 //
 // Blender's fisheyes render only inside the image circle theta <= fov / 2 (black
 // outside; for FISHEYE_LENS_POLYNOMIAL, |theta| <= fov / 2); the libcam camera images the
@@ -48,6 +53,8 @@ struct BlenderCamera {
     double sensor_width_mm = 36.0;
     double sensor_height_mm = 24.0;
     SensorFit sensor_fit = SensorFit::Auto;
+    double pixel_aspect_x = 1.0;  // the render's pixel aspect: a perspective camera's fy / fx
+    double pixel_aspect_y = 1.0;  //   = pixel_aspect_x / pixel_aspect_y
     double shift_x = 0.0;
     double shift_y = 0.0;
     double fisheye_fov = std::numbers::pi;  // FISHEYE_EQUIDISTANT and FISHEYE_EQUISOLID
@@ -61,14 +68,15 @@ struct BlenderCamera {
 };
 
 // The libcam camera (intrinsics and lens; identity pose) that maps pixels to rays as
-// Cycles does. Square pixels (pixel aspect 1) only. Throws InvalidArgument naming a
+// Cycles does (pixel aspect 1 for the panoramic cameras). Throws InvalidArgument naming a
 // setting that is out of range (a lens or sensor size <= 0, an empty angle range, a field
 // of view outside (0, 2 pi]).
 Camera camera_from_blender(const BlenderCamera& blender);
 
 // The Blender camera that draws `camera`'s intrinsics and lens (its pose is not a
 // setting of Blender's camera data): the inverse of camera_from_blender, with the sensor
-// fitted horizontally. Perspective: PINHOLE with fx = fy and a 36 mm sensor.
+// fitted horizontally. Perspective: PINHOLE without skew, a 36 mm sensor, and for
+// fx != fy the pixel aspect (the larger of the two 1).
 // FISHEYE_EQUIDISTANT: FISHEYE with zero coefficients and W / fx = H / fy.
 // FISHEYE_EQUISOLID: EQUISOLID with fx = fy, a 36 mm sensor and the field of view of its
 // whole domain (2 pi). FISHEYE_LENS_POLYNOMIAL: fx = fy, the sensor W / fx mm wide,

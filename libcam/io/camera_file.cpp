@@ -16,6 +16,7 @@
 #include "libcam/io/cahvor_format.hpp"
 #include "libcam/io/colmap_format.hpp"
 #include "libcam/io/nerf_transforms.hpp"
+#include "libcam/io/blender_format.hpp"
 #include "libcam/io/open3d_format.hpp"
 #include "libcam/io/openicc_format.hpp"
 #include "libcam/io/rig_formats.hpp"
@@ -42,6 +43,15 @@ std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
 // OpenCV's files (one camera, a stereo pair, ORB-SLAM's settings) record no FOV camera.
 std::vector<NamedCamera> read_opencv_storage(std::string_view text, const ReadContext& context) {
     return parse_opencv_storage_set(text, context.source, context.options);
+}
+
+// A Blender script is Python, which libcam does not run: the JSON of the same settings
+// (--from-format blender names it too) is what it reads.
+std::vector<NamedCamera> read_blender_script(std::string_view text, const ReadContext& context) {
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    if (first != std::string_view::npos && text[first] == '{') return parse_blender_cameras(text, context.source);
+    throw FileError(context.source + ": a Blender script is not read back; read the same settings as JSON (convert "
+                    "--to blender-json), or export a .blend's cameras with tools/blender/export_cameras.py");
 }
 
 std::string write_ros_camera_info(const Camera& camera, const WriteOptions& options) {
@@ -88,7 +98,7 @@ std::vector<NamedCamera> read_with_source(std::string_view text, const ReadConte
 // OpenCV's YAML and XML share one too (io/opencv_storage.hpp).
 // constinit: filled before any code runs, so a registration made from another file's
 // static initialiser cannot find it unready.
-constinit std::array<FormatRow, 15> format_table = {{
+constinit std::array<FormatRow, 17> format_table = {{
     {CameraFormat::Json, "json", "libcam JSON", "libcam::io", "", parse_json_camera, write_json},
     {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", "libcam::io", "", nullptr, write_opencv_yaml,
      read_opencv_storage},
@@ -115,6 +125,10 @@ constinit std::array<FormatRow, 15> format_table = {{
      read_with_source<parse_euroc_sensor>, true},
     {CameraFormat::Openicc, "openicc", "OpenImuCameraCalibrator JSON", "libcam::io", "", nullptr, nullptr,
      read_with_source<parse_openicc_camera>, true},
+    {CameraFormat::Blender, "blender", "Blender camera script", "libcam::io", "", nullptr, format_blender_script,
+     read_blender_script},
+    {CameraFormat::BlenderJson, "blender-json", "Blender camera JSON", "libcam::io", "", nullptr, format_blender_json,
+     read_with_source<parse_blender_cameras>},
 }};
 
 FormatRow& row_of(CameraFormat format) {
@@ -222,6 +236,7 @@ std::optional<CameraFormat> camera_format_from_path(const std::filesystem::path&
     if (extension == ".yaml" || extension == ".yml") return CameraFormat::OpenCvYaml;
     if (extension == ".xml") return CameraFormat::OpenCvXml;
     if (extension == ".cameramodel") return CameraFormat::Cameramodel;
+    if (extension == ".py") return CameraFormat::Blender;
     return std::nullopt;
 }
 
@@ -395,6 +410,7 @@ std::optional<CameraFormat> json_format_of(std::string_view text) {
     if (is_nerf_transforms(root)) return CameraFormat::Nerf;
     if (is_open3d_camera(root)) return CameraFormat::Open3d;
     if (is_openicc_camera(root)) return CameraFormat::Openicc;
+    if (is_blender_cameras(root)) return CameraFormat::BlenderJson;
     return std::nullopt;
 }
 
@@ -402,7 +418,9 @@ std::optional<CameraFormat> json_format_of(std::string_view text) {
 // extensions several formats share, by its keys (a YAML file that does not parse is
 // left to the OpenCV reader, which says where it is broken).
 CameraFormat detect_format(std::string_view text, const std::filesystem::path& path, const std::string& source) {
-    const CameraFormat by_look = format_of_extension(path).value_or(sniff_format(text, source));
+    // (Not value_or: the contents are looked at only when the extension does not say.)
+    const std::optional<CameraFormat> by_extension = format_of_extension(path);
+    const CameraFormat by_look = by_extension ? *by_extension : sniff_format(text, source);
     if (by_look == CameraFormat::Json) return json_format_of(text).value_or(CameraFormat::Json);
     if (by_look == CameraFormat::OpenCvYaml) {
         try {

@@ -19,6 +19,8 @@
 //   open3d       Open3D's PinholeCameraIntrinsic / PinholeCameraParameters JSON
 //   euroc        the EuRoC (ASL) dataset's sensor.yaml of a camera: read only
 //   openicc      OpenImuCameraCalibrator's JSON, as UMI ships it: read only
+//   blender      a Python script that sets a Blender scene's camera: written only
+//   blender-json Blender's camera settings as JSON (io/blender_format.hpp)
 //
 // A file may hold several cameras (a stereo pair, a rig): read_camera_set gives every
 // one with the file's name for it; read_camera_file gives one, the first by default.
@@ -45,12 +47,12 @@ namespace libcam {
 
 enum class CameraFormat {
     Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor, Ros, Open3d, Euroc,
-    Openicc
+    Openicc, Blender, BlenderJson
 };
 
 std::string_view to_string(CameraFormat format);
 CameraFormat camera_format_from_string(std::string_view text);  // throws InvalidArgument
-// By extension (.json, .yaml/.yml, .xml, .cameramodel); nullopt when unknown.
+// By extension (.json, .yaml/.yml, .xml, .cameramodel, .py); nullopt when unknown.
 std::optional<CameraFormat> camera_format_from_path(const std::filesystem::path& path);
 // Every format's name, comma-separated (for messages and help).
 std::string camera_format_names();

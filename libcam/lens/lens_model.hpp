@@ -40,7 +40,8 @@
     _(Cahvor, CahvorLens) \
     _(Cahvore, CahvoreLens) \
     _(LensPolynomial, LensPolynomialLens) \
-    _(SplinedStereographic, SplinedStereographicLens)
+    _(SplinedStereographic, SplinedStereographicLens) \
+    _(Cylindrical, CylindricalLens)
 
 namespace libcam {
 
@@ -90,6 +91,7 @@ enum class LensFamily {
     Cahvore,  // not CAHVOR's: CAHVOR is CAHVORE with zero E and a linearity of 1, not 0
     LensPolynomial,
     Splined,
+    Cylindrical,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -247,6 +249,12 @@ inline constexpr LensInfo kLensTable[] = {
      .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None,
      .mrcal = "LENSMODEL_SPLINED_STEREOGRAPHIC", .colmap = "", .kalibr = "", .basalt = "",
      .family = LensFamily::Splined, .family_rank = 0, .fit = FitCandidate::No},
+    // The panorama with straight verticals: LONLAT across, a pinhole down (OpenCV's
+    // stitching draws it: cv::detail::CylindricalWarper).
+    {.type = LensType::Cylindrical, .name = "CYLINDRICAL", .coefficients = {}, .num_coefficients = 0,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Cylindrical, .family_rank = 0,
+     .fit = FitCandidate::No},
 };
 
 namespace detail {

@@ -1,6 +1,8 @@
 #include "libcam/remap/new_camera.hpp"
 
 #include <algorithm>
+#include <array>
+#include <iterator>
 #include <cmath>
 #include <mutex>
 #include <numbers>
@@ -23,7 +25,8 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 
 // The target of scale f (pixels per unit of the model's normalised coordinate: per unit
-// of tangent for PINHOLE, per radian for LONLAT), square pixels, centred.
+// of tangent for PINHOLE, per radian for LONLAT, per radian across and per unit of
+// tangent down for CYLINDRICAL), square pixels, centred.
 Camera centred_camera(LensType model, double f, const ImageSize& size, const Pose& pose) {
     Camera camera;
     camera.size = size;
@@ -38,18 +41,26 @@ Pose target_pose(const Camera& source, const Mat3& rotation) {
     return {rotation * source.pose.R, rotation * source.pose.t};
 }
 
-// What the source's rays span in the target's frame, for a PINHOLE and a LONLAT target at
-// once: the largest |m| on each axis of each model's normalised coordinates, and the
-// largest angle off the target's axis.
+// The models a target can be.
+constexpr LensType kTargetModels[] = {LensType::Pinhole, LensType::Lonlat, LensType::Cylindrical};
+constexpr std::size_t kTargetCount = std::size(kTargetModels);
+
+std::size_t target_index(LensType model) {
+    return static_cast<std::size_t>(std::find(std::begin(kTargetModels), std::end(kTargetModels), model) -
+                                    std::begin(kTargetModels));
+}
+
+// What the source's rays span in the target's frame, for every target model at once: the
+// largest |m| on each axis of each model's normalised coordinates, and the largest angle
+// off the target's axis.
 struct Span {
-    Vec2 pinhole = Vec2::Zero(), lonlat = Vec2::Zero();
+    std::array<Vec2, kTargetCount> extent{Vec2::Zero(), Vec2::Zero(), Vec2::Zero()};
     double off_axis = 0;  // radians
     std::size_t rays = 0;
 
-    const Vec2& of(LensType model) const { return model == LensType::Pinhole ? pinhole : lonlat; }
+    const Vec2& of(LensType model) const { return extent[target_index(model)]; }
     void merge(const Span& other) {
-        pinhole = pinhole.cwiseMax(other.pinhole);
-        lonlat = lonlat.cwiseMax(other.lonlat);
+        for (std::size_t i = 0; i < kTargetCount; ++i) extent[i] = extent[i].cwiseMax(other.extent[i]);
         off_axis = std::max(off_axis, other.off_axis);
         rays += other.rays;
     }
@@ -69,8 +80,10 @@ Span span_of_source(const PreparedCamera& source, const Mat3& rotation, int thre
     const std::size_t width = static_cast<std::size_t>(camera.size.width);
     const std::size_t n = width * static_cast<std::size_t>(camera.size.height);
     const Unprojector<double>& unprojector = source.unprojector();
-    const Projector<double> unit_pinhole(PreparedCamera(centred_camera(LensType::Pinhole, 1.0, {1, 1}, {})));
-    const Projector<double> unit_lonlat(PreparedCamera(centred_camera(LensType::Lonlat, 1.0, {1, 1}, {})));
+    std::vector<Projector<double>> unit_targets;  // f = 1, centred on (0, 0)
+    for (const LensType model : kTargetModels) {
+        unit_targets.emplace_back(PreparedCamera(centred_camera(model, 1.0, {1, 1}, {})));
+    }
     constexpr std::size_t kStep = 8192;
     Span all;
     std::mutex merging;
@@ -88,10 +101,10 @@ Span span_of_source(const PreparedCamera& source, const Mat3& rotation, int thre
                 span.off_axis = std::max(span.off_axis, std::atan2(std::hypot(rays.x[j], rays.y[j]), rays.z[j]));
                 ++span.rays;
             }
-            unit_pinhole.project(rays, m, projected);
-            widen(span.pinhole, m, has_ray, projected);
-            unit_lonlat.project(rays, m, projected);
-            widen(span.lonlat, m, has_ray, projected);
+            for (std::size_t t = 0; t < kTargetCount; ++t) {
+                unit_targets[t].project(rays, m, projected);
+                widen(span.extent[t], m, has_ray, projected);
+            }
         }
         const std::lock_guard<std::mutex> lock(merging);
         all.merge(span);
@@ -146,10 +159,13 @@ double widest_valid_scale(LensType model, const ImageSize& size, const PreparedC
     };
     const double half_w = 0.5 * static_cast<double>(size.width), half_h = 0.5 * static_cast<double>(size.height);
     // The widest view the model holds usefully: a pinhole's corners kWidestPinholeDeg / 2
-    // off the axis, the whole sphere for LONLAT.
-    const double widest = model == LensType::Pinhole
-                              ? std::hypot(half_w, half_h) / std::tan(0.5 * kWidestPinholeDeg * kDegree)
-                              : std::max(half_w / std::numbers::pi, half_h / (0.5 * std::numbers::pi));
+    // off the axis, the whole sphere for LONLAT, a full turn across and kWidestPinholeDeg
+    // down for CYLINDRICAL (its height stretches as a pinhole's does).
+    const double widest_tangent = std::tan(0.5 * kWidestPinholeDeg * kDegree);
+    const double widest = model == LensType::Pinhole ? std::hypot(half_w, half_h) / widest_tangent
+                          : model == LensType::Lonlat
+                              ? std::max(half_w / std::numbers::pi, half_h / (0.5 * std::numbers::pi))
+                              : std::max(half_w / std::numbers::pi, half_h / widest_tangent);
     if (passes(widest)) return widest;
     double narrow = std::max(source.camera().intrinsics.fx, widest);
     for (int doubling = 0; !passes(narrow); ++doubling) {
@@ -175,6 +191,13 @@ double scale_for_fov(LensType model, double fov_deg, FovAxis axis, const ImageSi
                               "square pixels: use horizontal, vertical or diagonal");
     }
     const double width = static_cast<double>(size.width), height = static_cast<double>(size.height);
+    if (model == LensType::Cylindrical && axis == FovAxis::Vertical) {  // a pinhole's, down
+        if (!(fov_deg > 0 && fov_deg < 180)) {
+            throw InvalidArgument("new camera: a CYLINDRICAL camera's vertical fov must be in (0, 180) degrees, got " +
+                                  format_number(fov_deg));
+        }
+        return 0.5 * height / std::tan(0.5 * fov_deg * kDegree);
+    }
     if (model == LensType::Pinhole) {
         if (!(fov_deg > 0 && fov_deg < 180)) {
             throw InvalidArgument("new camera: a pinhole's fov must be in (0, 180) degrees, got " + format_number(fov_deg));
@@ -182,11 +205,12 @@ double scale_for_fov(LensType model, double fov_deg, FovAxis axis, const ImageSi
         const Vec2 tangents = half_tangents_of_fov<double>(fov_deg, axis, size);
         return width / (2.0 * tangents.x());
     }
-    if (axis == FovAxis::Diagonal) throw InvalidArgument("new camera: LONLAT takes its fov across or down, not diagonally");
+    const std::string name(lens_info(model).name);
+    if (axis == FovAxis::Diagonal) throw InvalidArgument("new camera: " + name + " takes its fov across or down, not diagonally");
     const double limit = axis == FovAxis::Horizontal ? 360.0 : 180.0;
     if (!(fov_deg > 0 && fov_deg <= limit)) {
-        throw InvalidArgument("new camera: a LONLAT camera's " + std::string(to_string(axis)) + " fov must be in (0, " +
-                              format_number(limit) + "] degrees, got " + format_number(fov_deg));
+        throw InvalidArgument("new camera: a " + name + " camera's " + std::string(to_string(axis)) +
+                              " fov must be in (0, " + format_number(limit) + "] degrees, got " + format_number(fov_deg));
     }
     return (axis == FovAxis::Horizontal ? width : height) / (fov_deg * kDegree);
 }
@@ -195,10 +219,12 @@ double scale_for_fov(LensType model, double fov_deg, FovAxis axis, const ImageSi
 std::string view_of(const Camera& camera) {
     const double f = camera.intrinsics.fx;
     const double w = static_cast<double>(camera.size.width), h = static_cast<double>(camera.size.height);
-    const auto across = [&](double side) {
-        return camera.lens.type == LensType::Pinhole ? 2.0 * std::atan(0.5 * side / f) / kDegree : side / f / kDegree;
+    const auto angle = [&](double side, bool in_radians) {
+        return (in_radians ? side / f : 2.0 * std::atan(0.5 * side / f)) / kDegree;
     };
-    return format_short(across(w), 4) + " x " + format_short(across(h), 4) + " deg";
+    const LensType model = camera.lens.type;
+    return format_short(angle(w, model != LensType::Pinhole), 4) + " x " +
+           format_short(angle(h, model == LensType::Lonlat), 4) + " deg";
 }
 
 std::string size_text(const ImageSize& size) { return std::to_string(size.width) + "x" + std::to_string(size.height); }
@@ -206,8 +232,8 @@ std::string size_text(const ImageSize& size) { return std::to_string(size.width)
 }  // namespace
 
 NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest& request) {
-    if (request.model != LensType::Pinhole && request.model != LensType::Lonlat) {
-        throw InvalidArgument("new camera: the model must be PINHOLE or LONLAT, got " +
+    if (target_index(request.model) == kTargetCount) {
+        throw InvalidArgument("new camera: the model must be PINHOLE, LONLAT or CYLINDRICAL, got " +
                               std::string(lens_info(request.model).name));
     }
     Pose{request.rotation, Vec3::Zero()}.validate("rotation");
@@ -229,13 +255,28 @@ NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest
             why += ", up to " + format_short(kWidestPinholeDeg, 3) +
                    " deg across the diagonal (a wider pinhole stretches its edges beyond use; --to-lonlat keeps more)";
         }
+        const double half_height = 0.5 * static_cast<double>(size.height);
+        if (model == LensType::Cylindrical &&
+            std::atan(half_height / f) >= 0.5 * kWidestPinholeDeg * kDegree * (1 - 1e-12)) {
+            why += ", up to " + format_short(kWidestPinholeDeg, 3) +
+                   " deg from top to bottom (a taller cylinder stretches its top and bottom beyond use; --to-lonlat "
+                   "keeps more)";
+        }
     } else {
         const Span span = span_of_source(source, request.rotation, request.threads);
         if (span.rays == 0) throw InvalidArgument("new camera: no pixel of the source camera has a ray");
-        if (model == LensType::Pinhole && span.off_axis > 0.5 * kWidestPinholeDeg * kDegree) {
+        const double widest_off_axis = 0.5 * kWidestPinholeDeg * kDegree;
+        if (model == LensType::Pinhole && span.off_axis > widest_off_axis) {
             why = "the lens sees " + format_short(span.off_axis / kDegree, 4) +
                   " deg off the axis, more than a pinhole holds without stretching its edges beyond use (" +
                   format_short(0.5 * kWidestPinholeDeg, 3) + " deg), so LONLAT; ";
+            model = LensType::Lonlat;
+        }
+        const double latitude = std::atan(span.of(LensType::Cylindrical).y());  // the farthest up or down
+        if (model == LensType::Cylindrical && latitude > widest_off_axis) {
+            why = "the lens sees " + format_short(latitude / kDegree, 4) +
+                  " deg above or below the horizon, more than a cylinder holds without stretching its top and "
+                  "bottom beyond use (" + format_short(0.5 * kWidestPinholeDeg, 3) + " deg), so LONLAT; ";
             model = LensType::Lonlat;
         }
         // The source pixels farthest out land on the target's outermost pixel centres.

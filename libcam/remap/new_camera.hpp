@@ -2,7 +2,8 @@
 // The camera to turn a lens's images into, chosen for the user: a pinhole (square
 // pixels, principal point at the image centre, so also a field-of-view camera a renderer
 // takes) or, for a lens that sees more than a pinhole can hold, an equirectangular
-// LONLAT camera (mrcal's: longitude along x, latitude along y, square pixels per radian).
+// LONLAT camera (mrcal's: longitude along x, latitude along y, square pixels per radian)
+// or a CYLINDRICAL one (longitude along x, tan(latitude) along y: straight verticals).
 //
 //   const NewCamera chosen = choose_new_camera(PreparedCamera(fisheye), NewCameraRequest{});
 //   chosen.camera  // the pinhole;  chosen.why  // what was chosen and why, in a sentence
@@ -30,20 +31,23 @@ namespace libcam {
 enum class Keep { Valid, All };
 
 struct NewCameraRequest {
-    // PINHOLE or LONLAT. A pinhole asked to keep everything of a lens that sees more
-    // than kWidestPinholeDeg across becomes LONLAT (NewCamera::why says so).
+    // PINHOLE, LONLAT or CYLINDRICAL. A pinhole asked to keep everything of a lens that
+    // sees more than kWidestPinholeDeg across, or a cylinder asked to keep everything of
+    // one that sees more than half of it above or below the horizon, becomes LONLAT
+    // (NewCamera::why says so).
     LensType model = LensType::Pinhole;
     std::optional<Keep> keep = Keep::Valid;  // nullopt: fov_deg says the view
     double fov_deg = 0;                      // with keep = nullopt: the view on fov_axis
-    FovAxis fov_axis = FovAxis::Horizontal;  // Horizontal, Vertical or Diagonal (pinhole)
+    FovAxis fov_axis = FovAxis::Horizontal;  // Horizontal, Vertical or (pinhole) Diagonal
     std::optional<ImageSize> size;           // default: the source's size
     Mat3 rotation = Mat3::Identity();        // the target's axes relative to the source's (remap_map.hpp)
     int threads = 1;
 };
 
 // The widest pinhole target chosen: a pinhole's edges stretch without bound towards 180
-// degrees. Keep::Valid stops at this angle across the diagonal; Keep::All of a lens that
-// sees past half of it off the axis becomes LONLAT.
+// degrees. Keep::Valid stops at this angle across the diagonal (and a cylinder at it
+// from top to bottom); Keep::All of a lens that sees past half of it off the axis (for a
+// cylinder, above or below the horizon) becomes LONLAT.
 inline constexpr double kWidestPinholeDeg = 150.0;
 
 struct NewCamera {

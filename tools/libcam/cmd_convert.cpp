@@ -24,8 +24,9 @@ Runner add_convert(CLI::App& app) {
     flags->camera.add_to(*command);
     command->add_option("--to", flags->to,
                         "Output format: json, opencv-yaml, opencv-xml, cameramodel, gl, nerf (transforms.json), kalibr, "
-                        "ros (camera_info), open3d, or colmap (cameras.txt, images.txt and points3D.txt, into the "
-                        "folder -o names)")
+                        "ros (camera_info), open3d, blender (a Python script that sets a Blender scene's camera: "
+                        "blender -b scene.blend -P camera.py), blender-json (the same settings as JSON), or colmap "
+                        "(cameras.txt, images.txt and points3D.txt, into the folder -o names)")
         ->capture_default_str();
     command->add_option("-o,--output", flags->output,
                         "Output file (written atomically; for colmap, a folder); default stdout");
@@ -33,8 +34,8 @@ Runner add_convert(CLI::App& app) {
                         "colmap, nerf: the name of the image the pose belongs to (images.txt's NAME, "
                         "transforms.json's file_path)")
         ->capture_default_str();
-    command->add_option("--near", flags->near, "gl: near plane distance")->capture_default_str();
-    command->add_option("--far", flags->far, "gl: far plane distance")->capture_default_str();
+    command->add_option("--near", flags->near, "gl: near plane distance; blender: clip_start")->capture_default_str();
+    command->add_option("--far", flags->far, "gl: far plane distance; blender: clip_end")->capture_default_str();
     command->add_option("--depth-range", flags->depth_range,
                         "gl: NDC depth range, minus-one-to-one (OpenGL) or zero-to-one (Direct3D/Vulkan)")
         ->capture_default_str();

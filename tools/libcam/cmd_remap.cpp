@@ -1,5 +1,5 @@
-// libcam remap: images from one camera to another (undistort a photo into a pinhole or
-// LONLAT camera chosen for it, or distort a render to the real lens), and libcam derive:
+// libcam remap: images from one camera to another (undistort a photo into a pinhole,
+// LONLAT or cylindrical camera chosen for it, or distort a render to the real lens), and libcam derive:
 // the camera of a resized, cropped, padded, binned or turned image.
 
 #include <cmath>
@@ -31,7 +31,9 @@ struct RemapFlags {
     std::string to_pinhole;
     std::string to_fov;
     std::string to_fov_axis = "horizontal";
+    std::string to_fov_model;  // default: pinhole
     std::string to_lonlat;
+    std::string to_cylindrical;
     std::string size;
     std::string rotate;
     bool inverse = false;
@@ -54,15 +56,24 @@ Keep keep_from(const std::string& flag, const std::string& value) {
                      value + "'");
 }
 
+LensType fov_model_from(const std::string& text) {
+    if (text.empty() || text == "pinhole") return LensType::Pinhole;
+    if (text == "lonlat") return LensType::Lonlat;
+    if (text == "cylindrical") return LensType::Cylindrical;
+    throw UsageError("--to-fov-model: expected pinhole, lonlat or cylindrical, got '" + text + "'");
+}
+
 // The camera the images go into (or, with --inverse, come from): a file, or one chosen.
 NewCamera target_camera(const RemapFlags& flags, const PreparedCamera& source, const Mat3& rotation) {
-    const int given = !flags.to.empty() + !flags.to_pinhole.empty() + !flags.to_fov.empty() + !flags.to_lonlat.empty();
-    if (given > 1) throw UsageError("give one of --to, --to-pinhole, --to-fov and --to-lonlat");
+    const int given = !flags.to.empty() + !flags.to_pinhole.empty() + !flags.to_fov.empty() + !flags.to_lonlat.empty() +
+                      !flags.to_cylindrical.empty();
+    if (given > 1) throw UsageError("give one of --to, --to-pinhole, --to-fov, --to-lonlat and --to-cylindrical");
     if (!flags.to.empty()) {
         if (!flags.size.empty()) throw UsageError("--size: the camera --to names has its own size");
         const CameraFile file = read_camera_file(flags.to);
         return {file.camera, "the camera in " + flags.to};
     }
+    if (!flags.to_fov_model.empty() && flags.to_fov.empty()) throw UsageError("--to-fov-model: give it with --to-fov");
     NewCameraRequest request;
     request.rotation = rotation;
     request.threads = flags.threads;
@@ -70,6 +81,7 @@ NewCamera target_camera(const RemapFlags& flags, const PreparedCamera& source, c
     if (!flags.to_fov.empty()) {
         request.keep.reset();
         request.fov_deg = parse_number("--to-fov", flags.to_fov);
+        request.model = fov_model_from(flags.to_fov_model);
         try {
             request.fov_axis = fov_axis_from_string(flags.to_fov_axis);
         } catch (const InvalidArgument& error) {
@@ -78,6 +90,9 @@ NewCamera target_camera(const RemapFlags& flags, const PreparedCamera& source, c
     } else if (!flags.to_lonlat.empty()) {
         request.model = LensType::Lonlat;
         request.keep = keep_from("--to-lonlat", flags.to_lonlat);
+    } else if (!flags.to_cylindrical.empty()) {
+        request.model = LensType::Cylindrical;
+        request.keep = keep_from("--to-cylindrical", flags.to_cylindrical);
     } else {
         request.keep = keep_from("--to-pinhole", flags.to_pinhole.empty() ? "valid" : flags.to_pinhole);
     }
@@ -224,7 +239,7 @@ int run_remap(const RemapFlags& flags) {
 
 Runner add_remap(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
-        "remap", "Turn images from one camera into another: undistort into a pinhole or LONLAT camera chosen for the "
+        "remap", "Turn images from one camera into another: undistort into a pinhole, LONLAT or cylindrical camera chosen for the "
                  "lens, or (--inverse) distort renders to the real lens");
     auto flags = std::make_shared<RemapFlags>();
     command->add_option("--from", flags->from, "The lens's camera file (the camera the images were taken with)")
@@ -236,11 +251,19 @@ Runner add_remap(CLI::App& app) {
                         "A pinhole chosen for the lens (the default, valid): valid = the widest view with a source "
                         "for every pixel (no black borders); all = the narrowest that keeps every pixel of the lens "
                         "(LONLAT instead when the lens sees past 75 degrees off its axis)");
-    command->add_option("--to-fov", flags->to_fov, "A pinhole with this field of view in degrees, edge to edge");
-    command->add_option("--to-fov-axis", flags->to_fov_axis, "--to-fov's axis: horizontal, vertical or diagonal")
+    command->add_option("--to-fov", flags->to_fov,
+                        "A camera with this field of view in degrees, edge to edge (--to-fov-model, --to-fov-axis)");
+    command->add_option("--to-fov-axis", flags->to_fov_axis,
+                        "--to-fov's axis: horizontal, vertical or (pinhole) diagonal")
         ->capture_default_str();
+    command->add_option("--to-fov-model", flags->to_fov_model,
+                        "--to-fov's camera: pinhole (the default), lonlat or cylindrical (centred, square pixels)");
     command->add_option("--to-lonlat", flags->to_lonlat,
                         "An equirectangular (LONLAT) camera chosen for the lens: valid or all, as for --to-pinhole");
+    command->add_option("--to-cylindrical", flags->to_cylindrical,
+                        "A cylindrical panorama (straight verticals: longitude across, a pinhole's height down) "
+                        "chosen for the lens: valid or all, as for --to-pinhole (LONLAT instead when all of the lens "
+                        "reaches past 75 degrees above or below its horizon)");
     command->add_option("--size", flags->size, "The new camera's image size WIDTHxHEIGHT (default: the lens's)");
     command->add_option("--rotate", flags->rotate,
                         "Turn the new camera by this rotation vector (radians, x,y,z in the lens's camera frame)");
