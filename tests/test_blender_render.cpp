@@ -48,6 +48,13 @@ std::optional<fs::path> blender_program() {
     return std::nullopt;
 }
 
+// Blender, or nothing after saying the test is skipped.
+std::optional<fs::path> blender_or_skip() {
+    std::optional<fs::path> blender = blender_program();
+    if (!blender) WARN("skipped: Blender is not installed (the test command installs Debian's blender)");
+    return blender;
+}
+
 struct RenderCase {
     std::string name;
     Camera camera;
@@ -230,11 +237,8 @@ int run_blender(const fs::path& blender, const fs::path& manifest, const fs::pat
 
 TEST_CASE("Blender renders through libcam's cameras: each sphere's centroid where libcam projects it",
           "[blender]") {
-    const std::optional<fs::path> blender = blender_program();
-    if (!blender) {
-        WARN("skipped: Blender is not installed (the test command installs Debian's blender)");
-        return;
-    }
+    const std::optional<fs::path> blender = blender_or_skip();
+    if (!blender) return;
     test::TempDir dir;
     const std::vector<RenderCase> cases = render_cases();
     nlohmann::json manifest;
@@ -323,11 +327,8 @@ TEST_CASE("Blender renders through libcam's cameras: each sphere's centroid wher
 
 TEST_CASE("tools/blender/export_cameras.py: a scene's cameras, and an animated one frame by frame, read by libcam",
           "[blender]") {
-    const std::optional<fs::path> blender = blender_program();
-    if (!blender) {
-        WARN("skipped: Blender is not installed (the test command installs Debian's blender)");
-        return;
-    }
+    const std::optional<fs::path> blender = blender_or_skip();
+    if (!blender) return;
     test::TempDir dir;
     // The scene: Blender's default camera set by hand, and a second camera moving from
     // (0, 0, 0) at frame 1 to (0, 0, 3) at frame 3, linearly.
