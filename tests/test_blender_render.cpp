@@ -104,8 +104,6 @@ std::vector<RenderCase> render_cases() {
     return cases;
 }
 
-Vec3 eye_of(const Camera& camera) { return -camera.pose.R.transpose() * camera.pose.t; }
-
 struct Sphere {
     Vec3 centre;       // world
     double radius;     // world
@@ -160,7 +158,7 @@ std::optional<SphereImage> sphere_image(const PreparedCamera& camera, const Vec3
 // radius on the image, 8 m away; only where Blender renders (a fisheye's circle).
 std::vector<Sphere> spheres_for(const RenderCase& c) {
     const PreparedCamera camera(c.camera);
-    const Vec3 eye = eye_of(c.camera);
+    const Vec3 eye = c.camera.pose.centre();
     const double w = static_cast<double>(c.camera.size.width), h = static_cast<double>(c.camera.size.height);
     std::vector<Sphere> spheres;
     constexpr int kColumns = 6, kRows = 5;
@@ -177,8 +175,8 @@ std::vector<Sphere> spheres_for(const RenderCase& c) {
             if (fisheye && angle > 0.5 * (w / c.camera.intrinsics.fx) * 0.97) continue;
             // 4 px: the angle one pixel subtends here, measured by projecting a step across.
             const Vec3 centre = eye + 8.0 * world_ray;
-            const auto [a, b] = across(world_ray);
-            const Projection step = camera.project(eye + 8.0 * (world_ray + 1e-4 * a));
+            const Vec3 sideways = across(world_ray).first;
+            const Projection step = camera.project(eye + 8.0 * (world_ray + 1e-4 * sideways));
             const Projection here = camera.project(centre);
             if (!step.valid || !here.valid) continue;
             const double px_per_radian = (step.pixel - here.pixel).norm() / 1e-4;
@@ -266,7 +264,7 @@ TEST_CASE("Blender renders through libcam's cameras: each sphere's centroid wher
                 const Vec2 pixel(std::fmod(k * 0.6180339887 * c.camera.size.width, double(c.camera.size.width)),
                                  std::fmod(k * 0.7548776662 * c.camera.size.height, double(c.camera.size.height)));
                 const Vec3 ray = c.camera.pose.R.transpose() * camera.unproject(pixel).direction.normalized();
-                points.push_back(eye_of(c.camera) + (1.0 + k % 7) * ray);
+                points.push_back(c.camera.pose.centre() + (1.0 + k % 7) * ray);
             }
             nlohmann::json list = nlohmann::json::array();
             for (const Vec3& p : points) list.push_back({p.x(), p.y(), p.z()});
