@@ -33,7 +33,7 @@ inline constexpr std::string_view unproject_libcam_mrcal = "unproject-libcam-mrc
 inline constexpr std::string_view unproject_mrcal = "unproject-mrcal";    // mrcal_unproject's own residual
 inline constexpr std::string_view mrcal_vs_libcam = "unproject-mrcal-vs-libcam";  // where the two rays land
 inline constexpr std::string_view undistort_opencv_default = "undistort-opencv-default";  // its residual
-inline constexpr std::string_view undistort_opencv_100 = "undistort-opencv-100";  // 100 iterations, eps 1e-14
+inline constexpr std::string_view undistort_opencv_100 = "undistort-opencv-100";  // 100 iterations
 inline constexpr std::string_view round_trip = "round-trip";  // unproject(project(P)) vs P, angle x fx
 }  // namespace verify_check
 
