@@ -14,20 +14,25 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/ccalib/omnidir.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/stitching/warpers.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include "libcam/camera/example_cameras.hpp"
 #include "libcam/camera/unprojector.hpp"
+#include "libcam/convert/blender_camera.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/image_remap.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/remap/derived_camera.hpp"
 #include "libcam/remap/new_camera.hpp"
+#include "libcam/remap/render_plan.hpp"
 #include "cli_runner.hpp"
 #include "temp_dir.hpp"
 
@@ -587,6 +592,73 @@ TEST_CASE("Overscan: the least margin around a render that gives every lens pixe
     CHECK_THROWS_WITH(overscan_for(PreparedCamera(fisheye), render), Catch::Contains("give the render a wider view"));
 }
 
+TEST_CASE("The render plan: the lens itself when Blender draws it, else a pinhole with margins or Blender's fisheye, "
+          "with a source for every lens pixel that has a ray",
+          "[remap]") {
+    SECTION("a pinhole Blender draws as it is") {
+        Camera pinhole;
+        pinhole.size = {640, 480};
+        pinhole.intrinsics = {500, 510, 300.5, 250.25, 0.0};
+        pinhole.lens = {LensType::Pinhole, {}};
+        const RenderPlan plan = plan_render(PreparedCamera(pinhole));
+        CHECK_FALSE(plan.needs_warp);
+        CHECK(plan.render.intrinsics.K() == pinhole.intrinsics.K());
+        CHECK(plan.render.size == pinhole.size);
+    }
+    SECTION("a radial-tangential lens renders as a pinhole with its K and margins") {
+        Camera lens_camera;  // EuRoC's cam0
+        lens_camera.size = {752, 480};
+        lens_camera.intrinsics = {458.654, 457.296, 367.215, 248.375, 0.0};
+        lens_camera.lens = {LensType::Opencv4, {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05}};
+        lens_camera.pose = Pose::from_rvec(Vec3(0.1, 0.2, -0.3), Vec3(1, 2, 3));
+        const PreparedCamera lens(lens_camera);
+        const RenderPlan plan = plan_render(lens, 2);
+        INFO(plan.why);
+        REQUIRE(plan.render.lens.type == LensType::Pinhole);
+        const Overscan& m = plan.margins;
+        CHECK(m.left > 0);
+        CHECK(m.right > 0);
+        CHECK(plan.render.size == ImageSize{752 + m.left + m.right, 480 + m.top + m.bottom});
+        CHECK(plan.render.intrinsics.fx == lens_camera.intrinsics.fx);
+        CHECK(plan.render.intrinsics.fy == lens_camera.intrinsics.fy);
+        CHECK(plan.render.intrinsics.cx == lens_camera.intrinsics.cx + double(m.left));
+        CHECK(plan.render.intrinsics.cy == lens_camera.intrinsics.cy + double(m.top));
+        CHECK(plan.render.pose.R == lens_camera.pose.R);
+        CHECK(plan.render.pose.t == lens_camera.pose.t);
+        const RemapMap warp = build_remap_map(lens, PreparedCamera(plan.render));
+        CHECK(warp.with_source == pixels_with_a_ray(lens));
+    }
+    SECTION("a fisheye that sees past 90 degrees renders as Blender's equidistant fisheye") {
+        const Camera fisheye = example_camera("fisheye");
+        const PreparedCamera lens(fisheye);
+        const RenderPlan plan = plan_render(lens, 2);
+        INFO(plan.why);
+        REQUIRE(plan.render.lens.type == LensType::Fisheye);
+        CHECK(plan.render.lens.coefficients == std::vector<double>{0, 0, 0, 0});
+        CHECK(plan.render.size.width == plan.render.size.height);
+        CHECK(plan.render.intrinsics.fx == std::max(fisheye.intrinsics.fx, fisheye.intrinsics.fy));
+        // Blender draws it: FISHEYE_EQUIDISTANT with the field of view W / f.
+        const BlenderCamera blender = blender_from_camera(plan.render);
+        CHECK(blender.type == BlenderCameraType::FisheyeEquidistant);
+        CHECK(blender.fisheye_fov == Approx(double(plan.render.size.width) / plan.render.intrinsics.fx));
+        // Its image circle (theta <= fov / 2, where Blender renders) holds every lens ray.
+        std::vector<Vec2> pixels;
+        for (long y = 0; y < fisheye.size.height; ++y) {
+            for (long x = 0; x < fisheye.size.width; ++x) pixels.emplace_back(x, y);
+        }
+        double widest = 0;
+        for (const Unprojection& ray : lens.unproject(pixels, 2)) {
+            if (ray.valid) widest = std::max(widest, angle_between(ray.direction, Vec3::UnitZ()));
+        }
+        INFO("widest ray " << widest << " rad");
+        CHECK(widest > std::numbers::pi / 2);
+        CHECK(blender.fisheye_fov / 2 > widest);
+        CHECK(blender.fisheye_fov / 2 < widest + 5 / plan.render.intrinsics.fx);  // a few pixels of margin, no more
+        const RemapMap warp = build_remap_map(lens, PreparedCamera(plan.render));
+        CHECK(warp.with_source == pixels_with_a_ray(lens));
+    }
+}
+
 TEST_CASE("Maps for cv::remap: float and fixed point sample the same image, and a source-less pixel stays black",
           "[remap][opencv]") {
     const Camera lens = binned(example_camera("wide"), 8);
@@ -706,4 +778,74 @@ TEST_CASE("libcam remap and derive, as a user runs them: images, the map, the ca
     r = run_program(exe, {"derive", "--from", lens_file.string(), "--bin", "2", "--crop", "0,0,2,2"});
     CHECK(r.exit_code == 2);
     CHECK_THAT(r.err, Catch::Contains("give one of --resize"));
+}
+
+TEST_CASE("libcam render-plan and libcam project, as a user runs them: the plan's files, the warp, one-line errors",
+          "[remap][cli]") {
+    test::TempDir dir;
+    const std::string exe = LIBCAM_EXE;
+    const fs::path fisheye_file = dir.path() / "fisheye.json";
+    const Camera fisheye = binned(example_camera("fisheye"), 4);  // 400x300, past 90 degrees
+    write_camera_file(fisheye_file, fisheye, CameraFormat::Json);
+    const fs::path plan = dir.path() / "plan";
+    CliResult r = run_program(exe, {"render-plan", "--from", fisheye_file.string(), "-o", plan.string()});
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("render camera: the lens (FISHEYE) sees rays up to"));
+    CHECK_THAT(r.out, Catch::Contains("Blender's equidistant fisheye"));
+    const Camera render = read_camera_file(plan / "render.json").camera;
+    CHECK(render.lens.type == LensType::Fisheye);
+    CHECK(read_camera_file(plan / "lens.json").camera.intrinsics.K() == fisheye.intrinsics.K());
+    CHECK_THAT(read_whole_file(plan / "render.py"), Catch::Contains("FISHEYE_EQUIDISTANT"));
+    CHECK(read_exr_channels(plan / "warp.exr").size() == 2);
+    // The render, turned into the lens's image by the command the plan prints.
+    cv::imwrite((dir.path() / "render.png").string(),
+                cv::Mat(int(render.size.height), int(render.size.width), CV_8UC1, cv::Scalar(90)));
+    CHECK_THAT(r.out, Catch::Contains("then: libcam remap --from " + (plan / "render.json").string() + " --to " +
+                                      (plan / "lens.json").string()));
+    r = run_program(exe, {"remap", "--from", (plan / "render.json").string(), "--to", (plan / "lens.json").string(),
+                          (dir.path() / "render.png").string(), "-o", (dir.path() / "lens").string()});
+    REQUIRE(r.exit_code == 0);
+    const cv::Mat lens_image = cv::imread((dir.path() / "lens" / "render.png").string(), cv::IMREAD_GRAYSCALE);
+    CHECK(lens_image.cols == 400);
+    CHECK(lens_image.rows == 300);
+    CHECK(lens_image.at<unsigned char>(150, 200) == 90);
+    // --fit-blender: Blender's polynomial fisheye cannot follow this lens within 0.1 px, and
+    // render-plan says by how much before planning the warp.
+    r = run_program(exe, {"render-plan", "--from", fisheye_file.string(), "-o", (dir.path() / "plan3").string(),
+                          "--fit-blender"});
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("fit: Blender's FISHEYE_LENS_POLYNOMIAL reproduces the lens within"));
+    CHECK_THAT(r.out, Catch::Contains("not within the tolerance 0.1 px: planning a warp instead"));
+    CHECK(fs::exists(dir.path() / "plan3" / "warp.exr"));
+    // A pinhole is drawn as it is: nothing to warp.
+    const fs::path pinhole_file = dir.path() / "pinhole.json";
+    r = run_program(exe, {"convert", "--fov", "60", "--size", "640x480", "-o", pinhole_file.string()});
+    REQUIRE(r.exit_code == 0);
+    r = run_program(exe, {"render-plan", "--from", pinhole_file.string(), "-o", (dir.path() / "plan2").string()});
+    REQUIRE(r.exit_code == 0);
+    CHECK_THAT(r.out, Catch::Contains("Blender draws PINHOLE as it is"));
+    CHECK_FALSE(fs::exists(dir.path() / "plan2" / "warp.exr"));
+    // Errors.
+    r = run_program(exe, {"render-plan", "--from", fisheye_file.string()});
+    CHECK(r.exit_code == 2);
+    r = run_program(exe, {"render-plan", "--from", fisheye_file.string(), "-o", plan.string(), "--map-format", "png"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("--map-format: expected exr or npy, got 'png'"));
+
+    // libcam project: a 640x480 camera of 60 degrees vertically... here the fov on both
+    // axes: fx = 320 / tan(30 deg), fy = 240 / tan(30 deg), centre (319.5, 239.5), looking
+    // along -z from the origin with y up: the world point (0.5, -0.25, -2) is x 0.25, y 0.125
+    // (down) in the camera's normalised coordinates.
+    r = run_program(exe, {"project", "--from", pinhole_file.string(), "--points", "0.5,-0.25,-2", "0,0,1", "--json"});
+    REQUIRE(r.exit_code == 0);
+    const nlohmann::json projected = nlohmann::json::parse(r.out);
+    const double f_tan = 1 / std::tan(30 * std::numbers::pi / 180);
+    CHECK(projected["pixels"][0]["valid"] == true);
+    CHECK(projected["pixels"][0]["pixel"][0].get<double>() == Approx(319.5 + 320 * f_tan * 0.25).epsilon(1e-12));
+    CHECK(projected["pixels"][0]["pixel"][1].get<double>() == Approx(239.5 + 240 * f_tan * 0.125).epsilon(1e-12));
+    CHECK(projected["pixels"][1]["valid"] == false);  // behind the camera
+    CHECK(projected["pixels"][1]["pixel"].is_null());
+    r = run_program(exe, {"project", "--from", pinhole_file.string(), "--points", "1,2"});
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Catch::Contains("--points"));
 }

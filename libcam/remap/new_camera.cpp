@@ -293,6 +293,10 @@ NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest
     return chosen;
 }
 
+double widest_ray_angle(const PreparedCamera& lens, int threads) {
+    return span_of_source(lens, Mat3::Identity(), threads).off_axis;
+}
+
 Overscan overscan_for(const PreparedCamera& lens, const Camera& render, const Mat3& rotation, int threads) {
     // The lens's pixels through a render twice its own size bigger on every side: where
     // each lands on the plain render, and which land nowhere.

@@ -1,5 +1,6 @@
 // libcam rays: the ray through each pixel, by the calibrated path R^T K^-1 [x, y, 1]
-// and, for a FOV camera, by the look-at formula, with the angle between them.
+// and, for a FOV camera, by the look-at formula, with the angle between them; and
+// libcam project, the other way: the pixel of each world point.
 
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -74,7 +75,69 @@ std::string format_table(const std::vector<RayRow>& rows) {
     return out.str();
 }
 
+struct ProjectedRow {
+    Vec3 point;
+    Projection projection;  // the pixel in the user's row convention
+};
+
+std::string format_projections_json(const std::vector<ProjectedRow>& rows) {
+    nlohmann::json out;
+    out["pixels"] = nlohmann::json::array();
+    for (const ProjectedRow& row : rows) {
+        const Vec2& p = row.projection.pixel;
+        out["pixels"].push_back({{"point", vec_json(row.point)},
+                                 {"valid", row.projection.valid},
+                                 {"pixel", row.projection.valid ? nlohmann::json{p.x() + 0.0, p.y() + 0.0}
+                                                                : nlohmann::json(nullptr)}});
+    }
+    return out.dump(2) + "\n";
+}
+
+std::string format_projections(const std::vector<ProjectedRow>& rows) {
+    const auto number = [](double value) { return format_short(value + 0.0, 12); };
+    std::ostringstream out;
+    for (const ProjectedRow& row : rows) {
+        out << "point (" << number(row.point.x()) << ", " << number(row.point.y()) << ", " << number(row.point.z())
+            << ")  pixel ";
+        if (row.projection.valid) {
+            out << "(" << number(row.projection.pixel.x()) << ", " << number(row.projection.pixel.y()) << ")\n";
+        } else {
+            out << "none (behind the camera or outside the lens model's domain)\n";
+        }
+    }
+    return out.str();
+}
+
 }  // namespace
+
+Runner add_project(CLI::App& app) {
+    CLI::App* command = app.add_subcommand("project", "The pixel of each world point (through R|t, K and the lens)");
+    struct Flags {
+        CameraOptions camera;
+        std::vector<std::string> points;
+        bool json = false;
+    };
+    auto flags = std::make_shared<Flags>();
+    flags->camera.add_to(*command);
+    command->add_option("--points", flags->points, "World points x,y,z")->required()->expected(1, -1);
+    command->add_flag("--json", flags->json, "Print JSON (pixel null where the point has none)");
+
+    return [flags] {
+        std::vector<Vec3> points;
+        for (const std::string& text : flags->points) points.push_back(parse_vec3("--points", text));
+        const PixelOrigin origin = flags->camera.origin();
+        const CameraFile file = flags->camera.camera();
+        const PreparedCamera camera(file.camera);
+        std::vector<ProjectedRow> rows;
+        for (const Vec3& point : points) {
+            Projection projection = camera.project(point);
+            projection.pixel = user_pixel(projection.pixel, origin, file.camera.size);
+            rows.push_back({point, projection});
+        }
+        emit(flags->json ? format_projections_json(rows) : format_projections(rows), "");
+        return 0;
+    };
+}
 
 Runner add_rays(CLI::App& app) {
     CLI::App* command = app.add_subcommand("rays", "World rays through pixels, by K^-1 and by the look-at formula");

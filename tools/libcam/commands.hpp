@@ -12,6 +12,7 @@ using Runner = std::function<int()>;
 
 Runner add_convert(CLI::App& app);
 Runner add_rays(CLI::App& app);
+Runner add_project(CLI::App& app);
 Runner add_demo(CLI::App& app);
 Runner add_verify(CLI::App& app);
 Runner add_fit(CLI::App& app);
@@ -19,6 +20,7 @@ Runner add_bench(CLI::App& app);
 Runner add_info(CLI::App& app);
 Runner add_remap(CLI::App& app);
 Runner add_derive(CLI::App& app);
+Runner add_render_plan(CLI::App& app);
 
 // Writes text to stdout, or atomically to `path` when it is not empty.
 void emit(const std::string& text, const std::string& path);
