@@ -860,4 +860,6 @@ TEST_CASE("Blender's camera JSON: bpy's settings to K and the pose, worked by ha
     Camera distorted = camera;
     distorted.lens = {LensType::Opencv4, {0.1, 0, 0, 0}};
     CHECK_THROWS_AS(format_camera(distorted, CameraFormat::BlenderJson), NotRepresentable);
+    // ... and the refusal says what to do instead.
+    CHECK_THROWS_WITH(format_camera(distorted, CameraFormat::Blender), Catch::Contains("libcam render-plan plans a render"));
 }

@@ -300,7 +300,8 @@ VerifyCheck check_project_mrcal(const Camera& camera, const Samples& s, const st
 // libcam's rays reprojected by libcam itself: the solver's own residual.
 VerifyCheck check_unproject_libcam(const Samples& s) {
     VerifyCheck check = new_check(verify_check::unproject_libcam, "libcam, reprojected by libcam", kExactPx);
-    return reprojection_errors(s.pixels.size(), s.with_ray, s.pixels_with_ray(), libcam_project(s.camera, s.libcam_rays(), s.threads))
+    return reprojection_errors(s.pixels.size(), s.with_ray, s.pixels_with_ray(),
+                               libcam_project(s.camera, s.libcam_rays(), s.threads))
         .finish(std::move(check));
 }
 

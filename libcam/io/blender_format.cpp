@@ -164,7 +164,7 @@ ordered_json settings_of(const Camera& camera, const WriteOptions& options) {
         b = blender_from_camera(camera);
     } catch (const InvalidArgument& error) {
         throw NotRepresentable(std::string("Blender: ") + error.what() +
-                               " (libcam remap --inverse turns a render of a camera Blender draws into its images)");
+                               " (libcam render-plan plans a render Blender can draw and the warp to this camera)");
     }
     ordered_json out;
     out["name"] = options.camera_name;

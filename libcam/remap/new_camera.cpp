@@ -294,7 +294,13 @@ NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest
 }
 
 double widest_ray_angle(const PreparedCamera& lens, int threads) {
-    return span_of_source(lens, Mat3::Identity(), threads).off_axis;
+    const Span span = span_of_source(lens, Mat3::Identity(), threads);
+    if (span.rays == 0) {
+        const ImageSize& size = lens.camera().size;
+        throw InvalidArgument("lens: no pixel of the " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                              " image has a ray");
+    }
+    return span.off_axis;
 }
 
 Overscan overscan_for(const PreparedCamera& lens, const Camera& render, const Mat3& rotation, int threads) {

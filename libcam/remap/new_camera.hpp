@@ -57,6 +57,10 @@ struct NewCamera {
 
 NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest& request);
 
+// The largest angle (radians) between the optical axis and the ray of any pixel of the
+// lens (exact unprojection of every pixel). Throws InvalidArgument when no pixel has one.
+double widest_ray_angle(const PreparedCamera& lens, int threads = 1);
+
 // The margins, in whole pixels, to render around `render` (a camera of a renderer, whose
 // axes are the lens's turned by `rotation`: d_render = rotation d_lens) so that the
 // render, distorted to the lens (the map from the lens to the render with the margins),
@@ -66,10 +70,6 @@ NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest
 // InvalidArgument when no margin can do it: a lens pixel's ray behind the render's
 // camera or past its lens's domain, or further out than twice the render's size beyond
 // an edge (give the render a wider view).
-// The largest angle (radians) between the optical axis and the ray of any pixel of the
-// lens that has one (exact unprojection of every pixel).
-double widest_ray_angle(const PreparedCamera& lens, int threads = 1);
-
 struct Overscan {
     long left = 0, top = 0, right = 0, bottom = 0;
 };

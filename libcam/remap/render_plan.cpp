@@ -80,7 +80,6 @@ RenderPlan plan_render(const PreparedCamera& lens, int threads) {
         return {source, false, {}, "Blender draws " + model + " as it is: render with the lens's own camera"};
     }
     const double widest = widest_ray_angle(lens, threads);
-    if (!(widest >= 0.0)) throw InvalidArgument("lens: no pixel of the " + size_text(source.size) + " image has a ray");
 
     std::string pinhole_why_not;
     const std::optional<PinholeRender> pinhole = pinhole_render(lens, threads, pinhole_why_not);

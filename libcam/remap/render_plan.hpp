@@ -37,7 +37,7 @@ struct RenderPlan {
     std::string why;         // what was chosen and why, in a sentence
 };
 
-// Throws InvalidArgument when the lens has no pixel with a ray.
+// Throws InvalidArgument when no pixel of the lens has a ray.
 RenderPlan plan_render(const PreparedCamera& lens, int threads = 1);
 
 }  // namespace libcam
