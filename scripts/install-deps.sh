@@ -20,7 +20,8 @@ packages=(
   libboost-dev           # multiprecision reference
   clang libclang-rt-14-dev   # libFuzzer and its sanitizer runtimes
   colmap                 # reference: COLMAP's own program reads the models libcam writes
-  python3-numpy python3-opencv   # reference: the remap tests against mrcal's and COLMAP's maps
+  python3-numpy python3-opencv   # reference: the remap tests against mrcal's and COLMAP's maps; the Python module
+  pybind11-dev python3-pytest    # the Python module (import libcam) and its tests
   blender                # reference: Cycles renders through the cameras libcam writes for Blender
 )
 

@@ -1,0 +1,49 @@
+"""libcam: graphics cameras and calibrated cameras, exact both ways.
+
+    import libcam
+    cam = libcam.read("calibration.yaml")          # OpenCV, mrcal, Kalibr, COLMAP, NeRF...
+    pixels, valid = cam.project(points)            # (..., 3) -> (..., 2), NaN where invalid
+    rays, valid = cam.unproject(pixels)            # exact: within 1e-9 px
+    render = libcam.from_fov(60, (1920, 1080), axis="horizontal", eye=(0, 0, 5), target=(0, 0, 0))
+
+Conventions are OpenCV's: X_cam = R X_world + t, camera axes x right, y down, z forward,
+pixel (0, 0) the centre of the top-left pixel. Every batch call takes numpy arrays of any
+leading shape, float32 or float64, releases the GIL, and returns a boolean mask beside
+its result: entries the lens cannot map are NaN and False, never a silent number.
+"""
+
+from ._libcam import (
+    Camera,
+    Error,
+    FileError,
+    NotRepresentable,
+    __version__,
+    fit,
+    formats,
+    from_fov,
+    from_opencv,
+    models,
+    new_camera,
+    read,
+    read_all,
+    remap_map,
+    verify,
+)
+
+__all__ = [
+    "Camera",
+    "Error",
+    "FileError",
+    "NotRepresentable",
+    "__version__",
+    "fit",
+    "formats",
+    "from_fov",
+    "from_opencv",
+    "models",
+    "new_camera",
+    "read",
+    "read_all",
+    "remap_map",
+    "verify",
+]

@@ -1,0 +1,479 @@
+#include "camera_binding.hpp"
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "arrays.hpp"
+#include "libcam/camera/parallel.hpp"
+#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/opengl.hpp"
+#include "libcam/error.hpp"
+#include "libcam/text/number_format.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "libcam/remap/derived_camera.hpp"
+
+namespace libcam::python {
+
+PythonCamera::PythonCamera(const Camera& camera, PixelOrigin origin, std::optional<FovCamera> fov_camera) {
+    PreparedCamera prepared(camera);
+    state_ = std::make_shared<State>(prepared, origin, std::move(fov_camera));
+}
+
+template <>
+const Projector<double>& PythonCamera::projector<double>() const {
+    return state_->projector_double;
+}
+template <>
+const Projector<float>& PythonCamera::projector<float>() const {
+    return state_->projector_float;
+}
+template <>
+const Unprojector<double>& PythonCamera::unprojector<double>() const {
+    return state_->prepared.unprojector();
+}
+template <>
+const Unprojector<float>& PythonCamera::unprojector<float>() const {
+    State& state = *state_;
+    std::call_once(state.float_unprojector_built,
+                   [&state] { state.float_unprojector = std::make_unique<const Unprojector<float>>(state.prepared); });
+    return *state.float_unprojector;
+}
+
+namespace {
+
+// Points per step of a thread: gathered from the caller's array into structure-of-arrays
+// buffers that stay in the core's cache, run through the batch engine, and scattered
+// into the output. A multiple of the engine's block.
+constexpr std::size_t kChunk = 1024;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+enum class Frame { Camera, World };
+
+Frame frame_from(const std::string& name) {
+    if (name == "camera") return Frame::Camera;
+    if (name == "world") return Frame::World;
+    throw InvalidArgument("frame: expected 'camera' or 'world', got '" + name + "'");
+}
+
+UnprojectMethod method_from(const std::string& name) {
+    const std::optional<UnprojectMethod> method = method_from_name(name);
+    if (!method) throw InvalidArgument("method: expected 'exact', 'fast' or 'lut', got '" + name + "'");
+    return *method;
+}
+
+bool is_identity(const Pose& pose) { return pose.R == Mat3::Identity() && pose.t == Vec3::Zero(); }
+
+// A pixel's row between OpenCV's convention (row 0 at the top) and the camera's own, both
+// ways (geometry/pixel_origin.hpp).
+template <class T>
+T row_between(T y, PixelOrigin origin, const ImageSize& size) {
+    return origin == PixelOrigin::TopLeft ? y : flip_row<T>(y, size);
+}
+
+template <class T>
+void project_into(const PythonCamera& camera, const PointArray& points, Frame frame, T* pixels_out, bool* mask_out,
+                  int threads) {
+    const Projector<T>& projector = camera.projector<T>();
+    const Pose& pose = camera.camera().pose;
+    const bool transform = frame == Frame::World && !is_identity(pose);
+    const ImageSize size = camera.camera().size;
+    const PixelOrigin origin = camera.pixel_origin();
+    const T* in = points.data<T>();
+    const std::ptrdiff_t ps = points.point_stride, cs = points.coordinate_stride;
+    parallel_chunks(points.count, threads, kChunk, [&](std::size_t begin, std::size_t end) {
+        Points3<T> camera_points;
+        Points2<T> pixels;
+        ValidFlags valid;
+        for (std::size_t first = begin; first < end; first += kChunk) {
+            const std::size_t count = std::min(kChunk, end - first);
+            camera_points.resize(count);
+            for (std::size_t i = 0; i < count; ++i) {
+                const T* p = in + static_cast<std::ptrdiff_t>(first + i) * ps;
+                if (transform) {
+                    // In double, as PreparedCamera::project: R X + t.
+                    const Vec3 c = pose.camera_from_world(Vec3(double(p[0]), double(p[cs]), double(p[2 * cs])));
+                    camera_points.x[i] = T(c.x()), camera_points.y[i] = T(c.y()), camera_points.z[i] = T(c.z());
+                } else {
+                    camera_points.x[i] = p[0], camera_points.y[i] = p[cs], camera_points.z[i] = p[2 * cs];
+                }
+            }
+            projector.project(camera_points, pixels, valid, 1);
+            T* out = pixels_out + 2 * first;
+            for (std::size_t i = 0; i < count; ++i) {
+                const bool ok = valid[i] != 0;
+                out[2 * i] = ok ? pixels.x[i] : T(kNaN);
+                out[2 * i + 1] = ok ? row_between<T>(pixels.y[i], origin, size) : T(kNaN);
+                mask_out[first + i] = ok;
+            }
+        }
+    });
+}
+
+// Where the pixels of an unprojection come from: the caller's array, or every pixel of
+// the image.
+struct PixelSource {
+    const PointArray* points = nullptr;  // null: the whole image, row by row
+    long width = 0;
+};
+
+template <class T>
+void unproject_into(const PythonCamera& camera, const PixelSource& source, std::size_t count_all,
+                    UnprojectMethod method, Frame frame, bool normalize, T* directions_out, bool* mask_out, int threads) {
+    const Unprojector<T>& unprojector = camera.unprojector<T>();
+    const Pose& pose = camera.camera().pose;
+    const ImageSize size = camera.camera().size;
+    const PixelOrigin origin = camera.pixel_origin();
+    parallel_chunks(count_all, threads, kChunk, [&](std::size_t begin, std::size_t end) {
+        Points2<T> pixels;
+        Points3<T> directions;
+        ValidFlags valid;
+        for (std::size_t first = begin; first < end; first += kChunk) {
+            const std::size_t count = std::min(kChunk, end - first);
+            pixels.resize(count);
+            if (source.points) {
+                const T* in = source.points->data<T>();
+                const std::ptrdiff_t ps = source.points->point_stride, cs = source.points->coordinate_stride;
+                for (std::size_t i = 0; i < count; ++i) {
+                    const T* p = in + static_cast<std::ptrdiff_t>(first + i) * ps;
+                    pixels.x[i] = p[0];
+                    pixels.y[i] = row_between<T>(p[cs], origin, size);
+                }
+            } else {
+                // Entry k of the image is row k / width of the array, in the camera's pixel origin.
+                const std::size_t width = static_cast<std::size_t>(source.width);
+                for (std::size_t i = 0; i < count; ++i) {
+                    const std::size_t k = first + i;
+                    pixels.x[i] = T(static_cast<double>(k % width));
+                    pixels.y[i] = row_between<T>(T(static_cast<double>(k / width)), origin, size);
+                }
+            }
+            unprojector.unproject(pixels, method, directions, valid, 1);
+            T* out = directions_out + 3 * first;
+            for (std::size_t i = 0; i < count; ++i) {
+                const bool ok = valid[i] != 0;
+                mask_out[first + i] = ok;
+                if (!ok) {
+                    out[3 * i] = out[3 * i + 1] = out[3 * i + 2] = T(kNaN);
+                    continue;
+                }
+                if (frame == Frame::World || normalize) {
+                    // In double, as PreparedCamera::ray: R^T d, normalised.
+                    Vec3 d(double(directions.x[i]), double(directions.y[i]), double(directions.z[i]));
+                    if (frame == Frame::World) d = pose.world_direction_from_camera(d);
+                    d.normalize();
+                    out[3 * i] = T(d.x()), out[3 * i + 1] = T(d.y()), out[3 * i + 2] = T(d.z());
+                } else {
+                    out[3 * i] = directions.x[i], out[3 * i + 1] = directions.y[i], out[3 * i + 2] = directions.z[i];
+                }
+            }
+        }
+    });
+}
+
+template <class T>
+py::tuple project_typed(const PythonCamera& camera, const PointArray& points, Frame frame, int threads) {
+    py::array_t<T> pixels = new_array<T>(points.leading_shape, 2);
+    py::array_t<bool> mask = new_array<bool>(points.leading_shape, 0);
+    T* pixels_data = pixels.mutable_data();
+    bool* mask_data = mask.mutable_data();
+    {
+        py::gil_scoped_release release;
+        project_into<T>(camera, points, frame, pixels_data, mask_data, threads);
+    }
+    return py::make_tuple(std::move(pixels), std::move(mask));
+}
+
+py::tuple project(const PythonCamera& camera, const py::handle& points_in, const std::string& frame, int threads) {
+    const PointArray points = point_array(points_in, "points", 3);
+    const Frame f = frame_from(frame);
+    const int n = thread_count(threads);
+    if (points.type == FloatType::Float32) return project_typed<float>(camera, points, f, n);
+    return project_typed<double>(camera, points, f, n);
+}
+
+template <class T>
+py::tuple unproject_typed(const PythonCamera& camera, const PixelSource& source, std::size_t count,
+                          const std::vector<py::ssize_t>& leading_shape, UnprojectMethod method, Frame frame,
+                          bool normalize, int threads) {
+    py::array_t<T> directions = new_array<T>(leading_shape, 3);
+    py::array_t<bool> mask = new_array<bool>(leading_shape, 0);
+    T* directions_data = directions.mutable_data();
+    bool* mask_data = mask.mutable_data();
+    {
+        py::gil_scoped_release release;
+        unproject_into<T>(camera, source, count, method, frame, normalize, directions_data, mask_data, threads);
+    }
+    return py::make_tuple(std::move(directions), std::move(mask));
+}
+
+py::tuple unproject(const PythonCamera& camera, const py::handle& pixels_in, const std::string& method,
+                    const std::string& frame, bool normalize, int threads) {
+    const PointArray pixels = point_array(pixels_in, "pixels", 2);
+    const UnprojectMethod m = method_from(method);
+    const Frame f = frame_from(frame);
+    const int n = thread_count(threads);
+    const PixelSource source{&pixels, 0};
+    if (pixels.type == FloatType::Float32) {
+        return unproject_typed<float>(camera, source, pixels.count, pixels.leading_shape, m, f, normalize, n);
+    }
+    return unproject_typed<double>(camera, source, pixels.count, pixels.leading_shape, m, f, normalize, n);
+}
+
+py::tuple ray_image(const PythonCamera& camera, const std::string& method, const std::string& frame, bool normalize,
+                    const py::object& dtype, int threads) {
+    const ImageSize size = camera.camera().size;
+    const std::vector<py::ssize_t> shape{size.height, size.width};
+    const PixelSource source{nullptr, size.width};
+    const std::size_t count = static_cast<std::size_t>(size.width) * static_cast<std::size_t>(size.height);
+    const py::dtype type = py::dtype::from_args(dtype);
+    const UnprojectMethod m = method_from(method);
+    const Frame f = frame_from(frame);
+    const int n = thread_count(threads);
+    if (type.is(py::dtype::of<float>())) return unproject_typed<float>(camera, source, count, shape, m, f, normalize, n);
+    if (type.is(py::dtype::of<double>())) return unproject_typed<double>(camera, source, count, shape, m, f, normalize, n);
+    throw py::type_error("dtype: expected numpy.float32 or numpy.float64, got " + type.attr("name").cast<std::string>());
+}
+
+py::dict fov_angles(const Camera& camera) {
+    const FovDescription description = describe_fov(camera);
+    py::dict out;
+    out["horizontal"] = description.fov_deg.horizontal;
+    out["vertical"] = description.fov_deg.vertical;
+    out["diagonal"] = description.fov_deg.diagonal;
+    return out;
+}
+
+py::dict to_gl(const PythonCamera& python_camera, double near, double far, const std::string& depth_range) {
+    DepthRange range = DepthRange::MinusOneToOne;
+    if (depth_range == "0..1") {
+        range = DepthRange::ZeroToOne;
+    } else if (depth_range != "-1..1") {
+        throw InvalidArgument("depth_range: expected '-1..1' (OpenGL) or '0..1' (Direct3D, Vulkan), got '" +
+                              depth_range + "'");
+    }
+    const GlCamera gl = to_opengl(python_camera.camera(), near, far, range);
+    py::dict out;
+    out["projection"] = to_numpy(gl.projection);
+    out["view"] = to_numpy(gl.view);
+    out["viewport"] = py::make_tuple(gl.viewport[0], gl.viewport[1], gl.viewport[2], gl.viewport[3]);
+    out["near"] = gl.near;
+    out["far"] = gl.far;
+    out["depth_range"] = depth_range;
+    return out;
+}
+
+WriteOptions write_options(const PythonCamera& camera) {
+    WriteOptions options;
+    options.fov_camera = camera.fov_camera();
+    return options;
+}
+
+std::optional<CameraFormat> format_from(const std::optional<std::string>& name) {
+    if (!name) return std::nullopt;
+    return camera_format_from_string(*name);
+}
+
+void write(const PythonCamera& camera, const std::string& path, const std::optional<std::string>& format) {
+    std::optional<CameraFormat> chosen = format_from(format);
+    if (!chosen) chosen = camera_format_from_path(path);
+    if (!chosen) {
+        throw FileError(path + ": no format given and none known for its extension (formats: " + camera_format_names() +
+                        ")");
+    }
+    write_camera_file(path, camera.camera(), *chosen, write_options(camera));
+}
+
+std::string format_text(const PythonCamera& camera, const std::string& format) {
+    return format_camera(camera.camera(), camera_format_from_string(format), write_options(camera));
+}
+
+py::object to_blender(const PythonCamera& camera) {
+    const std::string text = format_camera(camera.camera(), CameraFormat::BlenderJson);
+    return py::module_::import("json").attr("loads")(text);
+}
+
+std::string describe(const PythonCamera& camera) {
+    const Camera& c = camera.camera();
+    const auto number = [](double value) { return format_number(value); };
+    std::ostringstream out;
+    out << "libcam.Camera(" << lens_info(c.lens.type).name << ", " << c.size.width << "x" << c.size.height
+        << ", fx=" << number(c.intrinsics.fx) << ", fy=" << number(c.intrinsics.fy) << ", cx=" << number(c.intrinsics.cx)
+        << ", cy=" << number(c.intrinsics.cy);
+    if (c.intrinsics.skew != 0) out << ", skew=" << number(c.intrinsics.skew);
+    if (!c.lens.coefficients.empty()) {
+        out << ", dist=[";
+        for (std::size_t i = 0; i < c.lens.coefficients.size(); ++i) out << (i ? ", " : "") << number(c.lens.coefficients[i]);
+        out << "]";
+    }
+    if (!is_identity(c.pose)) {
+        const Vec3 centre = c.pose.centre();
+        out << ", center=(" << number(centre.x()) << ", " << number(centre.y()) << ", " << number(centre.z()) << ")";
+    }
+    if (camera.pixel_origin() != PixelOrigin::TopLeft) out << ", pixel_origin='" << to_string(camera.pixel_origin()) << "'";
+    out << ")";
+    return out.str();
+}
+
+}  // namespace
+
+// The constructor's lens from a model name and coefficients.
+Lens lens_from(const std::string& model, const std::vector<double>& dist) {
+    const std::optional<LensType> type = lens_type_from_name(model);
+    if (!type) throw InvalidArgument("model: unknown lens model '" + model + "' (see libcam.models)");
+    Lens lens{*type, dist};
+    lens.validate("dist");
+    return lens;
+}
+
+Pose pose_from(const py::object& R, const py::object& t, const py::object& rvec) {
+    Pose pose;
+    if (!R.is_none() && !rvec.is_none()) throw InvalidArgument("R, rvec: give one of them, not both");
+    if (!R.is_none()) pose.R = matrix3(R, "R");
+    if (!rvec.is_none()) pose.R = rotation_from_rvec(vector3(rvec, "rvec"));
+    if (!t.is_none()) pose.t = vector3(t, "t");
+    return pose;
+}
+
+ImageSize size_from(const py::object& size) {
+    const std::vector<double> wh = vector_any(size, "size");
+    if (wh.size() != 2 || wh[0] != std::floor(wh[0]) || wh[1] != std::floor(wh[1])) {
+        throw py::type_error("size: expected (width, height) in whole pixels");
+    }
+    ImageSize out{static_cast<long>(wh[0]), static_cast<long>(wh[1])};
+    out.validate("size");
+    return out;
+}
+
+void bind_camera(py::module_& m) {
+    py::class_<PythonCamera>(m, "Camera", R"doc(
+A calibrated camera: image size, intrinsic matrix K, lens model with its distortion
+coefficients, and the pose R, t taking world points into the camera (X_cam = R X + t),
+all in OpenCV's conventions: x right, y down, z forward; pixel (0, 0) is the centre of
+the top-left pixel.
+
+Cameras are immutable. Make one with libcam.read, libcam.from_opencv, libcam.from_fov,
+or Camera(K, size, model, dist, R=..., t=...).)doc")
+        .def(py::init([](const py::object& K, const py::object& size, const std::string& model, const py::object& dist,
+                         const py::object& R, const py::object& t, const py::object& rvec) {
+                 Camera camera;
+                 camera.size = size_from(size);
+                 camera.intrinsics = Intrinsics::from_K(matrix3(K, "K"), "K");
+                 camera.lens = lens_from(model, dist.is_none() ? std::vector<double>{} : vector_any(dist, "dist"));
+                 camera.pose = pose_from(R, t, rvec);
+                 return PythonCamera(camera);
+             }),
+             py::arg("K"), py::arg("size"), py::arg("model") = "PINHOLE", py::arg("dist") = py::none(),
+             py::arg("R") = py::none(), py::arg("t") = py::none(), py::arg("rvec") = py::none(),
+             "A camera from K (3x3), size (width, height), a lens model's name (libcam.models) with its\n"
+             "coefficients, and the pose as R (3x3) or rvec (Rodrigues) with t. Raises libcam.Error naming\n"
+             "the field for a value out of range.")
+        .def("project", &project, py::arg("points"), py::arg("frame") = "world", py::arg("threads") = 1, R"doc(
+The pixels of points, and which of them the lens images.
+
+points: array of shape (..., 3), float32 or float64 (other real arrays become float64),
+        world points (frame="world", through R, t) or camera-frame points (frame="camera").
+Returns (pixels, valid): pixels of shape (..., 2) in the points' float type, valid a bool
+array of shape (...). A point is invalid, its pixel NaN, where the lens model does not
+image it: behind the camera for a perspective lens, outside the model's valid domain (past
+the radius where its distortion folds over), or where the pixel is not finite.
+threads: how many threads share the work (0: every core); the result is the same.)doc")
+        .def("unproject", &unproject, py::arg("pixels"), py::arg("method") = "exact", py::arg("frame") = "camera",
+             py::arg("normalize") = false, py::arg("threads") = 1, R"doc(
+The directions of the rays through pixels, and which pixels have one.
+
+pixels: array of shape (..., 2), float32 or float64, in the camera's pixel convention
+        (OpenCV's unless the camera was made with pixel_origin="bottom-left").
+method: "exact" (Newton's method to rounding level, certified: within 1e-9 px),
+        "fast" (within about 0.01 px) or "lut" (table interpolation, within about 0.01 px).
+frame:  "camera" (OpenCV axes; not normalised unless normalize=True: z = 1 for PINHOLE and
+        OpenCV's models, unit length for the others) or "world" (unit length, R^T d).
+Returns (directions, valid): directions of shape (..., 3), valid of shape (...). A pixel
+is invalid, its direction NaN, where it has no ray under the lens: outside the image
+circle of a fisheye, past the radius where the distortion folds over, or where no ray
+reprojects to it to rounding accuracy. The validity is the same for every method.)doc")
+        .def(
+            "rays",
+            [](const PythonCamera& camera, const py::handle& pixels, const std::string& method, int threads) {
+                return unproject(camera, pixels, method, "world", true, threads);
+            },
+            py::arg("pixels"), py::arg("method") = "exact", py::arg("threads") = 1, R"doc(
+The world-frame rays through pixels: unit directions of shape (..., 3) and the valid mask
+of shape (...), as unproject(pixels, frame="world"). Every ray starts at camera.center.
+Invalid pixels (no ray) get NaN.)doc")
+        .def("ray_image", &ray_image, py::arg("method") = "exact", py::arg("frame") = "camera",
+             py::arg("normalize") = false, py::arg("dtype") = py::dtype::of<double>(), py::arg("threads") = 1, R"doc(
+The ray of every pixel: directions of shape (height, width, 3) and the valid mask of shape
+(height, width); entry [y, x] is pixel (x, y) in the camera's pixel convention. Invalid
+pixels (no ray) get NaN. method, frame and normalize as in unproject.)doc")
+        .def_property_readonly("K", [](const PythonCamera& c) { return to_numpy(c.camera().intrinsics.K()); },
+                               "The intrinsic matrix, 3x3 (a copy).")
+        .def_property_readonly(
+            "dist",
+            [](const PythonCamera& c) {
+                const std::vector<double>& k = c.camera().lens.coefficients;
+                return to_numpy_vector(Eigen::Map<const Eigen::VectorXd>(k.data(), static_cast<Eigen::Index>(k.size())));
+            },
+            "The lens's coefficients in the model's order (OpenCV's for OpenCV's models).")
+        .def_property_readonly(
+            "model", [](const PythonCamera& c) { return std::string(lens_info(c.camera().lens.type).name); },
+            "The lens model's name, a key of libcam.models.")
+        .def_property_readonly(
+            "size", [](const PythonCamera& c) { return py::make_tuple(c.camera().size.width, c.camera().size.height); },
+            "(width, height) in pixels.")
+        .def_property_readonly("R", [](const PythonCamera& c) { return to_numpy(c.camera().pose.R); },
+                               "World to camera rotation, 3x3: X_cam = R X + t.")
+        .def_property_readonly("t", [](const PythonCamera& c) { return to_numpy_vector(c.camera().pose.t); },
+                               "World to camera translation: X_cam = R X + t.")
+        .def_property_readonly("rvec", [](const PythonCamera& c) { return to_numpy_vector(c.camera().pose.rvec()); },
+                               "R as a Rodrigues vector (cv2.Rodrigues).")
+        .def_property_readonly("center", [](const PythonCamera& c) { return to_numpy_vector(c.camera().pose.centre()); },
+                               "The camera centre in the world: -R^T t.")
+        .def_property_readonly("P", [](const PythonCamera& c) { return to_numpy(c.camera().P()); },
+                               "K [R | t], 3x4 (the pinhole part: distortion is not linear).")
+        .def_property_readonly(
+            "pixel_origin", [](const PythonCamera& c) { return std::string(to_string(c.pixel_origin())); },
+            "'top-left' (OpenCV's pixels) or 'bottom-left' (rows counted upward, as the look-at formula).")
+        .def_property_readonly(
+            "fov", [](const PythonCamera& c) { return fov_angles(c.camera()); },
+            "Full fields of view in degrees across the image through the principal point:\n"
+            "{'horizontal', 'vertical', 'diagonal'} (the pinhole part of the camera).")
+        .def_property_readonly(
+            "valid_angle", [](const PythonCamera& c) { return c.prepared().valid_angle() * 180.0 / M_PI; },
+            "The largest angle from the optical axis the lens images, in degrees.")
+        .def("to_gl", &to_gl, py::arg("near"), py::arg("far"), py::arg("depth_range") = "-1..1", R"doc(
+OpenGL's camera for a PINHOLE camera: {'projection': 4x4, 'view': 4x4, 'viewport': (0, 0, W, H),
+'near', 'far', 'depth_range'}. Matrices are row-major (pass GL_TRUE to glUniformMatrix4fv).
+depth_range: '-1..1' (OpenGL) or '0..1' (Direct3D, Vulkan).)doc")
+        .def("to_blender", &to_blender,
+             "Blender's camera settings (type, lens, sensor, shift, resolution, pose) as a dict; raises\n"
+             "libcam.NotRepresentable for a lens Blender cannot draw (see `libcam render-plan`).")
+        .def("write", &write, py::arg("path"), py::arg("format") = py::none(),
+             "Writes the camera file (atomically); format by name or by the path's extension.")
+        .def("format", &format_text, py::arg("format"), "The camera file's text in a format (e.g. 'opencv-yaml').")
+        .def(
+            "resized",
+            [](const PythonCamera& c, const py::object& size) {
+                return PythonCamera(resized(c.camera(), size_from(size)), c.pixel_origin());
+            },
+            py::arg("size"), "The camera of the image resized to (width, height), as cv2.resize does.")
+        .def(
+            "binned", [](const PythonCamera& c, int factor) { return PythonCamera(binned(c.camera(), factor), c.pixel_origin()); },
+            py::arg("factor"), "The camera of the image binned by factor x factor pixel blocks.")
+        .def(
+            "__eq__",
+            [](const PythonCamera& a, const PythonCamera& b) {
+                const Camera &x = a.camera(), &y = b.camera();
+                return x.size == y.size && x.intrinsics.K() == y.intrinsics.K() && x.lens == y.lens &&
+                       x.pose.R == y.pose.R && x.pose.t == y.pose.t && a.pixel_origin() == b.pixel_origin();
+            },
+            py::is_operator())
+        .def("__repr__", &describe);
+}
+
+}  // namespace libcam::python

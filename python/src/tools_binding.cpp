@@ -1,0 +1,264 @@
+#include "tools_binding.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+
+#include "arrays.hpp"
+#include "camera_binding.hpp"
+#include "libcam/error.hpp"
+#include "libcam/fit/fit.hpp"
+#include "libcam/fit/scene.hpp"
+#include "libcam/interop/verify.hpp"
+#include "libcam/remap/new_camera.hpp"
+#include "libcam/remap/remap_map.hpp"
+
+namespace libcam::python {
+
+ImageSize size_from(const py::object& size);
+
+namespace {
+
+py::dict stats_dict(const ErrorStats& stats) {
+    py::dict out;
+    out["count"] = stats.count;
+    out["median_px"] = stats.median_px;
+    out["p99_px"] = stats.p99_px;
+    out["max_px"] = stats.max_px;
+    out["rms_px"] = stats.rms_px;
+    return out;
+}
+
+template <class T>
+py::object optional_value(const std::optional<T>& value) {
+    return value ? py::cast(*value) : py::object(py::none());
+}
+
+// ---------------------------------------------------------------------------- verify
+
+py::dict verify(const PythonCamera& camera, const py::object& grid, const std::vector<double>& depths, int threads) {
+    VerifyOptions options;
+    const std::vector<double> columns_rows = vector_any(grid, "grid");
+    if (columns_rows.size() != 2) throw py::type_error("grid: expected (columns, rows)");
+    options.grid_columns = static_cast<long>(columns_rows[0]);
+    options.grid_rows = static_cast<long>(columns_rows[1]);
+    options.depths = depths;
+    options.threads = threads;
+    VerifyReport report;
+    {
+        py::gil_scoped_release release;
+        report = verify_camera(camera.camera(), options);
+    }
+    py::list checks;
+    for (const VerifyCheck& check : report.checks) {
+        py::dict row;
+        row["name"] = check.name;
+        row["library"] = check.library;
+        row["tolerance_px"] = optional_value(check.tolerance_px);
+        row["skipped_because"] = optional_value(check.skipped_because);
+        row["note"] = check.note;
+        row["stats"] = stats_dict(check.stats);
+        row["pass"] = check.pass();
+        checks.append(row);
+    }
+    py::dict out;
+    out["pass"] = report.pass();
+    out["model"] = std::string(lens_info(report.lens_type).name);
+    out["grid"] = py::make_tuple(options.grid_columns, options.grid_rows);
+    out["invalid_fraction"] = report.invalid_fraction;
+    out["checks"] = checks;
+    if (report.opencv_default) {
+        const OpenCvDefaultSummary& s = *report.opencv_default;
+        py::dict summary;
+        summary["function"] = s.function;
+        summary["median_px"] = s.median_px;
+        summary["max_px"] = s.max_px;
+        summary["worst_pixel"] = py::make_tuple(s.worst_pixel.x(), s.worst_pixel.y());
+        summary["fraction_over_0_1px"] = s.fraction_over_0_1px;
+        summary["fraction_over_1px"] = s.fraction_over_1px;
+        out["opencv_default"] = summary;
+    } else {
+        out["opencv_default"] = py::none();
+    }
+    return out;
+}
+
+// ------------------------------------------------------------------------------- fit
+
+CameraMotion motion_from(const std::string& name) {
+    if (name == "none") return CameraMotion::None;
+    if (name == "rotation") return CameraMotion::Rotation;
+    if (name == "rotation+shift") return CameraMotion::RotationAndShift;
+    throw InvalidArgument("motion: expected 'none', 'rotation' or 'rotation+shift', got '" + name + "'");
+}
+
+Scene scene_from(const py::object& radius, const py::object& center, const py::object& roi, const py::object& max_angle,
+                 const ImageSize& size) {
+    const int given = int(!radius.is_none()) + int(!roi.is_none()) + int(!max_angle.is_none());
+    if (given > 1) throw InvalidArgument("radius, roi, max_angle: give one scene, not several");
+    if (!center.is_none() && radius.is_none()) throw InvalidArgument("center: goes with radius");
+    if (!radius.is_none()) {
+        Vec2 c(size.centre_x(), size.centre_y());
+        if (!center.is_none()) {
+            const std::vector<double> xy = vector_any(center, "center");
+            if (xy.size() != 2) throw py::type_error("center: expected (x, y)");
+            c = Vec2(xy[0], xy[1]);
+        }
+        return Scene::circle(radius.cast<double>(), c);
+    }
+    if (!roi.is_none()) {
+        const std::vector<double> box = vector_any(roi, "roi");
+        if (box.size() != 4) throw py::type_error("roi: expected (x0, y0, x1, y1)");
+        return Scene::rectangle({box[0], box[1]}, {box[2], box[3]});
+    }
+    if (!max_angle.is_none()) return Scene::field_angle(max_angle.cast<double>());
+    return Scene::whole_image();
+}
+
+py::dict fit(const PythonCamera& source, double tolerance, const py::object& radius, const py::object& center,
+             const py::object& roi, const py::object& max_angle, const std::optional<std::vector<std::string>>& models,
+             const std::vector<double>& depths, const std::string& motion) {
+    const Camera& camera = source.camera();
+    const Scene scene = scene_from(radius, center, roi, max_angle, camera.size);
+    FitOptions options;
+    options.tolerance_px = tolerance;
+    options.depths = depths;
+    options.motion = motion_from(motion);
+    if (models) {
+        for (const std::string& name : *models) options.candidates.push_back(candidate_named(name));
+    }
+    FitReport report;
+    {
+        py::gil_scoped_release release;
+        report = fit_scene(camera, scene, options);
+    }
+    py::list candidates;
+    for (const CandidateReport& candidate : report.candidates) {
+        py::dict row;
+        row["model"] = std::string(candidate.fit.candidate.name);
+        row["camera"] = PythonCamera(camera_in_world(candidate.fit, camera));
+        row["rms_px"] = candidate.rms_px;
+        row["max_px"] = candidate.max_px;
+        row["covers_scene"] = candidate.covers_scene;
+        row["pass"] = candidate.pass;
+        candidates.append(row);
+    }
+    py::dict out;
+    out["scene"] = scene.describe(camera.size);
+    out["tolerance_px"] = tolerance;
+    out["largest_angle_deg"] = report.largest_angle_deg;
+    out["fit_samples"] = report.fit_observations;
+    out["check_samples"] = report.check_observations;
+    out["candidates"] = candidates;
+    out["chosen"] = report.chosen ? candidates[*report.chosen] : py::object(py::none());
+    return out;
+}
+
+// ------------------------------------------------------------------- new camera, map
+
+Keep keep_from(const std::string& name) {
+    if (name == "valid") return Keep::Valid;
+    if (name == "all") return Keep::All;
+    throw InvalidArgument("keep: expected 'valid' or 'all', got '" + name + "'");
+}
+
+py::tuple new_camera(const PythonCamera& source, const std::string& model, const std::optional<std::string>& keep,
+                     const std::optional<double>& fov, const std::string& fov_axis, const py::object& size,
+                     const py::object& rotation, int threads) {
+    NewCameraRequest request;
+    const std::optional<LensType> type = lens_type_from_name(model);
+    if (!type) throw InvalidArgument("model: expected PINHOLE, LONLAT or CYLINDRICAL, got '" + model + "'");
+    request.model = *type;
+    if (fov && keep) throw InvalidArgument("keep, fov: give one of them, not both");
+    request.keep = fov ? std::nullopt : std::optional<Keep>(keep_from(keep.value_or("valid")));
+    request.fov_deg = fov.value_or(0.0);
+    request.fov_axis = fov_axis_from_string(fov_axis);
+    if (!size.is_none()) request.size = size_from(size);
+    if (!rotation.is_none()) request.rotation = matrix3(rotation, "rotation");
+    request.threads = thread_count(threads);
+    NewCamera chosen;
+    {
+        py::gil_scoped_release release;
+        chosen = choose_new_camera(source.prepared(), request);
+    }
+    return py::make_tuple(PythonCamera(chosen.camera), chosen.why);
+}
+
+template <class T>
+py::tuple map_arrays(const RemapMap& map) {
+    const std::vector<py::ssize_t> shape{map.size.height, map.size.width};
+    py::array_t<T> coordinates = new_array<T>(shape, 2);
+    py::array_t<bool> mask = new_array<bool>(shape, 0);
+    T* out = coordinates.mutable_data();
+    bool* valid = mask.mutable_data();
+    const std::size_t n = map.x.size();
+    {
+        py::gil_scoped_release release;
+        for (std::size_t i = 0; i < n; ++i) {
+            out[2 * i] = T(map.x[i]);
+            out[2 * i + 1] = T(map.y[i]);
+            valid[i] = map.has_source(i);
+        }
+    }
+    return py::make_tuple(std::move(coordinates), std::move(mask));
+}
+
+py::tuple remap_map(const PythonCamera& target, const PythonCamera& source, const std::string& method,
+                    const py::object& rotation, const py::object& dtype, int threads) {
+    RemapOptions options;
+    const std::optional<UnprojectMethod> m = method_from_name(method);
+    if (!m) throw InvalidArgument("method: expected 'exact', 'fast' or 'lut', got '" + method + "'");
+    options.method = *m;
+    options.rotation = rotation.is_none() ? rotation_between(target.camera(), source.camera()) : matrix3(rotation, "rotation");
+    options.threads = thread_count(threads);
+    const py::dtype type = py::dtype::from_args(dtype);
+    if (!type.is(py::dtype::of<float>()) && !type.is(py::dtype::of<double>())) {
+        throw py::type_error("dtype: expected numpy.float32 or numpy.float64, got " + type.attr("name").cast<std::string>());
+    }
+    RemapMap map;
+    {
+        py::gil_scoped_release release;
+        map = build_remap_map(target.prepared(), source.prepared(), options);
+    }
+    return type.is(py::dtype::of<float>()) ? map_arrays<float>(map) : map_arrays<double>(map);
+}
+
+}  // namespace
+
+void bind_tools(py::module_& m) {
+    m.def("verify", &verify, py::arg("camera"), py::arg("grid") = py::make_tuple(200, 150),
+          py::arg("depths") = std::vector<double>{0.5, 2.0, 10.0, 1000.0}, py::arg("threads") = 0, R"doc(
+Checks the camera's projection and unprojection against OpenCV and mrcal on a grid of
+pixels (as the libcam program's verify command): {'pass', 'model', 'grid',
+'invalid_fraction', 'checks': [{'name', 'library', 'tolerance_px', 'skipped_because',
+'note', 'stats': {'count', 'median_px', 'p99_px', 'max_px', 'rms_px'}, 'pass'}],
+'opencv_default': where cv2.undistortPoints' default iterations go wrong}.)doc");
+    m.def("fit", &fit, py::arg("camera"), py::arg("tolerance") = 1.0, py::arg("radius") = py::none(),
+          py::arg("center") = py::none(), py::arg("roi") = py::none(), py::arg("max_angle") = py::none(),
+          py::arg("models") = py::none(), py::arg("depths") = std::vector<double>{}, py::arg("motion") = "none", R"doc(
+The simplest lens model that reproduces the camera within `tolerance` pixels over a
+scene (as the libcam program's fit command): the whole image, or a circle (radius,
+center), a rectangle (roi = (x0, y0, x1, y1)) or the rays within max_angle degrees of the
+optical axis. models: the candidates to try (default: simplest first, by the scene's
+width). Returns {'scene', 'tolerance_px', 'largest_angle_deg', 'fit_samples',
+'check_samples', 'candidates': [{'model', 'camera', 'rms_px', 'max_px', 'covers_scene',
+'pass'}], 'chosen': the first candidate that passes, or None}.)doc");
+    m.def("new_camera", &new_camera, py::arg("source"), py::arg("model") = "PINHOLE", py::arg("keep") = py::none(),
+          py::arg("fov") = py::none(), py::arg("fov_axis") = "horizontal", py::arg("size") = py::none(),
+          py::arg("rotation") = py::none(), py::arg("threads") = 1, R"doc(
+The camera to turn the source's images into (undistortion), chosen for you: a PINHOLE,
+LONLAT or CYLINDRICAL camera that keeps 'valid' (every pixel has a source: no black
+borders; the default) or 'all' (every source pixel lands on the image), or has the field
+of view `fov` degrees on fov_axis. Returns (camera, why).)doc");
+    m.def("remap_map", &remap_map, py::arg("target"), py::arg("source"), py::arg("method") = "exact",
+          py::arg("rotation") = py::none(), py::arg("dtype") = py::dtype::of<float>(), py::arg("threads") = 1, R"doc(
+The map that turns an image of `source` into an image of `target`: for each target pixel
+the source pixel seeing the same ray. Returns (map, valid): map of shape (height, width, 2)
+holding (x, y) source coordinates, which cv2.remap(image, map, None, cv2.INTER_LINEAR)
+takes as it is, and valid of shape (height, width). Target pixels without a source get
+NaN (cv2.remap gives them its border value). rotation: the target's axes relative to the
+source's (default: from the two cameras' poses).)doc");
+}
+
+}  // namespace libcam::python
