@@ -23,6 +23,18 @@ done
 [ ! -e "$work/prefix/include/libcam/report/detail" ] || { echo "test-install: report/detail was installed"; exit 1; }
 "$work/prefix/bin/libcam" --version | grep -q "^libcam " || { echo "test-install: libcam --version"; exit 1; }
 
+# The Python module, where the build made one: installed under the prefix (its
+# site-packages folder relative to it) and importable from there by the interpreter it
+# was built for, with the version the program prints.
+if [ -f "$build/python/libcam/__init__.py" ]; then
+  python="$(sed -n 's/^LIBCAM_PYTHON_EXECUTABLE:INTERNAL=//p' "$build/CMakeCache.txt")"
+  package="$(find "$work/prefix" -path '*/libcam/__init__.py' -print -quit)"
+  [ -n "$package" ] || { echo "test-install: the Python package is missing from the install"; exit 1; }
+  version="$(cd "$work" && PYTHONPATH="$(dirname "$(dirname "$package")")" "$python" -c "import libcam; print(libcam.__version__)")"
+  [ "libcam $version" = "$("$work/prefix/bin/libcam" --version | head -1 | cut -d' ' -f1-2)" ] ||
+    { echo "test-install: import libcam from the install printed '$version'"; exit 1; }
+fi
+
 # Expected: for the camera at eye (0,5,5) looking at the origin (90 degrees, 3x3), the
 # look-at formula's d at pixel (0, 0), counted from the bottom-left, is
 # (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2), normalised.

@@ -39,6 +39,17 @@ bool strides_collapse(const py::array& array) {
 
 }  // namespace
 
+std::string shape_text(const std::vector<py::ssize_t>& leading_shape, int k) {
+    std::vector<py::ssize_t> shape = leading_shape;
+    if (k > 0) shape.push_back(k);
+    std::ostringstream out;
+    out << "(";
+    for (std::size_t i = 0; i < shape.size(); ++i) out << (i ? ", " : "") << shape[i];
+    if (shape.size() == 1) out << ",";
+    out << ")";
+    return out.str();
+}
+
 PointArray point_array(const py::handle& value, const char* name, int k) {
     const std::string expected_shape = "shape (..., " + std::to_string(k) + ")";
     py::array array;

@@ -39,6 +39,9 @@ struct PointArray {
 // `name`, the expected shape and what was given, for anything else.
 PointArray point_array(const py::handle& value, const char* name, int k);
 
+// "(a, b, k)" for an array of shape leading_shape + (k,) (no last axis when k == 0).
+std::string shape_text(const std::vector<py::ssize_t>& leading_shape, int k);
+
 // A new C-ordered array of shape leading_shape + (k,) (no last axis when k == 0).
 template <class T>
 py::array_t<T> new_array(const std::vector<py::ssize_t>& leading_shape, int k) {

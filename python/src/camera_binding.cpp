@@ -4,7 +4,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <emmintrin.h>
+
 #include <algorithm>
+#include <cstring>
+#include <type_traits>
 #include <cmath>
 #include <limits>
 
@@ -47,11 +51,80 @@ const Unprojector<float>& PythonCamera::unprojector<float>() const {
 namespace {
 
 // Points per step of a thread: gathered from the caller's array into structure-of-arrays
-// buffers that stay in the core's cache, run through the batch engine, and scattered
+// buffers that stay in the core's first-level cache (20 KiB for 512 points), run through the batch engine, and scattered
 // into the output. A multiple of the engine's block.
-constexpr std::size_t kChunk = 1024;
+constexpr std::size_t kChunk = 512;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Structure-of-arrays to and from numpy's interleaved (..., K) layout. In double, two
+// points per SSE2 instruction: the compiler does not vectorise these shuffles itself.
+template <class T>
+void interleave2(const T* x, const T* y, T* out, std::size_t n) {
+    std::size_t i = 0;
+    if constexpr (std::is_same_v<T, double>) {
+        for (; i + 2 <= n; i += 2) {
+            const __m128d a = _mm_loadu_pd(x + i), b = _mm_loadu_pd(y + i);
+            _mm_storeu_pd(out + 2 * i, _mm_unpacklo_pd(a, b));
+            _mm_storeu_pd(out + 2 * i + 2, _mm_unpackhi_pd(a, b));
+        }
+    }
+    for (; i < n; ++i) out[2 * i] = x[i], out[2 * i + 1] = y[i];
+}
+
+template <class T>
+void interleave3(const T* x, const T* y, const T* z, T* out, std::size_t n) {
+    std::size_t i = 0;
+    if constexpr (std::is_same_v<T, double>) {
+        for (; i + 2 <= n; i += 2) {
+            const __m128d a = _mm_loadu_pd(x + i), b = _mm_loadu_pd(y + i), c = _mm_loadu_pd(z + i);
+            _mm_storeu_pd(out + 3 * i, _mm_unpacklo_pd(a, b));      // x0 y0
+            _mm_storeu_pd(out + 3 * i + 2, _mm_shuffle_pd(c, a, 2));  // z0 x1
+            _mm_storeu_pd(out + 3 * i + 4, _mm_unpackhi_pd(b, c));  // y1 z1
+        }
+    }
+    for (; i < n; ++i) out[3 * i] = x[i], out[3 * i + 1] = y[i], out[3 * i + 2] = z[i];
+}
+
+template <class T>
+void deinterleave2(const T* in, T* x, T* y, std::size_t n) {
+    std::size_t i = 0;
+    if constexpr (std::is_same_v<T, double>) {
+        for (; i + 2 <= n; i += 2) {
+            const __m128d p0 = _mm_loadu_pd(in + 2 * i), p1 = _mm_loadu_pd(in + 2 * i + 2);
+            _mm_storeu_pd(x + i, _mm_unpacklo_pd(p0, p1));
+            _mm_storeu_pd(y + i, _mm_unpackhi_pd(p0, p1));
+        }
+    }
+    for (; i < n; ++i) x[i] = in[2 * i], y[i] = in[2 * i + 1];
+}
+
+template <class T>
+void deinterleave3(const T* in, T* x, T* y, T* z, std::size_t n) {
+    std::size_t i = 0;
+    if constexpr (std::is_same_v<T, double>) {
+        for (; i + 2 <= n; i += 2) {
+            const __m128d p0 = _mm_loadu_pd(in + 3 * i), p1 = _mm_loadu_pd(in + 3 * i + 2),
+                          p2 = _mm_loadu_pd(in + 3 * i + 4);  // x0 y0 | z0 x1 | y1 z1
+            _mm_storeu_pd(x + i, _mm_shuffle_pd(p0, p1, 2));
+            _mm_storeu_pd(y + i, _mm_shuffle_pd(p0, p2, 1));
+            _mm_storeu_pd(z + i, _mm_shuffle_pd(p1, p2, 2));
+        }
+    }
+    for (; i < n; ++i) x[i] = in[3 * i], y[i] = in[3 * i + 1], z[i] = in[3 * i + 2];
+}
+
+// The mask from the engine's flags (1 or 0, as bool's bytes), and NaN in every
+// coordinate of an invalid entry (which the engine leaves at 0).
+template <class T, int K>
+void mask_and_nan(const std::uint8_t* flags, bool* mask, T* out, std::size_t n) {
+    std::memcpy(mask, flags, n);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (flags[i] == 0) {
+            for (int c = 0; c < K; ++c) out[K * i + c] = T(kNaN);
+        }
+    }
+}
 
 enum class Frame { Camera, World };
 
@@ -69,11 +142,41 @@ UnprojectMethod method_from(const std::string& name) {
 
 bool is_identity(const Pose& pose) { return pose.R == Mat3::Identity() && pose.t == Vec3::Zero(); }
 
-// A pixel's row between OpenCV's convention (row 0 at the top) and the camera's own, both
-// ways (geometry/pixel_origin.hpp).
-template <class T>
-T row_between(T y, PixelOrigin origin, const ImageSize& size) {
-    return origin == PixelOrigin::TopLeft ? y : flip_row<T>(y, size);
+
+// Reads point i of an array of K coordinates. The common layout, C-ordered (..., K), is
+// a compile-time stride, which the compiler turns into vector shuffles; any other is
+// read through the array's own strides.
+template <class T, int K, bool kPacked>
+struct Reader {
+    static constexpr bool kIsPacked = kPacked;
+    const T* data;
+    std::ptrdiff_t point_stride, coordinate_stride;
+
+    T operator()(std::size_t i, int coordinate) const {
+        if constexpr (kPacked) return data[static_cast<std::ptrdiff_t>(i) * K + coordinate];
+        return data[static_cast<std::ptrdiff_t>(i) * point_stride + coordinate * coordinate_stride];
+    }
+
+    // Asks for points [first, first + count) to be brought into the cache while the engine
+    // computes the current chunk, so that reading memory and computing overlap.
+    void prefetch(std::size_t first, std::size_t count) const {
+        if constexpr (kPacked) {
+            const char* begin = reinterpret_cast<const char*>(data + first * K);
+            const char* end = reinterpret_cast<const char*>(data + (first + count) * K);
+            for (const char* line = begin; line < end; line += 64) __builtin_prefetch(line);
+        }
+    }
+};
+
+// Calls body(reader) with the reader for the array's layout.
+template <class T, int K, class Body>
+void with_reader(const PointArray& points, Body&& body) {
+    const T* data = points.data<T>();
+    if (points.coordinate_stride == 1 && (points.point_stride == K || points.count <= 1)) {
+        body(Reader<T, K, true>{data, K, 1});
+    } else {
+        body(Reader<T, K, false>{data, points.point_stride, points.coordinate_stride});
+    }
 }
 
 template <class T>
@@ -82,36 +185,43 @@ void project_into(const PythonCamera& camera, const PointArray& points, Frame fr
     const Projector<T>& projector = camera.projector<T>();
     const Pose& pose = camera.camera().pose;
     const bool transform = frame == Frame::World && !is_identity(pose);
+    const bool flip = camera.pixel_origin() != PixelOrigin::TopLeft;
     const ImageSize size = camera.camera().size;
-    const PixelOrigin origin = camera.pixel_origin();
-    const T* in = points.data<T>();
-    const std::ptrdiff_t ps = points.point_stride, cs = points.coordinate_stride;
-    parallel_chunks(points.count, threads, kChunk, [&](std::size_t begin, std::size_t end) {
-        Points3<T> camera_points;
-        Points2<T> pixels;
-        ValidFlags valid;
-        for (std::size_t first = begin; first < end; first += kChunk) {
-            const std::size_t count = std::min(kChunk, end - first);
-            camera_points.resize(count);
-            for (std::size_t i = 0; i < count; ++i) {
-                const T* p = in + static_cast<std::ptrdiff_t>(first + i) * ps;
+    with_reader<T, 3>(points, [&](const auto read) {
+        parallel_chunks(points.count, threads, kChunk, [&](std::size_t begin, std::size_t end) {
+            Points3<T> camera_points;
+            Points2<T> pixels;
+            ValidFlags valid;
+            for (std::size_t first = begin; first < end; first += kChunk) {
+                const std::size_t count = std::min(kChunk, end - first);
+                camera_points.resize(count);
+                T* x = camera_points.x.data();
+                T* y = camera_points.y.data();
+                T* z = camera_points.z.data();
                 if (transform) {
-                    // In double, as PreparedCamera::project: R X + t.
-                    const Vec3 c = pose.camera_from_world(Vec3(double(p[0]), double(p[cs]), double(p[2 * cs])));
-                    camera_points.x[i] = T(c.x()), camera_points.y[i] = T(c.y()), camera_points.z[i] = T(c.z());
+                    for (std::size_t i = 0; i < count; ++i) {
+                        // In double, as PreparedCamera::project: R X + t.
+                        const std::size_t k = first + i;
+                        const Vec3 c = pose.camera_from_world(Vec3(double(read(k, 0)), double(read(k, 1)), double(read(k, 2))));
+                        x[i] = T(c.x()), y[i] = T(c.y()), z[i] = T(c.z());
+                    }
+                } else if constexpr (decltype(read)::kIsPacked) {
+                    deinterleave3(read.data + 3 * first, x, y, z, count);
                 } else {
-                    camera_points.x[i] = p[0], camera_points.y[i] = p[cs], camera_points.z[i] = p[2 * cs];
+                    for (std::size_t i = 0; i < count; ++i) {
+                        x[i] = read(first + i, 0), y[i] = read(first + i, 1), z[i] = read(first + i, 2);
+                    }
                 }
+                read.prefetch(first + count, std::min(kChunk, end - std::min(end, first + count)));
+                projector.project(camera_points, pixels, valid, 1);
+                if (flip) {
+                    for (std::size_t i = 0; i < count; ++i) pixels.y[i] = flip_row<T>(pixels.y[i], size);
+                }
+                T* out = pixels_out + 2 * first;
+                interleave2(pixels.x.data(), pixels.y.data(), out, count);
+                mask_and_nan<T, 2>(valid.data(), mask_out + first, out, count);
             }
-            projector.project(camera_points, pixels, valid, 1);
-            T* out = pixels_out + 2 * first;
-            for (std::size_t i = 0; i < count; ++i) {
-                const bool ok = valid[i] != 0;
-                out[2 * i] = ok ? pixels.x[i] : T(kNaN);
-                out[2 * i + 1] = ok ? row_between<T>(pixels.y[i], origin, size) : T(kNaN);
-                mask_out[first + i] = ok;
-            }
-        }
+        });
     });
 }
 
@@ -122,107 +232,183 @@ struct PixelSource {
     long width = 0;
 };
 
+// Fills pixels [first, first + count) of the chunk from the source, in OpenCV's rows.
+template <class T, class Read>
+void fill_pixels(const Read& read, std::size_t first, std::size_t count, Points2<T>& pixels) {
+    T* x = pixels.x.data();
+    T* y = pixels.y.data();
+    if constexpr (Read::kIsPacked) {
+        deinterleave2(read.data + 2 * first, x, y, count);
+    } else {
+        for (std::size_t i = 0; i < count; ++i) x[i] = read(first + i, 0), y[i] = read(first + i, 1);
+    }
+}
+
+template <class T>
+void fill_image_pixels(std::size_t width, std::size_t first, std::size_t count, Points2<T>& pixels) {
+    // Entry k of the image is pixel (k % width, k / width).
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t k = first + i;
+        pixels.x[i] = T(static_cast<double>(k % width));
+        pixels.y[i] = T(static_cast<double>(k / width));
+    }
+}
+
 template <class T>
 void unproject_into(const PythonCamera& camera, const PixelSource& source, std::size_t count_all,
                     UnprojectMethod method, Frame frame, bool normalize, T* directions_out, bool* mask_out, int threads) {
     const Unprojector<T>& unprojector = camera.unprojector<T>();
     const Pose& pose = camera.camera().pose;
     const ImageSize size = camera.camera().size;
-    const PixelOrigin origin = camera.pixel_origin();
-    parallel_chunks(count_all, threads, kChunk, [&](std::size_t begin, std::size_t end) {
-        Points2<T> pixels;
-        Points3<T> directions;
-        ValidFlags valid;
-        for (std::size_t first = begin; first < end; first += kChunk) {
-            const std::size_t count = std::min(kChunk, end - first);
-            pixels.resize(count);
-            if (source.points) {
-                const T* in = source.points->data<T>();
-                const std::ptrdiff_t ps = source.points->point_stride, cs = source.points->coordinate_stride;
-                for (std::size_t i = 0; i < count; ++i) {
-                    const T* p = in + static_cast<std::ptrdiff_t>(first + i) * ps;
-                    pixels.x[i] = p[0];
-                    pixels.y[i] = row_between<T>(p[cs], origin, size);
+    const bool flip = camera.pixel_origin() != PixelOrigin::TopLeft;
+    const auto run = [&](const auto& fill, const auto& prefetch) {
+        parallel_chunks(count_all, threads, kChunk, [&](std::size_t begin, std::size_t end) {
+            Points2<T> pixels;
+            Points3<T> directions;
+            ValidFlags valid;
+            for (std::size_t first = begin; first < end; first += kChunk) {
+                const std::size_t count = std::min(kChunk, end - first);
+                pixels.resize(count);
+                fill(first, count, pixels);
+                if (flip) {
+                    for (std::size_t i = 0; i < count; ++i) pixels.y[i] = flip_row<T>(pixels.y[i], size);
                 }
-            } else {
-                // Entry k of the image is row k / width of the array, in the camera's pixel origin.
-                const std::size_t width = static_cast<std::size_t>(source.width);
-                for (std::size_t i = 0; i < count; ++i) {
-                    const std::size_t k = first + i;
-                    pixels.x[i] = T(static_cast<double>(k % width));
-                    pixels.y[i] = row_between<T>(T(static_cast<double>(k / width)), origin, size);
-                }
-            }
-            unprojector.unproject(pixels, method, directions, valid, 1);
-            T* out = directions_out + 3 * first;
-            for (std::size_t i = 0; i < count; ++i) {
-                const bool ok = valid[i] != 0;
-                mask_out[first + i] = ok;
-                if (!ok) {
-                    out[3 * i] = out[3 * i + 1] = out[3 * i + 2] = T(kNaN);
-                    continue;
-                }
+                prefetch(first + count, std::min(kChunk, end - std::min(end, first + count)));
+                unprojector.unproject(pixels, method, directions, valid, 1);
+                T* out = directions_out + 3 * first;
+                bool* mask = mask_out + first;
+                const T* dx = directions.x.data();
+                const T* dy = directions.y.data();
+                const T* dz = directions.z.data();
+                const std::uint8_t* ok = valid.data();
                 if (frame == Frame::World || normalize) {
-                    // In double, as PreparedCamera::ray: R^T d, normalised.
-                    Vec3 d(double(directions.x[i]), double(directions.y[i]), double(directions.z[i]));
-                    if (frame == Frame::World) d = pose.world_direction_from_camera(d);
-                    d.normalize();
-                    out[3 * i] = T(d.x()), out[3 * i + 1] = T(d.y()), out[3 * i + 2] = T(d.z());
+                    for (std::size_t i = 0; i < count; ++i) {
+                        mask[i] = ok[i] != 0;
+                        if (!mask[i]) {
+                            out[3 * i] = out[3 * i + 1] = out[3 * i + 2] = T(kNaN);
+                            continue;
+                        }
+                        // In double, as PreparedCamera::ray: R^T d, normalised.
+                        Vec3 d(static_cast<double>(dx[i]), static_cast<double>(dy[i]), static_cast<double>(dz[i]));
+                        if (frame == Frame::World) d = pose.world_direction_from_camera(d);
+                        d.normalize();
+                        out[3 * i] = T(d.x()), out[3 * i + 1] = T(d.y()), out[3 * i + 2] = T(d.z());
+                    }
                 } else {
-                    out[3 * i] = directions.x[i], out[3 * i + 1] = directions.y[i], out[3 * i + 2] = directions.z[i];
+                    interleave3(dx, dy, dz, out, count);
+                    mask_and_nan<T, 3>(ok, mask, out, count);
                 }
             }
-        }
-    });
+        });
+    };
+    if (source.points) {
+        with_reader<T, 2>(*source.points, [&](const auto read) {
+            run([&](std::size_t first, std::size_t count, Points2<T>& pixels) { fill_pixels<T>(read, first, count, pixels); },
+                [&](std::size_t first, std::size_t count) { read.prefetch(first, count); });
+        });
+    } else {
+        // The image's rows in the camera's pixel origin: a bottom-left camera's row 0 is
+        // OpenCV's last, which the flip above makes of it.
+        const std::size_t width = static_cast<std::size_t>(source.width);
+        run([&](std::size_t first, std::size_t count, Points2<T>& pixels) { fill_image_pixels<T>(width, first, count, pixels); },
+            [](std::size_t, std::size_t) {});
+    }
 }
 
+// The arrays a call writes: new ones, or those the caller gave as out=(values, mask),
+// which must have the result's shape and type, be C-ordered and writeable, and not
+// overlap the input (a chunk's results would overwrite the next chunk's input).
 template <class T>
-py::tuple project_typed(const PythonCamera& camera, const PointArray& points, Frame frame, int threads) {
-    py::array_t<T> pixels = new_array<T>(points.leading_shape, 2);
-    py::array_t<bool> mask = new_array<bool>(points.leading_shape, 0);
-    T* pixels_data = pixels.mutable_data();
-    bool* mask_data = mask.mutable_data();
+struct Outputs {
+    py::array_t<T> values;
+    py::array_t<bool> mask;
+
+    Outputs(const py::object& out, const std::vector<py::ssize_t>& leading_shape, int k, const py::array* input) {
+        if (out.is_none()) {
+            values = new_array<T>(leading_shape, k);
+            mask = new_array<bool>(leading_shape, 0);
+            return;
+        }
+        const std::string expected_values = std::string("a C-ordered, writeable ") + (sizeof(T) == 4 ? "float32" : "float64") +
+                                            " array of shape " + shape_text(leading_shape, k);
+        const std::string expected_mask = "a C-ordered, writeable bool array of shape " + shape_text(leading_shape, 0);
+        if (!py::isinstance<py::tuple>(out) || py::len(out) != 2) {
+            throw py::type_error("out: expected (" + expected_values + ", " + expected_mask + ")");
+        }
+        values = checked<T>(py::tuple(out)[0], leading_shape, k, "out[0]", expected_values);
+        mask = checked<bool>(py::tuple(out)[1], leading_shape, 0, "out[1]", expected_mask);
+        static const py::object may_share_memory = py::module_::import("numpy").attr("may_share_memory");
+        if (input && (py::cast<bool>(may_share_memory(values, *input)) || py::cast<bool>(may_share_memory(mask, *input)))) {
+            throw py::type_error("out: must not share memory with the input");
+        }
+    }
+
+    template <class U>
+    static py::array_t<U> checked(const py::handle& given, const std::vector<py::ssize_t>& leading_shape, int k,
+                                  const char* name, const std::string& expected) {
+        if (!py::isinstance<py::array>(given)) throw py::type_error(std::string(name) + ": expected " + expected);
+        const auto array = py::reinterpret_borrow<py::array>(given);
+        std::vector<py::ssize_t> shape = leading_shape;
+        if (k > 0) shape.push_back(k);
+        const bool same_shape = array.ndim() == static_cast<py::ssize_t>(shape.size()) &&
+                                std::equal(shape.begin(), shape.end(), array.shape());
+        if (!array.dtype().is(py::dtype::of<U>()) || !same_shape || !(array.flags() & py::array::c_style) ||
+            !array.writeable()) {
+            throw py::type_error(std::string(name) + ": expected " + expected + ", got " +
+                                 array.dtype().attr("name").cast<std::string>() + " array of shape " +
+                                 std::string(py::str(array.attr("shape"))));
+        }
+        return py::reinterpret_borrow<py::array_t<U>>(given);
+    }
+};
+
+template <class T>
+py::tuple project_typed(const PythonCamera& camera, const PointArray& points, Frame frame, int threads,
+                        const py::object& out) {
+    Outputs<T> outputs(out, points.leading_shape, 2, &points.array);
+    T* pixels_data = outputs.values.mutable_data();
+    bool* mask_data = outputs.mask.mutable_data();
     {
         py::gil_scoped_release release;
         project_into<T>(camera, points, frame, pixels_data, mask_data, threads);
     }
-    return py::make_tuple(std::move(pixels), std::move(mask));
+    return py::make_tuple(std::move(outputs.values), std::move(outputs.mask));
 }
 
-py::tuple project(const PythonCamera& camera, const py::handle& points_in, const std::string& frame, int threads) {
+py::tuple project(const PythonCamera& camera, const py::handle& points_in, const std::string& frame, int threads,
+                  const py::object& out) {
     const PointArray points = point_array(points_in, "points", 3);
     const Frame f = frame_from(frame);
     const int n = thread_count(threads);
-    if (points.type == FloatType::Float32) return project_typed<float>(camera, points, f, n);
-    return project_typed<double>(camera, points, f, n);
+    if (points.type == FloatType::Float32) return project_typed<float>(camera, points, f, n, out);
+    return project_typed<double>(camera, points, f, n, out);
 }
 
 template <class T>
 py::tuple unproject_typed(const PythonCamera& camera, const PixelSource& source, std::size_t count,
                           const std::vector<py::ssize_t>& leading_shape, UnprojectMethod method, Frame frame,
-                          bool normalize, int threads) {
-    py::array_t<T> directions = new_array<T>(leading_shape, 3);
-    py::array_t<bool> mask = new_array<bool>(leading_shape, 0);
-    T* directions_data = directions.mutable_data();
-    bool* mask_data = mask.mutable_data();
+                          bool normalize, int threads, const py::object& out) {
+    Outputs<T> outputs(out, leading_shape, 3, source.points ? &source.points->array : nullptr);
+    T* directions_data = outputs.values.mutable_data();
+    bool* mask_data = outputs.mask.mutable_data();
     {
         py::gil_scoped_release release;
         unproject_into<T>(camera, source, count, method, frame, normalize, directions_data, mask_data, threads);
     }
-    return py::make_tuple(std::move(directions), std::move(mask));
+    return py::make_tuple(std::move(outputs.values), std::move(outputs.mask));
 }
 
 py::tuple unproject(const PythonCamera& camera, const py::handle& pixels_in, const std::string& method,
-                    const std::string& frame, bool normalize, int threads) {
+                    const std::string& frame, bool normalize, int threads, const py::object& out) {
     const PointArray pixels = point_array(pixels_in, "pixels", 2);
     const UnprojectMethod m = method_from(method);
     const Frame f = frame_from(frame);
     const int n = thread_count(threads);
     const PixelSource source{&pixels, 0};
     if (pixels.type == FloatType::Float32) {
-        return unproject_typed<float>(camera, source, pixels.count, pixels.leading_shape, m, f, normalize, n);
+        return unproject_typed<float>(camera, source, pixels.count, pixels.leading_shape, m, f, normalize, n, out);
     }
-    return unproject_typed<double>(camera, source, pixels.count, pixels.leading_shape, m, f, normalize, n);
+    return unproject_typed<double>(camera, source, pixels.count, pixels.leading_shape, m, f, normalize, n, out);
 }
 
 py::tuple ray_image(const PythonCamera& camera, const std::string& method, const std::string& frame, bool normalize,
@@ -235,8 +421,8 @@ py::tuple ray_image(const PythonCamera& camera, const std::string& method, const
     const UnprojectMethod m = method_from(method);
     const Frame f = frame_from(frame);
     const int n = thread_count(threads);
-    if (type.is(py::dtype::of<float>())) return unproject_typed<float>(camera, source, count, shape, m, f, normalize, n);
-    if (type.is(py::dtype::of<double>())) return unproject_typed<double>(camera, source, count, shape, m, f, normalize, n);
+    if (type.is(py::dtype::of<float>())) return unproject_typed<float>(camera, source, count, shape, m, f, normalize, n, py::none());
+    if (type.is(py::dtype::of<double>())) return unproject_typed<double>(camera, source, count, shape, m, f, normalize, n, py::none());
     throw py::type_error("dtype: expected numpy.float32 or numpy.float64, got " + type.attr("name").cast<std::string>());
 }
 
@@ -373,7 +559,8 @@ or Camera(K, size, model, dist, R=..., t=...).)doc")
              "A camera from K (3x3), size (width, height), a lens model's name (libcam.models) with its\n"
              "coefficients, and the pose as R (3x3) or rvec (Rodrigues) with t. Raises libcam.Error naming\n"
              "the field for a value out of range.")
-        .def("project", &project, py::arg("points"), py::arg("frame") = "world", py::arg("threads") = 1, R"doc(
+        .def("project", &project, py::arg("points"), py::arg("frame") = "world", py::arg("threads") = 1,
+             py::arg("out") = py::none(), R"doc(
 The pixels of points, and which of them the lens images.
 
 points: array of shape (..., 3), float32 or float64 (other real arrays become float64),
@@ -382,9 +569,10 @@ Returns (pixels, valid): pixels of shape (..., 2) in the points' float type, val
 array of shape (...). A point is invalid, its pixel NaN, where the lens model does not
 image it: behind the camera for a perspective lens, outside the model's valid domain (past
 the radius where its distortion folds over), or where the pixel is not finite.
-threads: how many threads share the work (0: every core); the result is the same.)doc")
+threads: how many threads share the work (0: every core); the result is the same.
+out: optional (pixels, valid) arrays to write into instead of new ones.)doc")
         .def("unproject", &unproject, py::arg("pixels"), py::arg("method") = "exact", py::arg("frame") = "camera",
-             py::arg("normalize") = false, py::arg("threads") = 1, R"doc(
+             py::arg("normalize") = false, py::arg("threads") = 1, py::arg("out") = py::none(), R"doc(
 The directions of the rays through pixels, and which pixels have one.
 
 pixels: array of shape (..., 2), float32 or float64, in the camera's pixel convention
@@ -396,11 +584,12 @@ frame:  "camera" (OpenCV axes; not normalised unless normalize=True: z = 1 for P
 Returns (directions, valid): directions of shape (..., 3), valid of shape (...). A pixel
 is invalid, its direction NaN, where it has no ray under the lens: outside the image
 circle of a fisheye, past the radius where the distortion folds over, or where no ray
-reprojects to it to rounding accuracy. The validity is the same for every method.)doc")
+reprojects to it to rounding accuracy. The validity is the same for every method.
+out: optional (directions, valid) arrays to write into instead of new ones.)doc")
         .def(
             "rays",
             [](const PythonCamera& camera, const py::handle& pixels, const std::string& method, int threads) {
-                return unproject(camera, pixels, method, "world", true, threads);
+                return unproject(camera, pixels, method, "world", true, threads, py::none());
             },
             py::arg("pixels"), py::arg("method") = "exact", py::arg("threads") = 1, R"doc(
 The world-frame rays through pixels: unit directions of shape (..., 3) and the valid mask

@@ -481,3 +481,29 @@ def test_file_errors_name_the_file(tmp_path):
     with pytest.raises(libcam.Error, match="format"):
         camera.write(str(tmp_path / "camera.json"), format="png")
     assert not (tmp_path / "camera.json").exists()
+
+
+def test_out_arrays_are_written_in_place(wide):
+    points = points_in_front(2000, seed=9)
+    expected, expected_valid = wide.project(points)
+    pixels, valid = np.empty((2000, 2)), np.empty(2000, dtype=bool)
+    returned = wide.project(points, out=(pixels, valid))
+    assert returned[0] is pixels and returned[1] is valid
+    assert bits_equal(pixels, expected) and np.array_equal(valid, expected_valid)
+    grid = grid_pixels(wide.size, 50, 40)
+    directions = np.empty((2000, 3))
+    wide.unproject(grid, out=(directions, valid))
+    assert bits_equal(directions, wide.unproject(grid)[0])
+    with pytest.raises(TypeError, match=r"out\[0\]: expected a C-ordered, writeable float64 array of shape \(2000, 2\)"):
+        wide.project(points, out=(np.empty((2000, 3)), valid))
+    with pytest.raises(TypeError, match=r"out\[1\]: expected a C-ordered, writeable bool array"):
+        wide.project(points, out=(pixels, np.empty(2000)))
+    with pytest.raises(TypeError, match="out: expected"):
+        wide.project(points, out=pixels)
+    with pytest.raises(TypeError, match="float32"):
+        wide.project(points.astype(np.float32), out=(pixels, valid))
+    # Results written over their own input would be read back as input: refused.
+    shared = np.zeros((2000, 3))
+    shared[:] = points
+    with pytest.raises(TypeError, match="must not share memory with the input"):
+        wide.project(shared, out=(shared.reshape(-1)[:4000].reshape(2000, 2), valid))

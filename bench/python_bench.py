@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""The Python module's speed beside the C++ batch engine, cv2 and mrcal, on the same points.
+
+    PYTHONPATH=build/python python3 bench/python_bench.py [--from CAMERA] [--grid 1225x817]
+                                                          [--libcam build/tools/libcam]
+
+The points are those of `libcam bench`: a grid of pixels over the image (corners
+included) and their rays (z = 1 for OpenCV's models). The C++ rows come from
+`libcam bench --grid ... --threads 1 --json` on the same grid, in the same run; the Python
+rows are the median of 7 timed calls, one thread, outputs allocated by each call (as a
+user calls them) and, for libcam, also written into arrays given with out=. Not a test:
+nothing here is asserted.
+"""
+
+import argparse
+import json
+import os
+import pathlib
+import statistics
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+import libcam
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def median_seconds(function, repeat=7):
+    function()  # warm: tables built, pages touched
+    times = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def per_call_seconds(function, calls=20000):
+    function()
+    best = float("inf")
+    for _ in range(5):
+        start = time.perf_counter()
+        for _ in range(calls):
+            function()
+        best = min(best, (time.perf_counter() - start) / calls)
+    return best
+
+
+def cpp_rows(libcam_exe, camera_path, grid):
+    out = subprocess.run([libcam_exe, "bench", "--from", str(camera_path), "--grid", grid, "--threads", "1", "--json"],
+                         check=True, capture_output=True, text=True).stdout
+    rows = {}
+    for row in json.loads(out)["rows"]:
+        if row["library"] == "libcam" and row["scalar"] == "double" and row["threads"] == 1:
+            rows[(row["op"], row["method"])] = row["ns_per_point"]
+    return rows
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--from", dest="camera", default=str(ROOT / "tests" / "fuzz" / "corpus" / "json" / "opencv8.json"))
+    parser.add_argument("--grid", default="1225x817")
+    parser.add_argument("--libcam", default=str(ROOT / "build" / "tools" / "libcam"))
+    args = parser.parse_args()
+
+    import cv2
+    import mrcal
+
+    cv2.setNumThreads(1)
+    camera = libcam.read(args.camera)
+    columns, rows = (int(v) for v in args.grid.split("x"))
+    width, height = camera.size
+    xs, ys = np.meshgrid(np.linspace(0, width - 1, columns), np.linspace(0, height - 1, rows))
+    pixels = np.ascontiguousarray(np.stack([xs, ys], axis=-1).reshape(-1, 2))
+    points, valid = camera.unproject(pixels)
+    points, pixels = np.ascontiguousarray(points[valid]), np.ascontiguousarray(pixels[valid])
+    n = len(points)
+    K, dist = camera.K, camera.dist
+    opencv = libcam.models[camera.model]["opencv"]
+    mrcal_model = libcam.models[camera.model]["mrcal"]
+    intrinsics = np.concatenate([[K[0, 0], K[1, 1], K[0, 2], K[1, 2]], dist])
+    zero = np.zeros(3)
+
+    print(f"camera {camera.model} {width}x{height}, {n} points (grid {args.grid}), one thread; "
+          f"load average {os.getloadavg()[0]:.2f}")
+    cpp = cpp_rows(args.libcam, args.camera, args.grid)
+
+    pixels_out = np.empty((n, 2))
+    rays_out = np.empty((n, 3))
+    mask_out = np.empty(n, dtype=bool)
+    table = []
+
+    def add(op, library, call, seconds, cpp_ns=None):
+        ns = seconds * 1e9 / n
+        table.append((op, library, call, ns, f"{ns / cpp_ns:.2f}" if cpp_ns else ""))
+
+    add("project", "libcam", "cam.project(points, frame='camera')",
+        median_seconds(lambda: camera.project(points, frame="camera")), cpp.get(("project", "batch")))
+    add("project", "libcam", "... out=(pixels, mask)",
+        median_seconds(lambda: camera.project(points, frame="camera", out=(pixels_out, mask_out))),
+        cpp.get(("project", "batch")))
+    if opencv == "cv2.projectPoints":
+        add("project", "cv2", "cv2.projectPoints", median_seconds(lambda: cv2.projectPoints(points, zero, zero, K, dist)))
+    if mrcal_model:
+        add("project", "mrcal", "mrcal.project", median_seconds(lambda: mrcal.project(points, mrcal_model, intrinsics)))
+    for method in ("exact", "fast"):
+        add("unproject", "libcam", f"cam.unproject(pixels, method='{method}')",
+            median_seconds(lambda: camera.unproject(pixels, method=method)), cpp.get(("unproject", method)))
+        add("unproject", "libcam", "... out=(directions, mask)",
+            median_seconds(lambda: camera.unproject(pixels, method=method, out=(rays_out, mask_out))),
+            cpp.get(("unproject", method)))
+    if opencv == "cv2.projectPoints":
+        add("unproject", "cv2", "cv2.undistortPoints (5 iterations, not converged)",
+            median_seconds(lambda: cv2.undistortPoints(pixels.reshape(-1, 1, 2), K, dist)))
+        add("unproject", "cv2", "cv2.undistortPointsIter (100 iterations)",
+            median_seconds(lambda: cv2.undistortPointsIter(pixels.reshape(-1, 1, 2), K, dist, None, None,
+                                                           (cv2.TERM_CRITERIA_COUNT, 100, 0))))
+    if mrcal_model:
+        add("unproject", "mrcal", "mrcal.unproject", median_seconds(lambda: mrcal.unproject(pixels, mrcal_model, intrinsics)))
+
+    print(f"\n{'op':<10} {'library':<8} {'call':<52} {'ns/point':>9} {'/ C++ batch':>11}")
+    for op, library, call, ns, ratio in table:
+        print(f"{op:<10} {library:<8} {call:<52} {ns:9.2f} {ratio:>11}")
+    print("\nC++ batch (libcam bench, same grid): " +
+          ", ".join(f"{op} {method} {ns:.2f} ns" for (op, method), ns in sorted(cpp.items()) if op in ("project", "unproject")))
+
+    one_point, one_pixel = points[:1].copy(), pixels[:1].copy()
+    print("\nper call, one point (microseconds):")
+    calls = [("libcam cam.project", lambda: camera.project(one_point, frame="camera")),
+             ("libcam cam.unproject", lambda: camera.unproject(one_pixel))]
+    if opencv == "cv2.projectPoints":
+        calls += [("cv2.projectPoints", lambda: cv2.projectPoints(one_point, zero, zero, K, dist)),
+                  ("cv2.undistortPoints", lambda: cv2.undistortPoints(one_pixel.reshape(-1, 1, 2), K, dist))]
+    if mrcal_model:
+        calls += [("mrcal.project", lambda: mrcal.project(one_point, mrcal_model, intrinsics)),
+                  ("mrcal.unproject", lambda: mrcal.unproject(one_pixel, mrcal_model, intrinsics))]
+    for name, call in calls:
+        print(f"  {name:<24} {per_call_seconds(call) * 1e6:7.3f}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
