@@ -57,10 +57,22 @@ class Camera:
         t: ArrayLike | None = None,
         rvec: ArrayLike | None = None,
     ) -> None: ...
-    def project(self, points: ArrayLike, frame: Frame = "world", threads: int = 1) -> tuple[FloatArray, BoolArray]:
+    def project(
+        self,
+        points: ArrayLike,
+        frame: Frame = "world",
+        threads: int = 1,
+        out: tuple[FloatArray, BoolArray] | None = None,
+    ) -> tuple[FloatArray, BoolArray]:
         """Pixels (..., 2) of points (..., 3) and the valid mask (...); invalid (not imaged by the lens): NaN, False."""
     def unproject(
-        self, pixels: ArrayLike, method: Method = "exact", frame: Frame = "camera", normalize: bool = False, threads: int = 1
+        self,
+        pixels: ArrayLike,
+        method: Method = "exact",
+        frame: Frame = "camera",
+        normalize: bool = False,
+        threads: int = 1,
+        out: tuple[FloatArray, BoolArray] | None = None,
     ) -> tuple[FloatArray, BoolArray]:
         """Ray directions (..., 3) of pixels (..., 2) and the valid mask (...); invalid (no ray): NaN, False."""
     def rays(self, pixels: ArrayLike, method: Method = "exact", threads: int = 1) -> tuple[FloatArray, BoolArray]:

@@ -507,3 +507,48 @@ def test_out_arrays_are_written_in_place(wide):
     shared[:] = points
     with pytest.raises(TypeError, match="must not share memory with the input"):
         wide.project(shared, out=(shared.reshape(-1)[:4000].reshape(2000, 2), valid))
+
+
+def test_type_stubs_match_the_module():
+    """Every function and method of the stubs exists with the same parameter names."""
+    import ast
+    import pathlib
+    import re
+    stub = ast.parse((pathlib.Path(libcam.__file__).parent / "__init__.pyi").read_text())
+
+    def pybind_parameters(function):
+        first_line = function.__doc__.splitlines()[0]
+        inside = first_line[first_line.index("(") + 1:first_line.rindex(")")]
+        parts, depth, current = [], 0, ""
+        for character in inside:  # split at the commas outside brackets
+            depth += character in "([" and 1 or 0
+            depth -= character in ")]" and 1 or 0
+            if character == "," and depth == 0:
+                parts.append(current)
+                current = ""
+            else:
+                current += character
+        parts.append(current)
+        return [re.split(r"[:=]", part.strip())[0].strip() for part in parts if part.strip()]
+
+    def stub_parameters(node):
+        return [a.arg for a in node.args.args]
+
+    checked = 0
+    for node in stub.body:
+        if isinstance(node, ast.FunctionDef):
+            assert stub_parameters(node) == pybind_parameters(getattr(libcam, node.name)), node.name
+            checked += 1
+        if isinstance(node, ast.ClassDef) and node.name == "Camera":
+            for member in node.body:
+                if isinstance(member, ast.FunctionDef) and not member.decorator_list:
+                    function = getattr(libcam.Camera, member.name)
+                    names = pybind_parameters(function)
+                    assert stub_parameters(member) == names, member.name
+                    checked += 1
+                elif isinstance(member, ast.FunctionDef):
+                    assert isinstance(getattr(libcam.Camera, member.name), property), member.name
+    assert checked >= 19
+    assert sorted(name for name in libcam.__all__) == sorted(
+        [n.name for n in stub.body if isinstance(n, (ast.FunctionDef, ast.ClassDef)) and n.name not in ("ModelInfo", "CheckStats", "VerifyCheck")]
+        + ["__version__", "models", "formats"])
