@@ -256,8 +256,9 @@ of view `fov` degrees on fov_axis. Returns (camera, why).)doc");
 The map that turns an image of `source` into an image of `target`: for each target pixel
 the source pixel seeing the same ray. Returns (map, valid): map of shape (height, width, 2)
 holding (x, y) source coordinates, which cv2.remap(image, map, None, cv2.INTER_LINEAR)
-takes as it is, and valid of shape (height, width). Target pixels without a source get
-NaN (cv2.remap gives them its border value). rotation: the target's axes relative to the
+takes as it is, and valid of shape (height, width), both in OpenCV's pixels (row 0 at the
+top, as images are stored) whatever the cameras' pixel_origin. Target pixels without a
+source get NaN (cv2.remap gives them its border value). rotation: the target's axes relative to the
 source's (default: from the two cameras' poses).)doc");
 }
 
