@@ -4,22 +4,24 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
 
 #include <algorithm>
-#include <cstring>
-#include <type_traits>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "arrays.hpp"
 #include "libcam/camera/parallel.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/convert/opengl.hpp"
 #include "libcam/error.hpp"
-#include "libcam/text/number_format.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/remap/derived_camera.hpp"
+#include "libcam/text/number_format.hpp"
 
 namespace libcam::python {
 
@@ -51,8 +53,8 @@ const Unprojector<float>& PythonCamera::unprojector<float>() const {
 namespace {
 
 // Points per step of a thread: gathered from the caller's array into structure-of-arrays
-// buffers that stay in the core's first-level cache (20 KiB for 512 points), run through the batch engine, and scattered
-// into the output. A multiple of the engine's block.
+// buffers that stay in the core's first-level cache (20 KiB for 512 points), run through
+// the batch engine, and scattered into the output. A multiple of the engine's block.
 constexpr std::size_t kChunk = 512;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -62,6 +64,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 template <class T>
 void interleave2(const T* x, const T* y, T* out, std::size_t n) {
     std::size_t i = 0;
+#if defined(__SSE2__)
     if constexpr (std::is_same_v<T, double>) {
         for (; i + 2 <= n; i += 2) {
             const __m128d a = _mm_loadu_pd(x + i), b = _mm_loadu_pd(y + i);
@@ -69,12 +72,14 @@ void interleave2(const T* x, const T* y, T* out, std::size_t n) {
             _mm_storeu_pd(out + 2 * i + 2, _mm_unpackhi_pd(a, b));
         }
     }
+#endif
     for (; i < n; ++i) out[2 * i] = x[i], out[2 * i + 1] = y[i];
 }
 
 template <class T>
 void interleave3(const T* x, const T* y, const T* z, T* out, std::size_t n) {
     std::size_t i = 0;
+#if defined(__SSE2__)
     if constexpr (std::is_same_v<T, double>) {
         for (; i + 2 <= n; i += 2) {
             const __m128d a = _mm_loadu_pd(x + i), b = _mm_loadu_pd(y + i), c = _mm_loadu_pd(z + i);
@@ -83,12 +88,14 @@ void interleave3(const T* x, const T* y, const T* z, T* out, std::size_t n) {
             _mm_storeu_pd(out + 3 * i + 4, _mm_unpackhi_pd(b, c));  // y1 z1
         }
     }
+#endif
     for (; i < n; ++i) out[3 * i] = x[i], out[3 * i + 1] = y[i], out[3 * i + 2] = z[i];
 }
 
 template <class T>
 void deinterleave2(const T* in, T* x, T* y, std::size_t n) {
     std::size_t i = 0;
+#if defined(__SSE2__)
     if constexpr (std::is_same_v<T, double>) {
         for (; i + 2 <= n; i += 2) {
             const __m128d p0 = _mm_loadu_pd(in + 2 * i), p1 = _mm_loadu_pd(in + 2 * i + 2);
@@ -96,12 +103,14 @@ void deinterleave2(const T* in, T* x, T* y, std::size_t n) {
             _mm_storeu_pd(y + i, _mm_unpackhi_pd(p0, p1));
         }
     }
+#endif
     for (; i < n; ++i) x[i] = in[2 * i], y[i] = in[2 * i + 1];
 }
 
 template <class T>
 void deinterleave3(const T* in, T* x, T* y, T* z, std::size_t n) {
     std::size_t i = 0;
+#if defined(__SSE2__)
     if constexpr (std::is_same_v<T, double>) {
         for (; i + 2 <= n; i += 2) {
             const __m128d p0 = _mm_loadu_pd(in + 3 * i), p1 = _mm_loadu_pd(in + 3 * i + 2),
@@ -111,6 +120,7 @@ void deinterleave3(const T* in, T* x, T* y, T* z, std::size_t n) {
             _mm_storeu_pd(z + i, _mm_shuffle_pd(p1, p2, 2));
         }
     }
+#endif
     for (; i < n; ++i) x[i] = in[3 * i], y[i] = in[3 * i + 1], z[i] = in[3 * i + 2];
 }
 
@@ -140,8 +150,8 @@ UnprojectMethod method_from(const std::string& name) {
     return *method;
 }
 
+// An identity pose is skipped: R X + t would give X (but for the sign of a zero).
 bool is_identity(const Pose& pose) { return pose.R == Mat3::Identity() && pose.t == Vec3::Zero(); }
-
 
 // Reads point i of an array of K coordinates. The common layout, C-ordered (..., K), is
 // a compile-time stride, which the compiler turns into vector shuffles; any other is
