@@ -518,7 +518,6 @@ std::string describe(const PythonCamera& camera) {
 
 }  // namespace
 
-// The constructor's lens from a model name and coefficients.
 Lens lens_from(const std::string& model, const std::vector<double>& dist) {
     const std::optional<LensType> type = lens_type_from_name(model);
     if (!type) throw InvalidArgument("model: unknown lens model '" + model + "' (see libcam.models)");

@@ -7,6 +7,8 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "libcam/camera/camera.hpp"
 #include "libcam/camera/projector.hpp"
@@ -52,5 +54,12 @@ private:
 };
 
 void bind_camera(py::module_& m);
+
+// The camera's parts from Python arguments, checked (TypeError for a wrong shape,
+// libcam.Error naming the field for a value out of range): a lens model's name and its
+// coefficients; the pose from R or rvec, and t; the image size (width, height).
+Lens lens_from(const std::string& model, const std::vector<double>& dist);
+Pose pose_from(const py::object& R, const py::object& t, const py::object& rvec);
+ImageSize size_from(const py::object& size);
 
 }  // namespace libcam::python

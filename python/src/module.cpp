@@ -15,9 +15,6 @@
 
 namespace libcam::python {
 
-Lens lens_from(const std::string& model, const std::vector<double>& dist);
-Pose pose_from(const py::object& R, const py::object& t, const py::object& rvec);
-ImageSize size_from(const py::object& size);
 
 namespace {
 

@@ -16,7 +16,6 @@
 
 namespace libcam::python {
 
-ImageSize size_from(const py::object& size);
 
 namespace {
 
