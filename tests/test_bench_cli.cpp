@@ -5,18 +5,22 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 #include <algorithm>
+#include <cstdlib>
+#include <map>
 #include <set>
 #include <string>
 
 #include "cli_runner.hpp"
+#include "libcam/camera/simd.hpp"
 
+using namespace libcam;
 using namespace libcam::test;
 using nlohmann::json;
 
 namespace {
 
-const std::vector<std::string> kRowKeys = {"op",       "library", "method",  "scalar", "model",
-                                           "ns_per_point", "median_px", "p99_px", "max_px", "invalid_fraction"};
+const std::vector<std::string> kRowKeys = {"op",        "library",   "method", "scalar", "model",  "threads",
+                                           "simd",      "ns_per_point", "median_px", "p99_px", "max_px", "invalid_fraction"};
 
 json bench_json(const std::vector<std::string>& extra) {
     std::vector<std::string> args = {"bench", "--grid", "9x7", "--json"};
@@ -152,6 +156,8 @@ TEST_CASE("bench usage errors exit 2 with one line on stderr and nothing on stdo
              {"bench", "--grid", "1x5"},
              {"bench", "--case", "nonesuch"},
              {"bench", "--threads", "0"},
+             {"bench", "--simd", "avx9"},
+             {"bench", "--simd", ""},
          }) {
         const CliResult result = run_libcam(args);
         INFO(result.describe());
@@ -159,4 +165,42 @@ TEST_CASE("bench usage errors exit 2 with one line on stderr and nothing on stdo
         CHECK(result.out.empty());
         CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
     }
+}
+
+TEST_CASE("bench --simd all: libcam's one-thread batch rows once per instruction set this CPU runs, the same errors") {
+    const std::vector<SimdTarget> supported = supported_simd_targets();
+    const json out = bench_json({"--case", "mild", "--simd", "all", "--threads", "1,2"});
+    REQUIRE(out.contains("simd"));
+    CHECK(out["simd"]["supported"].size() == supported.size());
+    CHECK(out["simd"]["in_use"] == std::string(simd_target_name(supported.back())));
+    std::map<std::string, std::set<std::string>> sets_of;  // "op method scalar" -> the sets of its one-thread rows
+    std::map<std::string, std::set<double>> worst_of;       // and their worst errors
+    for (const json& row : out["rows"]) {
+        if (row["library"] != "libcam" || row["method"] == "camera") continue;
+        const std::string name = row["op"].get<std::string>() + " " + row["method"].get<std::string>() + " " +
+                                 row["scalar"].get<std::string>();
+        if (row["threads"] == 2) {
+            CHECK(row["simd"] == out["simd"]["in_use"]);  // more threads: the set in use only
+            continue;
+        }
+        sets_of[name].insert(row["simd"].get<std::string>());
+        worst_of[name].insert(row["max_px"].get<double>());
+    }
+    REQUIRE(sets_of.size() == 8);  // exact, fast and lut, and the projection, in double and float
+    for (const auto& [name, sets] : sets_of) {
+        INFO(name);
+        CHECK(sets.size() == supported.size());
+        CHECK(worst_of[name].size() == 1);  // every set gives the same bits, so the same worst error
+    }
+}
+
+TEST_CASE("LIBCAM_SIMD naming no instruction set: one line naming the variable and the value, exit 1") {
+    ::setenv("LIBCAM_SIMD", "avx9", 1);
+    const CliResult result = run_libcam({"bench", "--case", "mild", "--grid", "5x5"});
+    ::unsetenv("LIBCAM_SIMD");
+    INFO(result.describe());
+    CHECK(result.exit_code == 1);
+    CHECK(result.out.empty());
+    CHECK(result.err.rfind("libcam: error: LIBCAM_SIMD: 'avx9' is not one of sse2", 0) == 0);
+    CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
 }

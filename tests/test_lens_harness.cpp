@@ -724,7 +724,7 @@ std::vector<Vec2> batch_pixels(const Camera& camera) {
 
 }  // namespace
 
-TEST_CASE("harness: the batch engine gives the one-point calls' bits, with 1 and 2 threads", "[harness]") {
+TEST_CASE("harness: the batch engine gives the one-point calls' bits, with 1 and 2 threads", "[harness][engine]") {
     for_each_model([]<class Model>(const LensInfo& info, const LensCase& lens_case) {
         const PreparedCamera& camera = prepared_camera(lens_case);
         check_projector_bits(camera, batch_points(info, lens_case.camera));

@@ -7,13 +7,16 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "lens_cases.hpp"
 #include "libcam/camera/projector.hpp"
+#include "libcam/camera/simd.hpp"
 #include "libcam/camera/unprojector.hpp"
 
 using namespace libcam;
@@ -118,13 +121,18 @@ bool same_bits(const Points3<Scalar>& a, const Points3<Scalar>& b) {
 }
 
 template <class Scalar>
+bool same_bits(const Points2<Scalar>& a, const Points2<Scalar>& b) {
+    return same_bits(a.x, b.x) && same_bits(a.y, b.y);
+}
+
+template <class Scalar>
 const char* scalar_name() {
     return sizeof(Scalar) == sizeof(float) ? "float" : "double";
 }
 
 }  // namespace
 
-TEST_CASE("exact in double: every valid pixel of dense grids within 1e-9 px through OpenCV or mrcal, every model") {
+TEST_CASE("exact in double: every valid pixel of dense grids within 1e-9 px through OpenCV or mrcal, every model", "[engine]") {
     for (const LensCase& c : all_lens_cases()) {
         INFO(c.name);
         const Unprojector<double> unprojector(c.camera);
@@ -135,7 +143,7 @@ TEST_CASE("exact in double: every valid pixel of dense grids within 1e-9 px thro
     }
 }
 
-TEST_CASE("The real wide lens (6016x4016, OPENCV8), 601x401 pixels: exact within 1e-9 px, fast and lut within 0.01 px, float too") {
+TEST_CASE("The real wide lens (6016x4016, OPENCV8), 601x401 pixels: exact within 1e-9 px, fast and lut within 0.01 px, float too", "[engine]") {
     const Camera camera = wide_reference_camera();
     const std::vector<Vec2> grid = pixel_grid(camera.size, 601, 401);
     const Unprojector<double> in_double(camera);
@@ -172,7 +180,7 @@ TEST_CASE("Every method, in float and double, flags exactly the pixels the full 
     }
 }
 
-TEST_CASE("Past a fold worked by hand, no method in either scalar type returns a ray") {
+TEST_CASE("Past a fold worked by hand, no method in either scalar type returns a ray", "[engine]") {
     for (const FoldCase& fold : fold_cases()) {
         INFO(fold.name);
         const std::vector<Vec2> grid = pixel_grid(fold.camera.size, 161, 121);
@@ -196,7 +204,7 @@ TEST_CASE("Past a fold worked by hand, no method in either scalar type returns a
     }
 }
 
-TEST_CASE("fast and lut on every lens of the test set, folds inside the image included: within 0.01 px") {
+TEST_CASE("fast and lut on every lens of the test set, folds inside the image included: within 0.01 px", "[engine]") {
     // They answer only in the table cells checked to be within the budget (0.005 px at
     // five checkpoints); next to a fold, where the inverse steepens, the full solver does.
     for (const LensCase& c : all_lens_cases()) {
@@ -212,7 +220,7 @@ TEST_CASE("fast and lut on every lens of the test set, folds inside the image in
     }
 }
 
-TEMPLATE_TEST_CASE("Batch paths: the same bits on 1, 2 and 3 threads, one pixel at a time, and for the whole image", "",
+TEMPLATE_TEST_CASE("Batch paths: the same bits on 1, 2 and 3 threads, one pixel at a time, and for the whole image", "[engine]",
                    float, double) {
     using Scalar = TestType;
     for (const char* name : {"PINHOLE", "OPENCV8 wide", "FISHEYE strong", "LONLAT"}) {
@@ -279,7 +287,7 @@ std::vector<Vec3> projection_points(const Camera& camera) {
 
 }  // namespace
 
-TEST_CASE("Projection batches: OpenCV's or mrcal's pixel within 1e-9 px, Camera's flags, the same bits on any threads") {
+TEST_CASE("Projection batches: OpenCV's or mrcal's pixel within 1e-9 px, Camera's flags, the same bits on any threads", "[engine]") {
     for (const LensCase& c : all_lens_cases()) {
         INFO(c.name);
         const std::vector<Vec3> points = projection_points(c.camera);
@@ -322,7 +330,7 @@ TEST_CASE("Projection batches: OpenCV's or mrcal's pixel within 1e-9 px, Camera'
     }
 }
 
-TEST_CASE("A pixel that is not a number has no ray, for every method") {
+TEST_CASE("A pixel that is not a number has no ray, for every method", "[engine]") {
     const Camera camera = wide_reference_camera();
     const Unprojector<double> unprojector(camera);
     const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
@@ -346,4 +354,91 @@ TEST_CASE("Batches with coordinate arrays of different lengths are refused") {
     points.x = {1};
     Points2<double> out;
     CHECK_THROWS_AS(Projector<double>(wide_reference_camera()).project(points, out, valid), InvalidArgument);
+}
+
+namespace {
+
+// Every result of the batch paths on one camera, in Scalar, with the current instruction set.
+template <class Scalar>
+struct BatchResults {
+    Points2<Scalar> pixels;
+    ValidFlags projected;
+    std::vector<Points3<Scalar>> rays, image;
+    std::vector<ValidFlags> ray_valid, image_valid;
+};
+
+template <class Scalar>
+BatchResults<Scalar> batch_results(const Projector<Scalar>& projector, const Unprojector<Scalar>& unprojector,
+                                   const Points3<Scalar>& points, const Points2<Scalar>& grid) {
+    BatchResults<Scalar> out;
+    projector.project(points, out.pixels, out.projected);
+    for (UnprojectMethod method : kUnprojectMethods) {
+        out.rays.emplace_back();
+        out.ray_valid.emplace_back();
+        unprojector.unproject(grid, method, out.rays.back(), out.ray_valid.back(), 2);
+        out.image.emplace_back();
+        out.image_valid.emplace_back();
+        unprojector.unproject_image(method, out.image.back(), out.image_valid.back());
+    }
+    return out;
+}
+
+template <class Scalar>
+bool same_results(const BatchResults<Scalar>& a, const BatchResults<Scalar>& b) {
+    bool same = same_bits(a.pixels, b.pixels) && same_bits(a.projected, b.projected);
+    for (std::size_t m = 0; m < a.rays.size(); ++m) {
+        same = same && same_bits(a.rays[m], b.rays[m]) && same_bits(a.ray_valid[m], b.ray_valid[m]) &&
+               same_bits(a.image[m], b.image[m]) && same_bits(a.image_valid[m], b.image_valid[m]);
+    }
+    return same;
+}
+
+// Restores the default instruction set when a test ends, however it ends.
+struct DefaultSimdTargetAfter {
+    ~DefaultSimdTargetAfter() { set_simd_target(std::nullopt); }
+};
+
+}  // namespace
+
+// The kernels are compiled once per instruction set from one source, without fused
+// multiply-adds: every set must compute each point with the same operations, so the
+// baseline's bits (checked against OpenCV and mrcal by the tests above) are every set's.
+TEMPLATE_TEST_CASE("Every instruction set this CPU runs gives the baseline's bits, on every lens of the test set", "",
+                   float, double) {
+    using Scalar = TestType;
+    const DefaultSimdTargetAfter restore;
+    const std::vector<SimdTarget> targets = supported_simd_targets();
+    REQUIRE(targets.front() == SimdTarget::Sse2);
+    if (targets.size() == 1) WARN("only the baseline is compiled or run here: nothing to compare it with");
+    for (const LensCase& lens : lens_cases()) {
+        const Camera camera = scaled_to_width(lens.camera, 160);
+        INFO(lens.name << " " << scalar_name<Scalar>());
+        const std::vector<Vec2> grid = grid_past_edges(camera.size, 53, 37);
+        const Points3<Scalar> points = as_points3<Scalar>(projection_points(camera));
+        const Projector<Scalar> projector(camera);
+        const Unprojector<Scalar> unprojector(camera, UnprojectorOptions{.table_nodes = 40});  // small: built quickly
+        set_simd_target(SimdTarget::Sse2);
+        const BatchResults<Scalar> baseline = batch_results(projector, unprojector, points, as_points2<Scalar>(grid));
+        for (SimdTarget target : targets) {
+            INFO(simd_target_name(target));
+            set_simd_target(target);
+            CHECK(simd_target() == target);
+            CHECK(same_results(baseline, batch_results(projector, unprojector, points, as_points2<Scalar>(grid))));
+        }
+    }
+}
+
+TEST_CASE("The instruction sets: names, the default, and a forced set this build lacks is refused") {
+    const DefaultSimdTargetAfter restore;
+    for (SimdTarget target : kSimdTargets) CHECK(simd_target_from_name(simd_target_name(target)) == target);
+    CHECK_FALSE(simd_target_from_name("avx3").has_value());
+    const std::vector<SimdTarget> targets = supported_simd_targets();
+    if (std::getenv("LIBCAM_SIMD") == nullptr) CHECK(simd_target() == targets.back());  // the best by default
+    for (SimdTarget target : kSimdTargets) {
+        if (simd_target_supported(target)) {
+            CHECK_NOTHROW(set_simd_target(target));
+        } else {
+            CHECK_THROWS_WITH(set_simd_target(target), Catch::Contains(std::string(simd_target_name(target))));
+        }
+    }
 }

@@ -1,10 +1,16 @@
 #pragma once
-// The one multi-threaded loop of the batch paths: [0, n) cut into `threads` contiguous
-// chunks, the first run on the calling thread and the others on std::threads. Every
-// point is computed by the same code whatever the chunk it falls in, so the result is
+// The one multi-threaded loop of the batch paths: [0, n) cut into pieces, taken in turn by
+// `threads` workers (the calling thread and std::threads) from a shared counter. Every
+// point is computed by the same code whatever the piece it falls in, so the result is
 // bit for bit the same for any number of threads.
+//
+// Why pieces and not one contiguous chunk per thread: a batch takes as long as its
+// slowest worker, and a worker is slowed by whatever else runs on its core (on a shared
+// machine, often) or by a harder part of the image (pixels the full solver settles).
+// With several pieces per worker, a worker that falls behind takes fewer of them.
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <thread>
@@ -12,10 +18,15 @@
 
 namespace libcam {
 
-// Calls body(begin, end) on disjoint chunks covering [0, n). Chunk boundaries are
+// Pieces per worker: enough to even out a slowed worker, few enough that each piece of
+// a megapixel batch is thousands of points.
+inline constexpr std::size_t kPiecesPerWorker = 8;
+
+// Calls body(begin, end) on disjoint pieces covering [0, n). Piece boundaries are
 // multiples of `grain` (keep it a multiple of the SIMD width and of a cache line's
-// worth of points, so that threads never share a written cache line). An exception
-// thrown by any chunk is rethrown here after every thread has finished.
+// worth of points, so that threads never share a written cache line). A worker may call
+// body several times. An exception thrown by any piece is rethrown here after every
+// thread has finished (the worker that threw takes no more pieces).
 template <class Body>
 void parallel_chunks(std::size_t n, int threads, std::size_t grain, Body&& body) {
     const std::size_t blocks = (n + grain - 1) / grain;
@@ -24,11 +35,15 @@ void parallel_chunks(std::size_t n, int threads, std::size_t grain, Body&& body)
         body(std::size_t{0}, n);
         return;
     }
-    const auto chunk_begin = [&](std::size_t worker) { return std::min(n, blocks * worker / workers * grain); };
+    const std::size_t pieces = std::min(blocks, workers * kPiecesPerWorker);
+    const auto piece_begin = [&](std::size_t piece) { return std::min(n, blocks * piece / pieces * grain); };
+    std::atomic<std::size_t> next_piece{0};
     std::vector<std::exception_ptr> errors(workers);
     const auto run = [&](std::size_t worker) {
         try {
-            body(chunk_begin(worker), chunk_begin(worker + 1));
+            for (std::size_t piece = next_piece++; piece < pieces; piece = next_piece++) {
+                body(piece_begin(piece), piece_begin(piece + 1));
+            }
         } catch (...) {
             errors[worker] = std::current_exception();
         }

@@ -191,6 +191,34 @@ struct Setup {
     RayPoints rays;
 };
 
+// What a libcam batch row runs with: each instruction set of BenchSettings::simd_targets
+// at one thread, the one in use at more.
+struct RunOn {
+    int threads;
+    SimdTarget instruction_set;
+};
+
+std::vector<RunOn> runs_of(const Setup& setup) {
+    std::vector<RunOn> runs;
+    for (int threads : setup.settings.threads) {
+        if (threads == 1 && !setup.settings.simd_targets.empty()) {
+            for (SimdTarget target : setup.settings.simd_targets) runs.push_back({threads, target});
+        } else {
+            runs.push_back({threads, simd_target()});
+        }
+    }
+    return runs;
+}
+
+// Forces the row's instruction set for one timed call.
+class SimdTargetFor {
+public:
+    explicit SimdTargetFor(SimdTarget target) { set_simd_target(target); }
+    ~SimdTargetFor() { set_simd_target(std::nullopt); }
+    SimdTargetFor(const SimdTargetFor&) = delete;
+    SimdTargetFor& operator=(const SimdTargetFor&) = delete;
+};
+
 BenchRow row(const Setup& setup, const char* op, const char* library, std::string method, const char* scalar, int threads = 1) {
     BenchRow r;
     r.camera = setup.bench_case.name;
@@ -208,10 +236,14 @@ void add_libcam_unprojection(std::vector<Contender>& out, const Setup& setup, co
                              const Points2<Scalar>& pixels, Workspace& work, Points3<Scalar>& directions) {
     const std::vector<Vec2> given = as_given(pixels);
     for (UnprojectMethod method : kUnprojectMethods) {
-        for (int threads : setup.settings.threads) {
-            Contender c{row(setup, "unproject", "libcam", std::string(method_name(method)), scalar_name<Scalar>(), threads),
+        for (const RunOn on : runs_of(setup)) {
+            Contender c{row(setup, "unproject", "libcam", std::string(method_name(method)), scalar_name<Scalar>(), on.threads),
                         pixels.size(), nullptr, nullptr};
-            c.run = [&, method, threads] { unprojector.unproject(pixels, method, directions, work.unprojected_valid, threads); };
+            c.row.simd = simd_target_name(on.instruction_set);
+            c.run = [&, method, on] {
+                const SimdTargetFor forced(on.instruction_set);
+                unprojector.unproject(pixels, method, directions, work.unprojected_valid, on.threads);
+            };
             c.outcome = [&, given] {
                 return reprojection_outcome(setup.bench_case.camera, given, as_vec3(directions),
                                             std::vector<char>(work.unprojected_valid.begin(), work.unprojected_valid.end()));
@@ -228,6 +260,7 @@ void add_camera_unprojection(std::vector<Contender>& out, const Setup& setup, co
     work.unprojections.resize(setup.grid.size());  // reused by every run, as the other rows' outputs
     for (int threads : setup.settings.threads) {
         Contender c{row(setup, "unproject", "libcam", "camera", "double", threads), setup.grid.size(), nullptr, nullptr};
+        c.row.simd = simd_target_name(simd_target());
         c.run = [&, threads] { camera.unproject(setup.grid, work.unprojections, threads); };
         c.outcome = [&] {
             std::vector<Vec3> directions;
@@ -296,9 +329,13 @@ void add_mrcal_unprojection(std::vector<Contender>& out, const Setup& setup, con
 template <class Scalar>
 void add_libcam_projection(std::vector<Contender>& out, const Setup& setup, const Projector<Scalar>& projector,
                            const Points3<Scalar>& points, Workspace& work, Points2<Scalar>& pixels) {
-    for (int threads : setup.settings.threads) {
-        Contender c{row(setup, "project", "libcam", "batch", scalar_name<Scalar>(), threads), points.size(), nullptr, nullptr};
-        c.run = [&, threads] { projector.project(points, pixels, work.projected_valid, threads); };
+    for (const RunOn on : runs_of(setup)) {
+        Contender c{row(setup, "project", "libcam", "batch", scalar_name<Scalar>(), on.threads), points.size(), nullptr, nullptr};
+        c.row.simd = simd_target_name(on.instruction_set);
+        c.run = [&, on] {
+            const SimdTargetFor forced(on.instruction_set);
+            projector.project(points, pixels, work.projected_valid, on.threads);
+        };
         c.outcome = [&] {
             return pixel_outcome(setup.rays.pixels, as_given(pixels),
                                  std::vector<char>(work.projected_valid.begin(), work.projected_valid.end()));
@@ -310,6 +347,7 @@ void add_libcam_projection(std::vector<Contender>& out, const Setup& setup, cons
 void add_camera_projection(std::vector<Contender>& out, const Setup& setup, const PreparedCamera& camera,
                            Workspace& work) {
     Contender c{row(setup, "project", "libcam", "camera", "double"), setup.rays.points.size(), nullptr, nullptr};
+    c.row.simd = "scalar";  // one point at a time, no batch kernel
     c.run = [&] { work.projections = camera.project_camera_points(setup.rays.points); };
     c.outcome = [&] {
         std::vector<Vec2> pixels;
@@ -369,12 +407,16 @@ void add_full_frame(std::vector<Contender>& out, const Setup& setup, const Unpro
     const std::string model(lens_info(camera.lens.type).name);
     for (UnprojectMethod method : kUnprojectMethods) {
         if (closed_form && method != UnprojectMethod::Exact) continue;  // one closed form for every method
-        for (int threads : setup.settings.threads) {
+        for (const RunOn on : runs_of(setup)) {
             Contender c{row(setup, "rays_full_frame", "libcam", closed_form ? "closed-form" : std::string(method_name(method)),
-                            scalar_name<Scalar>(), threads),
+                            scalar_name<Scalar>(), on.threads),
                         n, nullptr, nullptr};
             c.row.model = model;
-            c.run = [&, method, threads] { unprojector.unproject_image(method, directions, valid, threads); };
+            c.row.simd = simd_target_name(on.instruction_set);
+            c.run = [&, method, on] {
+                const SimdTargetFor forced(on.instruction_set);
+                unprojector.unproject_image(method, directions, valid, on.threads);
+            };
             // The accuracy on a sample of about 100,000 pixels spread over the frame.
             c.outcome = [&, width, n] {
                 const std::size_t stride = std::max<std::size_t>(1, n / 100'000) | 1;  // odd: not aligned with rows
@@ -548,13 +590,15 @@ void add_maps(std::vector<Contender>& out, const Setup& setup, const PreparedCam
         const PreparedCamera& target = inverse ? lens : pinhole;
         const PreparedCamera& source = inverse ? pinhole : lens;
         for (UnprojectMethod method : {UnprojectMethod::Exact, UnprojectMethod::Fast}) {
-            for (int threads : setup.settings.threads) {
+            for (const RunOn on : runs_of(setup)) {
                 const std::string name = std::string(inverse ? "inverse-" : "") + std::string(method_name(method));
-                Contender c{row(setup, "map", "libcam", name, "double", threads), n, nullptr, nullptr};
-                c.run = [&, method, threads] {
+                Contender c{row(setup, "map", "libcam", name, "double", on.threads), n, nullptr, nullptr};
+                c.row.simd = simd_target_name(on.instruction_set);
+                c.run = [&, method, on] {
+                    const SimdTargetFor forced(on.instruction_set);
                     RemapOptions options;
                     options.method = method;
-                    options.threads = threads;
+                    options.threads = on.threads;
                     work.map = RemapMap();  // freed first, as OpenCV's rows free theirs
                     work.map = build_remap_map(target, source, options);
                 };

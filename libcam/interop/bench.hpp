@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/camera/simd.hpp"
 #include "libcam/stats/error_stats.hpp"
 
 namespace libcam {
@@ -24,6 +25,7 @@ struct BenchRow {
     std::string scalar;  // "double", "float"
     std::string model;   // the lens model, e.g. "OPENCV8"
     int threads = 1;
+    std::string simd = "-";           // the instruction set of libcam's batch kernels (camera/simd.hpp)
     double ns_per_point = 0;          // median over the repetitions
     std::optional<ErrorStats> error;  // none for the memset reference; count 0 when no point had a result
     double invalid_fraction = 0;      // points flagged, not finite, or whose ray cannot be projected back
@@ -33,6 +35,9 @@ struct BenchSettings {
     int grid_x = 601, grid_y = 401;  // pixels across and down, corners included (each >= 2)
     int repeat = 5;                  // timed repetitions, interleaved across the candidates
     std::vector<int> threads{1, 2};  // thread counts for libcam's batch paths
+    // The instruction sets libcam's batch rows run with at one thread, each forced in turn;
+    // empty: the one in use (simd_target()). Rows at more threads use the one in use.
+    std::vector<SimdTarget> simd_targets;
     bool full_frame = false;         // also every pixel's ray, and the memset reference
     bool maps = false;               // also the remap maps between the lens and a pinhole with its K
 };

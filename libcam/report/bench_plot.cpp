@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "libcam/camera/simd.hpp"
 #include "libcam/error.hpp"
 #include "libcam/report/detail/cv_image.hpp"
 
@@ -176,13 +177,19 @@ cv::Mat draw_panel(const std::string& camera, const std::vector<const BenchRow*>
     return panel;
 }
 
-// The rows each panel shows: unprojection on one thread with a measured error.
+// Whether a row ran on another instruction set than the one in use (a forced one).
+bool forced_instruction_set(const BenchRow& row) {
+    return simd_target_from_name(row.simd).has_value() && row.simd != simd_target_name(simd_target());
+}
+
+// The rows each panel shows: unprojection on one thread with a measured error, libcam's
+// on the instruction set in use.
 std::vector<std::vector<const BenchRow*>> panels_of(const std::vector<BenchRow>& rows) {
     std::vector<std::vector<const BenchRow*>> panels;
     std::vector<std::string> cameras;
     for (const BenchRow& row : rows) {
         if (row.op != "unproject" || row.threads != 1 || !row.error || row.error->count == 0 ||
-            !std::isfinite(row.error->max_px) || !(row.ns_per_point > 0)) {
+            !std::isfinite(row.error->max_px) || !(row.ns_per_point > 0) || forced_instruction_set(row)) {
             continue;
         }
         const auto found = std::find(cameras.begin(), cameras.end(), row.camera);

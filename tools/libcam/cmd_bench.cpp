@@ -7,12 +7,14 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "bench_cases.hpp"
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "libcam/camera/simd.hpp"
 #include "libcam/interop/bench.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
@@ -31,6 +33,7 @@ struct BenchFlags {
     std::string grid = "601x401";
     int repeat = 5;
     std::string threads = "1,2";
+    std::string simd = "all";
     bool full_frame = false;
     bool maps = false;
     bool json = false;
@@ -62,6 +65,24 @@ std::vector<BenchCase> chosen_cases(const BenchFlags& flags) {
     return chosen;
 }
 
+// "all": every instruction set this CPU runs; "best": the one in use; or a list of names.
+std::vector<SimdTarget> simd_targets_from(const std::string& text) {
+    if (text == "all") return supported_simd_targets();
+    if (text == "best") return {};
+    std::vector<SimdTarget> targets;
+    std::istringstream list(text);
+    for (std::string item; std::getline(list, item, ',');) {
+        const std::optional<SimdTarget> target = simd_target_from_name(item);
+        if (!target) throw UsageError("--simd: expected all, best or a list of sse2, avx2, avx512, got '" + text + "'");
+        if (!simd_target_supported(*target)) {
+            throw UsageError("--simd: " + item + " is not compiled into this build or not run by this CPU");
+        }
+        targets.push_back(*target);
+    }
+    if (targets.empty()) throw UsageError("--simd: expected all, best or a list such as sse2,avx2");
+    return targets;
+}
+
 BenchSettings settings_from(const BenchFlags& flags) {
     BenchSettings settings;
     const ImageSize grid = parse_size("--grid", flags.grid);
@@ -80,6 +101,7 @@ BenchSettings settings_from(const BenchFlags& flags) {
         settings.threads.push_back(static_cast<int>(count));
     }
     if (settings.threads.empty()) throw UsageError("--threads: expected a list such as 1,2");
+    settings.simd_targets = simd_targets_from(flags.simd);
     settings.full_frame = flags.full_frame;
     settings.maps = flags.maps;
     return settings;
@@ -96,6 +118,7 @@ nlohmann::json row_json(const BenchRow& row) {
     out["model"] = row.model;
     out["camera"] = row.camera;
     out["threads"] = row.threads;
+    out["simd"] = row.simd;
     out["ns_per_point"] = number_or_null(row.ns_per_point);
     const bool measured = row.error && row.error->count > 0;
     out["median_px"] = measured ? number_or_null(row.error->median_px) : nlohmann::json(nullptr);
@@ -112,6 +135,8 @@ struct CaseResult {
 
 std::string format_json(const std::vector<CaseResult>& results, const BenchSettings& settings) {
     nlohmann::json out;
+    out["simd"] = {{"in_use", simd_target_name(simd_target())}, {"supported", nlohmann::json::array()}};
+    for (SimdTarget target : supported_simd_targets()) out["simd"]["supported"].push_back(simd_target_name(target));
     out["rows"] = nlohmann::json::array();
     out["cameras"] = nlohmann::json::array();
     for (const CaseResult& r : results) {
@@ -138,6 +163,9 @@ std::string error_text(const BenchRow& row, double ErrorStats::*statistic) {
 std::string format_table(const std::vector<CaseResult>& results, const BenchSettings& settings) {
     std::ostringstream out;
     out << std::left;
+    out << "batch kernels: " << simd_target_name(simd_target()) << " in use; this CPU runs";
+    for (SimdTarget target : supported_simd_targets()) out << " " << simd_target_name(target);
+    out << " (simd column: the set each libcam row ran on)\n";
     for (const CaseResult& r : results) {
         const Camera& camera = r.bench_case.camera;
         out << "camera " << r.bench_case.name << ": " << lens_info(camera.lens.type).name << ", " << camera.size.width << "x"
@@ -152,12 +180,12 @@ std::string format_table(const std::vector<CaseResult>& results, const BenchSett
             method_width = std::max(method_width, static_cast<int>(row.method.size()) + 2);
         }
         out << std::setw(16) << "op" << std::setw(8) << "library" << std::setw(method_width) << "method" << std::setw(7) << "scalar"
-            << std::setw(8) << "threads" << std::setw(model_width) << "model" << std::setw(11) << "ns/point" << std::setw(11)
+            << std::setw(8) << "threads" << std::setw(7) << "simd" << std::setw(model_width) << "model" << std::setw(11) << "ns/point" << std::setw(11)
             << "median px" << std::setw(11) << "p99 px" << std::setw(11) << "max px"
             << "invalid\n";
         for (const BenchRow& row : r.result.rows) {
             out << std::setw(16) << row.op << std::setw(8) << row.library << std::setw(method_width) << row.method << std::setw(7)
-                << row.scalar << std::setw(8) << row.threads << std::setw(model_width) << row.model << std::setw(11)
+                << row.scalar << std::setw(8) << row.threads << std::setw(7) << row.simd << std::setw(model_width) << row.model << std::setw(11)
                 << number_text(row.ns_per_point, 4) << std::setw(11) << error_text(row, &ErrorStats::median_px)
                 << std::setw(11) << error_text(row, &ErrorStats::p99_px) << std::setw(11)
                 << error_text(row, &ErrorStats::max_px) << number_text(100 * row.invalid_fraction, 3) << "%\n";
@@ -191,6 +219,9 @@ Runner add_bench(CLI::App& app) {
     command->add_option("--grid", flags->grid, "Pixels across x down, corners included (default 601x401)");
     command->add_option("--repeat", flags->repeat, "Timed repetitions per method, interleaved (default and minimum 5)");
     command->add_option("--threads", flags->threads, "Thread counts for libcam's batch paths (default 1,2)");
+    command->add_option("--simd", flags->simd,
+                        "Instruction sets libcam's one-thread batch rows run on, each forced in turn: all (every set "
+                        "this CPU runs, default), best (the one in use), or a list such as sse2,avx2");
     command->add_flag("--full-frame", flags->full_frame,
                       "Also time every pixel's ray for the lens and for a pinhole with the same K, against memset");
     command->add_flag("--maps", flags->maps,

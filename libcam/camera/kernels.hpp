@@ -1,0 +1,112 @@
+#pragma once
+// Internal to libcam: the batch kernels, compiled once per instruction set
+// (camera/simd.hpp, camera/kernels_for_target.hpp), and what passes between them and
+// the code that calls them (camera/projector.cpp, camera/unprojector.cpp). Everything
+// here is compiled for the portable baseline.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "libcam/camera/batch_kernels.hpp"
+#include "libcam/camera/camera.hpp"
+#include "libcam/camera/simd.hpp"
+#include "libcam/camera/unprojector.hpp"
+
+namespace libcam::kernels {
+
+using batch::kBlock;
+
+// Points [begin, end) of a projection: camera points in, pixels and flags out.
+template <class Scalar>
+struct ProjectJob {
+    const Camera& camera;
+    double valid_radius;
+    const Scalar *x, *y, *z;
+    Scalar *pixel_x, *pixel_y;
+    std::uint8_t* valid;
+};
+
+// One block of pixels on its way through the unprojection steps.
+template <class Scalar>
+struct Block {
+    std::size_t count = 0;
+    const Scalar* pixel_x;  // the block's pixels: the caller's arrays, or made_x, made_y
+    const Scalar* pixel_y;
+    Scalar made_x[kBlock], made_y[kBlock];  // pixels made by the caller (the whole image, one pixel)
+    Scalar m_x[kBlock], m_y[kBlock];  // K^-1 [x, y, 1]
+    Scalar u_x[kBlock], u_y[kBlock];  // undistorted point
+    Scalar ok[kBlock];  // 1: u (then the ray) is the answer; -1: settled, no ray; 0: for the full solver
+    Scalar reducible[kBlock];  // 1: u passes, but another Newton step would gain digits (certify)
+    detail::RayOutput<Scalar> rays;                 // where the block's rays and flags go
+    int cell[kBlock];                               // table node at the top-left of the pixel's cell
+    Scalar fraction_x[kBlock], fraction_y[kBlock];  // position within that cell
+};
+
+// Where an unprojection's pixels come from and its rays go, block by block.
+template <class Scalar>
+class BlockIo {
+public:
+    using Scratch = detail::RayScratch<Scalar, kBlock>;
+    // Points b.pixel_x and b.pixel_y at the pixels of [first, first + b.count).
+    virtual void fill(std::size_t first, Block<Scalar>& b) const = 0;
+    // Where the rays and flags of the block at `first` go (the caller's arrays, or scratch).
+    virtual detail::RayOutput<Scalar> at(std::size_t first, Scratch& scratch) const = 0;
+    // Called after each block.
+    virtual void done(std::size_t first, std::size_t count, const Scratch& scratch) const = 0;
+
+protected:
+    ~BlockIo() = default;
+};
+
+// Pixels [begin, end) of an unprojection.
+template <class Scalar>
+struct UnprojectJob {
+    const Camera& camera;
+    double valid_radius;
+    double certified_radius;
+    double no_ray_radius;
+    const detail::DomainRim& rim;
+    const UnprojectionTable<Scalar>& table;
+    UnprojectMethod method;
+    const BlockIo<Scalar>& io;
+};
+
+// The kernels of one instruction set.
+template <class Scalar>
+struct KernelSet {
+    void (*project)(const ProjectJob<Scalar>& job, std::size_t begin, std::size_t end);
+    void (*unproject)(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t end);
+};
+
+// Each compiled set (kernels_sse2.cpp, kernels_avx2.cpp, kernels_avx512.cpp).
+template <SimdTarget target, class Scalar>
+const KernelSet<Scalar>& compiled_kernels();
+template <>
+const KernelSet<float>& compiled_kernels<SimdTarget::Sse2, float>();
+template <>
+const KernelSet<double>& compiled_kernels<SimdTarget::Sse2, double>();
+template <>
+const KernelSet<float>& compiled_kernels<SimdTarget::Avx2, float>();
+template <>
+const KernelSet<double>& compiled_kernels<SimdTarget::Avx2, double>();
+template <>
+const KernelSet<float>& compiled_kernels<SimdTarget::Avx512, float>();
+template <>
+const KernelSet<double>& compiled_kernels<SimdTarget::Avx512, double>();
+
+// The set of the target in use (simd_target()).
+template <class Scalar>
+const KernelSet<Scalar>& kernels() {
+#if defined(LIBCAM_SIMD_DISPATCH)
+    switch (simd_target()) {
+        case SimdTarget::Avx512: return compiled_kernels<SimdTarget::Avx512, Scalar>();
+        case SimdTarget::Avx2: return compiled_kernels<SimdTarget::Avx2, Scalar>();
+        case SimdTarget::Sse2: break;
+    }
+#else
+    (void)simd_target();  // LIBCAM_SIMD is checked in every build
+#endif
+    return compiled_kernels<SimdTarget::Sse2, Scalar>();
+}
+
+}  // namespace libcam::kernels
