@@ -29,6 +29,8 @@ echo "== 2/3: the tests again under AddressSanitizer + UndefinedBehaviorSanitize
 # against 62 s), which costs more than the build saves.
 bash "$root/scripts/build.sh" "$root/build-asan" -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DLIBCAM_SANITIZE=ON \
   -DLIBCAM_BUILD_BENCHMARKS=OFF
+# The test programs' own files are not instrumented (tests/CMakeLists.txt says why);
+# libcam's libraries and the `libcam` program are.
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # The installed-package test links a consumer against the instrumented static libraries
