@@ -62,7 +62,8 @@ TEST_CASE("bench --json: every row has the documented keys, and every method and
                                  "unproject libcam exact float", "unproject libcam fast float", "unproject libcam lut float",
                                  "unproject opencv default double", "unproject opencv 100it-eps1e-14 double",
                                  "unproject mrcal mrcal_unproject double", "project libcam batch double",
-                                 "project libcam batch float", "project opencv projectPoints double",
+                                 "project libcam batch float", "project libcam interleaved double",
+                                 "project opencv projectPoints double",
                                  "project mrcal mrcal_project double", "unproject libcam camera double",
                                  "project libcam camera double"}) {
         INFO(expected);
@@ -186,7 +187,8 @@ TEST_CASE("bench --simd all: libcam's one-thread batch rows once per instruction
         sets_of[name].insert(row["simd"].get<std::string>());
         worst_of[name].insert(row["max_px"].get<double>());
     }
-    REQUIRE(sets_of.size() == 8);  // exact, fast and lut, and the projection, in double and float
+    // exact, fast and lut, and the projection, in double and float; the interleaved projection in double
+    REQUIRE(sets_of.size() == 9);
     for (const auto& [name, sets] : sets_of) {
         INFO(name);
         CHECK(sets.size() == supported.size());

@@ -445,3 +445,42 @@ TEST_CASE("The instruction sets: names, the default, and a forced set this build
         }
     }
 }
+
+TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) gives the arrays' bits, on every lens of the test set",
+                   "[engine]", float, double) {
+    using Scalar = TestType;
+    for (const LensCase& lens : all_lens_cases()) {
+        const Camera camera = scaled_to_width(lens.camera, 160);
+        INFO(lens.name << " " << scalar_name<Scalar>());
+        const Points3<Scalar> points = as_points3<Scalar>(projection_points(camera));
+        const Projector<Scalar> projector(camera);
+        Points2<Scalar> pixels;
+        ValidFlags valid;
+        projector.project(points, pixels, valid);
+        const std::size_t n = points.size();
+        std::vector<Scalar> interleaved_points(3 * n), interleaved_pixels(2 * n, Scalar(-7));
+        for (std::size_t i = 0; i < n; ++i) {
+            interleaved_points[3 * i] = points.x[i];
+            interleaved_points[3 * i + 1] = points.y[i];
+            interleaved_points[3 * i + 2] = points.z[i];
+        }
+        for (int threads : {1, 2}) {
+            ValidFlags interleaved_valid(n, 7);
+            projector.project_interleaved(interleaved_points, interleaved_pixels, interleaved_valid, threads);
+            Points2<Scalar> unpacked;
+            for (std::size_t i = 0; i < n; ++i) {
+                unpacked.x.push_back(interleaved_pixels[2 * i]);
+                unpacked.y.push_back(interleaved_pixels[2 * i + 1]);
+            }
+            CHECK(same_bits(unpacked, pixels));
+            CHECK(same_bits(interleaved_valid, valid));
+        }
+    }
+    const Projector<Scalar> projector(wide_reference_camera());
+    std::vector<Scalar> three(3), two(2), four(4);
+    ValidFlags one(1);
+    CHECK_THROWS_AS(projector.project_interleaved(three, four, one), InvalidArgument);
+    CHECK_THROWS_AS(projector.project_interleaved(four, two, one), InvalidArgument);
+    ValidFlags none;
+    CHECK_NOTHROW(projector.project_interleaved(std::span<const Scalar>(), std::span<Scalar>(), none));
+}

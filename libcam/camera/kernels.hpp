@@ -16,7 +16,10 @@ namespace libcam::kernels {
 
 using batch::kBlock;
 
-// Points [begin, end) of a projection: camera points in, pixels and flags out.
+// Points [begin, end) of a projection: camera points in, pixels and flags out. Point i's
+// coordinates are x[i * s], y[i * s], z[i * s] and its pixel pixel_x[i * p], pixel_y[i * p],
+// with s = p = 1 for structure-of-arrays and s = 3, p = 2 for interleaved arrays (numpy's
+// (N, 3) and (N, 2)), where y = x + 1, z = x + 2 and pixel_y = pixel_x + 1.
 template <class Scalar>
 struct ProjectJob {
     const Camera& camera;
@@ -75,6 +78,7 @@ struct UnprojectJob {
 template <class Scalar>
 struct KernelSet {
     void (*project)(const ProjectJob<Scalar>& job, std::size_t begin, std::size_t end);
+    void (*project_interleaved)(const ProjectJob<Scalar>& job, std::size_t begin, std::size_t end);
     void (*unproject)(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t end);
 };
 

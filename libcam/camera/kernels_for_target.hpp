@@ -65,13 +65,16 @@ namespace libcam::kernels {
 
 template <>
 const KernelSet<float>& compiled_kernels<SimdTarget::LIBCAM_KERNEL_TARGET_ENUM, float>() {
-    static constexpr KernelSet<float> set{&LIBCAM_KERNEL_TARGET::project<float>, &LIBCAM_KERNEL_TARGET::unproject<float>};
+    static constexpr KernelSet<float> set{&LIBCAM_KERNEL_TARGET::project<float, LIBCAM_KERNEL_TARGET::Layout::Arrays>,
+                                          &LIBCAM_KERNEL_TARGET::project<float, LIBCAM_KERNEL_TARGET::Layout::Interleaved>,
+                                          &LIBCAM_KERNEL_TARGET::unproject<float>};
     return set;
 }
 
 template <>
 const KernelSet<double>& compiled_kernels<SimdTarget::LIBCAM_KERNEL_TARGET_ENUM, double>() {
-    static constexpr KernelSet<double> set{&LIBCAM_KERNEL_TARGET::project<double>,
+    static constexpr KernelSet<double> set{&LIBCAM_KERNEL_TARGET::project<double, LIBCAM_KERNEL_TARGET::Layout::Arrays>,
+                                           &LIBCAM_KERNEL_TARGET::project<double, LIBCAM_KERNEL_TARGET::Layout::Interleaved>,
                                            &LIBCAM_KERNEL_TARGET::unproject<double>};
     return set;
 }

@@ -1,7 +1,10 @@
 #include "libcam/camera/projector.hpp"
 
+#include <string>
+
 #include "libcam/camera/kernels.hpp"
 #include "libcam/camera/parallel.hpp"
+#include "libcam/error.hpp"
 
 namespace libcam {
 
@@ -23,6 +26,24 @@ void Projector<Scalar>::project(const Points3<Scalar>& camera_points, Points2<Sc
                                           camera_points.y.data(), camera_points.z.data(), pixels.x.data(),
                                           pixels.y.data(),  valid.data()};
     const auto project = kernels::kernels<Scalar>().project;
+    parallel_chunks(n, threads, batch::kBlock,
+                    [&](std::size_t begin, std::size_t end) { project(job, begin, end); });
+}
+
+template <class Scalar>
+void Projector<Scalar>::project_interleaved(std::span<const Scalar> camera_points, std::span<Scalar> pixels,
+                                            std::span<std::uint8_t> valid, int threads) const {
+    const std::size_t n = valid.size();
+    if (camera_points.size() != 3 * n || pixels.size() != 2 * n) {
+        throw InvalidArgument("project_interleaved: " + std::to_string(n) + " flags need " + std::to_string(3 * n) +
+                              " point coordinates and " + std::to_string(2 * n) + " pixel coordinates, got " +
+                              std::to_string(camera_points.size()) + " and " + std::to_string(pixels.size()));
+    }
+    if (n == 0) return;
+    const Scalar* points = camera_points.data();
+    const kernels::ProjectJob<Scalar> job{camera_, valid_radius_,      points,       points + 1, points + 2,
+                                          pixels.data(), pixels.data() + 1, valid.data()};
+    const auto project = kernels::kernels<Scalar>().project_interleaved;
     parallel_chunks(n, threads, batch::kBlock,
                     [&](std::size_t begin, std::size_t end) { project(job, begin, end); });
 }

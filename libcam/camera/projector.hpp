@@ -9,6 +9,9 @@
 // The result of each point is bit for bit the same for any number of threads, and
 // (in double) the same as PreparedCamera::project_camera_point's.
 
+#include <cstdint>
+#include <span>
+
 #include "libcam/camera/batch.hpp"
 #include "libcam/camera/camera.hpp"
 
@@ -29,6 +32,13 @@ public:
     // they already have the size).
     void project(const Points3<Scalar>& camera_points, Points2<Scalar>& pixels, ValidFlags& valid,
                  int threads = 1) const;
+
+    // The same for interleaved arrays, as numpy's (N, 3) and (N, 2) arrays and a list of
+    // Eigen vectors lie in memory: point i is camera_points[3 i .. 3 i + 2], its pixel
+    // pixels[2 i .. 2 i + 1] and its flag valid[i]. The same bits as project(). Throws
+    // InvalidArgument unless camera_points has 3 n entries, pixels 2 n and valid n.
+    void project_interleaved(std::span<const Scalar> camera_points, std::span<Scalar> pixels,
+                             std::span<std::uint8_t> valid, int threads = 1) const;
 
     const Camera& camera() const { return camera_; }
 

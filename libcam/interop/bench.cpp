@@ -164,6 +164,7 @@ struct Workspace {
     Points3<float> directions_float;
     ValidFlags unprojected_valid;
     Points2<double> pixels_double;  // the rays' pixels
+    std::vector<double> interleaved_pixels;
     Points2<float> pixels_float;
     ValidFlags projected_valid;
     std::vector<Unprojection> unprojections;
@@ -344,6 +345,30 @@ void add_libcam_projection(std::vector<Contender>& out, const Setup& setup, cons
     }
 }
 
+// Projector::project_interleaved: points and pixels as numpy's (N, 3) and (N, 2) arrays.
+template <class Scalar>
+void add_interleaved_projection(std::vector<Contender>& out, const Setup& setup, const Projector<Scalar>& projector,
+                                const std::vector<Scalar>& points, Workspace& work, std::vector<Scalar>& pixels) {
+    const std::size_t n = points.size() / 3;
+    for (const RunOn on : runs_of(setup)) {
+        Contender c{row(setup, "project", "libcam", "interleaved", scalar_name<Scalar>(), on.threads), n, nullptr, nullptr};
+        c.row.simd = simd_target_name(on.instruction_set);
+        c.run = [&, on, n] {
+            const SimdTargetFor forced(on.instruction_set);
+            pixels.resize(2 * n);
+            work.projected_valid.resize(n);
+            projector.project_interleaved(points, pixels, work.projected_valid, on.threads);
+        };
+        c.outcome = [&, n] {
+            std::vector<Vec2> given;
+            for (std::size_t i = 0; i < n; ++i) given.emplace_back(double(pixels[2 * i]), double(pixels[2 * i + 1]));
+            return pixel_outcome(setup.rays.pixels, given,
+                                 std::vector<char>(work.projected_valid.begin(), work.projected_valid.end()));
+        };
+        out.push_back(std::move(c));
+    }
+}
+
 void add_camera_projection(std::vector<Contender>& out, const Setup& setup, const PreparedCamera& camera,
                            Workspace& work) {
     Contender c{row(setup, "project", "libcam", "camera", "double"), setup.rays.points.size(), nullptr, nullptr};
@@ -507,6 +532,7 @@ std::vector<BenchRow> grid_rows(const Setup& setup, const Unprojector<double>& u
     const Points3<float> points_float = as_points3<float>(setup.rays.points);
     const cv::Mat cv_points = as_cv_points3(setup.rays.points);
     const std::vector<double> mrcal_points = packed_points(setup.rays.points);
+    const std::vector<double>& interleaved_points = mrcal_points;  // x, y, z per point, as mrcal takes them
     work.mrcal_unprojected.resize(3 * setup.grid.size());
     work.mrcal_projected.resize(2 * setup.rays.points.size());
     const PreparedCamera prepared(camera);
@@ -522,6 +548,7 @@ std::vector<BenchRow> grid_rows(const Setup& setup, const Unprojector<double>& u
     add_mrcal_unprojection(candidates, setup, mrcal_pixels, work);
     add_libcam_projection(candidates, setup, projector_double, points_double, work, work.pixels_double);
     add_libcam_projection(candidates, setup, projector_float, points_float, work, work.pixels_float);
+    add_interleaved_projection(candidates, setup, projector_double, interleaved_points, work, work.interleaved_pixels);
     add_camera_projection(candidates, setup, prepared, work);
     add_opencv_projection(candidates, setup, cv_points, work);
     add_mrcal_projection(candidates, setup, mrcal_points, work);

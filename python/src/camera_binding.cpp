@@ -56,6 +56,10 @@ namespace {
 // buffers that stay in the core's first-level cache (20 KiB for 512 points), run through
 // the batch engine, and scattered into the output. A multiple of the engine's block.
 constexpr std::size_t kChunk = 512;
+// Points per engine call when it reads and writes the caller's arrays in place: larger,
+// as there is no copy to keep in the cache, only the pixels the NaN pass reads back
+// (4096 points: 64 kB).
+constexpr std::size_t kInPlaceChunk = 4096;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -189,6 +193,21 @@ void with_reader(const PointArray& points, Body&& body) {
     }
 }
 
+// The rows flipped for a bottom-left pixel origin, and NaN where a flag is 0. Each its
+// own loop without a branch per point, and the NaN pass only where a point is invalid.
+template <class T>
+void finish_pixels(const std::uint8_t* flags, T* out, std::size_t n, bool flip, const ImageSize& size) {
+    if (flip) {
+        for (std::size_t i = 0; i < n; ++i) out[2 * i + 1] = flip_row<T>(out[2 * i + 1], size);
+    }
+    std::size_t valid = 0;
+    for (std::size_t i = 0; i < n; ++i) valid += flags[i];
+    if (valid == n) return;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (flags[i] == 0) out[2 * i] = out[2 * i + 1] = T(kNaN);
+    }
+}
+
 template <class T>
 void project_into(const PythonCamera& camera, const PointArray& points, Frame frame, T* pixels_out, bool* mask_out,
                   int threads) {
@@ -197,6 +216,23 @@ void project_into(const PythonCamera& camera, const PointArray& points, Frame fr
     const bool transform = frame == Frame::World && !is_identity(pose);
     const bool flip = camera.pixel_origin() != PixelOrigin::TopLeft;
     const ImageSize size = camera.camera().size;
+    if (!transform && points.coordinate_stride == 1 && (points.point_stride == 3 || points.count <= 1)) {
+        // Camera points as numpy lays out an (N, 3) array: the engine reads them and writes
+        // the (N, 2) pixels and the mask's bytes in place, chunk by chunk (a chunk's pixels
+        // are still in the cache for the NaNs).
+        const T* in = points.data<T>();
+        parallel_chunks(points.count, threads, kChunk, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t first = begin; first < end; first += kInPlaceChunk) {
+                const std::size_t count = std::min(kInPlaceChunk, end - first);
+                // bool and std::uint8_t are one byte each; the engine writes 0 or 1.
+                std::uint8_t* mask = reinterpret_cast<std::uint8_t*>(mask_out + first);
+                projector.project_interleaved({in + 3 * first, 3 * count}, {pixels_out + 2 * first, 2 * count},
+                                              {mask, count}, 1);
+                finish_pixels<T>(mask, pixels_out + 2 * first, count, flip, size);
+            }
+        });
+        return;
+    }
     with_reader<T, 3>(points, [&](const auto read) {
         parallel_chunks(points.count, threads, kChunk, [&](std::size_t begin, std::size_t end) {
             Points3<T> camera_points;
