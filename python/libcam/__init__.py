@@ -27,6 +27,9 @@ from ._libcam import (
     read,
     read_all,
     remap_map,
+    set_simd_target,
+    simd_target,
+    supported_simd_targets,
     verify,
 )
 
@@ -45,5 +48,8 @@ __all__ = [
     "read",
     "read_all",
     "remap_map",
+    "set_simd_target",
+    "simd_target",
+    "supported_simd_targets",
     "verify",
 ]

@@ -163,6 +163,15 @@ def from_fov(
 ) -> Camera:
     """The graphics (look-at) camera as a PINHOLE camera."""
 
+def simd_target() -> Literal["sse2", "avx2", "avx512"]:
+    """The instruction set the batch calls run on (the best this CPU has by default)."""
+
+def supported_simd_targets() -> list[str]:
+    """The instruction sets this build has and this CPU runs, 'sse2' first."""
+
+def set_simd_target(name: Literal["sse2", "avx2", "avx512"] | None) -> None:
+    """Forces the instruction set of later batch calls; None: back to the default."""
+
 class CheckStats(TypedDict):
     count: int
     median_px: float

@@ -6,6 +6,7 @@
 
 #include "arrays.hpp"
 #include "camera_binding.hpp"
+#include "libcam/camera/simd.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/formats.hpp"
@@ -150,6 +151,33 @@ PYBIND11_MODULE(_libcam, m) {
 
     bind_camera(m);
     bind_tools(m);
+
+    m.def(
+        "simd_target", [] { return std::string(simd_target_name(simd_target())); },
+        R"doc(
+The instruction set the batch calls run on: 'sse2', 'avx2' or 'avx512', the best this CPU
+has unless set_simd_target() or the environment variable LIBCAM_SIMD chose another. Every
+set gives the same bits.)doc");
+    m.def(
+        "supported_simd_targets",
+        [] {
+            py::list names;
+            for (SimdTarget target : supported_simd_targets()) names.append(std::string(simd_target_name(target)));
+            return names;
+        },
+        "The instruction sets this build has and this CPU runs, the baseline ('sse2') first.");
+    m.def(
+        "set_simd_target",
+        [](const std::optional<std::string>& name) {
+            if (!name) return set_simd_target(std::nullopt);
+            const std::optional<SimdTarget> target = simd_target_from_name(*name);
+            if (!target) throw InvalidArgument("set_simd_target: expected 'sse2', 'avx2' or 'avx512', got '" + *name + "'");
+            set_simd_target(*target);
+        },
+        py::arg("name"), R"doc(
+Forces the instruction set of every later batch call ('sse2', 'avx2', 'avx512'), to time
+one against another; None goes back to the default. Raises libcam.Error for a name it
+does not know or a set this CPU does not run.)doc");
 
     m.def(
         "read",

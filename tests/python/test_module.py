@@ -552,3 +552,25 @@ def test_type_stubs_match_the_module():
     assert sorted(name for name in libcam.__all__) == sorted(
         [n.name for n in stub.body if isinstance(n, (ast.FunctionDef, ast.ClassDef)) and n.name not in ("ModelInfo", "CheckStats", "VerifyCheck")]
         + ["__version__", "models", "formats"])
+
+
+def test_every_instruction_set_gives_the_same_bits(wide):
+    """The batch kernels on each set this CPU runs: the same pixels and rays, bit for bit."""
+    targets = libcam.supported_simd_targets()
+    assert targets[0] == "sse2"
+    assert libcam.simd_target() in targets
+    rng = np.random.default_rng(7)
+    pixels = rng.uniform(0, 1, (4000, 2)) * np.array(wide.size)
+    results = []
+    try:
+        for target in targets:
+            libcam.set_simd_target(target)
+            assert libcam.simd_target() == target
+            rays, valid = wide.unproject(pixels)
+            projected, projected_valid = wide.project(rays[valid], frame="camera")
+            results.append((rays.tobytes(), valid.tobytes(), projected.tobytes(), projected_valid.tobytes()))
+    finally:
+        libcam.set_simd_target(None)
+    assert all(result == results[0] for result in results)
+    with pytest.raises(libcam.Error, match="avx3"):
+        libcam.set_simd_target("avx3")
