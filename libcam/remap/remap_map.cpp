@@ -45,7 +45,7 @@ RemapMap build_remap_map(const PreparedCamera& target, const PreparedCamera& sou
     map.source_size = source.camera().size;
     const std::size_t width = static_cast<std::size_t>(map.size.width);
     const std::size_t n = width * static_cast<std::size_t>(map.size.height);
-    map.x.resize(n);  // uninitialised: every entry is written once below
+    map.x.resize(n);  // zero-filled (std::vector), then every entry written once below
     map.y.resize(n);
 
     std::atomic<std::size_t> with_source{0};
