@@ -232,15 +232,21 @@ BenchRow row(const Setup& setup, const char* op, const char* library, std::strin
     return r;
 }
 
+// A libcam batch row, run with `on`'s threads and instruction set.
+BenchRow row(const Setup& setup, const char* op, std::string method, const char* scalar, const RunOn& on) {
+    BenchRow r = row(setup, op, "libcam", std::move(method), scalar, on.threads);
+    r.simd = simd_target_name(on.instruction_set);
+    return r;
+}
+
 template <class Scalar>
 void add_libcam_unprojection(std::vector<Contender>& out, const Setup& setup, const Unprojector<Scalar>& unprojector,
                              const Points2<Scalar>& pixels, Workspace& work, Points3<Scalar>& directions) {
     const std::vector<Vec2> given = as_given(pixels);
     for (UnprojectMethod method : kUnprojectMethods) {
         for (const RunOn on : runs_of(setup)) {
-            Contender c{row(setup, "unproject", "libcam", std::string(method_name(method)), scalar_name<Scalar>(), on.threads),
+            Contender c{row(setup, "unproject", std::string(method_name(method)), scalar_name<Scalar>(), on),
                         pixels.size(), nullptr, nullptr};
-            c.row.simd = simd_target_name(on.instruction_set);
             c.run = [&, method, on] {
                 const SimdTargetFor forced(on.instruction_set);
                 unprojector.unproject(pixels, method, directions, work.unprojected_valid, on.threads);
@@ -331,8 +337,7 @@ template <class Scalar>
 void add_libcam_projection(std::vector<Contender>& out, const Setup& setup, const Projector<Scalar>& projector,
                            const Points3<Scalar>& points, Workspace& work, Points2<Scalar>& pixels) {
     for (const RunOn on : runs_of(setup)) {
-        Contender c{row(setup, "project", "libcam", "batch", scalar_name<Scalar>(), on.threads), points.size(), nullptr, nullptr};
-        c.row.simd = simd_target_name(on.instruction_set);
+        Contender c{row(setup, "project", "batch", scalar_name<Scalar>(), on), points.size(), nullptr, nullptr};
         c.run = [&, on] {
             const SimdTargetFor forced(on.instruction_set);
             projector.project(points, pixels, work.projected_valid, on.threads);
@@ -351,8 +356,7 @@ void add_interleaved_projection(std::vector<Contender>& out, const Setup& setup,
                                 const std::vector<Scalar>& points, Workspace& work, std::vector<Scalar>& pixels) {
     const std::size_t n = points.size() / 3;
     for (const RunOn on : runs_of(setup)) {
-        Contender c{row(setup, "project", "libcam", "interleaved", scalar_name<Scalar>(), on.threads), n, nullptr, nullptr};
-        c.row.simd = simd_target_name(on.instruction_set);
+        Contender c{row(setup, "project", "interleaved", scalar_name<Scalar>(), on), n, nullptr, nullptr};
         c.run = [&, on, n] {
             const SimdTargetFor forced(on.instruction_set);
             pixels.resize(2 * n);
@@ -433,11 +437,10 @@ void add_full_frame(std::vector<Contender>& out, const Setup& setup, const Unpro
     for (UnprojectMethod method : kUnprojectMethods) {
         if (closed_form && method != UnprojectMethod::Exact) continue;  // one closed form for every method
         for (const RunOn on : runs_of(setup)) {
-            Contender c{row(setup, "rays_full_frame", "libcam", closed_form ? "closed-form" : std::string(method_name(method)),
-                            scalar_name<Scalar>(), on.threads),
+            Contender c{row(setup, "rays_full_frame", closed_form ? "closed-form" : std::string(method_name(method)),
+                            scalar_name<Scalar>(), on),
                         n, nullptr, nullptr};
             c.row.model = model;
-            c.row.simd = simd_target_name(on.instruction_set);
             c.run = [&, method, on] {
                 const SimdTargetFor forced(on.instruction_set);
                 unprojector.unproject_image(method, directions, valid, on.threads);
@@ -619,8 +622,7 @@ void add_maps(std::vector<Contender>& out, const Setup& setup, const PreparedCam
         for (UnprojectMethod method : {UnprojectMethod::Exact, UnprojectMethod::Fast}) {
             for (const RunOn on : runs_of(setup)) {
                 const std::string name = std::string(inverse ? "inverse-" : "") + std::string(method_name(method));
-                Contender c{row(setup, "map", "libcam", name, "double", on.threads), n, nullptr, nullptr};
-                c.row.simd = simd_target_name(on.instruction_set);
+                Contender c{row(setup, "map", name, "double", on), n, nullptr, nullptr};
                 c.run = [&, method, on] {
                     const SimdTargetFor forced(on.instruction_set);
                     RemapOptions options;

@@ -128,16 +128,26 @@ void deinterleave3(const T* in, T* x, T* y, T* z, std::size_t n) {
     for (; i < n; ++i) x[i] = in[3 * i], y[i] = in[3 * i + 1], z[i] = in[3 * i + 2];
 }
 
-// The mask from the engine's flags (1 or 0, as bool's bytes), and NaN in every
-// coordinate of an invalid entry (which the engine leaves at 0).
+// NaN in the K values of every entry whose flag is 0: a sum first (a loop without a
+// branch per entry), and the pass that writes only where an entry is invalid.
 template <class T, int K>
-void mask_and_nan(const std::uint8_t* flags, bool* mask, T* out, std::size_t n) {
-    std::memcpy(mask, flags, n);
+void nan_where_invalid(const std::uint8_t* flags, T* out, std::size_t n) {
+    std::size_t valid = 0;
+    for (std::size_t i = 0; i < n; ++i) valid += flags[i];
+    if (valid == n) return;
     for (std::size_t i = 0; i < n; ++i) {
         if (flags[i] == 0) {
             for (int c = 0; c < K; ++c) out[K * i + c] = T(kNaN);
         }
     }
+}
+
+// The mask from the engine's flags (1 or 0, as bool's bytes), and NaN in every
+// coordinate of an invalid entry (which the engine leaves at 0).
+template <class T, int K>
+void mask_and_nan(const std::uint8_t* flags, bool* mask, T* out, std::size_t n) {
+    std::memcpy(mask, flags, n);
+    nan_where_invalid<T, K>(flags, out, n);
 }
 
 enum class Frame { Camera, World };
@@ -182,30 +192,30 @@ struct Reader {
     }
 };
 
+// Whether an array of K coordinates per point is C-ordered (..., K): numpy's own layout.
+template <int K>
+bool packed(const PointArray& points) {
+    return points.coordinate_stride == 1 && (points.point_stride == K || points.count <= 1);
+}
+
 // Calls body(reader) with the reader for the array's layout.
 template <class T, int K, class Body>
 void with_reader(const PointArray& points, Body&& body) {
     const T* data = points.data<T>();
-    if (points.coordinate_stride == 1 && (points.point_stride == K || points.count <= 1)) {
+    if (packed<K>(points)) {
         body(Reader<T, K, true>{data, K, 1});
     } else {
         body(Reader<T, K, false>{data, points.point_stride, points.coordinate_stride});
     }
 }
 
-// The rows flipped for a bottom-left pixel origin, and NaN where a flag is 0. Each its
-// own loop without a branch per point, and the NaN pass only where a point is invalid.
+// The rows flipped for a bottom-left pixel origin, and NaN where a flag is 0.
 template <class T>
 void finish_pixels(const std::uint8_t* flags, T* out, std::size_t n, bool flip, const ImageSize& size) {
     if (flip) {
         for (std::size_t i = 0; i < n; ++i) out[2 * i + 1] = flip_row<T>(out[2 * i + 1], size);
     }
-    std::size_t valid = 0;
-    for (std::size_t i = 0; i < n; ++i) valid += flags[i];
-    if (valid == n) return;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (flags[i] == 0) out[2 * i] = out[2 * i + 1] = T(kNaN);
-    }
+    nan_where_invalid<T, 2>(flags, out, n);
 }
 
 template <class T>
@@ -216,7 +226,7 @@ void project_into(const PythonCamera& camera, const PointArray& points, Frame fr
     const bool transform = frame == Frame::World && !is_identity(pose);
     const bool flip = camera.pixel_origin() != PixelOrigin::TopLeft;
     const ImageSize size = camera.camera().size;
-    if (!transform && points.coordinate_stride == 1 && (points.point_stride == 3 || points.count <= 1)) {
+    if (!transform && packed<3>(points)) {
         // Camera points as numpy lays out an (N, 3) array: the engine reads them and writes
         // the (N, 2) pixels and the mask's bytes in place, chunk by chunk (a chunk's pixels
         // are still in the cache for the NaNs).
