@@ -104,7 +104,8 @@ std::vector<RenderCase> render_cases() {
         {"pinhole, portrait", centred({480, 640}, 450, 450, pinhole), 0.05},
         {"pinhole, fx != fy", centred({640, 480}, 500, 560, pinhole), 0.05},
         {"pinhole, principal point 10% off centre", posed({640, 480}, {520, 520, 383.5, 191.5, 0}, pinhole), 0.05},
-        {"pinhole, 4000x3000", centred({4000, 3000}, 3100, 3100, pinhole), 0.05, 32},
+        // 16 samples: 0.035 px measured on this large image (Cycles is deterministic).
+        {"pinhole, 4000x3000", centred({4000, 3000}, 3100, 3100, pinhole), 0.05, 16},
         // FISHEYE_EQUIDISTANT: theta = r fov / 2, r = 1 at the image's edges.
         {"equidistant fisheye, 180 degrees", centred({600, 600}, 600 / pi, 600 / pi, equidistant), 0.1},
         {"equidistant fisheye, 200 degrees", centred({600, 600}, 600 / (200 * pi / 180), 600 / (200 * pi / 180), equidistant),

@@ -44,62 +44,76 @@ bool needs_second_pass(Scalar x, Scalar y, Scalar z, Scalar flag) {
     }
 }
 
-// How a job's points and pixels lie in memory (kernels.hpp's ProjectJob): the distance
-// between consecutive points' coordinates and pixels' coordinates, known at compile time
-// so that the interleaved loads and stores become vector shuffles.
+// How a job's points and pixels lie in memory (kernels.hpp's ProjectJob): separate arrays,
+// or numpy's (N, 3) points and (N, 2) pixels.
 enum class Layout { Arrays, Interleaved };
-
-template <Layout layout>
-inline constexpr std::size_t kPointStep = layout == Layout::Interleaved ? 3 : 1;
-template <Layout layout>
-inline constexpr std::size_t kPixelStep = layout == Layout::Interleaved ? 2 : 1;
 
 // Those points again, one by one, in Scalar (the same bits Lane gives where both
 // apply), scaled into [1, 2) first (point_scale.hpp). Rare: out of line, where it does not
 // take the inlining budget of the vectorised loop.
-template <class Model, Layout layout, class Scalar>
+template <class Model, class Scalar>
 [[gnu::noinline]] void project_second_pass(const Intrinsics& intrinsics, const ProjectorLens<Model, Scalar>& lens,
                                            const std::array<const Scalar*, 3>& points, std::size_t count,
                                            Scalar* pixel_x, Scalar* pixel_y, Scalar* flags) {
     using Plain = typename ProjectorLens<Model, Scalar>::Plain;
-    constexpr std::size_t s = kPointStep<layout>, p = kPixelStep<layout>;
     const auto [x, y, z] = points;
     for (std::size_t i = 0; i < count; ++i) {
-        if (!needs_second_pass<Model>(x[i * s], y[i * s], z[i * s], flags[i])) continue;
-        const Vec3T<Scalar> scaled = scaled_to_unit_range<Scalar>(Vec3T<Scalar>(x[i * s], y[i * s], z[i * s]));
-        flags[i] = batch::flag<Scalar>(
-            project_point<Plain>(intrinsics, lens.plain, scaled, pixel_x[i * p], pixel_y[i * p]));
+        if (!needs_second_pass<Model>(x[i], y[i], z[i], flags[i])) continue;
+        const Vec3T<Scalar> scaled = scaled_to_unit_range<Scalar>(Vec3T<Scalar>(x[i], y[i], z[i]));
+        flags[i] = batch::flag<Scalar>(project_point<Plain>(intrinsics, lens.plain, scaled, pixel_x[i], pixel_y[i]));
     }
 }
 
-// Points [begin, end) through Model (in Lane<Scalar>), block by block.
+// One block of at most kBlock points, each coordinate its own array. No output overlaps
+// an input or another output (restrict): without that promise GCC must check every pair
+// before it vectorises, and gives up past ten pairs.
+template <class Model, class Scalar>
+[[gnu::always_inline]] inline void project_block(const Intrinsics& intrinsics, const typename Model::Parameters& lens,
+                                                 const ProjectorLens<Model, Scalar>& camera_lens,
+                                                 const Scalar* __restrict x, const Scalar* __restrict y,
+                                                 const Scalar* __restrict z, std::size_t count,
+                                                 Scalar* __restrict pixel_x, Scalar* __restrict pixel_y,
+                                                 Scalar* __restrict flags) {
+    using Vec3L = typename Model::Vec3T;
+    for (std::size_t i = 0; i < count; ++i) {
+        const bool ok = project_point<Model>(intrinsics, lens, Vec3L(x[i], y[i], z[i]), pixel_x[i], pixel_y[i]);
+        flags[i] = batch::flag<Scalar>(ok);
+    }
+    int again = 0;  // its own loop: an int sum, which vectorises
+    for (std::size_t i = 0; i < count; ++i) again += needs_second_pass<Model>(x[i], y[i], z[i], flags[i]) ? 1 : 0;
+    if (again > 0) project_second_pass<Model>(intrinsics, camera_lens, {x, y, z}, count, pixel_x, pixel_y, flags);
+}
+
+// Points [begin, end) through Model (in Lane<Scalar>), block by block. Interleaved points
+// are copied into arrays first and the pixels back after: loops that do nothing but
+// shuffle, which run at the speed of memory, where the model's loop reading stride-3 data
+// vectorised poorly (1.5x the arrays' time).
 template <class Model, Layout layout, class Scalar>
 void project_range(const Intrinsics& camera_intrinsics, const ProjectorLens<Model, Scalar>& camera_lens,
                    const ProjectJob<Scalar>& job, std::size_t begin, std::size_t end) {
-    using Vec3L = typename Model::Vec3T;
-    constexpr std::size_t s = kPointStep<layout>, p = kPixelStep<layout>;
     // Local copies, which no store to the outputs can alias: see batch_kernels.hpp.
     const Intrinsics intrinsics = camera_intrinsics;
     const typename Model::Parameters lens = camera_lens.lanes;
     Scalar flags[kBlock];
     for (std::size_t first = begin; first < end; first += kBlock) {
         const std::size_t count = std::min(kBlock, end - first);
-        const Scalar* x = job.x + first * s;
-        const Scalar* y = job.y + first * s;
-        const Scalar* z = job.z + first * s;
-        Scalar* pixel_x = job.pixel_x + first * p;
-        Scalar* pixel_y = job.pixel_y + first * p;
-        for (std::size_t i = 0; i < count; ++i) {
-            const bool ok = project_point<Model>(intrinsics, lens, Vec3L(x[i * s], y[i * s], z[i * s]), pixel_x[i * p],
-                                                 pixel_y[i * p]);
-            flags[i] = batch::flag<Scalar>(ok);
-        }
-        int again = 0;  // its own loop: an int sum, which vectorises
-        for (std::size_t i = 0; i < count; ++i) {
-            again += needs_second_pass<Model>(x[i * s], y[i * s], z[i * s], flags[i]) ? 1 : 0;
-        }
-        if (again > 0) {
-            project_second_pass<Model, layout>(intrinsics, camera_lens, {x, y, z}, count, pixel_x, pixel_y, flags);
+        if constexpr (layout == Layout::Arrays) {
+            project_block<Model>(intrinsics, lens, camera_lens, job.x + first, job.y + first, job.z + first, count,
+                                 job.pixel_x + first, job.pixel_y + first, flags);
+        } else {
+            alignas(64) Scalar x[kBlock], y[kBlock], z[kBlock], pixel_x[kBlock], pixel_y[kBlock];
+            const Scalar* points = job.x + 3 * first;  // job.x, y, z: the first point's x, y, z
+            for (std::size_t i = 0; i < count; ++i) {
+                x[i] = points[3 * i];
+                y[i] = points[3 * i + 1];
+                z[i] = points[3 * i + 2];
+            }
+            project_block<Model>(intrinsics, lens, camera_lens, x, y, z, count, pixel_x, pixel_y, flags);
+            Scalar* pixels = job.pixel_x + 2 * first;
+            for (std::size_t i = 0; i < count; ++i) {
+                pixels[2 * i] = pixel_x[i];
+                pixels[2 * i + 1] = pixel_y[i];
+            }
         }
         batch::store_flags<Scalar>({flags, count}, job.valid + first);
     }

@@ -62,6 +62,9 @@ def render_settings(scene):
     scene.cycles.use_denoising = False
     scene.cycles.max_bounces = 0
     scene.cycles.use_adaptive_sampling = False
+    # A one-pixel box filter: each pixel averages its own area, so a sphere's edge pixels
+    # hold its coverage with less noise than the default wide filter at the same samples.
+    scene.cycles.pixel_filter_type = "BOX"
     scene.view_settings.view_transform = "Standard"
     scene.view_settings.look = "None"
     scene.render.image_settings.file_format = "OPEN_EXR"
