@@ -102,6 +102,16 @@ def main():
     add("project", "libcam", "... out=(pixels, mask)",
         median_seconds(lambda: camera.project(points, frame="camera", out=(pixels_out, mask_out))),
         cpp.get(("project", "batch")))
+    # The same points as the rows of a (3, N) array (its .T: each coordinate's values
+    # together, the layout the C++ batch reads): read in place, the pixels written as the
+    # rows of a (2, N) array.
+    columns_in = np.ascontiguousarray(points.T).T
+    columns_out = np.empty((2, n)).T
+    add("project", "libcam", "cam.project(points_3xN.T, frame='camera')",
+        median_seconds(lambda: camera.project(columns_in, frame="camera")), cpp.get(("project", "batch")))
+    add("project", "libcam", "... out=(pixels_2xN.T, mask)",
+        median_seconds(lambda: camera.project(columns_in, frame="camera", out=(columns_out, mask_out))),
+        cpp.get(("project", "batch")))
     if opencv == "cv2.projectPoints":
         add("project", "cv2", "cv2.projectPoints", median_seconds(lambda: cv2.projectPoints(points, zero, zero, K, dist)))
     if mrcal_model:

@@ -14,6 +14,7 @@
 
 #include "extremes_lens.hpp"
 #include "libcam/error.hpp"
+#include "libcam/lens/arctangent.hpp"
 
 using namespace libcam;
 using namespace libcam::test;
@@ -178,6 +179,55 @@ std::vector<Row> projection_rows(const std::string& extreme, const ProjectionWor
          static_cast<double>(worst.wrong_flags[0]), static_cast<double>(worst.wrong_flags[1]), 0, 0,
          "valid only in the domain and if finite; an m or r^2 past the type's range is flagged", ""},
     };
+}
+
+// angle_from_axis (lens/arctangent.hpp), the fisheye models' theta, against atan2 in Quad:
+// every octant (the eight sign and order cases of y, |x|), the reduction's edges (t near
+// 0.66 and 1), the axes and diagonals, and tiny and huge ratios.
+template <class Scalar>
+Worst angle_from_axis_worst() {
+    Worst worst;
+    const auto check = [&](double y_value, double x_value) {
+        const Scalar y = static_cast<Scalar>(y_value), x = static_cast<Scalar>(x_value);
+        const Quad reference = atan2(Quad(y), Quad(x));
+        const auto where = [&] {
+            std::ostringstream out;
+            out.precision(17);
+            out << "atan2(" << y << ", " << x << ")";
+            return out.str();
+        };
+        worst.update(ulps(angle_from_axis(y, x), reference), where);
+        worst.update(ulps(lane_value(angle_from_axis(Lane<Scalar>(y), Lane<Scalar>(x))), reference), where);
+    };
+    std::uint64_t state = 12345;
+    const auto uniform = [&] {  // in [0, 1): a fixed sequence (splitmix64)
+        state += 0x9e3779b97f4a7c15ULL;
+        std::uint64_t z = state;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
+    };
+    for (int i = 0; i < 200000; ++i) {
+        const double scale = std::ldexp(1.0, static_cast<int>(uniform() * 120) - 60);
+        const double ratio = i % 4 == 0   ? std::ldexp(uniform(), -static_cast<int>(uniform() * 60))  // near an axis
+                             : i % 4 == 1 ? 0.6 + 0.1 * uniform()  // at t = 0.66
+                             : i % 4 == 2 ? 0.45 + 0.2 * uniform()  // below it, where a = t is largest
+                                          : uniform();
+        const double a = scale, b = scale * ratio;
+        for (const double x : {a, -a, b, -b}) check(x == a || x == -a ? b : a, x);
+    }
+    for (const double x : {1.0, -1.0, 0.0, -0.0, 1e-300, -1e-300}) check(1.0, x);
+    for (const double y : {0.0, 1e-300, 1.0}) check(y, 1.0), check(y, -1.0);
+    return worst;
+}
+
+std::vector<Row> angle_rows() {
+    const Worst in_double = angle_from_axis_worst<double>(), in_float = angle_from_axis_worst<float>();
+    return {{"angle_from_axis(y, x) = atan2(y, x) for y >= 0: 8e5 points over every octant at 2^-60..2^60, t = "
+             "0.45..0.7, near the axes, the axes and diagonals; and in Lane",
+             "angle vs reference [ulp]", in_double.value, in_float.value, 2, 2,
+             "Cephes' atan: t = min / max, past t = 0.66 pi/4 + atan((t - 1) / (t + 1)); k pi/4 in two parts",
+             in_double.where}};
 }
 
 std::vector<Row> fisheye_axis_rows() {
@@ -438,6 +488,7 @@ TEST_CASE("extremes: the real wide lens") { check_rows(wide_lens_rows()); }
 TEST_CASE("extremes: the fold-over radius of each OpenCV model and FISHEYE, just inside and just outside") {
     check_rows(fold_rows());
 }
+TEST_CASE("extremes: the fisheye models' angle from the axis against atan2") { check_rows(angle_rows()); }
 TEST_CASE("extremes: FISHEYE at theta -> 0") { check_rows(fisheye_axis_rows()); }
 TEST_CASE("extremes: FISHEYE near 90 and 180 degrees") { check_rows(fisheye_wide_rows()); }
 TEST_CASE("extremes: points at z -> 0+ and behind the camera") { check_rows(camera_plane_rows()); }
@@ -449,7 +500,7 @@ namespace libcam::test {
 
 std::vector<Row> lens_rows() {
     std::vector<Row> rows;
-    for (const auto& group : {large_image_rows, wide_lens_rows, fold_rows, fisheye_axis_rows, fisheye_wide_rows,
+    for (const auto& group : {large_image_rows, wide_lens_rows, fold_rows, angle_rows, fisheye_axis_rows, fisheye_wide_rows,
                               camera_plane_rows, coefficient_rows, scale_rows, sweep_rows}) {
         const std::vector<Row> more = group();
         rows.insert(rows.end(), more.begin(), more.end());

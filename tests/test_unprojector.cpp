@@ -446,7 +446,8 @@ TEST_CASE("The instruction sets: names, the default, and a forced set this build
     }
 }
 
-TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) gives the arrays' bits, on every lens of the test set",
+TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) and projection on the caller's (3, N) rows give "
+                   "the arrays' bits, on every lens of the test set",
                    "[engine]", float, double) {
     using Scalar = TestType;
     for (const LensCase& lens : all_lens_cases()) {
@@ -475,8 +476,29 @@ TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) gives the 
             CHECK(same_bits(unpacked, pixels));
             CHECK(same_bits(interleaved_valid, valid));
         }
+        // One buffer holding x, y, z as the rows of a (3, N) array; the pixels into the rows
+        // of a (2, N) one.
+        std::vector<Scalar> rows(points.x);
+        rows.insert(rows.end(), points.y.begin(), points.y.end());
+        rows.insert(rows.end(), points.z.begin(), points.z.end());
+        std::vector<Scalar> pixel_rows(2 * n, Scalar(-7));
+        const std::span<const Scalar> in(rows);
+        const std::span<Scalar> out(pixel_rows);
+        ValidFlags row_valid(n, 7);
+        projector.project(in.subspan(0, n), in.subspan(n, n), in.subspan(2 * n, n), out.subspan(0, n), out.subspan(n, n),
+                          row_valid, 2);
+        Points2<Scalar> from_rows;
+        from_rows.x.assign(pixel_rows.begin(), pixel_rows.begin() + static_cast<std::ptrdiff_t>(n));
+        from_rows.y.assign(pixel_rows.begin() + static_cast<std::ptrdiff_t>(n), pixel_rows.end());
+        CHECK(same_bits(from_rows, pixels));
+        CHECK(same_bits(row_valid, valid));
     }
     const Projector<Scalar> projector(wide_reference_camera());
+    std::vector<Scalar> five(5);
+    std::vector<std::uint8_t> flags(5);
+    const std::span<const Scalar> coordinates(five);
+    CHECK_THROWS_WITH(projector.project(coordinates, coordinates, coordinates.first(4), five, five, flags),
+                      Catch::Contains("different lengths (5 and 4)"));
     std::vector<Scalar> three(3), two(2), four(4);
     ValidFlags one(1);
     CHECK_THROWS_AS(projector.project_interleaved(three, four, one), InvalidArgument);

@@ -22,9 +22,19 @@ void Projector<Scalar>::project(const Points3<Scalar>& camera_points, Points2<Sc
     batch::require_same_sizes("camera_points", n, {camera_points.y.size(), camera_points.z.size()});
     pixels.resize(n);
     valid.resize(n);
-    const kernels::ProjectJob<Scalar> job{camera_,          valid_radius_,     camera_points.x.data(),
-                                          camera_points.y.data(), camera_points.z.data(), pixels.x.data(),
-                                          pixels.y.data(),  valid.data()};
+    project(camera_points.x, camera_points.y, camera_points.z, pixels.x, pixels.y, valid, threads);
+}
+
+template <class Scalar>
+void Projector<Scalar>::project(std::span<const Scalar> x, std::span<const Scalar> y, std::span<const Scalar> z,
+                                std::span<Scalar> pixel_x, std::span<Scalar> pixel_y, std::span<std::uint8_t> valid,
+                                int threads) const {
+    const std::size_t n = valid.size();
+    batch::require_same_sizes("project: the points' and pixels' arrays and the flags", n,
+                              {x.size(), y.size(), z.size(), pixel_x.size(), pixel_y.size()});
+    if (n == 0) return;
+    const kernels::ProjectJob<Scalar> job{camera_,        valid_radius_,  x.data(),     y.data(),
+                                          z.data(),       pixel_x.data(), pixel_y.data(), valid.data()};
     const auto project = kernels::kernels<Scalar>().project;
     parallel_chunks(n, threads, batch::kBlock,
                     [&](std::size_t begin, std::size_t end) { project(job, begin, end); });

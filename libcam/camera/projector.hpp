@@ -33,6 +33,14 @@ public:
     void project(const Points3<Scalar>& camera_points, Points2<Scalar>& pixels, ValidFlags& valid,
                  int threads = 1) const;
 
+    // The same on the caller's memory, without copies: point i is (x[i], y[i], z[i]), its
+    // pixel (pixel_x[i], pixel_y[i]) and its flag valid[i], as in a (3, N) array's rows or
+    // the columns of a Fortran-ordered (N, 3) one. Throws InvalidArgument unless every
+    // span has valid's length n.
+    void project(std::span<const Scalar> x, std::span<const Scalar> y, std::span<const Scalar> z,
+                 std::span<Scalar> pixel_x, std::span<Scalar> pixel_y, std::span<std::uint8_t> valid,
+                 int threads = 1) const;
+
     // The same for interleaved arrays, as numpy's (N, 3) and (N, 2) arrays and a list of
     // Eigen vectors lie in memory: point i is camera_points[3 i .. 3 i + 2], its pixel
     // pixels[2 i .. 2 i + 1] and its flag valid[i]. The same bits as project(). Throws

@@ -2,6 +2,7 @@
 // FISHEYE: OpenCV's fisheye model (cv::fisheye, Kannala-Brandt) with k1..k4:
 //
 //   theta   = the angle between the point and the optical axis = atan2(|(X, Y)|, Z)
+//             (arctangent.hpp's, which the batch loops vectorise)
 //   theta_d = theta (1 + k1 theta^2 + k2 theta^4 + k3 theta^6 + k4 theta^8)
 //   m       = theta_d (X, Y) / |(X, Y)|
 //
@@ -24,6 +25,7 @@
 #include <numbers>
 #include <span>
 
+#include "libcam/lens/arctangent.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 #include "libcam/lens/undistort.hpp"
@@ -67,11 +69,11 @@ struct FisheyeLens {
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         Vec2T u;
         Jacobian23 d_u_d_point;
-        if (!equidistant_point(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
+        const bool defined = equidistant_point(point, u, pass_request<PointJacobianPtr>(&d_u_d_point));
         Jacobian22 d_m_d_u;
-        if (!distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients)) return false;
+        const bool in_domain = distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
         if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
-        return true;
+        return defined & in_domain;  // &, not &&: no branch
     }
 
     // A ray through m (unit length), by the shared iterative solver.
@@ -92,39 +94,40 @@ struct FisheyeLens {
         return Vec3T(u.x() * scale, u.y() * scale, cos(theta));
     }
 
-    // u = theta (X, Y) / |(X, Y)|; false for the origin and the backward axis, where the
-    // direction or the angle is undefined.
+    // u = theta (X, Y) / |(X, Y)|; false, and u = 0, for the origin and the backward axis,
+    // where the direction or the angle is undefined. Without branches: both forms of
+    // theta / rho are worked out and one chosen, so the batch loops vectorise it.
     template <class PointJacobianPtr = std::nullptr_t>
     static bool equidistant_point(const Vec3T& point, Vec2T& u, PointJacobianPtr d_u_d_point = nullptr) {
-        using std::atan2;
         using std::sqrt;
         const Scalar x = point.x(), y = point.y(), z = point.z();
         const Scalar rho2 = x * x + y * y;
-        if (!(rho2 > Scalar(0)) && !(z > Scalar(0))) return false;
         // u = g (x, y) with g = theta / rho; dg/dx = h x, dg/dy = h y, dg/dz = -1 / |p|^2.
-        Scalar g, h;
-        constexpr double kSeriesBelow = 1e-3;  // t = rho / z; the series' next terms are below 1e-18
-        if (z > Scalar(0) && rho2 < Scalar(kSeriesBelow * kSeriesBelow) * z * z) {
-            // atan(t)/t = 1 - t^2/3 + t^4/5 - t^6/7;  (t/(1+t^2) - atan t)/t^3 = -2/3 + 4t^2/5 - 6t^4/7
-            const Scalar t2 = rho2 / (z * z), inv_z = Scalar(1) / z;
-            g = (Scalar(1) - t2 * (Scalar(1) / Scalar(3) - t2 * (Scalar(1) / Scalar(5) - t2 / Scalar(7)))) * inv_z;
-            h = (Scalar(-2) / Scalar(3) + t2 * (Scalar(4) / Scalar(5) - t2 * Scalar(6) / Scalar(7))) * inv_z * inv_z * inv_z;
-        } else {
-            // Near the backward axis, where rho^2 is no longer a normal number (within
-            // ~1e-154 rad of it in double, 1e-19 rad in float, for |p| ~ 1), rho would carry
-            // few digits: the point is flagged, as STEREOGRAPHIC flags it.
-            if (!(rho2 >= smallest_normal<Scalar>())) return false;
-            const Scalar rho = sqrt(rho2), theta = atan2(rho, z);
-            g = theta / rho;
-            h = (z * rho / (rho2 + z * z) - theta) / (rho2 * rho);
-        }
+        // Near the axis in front (t = rho / z below 1e-3) g and h by their series in t, whose
+        // next terms are below 1e-18:
+        //   atan(t)/t = 1 - t^2/3 + t^4/5 - t^6/7;  (t/(1+t^2) - atan t)/t^3 = -2/3 + 4t^2/5 - 6t^4/7
+        constexpr double kSeriesBelow = 1e-3;
+        const bool series = (z > Scalar(0)) & (rho2 < Scalar(kSeriesBelow * kSeriesBelow) * z * z);
+        const Scalar t2 = rho2 / (z * z), inv_z = Scalar(1) / z;
+        const Scalar series_g =
+            (Scalar(1) - t2 * (Scalar(1) / Scalar(3) - t2 * (Scalar(1) / Scalar(5) - t2 / Scalar(7)))) * inv_z;
+        // Elsewhere theta = atan2(rho, z). Near the backward axis, where rho^2 is no longer a
+        // normal number (within ~1e-154 rad of it in double, 1e-19 rad in float, for
+        // |p| ~ 1), rho would carry few digits: the point is flagged, as STEREOGRAPHIC
+        // flags it.
+        const bool defined = series | (rho2 >= smallest_normal<Scalar>());
+        const Scalar rho = sqrt(rho2), theta = angle_from_axis(rho, z);
+        const Scalar g = defined ? (series ? series_g : theta / rho) : Scalar(0);
         u = Vec2T(g * x, g * y);
         if constexpr (is_requested<PointJacobianPtr>) {
+            const Scalar series_h =
+                (Scalar(-2) / Scalar(3) + t2 * (Scalar(4) / Scalar(5) - t2 * Scalar(6) / Scalar(7))) * inv_z * inv_z * inv_z;
+            const Scalar h = series ? series_h : (z * rho / (rho2 + z * z) - theta) / (rho2 * rho);
             const Scalar inv_n2 = Scalar(1) / (rho2 + z * z);
             *d_u_d_point << g + h * x * x, h * x * y, -x * inv_n2,  //
                 h * x * y, g + h * y * y, -y * inv_n2;
         }
-        return true;
+        return defined;
     }
 
     // m = D(theta^2) u for the equidistant point u (|u| = theta); false outside the
@@ -180,11 +183,11 @@ struct OnEquidistantPoint {
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         Vec2T u;
         Eigen::Matrix<Scalar, 2, 3> d_u_d_point;
-        if (!FisheyeLens<Scalar>::equidistant_point(point, u, pass_request<PointJacobianPtr>(&d_u_d_point))) return false;
+        const bool defined = FisheyeLens<Scalar>::equidistant_point(point, u, pass_request<PointJacobianPtr>(&d_u_d_point));
         Eigen::Matrix<Scalar, 2, 2> d_m_d_u;
         const bool in_domain = Model::distort(lens, u, m, pass_request<PointJacobianPtr>(&d_m_d_u), d_m_d_coefficients);
         if constexpr (is_requested<PointJacobianPtr>) *d_m_d_point = d_m_d_u * d_u_d_point;
-        return in_domain & all_finite(m);  // &, not &&: no branch
+        return defined & in_domain & all_finite(m);  // &, not &&: no branch
     }
 
     // A ray through m (unit length), by the shared iterative solver.

@@ -64,7 +64,9 @@ class Camera:
         threads: int = 1,
         out: tuple[FloatArray, BoolArray] | None = None,
     ) -> tuple[FloatArray, BoolArray]:
-        """Pixels (..., 2) of points (..., 3) and the valid mask (...); invalid (not imaged by the lens): NaN, False."""
+        """Pixels (..., 2) of points (..., 3) and the valid mask (...); invalid (not imaged by the lens): NaN, False.
+
+        Points whose coordinates each lie together (a (3, N) array's .T) give pixels laid out the same way."""
     def unproject(
         self,
         pixels: ArrayLike,

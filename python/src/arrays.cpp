@@ -50,6 +50,17 @@ std::string shape_text(const std::vector<py::ssize_t>& leading_shape, int k) {
     return out.str();
 }
 
+bool column_layout(const py::array& array, std::size_t count) {
+    const py::ssize_t ndim = array.ndim(), item = array.itemsize();
+    if (ndim < 1 || array.strides(ndim - 1) != item * static_cast<py::ssize_t>(count)) return false;
+    py::ssize_t step = item;
+    for (py::ssize_t d = ndim - 2; d >= 0; --d) {
+        if (array.shape(d) > 1 && array.strides(d) != step) return false;  // an axis of one has any stride
+        step *= array.shape(d);
+    }
+    return true;
+}
+
 PointArray point_array(const py::handle& value, const char* name, int k) {
     const std::string expected_shape = "shape (..., " + std::to_string(k) + ")";
     py::array array;

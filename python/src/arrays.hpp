@@ -39,6 +39,25 @@ struct PointArray {
 // `name`, the expected shape and what was given, for anything else.
 PointArray point_array(const py::handle& value, const char* name, int k);
 
+// A new array of shape leading_shape + (k,) whose coordinates each lie together, as the
+// rows of a C-ordered (k,) + leading_shape array (numpy.moveaxis of one to the end):
+// coordinate c of entry i at data()[c * count + i].
+template <class T>
+py::array_t<T> new_column_array(const std::vector<py::ssize_t>& leading_shape, int k) {
+    std::vector<py::ssize_t> shape = leading_shape, strides(leading_shape.size() + 1);
+    py::ssize_t step = sizeof(T);
+    for (std::size_t d = leading_shape.size(); d-- > 0;) {
+        strides[d] = step;
+        step *= leading_shape[d];
+    }
+    shape.push_back(k);
+    strides.back() = step;
+    return py::array_t<T>(shape, strides);
+}
+
+// Whether an array of shape leading_shape + (k,) lies as new_column_array's does.
+bool column_layout(const py::array& array, std::size_t count);
+
 // "(a, b, k)" for an array of shape leading_shape + (k,) (no last axis when k == 0).
 std::string shape_text(const std::vector<py::ssize_t>& leading_shape, int k);
 

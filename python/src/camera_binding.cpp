@@ -128,16 +128,19 @@ void deinterleave3(const T* in, T* x, T* y, T* z, std::size_t n) {
     for (; i < n; ++i) x[i] = in[3 * i], y[i] = in[3 * i + 1], z[i] = in[3 * i + 2];
 }
 
-// NaN in the K values of every entry whose flag is 0: a sum first (a loop without a
-// branch per entry), and the pass that writes only where an entry is invalid.
+// NaN in the K values of every entry whose flag is 0, value c of entry i at
+// out[i * entry_step + c * value_step] (numpy's own layout by default). The first invalid
+// entry is found by memchr (libc's, vectorised: a byte loop here, which GCC leaves scalar
+// at -O2, cost a quarter of the projection's time), and the pass that writes runs from
+// there only.
 template <class T, int K>
-void nan_where_invalid(const std::uint8_t* flags, T* out, std::size_t n) {
-    std::size_t valid = 0;
-    for (std::size_t i = 0; i < n; ++i) valid += flags[i];
-    if (valid == n) return;
-    for (std::size_t i = 0; i < n; ++i) {
+void nan_where_invalid(const std::uint8_t* flags, T* out, std::size_t n, std::size_t entry_step = K,
+                       std::size_t value_step = 1) {
+    const void* first_invalid = n > 0 ? std::memchr(flags, 0, n) : nullptr;
+    if (first_invalid == nullptr) return;
+    for (std::size_t i = static_cast<std::size_t>(static_cast<const std::uint8_t*>(first_invalid) - flags); i < n; ++i) {
         if (flags[i] == 0) {
-            for (int c = 0; c < K; ++c) out[K * i + c] = T(kNaN);
+            for (int c = 0; c < K; ++c) out[i * entry_step + c * value_step] = T(kNaN);
         }
     }
 }
@@ -198,6 +201,10 @@ bool packed(const PointArray& points) {
     return points.coordinate_stride == 1 && (points.point_stride == K || points.count <= 1);
 }
 
+// Whether each coordinate's values lie together (point_stride 1): a (K, N) array's
+// numpy.moveaxis, or a Fortran-ordered (N, K) array, as the C++ batch engine takes them.
+bool in_columns(const PointArray& points) { return points.count > 1 && points.point_stride == 1; }
+
 // Calls body(reader) with the reader for the array's layout.
 template <class T, int K, class Body>
 void with_reader(const PointArray& points, Body&& body) {
@@ -209,37 +216,66 @@ void with_reader(const PointArray& points, Body&& body) {
     }
 }
 
-// The rows flipped for a bottom-left pixel origin, and NaN where a flag is 0.
+// Where a projection writes its pixels: numpy's (..., 2) layout, or two columns of
+// `count` values (Outputs::columns).
 template <class T>
-void finish_pixels(const std::uint8_t* flags, T* out, std::size_t n, bool flip, const ImageSize& size) {
+struct PixelsOut {
+    T* data;
+    bool columns;
+    std::size_t count;
+
+    T* x(std::size_t first) const { return columns ? data + first : data + 2 * first; }
+    T* y(std::size_t first) const { return columns ? data + count + first : data + 2 * first + 1; }
+    std::size_t step() const { return columns ? 1 : 2; }  // from one pixel's x (or y) to the next's
+};
+
+// Pixels [first, first + n): the rows flipped for a bottom-left pixel origin, and NaN
+// where a flag is 0.
+template <class T>
+void finish_pixels(const std::uint8_t* flags, const PixelsOut<T>& out, std::size_t first, std::size_t n, bool flip,
+                   const ImageSize& size) {
+    const std::size_t step = out.step();
     if (flip) {
-        for (std::size_t i = 0; i < n; ++i) out[2 * i + 1] = flip_row<T>(out[2 * i + 1], size);
+        T* y = out.y(first);
+        for (std::size_t i = 0; i < n; ++i) y[i * step] = flip_row<T>(y[i * step], size);
     }
-    nan_where_invalid<T, 2>(flags, out, n);
+    nan_where_invalid<T, 2>(flags, out.x(first), n, step, out.columns ? out.count : 1);
 }
 
 template <class T>
-void project_into(const PythonCamera& camera, const PointArray& points, Frame frame, T* pixels_out, bool* mask_out,
-                  int threads) {
+void project_into(const PythonCamera& camera, const PointArray& points, Frame frame, const PixelsOut<T>& pixels_out,
+                  bool* mask_out, int threads) {
     const Projector<T>& projector = camera.projector<T>();
     const Pose& pose = camera.camera().pose;
     const bool transform = frame == Frame::World && !is_identity(pose);
     const bool flip = camera.pixel_origin() != PixelOrigin::TopLeft;
     const ImageSize size = camera.camera().size;
-    if (!transform && packed<3>(points)) {
-        // Camera points as numpy lays out an (N, 3) array: the engine reads them and writes
-        // the (N, 2) pixels and the mask's bytes in place, chunk by chunk (a chunk's pixels
-        // are still in the cache for the NaNs).
-        const T* in = points.data<T>();
+    // Camera points in the layout the engine reads, pixels in the one it writes: the engine
+    // works on the caller's arrays in place, chunk by chunk (a chunk's pixels are still in
+    // the cache for the NaNs). bool and std::uint8_t are one byte each; the engine writes
+    // 0 or 1.
+    const auto in_place = [&](const auto& project_chunk) {
         parallel_chunks(points.count, threads, kChunk, [&](std::size_t begin, std::size_t end) {
             for (std::size_t first = begin; first < end; first += kInPlaceChunk) {
                 const std::size_t count = std::min(kInPlaceChunk, end - first);
-                // bool and std::uint8_t are one byte each; the engine writes 0 or 1.
                 std::uint8_t* mask = reinterpret_cast<std::uint8_t*>(mask_out + first);
-                projector.project_interleaved({in + 3 * first, 3 * count}, {pixels_out + 2 * first, 2 * count},
-                                              {mask, count}, 1);
-                finish_pixels<T>(mask, pixels_out + 2 * first, count, flip, size);
+                project_chunk(first, count, mask);
+                finish_pixels<T>(mask, pixels_out, first, count, flip, size);
             }
+        });
+    };
+    const T* in = points.data<T>();
+    if (!transform && in_columns(points) && pixels_out.columns) {
+        const std::ptrdiff_t column = points.coordinate_stride;
+        in_place([&](std::size_t first, std::size_t count, std::uint8_t* mask) {
+            projector.project({in + first, count}, {in + column + first, count}, {in + 2 * column + first, count},
+                              {pixels_out.x(first), count}, {pixels_out.y(first), count}, {mask, count}, 1);
+        });
+        return;
+    }
+    if (!transform && packed<3>(points) && !pixels_out.columns) {
+        in_place([&](std::size_t first, std::size_t count, std::uint8_t* mask) {
+            projector.project_interleaved({in + 3 * first, 3 * count}, {pixels_out.x(first), 2 * count}, {mask, count}, 1);
         });
         return;
     }
@@ -270,12 +306,14 @@ void project_into(const PythonCamera& camera, const PointArray& points, Frame fr
                 }
                 read.prefetch(first + count, std::min(kChunk, end - std::min(end, first + count)));
                 projector.project(camera_points, pixels, valid, 1);
-                if (flip) {
-                    for (std::size_t i = 0; i < count; ++i) pixels.y[i] = flip_row<T>(pixels.y[i], size);
+                if (pixels_out.columns) {
+                    std::copy_n(pixels.x.data(), count, pixels_out.x(first));
+                    std::copy_n(pixels.y.data(), count, pixels_out.y(first));
+                } else {
+                    interleave2(pixels.x.data(), pixels.y.data(), pixels_out.x(first), count);
                 }
-                T* out = pixels_out + 2 * first;
-                interleave2(pixels.x.data(), pixels.y.data(), out, count);
-                mask_and_nan<T, 2>(valid.data(), mask_out + first, out, count);
+                std::memcpy(mask_out + first, valid.data(), count);
+                finish_pixels<T>(valid.data(), pixels_out, first, count, flip, size);
             }
         });
     });
@@ -372,44 +410,59 @@ void unproject_into(const PythonCamera& camera, const PixelSource& source, std::
 }
 
 // The arrays a call writes: new ones, or those the caller gave as out=(values, mask),
-// which must have the result's shape and type, be C-ordered and writeable, and not
-// overlap the input (a chunk's results would overwrite the next chunk's input).
+// which must have the result's shape and type, be writeable, and not overlap the input
+// (a chunk's results would overwrite the next chunk's input). The values are C-ordered,
+// or, where the call writes that layout (Columns::Allowed), each coordinate's values
+// together (new_column_array): the layout of a (2, N) array's numpy.moveaxis, or of a
+// Fortran-ordered (N, 2) array.
+enum class Columns { No, Allowed, Default };
+
 template <class T>
 struct Outputs {
     py::array_t<T> values;
     py::array_t<bool> mask;
+    bool columns = false;  // values[c * count + i] rather than values[i * k + c]
 
-    Outputs(const py::object& out, const std::vector<py::ssize_t>& leading_shape, int k, const py::array* input) {
+    Outputs(const py::object& out, const std::vector<py::ssize_t>& leading_shape, int k, const py::array* input,
+            Columns layout) {
         if (out.is_none()) {
-            values = new_array<T>(leading_shape, k);
+            columns = layout == Columns::Default;
+            values = columns ? new_column_array<T>(leading_shape, k) : new_array<T>(leading_shape, k);
             mask = new_array<bool>(leading_shape, 0);
             return;
         }
-        const std::string expected_values = std::string("a C-ordered, writeable ") + (sizeof(T) == 4 ? "float32" : "float64") +
-                                            " array of shape " + shape_text(leading_shape, k);
+        const std::string type = sizeof(T) == 4 ? "float32" : "float64";
+        const std::string expected_values = "a writeable " + type + " array of shape " + shape_text(leading_shape, k) +
+                                            (layout == Columns::No ? ", C-ordered"
+                                                                   : ", C-ordered or each coordinate's values together");
         const std::string expected_mask = "a C-ordered, writeable bool array of shape " + shape_text(leading_shape, 0);
         if (!py::isinstance<py::tuple>(out) || py::len(out) != 2) {
             throw py::type_error("out: expected (" + expected_values + ", " + expected_mask + ")");
         }
-        values = checked<T>(py::tuple(out)[0], leading_shape, k, "out[0]", expected_values);
-        mask = checked<bool>(py::tuple(out)[1], leading_shape, 0, "out[1]", expected_mask);
+        std::size_t count = 1;
+        for (const py::ssize_t extent : leading_shape) count *= static_cast<std::size_t>(extent);
+        values = checked<T>(py::tuple(out)[0], leading_shape, k, "out[0]", expected_values, [&](const py::array& a) {
+            columns = layout != Columns::No && count > 1 && !(a.flags() & py::array::c_style) && column_layout(a, count);
+            return columns || (a.flags() & py::array::c_style);
+        });
+        mask = checked<bool>(py::tuple(out)[1], leading_shape, 0, "out[1]", expected_mask,
+                             [](const py::array& a) { return (a.flags() & py::array::c_style) != 0; });
         static const py::object may_share_memory = py::module_::import("numpy").attr("may_share_memory");
         if (input && (py::cast<bool>(may_share_memory(values, *input)) || py::cast<bool>(may_share_memory(mask, *input)))) {
             throw py::type_error("out: must not share memory with the input");
         }
     }
 
-    template <class U>
+    template <class U, class LayoutOk>
     static py::array_t<U> checked(const py::handle& given, const std::vector<py::ssize_t>& leading_shape, int k,
-                                  const char* name, const std::string& expected) {
+                                  const char* name, const std::string& expected, LayoutOk&& layout_ok) {
         if (!py::isinstance<py::array>(given)) throw py::type_error(std::string(name) + ": expected " + expected);
         const auto array = py::reinterpret_borrow<py::array>(given);
         std::vector<py::ssize_t> shape = leading_shape;
         if (k > 0) shape.push_back(k);
         const bool same_shape = array.ndim() == static_cast<py::ssize_t>(shape.size()) &&
                                 std::equal(shape.begin(), shape.end(), array.shape());
-        if (!array.dtype().is(py::dtype::of<U>()) || !same_shape || !(array.flags() & py::array::c_style) ||
-            !array.writeable()) {
+        if (!array.dtype().is(py::dtype::of<U>()) || !same_shape || !layout_ok(array) || !array.writeable()) {
             throw py::type_error(std::string(name) + ": expected " + expected + ", got " +
                                  array.dtype().attr("name").cast<std::string>() + " array of shape " +
                                  std::string(py::str(array.attr("shape"))));
@@ -421,12 +474,14 @@ struct Outputs {
 template <class T>
 py::tuple project_typed(const PythonCamera& camera, const PointArray& points, Frame frame, int threads,
                         const py::object& out) {
-    Outputs<T> outputs(out, points.leading_shape, 2, &points.array);
-    T* pixels_data = outputs.values.mutable_data();
+    // The pixels lie as the points do when the caller leaves the choice to the call (as
+    // numpy's functions keep their input's layout): columns in, columns out.
+    Outputs<T> outputs(out, points.leading_shape, 2, &points.array, in_columns(points) ? Columns::Default : Columns::Allowed);
+    const PixelsOut<T> pixels{outputs.values.mutable_data(), outputs.columns, points.count};
     bool* mask_data = outputs.mask.mutable_data();
     {
         py::gil_scoped_release release;
-        project_into<T>(camera, points, frame, pixels_data, mask_data, threads);
+        project_into<T>(camera, points, frame, pixels, mask_data, threads);
     }
     return py::make_tuple(std::move(outputs.values), std::move(outputs.mask));
 }
@@ -444,7 +499,7 @@ template <class T>
 py::tuple unproject_typed(const PythonCamera& camera, const PixelSource& source, std::size_t count,
                           const std::vector<py::ssize_t>& leading_shape, UnprojectMethod method, Frame frame,
                           bool normalize, int threads, const py::object& out) {
-    Outputs<T> outputs(out, leading_shape, 3, source.points ? &source.points->array : nullptr);
+    Outputs<T> outputs(out, leading_shape, 3, source.points ? &source.points->array : nullptr, Columns::No);
     T* directions_data = outputs.values.mutable_data();
     bool* mask_data = outputs.mask.mutable_data();
     {
@@ -625,7 +680,11 @@ array of shape (...). A point is invalid, its pixel NaN, where the lens model do
 image it: behind the camera for a perspective lens, outside the model's valid domain (past
 the radius where its distortion folds over), or where the pixel is not finite.
 threads: how many threads share the work (0: every core); the result is the same.
-out: optional (pixels, valid) arrays to write into instead of new ones.)doc")
+out: optional (pixels, valid) arrays to write into instead of new ones: pixels C-ordered,
+     or with each coordinate's values together (numpy.moveaxis of a (2, ...) array).
+Layout: points whose coordinates each lie together (a (3, N) array's .T, or
+numpy.asfortranarray) are read in place, and the new pixels are laid out the same way
+(their .T is a C-ordered (2, N) array); the fastest layout for large batches.)doc")
         .def("unproject", &unproject, py::arg("pixels"), py::arg("method") = "exact", py::arg("frame") = "camera",
              py::arg("normalize") = false, py::arg("threads") = 1, py::arg("out") = py::none(), R"doc(
 The directions of the rays through pixels, and which pixels have one.

@@ -269,6 +269,41 @@ def test_views_are_read_where_they_lie(wide):
     assert bits_equal(rays.reshape(-1, 3), flat)
 
 
+def test_points_in_columns_give_pixels_in_columns(wide):
+    """A (3, N) array's .T is read where it lies, and its pixels come back laid out the same way."""
+    points = points_in_front(3000, seed=11)
+    points[::7] = (0.3, 0.1, -1.0)  # behind the camera: invalid
+    for frame in ("camera", "world"):  # in place; and through the pose
+        expected, expected_valid = wide.project(points, frame=frame)
+        assert not expected_valid.all()
+        rows = np.ascontiguousarray(points.T)
+        pixels, valid = wide.project(rows.T, frame=frame)
+        assert pixels.shape == (3000, 2) and pixels.T.flags.c_contiguous
+        assert bits_equal(pixels, expected) and np.array_equal(valid, expected_valid)
+        assert np.isnan(pixels[~valid]).all()
+        single, _ = wide.project(np.asfortranarray(points.astype(np.float32)), frame=frame)
+        assert single.T.flags.c_contiguous
+        assert bits_equal(single, wide.project(points.astype(np.float32), frame=frame)[0])
+    # An image of points as a (3, H, W) array: pixels as a (2, H, W) array, moved.
+    expected, _ = wide.project(points, frame="camera")
+    planes = np.ascontiguousarray(np.moveaxis(points.reshape(50, 60, 3), -1, 0))
+    pixels, valid = wide.project(np.moveaxis(planes, 0, -1), frame="camera")
+    assert pixels.shape == (50, 60, 2) and np.moveaxis(pixels, -1, 0).flags.c_contiguous
+    assert bits_equal(pixels, expected.reshape(50, 60, 2))
+    # out= in either layout, from points in either layout.
+    for given in (points, rows.T):
+        for out in (np.empty((3000, 2)), np.empty((2, 3000)).T):
+            mask = np.empty(3000, dtype=bool)
+            wide.project(given, frame="camera", out=(out, mask))
+            assert bits_equal(out, expected)
+    # A bottom-left pixel origin flips the rows' column too.
+    flipped = libcam.from_fov(70, (640, 480), pixel_origin="bottom-left")
+    near = points_in_front(500, seed=3, spread=0.5)
+    expected, expected_valid = flipped.project(near, frame="camera")
+    assert expected_valid.all()
+    assert bits_equal(flipped.project(np.ascontiguousarray(near.T).T, frame="camera")[0], expected)
+
+
 def test_lists_and_integers_become_float64(wide):
     from_list, _ = wide.project([[0.1, 0.2, 1.0], [0.0, 0.0, 2.0]])
     assert from_list.dtype == np.float64
@@ -494,8 +529,12 @@ def test_out_arrays_are_written_in_place(wide):
     directions = np.empty((2000, 3))
     wide.unproject(grid, out=(directions, valid))
     assert bits_equal(directions, wide.unproject(grid)[0])
-    with pytest.raises(TypeError, match=r"out\[0\]: expected a C-ordered, writeable float64 array of shape \(2000, 2\)"):
+    with pytest.raises(TypeError, match=r"out\[0\]: expected a writeable float64 array of shape \(2000, 2\), C-ordered or"):
         wide.project(points, out=(np.empty((2000, 3)), valid))
+    with pytest.raises(TypeError, match=r"out\[0\]: expected a writeable float64 array of shape \(2000, 2\), C-ordered or"):
+        wide.project(points, out=(np.empty((2000, 4))[:, 1:3], valid))  # neither layout
+    with pytest.raises(TypeError, match=r"out\[0\]: expected a writeable float64 array of shape \(2000, 3\), C-ordered, got"):
+        wide.unproject(grid, out=(np.empty((3, 2000)).T, valid))  # columns: projection only
     with pytest.raises(TypeError, match=r"out\[1\]: expected a C-ordered, writeable bool array"):
         wide.project(points, out=(pixels, np.empty(2000)))
     with pytest.raises(TypeError, match="out: expected"):
