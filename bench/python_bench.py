@@ -2,7 +2,7 @@
 """The Python module's speed beside the C++ batch engine, cv2 and mrcal, on the same points.
 
     PYTHONPATH=build/python python3 bench/python_bench.py [--from CAMERA] [--grid 1225x817]
-                                                          [--libcam build/tools/libcam]
+                                                          [--libcam build/tools/libcam] [--runs 5]
 
 The points are those of `libcam bench`: a grid of pixels over the image (corners
 included) and their rays (z = 1 for OpenCV's models). The C++ rows come from
@@ -64,7 +64,10 @@ def main():
     parser.add_argument("--from", dest="camera", default=str(ROOT / "tests" / "fuzz" / "corpus" / "json" / "opencv8.json"))
     parser.add_argument("--grid", default="1225x817")
     parser.add_argument("--libcam", default=str(ROOT / "build" / "tools" / "libcam"))
+    parser.add_argument("--runs", type=int, default=1, help="repeat the libcam rows and their C++ batch this often")
     args = parser.parse_args()
+    if args.runs < 1:
+        parser.error("--runs: expected at least 1")
 
     import cv2
     import mrcal
@@ -86,42 +89,57 @@ def main():
 
     print(f"camera {camera.model} {width}x{height}, {n} points (grid {args.grid}), one thread; "
           f"load average {os.getloadavg()[0]:.2f}")
-    cpp = cpp_rows(args.libcam, args.camera, args.grid)
 
     pixels_out = np.empty((n, 2))
     rays_out = np.empty((n, 3))
     mask_out = np.empty(n, dtype=bool)
-    table = []
-
-    def add(op, library, call, seconds, cpp_ns=None):
-        ns = seconds * 1e9 / n
-        table.append((op, library, call, ns, f"{ns / cpp_ns:.2f}" if cpp_ns else ""))
-
-    add("project", "libcam", "cam.project(points, frame='camera')",
-        median_seconds(lambda: camera.project(points, frame="camera")), cpp.get(("project", "batch")))
-    add("project", "libcam", "... out=(pixels, mask)",
-        median_seconds(lambda: camera.project(points, frame="camera", out=(pixels_out, mask_out))),
-        cpp.get(("project", "batch")))
     # The same points as the rows of a (3, N) array (its .T: each coordinate's values
     # together, the layout the C++ batch reads): read in place, the pixels written as the
     # rows of a (2, N) array.
     columns_in = np.ascontiguousarray(points.T).T
     columns_out = np.empty((2, n)).T
-    add("project", "libcam", "cam.project(points_3xN.T, frame='camera')",
-        median_seconds(lambda: camera.project(columns_in, frame="camera")), cpp.get(("project", "batch")))
-    add("project", "libcam", "... out=(pixels_2xN.T, mask)",
-        median_seconds(lambda: camera.project(columns_in, frame="camera", out=(columns_out, mask_out))),
-        cpp.get(("project", "batch")))
+
+    def libcam_rows(cpp):
+        """(op, call, seconds, C++ ns) of libcam's calls."""
+        rows = [("project", "cam.project(points, frame='camera')",
+                 median_seconds(lambda: camera.project(points, frame="camera")), cpp.get(("project", "batch"))),
+                ("project", "... out=(pixels, mask)",
+                 median_seconds(lambda: camera.project(points, frame="camera", out=(pixels_out, mask_out))),
+                 cpp.get(("project", "batch"))),
+                ("project", "cam.project(points_3xN.T, frame='camera')",
+                 median_seconds(lambda: camera.project(columns_in, frame="camera")), cpp.get(("project", "batch"))),
+                ("project", "... out=(pixels_2xN.T, mask)",
+                 median_seconds(lambda: camera.project(columns_in, frame="camera", out=(columns_out, mask_out))),
+                 cpp.get(("project", "batch")))]
+        for method in ("exact", "fast"):
+            rows.append(("unproject", f"cam.unproject(pixels, method='{method}')",
+                         median_seconds(lambda: camera.unproject(pixels, method=method)), cpp.get(("unproject", method))))
+            rows.append(("unproject", "... out=(directions, mask)",
+                         median_seconds(lambda: camera.unproject(pixels, method=method, out=(rays_out, mask_out))),
+                         cpp.get(("unproject", method))))
+        return rows
+
+    # Each run times the C++ batch (a `libcam bench` process) and then libcam's Python
+    # calls; on a machine whose other work comes and goes the ratio is taken run by run.
+    runs = []
+    for _ in range(args.runs):
+        cpp = cpp_rows(args.libcam, args.camera, args.grid)
+        runs.append(libcam_rows(cpp))
+    table = []
+    for i, (op, call, _, _) in enumerate(runs[0]):
+        ns = [run[i][2] * 1e9 / n for run in runs]
+        ratios = sorted(t / run[i][3] for t, run in zip(ns, runs) if run[i][3])
+        spread = f"{ratios[0]:.2f}..{ratios[-1]:.2f}" if len(ratios) > 1 else ""
+        table.append((op, "libcam", call, statistics.median(ns), f"{statistics.median(ratios):.2f}" if ratios else "",
+                      spread))
+
+    def add(op, library, call, seconds):
+        table.append((op, library, call, seconds * 1e9 / n, "", ""))
+
     if opencv == "cv2.projectPoints":
         add("project", "cv2", "cv2.projectPoints", median_seconds(lambda: cv2.projectPoints(points, zero, zero, K, dist)))
     if mrcal_model:
         add("project", "mrcal", "mrcal.project", median_seconds(lambda: mrcal.project(points, mrcal_model, intrinsics)))
-    for method in ("exact", "fast"):
-        add("unproject", "libcam", f"cam.unproject(pixels, method='{method}')",
-            median_seconds(lambda: camera.unproject(pixels, method=method)), cpp.get(("unproject", method)))
-        add("unproject", "libcam", "... out=(directions, mask)",
-            median_seconds(lambda: camera.unproject(pixels, method=method, out=(rays_out, mask_out))),
-            cpp.get(("unproject", method)))
     if opencv == "cv2.projectPoints":
         add("unproject", "cv2", "cv2.undistortPoints (5 iterations, not converged)",
             median_seconds(lambda: cv2.undistortPoints(pixels.reshape(-1, 1, 2), K, dist)))
@@ -131,11 +149,13 @@ def main():
     if mrcal_model:
         add("unproject", "mrcal", "mrcal.unproject", median_seconds(lambda: mrcal.unproject(pixels, mrcal_model, intrinsics)))
 
-    print(f"\n{'op':<10} {'library':<8} {'call':<52} {'ns/point':>9} {'/ C++ batch':>11}")
-    for op, library, call, ns, ratio in table:
-        print(f"{op:<10} {library:<8} {call:<52} {ns:9.2f} {ratio:>11}")
-    print("\nC++ batch (libcam bench, same grid): " +
+    print(f"\n{'op':<10} {'library':<8} {'call':<46} {'ns/point':>9} {'/ C++ batch':>11} {'runs':>10}")
+    for op, library, call, ns, ratio, spread in table:
+        print(f"{op:<10} {library:<8} {call:<46} {ns:9.2f} {ratio:>11} {spread:>10}")
+    print("\nC++ batch (libcam bench, same grid, last run): " +
           ", ".join(f"{op} {method} {ns:.2f} ns" for (op, method), ns in sorted(cpp.items()) if op in ("project", "unproject")))
+    print(f"(libcam rows: the median of {args.runs} runs; each ratio against the C++ batch of its own run, "
+          f"their median and range; load average now {os.getloadavg()[0]:.2f})")
 
     one_point, one_pixel = points[:1].copy(), pixels[:1].copy()
     print("\nper call, one point (microseconds):")
