@@ -499,6 +499,14 @@ TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) and projec
     const std::span<const Scalar> coordinates(five);
     CHECK_THROWS_WITH(projector.project(coordinates, coordinates, coordinates.first(4), five, five, flags),
                       Catch::Contains("different lengths (5 and 4)"));
+    // Pixels written over the points they come from, or over each other: refused.
+    std::vector<Scalar> shared(10);
+    const std::span<Scalar> first(shared.data(), 5), second(shared.data() + 5, 5);
+    CHECK_THROWS_WITH(projector.project(first, coordinates, coordinates, first, second, flags),
+                      Catch::Contains("must not overlap"));
+    CHECK_THROWS_WITH(projector.project(coordinates, coordinates, coordinates, first, first, flags),
+                      Catch::Contains("must not overlap"));
+    CHECK_NOTHROW(projector.project(coordinates, coordinates, coordinates, first, second, flags));
     std::vector<Scalar> three(3), two(2), four(4);
     ValidFlags one(1);
     CHECK_THROWS_AS(projector.project_interleaved(three, four, one), InvalidArgument);

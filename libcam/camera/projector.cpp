@@ -1,5 +1,6 @@
 #include "libcam/camera/projector.hpp"
 
+#include <cstdint>
 #include <string>
 
 #include "libcam/camera/kernels.hpp"
@@ -25,6 +26,19 @@ void Projector<Scalar>::project(const Points3<Scalar>& camera_points, Points2<Sc
     project(camera_points.x, camera_points.y, camera_points.z, pixels.x, pixels.y, valid, threads);
 }
 
+namespace {
+
+// Whether two ranges of memory share a byte (compared as addresses: they may belong to
+// different arrays).
+template <class A, class B>
+bool overlap(std::span<A> a, std::span<B> b) {
+    const auto begin_a = reinterpret_cast<std::uintptr_t>(a.data()), end_a = begin_a + a.size_bytes();
+    const auto begin_b = reinterpret_cast<std::uintptr_t>(b.data()), end_b = begin_b + b.size_bytes();
+    return begin_a < end_b && begin_b < end_a;
+}
+
+}  // namespace
+
 template <class Scalar>
 void Projector<Scalar>::project(std::span<const Scalar> x, std::span<const Scalar> y, std::span<const Scalar> z,
                                 std::span<Scalar> pixel_x, std::span<Scalar> pixel_y, std::span<std::uint8_t> valid,
@@ -33,6 +47,15 @@ void Projector<Scalar>::project(std::span<const Scalar> x, std::span<const Scala
     batch::require_same_sizes("project: the points' and pixels' arrays and the flags", n,
                               {x.size(), y.size(), z.size(), pixel_x.size(), pixel_y.size()});
     if (n == 0) return;
+    // The kernel reads and writes these as separate arrays (restrict): an output written
+    // over an input or another output would give wrong pixels.
+    bool overlaps = overlap(pixel_x, pixel_y);
+    for (const std::span<Scalar> out : {pixel_x, pixel_y}) {
+        overlaps = overlaps || overlap(out, x) || overlap(out, y) || overlap(out, z) || overlap(out, valid);
+    }
+    if (overlaps) {
+        throw InvalidArgument("project: the pixels' arrays must not overlap the points', the flags or each other");
+    }
     const kernels::ProjectJob<Scalar> job{camera_,        valid_radius_,  x.data(),     y.data(),
                                           z.data(),       pixel_x.data(), pixel_y.data(), valid.data()};
     const auto project = kernels::kernels<Scalar>().project;

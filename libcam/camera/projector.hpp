@@ -36,7 +36,8 @@ public:
     // The same on the caller's memory, without copies: point i is (x[i], y[i], z[i]), its
     // pixel (pixel_x[i], pixel_y[i]) and its flag valid[i], as in a (3, N) array's rows or
     // the columns of a Fortran-ordered (N, 3) one. Throws InvalidArgument unless every
-    // span has valid's length n.
+    // span has valid's length n, and where a pixel array overlaps a point array, the flags
+    // or the other pixel array.
     void project(std::span<const Scalar> x, std::span<const Scalar> y, std::span<const Scalar> z,
                  std::span<Scalar> pixel_x, std::span<Scalar> pixel_y, std::span<std::uint8_t> valid,
                  int threads = 1) const;
