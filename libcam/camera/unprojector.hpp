@@ -58,6 +58,9 @@ struct UnprojectionTable {
     double step = 0;                    // pixels between nodes; 0: no table
     int nodes_x = 0, nodes_y = 0;
     std::vector<Scalar> u_x, u_y;  // row-major, NaN where the pixel has no ray
+    // The same values node by node (u_x, u_y of node 0, then of node 1, ...): a pixel's
+    // two top nodes are then one contiguous read, as are its two bottom ones.
+    std::vector<Scalar> u_pairs;
     // Per cell, indexed by its top-left node: 1 where fast (lut) keeps within the budget.
     std::vector<Scalar> fast_ok, lut_ok;
 };

@@ -51,6 +51,7 @@ template <class Scalar>
 struct TableView {
     const Scalar* u_x;
     const Scalar* u_y;
+    const Scalar* u_pairs;
     const Scalar* fast_ok;  // per cell
     const Scalar* lut_ok;
     int stride;  // nodes per row
@@ -60,6 +61,7 @@ struct TableView {
     explicit TableView(const UnprojectionTable<Scalar>& table)
         : u_x(table.u_x.data()),
           u_y(table.u_y.data()),
+          u_pairs(table.u_pairs.data()),
           fast_ok(table.fast_ok.data()),
           lut_ok(table.lut_ok.data()),
           stride(table.nodes_x),
@@ -72,45 +74,94 @@ struct TableView {
 
 // The table cell of each pixel: the index of its top-left node and the fractions within
 // it; ok = 0 for a pixel whose stencil would leave the table (it reads a harmless cell
-// inside instead, so that every read stays in bounds).
+// inside instead, so that every read stays in bounds). The arrays never overlap
+// (restrict): the block's pixels are the caller's or the block's own, and without that
+// promise GCC leaves the loop scalar rather than check every pair.
+template <class Scalar>
+[[gnu::always_inline]] inline void locate_pixels(const TableView<Scalar>& table, const Scalar* __restrict pixel_x,
+                                                 const Scalar* __restrict pixel_y, std::size_t count,
+                                                 int* __restrict cell, Scalar* __restrict fraction_x,
+                                                 Scalar* __restrict fraction_y, Scalar* __restrict ok) {
+    for (std::size_t i = 0; i < count; ++i) {
+        const Scalar gx = (pixel_x[i] - table.origin_x) * table.inv_step;
+        const Scalar gy = (pixel_y[i] - table.origin_y) * table.inv_step;
+        const bool inside = (gx >= Scalar(1)) & (gx < table.end_x) & (gy >= Scalar(1)) & (gy < table.end_y);  // no branch
+        const Scalar x = inside ? gx : Scalar(1), y = inside ? gy : Scalar(1);
+        const int column = static_cast<int>(x), row = static_cast<int>(y);
+        cell[i] = row * table.stride + column;
+        fraction_x[i] = x - Scalar(column);
+        fraction_y[i] = y - Scalar(row);
+        ok[i] = batch::flag<Scalar>(inside);
+    }
+}
+
 template <class Scalar>
 void locate_in_table(const TableView<Scalar>& table_view, Block<Scalar>& b) {
     const TableView<Scalar> table = table_view;
-    for (std::size_t i = 0; i < b.count; ++i) {
-        const Scalar gx = (b.pixel_x[i] - table.origin_x) * table.inv_step;
-        const Scalar gy = (b.pixel_y[i] - table.origin_y) * table.inv_step;
-        const bool inside = gx >= Scalar(1) && gx < table.end_x && gy >= Scalar(1) && gy < table.end_y;
-        const Scalar x = inside ? gx : Scalar(1), y = inside ? gy : Scalar(1);
-        const int column = static_cast<int>(x), row = static_cast<int>(y);
-        b.cell[i] = row * table.stride + column;
-        b.fraction_x[i] = x - Scalar(column);
-        b.fraction_y[i] = y - Scalar(row);
-        b.ok[i] = batch::flag<Scalar>(inside);
-    }
+    locate_pixels(table, b.pixel_x, b.pixel_y, b.count, b.cell, b.fraction_x, b.fraction_y, b.ok);
 }
 
 // u interpolated from the table at each located pixel; ok stays 1 only where every
 // node used has a ray (a node without one is NaN and makes the sum NaN).
+
+// Bilinear, one pixel at a time on its two pairs of nodes (x and y of the top-left and
+// top-right nodes in one read, of the bottom ones in another), both coordinates and
+// both rows in one vector: four reads where the loop over pixels would gather eight
+// single values per pixel. The sums are bilinear()'s, lane by lane, so the bits are too.
+template <class Scalar>
+[[gnu::always_inline]] inline void bilinear_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
+                                                   const int* __restrict cell, const Scalar* __restrict fraction_x,
+                                                   const Scalar* __restrict fraction_y, Scalar* __restrict u_x,
+                                                   Scalar* __restrict u_y, Scalar* __restrict ok) {
+    typedef Scalar Four __attribute__((vector_size(4 * sizeof(Scalar))));
+    typedef Scalar Two __attribute__((vector_size(2 * sizeof(Scalar))));
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t k = static_cast<std::size_t>(cell[i]);
+        Four top, bottom;  // (x, y) of the left node, then of the right one
+        __builtin_memcpy(&top, pairs + 2 * k, sizeof top);
+        __builtin_memcpy(&bottom, pairs + 2 * (k + static_cast<std::size_t>(stride)), sizeof bottom);
+        const Four left = __builtin_shufflevector(top, bottom, 0, 1, 4, 5);  // top then bottom row
+        const Four right = __builtin_shufflevector(top, bottom, 2, 3, 6, 7);
+        const Four rows = left + fraction_x[i] * (right - left);  // (upper x, upper y, lower x, lower y)
+        const Two upper = __builtin_shufflevector(rows, rows, 0, 1), lower = __builtin_shufflevector(rows, rows, 2, 3);
+        const Two u = upper + fraction_y[i] * (lower - upper);
+        u_x[i] = u[0];
+        u_y[i] = u[1];
+        const bool numbers = (u[0] == u[0]) & (u[1] == u[1]);  // not NaN; & not &&: no branch in the loop
+        ok[i] = numbers ? ok[i] : Scalar(0);
+    }
+}
+
+// Bicubic: the loop over pixels, which GCC vectorises with gathers. Restrict as in
+// locate_pixels: the table is read only.
+template <class Scalar>
+[[gnu::always_inline]] inline void bicubic_pixels(const Scalar* __restrict table_x, const Scalar* __restrict table_y,
+                                                  int stride, std::size_t count, const int* __restrict cell,
+                                                  const Scalar* __restrict fraction_x,
+                                                  const Scalar* __restrict fraction_y, Scalar* __restrict u_x,
+                                                  Scalar* __restrict u_y, Scalar* __restrict ok) {
+    for (std::size_t i = 0; i < count; ++i) {
+        const int k = cell[i];
+        Scalar wx[4], wy[4];
+        catmull_rom_weights(fraction_x[i], wx);
+        catmull_rom_weights(fraction_y[i], wy);
+        const Scalar x = bicubic(table_x, k, stride, wx, wy);
+        const Scalar y = bicubic(table_y, k, stride, wx, wy);
+        u_x[i] = x;
+        u_y[i] = y;
+        const bool numbers = (x == x) & (y == y);  // not NaN; & not &&: no branch in the loop
+        ok[i] = numbers ? ok[i] : Scalar(0);
+    }
+}
+
 template <Interpolation kind, class Scalar>
 void interpolate(const TableView<Scalar>& table_view, Block<Scalar>& b) {
     const TableView<Scalar> table = table_view;
-    for (std::size_t i = 0; i < b.count; ++i) {
-        const int k = b.cell[i];
-        Scalar x, y;
-        if constexpr (kind == Interpolation::Bilinear) {
-            x = bilinear(table.u_x, k, table.stride, b.fraction_x[i], b.fraction_y[i]);
-            y = bilinear(table.u_y, k, table.stride, b.fraction_x[i], b.fraction_y[i]);
-        } else {
-            Scalar wx[4], wy[4];
-            catmull_rom_weights(b.fraction_x[i], wx);
-            catmull_rom_weights(b.fraction_y[i], wy);
-            x = bicubic(table.u_x, k, table.stride, wx, wy);
-            y = bicubic(table.u_y, k, table.stride, wx, wy);
-        }
-        b.u_x[i] = x;
-        b.u_y[i] = y;
-        const bool numbers = (x == x) & (y == y);  // not NaN; & not &&: no branch in the loop
-        b.ok[i] = numbers ? b.ok[i] : Scalar(0);
+    if constexpr (kind == Interpolation::Bilinear) {
+        bilinear_pixels(table.u_pairs, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y, b.u_x, b.u_y, b.ok);
+    } else {
+        bicubic_pixels(table.u_x, table.u_y, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y, b.u_x, b.u_y,
+                       b.ok);
     }
 }
 
@@ -123,8 +174,14 @@ void start_from_table(const TableView<Scalar>& table, Block<Scalar>& b) {
 // Keeps ok only in the cells where the method's estimate was checked to be within the
 // budget (check_cells).
 template <class Scalar>
+[[gnu::always_inline]] inline void require_accurate_cells(const Scalar* __restrict cell_ok, std::size_t count,
+                                                          const int* __restrict cell, Scalar* __restrict ok) {
+    for (std::size_t i = 0; i < count; ++i) ok[i] = cell_ok[cell[i]] != Scalar(0) ? ok[i] : Scalar(0);
+}
+
+template <class Scalar>
 void require_accurate_cell(const Scalar* cell_ok, Block<Scalar>& b) {
-    for (std::size_t i = 0; i < b.count; ++i) b.ok[i] = cell_ok[b.cell[i]] != Scalar(0) ? b.ok[i] : Scalar(0);
+    require_accurate_cells(cell_ok, b.count, b.cell, b.ok);
 }
 
 // Without the full solver, only a pixel inside the certified disc may be called valid.
@@ -225,6 +282,9 @@ void reject_beyond_domain(Scalar no_ray_radius_squared, Block<Scalar>& b) {
 // A pixel past the rim has no ray; it is not sent to the solver, whose failures are slow.
 template <class ModelDouble, class Scalar>
 void solve_remaining(const Context<Scalar>& context, const typename ModelDouble::Parameters& lens, Block<Scalar>& b) {
+    int unsettled = 0;  // counted first, in a loop that vectorises: most blocks have none
+    for (std::size_t i = 0; i < b.count; ++i) unsettled += b.ok[i] == Scalar(0) ? 1 : 0;
+    if (unsettled == 0) return;
     for (std::size_t i = 0; i < b.count; ++i) {
         if (b.ok[i] != Scalar(0)) continue;
         const Vec2 m = context.intrinsics.normalized_from_pixel(Vec2(double(b.pixel_x[i]), double(b.pixel_y[i])));

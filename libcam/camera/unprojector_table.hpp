@@ -16,8 +16,10 @@
 
 namespace libcam::detail {
 
+// Always inlined, here and in catmull_rom_weights and bicubic: the batch kernels' loops over
+// pixels vectorise (with gathers) only once the body is inlined into them.
 template <class Scalar>
-Scalar bilinear(const Scalar* values, int k, int stride, Scalar fx, Scalar fy) {
+[[gnu::always_inline]] inline Scalar bilinear(const Scalar* values, int k, int stride, Scalar fx, Scalar fy) {
     const Scalar upper = values[k] + fx * (values[k + 1] - values[k]);
     const Scalar lower = values[k + stride] + fx * (values[k + stride + 1] - values[k + stride]);
     return upper + fy * (lower - upper);
@@ -25,7 +27,7 @@ Scalar bilinear(const Scalar* values, int k, int stride, Scalar fx, Scalar fy) {
 
 // Catmull-Rom weights of the nodes at -1, 0, 1, 2 for the fraction t in [0, 1).
 template <class Scalar>
-void catmull_rom_weights(Scalar t, Scalar w[4]) {
+[[gnu::always_inline]] inline void catmull_rom_weights(Scalar t, Scalar w[4]) {
     const Scalar half(0.5);
     w[0] = half * t * ((Scalar(2) - t) * t - Scalar(1));
     w[1] = half * ((Scalar(3) * t - Scalar(5)) * t * t + Scalar(2));
@@ -34,7 +36,7 @@ void catmull_rom_weights(Scalar t, Scalar w[4]) {
 }
 
 template <class Scalar>
-Scalar bicubic(const Scalar* values, int k, int stride, const Scalar wx[4], const Scalar wy[4]) {
+[[gnu::always_inline]] inline Scalar bicubic(const Scalar* values, int k, int stride, const Scalar wx[4], const Scalar wy[4]) {
     Scalar sum(0);
     for (int r = 0; r < 4; ++r) {
         const int row = k + (r - 1) * stride - 1;
@@ -135,9 +137,14 @@ void check_cells(const Camera& camera, const typename Model::Parameters& lens, d
 
 template <class Scalar>
 UnprojectionTable<Scalar> in_scalar(const UnprojectionTable<double>& table) {
-    UnprojectionTable<Scalar> out{table.origin_x, table.origin_y, table.step, table.nodes_x, table.nodes_y, {}, {}, {}, {}};
+    UnprojectionTable<Scalar> out{table.origin_x, table.origin_y, table.step, table.nodes_x, table.nodes_y, {}, {}, {}, {}, {}};
     out.u_x.assign(table.u_x.begin(), table.u_x.end());
     out.u_y.assign(table.u_y.begin(), table.u_y.end());
+    out.u_pairs.resize(2 * table.u_x.size());
+    for (std::size_t k = 0; k < table.u_x.size(); ++k) {
+        out.u_pairs[2 * k] = out.u_x[k];
+        out.u_pairs[2 * k + 1] = out.u_y[k];
+    }
     out.fast_ok.assign(table.fast_ok.begin(), table.fast_ok.end());
     out.lut_ok.assign(table.lut_ok.begin(), table.lut_ok.end());
     return out;
