@@ -124,6 +124,24 @@ void ImageMemset(benchmark::State& state, int byte) {
     report_per_point(state, n);
 }
 
+// The same pixels as numpy's (N, 2) array lies in memory, the directions as its (N, 3).
+template <UnprojectMethod method>
+void UnprojectInterleaved(benchmark::State& state, const std::string& name) {
+    const Camera& camera = bench_case(name).camera;
+    const Unprojector<double> unprojector(camera);
+    const Points2<double> grid = pixel_grid<double>(camera.size);
+    std::vector<double> pixels;
+    for (std::size_t i = 0; i < grid.size(); ++i) pixels.insert(pixels.end(), {grid.x[i], grid.y[i]});
+    std::vector<double> directions(3 * grid.size());
+    ValidFlags valid(grid.size());
+    for (auto _ : state) {
+        unprojector.unproject_interleaved(pixels, method, directions, valid, static_cast<int>(state.range(0)));
+        benchmark::DoNotOptimize(directions.data());
+        benchmark::ClobberMemory();
+    }
+    report_per_point(state, grid.size());
+}
+
 // The public call, PreparedCamera::unproject, on a list of pixels.
 void CameraUnproject(benchmark::State& state) {
     const PreparedCamera camera(bench_case("wide").camera);
@@ -160,6 +178,10 @@ void register_benchmarks() {
         benchmark::RegisterBenchmark(("Project/" + name + "/double").c_str(), Project<double>, name)->Apply(on_threads);
         benchmark::RegisterBenchmark(("Project/" + name + "/float").c_str(), Project<float>, name)->Apply(on_threads);
     }
+    benchmark::RegisterBenchmark("UnprojectInterleaved/wide/exact/double", UnprojectInterleaved<UnprojectMethod::Exact>, "wide")
+        ->Apply(on_threads);
+    benchmark::RegisterBenchmark("UnprojectInterleaved/wide/fast/double", UnprojectInterleaved<UnprojectMethod::Fast>, "wide")
+        ->Apply(on_threads);
     benchmark::RegisterBenchmark("CameraUnproject/wide", CameraUnproject)->UseRealTime();
     for (const int byte : {0, 0x3f}) {
         const std::string bytes = byte == 0 ? "/zeros" : "/non-zero";

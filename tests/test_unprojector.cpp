@@ -239,6 +239,24 @@ TEMPLATE_TEST_CASE("Batch paths: the same bits on 1, 2 and 3 threads, one pixel 
             CHECK((same_bits(one, two) && same_bits(one, three)));
             CHECK((same_bits(valid_one, valid_two) && same_bits(valid_one, valid_three)));
 
+            // Interleaved, as numpy's (N, 2) pixels and (N, 3) directions.
+            const std::size_t n = grid.size();
+            std::vector<Scalar> pairs(2 * n);
+            for (std::size_t i = 0; i < n; ++i) pairs[2 * i] = pixels.x[i], pairs[2 * i + 1] = pixels.y[i];
+            for (int threads : {1, 2}) {
+                std::vector<Scalar> triples(3 * n, Scalar(-7));
+                ValidFlags triples_valid(n, 7);
+                unprojector.unproject_interleaved(pairs, method, triples, triples_valid, threads);
+                Points3<Scalar> unpacked;
+                for (std::size_t i = 0; i < n; ++i) {
+                    unpacked.x.push_back(triples[3 * i]);
+                    unpacked.y.push_back(triples[3 * i + 1]);
+                    unpacked.z.push_back(triples[3 * i + 2]);
+                }
+                CHECK(same_bits(unpacked, one));
+                CHECK(same_bits(triples_valid, valid_one));
+            }
+
             bool singles_agree = true;
             for (std::size_t i = 0; i < grid.size(); i += 7) {
                 Eigen::Matrix<Scalar, 3, 1> direction = Eigen::Matrix<Scalar, 3, 1>::Zero();
@@ -513,4 +531,27 @@ TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) and projec
     CHECK_THROWS_AS(projector.project_interleaved(four, two, one), InvalidArgument);
     ValidFlags none;
     CHECK_NOTHROW(projector.project_interleaved(std::span<const Scalar>(), std::span<Scalar>(), none));
+    // Pixels written over the points of a later block would change them: refused.
+    std::vector<Scalar> buffer(5);
+    CHECK_THROWS_WITH(projector.project_interleaved(std::span<const Scalar>(buffer.data(), 3), std::span<Scalar>(buffer.data() + 2, 2), one),
+                      Catch::Contains("must not overlap"));
+}
+
+TEMPLATE_TEST_CASE("Interleaved unprojection refuses arrays of the wrong lengths and outputs over the pixels", "", float,
+                   double) {
+    using Scalar = TestType;
+    const Unprojector<Scalar> unprojector(wide_reference_camera());
+    std::vector<Scalar> two(2), three(3), four(4), six(6);
+    ValidFlags one(1), two_flags(2);
+    CHECK_THROWS_WITH(unprojector.unproject_interleaved(two, UnprojectMethod::Exact, four, one),
+                      Catch::Contains("1 flags need 2 pixel coordinates and 3 direction coordinates, got 2 and 4"));
+    CHECK_THROWS_AS(unprojector.unproject_interleaved(four, UnprojectMethod::Exact, three, one), InvalidArgument);
+    CHECK_THROWS_AS(unprojector.unproject_interleaved(four, UnprojectMethod::Exact, six, one), InvalidArgument);
+    CHECK_NOTHROW(unprojector.unproject_interleaved(four, UnprojectMethod::Exact, six, two_flags));
+    ValidFlags none;
+    CHECK_NOTHROW(unprojector.unproject_interleaved(std::span<const Scalar>(), UnprojectMethod::Fast, std::span<Scalar>(), none));
+    std::vector<Scalar> buffer(8);
+    CHECK_THROWS_WITH(unprojector.unproject_interleaved(std::span<const Scalar>(buffer.data(), 4), UnprojectMethod::Exact,
+                                                        std::span<Scalar>(buffer.data() + 2, 6), two_flags),
+                      Catch::Contains("must not overlap"));
 }

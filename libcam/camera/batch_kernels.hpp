@@ -64,6 +64,16 @@ inline void require_same_sizes(const char* field, std::size_t n, std::initialize
     }
 }
 
+// Whether two ranges of memory share a byte (compared as addresses: they may belong to
+// different arrays). The kernels read and write their arrays as restrict pointers, so
+// the batch calls refuse outputs that overlap inputs or each other.
+template <class A, class B>
+bool overlap(std::span<A> a, std::span<B> b) {
+    const auto begin_a = reinterpret_cast<std::uintptr_t>(a.data()), end_a = begin_a + a.size_bytes();
+    const auto begin_b = reinterpret_cast<std::uintptr_t>(b.data()), end_b = begin_b + b.size_bytes();
+    return begin_a < end_b && begin_b < end_a;
+}
+
 template <class Scalar>
 constexpr Scalar flag(bool value) {
     return value ? Scalar(1) : Scalar(0);

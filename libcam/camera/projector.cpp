@@ -26,18 +26,7 @@ void Projector<Scalar>::project(const Points3<Scalar>& camera_points, Points2<Sc
     project(camera_points.x, camera_points.y, camera_points.z, pixels.x, pixels.y, valid, threads);
 }
 
-namespace {
-
-// Whether two ranges of memory share a byte (compared as addresses: they may belong to
-// different arrays).
-template <class A, class B>
-bool overlap(std::span<A> a, std::span<B> b) {
-    const auto begin_a = reinterpret_cast<std::uintptr_t>(a.data()), end_a = begin_a + a.size_bytes();
-    const auto begin_b = reinterpret_cast<std::uintptr_t>(b.data()), end_b = begin_b + b.size_bytes();
-    return begin_a < end_b && begin_b < end_a;
-}
-
-}  // namespace
+using batch::overlap;
 
 template <class Scalar>
 void Projector<Scalar>::project(std::span<const Scalar> x, std::span<const Scalar> y, std::span<const Scalar> z,
@@ -73,6 +62,11 @@ void Projector<Scalar>::project_interleaved(std::span<const Scalar> camera_point
                               std::to_string(camera_points.size()) + " and " + std::to_string(pixels.size()));
     }
     if (n == 0) return;
+    // A block's points are copied before its pixels are written, but pixels written over
+    // a later block's points would change them.
+    if (overlap(pixels, camera_points) || overlap(pixels, valid) || overlap(camera_points, valid)) {
+        throw InvalidArgument("project_interleaved: the pixels and the flags must not overlap the points or each other");
+    }
     const Scalar* points = camera_points.data();
     const kernels::ProjectJob<Scalar> job{camera_, valid_radius_,      points,       points + 1, points + 2,
                                           pixels.data(), pixels.data() + 1, valid.data()};

@@ -45,7 +45,8 @@ public:
     // The same for interleaved arrays, as numpy's (N, 3) and (N, 2) arrays and a list of
     // Eigen vectors lie in memory: point i is camera_points[3 i .. 3 i + 2], its pixel
     // pixels[2 i .. 2 i + 1] and its flag valid[i]. The same bits as project(). Throws
-    // InvalidArgument unless camera_points has 3 n entries, pixels 2 n and valid n.
+    // InvalidArgument unless camera_points has 3 n entries, pixels 2 n and valid n, and
+    // where the three arrays overlap.
     void project_interleaved(std::span<const Scalar> camera_points, std::span<Scalar> pixels,
                              std::span<std::uint8_t> valid, int threads = 1) const;
 

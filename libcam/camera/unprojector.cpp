@@ -232,19 +232,72 @@ bool Unprojector<Scalar>::unproject(const Vec2T& pixel, UnprojectMethod method, 
     return valid != 0;
 }
 
+namespace {
+
+// The block's pixels from interleaved pairs (x, y of pixel 0, then of pixel 1, ...),
+// converted to Scalar: a list of Vec2 or numpy's (N, 2) array.
+template <class Scalar, class Stored>
+void fill_from_pairs(const Stored* pairs, std::size_t first, Block<Scalar>& b) {
+    const Stored* pixel = pairs + 2 * first;
+    for (std::size_t i = 0; i < b.count; ++i) {
+        b.made_x[i] = Scalar(pixel[2 * i]);
+        b.made_y[i] = Scalar(pixel[2 * i + 1]);
+    }
+    b.pixel_x = b.made_x;
+    b.pixel_y = b.made_y;
+}
+
+// Rays written to a block's scratch, then interleaved into numpy's (N, 3) layout; the
+// flags straight into the caller's array.
+template <class Scalar>
+struct InterleavedOutput {
+    Scalar* directions;
+    std::uint8_t* valid;
+    detail::RayOutput<Scalar> at(std::size_t first, RayScratch<Scalar, kBlock>& scratch) const {
+        return {scratch.x, scratch.y, scratch.z, valid + first};
+    }
+    void done(std::size_t first, std::size_t count, const RayScratch<Scalar, kBlock>& scratch) const {
+        Scalar* out = directions + 3 * first;
+        for (std::size_t i = 0; i < count; ++i) {
+            out[3 * i] = scratch.x[i];
+            out[3 * i + 1] = scratch.y[i];
+            out[3 * i + 2] = scratch.z[i];
+        }
+    }
+};
+
+}  // namespace
+
 template <class Scalar>
 void Unprojector<Scalar>::unproject(std::span<const Vec2> pixels, UnprojectMethod method, std::span<Unprojection> out,
                                     int threads) const {
     batch::require_same_sizes("pixels", pixels.size(), {out.size()});
-    const auto copy_pixels = [&pixels](std::size_t first, Block<Scalar>& b) {
-        for (std::size_t i = 0; i < b.count; ++i) {
-            b.made_x[i] = Scalar(pixels[first + i].x());
-            b.made_y[i] = Scalar(pixels[first + i].y());
-        }
-        b.pixel_x = b.made_x;
-        b.pixel_y = b.made_y;
-    };
+    // A Vec2 is two doubles, and a span of them one array of pairs.
+    static_assert(sizeof(Vec2) == 2 * sizeof(double));
+    const double* pairs = pixels.empty() ? nullptr : pixels.data()->data();
+    const auto copy_pixels = [pairs](std::size_t first, Block<Scalar>& b) { fill_from_pairs(pairs, first, b); };
     run(pixels.size(), method, threads, copy_pixels, ListOutput<Scalar>{out});
+}
+
+template <class Scalar>
+void Unprojector<Scalar>::unproject_interleaved(std::span<const Scalar> pixels, UnprojectMethod method,
+                                                std::span<Scalar> directions, std::span<std::uint8_t> valid,
+                                                int threads) const {
+    const std::size_t n = valid.size();
+    if (pixels.size() != 2 * n || directions.size() != 3 * n) {
+        throw InvalidArgument("unproject_interleaved: " + std::to_string(n) + " flags need " + std::to_string(2 * n) +
+                              " pixel coordinates and " + std::to_string(3 * n) + " direction coordinates, got " +
+                              std::to_string(pixels.size()) + " and " + std::to_string(directions.size()));
+    }
+    if (n == 0) return;
+    // A block's pixels are copied before its rays are written, but rays written over a
+    // later block's pixels would change them.
+    if (batch::overlap(directions, pixels) || batch::overlap(directions, valid) || batch::overlap(pixels, valid)) {
+        throw InvalidArgument("unproject_interleaved: the directions and the flags must not overlap the pixels or each other");
+    }
+    const Scalar* pairs = pixels.data();
+    const auto copy_pixels = [pairs](std::size_t first, Block<Scalar>& b) { fill_from_pairs(pairs, first, b); };
+    run(n, method, threads, copy_pixels, InterleavedOutput<Scalar>{directions.data(), valid.data()});
 }
 
 template class Unprojector<float>;

@@ -119,6 +119,14 @@ public:
     void unproject(std::span<const Vec2> pixels, UnprojectMethod method, std::span<Unprojection> out,
                    int threads = 1) const;
 
+    // Interleaved arrays, as numpy's (N, 2) pixels and (N, 3) directions lie in memory:
+    // pixel i is pixels[2 i .. 2 i + 1], its direction directions[3 i .. 3 i + 2] (0 where
+    // it has no ray) and its flag valid[i]. The same bits as the other batch calls.
+    // Throws InvalidArgument unless pixels has 2 n entries, directions 3 n and valid n,
+    // and where the three arrays overlap.
+    void unproject_interleaved(std::span<const Scalar> pixels, UnprojectMethod method, std::span<Scalar> directions,
+                               std::span<std::uint8_t> valid, int threads = 1) const;
+
     const Camera& camera() const { return camera_; }
     // Every pixel whose normalised point m has |m| below this has a ray (0 without a table).
     double certified_radius() const { return certified_radius_; }

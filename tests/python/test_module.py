@@ -72,6 +72,21 @@ def test_unproject_is_the_cpp_apis_bits(wide, cpp_reference, method):
     assert bits_equal(directions[valid], expected[expected_valid])
 
 
+@pytest.mark.parametrize("dtype", [np.float64, np.float32])
+def test_unprojection_of_pixels_without_a_ray_gives_nan_and_false(wide, dtype):
+    pixels = grid_pixels(wide.size, 61, 41).astype(dtype)
+    directions, valid = wide.unproject(pixels)
+    assert valid.all()
+    pixels[::53] = np.nan
+    pixels[7] = (-1e6, 5.0)  # far outside the image, past the lens's domain
+    again, again_valid = wide.unproject(pixels)
+    unsettled = np.zeros(len(pixels), bool)
+    unsettled[::53] = True
+    unsettled[7] = True
+    assert not again_valid[unsettled].any() and np.isnan(again[unsettled]).all()
+    assert again_valid[~unsettled].all() and bits_equal(again[~unsettled], directions[~unsettled])
+
+
 def test_rays_are_the_cpp_apis_bits(cpp_reference, tmp_path):
     camera = libcam.from_opencv(np.array([[800.0, 0, 639.5], [0, 810, 359.5], [0, 0, 1]]), [0.1, -0.2, 1e-3, -2e-3, 0.05],
                                 (1280, 720), rvec=[0.1, -0.4, 0.2], tvec=[1.0, 2.0, -3.0])
