@@ -104,26 +104,27 @@ void locate_in_table(const TableView<Scalar>& table_view, Block<Scalar>& b) {
 // u interpolated from the table at each located pixel; ok stays 1 only where every
 // node used has a ray (a node without one is NaN and makes the sum NaN).
 
-// Bilinear, one pixel at a time on its two pairs of nodes (x and y of the top-left and
-// top-right nodes in one read, of the bottom ones in another), both coordinates and
-// both rows in one vector: four reads where the loop over pixels would gather eight
-// single values per pixel. The sums are bilinear()'s, lane by lane, so the bits are too.
+// Bilinear, one pixel at a time, both coordinates at once: each node's (x, y) is one read
+// from the node-by-node copy of the table, four reads where the loop over pixels would
+// gather eight single values per pixel. Two-lane vectors, which every instruction set
+// has (four lanes went through the stack on SSE2). The sums are bilinear()'s, lane by
+// lane, so the bits are too.
 template <class Scalar>
 [[gnu::always_inline]] inline void bilinear_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
                                                    const int* __restrict cell, const Scalar* __restrict fraction_x,
                                                    const Scalar* __restrict fraction_y, Scalar* __restrict u_x,
                                                    Scalar* __restrict u_y, Scalar* __restrict ok) {
-    typedef Scalar Four __attribute__((vector_size(4 * sizeof(Scalar))));
     typedef Scalar Two __attribute__((vector_size(2 * sizeof(Scalar))));
+    const auto node = [pairs](std::size_t k) {
+        Two xy;
+        __builtin_memcpy(&xy, pairs + 2 * k, sizeof xy);
+        return xy;
+    };
     for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t k = static_cast<std::size_t>(cell[i]);
-        Four top, bottom;  // (x, y) of the left node, then of the right one
-        __builtin_memcpy(&top, pairs + 2 * k, sizeof top);
-        __builtin_memcpy(&bottom, pairs + 2 * (k + static_cast<std::size_t>(stride)), sizeof bottom);
-        const Four left = __builtin_shufflevector(top, bottom, 0, 1, 4, 5);  // top then bottom row
-        const Four right = __builtin_shufflevector(top, bottom, 2, 3, 6, 7);
-        const Four rows = left + fraction_x[i] * (right - left);  // (upper x, upper y, lower x, lower y)
-        const Two upper = __builtin_shufflevector(rows, rows, 0, 1), lower = __builtin_shufflevector(rows, rows, 2, 3);
+        const std::size_t k = static_cast<std::size_t>(cell[i]), below = k + static_cast<std::size_t>(stride);
+        const Two top_left = node(k), top_right = node(k + 1), bottom_left = node(below), bottom_right = node(below + 1);
+        const Two upper = top_left + fraction_x[i] * (top_right - top_left);
+        const Two lower = bottom_left + fraction_x[i] * (bottom_right - bottom_left);
         const Two u = upper + fraction_y[i] * (lower - upper);
         u_x[i] = u[0];
         u_y[i] = u[1];
