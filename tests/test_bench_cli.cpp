@@ -187,8 +187,10 @@ TEST_CASE("bench --simd all: libcam's one-thread batch rows once per instruction
         sets_of[name].insert(row["simd"].get<std::string>());
         worst_of[name].insert(row["max_px"].get<double>());
     }
-    // exact, fast and lut, and the projection, in double and float; the interleaved projection in double
-    REQUIRE(sets_of.size() == 9);
+    // exact, fast and lut, and the projection, in double and float; the interleaved projection
+    // and exact unprojection in double
+    REQUIRE(sets_of.size() == 10);
+    CHECK(sets_of.count("unproject interleaved-exact double") == 1);
     for (const auto& [name, sets] : sets_of) {
         INFO(name);
         CHECK(sets.size() == supported.size());

@@ -61,7 +61,17 @@ protected:
     ~BlockIo() = default;
 };
 
-// Pixels [begin, end) of an unprojection.
+// Pixels and rays as numpy's (N, 2) and (N, 3) arrays: the kernel copies each block in
+// and out itself, where the copies are compiled for its instruction set.
+template <class Scalar>
+struct InterleavedIo {
+    const Scalar* pixels;  // x, y of pixel i at 2 i, 2 i + 1
+    Scalar* directions;    // x, y, z of its ray at 3 i .. 3 i + 2
+    std::uint8_t* valid;
+};
+
+// Pixels [begin, end) of an unprojection: from and to `io`, or `interleaved` where that
+// is given.
 template <class Scalar>
 struct UnprojectJob {
     const Camera& camera;
@@ -71,7 +81,8 @@ struct UnprojectJob {
     const detail::DomainRim& rim;
     const UnprojectionTable<Scalar>& table;
     UnprojectMethod method;
-    const BlockIo<Scalar>& io;
+    const BlockIo<Scalar>* io;
+    const InterleavedIo<Scalar>* interleaved = nullptr;
 };
 
 // The kernels of one instruction set.

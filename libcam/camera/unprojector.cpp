@@ -90,7 +90,7 @@ void Unprojector<Scalar>::run(std::size_t n, UnprojectMethod method, int threads
                               Output&& out) const {
     const RunIo<Scalar, std::decay_t<FillPixels>, std::decay_t<Output>> io(fill, out);
     const kernels::UnprojectJob<Scalar> job{camera_, valid_radius_, certified_radius_, no_ray_radius_,
-                                            rim_,    table_,        method,            io};
+                                            rim_,    table_,        method,            &io};
     const auto unproject = kernels::kernels<Scalar>().unproject;
     parallel_chunks(n, threads, kBlock, [&](std::size_t begin, std::size_t end) { unproject(job, begin, end); });
 }
@@ -247,25 +247,6 @@ void fill_from_pairs(const Stored* pairs, std::size_t first, Block<Scalar>& b) {
     b.pixel_y = b.made_y;
 }
 
-// Rays written to a block's scratch, then interleaved into numpy's (N, 3) layout; the
-// flags straight into the caller's array.
-template <class Scalar>
-struct InterleavedOutput {
-    Scalar* directions;
-    std::uint8_t* valid;
-    detail::RayOutput<Scalar> at(std::size_t first, RayScratch<Scalar, kBlock>& scratch) const {
-        return {scratch.x, scratch.y, scratch.z, valid + first};
-    }
-    void done(std::size_t first, std::size_t count, const RayScratch<Scalar, kBlock>& scratch) const {
-        Scalar* out = directions + 3 * first;
-        for (std::size_t i = 0; i < count; ++i) {
-            out[3 * i] = scratch.x[i];
-            out[3 * i + 1] = scratch.y[i];
-            out[3 * i + 2] = scratch.z[i];
-        }
-    }
-};
-
 }  // namespace
 
 template <class Scalar>
@@ -295,9 +276,11 @@ void Unprojector<Scalar>::unproject_interleaved(std::span<const Scalar> pixels, 
     if (batch::overlap(directions, pixels) || batch::overlap(directions, valid) || batch::overlap(pixels, valid)) {
         throw InvalidArgument("unproject_interleaved: the directions and the flags must not overlap the pixels or each other");
     }
-    const Scalar* pairs = pixels.data();
-    const auto copy_pixels = [pairs](std::size_t first, Block<Scalar>& b) { fill_from_pairs(pairs, first, b); };
-    run(n, method, threads, copy_pixels, InterleavedOutput<Scalar>{directions.data(), valid.data()});
+    const kernels::InterleavedIo<Scalar> arrays{pixels.data(), directions.data(), valid.data()};
+    const kernels::UnprojectJob<Scalar> job{camera_, valid_radius_, certified_radius_, no_ray_radius_, rim_,
+                                            table_,  method,        nullptr,           &arrays};
+    const auto unproject = kernels::kernels<Scalar>().unproject;
+    parallel_chunks(n, threads, kBlock, [&](std::size_t begin, std::size_t end) { unproject(job, begin, end); });
 }
 
 template class Unprojector<float>;

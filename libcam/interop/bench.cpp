@@ -165,6 +165,7 @@ struct Workspace {
     ValidFlags unprojected_valid;
     Points2<double> pixels_double;  // the rays' pixels
     std::vector<double> interleaved_pixels;
+    std::vector<double> interleaved_directions;
     Points2<float> pixels_float;
     ValidFlags projected_valid;
     std::vector<Unprojection> unprojections;
@@ -257,6 +258,33 @@ void add_libcam_unprojection(std::vector<Contender>& out, const Setup& setup, co
             };
             out.push_back(std::move(c));
         }
+    }
+}
+
+// Unprojector::unproject_interleaved, exact: pixels and directions as numpy's (N, 2) and
+// (N, 3) arrays (the Python module's layout).
+void add_interleaved_unprojection(std::vector<Contender>& out, const Setup& setup, const Unprojector<double>& unprojector,
+                                  const std::vector<double>& pixels, Workspace& work) {
+    const std::size_t n = pixels.size() / 2;
+    for (const RunOn on : runs_of(setup)) {
+        Contender c{row(setup, "unproject", "interleaved-exact", "double", on), n, nullptr, nullptr};
+        c.run = [&, on, n] {
+            const SimdTargetFor forced(on.instruction_set);
+            work.interleaved_directions.resize(3 * n);
+            work.unprojected_valid.resize(n);
+            unprojector.unproject_interleaved(pixels, UnprojectMethod::Exact, work.interleaved_directions,
+                                              work.unprojected_valid, on.threads);
+        };
+        c.outcome = [&, n] {
+            std::vector<Vec3> directions;
+            for (std::size_t i = 0; i < n; ++i) {
+                const double* d = work.interleaved_directions.data() + 3 * i;
+                directions.emplace_back(d[0], d[1], d[2]);
+            }
+            return reprojection_outcome(setup.bench_case.camera, setup.grid, directions,
+                                        std::vector<char>(work.unprojected_valid.begin(), work.unprojected_valid.end()));
+        };
+        out.push_back(std::move(c));
     }
 }
 
@@ -546,6 +574,7 @@ std::vector<BenchRow> grid_rows(const Setup& setup, const Unprojector<double>& u
     std::vector<Contender> candidates;
     add_libcam_unprojection(candidates, setup, unprojector_double, pixels_double, work, work.directions_double);
     add_libcam_unprojection(candidates, setup, unprojector_float, pixels_float, work, work.directions_float);
+    add_interleaved_unprojection(candidates, setup, unprojector_double, mrcal_pixels, work);  // x, y per pixel
     add_camera_unprojection(candidates, setup, prepared, work);
     add_opencv_unprojection(candidates, setup, cv_pixels, work);
     add_mrcal_unprojection(candidates, setup, mrcal_pixels, work);

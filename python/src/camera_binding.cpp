@@ -358,22 +358,16 @@ void unproject_into(const PythonCamera& camera, const PixelSource& source, std::
     const Pose& pose = camera.camera().pose;
     const ImageSize size = camera.camera().size;
     const bool flip = camera.pixel_origin() != PixelOrigin::TopLeft;
-    // Pixels as numpy's C-ordered (N, 2) array and the rays as the engine gives them: it
-    // reads and writes the caller's arrays in place, chunk by chunk (a chunk's rays are
-    // still in the cache for the NaNs). bool and std::uint8_t are one byte each; the
-    // engine writes 0 or 1.
+    // Pixels as numpy's C-ordered (N, 2) array and the rays as the engine gives them: one
+    // engine call reads and writes the caller's arrays in place, on the engine's threads
+    // (each call has a fixed cost: a table view, the lens's constants), then NaN where the
+    // flags say (memchr skips the valid runs). bool and std::uint8_t are one byte each;
+    // the engine writes 0 or 1.
     if (source.points && packed<2>(*source.points) && frame == Frame::Camera && !normalize && !flip) {
-        const T* in = source.points->data<T>();
-        parallel_chunks(count_all, threads, kChunk, [&](std::size_t begin, std::size_t end) {
-            for (std::size_t first = begin; first < end; first += kInPlaceChunk) {
-                const std::size_t count = std::min(kInPlaceChunk, end - first);
-                std::uint8_t* mask = reinterpret_cast<std::uint8_t*>(mask_out + first);
-                T* directions = directions_out + 3 * first;
-                unprojector.unproject_interleaved({in + 2 * first, 2 * count}, method, {directions, 3 * count},
-                                                  {mask, count}, 1);
-                nan_where_invalid<T, 3>(mask, directions, count);
-            }
-        });
+        std::uint8_t* mask = reinterpret_cast<std::uint8_t*>(mask_out);
+        unprojector.unproject_interleaved({source.points->data<T>(), 2 * count_all}, method,
+                                          {directions_out, 3 * count_all}, {mask, count_all}, threads);
+        nan_where_invalid<T, 3>(mask, directions_out, count_all);
         return;
     }
     const auto run = [&](const auto& fill, const auto& prefetch) {
