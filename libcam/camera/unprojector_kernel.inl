@@ -405,6 +405,19 @@ void rays_to_triples(const Scalar* __restrict x, const Scalar* __restrict y, con
     }
 }
 
+// Asks for the next block's pixels, and the lines its rays will be written to, while this
+// block computes: the copies in and out of a block run in bursts, which would otherwise
+// wait on memory for a batch larger than the cache.
+template <class Scalar>
+void prefetch_next_block(const InterleavedIo<Scalar>& io, std::size_t next, std::size_t end) {
+    const std::size_t count = std::min(kBlock, end - std::min(end, next));
+    constexpr std::size_t kLine = 64;
+    const char* pixels = reinterpret_cast<const char*>(io.pixels + 2 * next);
+    for (std::size_t byte = 0; byte < 2 * count * sizeof(Scalar); byte += kLine) __builtin_prefetch(pixels + byte, 0);
+    const char* directions = reinterpret_cast<const char*>(io.directions + 3 * next);
+    for (std::size_t byte = 0; byte < 3 * count * sizeof(Scalar); byte += kLine) __builtin_prefetch(directions + byte, 1);
+}
+
 // Pixels [begin, end) of a job, block by block.
 template <class Scalar>
 void unproject(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t end) {
@@ -422,6 +435,7 @@ void unproject(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t e
         for (std::size_t first = begin; first < end; first += kBlock) {
             block.count = std::min(kBlock, end - first);
             if (job.interleaved) {
+                prefetch_next_block(*job.interleaved, first + block.count, end);
                 block.rays = {scratch.x, scratch.y, scratch.z, job.interleaved->valid + first};
                 pixels_from_pairs(job.interleaved->pixels + 2 * first, block.count, block.made_x, block.made_y);
                 block.pixel_x = block.made_x;
