@@ -41,6 +41,7 @@ struct Block {
     Scalar ok[kBlock];  // 1: u (then the ray) is the answer; -1: settled, no ray; 0: for the full solver
     Scalar reducible[kBlock];  // 1: u passes, but another Newton step would gain digits (certify)
     detail::RayOutput<Scalar> rays;                 // where the block's rays and flags go
+    Scalar* ray_triples = nullptr;                  // or its rays as numpy's (N, 3): x, y, z of ray i at 3 i
     int cell[kBlock];                               // table node at the top-left of the pixel's cell
     Scalar fraction_x[kBlock], fraction_y[kBlock];  // position within that cell
 };
@@ -61,8 +62,8 @@ protected:
     ~BlockIo() = default;
 };
 
-// Pixels and rays as numpy's (N, 2) and (N, 3) arrays: the kernel copies each block in
-// and out itself, where the copies are compiled for its instruction set.
+// Pixels and rays as numpy's (N, 2) and (N, 3) arrays: the kernel copies each block's
+// pixels in and writes its rays out itself, compiled for its instruction set.
 template <class Scalar>
 struct InterleavedIo {
     const Scalar* pixels;  // x, y of pixel i at 2 i, 2 i + 1

@@ -297,27 +297,41 @@ void solve_remaining(const Context<Scalar>& context, const typename ModelDouble:
     }
 }
 
-template <class Scalar>
-void set_ray(Block<Scalar>& b, std::size_t i, bool ok, const Vec3L<Scalar>& ray) {
-    b.rays.x[i] = ok ? lane_value(ray.x()) : Scalar(0);
-    b.rays.y[i] = ok ? lane_value(ray.y()) : Scalar(0);
-    b.rays.z[i] = ok ? lane_value(ray.z()) : Scalar(0);
-}
+// Where a block's rays go: the three arrays of b.rays, or numpy's (N, 3) triples at
+// b.ray_triples, written in the loop that computes them (a copy after the block would
+// write its lines in one burst, which waits on memory for a batch larger than the cache).
+enum class RayLayout { Arrays, Triples };
 
-template <class Model, class Scalar>
-void rays_from_undistorted(const typename Model::Parameters& lens, Block<Scalar>& b) {
-    for (std::size_t i = 0; i < b.count; ++i) {
-        set_ray(b, i, b.ok[i] > Scalar(0), Model::ray_from_undistorted(lens, Vec2L<Scalar>(b.u_x[i], b.u_y[i])));
+template <RayLayout layout, class Scalar>
+[[gnu::always_inline]] inline void set_ray(Block<Scalar>& b, std::size_t i, bool ok, const Vec3L<Scalar>& ray) {
+    const Scalar x = ok ? lane_value(ray.x()) : Scalar(0);
+    const Scalar y = ok ? lane_value(ray.y()) : Scalar(0);
+    const Scalar z = ok ? lane_value(ray.z()) : Scalar(0);
+    if constexpr (layout == RayLayout::Triples) {
+        b.ray_triples[3 * i] = x;
+        b.ray_triples[3 * i + 1] = y;
+        b.ray_triples[3 * i + 2] = z;
+    } else {
+        b.rays.x[i] = x;
+        b.rays.y[i] = y;
+        b.rays.z[i] = z;
     }
 }
 
-template <class Model, class Scalar>
+template <class Model, RayLayout layout, class Scalar>
+void rays_from_undistorted(const typename Model::Parameters& lens, Block<Scalar>& b) {
+    for (std::size_t i = 0; i < b.count; ++i) {
+        set_ray<layout>(b, i, b.ok[i] > Scalar(0), Model::ray_from_undistorted(lens, Vec2L<Scalar>(b.u_x[i], b.u_y[i])));
+    }
+}
+
+template <class Model, RayLayout layout, class Scalar>
 void unproject_closed_form(const typename Model::Parameters& lens_parameters, Block<Scalar>& b) {
     const typename Model::Parameters lens = lens_parameters;
     for (std::size_t i = 0; i < b.count; ++i) {
         Vec3L<Scalar> ray = Vec3L<Scalar>::Zero();
         const bool ok = Model::unproject(lens, Vec2L<Scalar>(b.m_x[i], b.m_y[i]), ray);
-        set_ray(b, i, ok, ray);
+        set_ray<layout>(b, i, ok, ray);
         b.ok[i] = batch::flag<Scalar>(ok);
     }
 }
@@ -371,22 +385,22 @@ void approximate(const Context<Scalar>& context, const typename Model::Parameter
 template <class Model>
 using LensPair = batch::BatchLens<Model, double>;
 
-template <class Model, class Scalar>
+template <class Model, RayLayout layout, class Scalar>
 void unproject_block(const Context<Scalar>& context, const LensPair<Model>& lens, UnprojectMethod method,
                      Block<Scalar>& b) {
     normalize(context.intrinsics, b);
     if constexpr (SolvedLensModel<Model>) {
         approximate<Model>(context, lens.lanes, method, b);
         solve_remaining<typename LensPair<Model>::Plain>(context, lens.plain, b);
-        rays_from_undistorted<Model>(lens.lanes, b);
+        rays_from_undistorted<Model, layout>(lens.lanes, b);
     } else {
-        unproject_closed_form<Model>(lens.lanes, b);
+        unproject_closed_form<Model, layout>(lens.lanes, b);
     }
 }
 
 
-// numpy's (N, 2) pixels into one array per coordinate, and rays back into its (N, 3):
-// loops GCC vectorises with shuffles at the kernel's width, on arrays that do not overlap.
+// numpy's (N, 2) pixels into one array per coordinate: a loop GCC vectorises with
+// shuffles at the kernel's width, on arrays that do not overlap.
 template <class Scalar>
 void pixels_from_pairs(const Scalar* __restrict pairs, std::size_t count, Scalar* __restrict x, Scalar* __restrict y) {
     for (std::size_t i = 0; i < count; ++i) {
@@ -395,27 +409,15 @@ void pixels_from_pairs(const Scalar* __restrict pairs, std::size_t count, Scalar
     }
 }
 
-template <class Scalar>
-void rays_to_triples(const Scalar* __restrict x, const Scalar* __restrict y, const Scalar* __restrict z,
-                     std::size_t count, Scalar* __restrict triples) {
-    for (std::size_t i = 0; i < count; ++i) {
-        triples[3 * i] = x[i];
-        triples[3 * i + 1] = y[i];
-        triples[3 * i + 2] = z[i];
-    }
-}
-
-// Asks for the next block's pixels, and the lines its rays will be written to, while this
-// block computes: the copies in and out of a block run in bursts, which would otherwise
-// wait on memory for a batch larger than the cache.
+// Asks for the next block's pixels while this block computes: the copy into the block
+// reads them in one burst, which would otherwise wait on memory for a batch larger than
+// the cache. (The rays are written as they are computed, spread over the block.)
 template <class Scalar>
 void prefetch_next_block(const InterleavedIo<Scalar>& io, std::size_t next, std::size_t end) {
     const std::size_t count = std::min(kBlock, end - std::min(end, next));
     constexpr std::size_t kLine = 64;
     const char* pixels = reinterpret_cast<const char*>(io.pixels + 2 * next);
     for (std::size_t byte = 0; byte < 2 * count * sizeof(Scalar); byte += kLine) __builtin_prefetch(pixels + byte, 0);
-    const char* directions = reinterpret_cast<const char*>(io.directions + 3 * next);
-    for (std::size_t byte = 0; byte < 3 * count * sizeof(Scalar); byte += kLine) __builtin_prefetch(directions + byte, 1);
 }
 
 // Pixels [begin, end) of a job, block by block.
@@ -436,19 +438,18 @@ void unproject(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t e
             block.count = std::min(kBlock, end - first);
             if (job.interleaved) {
                 prefetch_next_block(*job.interleaved, first + block.count, end);
-                block.rays = {scratch.x, scratch.y, scratch.z, job.interleaved->valid + first};
+                block.rays = {nullptr, nullptr, nullptr, job.interleaved->valid + first};
+                block.ray_triples = job.interleaved->directions + 3 * first;
                 pixels_from_pairs(job.interleaved->pixels + 2 * first, block.count, block.made_x, block.made_y);
                 block.pixel_x = block.made_x;
                 block.pixel_y = block.made_y;
+                unproject_block<Model, RayLayout::Triples>(context, lens, job.method, block);
+                batch::store_flags<Scalar>({block.ok, block.count}, block.rays.valid);
             } else {
                 block.rays = job.io->at(first, scratch);
                 job.io->fill(first, block);
-            }
-            unproject_block<Model>(context, lens, job.method, block);
-            batch::store_flags<Scalar>({block.ok, block.count}, block.rays.valid);
-            if (job.interleaved) {
-                rays_to_triples(scratch.x, scratch.y, scratch.z, block.count, job.interleaved->directions + 3 * first);
-            } else {
+                unproject_block<Model, RayLayout::Arrays>(context, lens, job.method, block);
+                batch::store_flags<Scalar>({block.ok, block.count}, block.rays.valid);
                 job.io->done(first, block.count, scratch);
             }
         }
