@@ -471,7 +471,15 @@ TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) and projec
     for (const LensCase& lens : all_lens_cases()) {
         const Camera camera = scaled_to_width(lens.camera, 160);
         INFO(lens.name << " " << scalar_name<Scalar>());
-        const Points3<Scalar> points = as_points3<Scalar>(projection_points(camera));
+        // With points far outside the comfortable range, which the kernel's second pass
+        // projects (scaled first), writing its pixels into the pairs too.
+        std::vector<Vec3> camera_points = projection_points(camera);
+        const double huge = std::numeric_limits<Scalar>::max() / 8, tiny = std::numeric_limits<Scalar>::min() * 8;
+        for (std::size_t i = 0; i < camera_points.size(); i += 5) {
+            camera_points.push_back(camera_points[i] * huge);
+            camera_points.push_back(camera_points[i] * tiny);
+        }
+        const Points3<Scalar> points = as_points3<Scalar>(camera_points);
         const Projector<Scalar> projector(camera);
         Points2<Scalar> pixels;
         ValidFlags valid;

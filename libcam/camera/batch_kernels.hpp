@@ -74,6 +74,16 @@ bool overlap(std::span<A> a, std::span<B> b) {
     return begin_a < end_b && begin_b < end_a;
 }
 
+// Asks for the cache lines of `count` values from `first` on, which the next block copies
+// in one burst: asked while this block computes, they are there when it starts, where
+// the burst would otherwise wait on memory for a batch larger than the cache.
+template <class Scalar>
+void prefetch_for_reading(const Scalar* first, std::size_t count) {
+    constexpr std::size_t kLine = 64;
+    const char* bytes = reinterpret_cast<const char*>(first);
+    for (std::size_t byte = 0; byte < count * sizeof(Scalar); byte += kLine) __builtin_prefetch(bytes + byte, 0);
+}
+
 template <class Scalar>
 constexpr Scalar flag(bool value) {
     return value ? Scalar(1) : Scalar(0);

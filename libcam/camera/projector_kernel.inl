@@ -54,20 +54,22 @@ enum class Layout { Arrays, Interleaved };
 template <class Model, class Scalar>
 [[gnu::noinline]] void project_second_pass(const Intrinsics& intrinsics, const ProjectorLens<Model, Scalar>& lens,
                                            const std::array<const Scalar*, 3>& points, std::size_t count,
-                                           Scalar* pixel_x, Scalar* pixel_y, Scalar* flags) {
+                                           Scalar* pixel_x, Scalar* pixel_y, std::size_t pixel_stride, Scalar* flags) {
     using Plain = typename ProjectorLens<Model, Scalar>::Plain;
     const auto [x, y, z] = points;
     for (std::size_t i = 0; i < count; ++i) {
         if (!needs_second_pass<Model>(x[i], y[i], z[i], flags[i])) continue;
         const Vec3T<Scalar> scaled = scaled_to_unit_range<Scalar>(Vec3T<Scalar>(x[i], y[i], z[i]));
-        flags[i] = batch::flag<Scalar>(project_point<Plain>(intrinsics, lens.plain, scaled, pixel_x[i], pixel_y[i]));
+        flags[i] = batch::flag<Scalar>(
+            project_point<Plain>(intrinsics, lens.plain, scaled, pixel_x[pixel_stride * i], pixel_y[pixel_stride * i]));
     }
 }
 
-// One block of at most kBlock points, each coordinate its own array. No output overlaps
-// an input or another output (restrict): without that promise GCC must check every pair
-// before it vectorises, and gives up past ten pairs.
-template <class Model, class Scalar>
+// One block of at most kBlock points, each coordinate its own array; the pixels go to
+// two arrays, or as numpy's (N, 2) pairs to pixel_x (pixel_y unused), written by the loop
+// that computes them. No output overlaps an input or another output (restrict): without
+// that promise GCC must check every pair before it vectorises, and gives up past ten pairs.
+template <class Model, Layout pixels, class Scalar>
 [[gnu::always_inline]] inline void project_block(const Intrinsics& intrinsics, const typename Model::Parameters& lens,
                                                  const ProjectorLens<Model, Scalar>& camera_lens,
                                                  const Scalar* __restrict x, const Scalar* __restrict y,
@@ -76,18 +78,32 @@ template <class Model, class Scalar>
                                                  Scalar* __restrict flags) {
     using Vec3L = typename Model::Vec3T;
     for (std::size_t i = 0; i < count; ++i) {
-        const bool ok = project_point<Model>(intrinsics, lens, Vec3L(x[i], y[i], z[i]), pixel_x[i], pixel_y[i]);
+        Scalar u, v;
+        const bool ok = project_point<Model>(intrinsics, lens, Vec3L(x[i], y[i], z[i]), u, v);
+        if constexpr (pixels == Layout::Interleaved) {
+            pixel_x[2 * i] = u;
+            pixel_x[2 * i + 1] = v;
+        } else {
+            pixel_x[i] = u;
+            pixel_y[i] = v;
+        }
         flags[i] = batch::flag<Scalar>(ok);
     }
     int again = 0;  // its own loop: an int sum, which vectorises
     for (std::size_t i = 0; i < count; ++i) again += needs_second_pass<Model>(x[i], y[i], z[i], flags[i]) ? 1 : 0;
-    if (again > 0) project_second_pass<Model>(intrinsics, camera_lens, {x, y, z}, count, pixel_x, pixel_y, flags);
+    if (again == 0) return;
+    if constexpr (pixels == Layout::Interleaved) {
+        project_second_pass<Model>(intrinsics, camera_lens, {x, y, z}, count, pixel_x, pixel_x + 1, 2, flags);
+    } else {
+        project_second_pass<Model>(intrinsics, camera_lens, {x, y, z}, count, pixel_x, pixel_y, 1, flags);
+    }
 }
 
 // Points [begin, end) through Model (in Lane<Scalar>), block by block. Interleaved points
-// are copied into arrays first and the pixels back after: loops that do nothing but
-// shuffle, which run at the speed of memory, where the model's loop reading stride-3 data
-// vectorised poorly (1.5x the arrays' time).
+// are copied into arrays first, a loop that does nothing but shuffle, where the model's
+// loop reading stride-3 data vectorised poorly (1.5x the arrays' time); the pixels are
+// written as pairs by the model's loop (a copy after the block wrote its lines in one
+// burst, which waited on memory).
 template <class Model, Layout layout, class Scalar>
 void project_range(const Intrinsics& camera_intrinsics, const ProjectorLens<Model, Scalar>& camera_lens,
                    const ProjectJob<Scalar>& job, std::size_t begin, std::size_t end) {
@@ -98,22 +114,18 @@ void project_range(const Intrinsics& camera_intrinsics, const ProjectorLens<Mode
     for (std::size_t first = begin; first < end; first += kBlock) {
         const std::size_t count = std::min(kBlock, end - first);
         if constexpr (layout == Layout::Arrays) {
-            project_block<Model>(intrinsics, lens, camera_lens, job.x + first, job.y + first, job.z + first, count,
-                                 job.pixel_x + first, job.pixel_y + first, flags);
+            project_block<Model, Layout::Arrays>(intrinsics, lens, camera_lens, job.x + first, job.y + first,
+                                                 job.z + first, count, job.pixel_x + first, job.pixel_y + first, flags);
         } else {
-            alignas(64) Scalar x[kBlock], y[kBlock], z[kBlock], pixel_x[kBlock], pixel_y[kBlock];
+            alignas(64) Scalar x[kBlock], y[kBlock], z[kBlock];
             const Scalar* points = job.x + 3 * first;  // job.x, y, z: the first point's x, y, z
             for (std::size_t i = 0; i < count; ++i) {
                 x[i] = points[3 * i];
                 y[i] = points[3 * i + 1];
                 z[i] = points[3 * i + 2];
             }
-            project_block<Model>(intrinsics, lens, camera_lens, x, y, z, count, pixel_x, pixel_y, flags);
-            Scalar* pixels = job.pixel_x + 2 * first;
-            for (std::size_t i = 0; i < count; ++i) {
-                pixels[2 * i] = pixel_x[i];
-                pixels[2 * i + 1] = pixel_y[i];
-            }
+            project_block<Model, Layout::Interleaved>(intrinsics, lens, camera_lens, x, y, z, count,
+                                                      job.pixel_x + 2 * first, static_cast<Scalar*>(nullptr), flags);
         }
         batch::store_flags<Scalar>({flags, count}, job.valid + first);
     }

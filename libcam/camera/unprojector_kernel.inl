@@ -409,17 +409,6 @@ void pixels_from_pairs(const Scalar* __restrict pairs, std::size_t count, Scalar
     }
 }
 
-// Asks for the next block's pixels while this block computes: the copy into the block
-// reads them in one burst, which would otherwise wait on memory for a batch larger than
-// the cache. (The rays are written as they are computed, spread over the block.)
-template <class Scalar>
-void prefetch_next_block(const InterleavedIo<Scalar>& io, std::size_t next, std::size_t end) {
-    const std::size_t count = std::min(kBlock, end - std::min(end, next));
-    constexpr std::size_t kLine = 64;
-    const char* pixels = reinterpret_cast<const char*>(io.pixels + 2 * next);
-    for (std::size_t byte = 0; byte < 2 * count * sizeof(Scalar); byte += kLine) __builtin_prefetch(pixels + byte, 0);
-}
-
 // Pixels [begin, end) of a job, block by block.
 template <class Scalar>
 void unproject(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t end) {
@@ -437,7 +426,9 @@ void unproject(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t e
         for (std::size_t first = begin; first < end; first += kBlock) {
             block.count = std::min(kBlock, end - first);
             if (job.interleaved) {
-                prefetch_next_block(*job.interleaved, first + block.count, end);
+                // The next block's pixels (its rays are written as they are computed).
+                batch::prefetch_for_reading(job.interleaved->pixels + 2 * (first + block.count),
+                                            2 * std::min(kBlock, end - first - block.count));
                 block.rays = {nullptr, nullptr, nullptr, job.interleaved->valid + first};
                 block.ray_triples = job.interleaved->directions + 3 * first;
                 pixels_from_pairs(job.interleaved->pixels + 2 * first, block.count, block.made_x, block.made_y);
