@@ -535,7 +535,8 @@ TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) and projec
     CHECK_NOTHROW(projector.project(coordinates, coordinates, coordinates, first, second, flags));
     std::vector<Scalar> three(3), two(2), four(4);
     ValidFlags one(1);
-    CHECK_THROWS_AS(projector.project_interleaved(three, four, one), InvalidArgument);
+    CHECK_THROWS_WITH(projector.project_interleaved(three, four, one),
+                      Catch::Contains("project_interleaved: 1 flags need 3 point coordinates and 2 pixel coordinates, got 3 and 4"));
     CHECK_THROWS_AS(projector.project_interleaved(four, two, one), InvalidArgument);
     ValidFlags none;
     CHECK_NOTHROW(projector.project_interleaved(std::span<const Scalar>(), std::span<Scalar>(), none));

@@ -84,6 +84,27 @@ void prefetch_for_reading(const Scalar* first, std::size_t count) {
     for (std::size_t byte = 0; byte < count * sizeof(Scalar); byte += kLine) __builtin_prefetch(bytes + byte, 0);
 }
 
+// Throws InvalidArgument unless a batch on numpy's layouts fits its n flags (`values`
+// holds `in_width` coordinates per entry, `results` `out_width`) and unless the results
+// and the flags overlap nothing: the kernel copies a block's inputs before it writes the
+// block's results, but results written over a later block's inputs would change them.
+// `in_name` and `out_name` name one coordinate ("pixel"); an s makes them plural.
+template <class Scalar>
+void require_interleaved_batch(const char* call, std::span<const Scalar> values, std::size_t in_width,
+                               const char* in_name, std::span<Scalar> results, std::size_t out_width,
+                               const char* out_name, std::span<std::uint8_t> flags) {
+    const std::size_t n = flags.size();
+    const std::string name(call), in(in_name), out(out_name);
+    if (values.size() != in_width * n || results.size() != out_width * n) {
+        throw InvalidArgument(name + ": " + std::to_string(n) + " flags need " + std::to_string(in_width * n) + " " + in +
+                              " coordinates and " + std::to_string(out_width * n) + " " + out + " coordinates, got " +
+                              std::to_string(values.size()) + " and " + std::to_string(results.size()));
+    }
+    if (overlap(results, values) || overlap(results, flags) || overlap(values, flags)) {
+        throw InvalidArgument(name + ": the " + out + "s and the flags must not overlap the " + in + "s or each other");
+    }
+}
+
 template <class Scalar>
 constexpr Scalar flag(bool value) {
     return value ? Scalar(1) : Scalar(0);

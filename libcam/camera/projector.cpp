@@ -55,18 +55,9 @@ void Projector<Scalar>::project(std::span<const Scalar> x, std::span<const Scala
 template <class Scalar>
 void Projector<Scalar>::project_interleaved(std::span<const Scalar> camera_points, std::span<Scalar> pixels,
                                             std::span<std::uint8_t> valid, int threads) const {
+    batch::require_interleaved_batch<Scalar>("project_interleaved", camera_points, 3, "point", pixels, 2, "pixel", valid);
     const std::size_t n = valid.size();
-    if (camera_points.size() != 3 * n || pixels.size() != 2 * n) {
-        throw InvalidArgument("project_interleaved: " + std::to_string(n) + " flags need " + std::to_string(3 * n) +
-                              " point coordinates and " + std::to_string(2 * n) + " pixel coordinates, got " +
-                              std::to_string(camera_points.size()) + " and " + std::to_string(pixels.size()));
-    }
     if (n == 0) return;
-    // A block's points are copied before its pixels are written, but pixels written over
-    // a later block's points would change them.
-    if (overlap(pixels, camera_points) || overlap(pixels, valid) || overlap(camera_points, valid)) {
-        throw InvalidArgument("project_interleaved: the pixels and the flags must not overlap the points or each other");
-    }
     const Scalar* points = camera_points.data();
     const kernels::ProjectJob<Scalar> job{camera_, valid_radius_,      points,       points + 1, points + 2,
                                           pixels.data(), pixels.data() + 1, valid.data()};

@@ -264,18 +264,10 @@ template <class Scalar>
 void Unprojector<Scalar>::unproject_interleaved(std::span<const Scalar> pixels, UnprojectMethod method,
                                                 std::span<Scalar> directions, std::span<std::uint8_t> valid,
                                                 int threads) const {
+    batch::require_interleaved_batch<Scalar>("unproject_interleaved", pixels, 2, "pixel", directions, 3, "direction",
+                                             valid);
     const std::size_t n = valid.size();
-    if (pixels.size() != 2 * n || directions.size() != 3 * n) {
-        throw InvalidArgument("unproject_interleaved: " + std::to_string(n) + " flags need " + std::to_string(2 * n) +
-                              " pixel coordinates and " + std::to_string(3 * n) + " direction coordinates, got " +
-                              std::to_string(pixels.size()) + " and " + std::to_string(directions.size()));
-    }
     if (n == 0) return;
-    // A block's pixels are copied before its rays are written, but rays written over a
-    // later block's pixels would change them.
-    if (batch::overlap(directions, pixels) || batch::overlap(directions, valid) || batch::overlap(pixels, valid)) {
-        throw InvalidArgument("unproject_interleaved: the directions and the flags must not overlap the pixels or each other");
-    }
     const kernels::InterleavedIo<Scalar> arrays{pixels.data(), directions.data(), valid.data()};
     const kernels::UnprojectJob<Scalar> job{camera_, valid_radius_, certified_radius_, no_ray_radius_, rim_,
                                             table_,  method,        nullptr,           &arrays};
