@@ -35,20 +35,17 @@
 #include "libcam/remap/render_plan.hpp"
 #include "cli_runner.hpp"
 #include "temp_dir.hpp"
+#include "real_cameras.hpp"
 
 using namespace libcam;
+using libcam::test::real_cameras_folder;
+using libcam::test::real_cameras_present;
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path kRenderScript = LIBCAM_BLENDER_RENDER_SCRIPT;
-const fs::path kRealCameras = LIBCAM_REAL_CAMERAS;
-
-bool real_cameras_present() {
-    if (fs::exists(kRealCameras)) return true;
-    WARN("skipped: the real calibration files are not at " << kRealCameras.string());
-    return false;
-}
+const fs::path kRealCameras = real_cameras_folder();
 
 // Blender: $LIBCAM_BLENDER, or `blender` on the PATH.
 std::optional<fs::path> blender_program() {

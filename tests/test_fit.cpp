@@ -24,8 +24,11 @@
 #include "libcam/fit/fit.hpp"
 #include "libcam/interop/mrcal.hpp"
 #include "support.hpp"
+#include "real_cameras.hpp"
 
 using namespace libcam;
+using libcam::test::real_cameras_folder;
+using libcam::test::real_cameras_present;
 using Catch::Matchers::Contains;
 
 namespace {
@@ -516,11 +519,8 @@ Camera basalt_camera(const std::filesystem::path& file) {
 TEST_CASE("basalt's Double Sphere and EUCM calibrations become a FISHEYE within 0.1 px, checked by the papers' formulas "
           "and cv::fisheye",
           "[real]") {
-    const std::filesystem::path folder = std::filesystem::path(LIBCAM_REAL_CAMERAS) / "basalt";
-    if (!std::filesystem::is_directory(folder)) {
-        WARN("skipped: no folder of real calibration files at " << folder.string());
-        return;
-    }
+    const std::filesystem::path folder = real_cameras_folder("basalt");
+    if (!real_cameras_present(folder)) return;
     for (const char* name : {"euroc_ds_calib.json", "euroc_eucm_calib.json", "tumvi_512_ds_calib.json", "tumvi_512_eucm_calib.json"}) {
         INFO(name);
         const Camera source = basalt_camera(folder / name);
@@ -555,11 +555,8 @@ TEST_CASE("basalt's Double Sphere and EUCM calibrations become a FISHEYE within 
 // axis 66 px from its principal point on the 170-degree lens), so the fitted camera may
 // rotate, as mrcal-convert-lensmodel's fit does.
 TEST_CASE("mrcal's splined calibrations become an OpenCV model, checked by mrcal_project and OpenCV", "[real]") {
-    const std::filesystem::path folder = std::filesystem::path(LIBCAM_REAL_CAMERAS) / "mrcal";
-    if (!std::filesystem::is_directory(folder)) {
-        WARN("skipped: no folder of real calibration files at " << folder.string());
-        return;
-    }
+    const std::filesystem::path folder = real_cameras_folder("mrcal");
+    if (!real_cameras_present(folder)) return;
     struct SplinedCase {
         const char* file;
         Scene scene;

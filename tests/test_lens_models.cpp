@@ -22,6 +22,7 @@
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/lens/lens_models.hpp"
 #include "support.hpp"
+#include "real_cameras.hpp"
 
 using namespace libcam;
 using namespace libcam::test;
@@ -236,11 +237,8 @@ Camera read_cameramodel(const std::filesystem::path& path) {
 }  // namespace
 
 TEST_CASE("SPLINED_STEREOGRAPHIC: mrcal's splined calibrations, rays through mrcal_project and mrcal_unproject", "[real]") {
-    const std::filesystem::path folder = std::filesystem::path(LIBCAM_REAL_CAMERAS) / "mrcal";
-    if (!std::filesystem::is_directory(folder)) {
-        WARN("skipped: no folder of real calibration files at " << folder.string());
-        return;
-    }
+    const std::filesystem::path folder = real_cameras_folder("mrcal");
+    if (!real_cameras_present(folder)) return;
     std::vector<LensCase> cases;
     for (const char* name : {"cam0.splined.cameramodel", "splined-0.cameramodel"}) {
         cases.push_back({name, read_cameramodel(folder / name)});

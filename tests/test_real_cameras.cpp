@@ -14,14 +14,17 @@
 
 #include "libcam/error.hpp"
 #include "lens_cases.hpp"
+#include "real_cameras.hpp"
 #include "libcam/io/camera_file.hpp"
 
 using namespace libcam;
+using libcam::test::real_cameras_folder;
+using libcam::test::real_cameras_present;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kFolder = LIBCAM_REAL_CAMERAS;
+const fs::path kFolder = real_cameras_folder();
 
 // What a file holds, from its text.
 struct Expected {
@@ -96,16 +99,11 @@ const std::vector<Expected> kReadable{
      1957.291928, 0.0},
 };
 
-bool folder_present() {
-    if (fs::is_directory(kFolder)) return true;
-    WARN("skipped: no folder of real calibration files at " << kFolder.string());
-    return false;
-}
 
 }  // namespace
 
 TEST_CASE("Real calibration files libcam reads give the numbers written in them", "[files][real]") {
-    if (!folder_present()) return;
+    if (!real_cameras_present()) return;
     for (const Expected& e : kReadable) {
         CAPTURE(e.path, e.camera);
         const Camera camera = read_camera_file(kFolder / e.path, e.camera, std::nullopt, options_for(e)).camera;
@@ -121,7 +119,7 @@ TEST_CASE("Real calibration files libcam reads give the numbers written in them"
 
 TEST_CASE("Every real calibration file is read, and one that leaves out what libcam needs is refused with one line",
           "[files][real]") {
-    if (!folder_present()) return;
+    if (!real_cameras_present()) return;
     for (const fs::directory_entry& entry : fs::recursive_directory_iterator(kFolder)) {
         if (!entry.is_regular_file() || entry.path().filename() == "SOURCES.md") continue;
         const std::string relative = fs::relative(entry.path(), kFolder).generic_string();
@@ -145,7 +143,7 @@ TEST_CASE("Every real calibration file is read, and one that leaves out what lib
 }
 
 TEST_CASE("Rig files: poses in the rig's frame, worked from each file's own transform", "[files][real]") {
-    if (!folder_present()) return;
+    if (!real_cameras_present()) return;
     // Kalibr's T_cam_imu is world (IMU) to camera as it stands: t is its last column.
     const Camera t265 = read_camera_file(kFolder / "open_vins/rs_t265/kalibr_imucam_chain.yaml").camera;
     CHECK(t265.pose.t.x() == 0.009847737933630705);
@@ -183,7 +181,7 @@ TEST_CASE("Rig files: poses in the rig's frame, worked from each file's own tran
 
 TEST_CASE("Every camera of every real file libcam reads projects as the library that defines its model does",
           "[files][real]") {
-    if (!folder_present()) return;
+    if (!real_cameras_present()) return;
     std::vector<std::string> done;
     for (const Expected& e : kReadable) {
         if (std::find(done.begin(), done.end(), e.path) != done.end()) continue;

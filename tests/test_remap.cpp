@@ -35,16 +35,19 @@
 #include "libcam/remap/render_plan.hpp"
 #include "cli_runner.hpp"
 #include "temp_dir.hpp"
+#include "real_cameras.hpp"
 
 using namespace libcam;
 using libcam::test::CliResult;
 using libcam::test::read_whole_file;
 using libcam::test::run_program;
+using libcam::test::real_cameras_folder;
+using libcam::test::real_cameras_present;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kRealCameras = LIBCAM_REAL_CAMERAS;
+const fs::path kRealCameras = real_cameras_folder();
 
 Mat3 small_rotation() { return rotation_from_rvec(Vec3(0.02, -0.03, 0.01)); }
 
@@ -105,12 +108,6 @@ Comparison compare(const RemapMap& map, const cv::Mat& map_x, const cv::Mat& map
 
 Camera real_camera(const std::string& file, const std::string& name = "") {
     return read_camera_file(kRealCameras / file, name).camera;
-}
-
-bool real_cameras_present() {
-    if (fs::exists(kRealCameras)) return true;
-    WARN("skipped: the real calibration files are not at " << kRealCameras.string());
-    return false;
 }
 
 // How many pixels of a camera's image have a ray (the exact unprojection's).

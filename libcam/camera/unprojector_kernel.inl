@@ -101,9 +101,6 @@ void locate_in_table(const TableView<Scalar>& table_view, Block<Scalar>& b) {
     locate_pixels(table, b.pixel_x, b.pixel_y, b.count, b.cell, b.fraction_x, b.fraction_y, b.ok);
 }
 
-// u interpolated from the table at each located pixel; ok stays 1 only where every
-// node used has a ray (a node without one is NaN and makes the sum NaN).
-
 // Bilinear, one pixel at a time, both coordinates at once: each node's (x, y) is one read
 // from the node-by-node copy of the table, four reads where the loop over pixels would
 // gather eight single values per pixel. Two-lane vectors, which every instruction set
@@ -155,6 +152,8 @@ template <class Scalar>
     }
 }
 
+// u interpolated from the table at each located pixel; ok stays 1 only where every
+// node used has a ray (a node without one is NaN and makes the sum NaN).
 template <Interpolation kind, class Scalar>
 void interpolate(const TableView<Scalar>& table_view, Block<Scalar>& b) {
     const TableView<Scalar> table = table_view;
