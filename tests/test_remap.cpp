@@ -822,6 +822,20 @@ TEST_CASE("libcam render-plan and libcam project, as a user runs them: the plan'
     REQUIRE(r.exit_code == 0);
     CHECK_THAT(r.out, Catch::Contains("Blender draws PINHOLE as it is"));
     CHECK_FALSE(fs::exists(dir.path() / "plan2" / "warp.exr"));
+    // A plan written over an earlier one removes the earlier plan's warp map when it needs
+    // none, or writes its own in the other format, rather than leave it to be taken for its
+    // own.
+    r = run_program(exe, {"render-plan", "--from", fisheye_file.string(), "-o", plan.string(), "--map-format", "npy"});
+    REQUIRE(r.exit_code == 0);
+    CHECK(fs::exists(plan / "warp.npy"));
+    CHECK_FALSE(fs::exists(plan / "warp.exr"));
+    CHECK_THAT(r.out, Catch::Contains("removed " + (plan / "warp.exr").string() + ", an earlier plan's warp map\n"));
+    r = run_program(exe, {"render-plan", "--from", pinhole_file.string(), "-o", plan.string()});
+    REQUIRE(r.exit_code == 0);
+    CHECK_FALSE(fs::exists(plan / "warp.npy"));
+    CHECK_THAT(r.out, Catch::Contains("removed " + (plan / "warp.npy").string() +
+                                      ", an earlier plan's warp map (this plan needs none)"));
+    CHECK(read_camera_file(plan / "render.json").camera.lens.type == LensType::Pinhole);
     // Errors.
     r = run_program(exe, {"render-plan", "--from", fisheye_file.string()});
     CHECK(r.exit_code == 2);

@@ -81,6 +81,16 @@ int run_render_plan(const RenderPlanFlags& flags) {
               << "scene.blend -P " << script.string() << " -o //render_ -F OPEN_EXR -f 1)\n"
               << "wrote " << render_json.string() << " (the render camera) and " << lens_json.string()
               << " (the lens)\n";
+    // A warp map an earlier plan left in the folder (none now, or in the other format)
+    // would be taken for this plan's: removed, and said.
+    for (const char* format : {"exr", "npy"}) {
+        const fs::path old_map = dir / (std::string("warp.") + format);
+        if ((!plan->needs_warp || old_map != map_file) && fs::is_regular_file(old_map)) {
+            fs::remove(old_map);
+            std::cout << "removed " << old_map.string() << ", an earlier plan's warp map"
+                      << (plan->needs_warp ? "" : " (this plan needs none)") << "\n";
+        }
+    }
     if (!plan->needs_warp) return 0;
 
     const RemapMap warp = build_remap_map(lens, PreparedCamera(plan->render),
