@@ -6,8 +6,11 @@
 
 The points are those of `libcam bench`: a grid of pixels over the image (corners
 included) and their rays (z = 1 for OpenCV's models). The C++ rows come from
-`libcam bench --grid ... --threads 1 --json` on the same grid, in the same run; the Python
-rows are the median of 7 timed calls, one thread, outputs allocated by each call (as a
+`libcam bench --grid ... --threads 1 --simd best --json` on the same grid, in the same run:
+each Python row's time against the C++ batch on separate arrays (the layout the engine
+reads) and against the C++ call on the Python call's own layout (numpy's C-ordered (N, 3)
+and (N, 2): `project_interleaved`, `unproject_interleaved`), which is what the module
+itself adds. The Python rows are the median of 7 timed calls, one thread, outputs allocated by each call (as a
 user calls them) and, for libcam, also written into arrays given with out=. Not a test:
 nothing here is asserted.
 """
@@ -50,8 +53,8 @@ def per_call_seconds(function, calls=20000):
 
 
 def cpp_rows(libcam_exe, camera_path, grid):
-    out = subprocess.run([libcam_exe, "bench", "--from", str(camera_path), "--grid", grid, "--threads", "1", "--json"],
-                         check=True, capture_output=True, text=True).stdout
+    out = subprocess.run([libcam_exe, "bench", "--from", str(camera_path), "--grid", grid, "--threads", "1", "--simd",
+                          "best", "--json"], check=True, capture_output=True, text=True).stdout
     rows = {}
     for row in json.loads(out)["rows"]:
         if row["library"] == "libcam" and row["scalar"] == "double" and row["threads"] == 1:
@@ -100,23 +103,25 @@ def main():
     columns_out = np.empty((2, n)).T
 
     def libcam_rows(cpp):
-        """(op, call, seconds, C++ ns) of libcam's calls."""
+        """(op, call, seconds, C++ ns on arrays, C++ ns on the call's layout) of libcam's calls."""
+        batch, interleaved = cpp.get(("project", "batch")), cpp.get(("project", "interleaved"))
         rows = [("project", "cam.project(points, frame='camera')",
-                 median_seconds(lambda: camera.project(points, frame="camera")), cpp.get(("project", "batch"))),
+                 median_seconds(lambda: camera.project(points, frame="camera")), batch, interleaved),
                 ("project", "... out=(pixels, mask)",
-                 median_seconds(lambda: camera.project(points, frame="camera", out=(pixels_out, mask_out))),
-                 cpp.get(("project", "batch"))),
+                 median_seconds(lambda: camera.project(points, frame="camera", out=(pixels_out, mask_out))), batch,
+                 interleaved),
                 ("project", "cam.project(points_3xN.T, frame='camera')",
-                 median_seconds(lambda: camera.project(columns_in, frame="camera")), cpp.get(("project", "batch"))),
+                 median_seconds(lambda: camera.project(columns_in, frame="camera")), batch, batch),
                 ("project", "... out=(pixels_2xN.T, mask)",
-                 median_seconds(lambda: camera.project(columns_in, frame="camera", out=(columns_out, mask_out))),
-                 cpp.get(("project", "batch")))]
+                 median_seconds(lambda: camera.project(columns_in, frame="camera", out=(columns_out, mask_out))), batch,
+                 batch)]
         for method in ("exact", "fast"):
+            arrays, same_layout = cpp.get(("unproject", method)), cpp.get(("unproject", f"interleaved-{method}"))
             rows.append(("unproject", f"cam.unproject(pixels, method='{method}')",
-                         median_seconds(lambda: camera.unproject(pixels, method=method)), cpp.get(("unproject", method))))
+                         median_seconds(lambda: camera.unproject(pixels, method=method)), arrays, same_layout))
             rows.append(("unproject", "... out=(directions, mask)",
                          median_seconds(lambda: camera.unproject(pixels, method=method, out=(rays_out, mask_out))),
-                         cpp.get(("unproject", method))))
+                         arrays, same_layout))
         return rows
 
     # Each run times the C++ batch (a `libcam bench` process) and then libcam's Python
@@ -125,13 +130,18 @@ def main():
     for _ in range(args.runs):
         cpp = cpp_rows(args.libcam, args.camera, args.grid)
         runs.append(libcam_rows(cpp))
+    def ratio_column(ns, i, reference):
+        """The median ratio of row i's times to run by run C++ times, and their range."""
+        ratios = sorted(t / run[i][reference] for t, run in zip(ns, runs) if run[i][reference])
+        if not ratios:
+            return ""
+        spread = f" ({ratios[0]:.2f}..{ratios[-1]:.2f})" if len(ratios) > 1 else ""
+        return f"{statistics.median(ratios):.2f}{spread}"
+
     table = []
-    for i, (op, call, _, _) in enumerate(runs[0]):
+    for i, (op, call, *_) in enumerate(runs[0]):
         ns = [run[i][2] * 1e9 / n for run in runs]
-        ratios = sorted(t / run[i][3] for t, run in zip(ns, runs) if run[i][3])
-        spread = f"{ratios[0]:.2f}..{ratios[-1]:.2f}" if len(ratios) > 1 else ""
-        table.append((op, "libcam", call, statistics.median(ns), f"{statistics.median(ratios):.2f}" if ratios else "",
-                      spread))
+        table.append((op, "libcam", call, statistics.median(ns), ratio_column(ns, i, 3), ratio_column(ns, i, 4)))
 
     def add(op, library, call, seconds):
         table.append((op, library, call, seconds * 1e9 / n, "", ""))
@@ -149,13 +159,13 @@ def main():
     if mrcal_model:
         add("unproject", "mrcal", "mrcal.unproject", median_seconds(lambda: mrcal.unproject(pixels, mrcal_model, intrinsics)))
 
-    print(f"\n{'op':<10} {'library':<8} {'call':<46} {'ns/point':>9} {'/ C++ batch':>11} {'runs':>10}")
-    for op, library, call, ns, ratio, spread in table:
-        print(f"{op:<10} {library:<8} {call:<46} {ns:9.2f} {ratio:>11} {spread:>10}")
+    print(f"\n{'op':<10} {'library':<8} {'call':<46} {'ns/point':>9} {'/ C++ on arrays':>18} {'/ C++ same layout':>18}")
+    for op, library, call, ns, arrays, same_layout in table:
+        print(f"{op:<10} {library:<8} {call:<46} {ns:9.2f} {arrays:>18} {same_layout:>18}")
     print("\nC++ batch (libcam bench, same grid, last run): " +
           ", ".join(f"{op} {method} {ns:.2f} ns" for (op, method), ns in sorted(cpp.items()) if op in ("project", "unproject")))
-    print(f"(libcam rows: the median of {args.runs} runs; each ratio against the C++ batch of its own run, "
-          f"their median and range; load average now {os.getloadavg()[0]:.2f})")
+    print(f"(libcam rows: the median of {args.runs} runs; each ratio against the C++ call of its own run, "
+          f"their median and (range); load average now {os.getloadavg()[0]:.2f})")
 
     one_point, one_pixel = points[:1].copy(), pixels[:1].copy()
     print("\nper call, one point (microseconds):")
