@@ -99,7 +99,6 @@ const std::vector<Expected> kReadable{
      1957.291928, 0.0},
 };
 
-
 }  // namespace
 
 TEST_CASE("Real calibration files libcam reads give the numbers written in them", "[files][real]") {
