@@ -105,12 +105,16 @@ void locate_in_table(const TableView<Scalar>& table_view, Block<Scalar>& b) {
 // from the node-by-node copy of the table, four reads where the loop over pixels would
 // gather eight single values per pixel. Two-lane vectors, which every instruction set
 // has (four lanes went through the stack on SSE2). The sums are bilinear()'s, lane by
-// lane, so the bits are too.
-template <class Scalar>
+// lane, so the bits are too. A node without a ray is NaN and makes u NaN; no test for it
+// here (a branch in this loop): every method's last check rejects a NaN u (see
+// estimate). With kCheckCell (fast), ok is also kept only in the cells marked in
+// `cell_ok`, read in this loop rather than gathered in a loop of its own.
+template <bool kCheckCell, class Scalar>
 [[gnu::always_inline]] inline void bilinear_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
                                                    const int* __restrict cell, const Scalar* __restrict fraction_x,
-                                                   const Scalar* __restrict fraction_y, Scalar* __restrict u_x,
-                                                   Scalar* __restrict u_y, Scalar* __restrict ok) {
+                                                   const Scalar* __restrict fraction_y, const Scalar* __restrict cell_ok,
+                                                   Scalar* __restrict u_x, Scalar* __restrict u_y,
+                                                   Scalar* __restrict ok) {
     typedef Scalar Two __attribute__((vector_size(2 * sizeof(Scalar))));
     const auto node = [pairs](std::size_t k) {
         Two xy;
@@ -125,8 +129,7 @@ template <class Scalar>
         const Two u = upper + fraction_y[i] * (lower - upper);
         u_x[i] = u[0];
         u_y[i] = u[1];
-        const bool numbers = (u[0] == u[0]) & (u[1] == u[1]);  // not NaN; & not &&: no branch in the loop
-        ok[i] = numbers ? ok[i] : Scalar(0);
+        if constexpr (kCheckCell) ok[i] = cell_ok[k] != Scalar(0) ? ok[i] : Scalar(0);
     }
 }
 
@@ -152,17 +155,26 @@ template <class Scalar>
     }
 }
 
-// u interpolated from the table at each located pixel; ok stays 1 only where every
-// node used has a ray (a node without one is NaN and makes the sum NaN).
+// u interpolated from the table at each located pixel (NaN where a node used has no
+// ray; the bicubic loop also clears ok there, the bilinear leaves that to the last check).
 template <Interpolation kind, class Scalar>
 void interpolate(const TableView<Scalar>& table_view, Block<Scalar>& b) {
     const TableView<Scalar> table = table_view;
     if constexpr (kind == Interpolation::Bilinear) {
-        bilinear_pixels(table.u_pairs, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y, b.u_x, b.u_y, b.ok);
+        bilinear_pixels<false>(table.u_pairs, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y,
+                               static_cast<const Scalar*>(nullptr), b.u_x, b.u_y, b.ok);
     } else {
         bicubic_pixels(table.u_x, table.u_y, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y, b.u_x, b.u_y,
                        b.ok);
     }
+}
+
+// Bilinear, keeping ok only in the cells where fast's estimate was checked (check_cells).
+template <class Scalar>
+void interpolate_in_checked_cells(const TableView<Scalar>& table_view, Block<Scalar>& b) {
+    const TableView<Scalar> table = table_view;
+    bilinear_pixels<true>(table.u_pairs, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y, table.fast_ok,
+                          b.u_x, b.u_y, b.ok);
 }
 
 template <Interpolation kind, class Scalar>
@@ -335,7 +347,9 @@ void unproject_closed_form(const typename Model::Parameters& lens_parameters, Bl
     }
 }
 
-// u by `method`, with ok = 1 where that settles it (see approximate).
+// u by `method`, with ok = 1 where that settles it (see approximate). A u interpolated
+// from a node without a ray is NaN, and each method's last check (require_valid_radius,
+// certify) fails for NaN: such a pixel goes to the full solver.
 template <class Model, class Scalar>
 void estimate(const Context<Scalar>& context, const typename Model::Parameters& lens, UnprojectMethod method,
               Block<Scalar>& b) {
@@ -347,9 +361,9 @@ void estimate(const Context<Scalar>& context, const typename Model::Parameters& 
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Fast:
-            start_from_table<Interpolation::Bilinear>(context.table, b);
+            locate_in_table(context.table, b);
+            interpolate_in_checked_cells(context.table, b);
             require_certified_disc(context.certified_radius_squared, b);
-            require_accurate_cell(context.table.fast_ok, b);
             newton_steps<Model>(lens, kFastNewtonSteps, b);
             require_valid_radius(context.valid_radius_squared, b);
             return;
