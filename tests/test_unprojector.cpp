@@ -360,6 +360,58 @@ TEST_CASE("A pixel that is not a number has no ray, for every method", "[engine]
     }
 }
 
+TEST_CASE("The table: the nodes' exact solutions and the checked cells, the same bits built on 1, 2 and 3 threads",
+          "[engine]") {
+    // The strong lens folds over inside the image: its outer nodes have no ray.
+    for (const auto& [name, every_node_has_ray] :
+         {std::pair{"OPENCV8 wide", true}, std::pair{"OPENCV8 mild", true}, std::pair{"OPENCV4 strong", false}}) {
+        INFO(name);
+        const Camera camera = lens_case(name).camera;
+        const auto table = [&](int threads) {
+            return Unprojector<double>(camera, UnprojectorOptions{.threads = threads}).table();
+        };
+        const UnprojectionTable<double> one = table(1), two = table(2), three = table(3);
+        for (const UnprojectionTable<double>* other : {&two, &three}) {
+            CHECK(same_bits(one.u_x, other->u_x));
+            CHECK(same_bits(one.u_y, other->u_y));
+            CHECK(same_bits(one.u_pairs, other->u_pairs));
+            CHECK(same_bits(one.fast_ok, other->fast_ok));
+            CHECK(same_bits(one.lut_ok, other->lut_ok));
+        }
+        if (!every_node_has_ray) continue;
+        // Each node's u projects back to the node's pixel (OpenCV's models: the ray is
+        // (u, 1)), and every row of cells was checked: on these lenses every cell passes.
+        const PreparedCamera prepared(camera);
+        double worst_px = 0;
+        for (int j = 0; j < one.nodes_y; ++j) {
+            for (int i = 0; i < one.nodes_x; ++i) {
+                const std::size_t k = static_cast<std::size_t>(j * one.nodes_x + i);
+                const Projection back = prepared.project_camera_point(Vec3(one.u_x[k], one.u_y[k], 1));
+                const Vec2 node(one.origin_x + i * one.step, one.origin_y + j * one.step);
+                worst_px = std::max(worst_px, back.valid ? (back.pixel - node).norm() : HUGE_VAL);
+            }
+        }
+        CHECK(worst_px < 1e-9);
+        int unchecked = 0;
+        for (int j = 1; j + 2 < one.nodes_y; ++j) {
+            for (int i = 1; i + 2 < one.nodes_x; ++i) {
+                const std::size_t k = static_cast<std::size_t>(j * one.nodes_x + i);
+                unchecked += one.fast_ok[k] > 0 && one.lut_ok[k] > 0 ? 0 : 1;
+            }
+        }
+        CHECK(unchecked == 0);
+    }
+}
+
+TEST_CASE("Options out of range are refused, naming the option and the value") {
+    const Camera camera = wide_reference_camera();
+    CHECK_THROWS_WITH(Unprojector<double>(camera, UnprojectorOptions{.table_nodes = 3}),
+                      "table_nodes: must be in [4, 100000], got 3");
+    CHECK_THROWS_WITH(Unprojector<double>(camera, UnprojectorOptions{.approximation_budget_px = 0}),
+                      "approximation_budget_px: must be > 0, got 0");
+    CHECK_THROWS_WITH(Unprojector<double>(camera, UnprojectorOptions{.threads = -1}), "threads: must be >= 0, got -1");
+}
+
 TEST_CASE("Batches with coordinate arrays of different lengths are refused") {
     const Unprojector<double> unprojector(wide_reference_camera());
     Points2<double> pixels;

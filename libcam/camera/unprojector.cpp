@@ -45,6 +45,7 @@ void Unprojector<Scalar>::prepare(const UnprojectorOptions& options) {
     if (options.table_nodes < 4 || options.table_nodes > 100'000) {
         throw InvalidArgument("table_nodes: must be in [4, 100000], got " + std::to_string(options.table_nodes));
     }
+    if (options.threads < 0) throw InvalidArgument("threads: must be >= 0, got " + std::to_string(options.threads));
     if (!(options.approximation_budget_px > 0)) {
         throw InvalidArgument("approximation_budget_px: must be > 0, got " + format_number(options.approximation_budget_px));
     }

@@ -49,6 +49,9 @@ struct UnprojectorOptions {
     // this many pixels at five checkpoints (the centre and the quarter points); the other
     // cells (next to a fold, where the inverse steepens) go to the full solver.
     double approximation_budget_px = 0.005;
+    // Threads that build the table (one per core when 0). The table is the same bits for
+    // any number.
+    int threads = 0;
 };
 
 // The table of exact undistorted points (used by the models solved iteratively).

@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 #include <utility>
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/camera/parallel.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/lens/undistort.hpp"
 
@@ -69,17 +71,30 @@ Vec2 node_pixel(const UnprojectionTable<Scalar>& table, double i, double j) {
     return {table.origin_x + i * table.step, table.origin_y + j * table.step};
 }
 
+// Calls row(j) for every j in [first, end), on `threads` threads (one per core when 0).
+// Each row writes only its own entries, so the table is the same for any number.
+template <class Row>
+void for_each_row(int first, int end, int threads, Row&& row) {
+    if (end <= first) return;
+    const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    parallel_chunks(static_cast<std::size_t>(end - first), workers, 1, [&](std::size_t begin, std::size_t stop) {
+        for (std::size_t j = begin; j < stop; ++j) row(first + static_cast<int>(j));
+    });
+}
+
 // Every node's exact u, by the full solver; NaN where the pixel has no ray.
 template <class Model>
-void solve_nodes(const Camera& camera, const typename Model::Parameters& lens, UnprojectionTable<double>& table) {
-    for (int j = 0, k = 0; j < table.nodes_y; ++j) {
-        for (int i = 0; i < table.nodes_x; ++i, ++k) {
+void solve_nodes(const Camera& camera, const typename Model::Parameters& lens, int threads,
+                 UnprojectionTable<double>& table) {
+    for_each_row(0, table.nodes_y, threads, [&](int j) {
+        for (int i = 0; i < table.nodes_x; ++i) {
+            const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(table.nodes_x) + static_cast<std::size_t>(i);
             Vec2 u;
             const bool solved = solve_undistorted<Model>(lens, camera.intrinsics.normalized_from_pixel(node_pixel(table, i, j)), u);
-            table.u_x[static_cast<std::size_t>(k)] = solved ? u.x() : std::numeric_limits<double>::quiet_NaN();
-            table.u_y[static_cast<std::size_t>(k)] = solved ? u.y() : std::numeric_limits<double>::quiet_NaN();
+            table.u_x[k] = solved ? u.x() : std::numeric_limits<double>::quiet_NaN();
+            table.u_y[k] = solved ? u.y() : std::numeric_limits<double>::quiet_NaN();
         }
-    }
+    });
 }
 
 // How far from `pixel` the estimate u reprojects, in px; infinity outside the domain.
@@ -116,11 +131,11 @@ std::pair<double, double> estimate_errors(const Camera& camera, const typename M
 // where bicubic does). Near a fold the inverse steepens and they do not; such cells go
 // to the full solver.
 template <class Model>
-void check_cells(const Camera& camera, const typename Model::Parameters& lens, double budget_px,
+void check_cells(const Camera& camera, const typename Model::Parameters& lens, double budget_px, int threads,
                  UnprojectionTable<double>& table) {
     constexpr double kCheckpoints[5][2] = {{0.5, 0.5}, {0.25, 0.25}, {0.75, 0.25}, {0.25, 0.75}, {0.75, 0.75}};
     // Only cells whose bicubic stencil fits are ever used (locate_in_table).
-    for (int j = 1; j + 2 < table.nodes_y; ++j) {
+    for_each_row(1, table.nodes_y - 2, threads, [&](int j) {
         for (int i = 1; i + 2 < table.nodes_x; ++i) {
             double fast = 0, lut = 0;
             for (const auto& [fx, fy] : kCheckpoints) {
@@ -132,7 +147,7 @@ void check_cells(const Camera& camera, const typename Model::Parameters& lens, d
             table.fast_ok[k] = fast <= budget_px ? 1.0 : 0.0;
             table.lut_ok[k] = lut <= budget_px ? 1.0 : 0.0;
         }
-    }
+    });
 }
 
 template <class Scalar>
@@ -154,8 +169,8 @@ template <class Model, class Scalar>
 UnprojectionTable<Scalar> build_table(const Camera& camera, const typename Model::Parameters& lens,
                                       const UnprojectorOptions& options) {
     UnprojectionTable<double> table = table_layout<double>(camera.size, options.table_nodes);
-    solve_nodes<Model>(camera, lens, table);
-    check_cells<Model>(camera, lens, options.approximation_budget_px, table);
+    solve_nodes<Model>(camera, lens, options.threads, table);
+    check_cells<Model>(camera, lens, options.approximation_budget_px, options.threads, table);
     return in_scalar<Scalar>(table);
 }
 
