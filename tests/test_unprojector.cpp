@@ -257,6 +257,23 @@ TEMPLATE_TEST_CASE("Batch paths: the same bits on 1, 2 and 3 threads, one pixel 
                 CHECK(same_bits(triples_valid, valid_one));
             }
 
+            // Lists of points (PreparedCamera::unproject's form), written over entries that
+            // hold other values.
+            for (int threads : {1, 2}) {
+                std::vector<Unprojection> entries(n, Unprojection{Vec3::Constant(-7), true});
+                unprojector.unproject(grid, method, entries, threads);
+                Points3<Scalar> unpacked;
+                ValidFlags entries_valid;
+                for (const Unprojection& entry : entries) {
+                    unpacked.x.push_back(Scalar(entry.direction.x()));
+                    unpacked.y.push_back(Scalar(entry.direction.y()));
+                    unpacked.z.push_back(Scalar(entry.direction.z()));
+                    entries_valid.push_back(entry.valid ? 1 : 0);
+                }
+                CHECK(same_bits(unpacked, one));
+                CHECK(same_bits(entries_valid, valid_one));
+            }
+
             bool singles_agree = true;
             for (std::size_t i = 0; i < grid.size(); i += 7) {
                 Eigen::Matrix<Scalar, 3, 1> direction = Eigen::Matrix<Scalar, 3, 1>::Zero();

@@ -41,7 +41,7 @@ struct Block {
     Scalar ok[kBlock];  // 1: u (then the ray) is the answer; -1: settled, no ray; 0: for the full solver
     Scalar reducible[kBlock];  // 1: u passes, but another Newton step would gain digits (certify)
     detail::RayOutput<Scalar> rays;                 // where the block's rays and flags go
-    Scalar* ray_triples = nullptr;                  // or its rays as numpy's (N, 3): x, y, z of ray i at 3 i
+    Scalar* ray_groups = nullptr;  // or its rays interleaved: x, y, z of ray i at s i (RayLayout's stride s)
     int cell[kBlock];                               // table node at the top-left of the pixel's cell
     Scalar fraction_x[kBlock], fraction_y[kBlock];  // position within that cell
 };
@@ -71,8 +71,20 @@ struct InterleavedIo {
     std::uint8_t* valid;
 };
 
-// Pixels [begin, end) of an unprojection: from and to `io`, or `interleaved` where that
-// is given.
+// Pixels as a list of Vec2 and rays into a list of Unprojection entries
+// (PreparedCamera::unproject's form): the pixels are pairs as in InterleavedIo, the rays
+// groups of four doubles (an entry's direction, then the eight bytes that hold its flag),
+// the flags bools one entry apart. Given for Scalar = double only: the lists hold doubles.
+template <class Scalar>
+struct EntryIo {
+    const Scalar* pixels;     // x, y of pixel i at 2 i, 2 i + 1
+    Scalar* directions;       // x, y, z of its ray at 4 i .. 4 i + 2
+    bool* valid;              // its flag at valid + entry_bytes i
+    std::size_t entry_bytes;  // sizeof(Unprojection)
+};
+
+// Pixels [begin, end) of an unprojection: from and to `io`, or `interleaved` or
+// `entries` where one is given.
 template <class Scalar>
 struct UnprojectJob {
     const Camera& camera;
@@ -84,6 +96,7 @@ struct UnprojectJob {
     UnprojectMethod method;
     const BlockIo<Scalar>* io;
     const InterleavedIo<Scalar>* interleaved = nullptr;
+    const EntryIo<Scalar>* entries = nullptr;
 };
 
 // The kernels of one instruction set.

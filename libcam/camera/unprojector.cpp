@@ -257,8 +257,21 @@ void Unprojector<Scalar>::unproject(std::span<const Vec2> pixels, UnprojectMetho
     // A Vec2 is two doubles, and a span of them one array of pairs.
     static_assert(sizeof(Vec2) == 2 * sizeof(double));
     const double* pairs = pixels.empty() ? nullptr : pixels.data()->data();
-    const auto copy_pixels = [pairs](std::size_t first, Block<Scalar>& b) { fill_from_pairs(pairs, first, b); };
-    run(pixels.size(), method, threads, copy_pixels, ListOutput<Scalar>{out});
+    if constexpr (std::is_same_v<Scalar, double>) {
+        // The kernel reads the pairs and writes each entry's direction (four doubles apart:
+        // an entry is its direction and the eight bytes of its flag) and flag itself.
+        static_assert(sizeof(Unprojection) == 4 * sizeof(double));
+        if (pixels.empty()) return;
+        const kernels::EntryIo<double> entries{pairs, out.data()->direction.data(), &out.data()->valid,
+                                               sizeof(Unprojection)};
+        const kernels::UnprojectJob<double> job{camera_, valid_radius_, certified_radius_, no_ray_radius_, rim_, table_,
+                                                method,  nullptr,       nullptr,           &entries};
+        const auto unproject = kernels::kernels<double>().unproject;
+        parallel_chunks(pixels.size(), threads, kBlock, [&](std::size_t begin, std::size_t end) { unproject(job, begin, end); });
+    } else {
+        const auto copy_pixels = [pairs](std::size_t first, Block<Scalar>& b) { fill_from_pairs(pairs, first, b); };
+        run(pixels.size(), method, threads, copy_pixels, ListOutput<Scalar>{out});
+    }
 }
 
 template <class Scalar>

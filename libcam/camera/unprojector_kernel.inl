@@ -308,24 +308,26 @@ void solve_remaining(const Context<Scalar>& context, const typename ModelDouble:
     }
 }
 
-// Where a block's rays go: the three arrays of b.rays, or numpy's (N, 3) triples at
-// b.ray_triples, written in the loop that computes them (a copy after the block would
-// write its lines in one burst, which waits on memory for a batch larger than the cache).
-enum class RayLayout { Arrays, Triples };
+// Where a block's rays go: the three arrays of b.rays, or interleaved at b.ray_groups,
+// written in the loop that computes them (a copy after the block would write its lines
+// in one burst, which waits on memory for a batch larger than the cache): numpy's (N, 3)
+// triples, or the directions of Unprojection entries, four doubles apart.
+enum class RayLayout { Arrays, Triples, Entries };
 
 template <RayLayout layout, class Scalar>
 [[gnu::always_inline]] inline void set_ray(Block<Scalar>& b, std::size_t i, bool ok, const Vec3L<Scalar>& ray) {
     const Scalar x = ok ? lane_value(ray.x()) : Scalar(0);
     const Scalar y = ok ? lane_value(ray.y()) : Scalar(0);
     const Scalar z = ok ? lane_value(ray.z()) : Scalar(0);
-    if constexpr (layout == RayLayout::Triples) {
-        b.ray_triples[3 * i] = x;
-        b.ray_triples[3 * i + 1] = y;
-        b.ray_triples[3 * i + 2] = z;
-    } else {
+    if constexpr (layout == RayLayout::Arrays) {
         b.rays.x[i] = x;
         b.rays.y[i] = y;
         b.rays.z[i] = z;
+    } else {
+        constexpr std::size_t stride = layout == RayLayout::Triples ? 3 : 4;
+        b.ray_groups[stride * i] = x;
+        b.ray_groups[stride * i + 1] = y;
+        b.ray_groups[stride * i + 2] = z;
     }
 }
 
@@ -422,6 +424,14 @@ void pixels_from_pairs(const Scalar* __restrict pairs, std::size_t count, Scalar
     }
 }
 
+// The flags of a block's Unprojection entries, one entry apart.
+template <class Scalar>
+void store_entry_flags(const Scalar* ok, std::size_t count, bool* first, std::size_t entry_bytes) {
+    for (std::size_t i = 0; i < count; ++i) {
+        *reinterpret_cast<bool*>(reinterpret_cast<char*>(first) + entry_bytes * i) = ok[i] > Scalar(0);
+    }
+}
+
 // Pixels [begin, end) of a job, block by block.
 template <class Scalar>
 void unproject(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t end) {
@@ -436,19 +446,30 @@ void unproject(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t e
         const LensPair<Model> lens(job.camera.lens, job.valid_radius);
         Block<Scalar> block;
         typename BlockIo<Scalar>::Scratch scratch;
+        // A block of pixels from interleaved pairs, its rays written to `rays` with `layout`.
+        const auto from_pairs = [&]<RayLayout layout>(const Scalar* pairs, Scalar* rays, std::size_t first) {
+            // The next block's pixels (its rays are written as they are computed).
+            batch::prefetch_for_reading(pairs + 2 * (first + block.count), 2 * std::min(kBlock, end - first - block.count));
+            block.ray_groups = rays;
+            pixels_from_pairs(pairs + 2 * first, block.count, block.made_x, block.made_y);
+            block.pixel_x = block.made_x;
+            block.pixel_y = block.made_y;
+            unproject_block<Model, layout>(context, lens, job.method, block);
+        };
         for (std::size_t first = begin; first < end; first += kBlock) {
             block.count = std::min(kBlock, end - first);
             if (job.interleaved) {
-                // The next block's pixels (its rays are written as they are computed).
-                batch::prefetch_for_reading(job.interleaved->pixels + 2 * (first + block.count),
-                                            2 * std::min(kBlock, end - first - block.count));
                 block.rays = {nullptr, nullptr, nullptr, job.interleaved->valid + first};
-                block.ray_triples = job.interleaved->directions + 3 * first;
-                pixels_from_pairs(job.interleaved->pixels + 2 * first, block.count, block.made_x, block.made_y);
-                block.pixel_x = block.made_x;
-                block.pixel_y = block.made_y;
-                unproject_block<Model, RayLayout::Triples>(context, lens, job.method, block);
+                from_pairs.template operator()<RayLayout::Triples>(job.interleaved->pixels,
+                                                                  job.interleaved->directions + 3 * first, first);
                 batch::store_flags<Scalar>({block.ok, block.count}, block.rays.valid);
+            } else if (job.entries) {
+                block.rays = {nullptr, nullptr, nullptr, nullptr};
+                from_pairs.template operator()<RayLayout::Entries>(job.entries->pixels,
+                                                                  job.entries->directions + 4 * first, first);
+                bool* const first_flag =
+                    reinterpret_cast<bool*>(reinterpret_cast<char*>(job.entries->valid) + job.entries->entry_bytes * first);
+                store_entry_flags(block.ok, block.count, first_flag, job.entries->entry_bytes);
             } else {
                 block.rays = job.io->at(first, scratch);
                 job.io->fill(first, block);
