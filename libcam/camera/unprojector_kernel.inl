@@ -73,15 +73,19 @@ struct TableView {
 };
 
 // The table cell of each pixel: the index of its top-left node and the fractions within
-// it; ok = 0 for a pixel whose stencil would leave the table (it reads a harmless cell
-// inside instead, so that every read stays in bounds). The arrays never overlap
-// (restrict): the block's pixels are the caller's or the block's own, and without that
-// promise GCC leaves the loop scalar rather than check every pair.
+// it; ok = 1 only where its stencil fits in the table (a pixel whose stencil would leave
+// it reads a harmless cell inside instead, so that every read stays in bounds) and its m
+// lies in the certified disc (without the full solver only such a pixel may be called
+// valid). The arrays never overlap (restrict): the block's pixels are the caller's or
+// the block's own, and without that promise GCC leaves the loop scalar rather than check
+// every pair.
 template <class Scalar>
-[[gnu::always_inline]] inline void locate_pixels(const TableView<Scalar>& table, const Scalar* __restrict pixel_x,
-                                                 const Scalar* __restrict pixel_y, std::size_t count,
-                                                 int* __restrict cell, Scalar* __restrict fraction_x,
-                                                 Scalar* __restrict fraction_y, Scalar* __restrict ok) {
+[[gnu::always_inline]] inline void locate_pixels(const TableView<Scalar>& table, Scalar certified_radius_squared,
+                                                 const Scalar* __restrict pixel_x, const Scalar* __restrict pixel_y,
+                                                 const Scalar* __restrict m_x, const Scalar* __restrict m_y,
+                                                 std::size_t count, int* __restrict cell,
+                                                 Scalar* __restrict fraction_x, Scalar* __restrict fraction_y,
+                                                 Scalar* __restrict ok) {
     for (std::size_t i = 0; i < count; ++i) {
         const Scalar gx = (pixel_x[i] - table.origin_x) * table.inv_step;
         const Scalar gy = (pixel_y[i] - table.origin_y) * table.inv_step;
@@ -91,14 +95,16 @@ template <class Scalar>
         cell[i] = row * table.stride + column;
         fraction_x[i] = x - Scalar(column);
         fraction_y[i] = y - Scalar(row);
-        ok[i] = batch::flag<Scalar>(inside);
+        const bool certified = m_x[i] * m_x[i] + m_y[i] * m_y[i] < certified_radius_squared;
+        ok[i] = batch::flag<Scalar>(inside & certified);
     }
 }
 
 template <class Scalar>
-void locate_in_table(const TableView<Scalar>& table_view, Block<Scalar>& b) {
+void locate_in_table(const TableView<Scalar>& table_view, Scalar certified_radius_squared, Block<Scalar>& b) {
     const TableView<Scalar> table = table_view;
-    locate_pixels(table, b.pixel_x, b.pixel_y, b.count, b.cell, b.fraction_x, b.fraction_y, b.ok);
+    locate_pixels(table, certified_radius_squared, b.pixel_x, b.pixel_y, b.m_x, b.m_y, b.count, b.cell, b.fraction_x,
+                  b.fraction_y, b.ok);
 }
 
 // Bilinear, one pixel at a time, both coordinates at once: each node's (x, y) is one read
@@ -178,9 +184,9 @@ void interpolate_in_checked_cells(const TableView<Scalar>& table_view, Block<Sca
 }
 
 template <Interpolation kind, class Scalar>
-void start_from_table(const TableView<Scalar>& table, Block<Scalar>& b) {
-    locate_in_table(table, b);
-    interpolate<kind>(table, b);
+void start_from_table(const Context<Scalar>& context, Block<Scalar>& b) {
+    locate_in_table(context.table, context.certified_radius_squared, b);
+    interpolate<kind>(context.table, b);
 }
 
 // Keeps ok only in the cells where the method's estimate was checked to be within the
@@ -194,15 +200,6 @@ template <class Scalar>
 template <class Scalar>
 void require_accurate_cell(const Scalar* cell_ok, Block<Scalar>& b) {
     require_accurate_cells(cell_ok, b.count, b.cell, b.ok);
-}
-
-// Without the full solver, only a pixel inside the certified disc may be called valid.
-template <class Scalar>
-void require_certified_disc(Scalar radius_squared, Block<Scalar>& b) {
-    for (std::size_t i = 0; i < b.count; ++i) {
-        const bool inside = b.m_x[i] * b.m_x[i] + b.m_y[i] * b.m_y[i] < radius_squared;
-        b.ok[i] = inside ? b.ok[i] : Scalar(0);
-    }
 }
 
 // The answer must lie inside the valid domain itself.
@@ -357,21 +354,18 @@ void estimate(const Context<Scalar>& context, const typename Model::Parameters& 
               Block<Scalar>& b) {
     switch (method) {
         case UnprojectMethod::Lut:
-            start_from_table<Interpolation::Bicubic>(context.table, b);
-            require_certified_disc(context.certified_radius_squared, b);
+            start_from_table<Interpolation::Bicubic>(context, b);
             require_accurate_cell(context.table.lut_ok, b);
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Fast:
-            locate_in_table(context.table, b);
+            locate_in_table(context.table, context.certified_radius_squared, b);
             interpolate_in_checked_cells(context.table, b);
-            require_certified_disc(context.certified_radius_squared, b);
             newton_steps<Model>(lens, kFastNewtonSteps, b);
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Exact:
-            start_from_table<Interpolation::Bilinear>(context.table, b);
-            require_certified_disc(context.certified_radius_squared, b);
+            start_from_table<Interpolation::Bilinear>(context, b);
             newton_steps<Model>(lens, kExactNewtonSteps, b);
             if (certify<Model>(lens, b) > 0) {
                 // A pixel not yet at rounding level (a coarse table on a huge image, a
