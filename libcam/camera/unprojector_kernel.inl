@@ -49,8 +49,6 @@ enum class Interpolation { Bilinear, Bicubic };
 // The table as the loops read it (copied before each loop, see above).
 template <class Scalar>
 struct TableView {
-    const Scalar* u_x;
-    const Scalar* u_y;
     const Scalar* u_pairs;
     const Scalar* fast_ok;  // per cell
     const Scalar* lut_ok;
@@ -59,9 +57,7 @@ struct TableView {
     Scalar end_x, end_y;  // a pixel's grid coordinates must lie in [1, end) for its bicubic stencil to fit
 
     explicit TableView(const UnprojectionTable<Scalar>& table)
-        : u_x(table.u_x.data()),
-          u_y(table.u_y.data()),
-          u_pairs(table.u_pairs.data()),
+        : u_pairs(table.u_pairs.data()),
           fast_ok(table.fast_ok.data()),
           lut_ok(table.lut_ok.data()),
           stride(table.nodes_x),
@@ -107,29 +103,41 @@ void locate_in_table(const TableView<Scalar>& table_view, Scalar certified_radiu
                   b.fraction_y, b.ok);
 }
 
-// Bilinear, one pixel at a time, both coordinates at once: each node's (x, y) is one read
-// from the node-by-node copy of the table, four reads where the loop over pixels would
-// gather eight single values per pixel. Two-lane vectors, which every instruction set
-// has (four lanes went through the stack on SSE2). The sums are bilinear()'s, lane by
-// lane, so the bits are too. A node without a ray is NaN and makes u NaN; no test for it
-// here (a branch in this loop): every method's last check rejects a NaN u (see
-// estimate). With kCheckCell (fast), ok is also kept only in the cells marked in
-// `cell_ok`, read in this loop rather than gathered in a loop of its own.
+// Both interpolations read the table's nodes as (x, y) pairs from its node-by-node copy,
+// one pixel at a time and both coordinates at once in two-lane vectors, which every
+// instruction set has: one read per node where the loop over pixels would gather two
+// single values per node and pixel (gathers cost about a value per cycle here; four
+// lanes went through the stack on SSE2). The sums are bilinear()'s and bicubic()'s (the
+// table's check), lane by lane, so the bits are too. A node without a ray is NaN and
+// makes u NaN; no test for it here (a branch in these loops): every method's last check
+// rejects a NaN u (see estimate). With kCheckCell, ok is also kept only in the cells
+// marked in `cell_ok` (check_cells), read in the same loop rather than gathered in one of
+// its own.
+template <class Scalar>
+struct TwoLanesOf {
+    typedef Scalar type __attribute__((vector_size(2 * sizeof(Scalar))));
+};
+template <class Scalar>
+using TwoLanes = typename TwoLanesOf<Scalar>::type;
+
+template <class Scalar>
+[[gnu::always_inline]] inline TwoLanes<Scalar> node_pair(const Scalar* pairs, std::size_t k) {
+    TwoLanes<Scalar> xy;
+    __builtin_memcpy(&xy, pairs + 2 * k, sizeof xy);
+    return xy;
+}
+
 template <bool kCheckCell, class Scalar>
 [[gnu::always_inline]] inline void bilinear_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
                                                    const int* __restrict cell, const Scalar* __restrict fraction_x,
                                                    const Scalar* __restrict fraction_y, const Scalar* __restrict cell_ok,
                                                    Scalar* __restrict u_x, Scalar* __restrict u_y,
                                                    Scalar* __restrict ok) {
-    typedef Scalar Two __attribute__((vector_size(2 * sizeof(Scalar))));
-    const auto node = [pairs](std::size_t k) {
-        Two xy;
-        __builtin_memcpy(&xy, pairs + 2 * k, sizeof xy);
-        return xy;
-    };
+    using Two = TwoLanes<Scalar>;
     for (std::size_t i = 0; i < count; ++i) {
         const std::size_t k = static_cast<std::size_t>(cell[i]), below = k + static_cast<std::size_t>(stride);
-        const Two top_left = node(k), top_right = node(k + 1), bottom_left = node(below), bottom_right = node(below + 1);
+        const Two top_left = node_pair(pairs, k), top_right = node_pair(pairs, k + 1);
+        const Two bottom_left = node_pair(pairs, below), bottom_right = node_pair(pairs, below + 1);
         const Two upper = top_left + fraction_x[i] * (top_right - top_left);
         const Two lower = bottom_left + fraction_x[i] * (bottom_right - bottom_left);
         const Two u = upper + fraction_y[i] * (lower - upper);
@@ -139,67 +147,57 @@ template <bool kCheckCell, class Scalar>
     }
 }
 
-// Bicubic: the loop over pixels, which GCC vectorises with gathers. Restrict as in
-// locate_pixels: the table is read only.
-template <class Scalar>
-[[gnu::always_inline]] inline void bicubic_pixels(const Scalar* __restrict table_x, const Scalar* __restrict table_y,
-                                                  int stride, std::size_t count, const int* __restrict cell,
-                                                  const Scalar* __restrict fraction_x,
-                                                  const Scalar* __restrict fraction_y, Scalar* __restrict u_x,
-                                                  Scalar* __restrict u_y, Scalar* __restrict ok) {
+// Catmull-Rom over the 4 x 4 nodes about the pixel's cell: the weights first, in a loop
+// over the block's pixels that vectorises, then the sums, a pixel at a time.
+template <bool kCheckCell, class Scalar>
+[[gnu::always_inline]] inline void bicubic_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
+                                                  const int* __restrict cell, const Scalar* __restrict fraction_x,
+                                                  const Scalar* __restrict fraction_y, const Scalar* __restrict cell_ok,
+                                                  Scalar* __restrict u_x, Scalar* __restrict u_y,
+                                                  Scalar* __restrict ok) {
+    using Two = TwoLanes<Scalar>;
+    Scalar wx[4][kBlock], wy[4][kBlock];
     for (std::size_t i = 0; i < count; ++i) {
-        const int k = cell[i];
-        Scalar wx[4], wy[4];
-        catmull_rom_weights(fraction_x[i], wx);
-        catmull_rom_weights(fraction_y[i], wy);
-        const Scalar x = bicubic(table_x, k, stride, wx, wy);
-        const Scalar y = bicubic(table_y, k, stride, wx, wy);
-        u_x[i] = x;
-        u_y[i] = y;
-        const bool numbers = (x == x) & (y == y);  // not NaN; & not &&: no branch in the loop
-        ok[i] = numbers ? ok[i] : Scalar(0);
+        Scalar x[4], y[4];
+        catmull_rom_weights(fraction_x[i], x);
+        catmull_rom_weights(fraction_y[i], y);
+        for (int j = 0; j < 4; ++j) wx[j][i] = x[j], wy[j][i] = y[j];
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+        const std::size_t k = static_cast<std::size_t>(cell[i]);
+        Two sum = {Scalar(0), Scalar(0)};
+        for (std::size_t r = 0; r < 4; ++r) {
+            const std::size_t row = k + r * static_cast<std::size_t>(stride) - static_cast<std::size_t>(stride) - 1;
+            const Two across = wx[0][i] * node_pair(pairs, row) + wx[1][i] * node_pair(pairs, row + 1) +
+                               wx[2][i] * node_pair(pairs, row + 2) + wx[3][i] * node_pair(pairs, row + 3);
+            sum += wy[r][i] * across;
+        }
+        u_x[i] = sum[0];
+        u_y[i] = sum[1];
+        if constexpr (kCheckCell) ok[i] = cell_ok[k] != Scalar(0) ? ok[i] : Scalar(0);
     }
 }
 
-// u interpolated from the table at each located pixel (NaN where a node used has no
-// ray; the bicubic loop also clears ok there, the bilinear leaves that to the last check).
+// Each pixel's cell and u interpolated there by `kind`; with `cell_ok` (fast's or lut's
+// marks), ok kept only in the cells marked.
 template <Interpolation kind, class Scalar>
-void interpolate(const TableView<Scalar>& table_view, Block<Scalar>& b) {
-    const TableView<Scalar> table = table_view;
-    if constexpr (kind == Interpolation::Bilinear) {
-        bilinear_pixels<false>(table.u_pairs, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y,
-                               static_cast<const Scalar*>(nullptr), b.u_x, b.u_y, b.ok);
+void start_from_table(const Context<Scalar>& context, const Scalar* cell_ok, Block<Scalar>& b) {
+    const TableView<Scalar> table = context.table;
+    locate_in_table(table, context.certified_radius_squared, b);
+    const auto interpolate = [&]<bool kCheckCell>() {
+        if constexpr (kind == Interpolation::Bilinear) {
+            bilinear_pixels<kCheckCell>(table.u_pairs, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y,
+                                        cell_ok, b.u_x, b.u_y, b.ok);
+        } else {
+            bicubic_pixels<kCheckCell>(table.u_pairs, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y,
+                                       cell_ok, b.u_x, b.u_y, b.ok);
+        }
+    };
+    if (cell_ok) {
+        interpolate.template operator()<true>();
     } else {
-        bicubic_pixels(table.u_x, table.u_y, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y, b.u_x, b.u_y,
-                       b.ok);
+        interpolate.template operator()<false>();
     }
-}
-
-// Bilinear, keeping ok only in the cells where fast's estimate was checked (check_cells).
-template <class Scalar>
-void interpolate_in_checked_cells(const TableView<Scalar>& table_view, Block<Scalar>& b) {
-    const TableView<Scalar> table = table_view;
-    bilinear_pixels<true>(table.u_pairs, table.stride, b.count, b.cell, b.fraction_x, b.fraction_y, table.fast_ok,
-                          b.u_x, b.u_y, b.ok);
-}
-
-template <Interpolation kind, class Scalar>
-void start_from_table(const Context<Scalar>& context, Block<Scalar>& b) {
-    locate_in_table(context.table, context.certified_radius_squared, b);
-    interpolate<kind>(context.table, b);
-}
-
-// Keeps ok only in the cells where the method's estimate was checked to be within the
-// budget (check_cells).
-template <class Scalar>
-[[gnu::always_inline]] inline void require_accurate_cells(const Scalar* __restrict cell_ok, std::size_t count,
-                                                          const int* __restrict cell, Scalar* __restrict ok) {
-    for (std::size_t i = 0; i < count; ++i) ok[i] = cell_ok[cell[i]] != Scalar(0) ? ok[i] : Scalar(0);
-}
-
-template <class Scalar>
-void require_accurate_cell(const Scalar* cell_ok, Block<Scalar>& b) {
-    require_accurate_cells(cell_ok, b.count, b.cell, b.ok);
 }
 
 // The answer must lie inside the valid domain itself.
@@ -354,18 +352,16 @@ void estimate(const Context<Scalar>& context, const typename Model::Parameters& 
               Block<Scalar>& b) {
     switch (method) {
         case UnprojectMethod::Lut:
-            start_from_table<Interpolation::Bicubic>(context, b);
-            require_accurate_cell(context.table.lut_ok, b);
+            start_from_table<Interpolation::Bicubic>(context, context.table.lut_ok, b);
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Fast:
-            locate_in_table(context.table, context.certified_radius_squared, b);
-            interpolate_in_checked_cells(context.table, b);
+            start_from_table<Interpolation::Bilinear>(context, context.table.fast_ok, b);
             newton_steps<Model>(lens, kFastNewtonSteps, b);
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Exact:
-            start_from_table<Interpolation::Bilinear>(context, b);
+            start_from_table<Interpolation::Bilinear>(context, static_cast<const Scalar*>(nullptr), b);
             newton_steps<Model>(lens, kExactNewtonSteps, b);
             if (certify<Model>(lens, b) > 0) {
                 // A pixel not yet at rounding level (a coarse table on a huge image, a

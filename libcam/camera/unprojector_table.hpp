@@ -18,8 +18,11 @@
 
 namespace libcam::detail {
 
-// Always inlined, here and in catmull_rom_weights and bicubic: the batch kernels' loops over
-// pixels vectorise (with gathers) only once the body is inlined into them.
+// bilinear and bicubic are the table's check (check_cells); the batch kernels compute
+// the same sums, in the same order, on each node's (x, y) pair (unprojector_kernel.inl):
+// change both or neither, or fast and lut no longer give what was checked. Always
+// inlined, here and in catmull_rom_weights: the kernels' loop over the block's weights
+// vectorises only once the body is inlined into it.
 template <class Scalar>
 [[gnu::always_inline]] inline Scalar bilinear(const Scalar* values, int k, int stride, Scalar fx, Scalar fy) {
     const Scalar upper = values[k] + fx * (values[k + 1] - values[k]);
