@@ -107,73 +107,48 @@ void locate_in_table(const TableView<Scalar>& table_view, Scalar certified_radiu
 // one pixel at a time and both coordinates at once in two-lane vectors, which every
 // instruction set has: one read per node where the loop over pixels would gather two
 // single values per node and pixel (gathers cost about a value per cycle here; four
-// lanes went through the stack on SSE2). The sums are bilinear()'s and bicubic()'s (the
-// table's check), lane by lane, so the bits are too. A node without a ray is NaN and
-// makes u NaN; no test for it here (a branch in these loops): every method's last check
-// rejects a NaN u (see estimate). With kCheckCell, ok is also kept only in the cells
-// marked in `cell_ok` (check_cells), read in the same loop rather than gathered in one of
-// its own.
-template <class Scalar>
-struct TwoLanesOf {
-    typedef Scalar type __attribute__((vector_size(2 * sizeof(Scalar))));
-};
-template <class Scalar>
-using TwoLanes = typename TwoLanesOf<Scalar>::type;
-
-template <class Scalar>
-[[gnu::always_inline]] inline TwoLanes<Scalar> node_pair(const Scalar* pairs, std::size_t k) {
-    TwoLanes<Scalar> xy;
-    __builtin_memcpy(&xy, pairs + 2 * k, sizeof xy);
-    return xy;
-}
-
+// lanes went through the stack on SSE2). The sums are bilinear()'s and bicubic()'s, the
+// table check's, so the bits are too. A node without a ray is NaN and makes u NaN; no
+// test for it here (a branch in these loops): every method's last check rejects a NaN u
+// (see estimate). With kCheckCell, ok is also kept only in the cells marked in `cell_ok`
+// (check_cells), read in the same loop rather than gathered in one of its own. (NodePairs
+// is in unprojector_table.hpp, outside this file's target region, so that the shared
+// sums, compiled for the baseline, may inline it.)
 template <bool kCheckCell, class Scalar>
 [[gnu::always_inline]] inline void bilinear_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
                                                    const int* __restrict cell, const Scalar* __restrict fraction_x,
                                                    const Scalar* __restrict fraction_y, const Scalar* __restrict cell_ok,
                                                    Scalar* __restrict u_x, Scalar* __restrict u_y,
                                                    Scalar* __restrict ok) {
-    using Two = TwoLanes<Scalar>;
+    const NodePairs<Scalar> node{pairs};
     for (std::size_t i = 0; i < count; ++i) {
-        const std::size_t k = static_cast<std::size_t>(cell[i]), below = k + static_cast<std::size_t>(stride);
-        const Two top_left = node_pair(pairs, k), top_right = node_pair(pairs, k + 1);
-        const Two bottom_left = node_pair(pairs, below), bottom_right = node_pair(pairs, below + 1);
-        const Two upper = top_left + fraction_x[i] * (top_right - top_left);
-        const Two lower = bottom_left + fraction_x[i] * (bottom_right - bottom_left);
-        const Two u = upper + fraction_y[i] * (lower - upper);
+        const std::size_t k = static_cast<std::size_t>(cell[i]);
+        const auto u = bilinear(node, k, static_cast<std::size_t>(stride), fraction_x[i], fraction_y[i]);
         u_x[i] = u[0];
         u_y[i] = u[1];
         if constexpr (kCheckCell) ok[i] = cell_ok[k] != Scalar(0) ? ok[i] : Scalar(0);
     }
 }
 
-// Catmull-Rom over the 4 x 4 nodes about the pixel's cell: the weights first, in a loop
-// over the block's pixels that vectorises, then the sums, a pixel at a time.
+// Bicubic: the weights first, in a loop over the block's pixels that vectorises, then the
+// sums, a pixel at a time.
 template <bool kCheckCell, class Scalar>
 [[gnu::always_inline]] inline void bicubic_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
                                                   const int* __restrict cell, const Scalar* __restrict fraction_x,
                                                   const Scalar* __restrict fraction_y, const Scalar* __restrict cell_ok,
                                                   Scalar* __restrict u_x, Scalar* __restrict u_y,
                                                   Scalar* __restrict ok) {
-    using Two = TwoLanes<Scalar>;
-    Scalar wx[4][kBlock], wy[4][kBlock];
+    Scalar wx[kBlock][4], wy[kBlock][4];
     for (std::size_t i = 0; i < count; ++i) {
-        Scalar x[4], y[4];
-        catmull_rom_weights(fraction_x[i], x);
-        catmull_rom_weights(fraction_y[i], y);
-        for (int j = 0; j < 4; ++j) wx[j][i] = x[j], wy[j][i] = y[j];
+        catmull_rom_weights(fraction_x[i], wx[i]);
+        catmull_rom_weights(fraction_y[i], wy[i]);
     }
+    const NodePairs<Scalar> node{pairs};
     for (std::size_t i = 0; i < count; ++i) {
         const std::size_t k = static_cast<std::size_t>(cell[i]);
-        Two sum = {Scalar(0), Scalar(0)};
-        for (std::size_t r = 0; r < 4; ++r) {
-            const std::size_t row = k + r * static_cast<std::size_t>(stride) - static_cast<std::size_t>(stride) - 1;
-            const Two across = wx[0][i] * node_pair(pairs, row) + wx[1][i] * node_pair(pairs, row + 1) +
-                               wx[2][i] * node_pair(pairs, row + 2) + wx[3][i] * node_pair(pairs, row + 3);
-            sum += wy[r][i] * across;
-        }
-        u_x[i] = sum[0];
-        u_y[i] = sum[1];
+        const auto u = bicubic(node, k, static_cast<std::size_t>(stride), wx[i], wy[i]);
+        u_x[i] = u[0];
+        u_y[i] = u[1];
         if constexpr (kCheckCell) ok[i] = cell_ok[k] != Scalar(0) ? ok[i] : Scalar(0);
     }
 }

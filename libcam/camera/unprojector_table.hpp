@@ -18,15 +18,28 @@
 
 namespace libcam::detail {
 
-// bilinear and bicubic are the table's check (check_cells); the batch kernels compute
-// the same sums, in the same order, on each node's (x, y) pair (unprojector_kernel.inl):
-// change both or neither, or fast and lut no longer give what was checked. Always
-// inlined, here and in catmull_rom_weights: the kernels' loop over the block's weights
-// vectorises only once the body is inlined into it.
+// The interpolations of the table, for its check here (check_cells, one coordinate at a
+// time) and for the batch kernels (unprojector_kernel.inl, each node's (x, y) pair as a
+// two-lane vector): `node(n)` gives node n's value, a number or such a pair, and the sums
+// are the same operations in the same order, so the kernels give the bits that were
+// checked. Always inlined, here and in catmull_rom_weights: the kernels' loops vectorise
+// only once the bodies are inlined into them.
+// Node n of the table's node-by-node copy, (x, y) as a two-lane vector (the kernels' node).
 template <class Scalar>
-[[gnu::always_inline]] inline Scalar bilinear(const Scalar* values, int k, int stride, Scalar fx, Scalar fy) {
-    const Scalar upper = values[k] + fx * (values[k + 1] - values[k]);
-    const Scalar lower = values[k + stride] + fx * (values[k + stride + 1] - values[k + stride]);
+struct NodePairs {
+    typedef Scalar Two __attribute__((vector_size(2 * sizeof(Scalar))));
+    const Scalar* pairs;
+    [[gnu::always_inline]] Two operator()(std::size_t n) const {
+        Two xy;
+        __builtin_memcpy(&xy, pairs + 2 * n, sizeof xy);
+        return xy;
+    }
+};
+
+template <class Node, class Scalar>
+[[gnu::always_inline]] inline auto bilinear(const Node& node, std::size_t k, std::size_t stride, Scalar fx, Scalar fy) {
+    const auto upper = node(k) + fx * (node(k + 1) - node(k));
+    const auto lower = node(k + stride) + fx * (node(k + stride + 1) - node(k + stride));
     return upper + fy * (lower - upper);
 }
 
@@ -40,13 +53,14 @@ template <class Scalar>
     w[3] = half * (t - Scalar(1)) * t * t;
 }
 
-template <class Scalar>
-[[gnu::always_inline]] inline Scalar bicubic(const Scalar* values, int k, int stride, const Scalar wx[4], const Scalar wy[4]) {
-    Scalar sum(0);
-    for (int r = 0; r < 4; ++r) {
-        const int row = k + (r - 1) * stride - 1;
-        sum += wy[r] * (wx[0] * values[row] + wx[1] * values[row + 1] + wx[2] * values[row + 2] +
-                        wx[3] * values[row + 3]);
+// Catmull-Rom over the 4 x 4 nodes about the cell whose top-left node is k.
+template <class Node, class Scalar>
+[[gnu::always_inline]] inline auto bicubic(const Node& node, std::size_t k, std::size_t stride, const Scalar wx[4],
+                                           const Scalar wy[4]) {
+    decltype(node(k)) sum{};  // 0
+    for (std::size_t r = 0; r < 4; ++r) {
+        const std::size_t row = k + r * stride - stride - 1;
+        sum += wy[r] * (wx[0] * node(row) + wx[1] * node(row + 1) + wx[2] * node(row + 2) + wx[3] * node(row + 3));
     }
     return sum;
 }
@@ -117,7 +131,10 @@ std::pair<double, double> estimate_errors(const Camera& camera, const typename M
     const int k = j * table.nodes_x + i;
     const Vec2 pixel = node_pixel(table, i + fx, j + fy);
     const Vec2 m = camera.intrinsics.normalized_from_pixel(pixel);
-    const Vec2 start(bilinear(table.u_x.data(), k, table.nodes_x, fx, fy), bilinear(table.u_y.data(), k, table.nodes_x, fx, fy));
+    const std::size_t cell = static_cast<std::size_t>(k), stride = static_cast<std::size_t>(table.nodes_x);
+    const auto node_x = [&table](std::size_t n) { return table.u_x[n]; };
+    const auto node_y = [&table](std::size_t n) { return table.u_y[n]; };
+    const Vec2 start(bilinear(node_x, cell, stride, fx, fy), bilinear(node_y, cell, stride, fx, fy));
     Vec2 m_start;
     Eigen::Matrix2d d_m_d_u;
     Model::distort(lens, start, m_start, &d_m_d_u);
@@ -125,7 +142,7 @@ std::pair<double, double> estimate_errors(const Camera& camera, const typename M
     double wx[4], wy[4];
     catmull_rom_weights(fx, wx);
     catmull_rom_weights(fy, wy);
-    const Vec2 lut(bicubic(table.u_x.data(), k, table.nodes_x, wx, wy), bicubic(table.u_y.data(), k, table.nodes_x, wx, wy));
+    const Vec2 lut(bicubic(node_x, cell, stride, wx, wy), bicubic(node_y, cell, stride, wx, wy));
     return {reprojection_px<Model>(camera, lens, fast, pixel), reprojection_px<Model>(camera, lens, lut, pixel)};
 }
 
