@@ -65,7 +65,8 @@ struct UnprojectionTable {
     // two top nodes are then one contiguous read, as are its two bottom ones.
     std::vector<Scalar> u_pairs;
     // Per cell, indexed by its top-left node: 1 where fast (lut) keeps within the budget.
-    std::vector<Scalar> fast_ok, lut_ok;
+    // Bytes, a pixel's read beside its nodes' (one eighth of the cache lines of doubles).
+    std::vector<std::uint8_t> fast_ok, lut_ok;
 };
 
 namespace detail {

@@ -50,8 +50,8 @@ enum class Interpolation { Bilinear, Bicubic };
 template <class Scalar>
 struct TableView {
     const Scalar* u_pairs;
-    const Scalar* fast_ok;  // per cell
-    const Scalar* lut_ok;
+    const std::uint8_t* fast_ok;  // per cell
+    const std::uint8_t* lut_ok;
     int stride;  // nodes per row
     Scalar origin_x, origin_y, inv_step;
     Scalar end_x, end_y;  // a pixel's grid coordinates must lie in [1, end) for its bicubic stencil to fit
@@ -117,7 +117,7 @@ void locate_in_table(const TableView<Scalar>& table_view, Scalar certified_radiu
 template <bool kCheckCell, class Scalar>
 [[gnu::always_inline]] inline void bilinear_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
                                                    const int* __restrict cell, const Scalar* __restrict fraction_x,
-                                                   const Scalar* __restrict fraction_y, const Scalar* __restrict cell_ok,
+                                                   const Scalar* __restrict fraction_y, const std::uint8_t* __restrict cell_ok,
                                                    Scalar* __restrict u_x, Scalar* __restrict u_y,
                                                    Scalar* __restrict ok) {
     const NodePairs<Scalar> node{pairs};
@@ -126,7 +126,7 @@ template <bool kCheckCell, class Scalar>
         const auto u = bilinear(node, k, static_cast<std::size_t>(stride), fraction_x[i], fraction_y[i]);
         u_x[i] = u[0];
         u_y[i] = u[1];
-        if constexpr (kCheckCell) ok[i] = cell_ok[k] != Scalar(0) ? ok[i] : Scalar(0);
+        if constexpr (kCheckCell) ok[i] = cell_ok[k] != 0 ? ok[i] : Scalar(0);
     }
 }
 
@@ -135,7 +135,7 @@ template <bool kCheckCell, class Scalar>
 template <bool kCheckCell, class Scalar>
 [[gnu::always_inline]] inline void bicubic_pixels(const Scalar* __restrict pairs, int stride, std::size_t count,
                                                   const int* __restrict cell, const Scalar* __restrict fraction_x,
-                                                  const Scalar* __restrict fraction_y, const Scalar* __restrict cell_ok,
+                                                  const Scalar* __restrict fraction_y, const std::uint8_t* __restrict cell_ok,
                                                   Scalar* __restrict u_x, Scalar* __restrict u_y,
                                                   Scalar* __restrict ok) {
     Scalar wx[kBlock][4], wy[kBlock][4];
@@ -149,14 +149,14 @@ template <bool kCheckCell, class Scalar>
         const auto u = bicubic(node, k, static_cast<std::size_t>(stride), wx[i], wy[i]);
         u_x[i] = u[0];
         u_y[i] = u[1];
-        if constexpr (kCheckCell) ok[i] = cell_ok[k] != Scalar(0) ? ok[i] : Scalar(0);
+        if constexpr (kCheckCell) ok[i] = cell_ok[k] != 0 ? ok[i] : Scalar(0);
     }
 }
 
 // Each pixel's cell and u interpolated there by `kind`; with `cell_ok` (fast's or lut's
 // marks), ok kept only in the cells marked.
 template <Interpolation kind, class Scalar>
-void start_from_table(const Context<Scalar>& context, const Scalar* cell_ok, Block<Scalar>& b) {
+void start_from_table(const Context<Scalar>& context, const std::uint8_t* cell_ok, Block<Scalar>& b) {
     const TableView<Scalar> table = context.table;
     locate_in_table(table, context.certified_radius_squared, b);
     const auto interpolate = [&]<bool kCheckCell>() {
@@ -336,7 +336,7 @@ void estimate(const Context<Scalar>& context, const typename Model::Parameters& 
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Exact:
-            start_from_table<Interpolation::Bilinear>(context, static_cast<const Scalar*>(nullptr), b);
+            start_from_table<Interpolation::Bilinear>(context, static_cast<const std::uint8_t*>(nullptr), b);
             newton_steps<Model>(lens, kExactNewtonSteps, b);
             if (certify<Model>(lens, b) > 0) {
                 // A pixel not yet at rounding level (a coarse table on a huge image, a

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <thread>
@@ -79,7 +80,8 @@ UnprojectionTable<Scalar> table_layout(const ImageSize& size, int nodes) {
     table.nodes_y = static_cast<int>(std::floor(height / table.step)) + 4;
     table.origin_x = table.origin_y = -0.5 - table.step;
     const std::size_t count = static_cast<std::size_t>(table.nodes_x) * static_cast<std::size_t>(table.nodes_y);
-    for (std::vector<Scalar>* v : {&table.u_x, &table.u_y, &table.fast_ok, &table.lut_ok}) v->assign(count, Scalar(0));
+    for (std::vector<Scalar>* v : {&table.u_x, &table.u_y}) v->assign(count, Scalar(0));
+    for (std::vector<std::uint8_t>* v : {&table.fast_ok, &table.lut_ok}) v->assign(count, 0);
     return table;
 }
 
@@ -164,8 +166,8 @@ void check_cells(const Camera& camera, const typename Model::Parameters& lens, d
                 lut = std::max(lut, lut_error);
             }
             const std::size_t k = static_cast<std::size_t>(j * table.nodes_x + i);
-            table.fast_ok[k] = fast <= budget_px ? 1.0 : 0.0;
-            table.lut_ok[k] = lut <= budget_px ? 1.0 : 0.0;
+            table.fast_ok[k] = fast <= budget_px ? 1 : 0;
+            table.lut_ok[k] = lut <= budget_px ? 1 : 0;
         }
     });
 }
@@ -180,8 +182,8 @@ UnprojectionTable<Scalar> in_scalar(const UnprojectionTable<double>& table) {
         out.u_pairs[2 * k] = out.u_x[k];
         out.u_pairs[2 * k + 1] = out.u_y[k];
     }
-    out.fast_ok.assign(table.fast_ok.begin(), table.fast_ok.end());
-    out.lut_ok.assign(table.lut_ok.begin(), table.lut_ok.end());
+    out.fast_ok = table.fast_ok;
+    out.lut_ok = table.lut_ok;
     return out;
 }
 
