@@ -18,6 +18,13 @@
 
 namespace libcam {
 
+// The workers a `threads` option asks for: that many, or one per core for 0 or less (at
+// least one where the system does not say how many cores it has).
+inline int worker_count(int threads) {
+    if (threads > 0) return threads;
+    return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
 // Pieces per worker: enough to even out a slowed worker, few enough that each piece of
 // a megapixel batch is thousands of points.
 inline constexpr std::size_t kPiecesPerWorker = 8;

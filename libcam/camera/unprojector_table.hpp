@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <cmath>
 #include <limits>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -95,8 +94,7 @@ Vec2 node_pixel(const UnprojectionTable<Scalar>& table, double i, double j) {
 template <class Row>
 void for_each_row(int first, int end, int threads, Row&& row) {
     if (end <= first) return;
-    const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    parallel_chunks(static_cast<std::size_t>(end - first), workers, 1, [&](std::size_t begin, std::size_t stop) {
+    parallel_chunks(static_cast<std::size_t>(end - first), worker_count(threads), 1, [&](std::size_t begin, std::size_t stop) {
         for (std::size_t j = begin; j < stop; ++j) row(first + static_cast<int>(j));
     });
 }

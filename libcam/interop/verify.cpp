@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <thread>
 #include <opencv2/calib3d.hpp>
 #include <utility>
 
@@ -84,12 +83,8 @@ std::vector<Projection> libcam_projections(const PreparedCamera& camera, const s
                                 [&](const std::vector<Vec3>& part) { return camera.project_camera_points(part); });
 }
 
-int threads_to_use(int requested) {
-    return requested > 0 ? requested : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-}
-
 Samples make_samples(const Camera& camera, const VerifyOptions& options) {
-    Samples s(PreparedCamera(camera), threads_to_use(options.threads));
+    Samples s(PreparedCamera(camera), worker_count(options.threads));
     s.pixels = PixelGrid{options.grid_columns, options.grid_rows}.pixels(camera.size);
     s.rays = s.camera.unproject(s.pixels, s.threads);
     s.with_ray.reserve(s.pixels.size());

@@ -1,8 +1,8 @@
 #include "arrays.hpp"
 
 #include <sstream>
-#include <thread>
 
+#include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
 
 namespace libcam::python {
@@ -161,8 +161,7 @@ py::array_t<double> to_numpy_vector(const Eigen::VectorXd& vector) {
 
 int thread_count(int threads) {
     if (threads < 0) throw InvalidArgument("threads: must be 0 (every core) or more, got " + std::to_string(threads));
-    if (threads == 0) return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    return threads;
+    return worker_count(threads);
 }
 
 }  // namespace libcam::python

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
-#include <thread>
 
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/image_remap.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -39,7 +39,7 @@ struct RemapFlags {
     bool inverse = false;
     std::string method = "exact";
     std::string interpolation = "linear";
-    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    int threads = worker_count(0);
     std::string map_out;
     std::string stmap_out;
     std::string overscan;

@@ -5,10 +5,10 @@
 
 #include <filesystem>
 #include <iostream>
-#include <thread>
 
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
 #include "libcam/fit/fit.hpp"
 #include "libcam/interop/image_remap.hpp"
@@ -31,7 +31,7 @@ struct RenderPlanFlags {
     bool fit_blender = false;
     std::string tolerance = "0.1";
     std::string map_format = "exr";
-    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    int threads = worker_count(0);
 };
 
 // Blender's FISHEYE_LENS_POLYNOMIAL fitted to the lens over its whole image, when its
