@@ -42,6 +42,7 @@
 #include <span>
 #include <string>
 
+#include "libcam/lens/lane.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 
@@ -91,7 +92,7 @@ struct DoubleSphereLens {
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         using std::cos;
         using std::sqrt;
-        const Scalar xi = lens.coefficients(0), alpha = lens.coefficients(1);
+        const Scalar xi = by_value(lens.coefficients(0)), alpha = by_value(lens.coefficients(1));
         const Scalar x = point.x(), y = point.y(), z = point.z();
         const Scalar rho2 = x * x + y * y;
         const Scalar d1 = sqrt(rho2 + z * z);
@@ -104,7 +105,7 @@ struct DoubleSphereLens {
         const Scalar sum = alpha * d2 + (Scalar(1) - alpha) * zeta;
         const Scalar difference_form = (alpha * alpha * rho2 + (Scalar(2) * alpha - Scalar(1)) * zeta * zeta) /
                                        (alpha * d2 - (Scalar(1) - alpha) * zeta);
-        const Scalar denominator = zeta >= Scalar(0) ? sum : difference_form;
+        const Scalar denominator = zeta >= Scalar(0) ? by_value(sum) : by_value(difference_form);
         // cos(theta) > c_min, as z > cos(valid_radius) |p|, so that the bound is the one
         // valid_radius() reports (pi bounds nothing but the backward axis itself).
         const bool in_domain = z > cos(lens.valid_radius) * d1;
@@ -132,7 +133,7 @@ struct DoubleSphereLens {
     // it than eps, while m says on which side it lies exactly.
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
         using std::sqrt;
-        const Scalar xi = lens.coefficients(0), alpha = lens.coefficients(1);
+        const Scalar xi = by_value(lens.coefficients(0)), alpha = by_value(lens.coefficients(1));
         const Scalar r2 = m.squaredNorm();
         const Scalar rim_term = Scalar(2) * alpha - Scalar(1);
         const Scalar radicand = Scalar(1) - rim_term * r2;

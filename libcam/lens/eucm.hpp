@@ -36,6 +36,7 @@
 #include <span>
 #include <string>
 
+#include "libcam/lens/lane.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 
@@ -81,7 +82,7 @@ struct EucmLens {
     static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         using std::sqrt;
-        const Scalar alpha = lens.coefficients(0), beta = lens.coefficients(1);
+        const Scalar alpha = by_value(lens.coefficients(0)), beta = by_value(lens.coefficients(1));
         const Scalar x = point.x(), y = point.y(), z = point.z();
         const Scalar rho2 = x * x + y * y;
         const Scalar d = sqrt(beta * rho2 + z * z);
@@ -91,7 +92,7 @@ struct EucmLens {
         const Scalar sum = alpha * d + (Scalar(1) - alpha) * z;
         const Scalar difference_form = (alpha * alpha * beta * rho2 + (Scalar(2) * alpha - Scalar(1)) * z * z) /
                                        (alpha * d - (Scalar(1) - alpha) * z);
-        const Scalar denominator = z >= Scalar(0) ? sum : difference_form;
+        const Scalar denominator = z >= Scalar(0) ? by_value(sum) : by_value(difference_form);
         const Scalar w = alpha <= Scalar(0.5) ? alpha / (Scalar(1) - alpha) : (Scalar(1) - alpha) / alpha;
         const bool in_domain = z > -w * d;
         const Scalar inverse = Scalar(1) / denominator;
@@ -114,7 +115,7 @@ struct EucmLens {
     // a ray cannot be rounded closer to it than eps.
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
         using std::sqrt;
-        const Scalar alpha = lens.coefficients(0), beta = lens.coefficients(1);
+        const Scalar alpha = by_value(lens.coefficients(0)), beta = by_value(lens.coefficients(1));
         const Scalar r2 = m.squaredNorm();
         const Scalar rim_term = (Scalar(2) * alpha - Scalar(1)) * beta;
         const Scalar radicand = Scalar(1) - rim_term * r2;

@@ -32,6 +32,7 @@
 #include <string>
 
 #include "libcam/lens/fisheye.hpp"
+#include "libcam/lens/lane.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 #include "libcam/lens/pinhole.hpp"
@@ -69,7 +70,7 @@ struct FovLens {
     static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         using std::tan;
-        const Scalar omega = lens.coefficients(0);
+        const Scalar omega = by_value(lens.coefficients(0));
         if (omega == Scalar(0)) {  // the same for every point of the camera
             if constexpr (is_requested<CoefficientJacobianPtr>) d_m_d_coefficients->setZero();  // r_d = r + O(omega^2)
             return PinholeLens<Scalar>::project(point, m, d_m_d_point) & all_finite(m);
@@ -107,7 +108,7 @@ struct FovLens {
         using std::sin;
         using std::sqrt;
         using std::tan;
-        const Scalar omega = lens.coefficients(0);
+        const Scalar omega = by_value(lens.coefficients(0));
         if (omega == Scalar(0)) {
             ray = Vec3T(m.x(), m.y(), Scalar(1));
             return all_finite(ray);

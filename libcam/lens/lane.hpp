@@ -68,6 +68,19 @@ inline constexpr bool is_lane_v = false;
 template <class T>
 inline constexpr bool is_lane_v<Lane<T>> = true;
 
+// A copy of v made from its value. `const Scalar xi = lens.coefficients(0)` copies a Lane
+// as a whole structure, which stops GCC's loop vectoriser (the closed-form unprojections
+// of UCM, FOV, EUCM and the Double Sphere stayed scalar); a Lane built from the number it
+// holds does not. The same bits; for a T, v itself.
+template <class T>
+constexpr T by_value(const T& v) {
+    return v;
+}
+template <class T>
+constexpr Lane<T> by_value(const Lane<T>& v) {
+    return Lane<T>(v.value);
+}
+
 // The plain value of a T or a Lane<T>.
 template <class T>
 constexpr T lane_value(T v) {

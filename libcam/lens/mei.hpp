@@ -30,6 +30,7 @@
 #include <limits>
 #include <span>
 
+#include "libcam/lens/lane.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 #include "libcam/lens/opencv.hpp"
@@ -130,7 +131,7 @@ struct MeiLens {
 private:
     static typename UcmLens<Scalar>::Parameters ucm_parameters(const Parameters& lens) {
         typename UcmLens<Scalar>::Parameters ucm;
-        ucm.coefficients(0) = lens.coefficients(0);
+        ucm.coefficients(0) = by_value(lens.coefficients(0));
         return ucm;
     }
 

@@ -32,6 +32,7 @@
 #include <span>
 #include <string>
 
+#include "libcam/lens/lane.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 
@@ -68,7 +69,7 @@ struct UcmLens {
     static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
         using std::sqrt;
-        const Scalar xi = lens.coefficients(0);
+        const Scalar xi = by_value(lens.coefficients(0));
         const Scalar x = point.x(), y = point.y(), z = point.z();
         const Scalar rho2 = x * x + y * y;
         const Scalar d = sqrt(rho2 + z * z);
@@ -97,7 +98,7 @@ struct UcmLens {
     // on m, as for DOUBLE_SPHERE (double_sphere.hpp).
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
         using std::sqrt;
-        const Scalar xi = lens.coefficients(0);
+        const Scalar xi = by_value(lens.coefficients(0));
         const Scalar r2 = m.squaredNorm();
         const Scalar radicand = Scalar(1) + (Scalar(1) - xi * xi) * r2;
         const Scalar s = (xi + sqrt(radicand)) / (Scalar(1) + r2);
