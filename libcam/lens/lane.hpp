@@ -69,9 +69,9 @@ template <class T>
 inline constexpr bool is_lane_v<Lane<T>> = true;
 
 // A copy of v made from its value. `const Scalar xi = lens.coefficients(0)` copies a Lane
-// as a whole structure, which stops GCC's loop vectoriser (the closed-form unprojections
-// of UCM, FOV, EUCM and the Double Sphere stayed scalar); a Lane built from the number it
-// holds does not. The same bits; for a T, v itself.
+// as a whole structure, which stops GCC's loop vectoriser (the batch loops of UCM, EUCM,
+// the Double Sphere, MEI and the thin-prism fisheyes ran a point at a time); a Lane built
+// from the number it holds does not. The same bits; for a T, v itself.
 template <class T>
 constexpr T by_value(const T& v) {
     return v;

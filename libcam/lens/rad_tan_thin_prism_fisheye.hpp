@@ -33,6 +33,7 @@
 
 #include "libcam/lens/decentering.hpp"
 #include "libcam/lens/fisheye.hpp"
+#include "libcam/lens/lane.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 #include "libcam/lens/undistort.hpp"
@@ -73,7 +74,7 @@ struct RadTanThinPrismFisheyeLens : OnEquidistantPoint<RadTanThinPrismFisheyeLen
     template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
     static bool distort(const Parameters& lens, const Vec2T& u, Vec2T& m, UJacobianPtr d_m_d_u = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
-        const auto& k = lens.coefficients;
+        const auto k = [&lens](int i) { return by_value(lens.coefficients(i)); };  // as numbers: see by_value
         const Scalar s = u.squaredNorm(), two(2), four(4);
         const bool in_domain = s < lens.valid_radius * lens.valid_radius;
         Scalar stretch_slope;
@@ -140,7 +141,7 @@ private:
 
     // The radial stretch 1 + k s + ... in s = theta^2, and its derivative in s.
     static Scalar stretch(const Parameters& lens, const Scalar& s, Scalar& slope) {
-        const auto& k = lens.coefficients;
+        const auto k = [&lens](int i) { return by_value(lens.coefficients(i)); };  // as numbers: see by_value
         return stretch_polynomial(std::array<Scalar, 6>{k(0), k(1), k(2), k(3), k(4), k(5)}, s, slope);
     }
 };
