@@ -377,6 +377,42 @@ TEST_CASE("A pixel that is not a number has no ray, for every method", "[engine]
     }
 }
 
+// Such pixels, and pixels far outside the image, are located in the table by clamping
+// to its border cells: in a batch of both scalars, among pixels that have rays, they
+// get none and leave their neighbours' rays as the one-pixel call gives them.
+TEMPLATE_TEST_CASE("Pixels that are not numbers or lie far outside the image have no ray in a batch", "[engine]",
+                   double, float) {
+    using Scalar = TestType;
+    const Camera camera = wide_reference_camera();
+    const Unprojector<Scalar> unprojector(camera);
+    const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN(), inf = std::numeric_limits<Scalar>::infinity();
+    const Scalar far = Scalar(1e30);
+    const std::vector<std::pair<Scalar, Scalar>> rayless = {{nan, 10}, {10, nan}, {inf, 10}, {-inf, -inf},
+                                                            {far, 10}, {-far, far}, {10, -far}};
+    Points2<Scalar> pixels;
+    for (std::size_t i = 0; i < 400; ++i) {  // across several of the batch engine's blocks of 128
+        const bool odd = i % 2 == 1;
+        const auto [x, y] = odd ? rayless[i / 2 % rayless.size()]
+                                : std::pair<Scalar, Scalar>(Scalar(17 * i % camera.size.width), Scalar(11 * i % camera.size.height));
+        pixels.x.push_back(x);
+        pixels.y.push_back(y);
+    }
+    for (UnprojectMethod method : kUnprojectMethods) {
+        INFO(method_name(method));
+        Points3<Scalar> directions;
+        ValidFlags valid;
+        unprojector.unproject(pixels, method, directions, valid);
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            INFO("pixel " << i << ": " << pixels.x[i] << ", " << pixels.y[i]);
+            Eigen::Matrix<Scalar, 3, 1> alone = Eigen::Matrix<Scalar, 3, 1>::Zero();
+            const bool has_ray = unprojector.unproject(Eigen::Matrix<Scalar, 2, 1>(pixels.x[i], pixels.y[i]), method, alone);
+            CHECK(bool(valid[i]) == (i % 2 == 0));
+            CHECK(has_ray == (i % 2 == 0));
+            if (has_ray) CHECK((directions.x[i] == alone.x() && directions.y[i] == alone.y() && directions.z[i] == alone.z()));
+        }
+    }
+}
+
 TEST_CASE("The table: the nodes' exact solutions and the checked cells, the same bits built on 1, 2 and 3 threads",
           "[engine]") {
     // The strong lens folds over inside the image: its outer nodes have no ray.

@@ -55,6 +55,7 @@ struct TableView {
     int stride;  // nodes per row
     Scalar origin_x, origin_y, inv_step;
     Scalar end_x, end_y;  // a pixel's grid coordinates must lie in [1, end) for its bicubic stencil to fit
+    Scalar last_x, last_y;  // the largest coordinates below end_x, end_y
 
     explicit TableView(const UnprojectionTable<Scalar>& table)
         : u_pairs(table.u_pairs.data()),
@@ -65,14 +66,18 @@ struct TableView {
           origin_y(Scalar(table.origin_y)),
           inv_step(table.step > 0 ? Scalar(1 / table.step) : Scalar(0)),
           end_x(Scalar(table.nodes_x - 2)),
-          end_y(Scalar(table.nodes_y - 2)) {}
+          end_y(Scalar(table.nodes_y - 2)),
+          last_x(std::nextafter(end_x, Scalar(0))),
+          last_y(std::nextafter(end_y, Scalar(0))) {}
 };
 
 // The table cell of each pixel: the index of its top-left node and the fractions within
-// it; ok = 1 only where its stencil fits in the table (a pixel whose stencil would leave
-// it reads a harmless cell inside instead, so that every read stays in bounds) and its m
-// lies in the certified disc (without the full solver only such a pixel may be called
-// valid). The arrays never overlap (restrict): the block's pixels are the caller's or
+// it; ok = 1 only where its stencil fits in the table and its m lies in the certified
+// disc (without the full solver only such a pixel may be called valid). A pixel whose
+// stencil would leave the table, or whose coordinates are not finite, is clamped to the
+// nearest cell whose stencil fits, so that every read stays in bounds (its estimate is
+// not used: ok = 0). Clamps rather than a choice between the pixel and a fixed cell: GCC
+// turned that choice into branches in float, and left the loop scalar. The arrays never overlap (restrict): the block's pixels are the caller's or
 // the block's own, and without that promise GCC leaves the loop scalar rather than check
 // every pair.
 template <class Scalar>
@@ -86,7 +91,9 @@ template <class Scalar>
         const Scalar gx = (pixel_x[i] - table.origin_x) * table.inv_step;
         const Scalar gy = (pixel_y[i] - table.origin_y) * table.inv_step;
         const bool inside = (gx >= Scalar(1)) & (gx < table.end_x) & (gy >= Scalar(1)) & (gy < table.end_y);  // no branch
-        const Scalar x = inside ? gx : Scalar(1), y = inside ? gy : Scalar(1);
+        // max(1, NaN) is 1: (1 < NaN) is false.
+        const Scalar x = std::min(std::max(Scalar(1), gx), table.last_x);
+        const Scalar y = std::min(std::max(Scalar(1), gy), table.last_y);
         const int column = static_cast<int>(x), row = static_cast<int>(y);
         cell[i] = row * table.stride + column;
         fraction_x[i] = x - Scalar(column);
