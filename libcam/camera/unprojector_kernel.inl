@@ -77,9 +77,9 @@ struct TableView {
 // stencil would leave the table, or whose coordinates are not finite, is clamped to the
 // nearest cell whose stencil fits, so that every read stays in bounds (its estimate is
 // not used: ok = 0). Clamps rather than a choice between the pixel and a fixed cell: GCC
-// turned that choice into branches in float, and left the loop scalar. The arrays never overlap (restrict): the block's pixels are the caller's or
-// the block's own, and without that promise GCC leaves the loop scalar rather than check
-// every pair.
+// turned that choice into branches in float, and left the loop scalar. The arrays never
+// overlap (restrict): the block's pixels are the caller's or the block's own, and without
+// that promise GCC leaves the loop scalar rather than check every pair.
 template <class Scalar>
 [[gnu::always_inline]] inline void locate_pixels(const TableView<Scalar>& table, Scalar certified_radius_squared,
                                                  const Scalar* __restrict pixel_x, const Scalar* __restrict pixel_y,

@@ -5,8 +5,8 @@
 
 #include <Eigen/Core>
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
