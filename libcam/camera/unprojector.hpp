@@ -60,9 +60,9 @@ struct UnprojectionTable {
     double origin_x = 0, origin_y = 0;  // pixel of node (0, 0)
     double step = 0;                    // pixels between nodes; 0: no table
     int nodes_x = 0, nodes_y = 0;
-    std::vector<Scalar> u_x, u_y;  // row-major, NaN where the pixel has no ray
-    // The same values node by node (u_x, u_y of node 0, then of node 1, ...): a pixel's
-    // two top nodes are then one contiguous read, as are its two bottom ones.
+    // Each node's u, node by node and row by row (x, y of node 0, then of node 1, ...),
+    // NaN where the pixel has no ray: a pixel's two top nodes are one contiguous read, as
+    // are its two bottom ones.
     std::vector<Scalar> u_pairs;
     // Per cell, indexed by its top-left node: 1 where fast (lut) keeps within the budget.
     // Bytes, a pixel's read beside its nodes' (one eighth of the cache lines of doubles).

@@ -343,7 +343,7 @@ void estimate(const Context<Scalar>& context, const typename Model::Parameters& 
             require_valid_radius(context.valid_radius_squared, b);
             return;
         case UnprojectMethod::Exact:
-            start_from_table<Interpolation::Bilinear>(context, static_cast<const std::uint8_t*>(nullptr), b);
+            start_from_table<Interpolation::Bilinear>(context, nullptr, b);
             newton_steps<Model>(lens, kExactNewtonSteps, b);
             if (certify<Model>(lens, b) > 0) {
                 // A pixel not yet at rounding level (a coarse table on a huge image, a

@@ -18,13 +18,7 @@
 
 namespace libcam::detail {
 
-// The interpolations of the table, for its check here (check_cells, one coordinate at a
-// time) and for the batch kernels (unprojector_kernel.inl, each node's (x, y) pair as a
-// two-lane vector): `node(n)` gives node n's value, a number or such a pair, and the sums
-// are the same operations in the same order, so the kernels give the bits that were
-// checked. Always inlined, here and in catmull_rom_weights: the kernels' loops vectorise
-// only once the bodies are inlined into them.
-// Node n of the table's node-by-node copy, (x, y) as a two-lane vector (the kernels' node).
+// Node n of the table, (x, y) as a two-lane vector (the kernels' node).
 template <class Scalar>
 struct NodePairs {
     typedef Scalar Two __attribute__((vector_size(2 * sizeof(Scalar))));
@@ -36,6 +30,12 @@ struct NodePairs {
     }
 };
 
+// The interpolations of the table, for its check here (check_cells, one coordinate at a
+// time) and for the batch kernels (unprojector_kernel.inl, each node's (x, y) pair as a
+// two-lane vector): `node(n)` gives node n's value, a number or such a pair, and the sums
+// are the same operations in the same order, so the kernels give the bits that were
+// checked. Always inlined, here and in catmull_rom_weights: the kernels' loops vectorise
+// only once the bodies are inlined into them.
 template <class Node, class Scalar>
 [[gnu::always_inline]] inline auto bilinear(const Node& node, std::size_t k, std::size_t stride, Scalar fx, Scalar fy) {
     const auto upper = node(k) + fx * (node(k + 1) - node(k));
@@ -79,7 +79,7 @@ UnprojectionTable<Scalar> table_layout(const ImageSize& size, int nodes) {
     table.nodes_y = static_cast<int>(std::floor(height / table.step)) + 4;
     table.origin_x = table.origin_y = -0.5 - table.step;
     const std::size_t count = static_cast<std::size_t>(table.nodes_x) * static_cast<std::size_t>(table.nodes_y);
-    for (std::vector<Scalar>* v : {&table.u_x, &table.u_y}) v->assign(count, Scalar(0));
+    table.u_pairs.assign(2 * count, Scalar(0));
     for (std::vector<std::uint8_t>* v : {&table.fast_ok, &table.lut_ok}) v->assign(count, 0);
     return table;
 }
@@ -108,8 +108,8 @@ void solve_nodes(const Camera& camera, const typename Model::Parameters& lens, i
             const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(table.nodes_x) + static_cast<std::size_t>(i);
             Vec2 u;
             const bool solved = solve_undistorted<Model>(lens, camera.intrinsics.normalized_from_pixel(node_pixel(table, i, j)), u);
-            table.u_x[k] = solved ? u.x() : std::numeric_limits<double>::quiet_NaN();
-            table.u_y[k] = solved ? u.y() : std::numeric_limits<double>::quiet_NaN();
+            table.u_pairs[2 * k] = solved ? u.x() : std::numeric_limits<double>::quiet_NaN();
+            table.u_pairs[2 * k + 1] = solved ? u.y() : std::numeric_limits<double>::quiet_NaN();
         }
     });
 }
@@ -132,8 +132,8 @@ std::pair<double, double> estimate_errors(const Camera& camera, const typename M
     const Vec2 pixel = node_pixel(table, i + fx, j + fy);
     const Vec2 m = camera.intrinsics.normalized_from_pixel(pixel);
     const std::size_t cell = static_cast<std::size_t>(k), stride = static_cast<std::size_t>(table.nodes_x);
-    const auto node_x = [&table](std::size_t n) { return table.u_x[n]; };
-    const auto node_y = [&table](std::size_t n) { return table.u_y[n]; };
+    const auto node_x = [&table](std::size_t n) { return table.u_pairs[2 * n]; };
+    const auto node_y = [&table](std::size_t n) { return table.u_pairs[2 * n + 1]; };
     const Vec2 start(bilinear(node_x, cell, stride, fx, fy), bilinear(node_y, cell, stride, fx, fy));
     Vec2 m_start;
     Eigen::Matrix2d d_m_d_u;
@@ -172,14 +172,8 @@ void check_cells(const Camera& camera, const typename Model::Parameters& lens, d
 
 template <class Scalar>
 UnprojectionTable<Scalar> in_scalar(const UnprojectionTable<double>& table) {
-    UnprojectionTable<Scalar> out{table.origin_x, table.origin_y, table.step, table.nodes_x, table.nodes_y, {}, {}, {}, {}, {}};
-    out.u_x.assign(table.u_x.begin(), table.u_x.end());
-    out.u_y.assign(table.u_y.begin(), table.u_y.end());
-    out.u_pairs.resize(2 * table.u_x.size());
-    for (std::size_t k = 0; k < table.u_x.size(); ++k) {
-        out.u_pairs[2 * k] = out.u_x[k];
-        out.u_pairs[2 * k + 1] = out.u_y[k];
-    }
+    UnprojectionTable<Scalar> out{table.origin_x, table.origin_y, table.step, table.nodes_x, table.nodes_y, {}, {}, {}};
+    out.u_pairs.assign(table.u_pairs.begin(), table.u_pairs.end());
     out.fast_ok = table.fast_ok;
     out.lut_ok = table.lut_ok;
     return out;
