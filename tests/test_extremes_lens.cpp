@@ -10,11 +10,13 @@
 // extremes in test_extremes_methods.cpp; the inputs are in extremes_lens.hpp.
 
 #include <catch2/catch.hpp>
+#include <cstdint>
 #include <sstream>
 
 #include "extremes_lens.hpp"
 #include "libcam/error.hpp"
 #include "libcam/lens/arctangent.hpp"
+#include "libcam/lens/sine_cosine.hpp"
 
 using namespace libcam;
 using namespace libcam::test;
@@ -181,6 +183,22 @@ std::vector<Row> projection_rows(const std::string& extreme, const ProjectionWor
     };
 }
 
+// Numbers in [0, 1), a fixed sequence from a seed (splitmix64).
+class Uniform {
+public:
+    explicit Uniform(std::uint64_t seed) : state_(seed) {}
+    double operator()() {
+        state_ += 0x9e3779b97f4a7c15ULL;
+        std::uint64_t z = state_;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+        return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
+    }
+
+private:
+    std::uint64_t state_;
+};
+
 // angle_from_axis (lens/arctangent.hpp), the fisheye models' theta, against atan2 in Quad:
 // every octant (the eight sign and order cases of y, |x|), the reduction's edges (t near
 // 0.66 and 1), the axes and diagonals, and tiny and huge ratios.
@@ -199,14 +217,7 @@ Worst angle_from_axis_worst() {
         worst.update(ulps(angle_from_axis(y, x), reference), where);
         worst.update(ulps(lane_value(angle_from_axis(Lane<Scalar>(y), Lane<Scalar>(x))), reference), where);
     };
-    std::uint64_t state = 12345;
-    const auto uniform = [&] {  // in [0, 1): a fixed sequence (splitmix64)
-        state += 0x9e3779b97f4a7c15ULL;
-        std::uint64_t z = state;
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-        return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
-    };
+    Uniform uniform(12345);
     for (int i = 0; i < 200000; ++i) {
         const double scale = std::ldexp(1.0, static_cast<int>(uniform() * 120) - 60);
         const double ratio = i % 4 == 0   ? std::ldexp(uniform(), -static_cast<int>(uniform() * 60))  // near an axis
@@ -227,6 +238,56 @@ std::vector<Row> angle_rows() {
              "0.45..0.7, near the axes, the axes and diagonals; and in Lane",
              "angle vs reference [ulp]", in_double.value, in_float.value, 2, 2,
              "Cephes' atan: t = min / max, past t = 0.66 pi/4 + atan((t - 1) / (t + 1)); k pi/4 in two parts",
+             in_double.where}};
+}
+
+// sine_cosine (lens/sine_cosine.hpp), the fisheye and FOV models' ray from an angle,
+// against sin and cos in Quad: (sin, cos) as a vector, in ulps at its norm 1 (as a ray's
+// direction is measured), over [0, pi]: uniform, at the reduction's edges (the octants
+// k pi/4 and next to them), tiny angles and pi itself.
+template <class Scalar>
+Worst sine_cosine_worst() {
+    Worst worst;
+    const auto check = [&](double x_value) {
+        const Scalar x = static_cast<Scalar>(x_value);
+        const Eigen::Matrix<Quad, 2, 1> reference(sin(Quad(x)), cos(Quad(x)));
+        const auto where = [&] {
+            std::ostringstream out;
+            out.precision(17);
+            out << "x = " << x;
+            return out.str();
+        };
+        Scalar s, c;
+        sine_cosine(x, s, c);
+        worst.update(ulps(Eigen::Matrix<Scalar, 2, 1>(s, c), reference), where);
+        Lane<Scalar> lane_s, lane_c;
+        sine_cosine(Lane<Scalar>(x), lane_s, lane_c);
+        worst.update(ulps(Eigen::Matrix<Scalar, 2, 1>(lane_value(lane_s), lane_value(lane_c)), reference), where);
+    };
+    Uniform uniform(6789);
+    for (int i = 0; i < 200000; ++i) check(std::numbers::pi * uniform());
+    for (int k = 0; k <= 4; ++k) {
+        const double edge = k * std::numbers::pi / 4;
+        for (int e = 1; e <= 40; ++e) {
+            for (const double offset : {std::ldexp(1.0, -e), -std::ldexp(1.0, -e)}) {
+                if (edge + offset >= 0 && edge + offset <= std::numbers::pi) check(edge + offset);
+            }
+        }
+        check(edge);
+        check(std::nextafter(edge, 0.0));
+        check(std::nextafter(edge, 4.0));
+    }
+    for (int e = 1; e <= 300; e += 7) check(std::ldexp(1.0, -e));
+    check(0.0);
+    return worst;
+}
+
+std::vector<Row> sine_cosine_rows() {
+    const Worst in_double = sine_cosine_worst<double>(), in_float = sine_cosine_worst<float>();
+    return {{"sine_cosine(x) = (sin x, cos x) for x in [0, pi]: 2e5 uniform points, the octants k pi/4 and 2^-1..2^-40 "
+             "either side, tiny angles; and in Lane",
+             "(sin, cos) vs reference [ulp of 1]", in_double.value, in_float.value, 2, 2,
+             "Cephes' sin and cos: x - j pi/4 (j even) with pi/4 in three parts, a polynomial for each",
              in_double.where}};
 }
 
@@ -489,6 +550,7 @@ TEST_CASE("extremes: the fold-over radius of each OpenCV model and FISHEYE, just
     check_rows(fold_rows());
 }
 TEST_CASE("extremes: the fisheye models' angle from the axis against atan2") { check_rows(angle_rows()); }
+TEST_CASE("extremes: the fisheye and FOV models' sine and cosine against sin and cos") { check_rows(sine_cosine_rows()); }
 TEST_CASE("extremes: FISHEYE at theta -> 0") { check_rows(fisheye_axis_rows()); }
 TEST_CASE("extremes: FISHEYE near 90 and 180 degrees") { check_rows(fisheye_wide_rows()); }
 TEST_CASE("extremes: points at z -> 0+ and behind the camera") { check_rows(camera_plane_rows()); }
@@ -500,7 +562,7 @@ namespace libcam::test {
 
 std::vector<Row> lens_rows() {
     std::vector<Row> rows;
-    for (const auto& group : {large_image_rows, wide_lens_rows, fold_rows, angle_rows, fisheye_axis_rows, fisheye_wide_rows,
+    for (const auto& group : {large_image_rows, wide_lens_rows, fold_rows, angle_rows, sine_cosine_rows, fisheye_axis_rows, fisheye_wide_rows,
                               camera_plane_rows, coefficient_rows, scale_rows, sweep_rows}) {
         const std::vector<Row> more = group();
         rows.insert(rows.end(), more.begin(), more.end());

@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <numbers>
 #include <span>
 #include <string>
@@ -36,6 +37,7 @@
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/lens/model_support.hpp"
 #include "libcam/lens/pinhole.hpp"
+#include "libcam/lens/sine_cosine.hpp"
 
 namespace libcam {
 
@@ -45,7 +47,13 @@ struct FovLens {
     static constexpr int num_coefficients = 1;
     template <class Other>
     using InScalar = FovLens<Other>;
-    using Parameters = LensParameters<Scalar, 1>;
+    // The coefficient, and for the batch loops a = 2 tan(omega / 2) worked out once per
+    // camera (see scale_a).
+    struct Parameters {
+        Eigen::Matrix<Scalar, 1, 1> coefficients;
+        Scalar valid_radius = Scalar(std::numeric_limits<double>::infinity());
+        Scalar a = Scalar(0);
+    };
     using Vec2T = Eigen::Matrix<Scalar, 2, 1>;
     using Vec3T = Eigen::Matrix<Scalar, 3, 1>;
     using Jacobian23 = Eigen::Matrix<Scalar, 2, 3>;
@@ -56,7 +64,30 @@ struct FovLens {
         return c[0] > 0 ? std::numbers::pi : std::numbers::pi / 2;
     }
 
-    static Parameters parameters(std::span<const double> c) { return lens_parameters<Scalar, 1>(c, valid_radius(c)); }
+    static Parameters parameters(std::span<const double> c) { return parameters(c, valid_radius(c)); }
+
+    // With the valid radius worked out before (the batch paths keep it per camera).
+    static Parameters parameters(std::span<const double> c, double radius) {
+        using std::tan;
+        const LensParameters<Scalar, 1> given = lens_parameters<Scalar, 1>(c, radius);
+        Parameters lens{given.coefficients, given.valid_radius};
+        lens.a = Scalar(2) * tan(lens.coefficients(0) / Scalar(2));
+        return lens;
+    }
+
+    // a = 2 tan(omega / 2). The batch loops (Lane) read it from the parameters, worked out
+    // once per camera: a libm tangent per point took half of a batch projection's time and
+    // kept the unprojection's loop scalar. Every other type works it out from the
+    // coefficient it holds, the same bits, so that a caller who changes the coefficient (a
+    // fit, a derivative by differences) never meets a stale value.
+    static Scalar scale_a(const Parameters& lens) {
+        if constexpr (is_lane_v<Scalar>) {
+            return by_value(lens.a);
+        } else {
+            using std::tan;
+            return Scalar(2) * tan(lens.coefficients(0) / Scalar(2));
+        }
+    }
 
     static void check_coefficients(std::span<const double> c, const char* field) {
         if (!(c[0] >= 0 && c[0] < std::numbers::pi)) {
@@ -69,13 +100,12 @@ struct FovLens {
     template <class PointJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
     static bool project(const Parameters& lens, const Vec3T& point, Vec2T& m, PointJacobianPtr d_m_d_point = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
-        using std::tan;
         const Scalar omega = by_value(lens.coefficients(0));
         if (omega == Scalar(0)) {  // the same for every point of the camera
             if constexpr (is_requested<CoefficientJacobianPtr>) d_m_d_coefficients->setZero();  // r_d = r + O(omega^2)
             return PinholeLens<Scalar>::project(point, m, d_m_d_point) & all_finite(m);
         }
-        const Scalar a = Scalar(2) * tan(omega / Scalar(2));
+        const Scalar a = scale_a(lens);
         const Vec3T scaled(a * point.x(), a * point.y(), point.z());
         Vec2T u = Vec2T::Zero();  // equidistant_point leaves it unset where it flags the point
         Jacobian23 d_u_d_scaled;
@@ -104,21 +134,19 @@ struct FovLens {
 
     // The ray through m; false where omega |m| reaches pi (past the image's disc).
     static bool unproject(const Parameters& lens, const Vec2T& m, Vec3T& ray) {
-        using std::cos;
-        using std::sin;
         using std::sqrt;
-        using std::tan;
+        // No branch, which would stop the batch loops' vectoriser: omega = 0, the pinhole, is
+        // (m, 1), chosen at the end.
         const Scalar omega = by_value(lens.coefficients(0));
-        if (omega == Scalar(0)) {
-            ray = Vec3T(m.x(), m.y(), Scalar(1));
-            return all_finite(ray);
-        }
+        const bool pinhole = omega == Scalar(0);
         const Scalar phi = omega * sqrt(m.squaredNorm());
+        Scalar sin_phi, cos_phi;
+        sine_cosine(phi, sin_phi, cos_phi);  // arithmetic, so the batch loops vectorise
         // sin(phi) / phi, 1 on the axis.
-        const Scalar sinc = phi > Scalar(0) ? Scalar(sin(phi) / phi) : Scalar(1);
-        const Scalar scale = omega / (Scalar(2) * tan(omega / Scalar(2))) * sinc;
-        ray = Vec3T(m.x() * scale, m.y() * scale, cos(phi));
-        return (phi < Scalar(std::numbers::pi)) & all_finite(ray);
+        const Scalar sinc = phi > Scalar(0) ? Scalar(sin_phi / phi) : Scalar(1);
+        const Scalar scale = pinhole ? Scalar(1) : Scalar(omega / scale_a(lens) * sinc);
+        ray = Vec3T(m.x() * scale, m.y() * scale, pinhole ? Scalar(1) : cos_phi);
+        return (pinhole | (phi < Scalar(std::numbers::pi))) & all_finite(ray);
     }
 };
 

@@ -12,7 +12,8 @@
 //   Vec2T, Vec3T, Parameters           Parameters = LensParameters<Scalar, num_coefficients>;
 //                                      a model with more to work out per camera (a
 //                                      variable coefficient count: num_coefficients =
-//                                      Eigen::Dynamic) has its own struct holding
+//                                      Eigen::Dynamic; FOV's tangent of its angle) has
+//                                      its own struct holding
 //                                      `coefficients` and `valid_radius` too, and
 //                                      parameters(coefficients, valid_radius)
 //   Parameters parameters(std::span<const double> coefficients)
