@@ -209,18 +209,12 @@ struct SplinedStereographicLens {
         std::array<Scalar, 4> wx, wy, slope_x, slope_y;
         basis(grid.order, ix - Scalar(column + 1), wx, slope_x);
         basis(grid.order, iy - Scalar(row + 1), wy, slope_y);
-        Vec2T delta = Vec2T::Zero(), d_delta_d_ix = Vec2T::Zero(), d_delta_d_iy = Vec2T::Zero();
-        for (int r = 0; r <= grid.order; ++r) {
-            Vec2T across = Vec2T::Zero(), d_across = Vec2T::Zero();  // this row of the patch, along x
-            for (int c = 0; c <= grid.order; ++c) {
-                const Eigen::Index at = control_point(grid, column + c, row + r);
-                const Vec2T control(k(at), k(at + 1));
-                across += wx[c] * control;
-                d_across += slope_x[c] * control;
-            }
-            delta += wy[r] * across;
-            d_delta_d_ix += wy[r] * d_across;
-            d_delta_d_iy += slope_y[r] * across;
+        Vec2T delta, d_delta_d_ix, d_delta_d_iy;
+        // The order as a constant: loops of a known length, which the compiler unrolls.
+        if (grid.order == 3) {
+            patch_sums<3>(grid, k, column, row, wx, wy, slope_x, slope_y, delta, d_delta_d_ix, d_delta_d_iy);
+        } else {
+            patch_sums<2>(grid, k, column, row, wx, wy, slope_x, slope_y, delta, d_delta_d_ix, d_delta_d_iy);
         }
         m = u + delta;
         Jacobian22 jacobian;
@@ -246,6 +240,28 @@ struct SplinedStereographicLens {
     }
 
 private:
+    // delta(u) and its derivatives in the knot coordinates, from the patch whose first
+    // control point is (column, row), for a spline of order kOrder.
+    template <int kOrder, class Coefficients>
+    static void patch_sums(const SplineGrid& grid, const Coefficients& k, int column, int row,
+                           const std::array<Scalar, 4>& wx, const std::array<Scalar, 4>& wy,
+                           const std::array<Scalar, 4>& slope_x, const std::array<Scalar, 4>& slope_y, Vec2T& delta,
+                           Vec2T& d_delta_d_ix, Vec2T& d_delta_d_iy) {
+        delta = d_delta_d_ix = d_delta_d_iy = Vec2T::Zero();
+        for (int r = 0; r <= kOrder; ++r) {
+            Vec2T across = Vec2T::Zero(), d_across = Vec2T::Zero();  // this row of the patch, along x
+            for (int c = 0; c <= kOrder; ++c) {
+                const Eigen::Index at = control_point(grid, column + c, row + r);
+                const Vec2T control(k(at), k(at + 1));
+                across += wx[c] * control;
+                d_across += slope_x[c] * control;
+            }
+            delta += wy[r] * across;
+            d_delta_d_ix += wy[r] * d_across;
+            d_delta_d_iy += slope_y[r] * across;
+        }
+    }
+
     // Where control point (i, j) starts among the coefficients (mrcal's layout).
     static Eigen::Index control_point(const SplineGrid& grid, int i, int j) {
         return 4 + 2 * (static_cast<Eigen::Index>(j) * grid.nx + i);
