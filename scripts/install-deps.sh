@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  ccache                 # keeps compiled files between builds (scripts/build.sh)
   libeigen3-dev          # core math
   libopencv-dev          # reference
   libopencv-contrib-dev  # reference: cv::omnidir (the unified camera model)
