@@ -22,10 +22,11 @@ if(TARGET libcam_cli)
   install(TARGETS libcam_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 
-# Every public header; report/detail/ holds report's OpenCV helpers, which stay inside it.
+# Every public header; the detail/ folders (report's OpenCV helpers, io's per-format readers
+# and writers and the parsers' trees) stay inside their libraries.
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/libcam/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/libcam"
   FILES_MATCHING PATTERN "*.hpp"
-  REGEX "/report/detail(/|$)" EXCLUDE)
+  REGEX "/detail(/|$)" EXCLUDE)
 install(FILES "${LIBCAM_GENERATED_DIR}/libcam/version.hpp" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/libcam")
 
 configure_package_config_file(cmake/libcamConfig.cmake.in "${PROJECT_BINARY_DIR}/libcamConfig.cmake"

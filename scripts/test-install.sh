@@ -19,8 +19,16 @@ for path in bin/libcam include/libcam/version.hpp include/libcam/convert/fov_con
             lib/pkgconfig/libcam-io.pc lib/pkgconfig/libcam-fit.pc lib/pkgconfig/libcam-report.pc; do
   [ -e "$work/prefix/$path" ] || { echo "test-install: missing $path in the install"; exit 1; }
 done
-# report's OpenCV helpers stay inside it.
-[ ! -e "$work/prefix/include/libcam/report/detail" ] || { echo "test-install: report/detail was installed"; exit 1; }
+# The detail/ folders (report's OpenCV helpers, io's per-format readers and the parsers'
+# trees) stay inside their libraries.
+detail_installed="$(find "$work/prefix/include/libcam" -type d -name detail)"
+[ -z "$detail_installed" ] || { echo "test-install: installed a detail folder: $detail_installed"; exit 1; }
+# No installed header outside the bridges (interop/), fit/ and report/ includes a header of
+# OpenCV, mrcal, Ceres, nlohmann JSON, yaml-cpp or pugixml: a program using the rest sees
+# none of them.
+third_party="$(cd "$work/prefix/include/libcam" && grep -rEn '#include *[<"](opencv2/|mrcal|ceres/|nlohmann/|yaml-cpp/|pugixml)' \
+  --include='*.hpp' . | grep -Ev '^\./(interop|fit|report)/' || true)"
+[ -z "$third_party" ] || { echo "test-install: installed headers include third-party headers:"; echo "$third_party"; exit 1; }
 "$work/prefix/bin/libcam" --version | grep -q "^libcam " || { echo "test-install: libcam --version"; exit 1; }
 
 # The Python module, where the build made one: installed under the prefix (its

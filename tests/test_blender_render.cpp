@@ -28,7 +28,7 @@
 
 #include "libcam/camera/camera.hpp"
 #include "libcam/interop/image_remap.hpp"
-#include "libcam/io/blender_format.hpp"
+#include "libcam/io/detail/blender_format.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/remap/derived_camera.hpp"
 #include "libcam/remap/remap_map.hpp"

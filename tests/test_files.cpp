@@ -691,16 +691,16 @@ TEST_CASE("YAML that hangs OpenCV 4.6's parser is refused by libcam's own, namin
         const char* says;
     };
     const std::vector<Case> cases{
-        {"the fuzzer's second document", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv/hang_second_document.yaml"),
+        {"the fuzzer's second document", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv-yaml/hang_second_document.yaml"),
          "line 5: a second YAML document"},
-        {"the fuzzer's block entry", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv/hang_block_entry.yaml"), "line 5"},
+        {"the fuzzer's block entry", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv-yaml/hang_block_entry.yaml"), "line 5"},
         {"--- inside a flow sequence", head + "data: [ 1.5,\n---\n 2. ]\n", "line "},
         {"a second document", head + "---\nimage_width: 320\n", "line 5: a second YAML document"},
         {"a document end, then more", head + "...\nimage_width: 320\n", "line 6: a second YAML document"},
         {"an unclosed flow sequence", head + "data: [ 1.5, 2.\n", "line "},
         {"a tab for indentation", head + "camera_matrix:\n\trows: 3\n", "line "},
         // yaml-cpp 0.7's LoadAll loops forever, allocating, on this one (libcam calls Load).
-        {"a document that starts with ','", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv/loop_leading_comma.yaml"),
+        {"a document that starts with ','", read_text_file(fs::path(LIBCAM_FUZZ_CORPUS) / "opencv-yaml/loop_leading_comma.yaml"),
          "text after the YAML document"},
     };
     for (const Case& c : cases) {

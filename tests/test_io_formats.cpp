@@ -172,6 +172,64 @@ TEST_CASE("COLMAP cameras.bin and images.bin, as COLMAP lays out the bytes") {
                Catch::Contains("more than the file holds"));
 }
 
+TEST_CASE("COLMAP's SIMPLE_FISHEYE, FISHEYE and EUCM read from cameras.txt and cameras.bin") {
+    // COLMAP's models.h: SIMPLE_FISHEYE (id 14) is "f, cx, cy", FISHEYE (15) "fx, fy, cx, cy"
+    // (the equidistant fisheye: OpenCV's fisheye with k1..k4 = 0), EUCM (16) "fx, fy, cx,
+    // cy, alpha, beta". COLMAP's cx is libcam's plus 0.5.
+    const std::string text = "1 SIMPLE_FISHEYE 640 480 300 320.5 240.5\n"
+                             "2 FISHEYE 800 600 310 311 400.5 300.25\n"
+                             "3 EUCM 1024 768 400 401 512.5 384.5 0.6 1.1\n";
+    std::string bytes;
+    const auto put = [](std::string& out, const auto& value) {
+        out.append(reinterpret_cast<const char*>(&value), sizeof(value));
+    };
+    put(bytes, std::uint64_t{3});
+    const auto put_camera = [&](std::uint32_t id, std::int32_t model, std::uint64_t w, std::uint64_t h,
+                                std::initializer_list<double> params) {
+        put(bytes, id);
+        put(bytes, model);
+        put(bytes, w);
+        put(bytes, h);
+        for (const double p : params) put(bytes, p);
+    };
+    put_camera(1, 14, 640, 480, {300, 320.5, 240.5});
+    put_camera(2, 15, 800, 600, {310, 311, 400.5, 300.25});
+    put_camera(3, 16, 1024, 768, {400, 401, 512.5, 384.5, 0.6, 1.1});
+    for (const auto& [file, source] : {std::pair{text, "cameras.txt"}, std::pair{bytes, "cameras.bin"}}) {
+        INFO(source);
+        const CameraSet set = parse_camera_set(file, CameraFormat::Colmap, source);
+        REQUIRE(set.cameras.size() == 3);
+        const Camera& simple = set.cameras[0].file.camera;
+        CHECK(simple.lens.type == LensType::Fisheye);
+        CHECK(simple.lens.coefficients == std::vector<double>{0, 0, 0, 0});
+        CHECK(simple.size == ImageSize{640, 480});
+        check_intrinsics(simple, 300, 300, 320, 240);
+        const Camera& fisheye = set.cameras[1].file.camera;
+        CHECK(fisheye.lens.type == LensType::Fisheye);
+        CHECK(fisheye.lens.coefficients == std::vector<double>{0, 0, 0, 0});
+        check_intrinsics(fisheye, 310, 311, 400, 299.75);
+        const Camera& eucm = set.cameras[2].file.camera;
+        CHECK(eucm.lens.type == LensType::Eucm);
+        CHECK(eucm.lens.coefficients == std::vector<double>{0.6, 1.1});
+        CHECK(eucm.size == ImageSize{1024, 768});
+        check_intrinsics(eucm, 400, 401, 512, 384);
+    }
+    // Written back: EUCM as COLMAP's EUCM, the parameters as they were read.
+    Camera eucm = parse_camera_set(text, CameraFormat::Colmap, "cameras.txt").cameras[2].file.camera;
+    CHECK_THAT(format_camera_files(eucm, CameraFormat::Colmap)[0].text,
+               Catch::EndsWith("\n1 EUCM 1024 768 400 401 512.5 384.5 0.6 1.1\n"));
+    // An id COLMAP has but libcam cannot hold (12: SIMPLE_DIVISION) names the ids it reads.
+    std::string division;
+    put(division, std::uint64_t{1});
+    put(division, std::uint32_t{1});
+    put(division, std::int32_t{12});
+    put(division, std::uint64_t{640});
+    put(division, std::uint64_t{480});
+    for (const double p : {300.0, 320.0, 240.0, 0.1}) put(division, p);
+    CHECK_THAT(file_error_of([&] { (void)parse_camera_set(division, CameraFormat::Colmap, "cameras.bin"); }),
+               Catch::EndsWith("model id 12 is not one of COLMAP's models that libcam holds (0 to 11, 14 to 16)"));
+}
+
 TEST_CASE("COLMAP files that are wrong are refused, naming the file, line and field") {
     const auto error_of = [](const std::string& text) {
         return file_error_of([&] { (void)parse_camera_set(text, CameraFormat::Colmap, "cameras.txt"); });

@@ -8,7 +8,7 @@
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/io/camera_file.hpp"
-#include "libcam/io/opencv_storage.hpp"
+#include "libcam/io/detail/opencv_storage.hpp"
 
 using namespace libcam;
 using namespace libcam::test;

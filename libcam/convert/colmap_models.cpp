@@ -52,34 +52,71 @@ constexpr bool tables_agree() {
 }
 static_assert(tables_agree(), "the lens table's colmap names and the COLMAP table disagree");
 
-std::string known_models() {
-    std::string names;
-    for (const ColmapModel& model : kColmapModels) names += (names.empty() ? "" : ", ") + std::string(model.name);
-    return names;
-}
-
 const ColmapModel& require_model(std::string_view name) {
     const ColmapModel* model = colmap_model(name);
     if (model == nullptr) {
-        throw InvalidArgument("COLMAP model \"" + std::string(name) + "\": libcam knows " + known_models() +
+        throw InvalidArgument("COLMAP model \"" + std::string(name) + "\": libcam knows " + colmap_model_names() +
                               " (COLMAP's division and equirectangular models have no libcam equivalent)");
     }
     return *model;
 }
 
-// The COLMAP model COLMAP users know for `lens`: the one the lens table names, else the
-// first two-focal model whose lens contains it.
-const ColmapModel& default_model(LensType lens) {
-    if (const ColmapModel* named = colmap_model(lens_info(lens).colmap)) return *named;
+// The COLMAP model COLMAP users know for a lens model: the one the lens table names, else
+// the first two-focal model whose lens contains it.
+const ColmapModel* default_model(LensType lens) {
+    if (const ColmapModel* named = colmap_model(lens_info(lens).colmap)) return named;
     for (const ColmapModel& model : kColmapModels) {
-        if (!model.one_focal && lens_contains(model.lens, lens) && lens_info(model.lens).colmap == model.name) {
-            return model;
-        }
+        if (!model.one_focal && lens_contains(model.lens, lens)) return &model;
     }
-    throw NotRepresentable("COLMAP has no camera model for " + std::string(lens_info(lens).name) + " lenses");
+    return nullptr;
+}
+
+bool all_zero_from(const std::vector<double>& values, std::size_t first) {
+    return std::all_of(values.begin() + static_cast<long>(std::min(first, values.size())), values.end(),
+                       [](double value) { return value == 0.0; });
 }
 
 }  // namespace
+
+const ColmapModel* colmap_model_by_id(int id) {
+    for (const ColmapModel& model : kColmapModels) {
+        if (model.id == id) return &model;
+    }
+    return nullptr;
+}
+
+std::string colmap_model_names() {
+    std::string names;
+    for (const ColmapModel& model : kColmapModels) names += (names.empty() ? "" : ", ") + std::string(model.name);
+    return names;
+}
+
+// Runs of consecutive ids, "0 to 11, 14 to 16".
+std::string colmap_model_ids() {
+    std::string ids;
+    const std::span<const ColmapModel> models = kColmapModels;
+    for (std::size_t i = 0; i < models.size();) {
+        std::size_t last = i;
+        while (last + 1 < models.size() && models[last + 1].id == models[last].id + 1) ++last;
+        ids += (ids.empty() ? "" : ", ") + std::to_string(models[i].id);
+        if (last > i) ids += " to " + std::to_string(models[last].id);
+        i = last + 1;
+    }
+    return ids;
+}
+
+const ColmapModel& colmap_model_for(const Lens& lens) {
+    LensType type = lens.type;
+    // FULL_OPENCV holds the first eight of OpenCV's coefficients; the richer models'
+    // others must be 0.
+    const auto eight = static_cast<std::size_t>(lens_info(LensType::Opencv8).num_coefficients);
+    if (lens_contains(type, LensType::Opencv8) && type != LensType::Opencv8 && all_zero_from(lens.coefficients, eight)) {
+        type = LensType::Opencv8;
+    }
+    if (const ColmapModel* model = default_model(type)) return *model;
+    throw NotRepresentable("COLMAP has no model for a " + std::string(lens_info(lens.type).name) + " lens (its models: " +
+                           colmap_model_names() + ")");
+}
 
 std::span<const ColmapModel> colmap_models() { return kColmapModels; }
 
@@ -121,10 +158,14 @@ Camera camera_from_colmap(std::string_view name, std::span<const double> params,
 
 ColmapCamera colmap_from_camera(const Camera& camera, std::optional<std::string_view> name) {
     camera.validate();
-    const ColmapModel& model = name ? require_model(*name) : default_model(camera.lens.type);
+    const ColmapModel& model = name ? require_model(*name) : colmap_model_for(camera.lens);
     const std::string target = "COLMAP " + std::string(model.name);
     const std::string lens_name(lens_info(camera.lens.type).name);
-    if (!lens_contains(model.lens, camera.lens.type)) {
+    // A richer model of the same family fits when its further coefficients are all 0
+    // (an OPENCV12 whose thin-prism terms are 0 is an OPENCV8).
+    const auto held = static_cast<std::size_t>(lens_info(model.lens).num_coefficients);
+    const bool fits_as_smaller = lens_contains(camera.lens.type, model.lens) && all_zero_from(camera.lens.coefficients, held);
+    if (!lens_contains(model.lens, camera.lens.type) && !fits_as_smaller) {
         throw NotRepresentable(target + " cannot express the camera's " + lens_name + " lens (it is " +
                                std::string(lens_info(model.lens).name) + ")");
     }

@@ -51,6 +51,20 @@ std::span<const ColmapModel> colmap_models();
 // The model named `name` (COLMAP's spelling, e.g. "SIMPLE_RADIAL"); nullptr if none.
 const ColmapModel* colmap_model(std::string_view name);
 
+// The model of COLMAP's id `id` (cameras.bin's model_id); nullptr if none.
+const ColmapModel* colmap_model_by_id(int id);
+
+// Every model's name, comma-separated, and every id ("0 to 11, 14 to 16"), for messages.
+std::string colmap_model_names();
+std::string colmap_model_ids();
+
+// The model a camera file written for COLMAP uses for `lens`: the one the lens table
+// names for it (OPENCV for OPENCV4, OPENCV_FISHEYE for FISHEYE), else the first
+// two-focal model whose lens contains it (FULL_OPENCV for OPENCV5); OPENCV12 and OPENCV14
+// as FULL_OPENCV when their coefficients past the eighth are 0. Throws NotRepresentable,
+// naming COLMAP's models, when none holds the lens.
+const ColmapModel& colmap_model_for(const Lens& lens);
+
 // The camera COLMAP's model and parameters describe, at the origin (identity pose).
 // Throws InvalidArgument for an unknown model, a wrong parameter count, or a parameter
 // that is not a number, naming it.

@@ -1,141 +1,37 @@
 #include "libcam/io/camera_file.hpp"
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <cstdint>
 
-#include <nlohmann/json.hpp>
-
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
+#include "libcam/io/camera_formats.hpp"
+#include "libcam/io/detail/document.hpp"
+#include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/format_table.hpp"
-#include "libcam/io/json_format.hpp"
-#include "libcam/io/opencv_storage.hpp"
-#include "libcam/io/cahvor_format.hpp"
-#include "libcam/io/colmap_format.hpp"
-#include "libcam/io/nerf_transforms.hpp"
-#include "libcam/io/blender_format.hpp"
-#include "libcam/io/open3d_format.hpp"
-#include "libcam/io/openicc_format.hpp"
-#include "libcam/io/rig_formats.hpp"
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
 
 namespace {
 
-// libcam::io's own writers, in the table's form.
-std::string write_json(const Camera& camera, const WriteOptions& options) {
-    return format_json(camera, options.fov_camera);
-}
+using detail::Content;
+using detail::FormatRow;
+using detail::format_rows;
 
-std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
-    // A projection matrix is linear: it holds a pinhole, nothing more.
-    if (camera.lens.type != LensType::Pinhole) {
-        throw NotRepresentable("gl holds a pinhole camera only (an OpenGL projection matrix has no distortion); this "
-                               "camera's lens is " + std::string(lens_info(camera.lens.type).name));
-    }
-    return format_gl_json(to_opengl(camera, options.gl_near, options.gl_far, options.gl_depth_range), camera.size);
-}
+// The readers and writers a library other than libcam::io fills in at run time
+// (install_camera_format), by format. constinit: ready before any code runs, so a
+// registration made from another file's static initialiser cannot find them unready.
+constinit std::array<std::atomic<CameraReader>, kCameraFormatCount> installed_readers{};
+constinit std::array<std::atomic<CameraWriter>, kCameraFormatCount> installed_writers{};
 
-// OpenCV's files (one camera, a stereo pair, ORB-SLAM's settings) record no FOV camera.
-std::vector<NamedCamera> read_opencv_storage(std::string_view text, const ReadContext& context) {
-    return parse_opencv_storage_set(text, context.source, context.options);
-}
-
-// A Blender script is Python, which libcam does not run: the JSON of the same settings
-// (--from-format blender names it too) is what it reads.
-std::vector<NamedCamera> read_blender_script(std::string_view text, const ReadContext& context) {
-    const std::size_t first = text.find_first_not_of(" \t\r\n");
-    if (first != std::string_view::npos && text[first] == '{') return parse_blender_cameras(text, context.source);
-    throw FileError(context.source + ": a Blender script is not read back; read the same settings as JSON (convert "
-                    "--to blender-json), or export a .blend's cameras with tools/blender/export_cameras.py");
-}
-
-std::string write_ros_camera_info(const Camera& camera, const WriteOptions& options) {
-    return format_ros_camera_info(camera, options);
-}
-
-std::string write_opencv_yaml(const Camera& camera, const WriteOptions&) {
-    return format_opencv_storage(camera, OpenCvStorage::Yaml);
-}
-
-std::string write_opencv_xml(const Camera& camera, const WriteOptions&) {
-    return format_opencv_storage(camera, OpenCvStorage::Xml);
-}
-
-// One row per format (io/format_table.hpp). The rows of the formats io implements
-// are filled here; the others start empty until `library` fills them (`installer`).
-// A format whose files hold several cameras has a set reader instead; one written as
-// several files into a folder has a files writer; one libcam reads but does not write
-// has no writer and says so.
-struct FormatRow {
-    CameraFormat format;
-    std::string_view name;   // what --to and camera_format_from_string take
-    std::string_view title;  // for messages
-    std::string_view library;
-    std::string_view installer;
-    std::atomic<CameraReader> reader;
-    std::atomic<CameraWriter> writer;
-    CameraSetReader set_reader = nullptr;
-    bool read_only = false;
-    CameraFilesWriter files_writer = nullptr;
-    bool binary = false;  // also has a binary form: its reader checks the text itself
-};
-
-constexpr std::string_view kInterop = "libcam::interop";
-constexpr std::string_view kRegisterInterop = "libcam::register_interop_formats()";
-
-// The rig readers take only the file's name from the context.
-template <std::vector<NamedCamera> (*parse)(std::string_view, const std::string&)>
-std::vector<NamedCamera> read_with_source(std::string_view text, const ReadContext& context) {
-    return parse(text, context.source);
-}
-
-// libcam JSON and gl JSON share a reader: the keys tell which (io/json_format.hpp);
-// OpenCV's YAML and XML share one too (io/opencv_storage.hpp).
-// constinit: filled before any code runs, so a registration made from another file's
-// static initialiser cannot find it unready.
-constinit std::array<FormatRow, 17> format_table = {{
-    {CameraFormat::Json, "json", "libcam JSON", "libcam::io", "", parse_json_camera, write_json},
-    {CameraFormat::OpenCvYaml, "opencv-yaml", "OpenCV YAML", "libcam::io", "", nullptr, write_opencv_yaml,
-     read_opencv_storage},
-    {CameraFormat::OpenCvXml, "opencv-xml", "OpenCV XML", "libcam::io", "", nullptr, write_opencv_xml, read_opencv_storage},
-    {CameraFormat::Cameramodel, "cameramodel", "mrcal .cameramodel", kInterop, kRegisterInterop, nullptr, nullptr},
-    {CameraFormat::Gl, "gl", "gl JSON", "libcam::io", "", parse_json_camera, write_gl_json},
-    {CameraFormat::Kalibr, "kalibr", "Kalibr camchain YAML", "libcam::io", "", nullptr, format_kalibr_camchain,
-     read_with_source<parse_kalibr_camchain>},
-    {CameraFormat::Basalt, "basalt", "basalt calibration JSON", "libcam::io", "", nullptr, format_basalt_calibration,
-     read_with_source<parse_basalt_calibration>},
-    {CameraFormat::Camodocal, "camodocal", "camodocal YAML", "libcam::io", "", nullptr, nullptr,
-     read_with_source<parse_camodocal>, true},
-    {CameraFormat::Colmap, "colmap", "COLMAP model", "libcam::io", "", nullptr, nullptr, read_colmap_model, false,
-     write_colmap_model, true},
-    {CameraFormat::Nerf, "nerf", "NeRF transforms.json", "libcam::io", "", nullptr, write_nerf_transforms,
-     read_nerf_transforms},
-    {CameraFormat::Cahvor, "cahvor", "JPL .cahvor", "libcam::io", "", nullptr, nullptr, read_with_source<parse_cahvor>,
-     true},
-    {CameraFormat::Ros, "ros", "ROS camera_info YAML", "libcam::io", "", nullptr, write_ros_camera_info,
-     read_with_source<parse_ros_camera_info>},
-    {CameraFormat::Open3d, "open3d", "Open3D camera JSON", "libcam::io", "", nullptr, format_open3d_camera,
-     read_with_source<parse_open3d_camera>},
-    {CameraFormat::Euroc, "euroc", "EuRoC sensor.yaml", "libcam::io", "", nullptr, nullptr,
-     read_with_source<parse_euroc_sensor>, true},
-    {CameraFormat::Openicc, "openicc", "OpenImuCameraCalibrator JSON", "libcam::io", "", nullptr, nullptr,
-     read_with_source<parse_openicc_camera>, true},
-    {CameraFormat::Blender, "blender", "Blender camera script", "libcam::io", "", nullptr, format_blender_script,
-     read_blender_script},
-    {CameraFormat::BlenderJson, "blender-json", "Blender camera JSON", "libcam::io", "", nullptr, format_blender_json,
-     read_with_source<parse_blender_cameras>},
-}};
-
-FormatRow& row_of(CameraFormat format) {
-    for (FormatRow& row : format_table) {
-        if (row.format == format) return row;
-    }
-    throw InvalidArgument("format: unknown");
+const FormatRow& row_of(CameraFormat format) {
+    const auto index = static_cast<std::size_t>(format);
+    if (index >= format_rows().size()) throw InvalidArgument("format: unknown");
+    return format_rows()[index];
 }
 
 // "<where>: reading mrcal .cameramodel needs libcam::interop (link it and call
@@ -145,17 +41,32 @@ FormatRow& row_of(CameraFormat format) {
                     std::string(row.library) + " (link it and call " + std::string(row.installer) + " first)");
 }
 
-CameraReader reader_for(CameraFormat format, const std::string& source) {
-    const FormatRow& row = row_of(format);
-    const CameraReader reader = row.reader.load(std::memory_order_acquire);
-    if (reader == nullptr) throw_not_installed(row, "reading", source);
-    return reader;
+// Every camera of a file of the row's format, through its own reader or the one installed.
+std::vector<NamedCamera> read_with(const FormatRow& row, std::string_view text, const ReadContext& context) {
+    if (row.read != nullptr) return row.read(text, context);
+    const CameraReader reader = installed_readers[static_cast<std::size_t>(row.format)].load(std::memory_order_acquire);
+    if (reader == nullptr) throw_not_installed(row, "reading", context.source);
+    return {{std::string(), reader(text, context.source)}};
+}
+
+// Whether the row can write now (its own writer, or one installed).
+bool has_writer(const FormatRow& row) {
+    return row.write != nullptr ||
+           installed_writers[static_cast<std::size_t>(row.format)].load(std::memory_order_acquire) != nullptr;
+}
+
+std::vector<CameraFileText> write_with(const FormatRow& row, const Camera& camera, const WriteOptions& options,
+                                       const std::string& destination) {
+    if (row.write != nullptr) return row.write(camera, options);
+    const CameraWriter writer = installed_writers[static_cast<std::size_t>(row.format)].load(std::memory_order_acquire);
+    if (writer == nullptr) throw_not_installed(row, "writing", destination);
+    return {{std::string(), writer(camera, options)}};
 }
 
 // The names of the formats libcam writes, for messages.
 std::string written_format_names() {
     std::string names;
-    for (const FormatRow& row : format_table) {
+    for (const FormatRow& row : format_rows()) {
         if (!row.read_only) names += (names.empty() ? "" : ", ") + std::string(row.name);
     }
     return names;
@@ -169,13 +80,9 @@ std::vector<CameraFileText> format_files(const Camera& camera, CameraFormat form
         throw NotRepresentable(destination + ": libcam reads " + std::string(row.title) +
                                " files but does not write them (it writes " + written_format_names() + ")");
     }
-    const CameraWriter writer = row.writer.load(std::memory_order_acquire);
-    if (row.files_writer == nullptr && writer == nullptr) throw_not_installed(row, "writing", destination);
+    if (!has_writer(row)) write_with(row, camera, options, destination);  // throws, naming the library
     camera.validate();
-    const auto write = [&](const Camera& held) -> std::vector<CameraFileText> {
-        if (row.files_writer != nullptr) return row.files_writer(held, options);
-        return {{std::string(), writer(held, options)}};
-    };
+    const auto write = [&](const Camera& held) { return write_with(row, held, options, destination); };
     try {
         return write(camera);
     } catch (const NotRepresentable&) {
@@ -198,20 +105,45 @@ std::vector<CameraFileText> format_files(const Camera& camera, CameraFormat form
 }  // namespace
 
 void install_camera_format(CameraFormat format, CameraReader reader, CameraWriter writer) {
-    FormatRow& row = row_of(format);
-    row.reader.store(reader, std::memory_order_release);
-    row.writer.store(writer, std::memory_order_release);
+    const auto index = static_cast<std::size_t>(row_of(format).format);
+    installed_readers[index].store(reader, std::memory_order_release);
+    installed_writers[index].store(writer, std::memory_order_release);
 }
 
 bool camera_format_installed(CameraFormat format) {
     const FormatRow& row = row_of(format);
-    const bool reads = row.set_reader != nullptr || row.reader.load(std::memory_order_acquire) != nullptr;
-    const bool writes = row.read_only || row.files_writer != nullptr || row.writer.load(std::memory_order_acquire) != nullptr;
-    return reads && writes;
+    const bool reads = row.read != nullptr ||
+                       installed_readers[static_cast<std::size_t>(format)].load(std::memory_order_acquire) != nullptr;
+    return reads && (row.read_only || has_writer(row));
+}
+
+std::vector<CameraFormatInfo> camera_formats() {
+    std::vector<CameraFormatInfo> formats;
+    for (const FormatRow& row : format_rows()) {
+        std::vector<std::string_view> extensions;
+        for (const std::string_view extension : row.extensions) {
+            if (!extension.empty()) extensions.push_back(extension);
+        }
+        CameraFormatInfo info{.format = row.format,
+                              .name = row.name,
+                              .title = row.title,
+                              .description = row.description,
+                              .extensions = std::move(extensions),
+                              .reads = !row.write_only,
+                              .writes = !row.read_only,
+                              .writes_folder = row.writes_folder,
+                              .lenses = {row.lenses.begin(), row.lenses.end()},
+                              .lens_names = row.lens_names,
+                              .refuses = row.refuses,
+                              .library = row.library,
+                              .available = camera_format_installed(row.format)};
+        formats.push_back(std::move(info));
+    }
+    return formats;
 }
 
 std::string_view to_string(CameraFormat format) {
-    for (const FormatRow& row : format_table) {
+    for (const FormatRow& row : format_rows()) {
         if (row.format == format) return row.name;
     }
     return "?";
@@ -219,30 +151,37 @@ std::string_view to_string(CameraFormat format) {
 
 std::string camera_format_names() {
     std::string names;
-    for (const FormatRow& row : format_table) names += (names.empty() ? "" : ", ") + std::string(row.name);
+    for (const FormatRow& row : format_rows()) names += (names.empty() ? "" : ", ") + std::string(row.name);
     return names;
 }
 
 CameraFormat camera_format_from_string(std::string_view text) {
-    for (const FormatRow& row : format_table) {
+    for (const FormatRow& row : format_rows()) {
         if (row.name == text) return row.format;
     }
     throw InvalidArgument("format: must be one of " + camera_format_names() + "; got '" + std::string(text) + "'");
 }
 
+namespace {
+
+bool has_extension(const FormatRow& row, std::string_view extension) {
+    return !extension.empty() && std::find(row.extensions.begin(), row.extensions.end(), extension) != row.extensions.end();
+}
+
+}  // namespace
+
 std::optional<CameraFormat> camera_format_from_path(const std::filesystem::path& path) {
+    // The row that writes one file of that ending and is its default (claims nothing).
     const std::string extension = path.extension().string();
-    if (extension == ".json") return CameraFormat::Json;
-    if (extension == ".yaml" || extension == ".yml") return CameraFormat::OpenCvYaml;
-    if (extension == ".xml") return CameraFormat::OpenCvXml;
-    if (extension == ".cameramodel") return CameraFormat::Cameramodel;
-    if (extension == ".py") return CameraFormat::Blender;
+    for (const FormatRow& row : format_rows()) {
+        if (has_extension(row, extension) && row.claims == nullptr && !row.read_only && !row.writes_folder) return row.format;
+    }
     return std::nullopt;
 }
 
 std::string format_camera(const Camera& camera, CameraFormat format, const WriteOptions& options) {
     const std::string destination = "format " + std::string(to_string(format));
-    if (row_of(format).files_writer != nullptr) {
+    if (row_of(format).writes_folder) {
         throw NotRepresentable(destination + ": written as several files into a folder: give the folder");
     }
     return format_files(camera, format, options, destination).front().text;
@@ -253,7 +192,7 @@ std::vector<CameraFileText> format_camera_files(const Camera& camera, CameraForm
     return format_files(camera, format, options, "format " + std::string(to_string(format)));
 }
 
-bool camera_format_writes_folder(CameraFormat format) { return row_of(format).files_writer != nullptr; }
+bool camera_format_writes_folder(CameraFormat format) { return row_of(format).writes_folder; }
 
 Camera validated_camera(Camera camera, const std::string& where) {
     try {
@@ -295,13 +234,8 @@ namespace {
 
 CameraSet parse_in_context(std::string_view text, CameraFormat format, const ReadContext& context) {
     const FormatRow& row = row_of(format);
-    if (row.set_reader != nullptr) {
-        if (!row.binary) check_text(text, context.source);
-        return {format, row.set_reader(text, context)};
-    }
-    const CameraReader reader = reader_for(format, context.source);
-    check_text(text, context.source);
-    return {format, {{std::string(), reader(text, context.source)}}};
+    if (!row.binary) check_text(text, context.source);
+    return {format, read_with(row, text, context)};
 }
 
 }  // namespace
@@ -362,74 +296,75 @@ bool starts_with_word_then(std::string_view line, char separator) {
     return next != std::string_view::npos && line[next] == separator && (separator != ':' || next == end);
 }
 
-// For a file without a known extension: JSON starts with '{' and quotes its keys,
-// OpenCV's YAML starts with %YAML and its XML with <?xml; mrcal's text is a Python dict;
-// other YAML starts with a key and a colon (Kalibr's camchains: "cam0:"); JPL's cahvor
-// with "key = value"; COLMAP's cameras.txt with a camera id and a model name, and its
-// cameras.bin is binary.
-CameraFormat sniff_format(std::string_view text, const std::string& source) {
-    if (text.find('\0') != std::string_view::npos) return CameraFormat::Colmap;
+// What a file without a known extension holds, by its first characters: JSON starts
+// with '{' and quotes its keys, OpenCV's YAML starts with %YAML and its XML with <?xml;
+// mrcal's text is a Python dict, commented first; other YAML starts with a key and a
+// colon (Kalibr's camchains: "cam0:"); JPL's cahvor with "key = value"; COLMAP's
+// cameras.txt with a camera id and a model name, and its cameras.bin is binary.
+Content sniff_content(std::string_view text, const std::string& source) {
+    if (text.find('\0') != std::string_view::npos) return Content::Binary;
     const std::string_view body = first_content_line(text);
     if (body.empty()) {
         if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) throw FileError(source + ": file is empty");
-        return CameraFormat::Cameramodel;  // only comments: mrcal's parser says what is missing
+        return Content::PythonDict;  // only comments: mrcal's parser says what is missing
     }
-    if (body.starts_with("%YAML") || body.starts_with("---")) return CameraFormat::OpenCvYaml;
-    if (body.starts_with("<?xml") || body.starts_with("<opencv_storage>")) return CameraFormat::OpenCvXml;
+    if (body.starts_with("%YAML") || body.starts_with("---")) return Content::Yaml;
+    if (body.starts_with("<?xml") || body.starts_with("<opencv_storage>")) return Content::Xml;
     if (body.starts_with("{")) {
         // JSON has no comments and quotes its keys with '"'; mrcal writes comments and ''.
         const bool commented = body.data() != text.data() + text.find_first_not_of(" \t\r\n");
         const std::string_view rest = text.substr(static_cast<std::size_t>(body.data() - text.data()));
         const auto quote = rest.find_first_of("\"'");
         const bool double_quoted = quote != std::string_view::npos && rest[quote] == '"';
-        return !commented && double_quoted ? CameraFormat::Json : CameraFormat::Cameramodel;
+        return !commented && double_quoted ? Content::Json : Content::PythonDict;
     }
-    if (starts_with_word_then(body, '=')) return CameraFormat::Cahvor;
-    if (starts_with_word_then(body, ':')) return CameraFormat::OpenCvYaml;
-    if (body.front() >= '0' && body.front() <= '9') return CameraFormat::Colmap;
+    if (starts_with_word_then(body, '=')) return Content::KeyValue;
+    if (starts_with_word_then(body, ':')) return Content::Yaml;
+    if (body.front() >= '0' && body.front() <= '9') return Content::Table;
     throw FileError(source + ": unknown camera file format (not JSON, YAML, XML, mrcal's .cameramodel or .cahvor, or "
                     "COLMAP's cameras.txt; --from-format names it: " + camera_format_names() + ")");
 }
 
-// The formats an extension names; nullopt for the extensions several formats share in
-// ways only the contents tell (.txt), or none.
-std::optional<CameraFormat> format_of_extension(const std::filesystem::path& path) {
-    const std::string extension = path.extension().string();
-    if (extension == ".bin") return CameraFormat::Colmap;
-    if (extension == ".cahvor" || extension == ".cahvore") return CameraFormat::Cahvor;
-    return camera_format_from_path(path);
-}
-
-// What a JSON file's keys say it is: basalt's (value0), NeRF's (frames, camera_angle_x,
-// fl_x), or else libcam's or gl.
-std::optional<CameraFormat> json_format_of(std::string_view text) {
-    // Parsed once here, without throwing: a file that does not parse is left to the
-    // reader its extension names, which says where it is broken.
-    const nlohmann::json root = nlohmann::json::parse(text.begin(), text.end(), nullptr, false);
-    if (const std::optional<CameraFormat> rig = rig_format_of_json(root)) return rig;
-    if (is_nerf_transforms(root)) return CameraFormat::Nerf;
-    if (is_open3d_camera(root)) return CameraFormat::Open3d;
-    if (is_openicc_camera(root)) return CameraFormat::Openicc;
-    if (is_blender_cameras(root)) return CameraFormat::BlenderJson;
+// The file parsed once as the structure its candidates share, for their claims; nullopt
+// when it does not parse (the chosen reader then says where it is broken) or is not
+// JSON or YAML.
+std::optional<DocumentNode> parsed_for_claims(std::string_view text, unsigned content, const std::string& source) {
+    try {
+        check_text(text, source);
+        if (content & static_cast<unsigned>(Content::Json)) return parse_json_tree(text, source);
+        if (content & static_cast<unsigned>(Content::Yaml)) return parse_yaml_document(text, source);
+    } catch (const FileError&) {
+    }
     return std::nullopt;
 }
 
-// The format of a file: by extension, else by its first characters; then, for the
-// extensions several formats share, by its keys (a YAML file that does not parse is
-// left to the OpenCV reader, which says where it is broken).
+// The format of a file: the rows its extension names, else the rows of the content its
+// first characters show; among several, the first whose claims accept the file's keys,
+// else the one that claims nothing (the default for that ending or content).
 CameraFormat detect_format(std::string_view text, const std::filesystem::path& path, const std::string& source) {
-    // (Not value_or: the contents are looked at only when the extension does not say.)
-    const std::optional<CameraFormat> by_extension = format_of_extension(path);
-    const CameraFormat by_look = by_extension ? *by_extension : sniff_format(text, source);
-    if (by_look == CameraFormat::Json) return json_format_of(text).value_or(CameraFormat::Json);
-    if (by_look == CameraFormat::OpenCvYaml) {
-        try {
-            check_text(text, source);
-            if (const std::optional<CameraFormat> rig = rig_format_of_yaml(text, source)) return *rig;
-        } catch (const FileError&) {
+    const std::string extension = path.extension().string();
+    std::vector<const FormatRow*> candidates;
+    for (const FormatRow& row : format_rows()) {
+        if (has_extension(row, extension)) candidates.push_back(&row);
+    }
+    if (candidates.empty()) {
+        const auto content = static_cast<unsigned>(sniff_content(text, source));
+        for (const FormatRow& row : format_rows()) {
+            if (row.content & content) candidates.push_back(&row);
         }
     }
-    return by_look;
+    if (candidates.size() == 1) return candidates.front()->format;
+    unsigned shared = ~0u;
+    for (const FormatRow* row : candidates) shared &= row->content;
+    if (const std::optional<DocumentNode> root = parsed_for_claims(text, shared, source)) {
+        for (const FormatRow* row : candidates) {
+            if (row->claims != nullptr && root->kind == DocumentNode::Kind::Map && row->claims(*root)) return row->format;
+        }
+    }
+    for (const FormatRow* row : candidates) {
+        if (row->claims == nullptr) return row->format;
+    }
+    return candidates.front()->format;
 }
 
 }  // namespace
@@ -440,12 +375,19 @@ CameraSet read_camera_set(const std::filesystem::path& path, std::optional<Camer
     std::filesystem::path file = path;
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) {
-        // A COLMAP model's folder (sparse/0): its cameras file, binary first as COLMAP writes.
-        file = colmap_cameras_file_in(path);
-        if (file.empty()) {
+        // A folder of a format whose files live in one (COLMAP's sparse/0): the file it reads.
+        for (const FormatRow& row : format_rows()) {
+            if (row.file_in_folder == nullptr || (format && *format != row.format)) continue;
+            const std::filesystem::path inside = row.file_in_folder(path);
+            if (!inside.empty()) {
+                file = inside;
+                format = row.format;
+                break;
+            }
+        }
+        if (file == path) {
             throw FileError(source + ": a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)");
         }
-        if (!format) format = CameraFormat::Colmap;
     }
     const std::string text = read_text_file(file);
     const std::string file_source = file.string();

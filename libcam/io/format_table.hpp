@@ -1,13 +1,13 @@
 #pragma once
-// The table behind read_camera_file, parse_camera, format_camera and write_camera_file
-// (io/camera_file.hpp): one row per CameraFormat, holding its reader and its writer.
+// What the format table (io/detail/format_rows.cpp: one row per CameraFormat, holding
+// everything about the format) shares with the libraries that plug a format into it and
+// with the readers themselves.
 //
-// libcam::io fills the rows of the formats it implements itself (json, gl, opencv-yaml,
-// opencv-xml) and links neither OpenCV nor libmrcal. The row of cameramodel (libmrcal's
-// parser) starts empty: libcam::interop fills it when the program calls
-// libcam::register_interop_formats() (interop/formats.hpp). An empty row is never
-// skipped silently: reading or writing its format throws FileError naming the library
-// to link and the function to call.
+// libcam::io reads and writes every format but one itself, and links neither OpenCV nor
+// libmrcal. The row of cameramodel (libmrcal's parser) has no reader or writer of its
+// own: libcam::interop fills it when the program calls libcam::register_interop_formats()
+// (interop/formats.hpp). Such a row is never skipped silently: reading or writing its
+// format throws FileError naming the library to link and the function to call.
 //
 // The rows are filled by an explicit call rather than by a static initialiser in
 // libcam::interop: the linker drops an object file of a static library that nothing
@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-#include "libcam/io/camera_file.hpp"
+#include "libcam/io/camera_types.hpp"
 
 namespace libcam {
 
@@ -31,11 +31,11 @@ struct ReadContext {
     ReadOptions options;
 };
 
-// Parses every camera of a file that may hold several (io/rig_formats.hpp).
+// Parses every camera of a file.
 using CameraSetReader = std::vector<NamedCamera> (*)(std::string_view text, const ReadContext& context);
 // The text of a file holding the camera (which format_camera has validated).
 using CameraWriter = std::string (*)(const Camera& camera, const WriteOptions& options);
-// The files of a format written into a folder (io/colmap_format.hpp).
+// Every file holding the camera: one unnamed file, or the named files of a folder.
 using CameraFilesWriter = std::vector<CameraFileText> (*)(const Camera& camera, const WriteOptions& options);
 
 // The camera a reader put together, validated (Camera::validate): a value out of range
@@ -45,7 +45,8 @@ Camera validated_camera(Camera camera, const std::string& where);
 // Throws FileError "<source>: byte N: ..." unless `text` is UTF-8 without NUL bytes.
 void check_text(std::string_view text, const std::string& source);
 
-// Fills a format's row; filling it again with the same functions changes nothing.
+// Fills the reader and writer of a row that has none of its own; filling it again with the
+// same functions changes nothing.
 // Safe to call while other threads read files.
 void install_camera_format(CameraFormat format, CameraReader reader, CameraWriter writer);
 

@@ -1,5 +1,5 @@
 // libFuzzer target for one camera-file reader (chosen at compile time by
-// LIBCAM_FUZZ_FORMAT). Properties checked on every input:
+// LIBCAM_FUZZ_FORMAT, the format's name as `libcam formats` lists it). Properties checked on every input:
 //   - the reader returns its cameras or throws a libcam::Error; anything else (a crash, a
 //     sanitizer report, another exception type, a leak) fails the run;
 //   - every camera it returns is valid, and writing the first in the same format (where
@@ -52,10 +52,16 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     return 0;
 }
 
+namespace {
+
+const libcam::CameraFormat kFormat = libcam::camera_format_from_string(LIBCAM_FUZZ_FORMAT);
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace libcam;
     const std::string_view text(reinterpret_cast<const char*>(data), size);
-    const CameraFormat format = LIBCAM_FUZZ_FORMAT;
+    const CameraFormat format = kFormat;
     CameraSet set;
     try {
         set = parse_camera_set(text, format, "fuzz input");

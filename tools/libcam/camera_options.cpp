@@ -2,6 +2,7 @@
 
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
+#include "libcam/io/camera_formats.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
@@ -101,6 +102,16 @@ CameraFile CameraOptions::camera() const {
         fov_camera.gaze = parse_vec3("--gaze", gaze);
     }
     return {to_camera(fov_camera), fov_camera};
+}
+
+std::string written_formats_help() {
+    std::string help;
+    for (const CameraFormatInfo& format : camera_formats()) {
+        if (!format.writes) continue;
+        help += (help.empty() ? "" : ", ") + std::string(format.name) + " (" + std::string(format.title) +
+                (format.writes_folder ? ", into a folder" : "") + ")";
+    }
+    return help + "; `libcam formats` says what each holds";
 }
 
 }  // namespace libcam::cli

@@ -45,4 +45,8 @@ struct CameraOptions {
     PixelOrigin origin() const;
 };
 
+// Every format libcam writes, from the table of formats, for a flag's help: "json
+// (libcam JSON), ..., colmap (COLMAP model, into a folder), ...".
+std::string written_formats_help();
+
 }  // namespace libcam::cli

@@ -7,6 +7,7 @@
 
 namespace libcam::cli {
 
+
 Runner add_convert(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "convert", "Convert a FOV camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file");
@@ -22,12 +23,7 @@ Runner add_convert(CLI::App& app) {
     };
     auto flags = std::make_shared<Flags>();
     flags->camera.add_to(*command);
-    command->add_option("--to", flags->to,
-                        "Output format: json, opencv-yaml, opencv-xml, cameramodel, gl, nerf (transforms.json), kalibr, "
-                        "ros (camera_info), open3d, blender (a Python script that sets a Blender scene's camera: "
-                        "blender -b scene.blend -P camera.py), blender-json (the same settings as JSON), or colmap "
-                        "(cameras.txt, images.txt and points3D.txt, into the folder -o names)")
-        ->capture_default_str();
+    command->add_option("--to", flags->to, "Output format: " + written_formats_help())->capture_default_str();
     command->add_option("-o,--output", flags->output,
                         "Output file (written atomically; for colmap, a folder); default stdout");
     command->add_option("--image-name", flags->image_name,

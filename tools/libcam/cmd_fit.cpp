@@ -71,8 +71,7 @@ void add_flags(CLI::App& command, FitFlags& flags) {
     command.add_flag("--json", flags.json, "Print JSON");
     command.add_option("-o,--output", flags.output, "Write the chosen camera to this file (written atomically)");
     command.add_option("--to", flags.to,
-                       "Format for -o: json, opencv-yaml, opencv-xml, cameramodel, gl (default: from the extension, "
-                       "else json)");
+                       "Format for -o (default: from the extension, else json): " + written_formats_help());
     command.add_option("--heatmap", flags.heatmap, "Write the chosen model's error over the image as a PNG");
 }
 

@@ -286,7 +286,7 @@ Runner add_remap(CLI::App& app) {
                         "every lens pixel a source (the new camera written is the render's; the STMap's format stays)");
     command->add_option("--camera-out", flags->camera_out, "Write the new camera (--camera-format)");
     command->add_option("--camera-format", flags->camera_format,
-                        "--camera-out's format: " + camera_format_names())
+                        "--camera-out's format: " + written_formats_help())
         ->capture_default_str();
     command->add_option("-o,--output", flags->output, "Folder for the images (each keeps its file name)");
     command->add_option("images", flags->images, "Images to turn");
@@ -309,7 +309,7 @@ Runner add_derive(CLI::App& app) {
     command->add_option("--pad", flags->pad, "Pixels added left,top,right,bottom");
     command->add_option("--bin", flags->bin, "Each N x N block of pixels made one");
     command->add_option("--rotate90", flags->rotate90, "Turn the image: cw, ccw or 180");
-    command->add_option("--to", flags->to, "Output format: " + camera_format_names())->capture_default_str();
+    command->add_option("--to", flags->to, "Output format: " + written_formats_help())->capture_default_str();
     command->add_option("-o,--output", flags->output, "Output file (written atomically); default stdout");
     return [flags] {
         const int given = !flags->resize.empty() + !flags->crop.empty() + !flags->pad.empty() + !flags->bin.empty() +

@@ -30,11 +30,11 @@
 // shift, clip range, the panorama settings (and Cycles as the render engine, the only one
 // that draws them) and the world matrix.
 
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "libcam/io/detail/document.hpp"
 #include "libcam/convert/blender_camera.hpp"
 #include "libcam/io/format_table.hpp"
 
@@ -48,6 +48,6 @@ std::string format_blender_json(const Camera& camera, const WriteOptions& option
 std::string format_blender_script(const Camera& camera, const WriteOptions& options);
 
 // Whether a parsed JSON file is this one.
-bool is_blender_cameras(const nlohmann::json& root);
+bool claims_blender_cameras(const DocumentNode& root);
 
 }  // namespace libcam

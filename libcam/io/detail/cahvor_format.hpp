@@ -21,7 +21,7 @@
 #include <string_view>
 #include <vector>
 
-#include "libcam/io/camera_file.hpp"
+#include "libcam/io/format_table.hpp"
 
 namespace libcam {
 

@@ -28,7 +28,7 @@
 #include <string_view>
 
 #include "libcam/camera/camera.hpp"
-#include "libcam/io/camera_file.hpp"
+#include "libcam/io/format_table.hpp"
 
 namespace libcam {
 

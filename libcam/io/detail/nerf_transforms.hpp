@@ -28,11 +28,11 @@
 // coefficients: PINHOLE, the OPENCV models up to k3 (higher ones when their extra
 // coefficients are 0), FISHEYE and LONLAT; skew is refused.
 
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
 
 namespace libcam {
@@ -42,6 +42,6 @@ std::string write_nerf_transforms(const Camera& camera, const WriteOptions& opti
 
 // Whether a parsed JSON file is a transforms.json: an object with "frames", "camera_angle_x" or
 // "fl_x" and without libcam's "K".
-bool is_nerf_transforms(const nlohmann::json& root);
+bool claims_nerf_transforms(const DocumentNode& root);
 
 }  // namespace libcam

@@ -29,12 +29,12 @@
 //
 // Each throws FileError naming the file, the line (YAML), the key and the value.
 
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "libcam/io/camera_file.hpp"
+#include "libcam/io/detail/document.hpp"
+#include "libcam/io/format_table.hpp"
 
 namespace libcam {
 
@@ -62,7 +62,9 @@ std::string format_basalt_calibration(const Camera& camera, const WriteOptions& 
 // What a YAML or JSON file's keys say it is, for a file whose extension is shared by
 // several formats: Kalibr (a camN key holding camera_model), camodocal (model_type),
 // basalt (value0). nullopt: none of these (OpenCV's YAML, libcam's JSON).
-std::optional<CameraFormat> rig_format_of_yaml(std::string_view text, const std::string& source);
-std::optional<CameraFormat> rig_format_of_json(const nlohmann::json& root);
+bool claims_kalibr_camchain(const DocumentNode& root);
+bool claims_basalt_calibration(const DocumentNode& root);
+bool claims_camodocal(const DocumentNode& root);
+bool claims_euroc_sensor(const DocumentNode& root);
 
 }  // namespace libcam

@@ -1,4 +1,4 @@
-#include "libcam/io/nerf_transforms.hpp"
+#include "libcam/io/detail/nerf_transforms.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <optional>
 
 #include "libcam/error.hpp"
-#include "libcam/io/json_field.hpp"
+#include "libcam/io/detail/json_field.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -200,9 +200,9 @@ Pose read_pose(const JsonField& matrix) {
 
 }  // namespace
 
-bool is_nerf_transforms(const nlohmann::json& root) {
-    if (!root.is_object() || root.contains("K")) return false;
-    return root.contains("frames") || root.contains("camera_angle_x") || root.contains("fl_x");
+bool claims_nerf_transforms(const DocumentNode& root) {
+    if (root.find("K") != nullptr) return false;
+    return root.find("frames") != nullptr || root.find("camera_angle_x") != nullptr || root.find("fl_x") != nullptr;
 }
 
 std::vector<NamedCamera> read_nerf_transforms(std::string_view text, const ReadContext& context) {

@@ -1,4 +1,4 @@
-#include "libcam/io/colmap_format.hpp"
+#include "libcam/io/detail/colmap_format.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 
+#include "libcam/convert/colmap_models.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/lens/lens_model.hpp"
@@ -19,58 +20,15 @@ namespace libcam {
 
 namespace {
 
-// COLMAP's camera models: its id (cameras.bin), its name, the libcam model holding it,
-// whether it has one focal length, and how many coefficients follow the focal lengths
-// and the principal point (in libcam's order, which is COLMAP's).
-struct ColmapModel {
-    int id;
-    std::string_view name;
-    LensType type;
-    bool single_focal;
-    int coefficients;
-};
-
-constexpr ColmapModel kColmapModels[] = {
-    {0, "SIMPLE_PINHOLE", LensType::Pinhole, true, 0},
-    {1, "PINHOLE", LensType::Pinhole, false, 0},
-    {2, "SIMPLE_RADIAL", LensType::Opencv4, true, 1},
-    {3, "RADIAL", LensType::Opencv4, true, 2},
-    {4, "OPENCV", LensType::Opencv4, false, 4},
-    {5, "OPENCV_FISHEYE", LensType::Fisheye, false, 4},
-    {6, "FULL_OPENCV", LensType::Opencv8, false, 8},
-    {7, "FOV", LensType::Fov, false, 1},
-    {8, "SIMPLE_RADIAL_FISHEYE", LensType::Fisheye, true, 1},
-    {9, "RADIAL_FISHEYE", LensType::Fisheye, true, 2},
-    {10, "THIN_PRISM_FISHEYE", LensType::ThinPrismFisheye, false, 8},
-    {11, "RAD_TAN_THIN_PRISM_FISHEYE", LensType::RadTanThinPrismFisheye, false, 12},
-};
-
-int parameter_count(const ColmapModel& model) { return (model.single_focal ? 3 : 4) + model.coefficients; }
-
-std::string model_names() {
-    std::string names;
-    for (const ColmapModel& model : kColmapModels) names += (names.empty() ? "" : ", ") + std::string(model.name);
-    return names;
-}
-
-// COLMAP's pixel (0, 0) is the image's top-left corner; libcam's is the centre of the
-// top-left pixel.
-constexpr double kPixelCentre = 0.5;
-
-// A camera from a model's parameters.
-Camera camera_from_parameters(const ColmapModel& model, ImageSize size, const std::vector<double>& parameters) {
-    Camera camera;
-    camera.size = size;
-    std::size_t at = 0;
-    const double fx = parameters[at++];
-    const double fy = model.single_focal ? fx : parameters[at++];
-    const double cx = parameters[at++];
-    const double cy = parameters[at++];
-    camera.intrinsics = {fx, fy, cx - kPixelCentre, cy - kPixelCentre, 0.0};
-    std::vector<double> coefficients(parameters.begin() + static_cast<long>(at), parameters.end());
-    coefficients.resize(static_cast<std::size_t>(lens_info(model.type).num_coefficients), 0.0);
-    camera.lens = {model.type, std::move(coefficients)};
-    return camera;
+// A camera from a model's parameters (COLMAP's table: convert/colmap_models.hpp), checked
+// as a file's camera.
+Camera camera_from_parameters(const ColmapModel& model, ImageSize size, const std::vector<double>& parameters,
+                              const std::string& where) {
+    try {
+        return camera_from_colmap(model.name, parameters, size);
+    } catch (const InvalidArgument& error) {
+        throw FileError(where + ": " + error.what());
+    }
 }
 
 // COLMAP's pose: the quaternion (w first) and translation of world-to-camera.
@@ -88,7 +46,7 @@ Pose pose_from(const Eigen::Vector4d& q_wxyz, const Vec3& t, const std::string& 
     return pose;
 }
 
-struct ColmapCamera {
+struct ColmapCameraRecord {
     std::uint64_t id;
     Camera camera;
 };
@@ -178,21 +136,19 @@ void for_each_line(std::string_view text, const std::string& source, Each&& each
 
 const ColmapModel& model_named(const TextLine& line) {
     const std::string_view name = line.word(1);
-    for (const ColmapModel& model : kColmapModels) {
-        if (model.name == name) return model;
-    }
-    line.fail("MODEL", "must be one of " + model_names() + ", got '" + std::string(name) + "'");
+    if (const ColmapModel* model = colmap_model(name)) return *model;
+    line.fail("MODEL", "must be one of " + colmap_model_names() + ", got '" + std::string(name) + "'");
 }
 
-std::vector<ColmapCamera> read_cameras_text(std::string_view text, const std::string& source) {
-    std::vector<ColmapCamera> cameras;
+std::vector<ColmapCameraRecord> read_cameras_text(std::string_view text, const std::string& source) {
+    std::vector<ColmapCameraRecord> cameras;
     for_each_line(text, source, [&](const TextLine& line) {
         if (line.size() < 4) line.fail("CAMERA_ID MODEL WIDTH HEIGHT PARAMS", "expected at least 4 words");
         const std::uint64_t id = line.integer(0, "CAMERA_ID", 0, kMaxId);
         const ColmapModel& model = model_named(line);
         const ImageSize size{static_cast<long>(line.integer(2, "WIDTH", 1, kMaxImageSide)),
                              static_cast<long>(line.integer(3, "HEIGHT", 1, kMaxImageSide))};
-        const std::size_t count = static_cast<std::size_t>(parameter_count(model));
+        const std::size_t count = static_cast<std::size_t>(model.num_params());
         if (line.size() != 4 + count) {
             line.fail("PARAMS", std::string(model.name) + " has " + std::to_string(count) + " parameters, got " +
                                     std::to_string(line.size() - 4));
@@ -200,7 +156,7 @@ std::vector<ColmapCamera> read_cameras_text(std::string_view text, const std::st
         std::vector<double> parameters;
         for (std::size_t i = 0; i < count; ++i) parameters.push_back(line.number(4 + i, "PARAMS[" + std::to_string(i) + "]"));
         const std::string where = line.where() + ": camera " + std::to_string(id);
-        cameras.push_back({id, validated_camera(camera_from_parameters(model, size, parameters), where)});
+        cameras.push_back({id, validated_camera(camera_from_parameters(model, size, parameters, where), where)});
         return false;
     });
     return cameras;
@@ -282,20 +238,20 @@ private:
 
 static_assert(std::endian::native == std::endian::little, "COLMAP's .bin files are little-endian");
 
-std::vector<ColmapCamera> read_cameras_binary(std::string_view bytes, const std::string& source) {
+std::vector<ColmapCameraRecord> read_cameras_binary(std::string_view bytes, const std::string& source) {
     BinaryReader in(bytes, source);
     constexpr std::size_t kSmallestRecord = 4 + 4 + 8 + 8 + 3 * 8;
     const std::uint64_t count = in.count("the number of cameras", kSmallestRecord);
-    std::vector<ColmapCamera> cameras;
+    std::vector<ColmapCameraRecord> cameras;
     for (std::uint64_t i = 0; i < count; ++i) {
         const std::string what = "camera " + std::to_string(i);
         const std::string where = in.where() + ": " + what;
         const auto id = in.read<std::uint32_t>(what + " id");
         const auto model_id = in.read<std::int32_t>(what + " model");
-        const auto found = std::find_if(std::begin(kColmapModels), std::end(kColmapModels),
-                                        [&](const ColmapModel& model) { return model.id == model_id; });
-        if (found == std::end(kColmapModels)) {
-            throw FileError(where + ": model id " + std::to_string(model_id) + " is not one of COLMAP's (0 to 11)");
+        const ColmapModel* found = colmap_model_by_id(model_id);
+        if (found == nullptr) {
+            throw FileError(where + ": model id " + std::to_string(model_id) + " is not one of COLMAP's models that libcam holds (" +
+                            colmap_model_ids() + ")");
         }
         const auto width = in.read<std::uint64_t>(what + " width");
         const auto height = in.read<std::uint64_t>(what + " height");
@@ -306,7 +262,7 @@ std::vector<ColmapCamera> read_cameras_binary(std::string_view bytes, const std:
             }
         }
         std::vector<double> parameters;
-        for (int k = 0; k < parameter_count(*found); ++k) {
+        for (int k = 0; k < found->num_params(); ++k) {
             const auto value = in.read<double>(what + " parameter " + std::to_string(k));
             if (!std::isfinite(value)) {
                 throw FileError(where + ": parameter " + std::to_string(k) + " is " + format_number(value));
@@ -314,7 +270,7 @@ std::vector<ColmapCamera> read_cameras_binary(std::string_view bytes, const std:
             parameters.push_back(value);
         }
         const ImageSize size{static_cast<long>(width), static_cast<long>(height)};
-        cameras.push_back({id, validated_camera(camera_from_parameters(*found, size, parameters), where)});
+        cameras.push_back({id, validated_camera(camera_from_parameters(*found, size, parameters, where), where)});
     }
     if (in.remaining() != 0) in.fail("bytes after the last camera");
     return cameras;
@@ -350,10 +306,10 @@ std::vector<ColmapImage> read_images_binary(std::string_view bytes, const std::s
 
 std::string id_name(std::uint64_t id) { return "id:" + std::to_string(id); }
 
-std::vector<NamedCamera> camera_set(const std::vector<ColmapCamera>& cameras, const std::vector<ColmapImage>& images,
+std::vector<NamedCamera> camera_set(const std::vector<ColmapCameraRecord>& cameras, const std::vector<ColmapImage>& images,
                                     const std::string& source) {
-    std::map<std::uint64_t, const ColmapCamera*> by_id;
-    for (const ColmapCamera& camera : cameras) {
+    std::map<std::uint64_t, const ColmapCameraRecord*> by_id;
+    for (const ColmapCameraRecord& camera : cameras) {
         if (!by_id.emplace(camera.id, &camera).second) {
             throw FileError(source + ": camera id " + std::to_string(camera.id) + " appears more than once");
         }
@@ -375,7 +331,7 @@ std::vector<NamedCamera> camera_set(const std::vector<ColmapCamera>& cameras, co
         set.push_back({image.name, {std::move(camera), std::nullopt}, id_name(image.camera_id)});
         used[image.camera_id] = true;
     }
-    for (const ColmapCamera& camera : cameras) {
+    for (const ColmapCameraRecord& camera : cameras) {
         if (!used.contains(camera.id)) set.push_back({id_name(camera.id), {camera.camera, std::nullopt}});
     }
     if (set.empty()) throw FileError(source + ": no camera");
@@ -395,7 +351,7 @@ std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder
 std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadContext& context) {
     const bool binary = text.find('\0') != std::string_view::npos;
     if (!binary) check_text(text, context.source);
-    const std::vector<ColmapCamera> cameras =
+    const std::vector<ColmapCameraRecord> cameras =
         binary ? read_cameras_binary(text, context.source) : read_cameras_text(text, context.source);
     std::vector<ColmapImage> images;
     if (!context.folder.empty()) {
@@ -417,27 +373,6 @@ std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadCont
 
 namespace {
 
-// The COLMAP model holding a libcam camera's lens, or NotRepresentable.
-const ColmapModel& colmap_model_for(const Lens& lens) {
-    LensType type = lens.type;
-    const int count = static_cast<int>(lens.coefficients.size());
-    if (type == LensType::Opencv5) type = LensType::Opencv8;
-    if (type == LensType::Opencv12 || type == LensType::Opencv14) {
-        const bool extra_zero = std::all_of(lens.coefficients.begin() + std::min(count, 8), lens.coefficients.end(),
-                                            [](double c) { return c == 0.0; });
-        if (!extra_zero) {
-            throw NotRepresentable("COLMAP's richest OpenCV model (FULL_OPENCV) has 8 coefficients; this " +
-                                   std::string(lens_info(lens.type).name) + " lens has more that are not 0");
-        }
-        type = LensType::Opencv8;
-    }
-    for (const ColmapModel& model : kColmapModels) {
-        if (model.type == type && !model.single_focal) return model;
-    }
-    throw NotRepresentable("COLMAP has no model for a " + std::string(lens_info(lens.type).name) +
-                           " lens (its models: " + model_names() + ")");
-}
-
 std::string joined(const std::vector<double>& values) {
     std::string out;
     for (const double value : values) out += " " + format_number(value + 0.0);
@@ -450,22 +385,16 @@ std::vector<CameraFileText> write_colmap_model(const Camera& camera, const Write
     if (camera.intrinsics.skew != 0.0) {
         throw NotRepresentable("COLMAP's models have no skew; this camera's is " + format_number(camera.intrinsics.skew));
     }
-    const ColmapModel& model = colmap_model_for(camera.lens);
+    const ColmapCamera colmap = colmap_from_camera(camera);
     // COLMAP 3.8 reads a name up to its first space.
     if (options.image_name.empty() || options.image_name.find_first_of(" \t\r\n") != std::string::npos) {
         throw InvalidArgument("image name: must be one word without spaces, got '" + options.image_name + "'");
     }
-    std::vector<double> parameters = {camera.intrinsics.fx, camera.intrinsics.fy, camera.intrinsics.cx + kPixelCentre,
-                                      camera.intrinsics.cy + kPixelCentre};
-    std::vector<double> coefficients = camera.lens.coefficients;
-    coefficients.resize(static_cast<std::size_t>(model.coefficients), 0.0);
-    parameters.insert(parameters.end(), coefficients.begin(), coefficients.end());
-
     std::string cameras = "# Camera list with one line of data per camera:\n"
                           "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n"
                           "# Number of cameras: 1\n";
-    cameras += "1 " + std::string(model.name) + " " + std::to_string(camera.size.width) + " " +
-               std::to_string(camera.size.height) + joined(parameters) + "\n";
+    cameras += "1 " + std::string(colmap.model) + " " + std::to_string(camera.size.width) + " " +
+               std::to_string(camera.size.height) + joined(colmap.params) + "\n";
 
     // The rotation as a unit quaternion with w >= 0 (q and -q are the same rotation).
     Eigen::Quaterniond q(camera.pose.R);

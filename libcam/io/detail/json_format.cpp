@@ -1,10 +1,10 @@
-#include "libcam/io/json_format.hpp"
+#include "libcam/io/detail/json_format.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
-#include "libcam/io/json_field.hpp"
+#include "libcam/io/detail/json_field.hpp"
 
 namespace libcam {
 

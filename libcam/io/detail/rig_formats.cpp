@@ -1,4 +1,4 @@
-#include "libcam/io/rig_formats.hpp"
+#include "libcam/io/detail/rig_formats.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "libcam/error.hpp"
-#include "libcam/io/document.hpp"
+#include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
-#include "libcam/io/json_field.hpp"
+#include "libcam/io/detail/json_field.hpp"
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
@@ -446,21 +446,19 @@ std::vector<NamedCamera> parse_basalt_calibration(std::string_view text, const s
     return cameras;
 }
 
-std::optional<CameraFormat> rig_format_of_yaml(std::string_view text, const std::string& source) {
-    const DocumentNode tree = parse_yaml_document(text, source);
-    if (tree.kind != DocumentNode::Kind::Map) return std::nullopt;
-    if (tree.find("model_type") != nullptr) return CameraFormat::Camodocal;
-    if (tree.find("sensor_type") != nullptr && tree.find("T_BS") != nullptr) return CameraFormat::Euroc;
-    if (tree.find("projection_matrix") != nullptr || tree.find("rectification_matrix") != nullptr) return CameraFormat::Ros;
-    for (std::size_t i = 0; i < tree.keys.size(); ++i) {
-        if (is_kalibr_camera_key(tree.keys[i]) && tree.items[i].find("camera_model") != nullptr) return CameraFormat::Kalibr;
-    }
-    return std::nullopt;
+bool claims_camodocal(const DocumentNode& root) { return root.find("model_type") != nullptr; }
+
+bool claims_euroc_sensor(const DocumentNode& root) {
+    return root.find("sensor_type") != nullptr && root.find("T_BS") != nullptr;
 }
 
-std::optional<CameraFormat> rig_format_of_json(const nlohmann::json& root) {
-    if (root.is_object() && root.contains("value0")) return CameraFormat::Basalt;
-    return std::nullopt;
+bool claims_kalibr_camchain(const DocumentNode& root) {
+    for (std::size_t i = 0; i < root.keys.size(); ++i) {
+        if (is_kalibr_camera_key(root.keys[i]) && root.items[i].find("camera_model") != nullptr) return true;
+    }
+    return false;
 }
+
+bool claims_basalt_calibration(const DocumentNode& root) { return root.find("value0") != nullptr; }
 
 }  // namespace libcam

@@ -46,6 +46,13 @@ DocumentNode parse_yaml_document(std::string_view text, const std::string& sourc
 // holds several whitespace-separated words; the attribute type_id becomes the tag.
 DocumentNode parse_opencv_xml_document(std::string_view text, const std::string& source);
 
+// Parses JSON into the same tree: objects are maps (keys in file order), arrays
+// sequences, strings, numbers and booleans scalars with their JSON text (a string without
+// its quotes, tagged "string"), null null. JSON records no lines (every node's is 0).
+// Throws FileError "<source>: not valid JSON: ..." or for a file nested deeper than
+// kMaxDocumentDepth.
+DocumentNode parse_json_tree(std::string_view text, const std::string& source);
+
 // A double as YAML that every YAML reader takes as a float, Python's (PyYAML, which Kalibr
 // and ROS's Python tools read with) included: every digit that matters, with a '.' in
 // the mantissa ("1.0e-09", "500.0", not "1e-09" or "500", which PyYAML reads as a string

@@ -1,4 +1,4 @@
-#include "libcam/io/opencv_storage.hpp"
+#include "libcam/io/detail/opencv_storage.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "libcam/error.hpp"
-#include "libcam/io/document.hpp"
+#include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"

@@ -1,4 +1,4 @@
-#include "libcam/io/document.hpp"
+#include "libcam/io/detail/document.hpp"
 
 #include <yaml-cpp/anchor.h>
 #include <yaml-cpp/eventhandler.h>
@@ -12,6 +12,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <nlohmann/json.hpp>
 #include <pugixml.hpp>
 #include <system_error>
 #include <unordered_map>
@@ -516,6 +517,45 @@ std::vector<double> Field::numbers(std::size_t max_count) const {
     values.reserve(node_->items.size());
     for (std::size_t i = 0; i < node_->items.size(); ++i) values.push_back(number_at(node_->items[i], i, true));
     return values;
+}
+
+namespace {
+
+DocumentNode from_json(const nlohmann::ordered_json& value, int depth, const std::string& source) {
+    if (depth > kMaxDocumentDepth) {
+        throw FileError(source + ": nested deeper than " + std::to_string(kMaxDocumentDepth) + " levels");
+    }
+    DocumentNode node;
+    if (value.is_object()) {
+        node.kind = DocumentNode::Kind::Map;
+        for (const auto& [key, item] : value.items()) {
+            node.keys.push_back(key);
+            node.items.push_back(from_json(item, depth + 1, source));
+        }
+    } else if (value.is_array()) {
+        node.kind = DocumentNode::Kind::Sequence;
+        for (const nlohmann::ordered_json& item : value) node.items.push_back(from_json(item, depth + 1, source));
+    } else if (value.is_string()) {
+        node.kind = DocumentNode::Kind::Scalar;
+        node.text = value.get<std::string>();
+        node.tag = "string";
+    } else if (!value.is_null()) {
+        node.kind = DocumentNode::Kind::Scalar;
+        node.text = value.dump();
+    }
+    return node;
+}
+
+}  // namespace
+
+DocumentNode parse_json_tree(std::string_view text, const std::string& source) {
+    nlohmann::ordered_json root;
+    try {
+        root = nlohmann::ordered_json::parse(text.begin(), text.end());
+    } catch (const nlohmann::json::exception& error) {
+        throw FileError(source + ": not valid JSON: " + error.what());
+    }
+    return from_json(root, 0, source);
 }
 
 }  // namespace libcam

@@ -1,9 +1,9 @@
-#include "libcam/io/open3d_format.hpp"
+#include "libcam/io/detail/open3d_format.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include "libcam/error.hpp"
-#include "libcam/io/json_field.hpp"
+#include "libcam/io/detail/json_field.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -68,12 +68,12 @@ NamedCamera checked(std::string name, Camera camera, const JsonField& where) {
 
 }  // namespace
 
-bool is_open3d_camera(const nlohmann::json& root) {
-    if (!root.is_object()) return false;
-    if (root.contains("intrinsic_matrix")) return true;
-    const auto name = root.find("class_name");
-    return name != root.end() && name->is_string() &&
-           (*name == "PinholeCameraParameters" || *name == "PinholeCameraTrajectory" || *name == "PinholeCameraIntrinsic");
+bool claims_open3d_camera(const DocumentNode& root) {
+    if (root.find("intrinsic_matrix") != nullptr) return true;
+    const DocumentNode* name = root.find("class_name");
+    return name != nullptr && name->kind == DocumentNode::Kind::Scalar &&
+           (name->text == "PinholeCameraParameters" || name->text == "PinholeCameraTrajectory" ||
+            name->text == "PinholeCameraIntrinsic");
 }
 
 std::vector<NamedCamera> parse_open3d_camera(std::string_view text, const std::string& source) {

@@ -29,7 +29,7 @@
 #include <string>
 #include <string_view>
 
-#include "libcam/io/camera_file.hpp"
+#include "libcam/io/format_table.hpp"
 
 namespace libcam {
 

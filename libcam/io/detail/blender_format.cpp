@@ -1,4 +1,4 @@
-#include "libcam/io/blender_format.hpp"
+#include "libcam/io/detail/blender_format.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "libcam/error.hpp"
-#include "libcam/io/json_field.hpp"
+#include "libcam/io/detail/json_field.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -267,11 +267,20 @@ set_camera(bpy.context.scene, CAMERA)
 
 }  // namespace
 
+bool claims_blender_cameras(const DocumentNode& root) {
+    const DocumentNode* format = root.find("format");
+    return format != nullptr && format->kind == DocumentNode::Kind::Scalar && format->text == kFormatName;
+}
+
+namespace {
+
 bool is_blender_cameras(const nlohmann::json& root) {
     if (!root.is_object()) return false;
     const auto format = root.find("format");
     return format != root.end() && format->is_string() && *format == kFormatName;
 }
+
+}  // namespace
 
 std::vector<NamedCamera> parse_blender_cameras(std::string_view text, const std::string& source) {
     const json root = parse_json_document(text, source);

@@ -1,4 +1,4 @@
-#include "libcam/io/cahvor_format.hpp"
+#include "libcam/io/detail/cahvor_format.hpp"
 
 #include <algorithm>
 #include <charconv>

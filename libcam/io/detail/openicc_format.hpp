@@ -15,18 +15,18 @@
 // (DIVISION_UNDISTORTION, and the types the calibrator writes without their parameters)
 // are refused naming the type. Read only.
 
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "libcam/io/camera_file.hpp"
+#include "libcam/io/detail/document.hpp"
+#include "libcam/io/format_table.hpp"
 
 namespace libcam {
 
 std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::string& source);
 
 // Whether a parsed JSON file is OpenImuCameraCalibrator's: an object with "intrinsic_type".
-bool is_openicc_camera(const nlohmann::json& root);
+bool claims_openicc_camera(const DocumentNode& root);
 
 }  // namespace libcam

@@ -16,11 +16,11 @@
 //
 // Written as PinholeCameraParameters (which holds the pose); a distorted lens is refused.
 
-#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
 
 namespace libcam {
@@ -29,6 +29,6 @@ std::vector<NamedCamera> parse_open3d_camera(std::string_view text, const std::s
 std::string format_open3d_camera(const Camera& camera, const WriteOptions& options);
 
 // Whether a parsed JSON file is Open3D's: intrinsic_matrix at the top, or Open3D's class_name.
-bool is_open3d_camera(const nlohmann::json& root);
+bool claims_open3d_camera(const DocumentNode& root);
 
 }  // namespace libcam

@@ -1,15 +1,13 @@
-#include "libcam/io/openicc_format.hpp"
+#include "libcam/io/detail/openicc_format.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include "libcam/error.hpp"
-#include "libcam/io/json_field.hpp"
+#include "libcam/io/detail/json_field.hpp"
 
 namespace libcam {
 
-bool is_openicc_camera(const nlohmann::json& root) {
-    return root.is_object() && root.contains("intrinsic_type");
-}
+bool claims_openicc_camera(const DocumentNode& root) { return root.find("intrinsic_type") != nullptr; }
 
 std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::string& source) {
     const nlohmann::json root = parse_json_document(text, source);

@@ -1,0 +1,82 @@
+#pragma once
+// The types every part of libcam::io shares: the formats, what a file holds, and the
+// options of reading and writing. The entry points that use them are in camera_file.hpp.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/convert/opengl.hpp"
+#include "libcam/fov/fov_camera.hpp"
+
+namespace libcam {
+
+enum class CameraFormat {
+    Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor, Ros, Open3d, Euroc,
+    Openicc, Blender, BlenderJson
+};
+// How many formats there are (the table of formats checks that each has its row).
+inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::BlenderJson) + 1;
+
+// What a file holds: the calibrated camera, and the FOV camera it was made from when
+// the file says so (libcam JSON records the fov axis).
+struct CameraFile {
+    Camera camera;
+    std::optional<FovCamera> fov_camera;
+};
+
+// One camera of a file: the file's name for it (cam0, a camodocal camera_name, a COLMAP
+// image's name), or empty where the file names none.
+struct NamedCamera {
+    std::string name;
+    CameraFile file;
+    // Where the file holds several views taken with one set of intrinsics (COLMAP's
+    // images of one camera), the name of those intrinsics ("id:2"); else empty.
+    std::string intrinsics_name = {};
+};
+
+// Every camera a file holds, in the file's order (at least one).
+struct CameraSet {
+    CameraFormat format = CameraFormat::Json;
+    std::vector<NamedCamera> cameras;
+};
+
+struct WriteOptions {
+    std::optional<FovCamera> fov_camera;  // JSON: record the FOV camera's own axis and up
+    double gl_near = 0.1;
+    double gl_far = 1000.0;
+    DepthRange gl_depth_range = DepthRange::MinusOneToOne;
+    // The image the camera's pose belongs to, in formats that list images (COLMAP's
+    // images.txt NAME, transforms.json's file_path).
+    std::string image_name = "image.png";
+    // The camera's name in formats that name it (ROS's camera_name).
+    std::string camera_name = "camera";
+    // Formats that hold no pose (ROS's camera_info) refuse a camera whose pose is not the
+    // identity, unless this says to write its intrinsics alone.
+    bool drop_pose = false;
+};
+
+// Where NeRF's transforms.json puts the principal point when it gives none (only
+// camera_angle_x, as NeRF's synthetic scenes).
+enum class NerfPrincipalPoint {
+    ImageCentre,  // (W - 1) / 2, (H - 1) / 2: the image's centre, where Blender rendered them (default)
+    HalfSize,     // W / 2, H / 2 in libcam's pixels: where NeRF's own ray code puts it, half a pixel off
+};
+
+struct ReadOptions {
+    // The image size, for a file that does not record it (NeRF's synthetic scenes);
+    // a size the file records must agree with it.
+    std::optional<ImageSize> size;
+    NerfPrincipalPoint nerf_principal_point = NerfPrincipalPoint::ImageCentre;
+};
+
+// One file of a format's output: its name in the output folder (COLMAP's "cameras.txt"),
+// empty for a format written as one file, and its text.
+struct CameraFileText {
+    std::string name;
+    std::string text;
+};
+
+}  // namespace libcam

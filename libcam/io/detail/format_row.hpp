@@ -1,0 +1,97 @@
+#pragma once
+// One row per camera-file format: everything libcam knows about the format is here, and
+// every place that lists formats (detection, `convert --to`, `libcam formats`, the
+// round-trip tests, the fuzz targets, the docs' table) reads it from these rows. Each
+// format's row is declared in its own header beside its reader and writer; the table
+// (format_rows.cpp) lists the rows and fails the build unless every CameraFormat has
+// exactly one. Adding a format: docs/adding-a-file-format.md.
+
+#include <array>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "libcam/io/detail/document.hpp"
+#include "libcam/io/format_table.hpp"
+#include "libcam/lens/lens_model.hpp"
+
+namespace libcam::detail {
+
+// What a format's files look like inside, for a file whose extension does not say which
+// format it is: each kind is recognised by its first characters (camera_file.cpp).
+enum class Content : unsigned {
+    Json = 1u << 0,        // '{' and "double-quoted" keys
+    Yaml = 1u << 1,        // %YAML, ---, or "key:" first
+    Xml = 1u << 2,         // <?xml or <opencv_storage>
+    PythonDict = 1u << 3,  // mrcal's text: a Python dict, # comments first
+    KeyValue = 1u << 4,    // "key = value" lines (JPL's cahvor)
+    Table = 1u << 5,       // lines of numbers and words (COLMAP's cameras.txt)
+    Binary = 1u << 6,      // bytes that are not text (COLMAP's cameras.bin)
+    Python = 1u << 7,      // a Python script (written only)
+};
+
+constexpr unsigned operator|(Content a, Content b) { return static_cast<unsigned>(a) | static_cast<unsigned>(b); }
+constexpr unsigned operator|(unsigned a, Content b) { return a | static_cast<unsigned>(b); }
+
+// Every camera a file holds, from its bytes. Formats whose files are text get the text
+// already checked to be UTF-8 (check_text) unless the row says it has a binary form.
+using SetReader = CameraSetReader;
+// Every file holding the camera: one unnamed file, or a folder's named files.
+using FilesWriter = CameraFilesWriter;
+
+struct FormatRow {
+    CameraFormat format;
+    std::string_view name;         // what --to, --from-format and camera_format_from_string take
+    std::string_view title;        // for messages: "COLMAP model"
+    std::string_view description;  // one line for `libcam formats`: what the files are and who writes them
+    // File name endings that may hold this format (".json"); where several rows share one,
+    // `claims` decides, and a row without it is that content's default.
+    std::array<std::string_view, 3> extensions{};
+    unsigned content = 0;  // the Content kinds its files may be (a mask)
+    // Whether a parsed file of a shared extension is this format, by its keys; nullptr:
+    // the default for its content when no other row claims the file.
+    bool (*claims)(const DocumentNode& root) = nullptr;
+    // nullptr: filled at run time by the library named below (install_camera_format).
+    SetReader read = nullptr;
+    FilesWriter write = nullptr;
+    bool read_only = false;      // libcam reads these files but does not write them
+    bool write_only = false;     // written, not read back (its reader takes another format's files, or none)
+    bool writes_folder = false;  // written as several files into a folder
+    bool binary = false;         // has a binary form: its reader checks the text itself
+    // The file of this format in a folder given as the path (COLMAP's sparse/0), or empty.
+    std::filesystem::path (*file_in_folder)(const std::filesystem::path& folder) = nullptr;
+    // The lens models its files hold exactly, whatever their coefficients.
+    std::span<const LensType> lenses = {};
+    // In words: the peer's own names for them, and what it cannot hold (skew, a pose...).
+    std::string_view lens_names = {};
+    std::string_view refuses = {};
+    // The library that reads and writes it: "libcam::io", or the one that fills the row.
+    std::string_view library = "libcam::io";
+    std::string_view installer = {};  // the call that fills the row, for that library
+};
+
+// Every row, in CameraFormat's order (format_rows.cpp).
+std::span<const FormatRow> format_rows();
+
+// A writer of one file in the table's form.
+template <std::string (*write)(const Camera&, const WriteOptions&)>
+std::vector<CameraFileText> one_file(const Camera& camera, const WriteOptions& options) {
+    return {{std::string(), write(camera, options)}};
+}
+
+// A reader of one camera, or of several, that takes only the file's name from the context.
+template <CameraFile (*parse)(std::string_view, const std::string&)>
+std::vector<NamedCamera> one_camera(std::string_view text, const ReadContext& context) {
+    return {{std::string(), parse(text, context.source)}};
+}
+template <std::vector<NamedCamera> (*parse)(std::string_view, const std::string&)>
+std::vector<NamedCamera> with_source(std::string_view text, const ReadContext& context) {
+    return parse(text, context.source);
+}
+
+// Whether a parsed document is a map holding `key`.
+inline bool has_key(const DocumentNode& root, std::string_view key) { return root.find(key) != nullptr; }
+
+}  // namespace libcam::detail

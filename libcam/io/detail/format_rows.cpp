@@ -1,0 +1,218 @@
+// The table of camera-file formats: one row each (detail/format_row.hpp says what a row
+// holds). Adding a format: docs/adding-a-file-format.md.
+
+#include <array>
+#include <optional>
+
+#include "libcam/error.hpp"
+#include "libcam/io/detail/blender_format.hpp"
+#include "libcam/io/detail/cahvor_format.hpp"
+#include "libcam/io/detail/colmap_format.hpp"
+#include "libcam/io/detail/format_row.hpp"
+#include "libcam/io/detail/json_format.hpp"
+#include "libcam/io/detail/nerf_transforms.hpp"
+#include "libcam/io/detail/open3d_format.hpp"
+#include "libcam/io/detail/opencv_storage.hpp"
+#include "libcam/io/detail/openicc_format.hpp"
+#include "libcam/io/detail/rig_formats.hpp"
+
+namespace libcam::detail {
+
+namespace {
+
+using L = LensType;
+
+// ---- readers and writers in the table's form ----------------------------------------------
+
+std::string write_json(const Camera& camera, const WriteOptions& options) {
+    return format_json(camera, options.fov_camera);
+}
+
+std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
+    // A projection matrix is linear: it holds a pinhole, nothing more.
+    if (camera.lens.type != LensType::Pinhole) {
+        throw NotRepresentable("gl holds a pinhole camera only (an OpenGL projection matrix has no distortion); this "
+                               "camera's lens is " + std::string(lens_info(camera.lens.type).name));
+    }
+    return format_gl_json(to_opengl(camera, options.gl_near, options.gl_far, options.gl_depth_range), camera.size);
+}
+
+// OpenCV's files (one camera, a stereo pair, ORB-SLAM's settings) record no FOV camera.
+std::vector<NamedCamera> read_opencv_storage(std::string_view text, const ReadContext& context) {
+    return parse_opencv_storage_set(text, context.source, context.options);
+}
+
+std::string write_opencv_yaml(const Camera& camera, const WriteOptions&) {
+    return format_opencv_storage(camera, OpenCvStorage::Yaml);
+}
+
+std::string write_opencv_xml(const Camera& camera, const WriteOptions&) {
+    return format_opencv_storage(camera, OpenCvStorage::Xml);
+}
+
+// A Blender script is Python, which libcam does not run: the JSON of the same settings
+// (--from-format blender names it too) is what it reads.
+std::vector<NamedCamera> read_blender_script(std::string_view text, const ReadContext& context) {
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    if (first != std::string_view::npos && text[first] == '{') return parse_blender_cameras(text, context.source);
+    throw FileError(context.source + ": a Blender script is not read back; read the same settings as JSON (convert "
+                    "--to blender-json), or export a .blend's cameras with tools/blender/export_cameras.py");
+}
+
+// ROS's camera_info: the keys of its rectified camera tell it from OpenCV's own YAML.
+bool claims_ros_camera_info(const DocumentNode& root) {
+    return has_key(root, "projection_matrix") || has_key(root, "rectification_matrix");
+}
+
+// ---- the lens models each format holds ------------------------------------------------
+
+constexpr L kEveryLens[] = {
+#define LIBCAM_LENS_ROW(id, model) L::id,
+    LIBCAM_LENS_MODEL_LIST(LIBCAM_LENS_ROW)
+#undef LIBCAM_LENS_ROW
+};
+constexpr L kPinhole[] = {L::Pinhole};
+constexpr L kOpenCvFiles[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Opencv8, L::Opencv12, L::Opencv14, L::Fisheye};
+constexpr L kCameramodel[] = {L::Pinhole,       L::Opencv4, L::Opencv5, L::Opencv8, L::Opencv12,
+                              L::Stereographic, L::Lonlat,  L::Latlon,  L::Cahvor,  L::Cahvore,
+                              L::SplinedStereographic};
+constexpr L kKalibr[] = {L::Pinhole, L::Opencv4, L::Fisheye, L::Fov, L::Ucm, L::Mei, L::DoubleSphere, L::Eucm};
+constexpr L kBasalt[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Opencv8, L::Fisheye,
+                         L::DoubleSphere, L::Eucm, L::Ucm, L::Fov};
+constexpr L kCamodocal[] = {L::Opencv4, L::Mei, L::Fisheye};
+constexpr L kColmap[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Opencv8, L::Fisheye, L::Fov,
+                         L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm};
+constexpr L kNerf[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Fisheye, L::Lonlat};
+constexpr L kCahvor[] = {L::Pinhole, L::Cahvor, L::Cahvore, L::Opencv4, L::Opencv5, L::Opencv8, L::Opencv12};
+constexpr L kRos[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Opencv8, L::Fisheye};
+constexpr L kEuroc[] = {L::Opencv4, L::Fisheye};
+constexpr L kOpenicc[] = {L::Pinhole, L::Fisheye, L::DoubleSphere, L::Eucm};
+constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat};
+
+using C = Content;
+
+// Every format, in CameraFormat's order. Where several formats share a file ending, the
+// first row whose `claims` accepts the file's keys is its format, else the row without
+// `claims` (libcam's JSON for .json, OpenCV's YAML for .yaml).
+constexpr FormatRow kRows[] = {
+    {.format = CameraFormat::Json, .name = "json", .title = "libcam JSON",
+     .description = "libcam's own JSON: K, distortion, R, t, rvec, P, fov, frustum, eye/gaze/up",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .read = one_camera<parse_json_camera>,
+     .write = one_file<write_json>, .lenses = kEveryLens, .lens_names = "every model libcam has"},
+    {.format = CameraFormat::OpenCvYaml, .name = "opencv-yaml", .title = "OpenCV YAML",
+     .description = "OpenCV's cv::FileStorage YAML with the keys of its calibration sample; stereo pairs and "
+                    "ORB-SLAM's settings too",
+     .extensions = {".yaml", ".yml"}, .content = static_cast<unsigned>(C::Yaml), .read = read_opencv_storage,
+     .write = one_file<write_opencv_yaml>, .lenses = kOpenCvFiles,
+     .lens_names = "4, 5, 8, 12 or 14 coefficients, or cv::fisheye's 4"},
+    {.format = CameraFormat::OpenCvXml, .name = "opencv-xml", .title = "OpenCV XML",
+     .description = "the same in cv::FileStorage XML", .extensions = {".xml"},
+     .content = static_cast<unsigned>(C::Xml), .read = read_opencv_storage, .write = one_file<write_opencv_xml>,
+     .lenses = kOpenCvFiles, .lens_names = "4, 5, 8, 12 or 14 coefficients, or cv::fisheye's 4"},
+    {.format = CameraFormat::Cameramodel, .name = "cameramodel", .title = "mrcal .cameramodel",
+     .description = "mrcal's .cameramodel, read and written by libmrcal's own parser",
+     .extensions = {".cameramodel"}, .content = static_cast<unsigned>(C::PythonDict), .lenses = kCameramodel,
+     .lens_names = "mrcal's LENSMODEL_ names", .refuses = "skew", .library = "libcam::interop",
+     .installer = "libcam::register_interop_formats()"},
+    {.format = CameraFormat::Gl, .name = "gl", .title = "gl JSON",
+     .description = "JSON holding an OpenGL projection, view matrix and viewport", .extensions = {".json"},
+     .content = static_cast<unsigned>(C::Json), .read = one_camera<parse_json_camera>,
+     .write = one_file<write_gl_json>, .lenses = kPinhole, .refuses = "distortion"},
+    {.format = CameraFormat::Kalibr, .name = "kalibr", .title = "Kalibr camchain YAML",
+     .description = "Kalibr's camchain and camchain-imucam YAML, also as OpenVINS ships it",
+     .extensions = {".yaml", ".yml"}, .content = static_cast<unsigned>(C::Yaml), .claims = claims_kalibr_camchain,
+     .read = with_source<parse_kalibr_camchain>, .write = one_file<format_kalibr_camchain>, .lenses = kKalibr,
+     .lens_names = "pinhole, omni, ds, eucm with radtan, equidistant, fov, none", .refuses = "skew"},
+    {.format = CameraFormat::Basalt, .name = "basalt", .title = "basalt calibration JSON",
+     .description = "basalt's calibration JSON (cereal's value0)", .extensions = {".json"},
+     .content = static_cast<unsigned>(C::Json), .claims = claims_basalt_calibration,
+     .read = with_source<parse_basalt_calibration>, .write = one_file<format_basalt_calibration>, .lenses = kBasalt,
+     .lens_names = "pinhole, kb4, ds, eucm, ucm, fov, pinhole-radtan8", .refuses = "skew"},
+    {.format = CameraFormat::Camodocal, .name = "camodocal", .title = "camodocal YAML",
+     .description = "camodocal's YAML, as VINS-Mono and VINS-Fusion ship it", .extensions = {".yaml", ".yml"},
+     .content = static_cast<unsigned>(C::Yaml), .claims = claims_camodocal, .read = with_source<parse_camodocal>,
+     .read_only = true, .lenses = kCamodocal, .lens_names = "PINHOLE, MEI, KANNALA_BRANDT"},
+    {.format = CameraFormat::Colmap, .name = "colmap", .title = "COLMAP model",
+     .description = "COLMAP's sparse model: cameras.txt or .bin with images.txt or .bin beside it; written as "
+                    "cameras.txt, images.txt and points3D.txt into a folder",
+     .extensions = {".bin"}, .content = C::Table | C::Binary, .read = read_colmap_model,
+     .write = write_colmap_model, .writes_folder = true, .binary = true, .file_in_folder = colmap_cameras_file_in,
+     .lenses = kColmap,
+     .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
+                   "SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, SIMPLE_FISHEYE, FISHEYE, FOV, THIN_PRISM_FISHEYE, "
+                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM",
+     .refuses = "skew; OPENCV12 and OPENCV14 unless their coefficients past the eighth are 0"},
+    {.format = CameraFormat::Nerf, .name = "nerf", .title = "NeRF transforms.json",
+     .description = "NeRF's transforms.json (instant-ngp, nerfstudio)", .extensions = {".json"},
+     .content = static_cast<unsigned>(C::Json), .claims = claims_nerf_transforms, .read = read_nerf_transforms,
+     .write = one_file<write_nerf_transforms>, .lenses = kNerf, .refuses = "skew"},
+    {.format = CameraFormat::Cahvor, .name = "cahvor", .title = "JPL .cahvor",
+     .description = "JPL's .cahvor and .cahvore text, as mrcal writes it", .extensions = {".cahvor", ".cahvore"},
+     .content = static_cast<unsigned>(C::KeyValue), .read = with_source<parse_cahvor>, .read_only = true, .lenses = kCahvor, .lens_names = "CAHV, CAHVOR, CAHVORE"},
+    {.format = CameraFormat::Ros, .name = "ros", .title = "ROS camera_info YAML",
+     .description = "ROS's camera_info YAML (camera_calibration_parsers)", .extensions = {".yaml", ".yml"},
+     .content = static_cast<unsigned>(C::Yaml), .claims = claims_ros_camera_info,
+     .read = with_source<parse_ros_camera_info>, .write = one_file<format_ros_camera_info>, .lenses = kRos,
+     .lens_names = "plumb_bob, rational_polynomial, equidistant",
+     .refuses = "a pose (camera_info holds none: --no-pose writes the intrinsics alone)"},
+    {.format = CameraFormat::Open3d, .name = "open3d", .title = "Open3D camera JSON",
+     .description = "Open3D's PinholeCameraIntrinsic, PinholeCameraParameters and PinholeCameraTrajectory JSON",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_open3d_camera,
+     .read = with_source<parse_open3d_camera>, .write = one_file<format_open3d_camera>, .lenses = kPinhole,
+     .refuses = "distortion"},
+    {.format = CameraFormat::Euroc, .name = "euroc", .title = "EuRoC sensor.yaml",
+     .description = "the EuRoC (ASL) dataset's camera sensor.yaml", .extensions = {".yaml", ".yml"},
+     .content = static_cast<unsigned>(C::Yaml), .claims = claims_euroc_sensor, .read = with_source<parse_euroc_sensor>,
+     .read_only = true, .lenses = kEuroc,
+     .lens_names = "pinhole with radial-tangential or equidistant"},
+    {.format = CameraFormat::Openicc, .name = "openicc", .title = "OpenImuCameraCalibrator JSON",
+     .description = "OpenImuCameraCalibrator's JSON, as UMI ships its GoPro calibrations", .extensions = {".json"},
+     .content = static_cast<unsigned>(C::Json), .claims = claims_openicc_camera,
+     .read = with_source<parse_openicc_camera>, .read_only = true, .lenses = kOpenicc,
+     .lens_names = "FISHEYE, DOUBLE_SPHERE, EUCM, PINHOLE"},
+    {.format = CameraFormat::Blender, .name = "blender", .title = "Blender camera script",
+     .description = "a Python script that sets a Blender scene's camera: blender -b scene.blend -P camera.py",
+     .extensions = {".py"}, .content = static_cast<unsigned>(C::Python), .read = read_blender_script,
+     .write = one_file<format_blender_script>, .write_only = true, .lenses = kBlender,
+     .lens_names = "PERSP (fx != fy as the pixel aspect), and the panoramic FISHEYE_EQUIDISTANT (FISHEYE with "
+                   "its coefficients 0), FISHEYE_EQUISOLID, FISHEYE_LENS_POLYNOMIAL, EQUIRECTANGULAR",
+     .refuses = "skew"},
+    {.format = CameraFormat::BlenderJson, .name = "blender-json", .title = "Blender camera JSON",
+     .description = "the same settings as JSON, in bpy's names (also what tools/blender/export_cameras.py writes)",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_blender_cameras,
+     .read = with_source<parse_blender_cameras>, .write = one_file<format_blender_json>, .lenses = kBlender,
+     .lens_names = "as for blender", .refuses = "skew"},
+};
+
+// Every CameraFormat has its row, in the enum's order: a format added to the enum without
+// a row, or given two, stops the build here.
+constexpr bool rows_match_formats() {
+    if (std::size(kRows) != kCameraFormatCount) return false;
+    for (std::size_t i = 0; i < std::size(kRows); ++i) {
+        if (static_cast<std::size_t>(kRows[i].format) != i) return false;
+    }
+    return true;
+}
+static_assert(rows_match_formats(), "every CameraFormat needs exactly one row, in the enum's order");
+
+// A row reads and writes, or says why not: read-only rows have no writer, the others one
+// (or name the library that fills it), and a folder-writing row writes.
+constexpr bool rows_complete() {
+    for (const FormatRow& row : kRows) {
+        const bool filled_later = !row.installer.empty();
+        if (!filled_later && row.read == nullptr) return false;
+        if (!filled_later && row.read_only == (row.write != nullptr)) return false;
+        if (filled_later && row.read_only) return false;
+        if (row.read_only && row.write_only) return false;
+        if (row.name.empty() || row.title.empty() || row.description.empty() || row.content == 0) return false;
+        if (row.lenses.empty()) return false;
+    }
+    return true;
+}
+static_assert(rows_complete(), "a format row lacks its reader, writer, name or lens models");
+
+}  // namespace
+
+std::span<const FormatRow> format_rows() { return kRows; }
+
+}  // namespace libcam::detail

@@ -1,0 +1,113 @@
+// libcam formats: every camera-file format, what libcam does with it and the lens models
+// it holds, from the one table of formats (plain text, --json, or --markdown: the table of
+// docs/file-formats.md).
+
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "commands.hpp"
+#include "libcam/io/camera_formats.hpp"
+#include "parse.hpp"
+
+namespace libcam::cli {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+std::string joined(const std::vector<std::string_view>& words, std::string_view separator) {
+    std::string out;
+    for (const std::string_view word : words) out += (out.empty() ? "" : std::string(separator)) + std::string(word);
+    return out;
+}
+
+std::vector<std::string_view> lens_names(const CameraFormatInfo& format) {
+    std::vector<std::string_view> names;
+    for (const LensType lens : format.lenses) names.push_back(lens_info(lens).name);
+    return names;
+}
+
+std::string_view access(const CameraFormatInfo& format) {
+    if (!format.writes) return "reads";
+    if (!format.reads) return "writes";
+    return format.writes_folder ? "reads, writes a folder" : "reads, writes";
+}
+
+// The models a format holds, in words: "every model" where it holds them all.
+std::string lens_models_text(const CameraFormatInfo& format) {
+    if (format.lenses.size() == lens_models().size()) return "all";
+    return joined(lens_names(format), ", ");
+}
+
+Json format_json(const CameraFormatInfo& format) {
+    Json out;
+    out["name"] = format.name;
+    out["title"] = format.title;
+    out["description"] = format.description;
+    out["extensions"] = format.extensions;
+    out["reads"] = format.reads;
+    out["writes"] = format.writes;
+    out["writes_folder"] = format.writes_folder;
+    out["lens_models"] = lens_names(format);
+    out["lens_names"] = format.lens_names;
+    out["refuses"] = format.refuses;
+    out["library"] = format.library;
+    out["available"] = format.available;
+    return out;
+}
+
+std::string markdown(const std::vector<CameraFormatInfo>& formats) {
+    std::ostringstream out;
+    out << "| format | what | libcam | lens models it holds | the format's names | cannot hold |\n";
+    out << "|---|---|---|---|---|---|\n";
+    for (const CameraFormatInfo& format : formats) {
+        out << "| `" << format.name << "` | " << format.description << " | " << access(format) << " | "
+            << lens_models_text(format) << " | " << format.lens_names << " | " << format.refuses << " |\n";
+    }
+    return out.str();
+}
+
+std::string plain(const std::vector<CameraFormatInfo>& formats) {
+    std::ostringstream out;
+    for (const CameraFormatInfo& format : formats) {
+        out << format.name << ": " << format.title << " (" << access(format)
+            << (format.available ? "" : "; needs " + std::string(format.library)) << ")\n";
+        out << "  " << format.description << "\n";
+        if (!format.extensions.empty()) out << "  files     " << joined(format.extensions, " ") << "\n";
+        out << "  models    " << lens_models_text(format) << "\n";
+        if (!format.lens_names.empty()) out << "  its names " << format.lens_names << "\n";
+        if (!format.refuses.empty()) out << "  refuses   " << format.refuses << "\n";
+    }
+    return out.str();
+}
+
+}  // namespace
+
+Runner add_formats(CLI::App& app) {
+    CLI::App* command = app.add_subcommand(
+        "formats", "List every camera-file format: what libcam reads and writes, and the lens models each holds");
+    struct Flags {
+        bool json = false;
+        bool markdown = false;
+    };
+    auto flags = std::make_shared<Flags>();
+    command->add_flag("--json", flags->json,
+                      "Print a JSON array, one object per format: name, title, description, extensions, reads, "
+                      "writes, writes_folder, lens_models, lens_names, refuses, library, available");
+    command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md");
+    return [flags] {
+        if (flags->json && flags->markdown) throw UsageError("--json and --markdown: give one");
+        const std::vector<CameraFormatInfo> formats = camera_formats();
+        if (flags->json) {
+            Json list = Json::array();
+            for (const CameraFormatInfo& format : formats) list.push_back(format_json(format));
+            std::cout << list.dump(2) << "\n";
+        } else {
+            std::cout << (flags->markdown ? markdown(formats) : plain(formats));
+        }
+        return 0;
+    };
+}
+
+}  // namespace libcam::cli
