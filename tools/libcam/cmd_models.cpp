@@ -150,8 +150,9 @@ Runner add_models(CLI::App& app) {
         } else if (flags->markdown) {
             emit(markdown_table(), "");
         } else {
-            // Three tables a terminal can show: the model, the libraries, the other names.
-            constexpr std::size_t abilities[] = {0, 1, 2, 3, 4, 5}, peers[] = {0, 6, 7, 8, 9, 10}, also[] = {0, 11};
+            // Three tables a terminal can show: the model, the libraries (mrcal's long
+            // configured names last), the other names.
+            constexpr std::size_t abilities[] = {0, 1, 2, 3, 4, 5}, peers[] = {0, 6, 8, 9, 10, 7}, also[] = {0, 11};
             emit(text_table(abilities) + "\n" + text_table(peers) + "\n" + text_table(also), "");
         }
         return 0;
