@@ -1,12 +1,19 @@
 // The command-line program with lens distortion: `libcam convert` between every format
 // that can hold the model, `libcam rays --from FILE` through the lens, and pixels with
-// no ray reported as {"valid": false, "direction": null}.
+// no ray reported as {"valid": false, "direction": null}; `libcam models`, the lens
+// table, against the models' own definitions and against docs/lens-models.md.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "cli_runner.hpp"
 
+using libcam::test::read_whole_file;
 using libcam::test::run_libcam;
 using libcam::test::TempDir;
 using libcam::test::write_whole_file;
@@ -128,4 +135,173 @@ TEST_CASE("a behind-the-camera fisheye ray comes back through rays") {
     REQUIRE(std::abs(ray.at("direction")[0].get<double>() - std::sin(2.0)) < 1e-12);
     REQUIRE(std::abs(ray.at("direction")[1].get<double>()) < 1e-12);
     REQUIRE(std::abs(ray.at("direction")[2].get<double>() - std::cos(2.0)) < 1e-12);
+}
+
+namespace {
+
+json models_json() {
+    const auto result = run_libcam({"models", "--json"});
+    INFO(result.describe());
+    REQUIRE(result.exit_code == 0);
+    return json::parse(result.out);
+}
+
+const json& model_named(const json& models, const std::string& name) {
+    for (const json& model : models) {
+        if (model.at("name") == name) return model;
+    }
+    FAIL("libcam models --json has no model " << name);
+    throw std::logic_error("unreachable");
+}
+
+// The cells of a markdown table's row, trimmed.
+std::vector<std::string> cells(const std::string& row) {
+    std::vector<std::string> out;
+    std::istringstream in(row.substr(1));
+    for (std::string cell; std::getline(in, cell, '|');) {
+        const std::size_t first = cell.find_first_not_of(' '), last = cell.find_last_not_of(' ');
+        out.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("models --json: every model, with the names and coefficients their own definitions give") {
+    const json models = models_json();
+    // The models libcam documents, in its table's order.
+    const std::vector<std::string> expected = {
+        "PINHOLE", "OPENCV4", "OPENCV5", "OPENCV8", "OPENCV12", "OPENCV14", "FISHEYE", "STEREOGRAPHIC",
+        "LONLAT", "LATLON", "DOUBLE_SPHERE", "UCM", "EUCM", "MEI", "FOV", "THIN_PRISM_FISHEYE",
+        "RAD_TAN_THIN_PRISM_FISHEYE", "EQUISOLID", "CAHVOR", "CAHVORE", "FISHEYE_LENS_POLYNOMIAL",
+        "SPLINED_STEREOGRAPHIC", "CYLINDRICAL"};
+    REQUIRE(models.size() == 23);
+    for (std::size_t i = 0; i < expected.size(); ++i) CHECK(models[i].at("name") == expected[i]);
+
+    // OpenCV's calib3d documentation: distCoeffs (k1, k2, p1, p2[, k3[, k4, k5, k6[, s1, s2,
+    // s3, s4[, tauX, tauY]]]]); cv::fisheye's D: (k1, k2, k3, k4).
+    const json& opencv8 = model_named(models, "OPENCV8");
+    CHECK(opencv8.at("coefficients") == json({"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"}));
+    CHECK(opencv8.at("coefficient_count") == 8);
+    CHECK(opencv8.at("opencv") == "cv::projectPoints");
+    CHECK(model_named(models, "OPENCV14").at("coefficients") ==
+          json({"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6", "s1", "s2", "s3", "s4", "tauX", "tauY"}));
+    const json& fisheye = model_named(models, "FISHEYE");
+    CHECK(fisheye.at("coefficients") == json({"k1", "k2", "k3", "k4"}));
+    CHECK(fisheye.at("opencv") == "cv::fisheye::projectPoints");
+    CHECK(model_named(models, "UCM").at("opencv") == "cv::omnidir::projectPoints");
+
+    // COLMAP's models.h: OPENCV (k1 k2 p1 p2), FULL_OPENCV (k1 k2 p1 p2 k3 k4 k5 k6),
+    // OPENCV_FISHEYE (k1 k2 k3 k4), FOV (omega).
+    CHECK(model_named(models, "OPENCV4").at("colmap") == "OPENCV");
+    CHECK(opencv8.at("colmap") == "FULL_OPENCV");
+    CHECK(fisheye.at("colmap") == "OPENCV_FISHEYE");
+    CHECK(model_named(models, "FOV").at("colmap") == "FOV");
+    CHECK(model_named(models, "OPENCV5").at("colmap") == "");  // COLMAP has no 5-coefficient OpenCV model
+
+    // Kalibr's camera-distortion pairs and basalt's camera types.
+    CHECK(model_named(models, "OPENCV4").at("kalibr") == "pinhole-radtan");
+    CHECK(fisheye.at("kalibr") == "pinhole-equi");
+    CHECK(model_named(models, "MEI").at("kalibr") == "omni-radtan");
+    CHECK(fisheye.at("basalt") == "kb4");
+    CHECK(model_named(models, "DOUBLE_SPHERE").at("basalt") == "ds");
+
+    // mrcal.h: LENSMODEL_CAHVORE keeps its linearity in its name, the splined model its
+    // order, Nx, Ny and fov_x_deg; mrcal has no fisheye of OpenCV's.
+    const json& cahvore = model_named(models, "CAHVORE");
+    CHECK(cahvore.at("mrcal") == "LENSMODEL_CAHVORE");
+    CHECK(cahvore.at("mrcal_in_name") == json({"linearity"}));
+    const json& splined = model_named(models, "SPLINED_STEREOGRAPHIC");
+    CHECK(splined.at("mrcal_in_name") == json({"order", "Nx", "Ny", "fov_x_deg"}));
+    CHECK(splined.at("coefficient_count").is_null());  // set by Nx and Ny
+    CHECK(fisheye.at("mrcal") == "");
+    CHECK(model_named(models, "OPENCV12").at("mrcal_in_name") == json::array());
+
+    // A perspective projection divides by Z: nothing behind the camera. An equidistant
+    // fisheye and a stereographic projection reach past 90 degrees (mrcal's
+    // can_project_behind_camera for LENSMODEL_STEREOGRAPHIC).
+    CHECK(model_named(models, "PINHOLE").at("sees_behind_camera") == false);
+    CHECK(opencv8.at("sees_behind_camera") == false);
+    CHECK(fisheye.at("sees_behind_camera") == true);
+    CHECK(model_named(models, "STEREOGRAPHIC").at("sees_behind_camera") == true);
+    // The pinhole inverts by a formula; OpenCV's distortion has no closed-form inverse
+    // (cv::undistortPoints iterates).
+    CHECK(model_named(models, "PINHOLE").at("inverse") == "closed-form");
+    CHECK(opencv8.at("inverse") == "solved");
+
+    // OpenCV's longer coefficient vectors extend the shorter: one family, the pinhole's,
+    // ranked by length. MEI is the unified model (UCM) with OpenCV's distortion after it.
+    int rank = -1;
+    for (const char* name : {"PINHOLE", "OPENCV4", "OPENCV5", "OPENCV8", "OPENCV12", "OPENCV14"}) {
+        const json& model = model_named(models, name);
+        CHECK(model.at("family") == "PINHOLE");
+        CHECK(model.at("family_rank").get<int>() > rank);
+        rank = model.at("family_rank").get<int>();
+    }
+    CHECK(model_named(models, "MEI").at("family") == "UCM");
+    CHECK(model_named(models, "MEI").at("family_rank") == 1);
+}
+
+TEST_CASE("models: a table with a row per model, --markdown a table of twelve columns, bad flags refused") {
+    const auto text = run_libcam({"models"});
+    REQUIRE(text.exit_code == 0);
+    CHECK(text.out.find("SPLINED_STEREOGRAPHIC  ") != std::string::npos);
+    CHECK(text.out.find("LENSMODEL_SPLINED_STEREOGRAPHIC_order=..._Nx=..._Ny=..._fov_x_deg=...") != std::string::npos);
+
+    const auto markdown = run_libcam({"models", "--markdown"});
+    REQUIRE(markdown.exit_code == 0);
+    std::istringstream lines(markdown.out);
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(lines, line);) {
+        INFO(line);
+        rows.push_back(cells(line));
+        CHECK(rows.back().size() == 12);  // a '|' inside a cell would split it
+    }
+    REQUIRE(rows.size() == 2 + 23);  // titles, rule, a row per model
+    CHECK(rows[0][0] == "model");
+    // CAHVORE, the 20th model: mrcal's name with "..." for its linearity (mrcal.h's
+    // mrcal_lensmodel_name_unconfigured), its column after OpenCV's.
+    const std::vector<std::string>& cahvore = rows[2 + 19];
+    CHECK(cahvore[0] == "CAHVORE");
+    CHECK(cahvore[1] == "alpha beta r0 r1 r2 e0 e1 e2 linearity");
+    CHECK(cahvore[7] == "`LENSMODEL_CAHVORE_linearity=...`");
+
+    const auto both = run_libcam({"models", "--json", "--markdown"});
+    CHECK(both.exit_code == 2);
+    CHECK(std::count(both.err.begin(), both.err.end(), '\n') == 1);
+}
+
+// The first line where two texts differ, both ways, for a failure message.
+std::string first_difference(const std::string& docs, const std::string& program) {
+    std::istringstream a(docs), b(program);
+    std::string line_a, line_b;
+    for (int line = 1;; ++line) {
+        const bool more_a = static_cast<bool>(std::getline(a, line_a));
+        const bool more_b = static_cast<bool>(std::getline(b, line_b));
+        if (!more_a && !more_b) return "none";
+        if (!more_a || !more_b || line_a != line_b) {
+            return "line " + std::to_string(line) + " of the table:\n  docs:    " + (more_a ? line_a : "(the end)") +
+                   "\n  program: " + (more_b ? line_b : "(the end)");
+        }
+    }
+}
+
+TEST_CASE("docs/lens-models.md's table of models is what `libcam models --markdown` prints") {
+    const auto result = run_libcam({"models", "--markdown"});
+    {
+        INFO(result.describe());
+        REQUIRE(result.exit_code == 0);
+    }
+    const std::string docs = read_whole_file(LIBCAM_DOCS_DIR "/lens-models.md");
+    const std::string begin = "<!-- generated by: libcam models --markdown -->\n";
+    const std::string end = "<!-- end of generated table -->";
+    const std::size_t from = docs.find(begin), to = docs.find(end);
+    REQUIRE(from != std::string::npos);
+    REQUIRE(to != std::string::npos);
+    REQUIRE(from < to);
+    INFO("docs/lens-models.md's table is stale. Regenerate it: replace the lines between its \"" +
+         begin.substr(0, begin.size() - 1) + "\" and \"" + end +
+         "\" comments with what `build/tools/libcam models --markdown` prints.");
+    const std::string table = docs.substr(from + begin.size(), to - from - begin.size());
+    CHECK(first_difference(table, result.out) == "none");
 }

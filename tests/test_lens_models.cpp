@@ -115,6 +115,10 @@ TEST_CASE("The model table agrees with mrcal's metadata for every model both hav
         CHECK(mrcal_lensmodel_num_params(&model) == 4 + static_cast<int>(zeros.size()) - in_name);
         CHECK(mrcal_lensmodel_name(Lens{info.type, zeros}) == mrcal_name_of(info.type));
         CHECK(mrcal_lensmodel_metadata(&model).can_project_behind_camera == info.sees_behind_camera);
+        // The coefficients the row says mrcal keeps in its name are those mrcal's own
+        // unconfigured name holds ("LENSMODEL_CAHVORE_linearity=...").
+        CHECK(info.mrcal_in_name.leading + info.mrcal_in_name.trailing == in_name);
+        CHECK(mrcal_model_name(info.type) == mrcal_lensmodel_name_unconfigured(&model));
     }
     CHECK_FALSE(mrcal_has(LensType::Fisheye));
     CHECK_FALSE(mrcal_has(LensType::Opencv14));

@@ -158,11 +158,30 @@ BlenderCamera blender_from_camera(const Camera& camera) {
             blender.latitude_max = blender.latitude_min + lat_range;
             return blender;
         }
-        default:
-            throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
-                                  " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "
-                                  "FISHEYE_LENS_POLYNOMIAL and LONLAT)");
+        // Every other model is named, with no default, so that the compiler asks about a
+        // new model here: does Blender draw it?
+        case LensType::Opencv4:
+        case LensType::Opencv5:
+        case LensType::Opencv8:
+        case LensType::Opencv12:
+        case LensType::Opencv14:
+        case LensType::Stereographic:
+        case LensType::Latlon:
+        case LensType::DoubleSphere:
+        case LensType::Ucm:
+        case LensType::Eucm:
+        case LensType::Mei:
+        case LensType::Fov:
+        case LensType::ThinPrismFisheye:
+        case LensType::RadTanThinPrismFisheye:
+        case LensType::Cahvor:
+        case LensType::Cahvore:
+        case LensType::SplinedStereographic:
+        case LensType::Cylindrical: break;
     }
+    throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
+                          " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "
+                          "FISHEYE_LENS_POLYNOMIAL and LONLAT)");
 }
 
 Camera camera_from_blender(const BlenderCamera& blender) {

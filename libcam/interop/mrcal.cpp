@@ -16,32 +16,6 @@ namespace libcam {
 
 namespace {
 
-// The lens's coefficients that mrcal keeps in the model's name rather than in the
-// intrinsics: CAHVORE's linearity, the last (LENSMODEL_CAHVORE_linearity=L), and
-// SPLINED_STEREOGRAPHIC's configuration, the first four
-// (LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=16_Ny=11_fov_x_deg=120).
-struct InName {
-    std::size_t leading = 0, trailing = 0;
-};
-InName coefficients_in_name(LensType type) {
-    if (type == LensType::Cahvore) return {0, 1};
-    if (type == LensType::SplinedStereographic) return {4, 0};
-    return {};
-}
-
-// The model's name as mrcal writes it, configuration included.
-std::string configured_name(const Lens& lens) {
-    std::string name(lens_info(lens.type).mrcal);
-    const auto& k = lens.coefficients;
-    if (lens.type == LensType::Cahvore && !k.empty()) name += "_linearity=" + format_number(k.back());
-    if (lens.type == LensType::SplinedStereographic && k.size() >= 4) {
-        // Whole numbers (Lens::validate); mrcal reads each as an unsigned 16-bit integer.
-        const auto whole = [](double value) { return std::to_string(static_cast<long long>(value)); };
-        name += "_order=" + whole(k[0]) + "_Nx=" + whole(k[1]) + "_Ny=" + whole(k[2]) + "_fov_x_deg=" + whole(k[3]);
-    }
-    return name;
-}
-
 // SPLINED_STEREOGRAPHIC's configuration as mrcal parsed it from the name (empty for
 // every other model), and as the lens holds it.
 std::vector<double> mrcal_configuration(const mrcal_lensmodel_t& model) {
@@ -50,14 +24,16 @@ std::vector<double> mrcal_configuration(const mrcal_lensmodel_t& model) {
     return {double(config.order), double(config.Nx), double(config.Ny), double(config.fov_x_deg)};
 }
 std::vector<double> configuration_of(const Lens& lens) {
-    const std::size_t leading = coefficients_in_name(lens.type).leading;
-    return {lens.coefficients.begin(), lens.coefficients.begin() + static_cast<std::ptrdiff_t>(leading)};
+    const int leading = lens_info(lens.type).mrcal_in_name.leading;
+    return {lens.coefficients.begin(), lens.coefficients.begin() + leading};
 }
 
 // The lens's mrcal model, by the name the table gives it.
 mrcal_lensmodel_t mrcal_lensmodel(const Lens& lens) {
     mrcal_lensmodel_t model{};
-    const std::string name = lens_info(lens.type).mrcal.empty() ? std::string() : configured_name(lens);
+    // The configuration in the name: the table's mrcal_in_name (CAHVORE's linearity,
+    // SPLINED_STEREOGRAPHIC's order, Nx, Ny and fov_x_deg).
+    const std::string name = mrcal_model_name(lens.type, lens.coefficients);
     if (name.empty() || !mrcal_lensmodel_from_name(&model, name.c_str()) || model.type < 0) {
         std::string has;
         for (const LensInfo& info : lens_models()) {
@@ -74,13 +50,9 @@ LensType lens_type_from_mrcal(const mrcal_lensmodel_t& model, const std::string&
     // (Appending, not "#" + std::to_string(...): GCC 12 at -O3 raises a false -Wrestrict on that.)
     const std::string mrcal_name =
         name != nullptr ? std::string(name) : std::string("#").append(std::to_string(static_cast<int>(model.type)));
-    // A configured model's unconfigured name goes on after the table's: "_linearity=...".
-    const auto names = [&](std::string_view table) {
-        return mrcal_name == table || (mrcal_name.size() > table.size() && mrcal_name.starts_with(table) &&
-                                       mrcal_name[table.size()] == '_' && mrcal_name.ends_with("=..."));
-    };
+    // A configured model's unconfigured name holds "..." for each value: "LENSMODEL_CAHVORE_linearity=...".
     for (const LensInfo& info : lens_models()) {
-        if (!info.mrcal.empty() && names(info.mrcal)) return info.type;
+        if (!info.mrcal.empty() && mrcal_model_name(info.type) == mrcal_name) return info.type;
     }
     throw NotRepresentable(source + ": \"lensmodel\": " + mrcal_name + " is not a lens model libcam supports");
 }
@@ -94,9 +66,8 @@ std::vector<double> mrcal_intrinsics(const Camera& camera) {
     const Intrinsics& k = camera.intrinsics;
     std::vector<double> values{k.fx, k.fy, k.cx, k.cy};
     const auto& coefficients = camera.lens.coefficients;
-    const InName in_name = coefficients_in_name(camera.lens.type);
-    values.insert(values.end(), coefficients.begin() + static_cast<std::ptrdiff_t>(in_name.leading),
-                  coefficients.end() - static_cast<std::ptrdiff_t>(in_name.trailing));
+    const InMrcalName in_name = lens_info(camera.lens.type).mrcal_in_name;
+    values.insert(values.end(), coefficients.begin() + in_name.leading, coefficients.end() - in_name.trailing);
     return values;
 }
 
@@ -202,7 +173,7 @@ bool mrcal_unprojects(const Lens& lens) {
 
 std::string mrcal_lensmodel_name(const Lens& lens) {
     mrcal_lensmodel(lens);  // throws for a lens mrcal lacks
-    return configured_name(lens);
+    return mrcal_model_name(lens.type, lens.coefficients);
 }
 
 std::string format_cameramodel(const Camera& camera) {

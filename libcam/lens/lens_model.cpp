@@ -5,6 +5,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/lens/lens_models.hpp"
+#include "libcam/text/number_format.hpp"
 
 namespace libcam {
 
@@ -15,6 +16,53 @@ std::optional<LensType> lens_type_from_name(std::string_view name) {
         if (info.name == name) return info.type;
     }
     return std::nullopt;
+}
+
+std::string mrcal_model_name(LensType type, std::span<const double> coefficients) {
+    const LensInfo& info = lens_info(type);
+    std::string name(info.mrcal);
+    if (name.empty()) return name;
+    const auto leading = static_cast<std::size_t>(info.mrcal_in_name.leading);
+    const auto trailing = static_cast<std::size_t>(info.mrcal_in_name.trailing);
+    const bool configured = !coefficients.empty() && coefficients.size() >= leading + trailing;
+    // The shortest text of each value: the splined model's whole numbers (at most 65535)
+    // print as integers, as mrcal reads them.
+    const auto append = [&](std::size_t name_index, std::size_t value_index) {
+        name += "_" + std::string(info.coefficients.names[name_index]) + "=" +
+                (configured ? format_number(coefficients[value_index]) : std::string("..."));
+    };
+    for (std::size_t i = 0; i < leading; ++i) append(i, i);
+    const auto named = static_cast<std::size_t>(info.coefficients.count);
+    for (std::size_t i = 0; i < trailing; ++i) append(named - trailing + i, coefficients.size() - trailing + i);
+    return name;
+}
+
+std::string_view to_string(Inverse inverse) {
+    switch (inverse) {
+        case Inverse::ClosedForm: return "closed-form";
+        case Inverse::Solved: return "solved";
+    }
+    throw InvalidArgument("inverse: unknown value #" + std::to_string(static_cast<int>(inverse)));
+}
+
+std::string_view to_string(FitCandidate fit) {
+    switch (fit) {
+        case FitCandidate::No: return "no";
+        case FitCandidate::Always: return "always";
+        case FitCandidate::WideScenes: return "wide-scenes";
+        case FitCandidate::OnRequest: return "on-request";
+    }
+    throw InvalidArgument("fit: unknown value #" + std::to_string(static_cast<int>(fit)));
+}
+
+std::string_view to_string(OpenCvFunction function) {
+    switch (function) {
+        case OpenCvFunction::None: return "";
+        case OpenCvFunction::ProjectPoints: return "cv::projectPoints";
+        case OpenCvFunction::Fisheye: return "cv::fisheye::projectPoints";
+        case OpenCvFunction::Omnidir: return "cv::omnidir::projectPoints";
+    }
+    throw InvalidArgument("opencv: unknown value #" + std::to_string(static_cast<int>(function)));
 }
 
 Lens simplest_equal_lens(const Lens& lens) {

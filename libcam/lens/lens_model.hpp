@@ -102,6 +102,13 @@ enum class FitCandidate {
     OnRequest,   // only when the user names it (libcam fit --model): not in the simplest-first chain
 };
 
+// Coefficients mrcal keeps in its name for the model rather than among the intrinsics,
+// each as _<coefficient name>=<value>: how many lead the coefficient list and how many end it.
+struct InMrcalName {
+    int leading = 0;
+    int trailing = 0;
+};
+
 // The names of a model's coefficients, in the model's order.
 struct CoefficientNames {
     std::array<std::string_view, kMaxLensCoefficients> names{};
@@ -122,10 +129,11 @@ struct LensInfo {
     Inverse inverse;
     // The same model in other libraries; empty where the library lacks it.
     OpenCvFunction opencv;
-    std::string_view mrcal;   // "LENSMODEL_..."
+    std::string_view mrcal;   // "LENSMODEL_..." (mrcal_in_name: its configuration)
     std::string_view colmap;  // COLMAP's camera model name (its pixel centres are at +0.5)
     std::string_view kalibr;  // Kalibr's camera_model-distortion_model
     std::string_view basalt;  // basalt's camera type
+    std::string_view also_named{};  // its other names (programs', papers'), in words
     LensFamily family;
     int family_rank;  // see LensFamily
     FitCandidate fit;
@@ -137,6 +145,7 @@ struct LensInfo {
     // Leading coefficients a fit holds at 0 (FISHEYE_LENS_POLYNOMIAL's k0, which would leave
     // the directions about the axis without a pixel).
     int fit_held_coefficients = 0;
+    InMrcalName mrcal_in_name{};
 };
 
 // The table. Its order is the order of LensType, and among fit candidates the order from
@@ -145,7 +154,8 @@ inline constexpr LensInfo kLensTable[] = {
     {.type = LensType::Pinhole, .name = "PINHOLE", .coefficients = {}, .num_coefficients = 0,
      .sees_behind_camera = false, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::ProjectPoints,
      .mrcal = "LENSMODEL_PINHOLE", .colmap = "PINHOLE", .kalibr = "pinhole-none", .basalt = "pinhole",
-     .family = LensFamily::Perspective, .family_rank = 0, .fit = FitCandidate::Always},
+     .also_named = "Blender's perspective camera", .family = LensFamily::Perspective, .family_rank = 0,
+     .fit = FitCandidate::Always},
     {.type = LensType::Opencv4, .name = "OPENCV4", .coefficients = {"k1", "k2", "p1", "p2"}, .num_coefficients = 4,
      .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::ProjectPoints,
      .mrcal = "LENSMODEL_OPENCV4", .colmap = "OPENCV", .kalibr = "pinhole-radtan", .basalt = "",
@@ -170,15 +180,17 @@ inline constexpr LensInfo kLensTable[] = {
      .family = LensFamily::Perspective, .family_rank = 5, .fit = FitCandidate::No},
     {.type = LensType::Fisheye, .name = "FISHEYE", .coefficients = {"k1", "k2", "k3", "k4"}, .num_coefficients = 4,
      .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::Fisheye, .mrcal = "",
-     .colmap = "OPENCV_FISHEYE", .kalibr = "pinhole-equi", .basalt = "kb4", .family = LensFamily::Fisheye,
-     .family_rank = 0, .fit = FitCandidate::WideScenes},
+     .colmap = "OPENCV_FISHEYE", .kalibr = "pinhole-equi", .basalt = "kb4",
+     .also_named = "Kannala-Brandt; Blender's FISHEYE_EQUIDISTANT (with zero coefficients)",
+     .family = LensFamily::Fisheye, .family_rank = 0, .fit = FitCandidate::WideScenes},
     {.type = LensType::Stereographic, .name = "STEREOGRAPHIC", .coefficients = {}, .num_coefficients = 0,
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None,
      .mrcal = "LENSMODEL_STEREOGRAPHIC", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Stereographic,
      .family_rank = 0, .fit = FitCandidate::WideScenes},
     {.type = LensType::Lonlat, .name = "LONLAT", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
      .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LONLAT", .colmap = "",
-     .kalibr = "", .basalt = "", .family = LensFamily::Lonlat, .family_rank = 0, .fit = FitCandidate::No},
+     .kalibr = "", .basalt = "", .also_named = "equirectangular; Blender's EQUIRECTANGULAR",
+     .family = LensFamily::Lonlat, .family_rank = 0, .fit = FitCandidate::No},
     {.type = LensType::Latlon, .name = "LATLON", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
      .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LATLON", .colmap = "",
      .kalibr = "", .basalt = "", .family = LensFamily::Latlon, .family_rank = 0, .fit = FitCandidate::No},
@@ -195,11 +207,10 @@ inline constexpr LensInfo kLensTable[] = {
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
      .colmap = "", .kalibr = "eucm-none", .basalt = "eucm", .family = LensFamily::Eucm, .family_rank = 0,
      .fit = FitCandidate::OnRequest},
-    // camodocal and VINS call it "MEI".
     {.type = LensType::Mei, .name = "MEI", .coefficients = {"xi", "k1", "k2", "p1", "p2"}, .num_coefficients = 5,
      .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::Omnidir, .mrcal = "",
-     .colmap = "", .kalibr = "omni-radtan", .basalt = "", .family = LensFamily::Unified, .family_rank = 1,
-     .fit = FitCandidate::OnRequest},
+     .colmap = "", .kalibr = "omni-radtan", .basalt = "", .also_named = "camodocal's and VINS-Fusion's MEI",
+     .family = LensFamily::Unified, .family_rank = 1, .fit = FitCandidate::OnRequest},
     // COLMAP's and Kalibr's take points in front of the camera only; basalt's and this
     // one go on behind it (the same map where both are defined).
     {.type = LensType::Fov, .name = "FOV", .coefficients = {"omega"}, .num_coefficients = 1, .sees_behind_camera = true,
@@ -210,17 +221,17 @@ inline constexpr LensInfo kLensTable[] = {
      .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None, .mrcal = "",
      .colmap = "THIN_PRISM_FISHEYE", .kalibr = "", .basalt = "", .family = LensFamily::ThinPrismFisheye,
      .family_rank = 0, .fit = FitCandidate::OnRequest},
-    // Project Aria calls it Fisheye624.
     {.type = LensType::RadTanThinPrismFisheye, .name = "RAD_TAN_THIN_PRISM_FISHEYE",
      .coefficients = {"k0", "k1", "k2", "k3", "k4", "k5", "p0", "p1", "s0", "s1", "s2", "s3"},
      .num_coefficients = 12, .sees_behind_camera = true, .inverse = Inverse::Solved,
      .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "RAD_TAN_THIN_PRISM_FISHEYE", .kalibr = "",
-     .basalt = "", .family = LensFamily::Fisheye, .family_rank = 1, .fit = FitCandidate::OnRequest},
+     .basalt = "", .also_named = "Project Aria's Fisheye624", .family = LensFamily::Fisheye, .family_rank = 1,
+     .fit = FitCandidate::OnRequest},
     // Blender's FISHEYE_EQUISOLID panoramic camera (convert/blender_camera.hpp).
     {.type = LensType::Equisolid, .name = "EQUISOLID", .coefficients = {}, .num_coefficients = 0,
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
-     .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Equisolid, .family_rank = 0,
-     .fit = FitCandidate::OnRequest},
+     .colmap = "", .kalibr = "", .basalt = "", .also_named = "equal-area fisheye; Blender's FISHEYE_EQUISOLID",
+     .family = LensFamily::Equisolid, .family_rank = 0, .fit = FitCandidate::OnRequest},
     // JPL's CAHVOR (the C, A, H, V of its files are the pinhole and pose; O the optical
     // axis; R the radial terms).
     {.type = LensType::Cahvor, .name = "CAHVOR", .coefficients = {"alpha", "beta", "r0", "r1", "r2"},
@@ -233,14 +244,14 @@ inline constexpr LensInfo kLensTable[] = {
      .coefficients = {"alpha", "beta", "r0", "r1", "r2", "e0", "e1", "e2", "linearity"}, .num_coefficients = 9,
      .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None,
      .mrcal = "LENSMODEL_CAHVORE", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Cahvore,
-     .family_rank = 0, .fit = FitCandidate::No},
+     .family_rank = 0, .fit = FitCandidate::No, .mrcal_in_name = {.trailing = 1}},
     // Blender's FISHEYE_LENS_POLYNOMIAL panoramic camera: the angle as a polynomial of the
     // radius on the sensor, in millimetres (convert/blender_camera.hpp).
     {.type = LensType::LensPolynomial, .name = "FISHEYE_LENS_POLYNOMIAL", .coefficients = {"k0", "k1", "k2", "k3", "k4"},
      .num_coefficients = 5, .sees_behind_camera = true, .inverse = Inverse::ClosedForm,
      .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
-     .family = LensFamily::LensPolynomial, .family_rank = 0, .fit = FitCandidate::OnRequest,
-     .fit_sensor_width_mm = 36.0, .fit_held_coefficients = 1},
+     .also_named = "Blender's FISHEYE_LENS_POLYNOMIAL", .family = LensFamily::LensPolynomial, .family_rank = 0,
+     .fit = FitCandidate::OnRequest, .fit_sensor_width_mm = 36.0, .fit_held_coefficients = 1},
     // mrcal's splined model of a real lens; mrcal keeps the configuration (the first four
     // coefficients) in the model's name, LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=..., and
     // the control points in the intrinsics.
@@ -248,13 +259,13 @@ inline constexpr LensInfo kLensTable[] = {
      .coefficients = {"order", "Nx", "Ny", "fov_x_deg"}, .num_coefficients = kVariableCoefficientCount,
      .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None,
      .mrcal = "LENSMODEL_SPLINED_STEREOGRAPHIC", .colmap = "", .kalibr = "", .basalt = "",
-     .family = LensFamily::Splined, .family_rank = 0, .fit = FitCandidate::No},
-    // The panorama with straight verticals: LONLAT across, a pinhole down (OpenCV's
-    // stitching draws it: cv::detail::CylindricalWarper).
+     .family = LensFamily::Splined, .family_rank = 0, .fit = FitCandidate::No, .mrcal_in_name = {.leading = 4}},
+    // The panorama with straight verticals: LONLAT across, a pinhole down.
     {.type = LensType::Cylindrical, .name = "CYLINDRICAL", .coefficients = {}, .num_coefficients = 0,
      .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
-     .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Cylindrical, .family_rank = 0,
-     .fit = FitCandidate::No},
+     .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "OpenCV's stitching cv::detail::CylindricalWarper; Hugin's and PTGui's cylindrical",
+     .family = LensFamily::Cylindrical, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {
@@ -267,19 +278,55 @@ constexpr bool lens_table_is_consistent() {
         for (int i = 0; i < info.coefficients.count; ++i) {
             if (info.coefficients.names[static_cast<std::size_t>(i)].empty()) return false;
         }
+        // Every family has its simplest model, of rank 0, which names it (lens_family_base).
+        bool has_base = false;
+        for (const LensInfo& base : kLensTable) {
+            has_base = has_base || (base.family == info.family && base.family_rank == 0);
+        }
+        if (!has_base) return false;
+        // The names in mrcal's name are the table's: the trailing ones only where the count is fixed.
+        const InMrcalName in_name = info.mrcal_in_name;
+        if (in_name.leading < 0 || in_name.trailing < 0 || (variable && in_name.trailing > 0) ||
+            in_name.leading + in_name.trailing > info.coefficients.count ||
+            (info.mrcal.empty() && in_name.leading + in_name.trailing > 0)) {
+            return false;
+        }
     }
     return true;
 }
 }  // namespace detail
 static_assert(detail::lens_table_is_consistent(),
-              "kLensTable: a row out of LensType's order, or a coefficient count that disagrees with its names");
+              "kLensTable: a row out of LensType's order, a coefficient count that disagrees with its names, "
+              "a family without a model of rank 0, or coefficients in mrcal's name that the row does not name");
 
 // Every model, in the order of the table.
 constexpr std::span<const LensInfo> lens_models() { return kLensTable; }
 constexpr const LensInfo& lens_info(LensType type) { return kLensTable[static_cast<std::size_t>(type)]; }
 
+// mrcal's name for a lens of the model, its configuration included
+// (LENSMODEL_CAHVORE_linearity=0.37); "..." for each value when `coefficients` holds too
+// few (mrcal's unconfigured name, LENSMODEL_CAHVORE_linearity=...). Empty when mrcal lacks
+// the model.
+std::string mrcal_model_name(LensType type, std::span<const double> coefficients = {});
+
+// The table's values as words (libcam models): "closed-form", "solved"; "always",
+// "wide-scenes", "on-request", "no"; OpenCV's projection function
+// ("cv::fisheye::projectPoints"; empty for None).
+std::string_view to_string(Inverse inverse);
+std::string_view to_string(FitCandidate fit);
+std::string_view to_string(OpenCvFunction function);
+
 // Accepts "PINHOLE" and mrcal's "LENSMODEL_PINHOLE"; nullopt for an unknown name.
 std::optional<LensType> lens_type_from_name(std::string_view name);
+
+// The simplest model of `type`'s family (its rank 0), which names the family: PINHOLE
+// for OPENCV8, UCM for MEI, FISHEYE for RAD_TAN_THIN_PRISM_FISHEYE.
+constexpr const LensInfo& lens_family_base(LensType type) {
+    for (const LensInfo& info : kLensTable) {
+        if (info.family == lens_info(type).family && info.family_rank == 0) return info;
+    }
+    return lens_info(type);  // not reached: every family has one (lens_table_is_consistent)
+}
 
 // Does `container` express every camera of `model` exactly (same family, higher or equal rank)?
 constexpr bool lens_contains(LensType container, LensType model) {

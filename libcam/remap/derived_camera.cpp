@@ -87,11 +87,20 @@ Lens lens_turned(const Lens& lens) {
             tangential(7, 6);
             prism(8, 4);
             return out;
-        default:
-            throw InvalidArgument("quarter turn: a " + std::string(lens_info(lens.type).name) +
-                                  " lens does not look the same turned about its axis, and libcam cannot turn its "
-                                  "coefficients");
+        // Every model below is named, with no default, so that the compiler asks about a
+        // new model here: can its coefficients be turned?
+        case LensType::Opencv14:  // the tilt (tauX, tauY) not yet turned
+        case LensType::Lonlat:    // the longitude runs across, the latitude down
+        case LensType::Latlon:
+        case LensType::Cylindrical:
+        case LensType::Cahvor:  // the axis's offset (alpha, beta) not yet turned
+        case LensType::Cahvore:
+        case LensType::SplinedStereographic:  // a grid of control points not yet turned
+            break;
     }
+    throw InvalidArgument("quarter turn: a " + std::string(lens_info(lens.type).name) +
+                          " lens does not look the same turned about its axis, and libcam cannot turn its "
+                          "coefficients");
 }
 
 Camera turned_once(const Camera& camera) {

@@ -22,6 +22,7 @@ Runner add_remap(CLI::App& app);
 Runner add_derive(CLI::App& app);
 Runner add_render_plan(CLI::App& app);
 Runner add_formats(CLI::App& app);
+Runner add_models(CLI::App& app);
 
 // Writes text to stdout, or atomically to `path` when it is not empty.
 void emit(const std::string& text, const std::string& path);

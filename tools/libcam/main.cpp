@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     std::map<CLI::App*, Runner> runners;
     for (auto add : {add_convert, add_info, add_rays, add_project, add_remap, add_derive, add_render_plan, add_verify,
-                     add_fit, add_bench, add_demo, add_formats}) {
+                     add_fit, add_bench, add_demo, add_formats, add_models}) {
         Runner run = add(app);
         runners[app.get_subcommands({}).back()] = std::move(run);
     }
