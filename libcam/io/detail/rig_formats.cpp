@@ -176,21 +176,28 @@ Pose basalt_pose(const JsonField& transform) {
     return Pose{q.toRotationMatrix(), position}.inverse();
 }
 
+// basalt's name for one of a model's coefficients: the lens table's, but for FOV's omega,
+// which basalt calls w.
+std::string basalt_coefficient_name(std::string_view name) { return name == "omega" ? "w" : std::string(name); }
+
+// basalt's camera types that are not a lens-table name, in words for messages.
+constexpr std::string_view kBasaltOwnTypes = "ucm";
+
+std::string basalt_type_names() {
+    std::string names;
+    for (const LensInfo& info : lens_models()) {
+        if (!info.basalt.empty()) names += std::string(info.basalt) + ", ";
+    }
+    return names + std::string(kBasaltOwnTypes);
+}
+
 Camera basalt_camera(const JsonField& entry) {
     const std::string type = entry.at("camera_type").text();
     const JsonField k = entry.at("intrinsics");
     const auto value = [&](std::string_view key) { return k.at(key).number(); };
     Camera camera;
     camera.intrinsics = {value("fx"), value("fy"), value("cx"), value("cy"), 0.0};
-    if (type == "pinhole") {
-        camera.lens = {LensType::Pinhole, {}};
-    } else if (type == "kb4") {
-        camera.lens = {LensType::Fisheye, {value("k1"), value("k2"), value("k3"), value("k4")}};
-    } else if (type == "ds") {
-        camera.lens = {LensType::DoubleSphere, {value("xi"), value("alpha")}};
-    } else if (type == "eucm") {
-        camera.lens = {LensType::Eucm, {value("alpha"), value("beta")}};
-    } else if (type == "ucm") {
+    if (type == "ucm") {
         // basalt's m = (x, y) / (alpha d + (1 - alpha) z) = UCM's (x, y) / (z + xi d) times
         // 1 / (1 - alpha), with xi = alpha / (1 - alpha).
         const double alpha = value("alpha");
@@ -199,14 +206,16 @@ Camera basalt_camera(const JsonField& entry) {
         camera.intrinsics.fx *= scale;
         camera.intrinsics.fy *= scale;
         camera.lens = {LensType::Ucm, {alpha / (1.0 - alpha)}};
-    } else if (type == "fov") {
-        camera.lens = {LensType::Fov, {value("w")}};
-    } else if (type == "pinhole-radtan8") {
-        camera.lens = {LensType::Opencv8,
-                       {value("k1"), value("k2"), value("p1"), value("p2"), value("k3"), value("k4"), value("k5"),
-                        value("k6")}};
-    } else {
-        entry.at("camera_type").fail("must be pinhole, kb4, ds, eucm, ucm, fov or pinhole-radtan8, got '" + type + "'");
+        return camera;
+    }
+    // Every other type is the lens table's basalt name, its coefficients under the
+    // table's names.
+    const auto models = lens_models();
+    const auto found = std::find_if(models.begin(), models.end(), [&](const LensInfo& info) { return info.basalt == type; });
+    if (found == models.end()) entry.at("camera_type").fail("must be " + basalt_type_names() + ", got '" + type + "'");
+    camera.lens.type = found->type;
+    for (const std::string_view name : found->coefficients.view()) {
+        camera.lens.coefficients.push_back(value(basalt_coefficient_name(name)));
     }
     return camera;
 }
@@ -292,14 +301,11 @@ nlohmann::ordered_json basalt_intrinsics(const Camera& camera) {
         std::vector<double> radtan8 = c;
         radtan8.resize(8, 0.0);
         type = lens_info(LensType::Opencv8).basalt;
-        const char* names[] = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"};
-        for (std::size_t i = 0; i < 8; ++i) values[names[i]] = radtan8[i];
+        const std::span<const std::string_view> names = lens_info(LensType::Opencv8).coefficients.view();
+        for (std::size_t i = 0; i < names.size(); ++i) values[basalt_coefficient_name(names[i])] = radtan8[i];
     } else {
         const std::span<const std::string_view> names = lens_info(camera.lens.type).coefficients.view();
-        for (std::size_t i = 0; i < names.size(); ++i) {
-            // basalt's FOV coefficient is w (libcam's omega).
-            values[names[i] == "omega" ? std::string("w") : std::string(names[i])] = c[i];
-        }
+        for (std::size_t i = 0; i < names.size(); ++i) values[basalt_coefficient_name(names[i])] = c[i];
     }
     nlohmann::ordered_json entry;
     entry["camera_type"] = type;
