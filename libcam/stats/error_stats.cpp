@@ -43,4 +43,12 @@ ErrorStats error_stats(std::vector<double> errors_px) {
     return stats;
 }
 
+std::array<ErrorStatsField, 5> error_stats_fields(const ErrorStats& stats) {
+    return {{{"count", static_cast<double>(stats.count)},
+             {"median_px", stats.median_px},
+             {"p99_px", stats.p99_px},
+             {"max_px", stats.max_px},
+             {"rms_px", stats.rms_px}}};
+}
+
 }  // namespace libcam

@@ -11,7 +11,9 @@
 // An error that is NaN (a library gave no finite answer) counts as +infinity: infinitely
 // wrong, never silently dropped.
 
+#include <array>
 #include <cstddef>
+#include <string_view>
 #include <span>
 #include <vector>
 
@@ -27,6 +29,14 @@ struct ErrorStats {
 };
 
 ErrorStats error_stats(std::vector<double> errors_px);
+
+// One field of the statistics, by the name every report gives it (JSON keys, Python dict
+// keys): count, median_px, p99_px, max_px, rms_px, in that order.
+struct ErrorStatsField {
+    std::string_view name;
+    double value;
+};
+std::array<ErrorStatsField, 5> error_stats_fields(const ErrorStats& stats);
 
 // The nearest-rank q-quantile (q in [0, 1]) of values sorted in increasing order; the
 // values must not be empty.

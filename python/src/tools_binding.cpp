@@ -19,13 +19,16 @@ namespace libcam::python {
 
 namespace {
 
+// The statistics under the names every report gives them (error_stats_fields).
 py::dict stats_dict(const ErrorStats& stats) {
     py::dict out;
-    out["count"] = stats.count;
-    out["median_px"] = stats.median_px;
-    out["p99_px"] = stats.p99_px;
-    out["max_px"] = stats.max_px;
-    out["rms_px"] = stats.rms_px;
+    for (const ErrorStatsField& field : error_stats_fields(stats)) {
+        if (field.name == "count") {
+            out["count"] = stats.count;
+        } else {
+            out[py::str(std::string(field.name))] = field.value;
+        }
+    }
     return out;
 }
 

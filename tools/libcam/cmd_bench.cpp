@@ -14,6 +14,7 @@
 #include "bench_cases.hpp"
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "json_output.hpp"
 #include "libcam/camera/simd.hpp"
 #include "libcam/interop/bench.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -107,8 +108,6 @@ BenchSettings settings_from(const BenchFlags& flags) {
     return settings;
 }
 
-nlohmann::json number_or_null(double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr); }
-
 nlohmann::json row_json(const BenchRow& row) {
     nlohmann::json out;
     out["op"] = row.op;
@@ -119,12 +118,10 @@ nlohmann::json row_json(const BenchRow& row) {
     out["camera"] = row.camera;
     out["threads"] = row.threads;
     out["simd"] = row.simd;
-    out["ns_per_point"] = number_or_null(row.ns_per_point);
+    out["ns_per_point"] = finite_or_null<nlohmann::json>(row.ns_per_point);
     const bool measured = row.error && row.error->count > 0;
-    out["median_px"] = measured ? number_or_null(row.error->median_px) : nlohmann::json(nullptr);
-    out["p99_px"] = measured ? number_or_null(row.error->p99_px) : nlohmann::json(nullptr);
-    out["max_px"] = measured ? number_or_null(row.error->max_px) : nlohmann::json(nullptr);
-    out["invalid_fraction"] = number_or_null(row.invalid_fraction);
+    put_error_stats(out, measured ? *row.error : ErrorStats{}, measured, {"median_px", "p99_px", "max_px"});
+    out["invalid_fraction"] = finite_or_null<nlohmann::json>(row.invalid_fraction);
     return out;
 }
 

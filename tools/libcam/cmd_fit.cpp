@@ -10,6 +10,7 @@
 
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "json_output.hpp"
 #include "libcam/convert/blender_camera.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
@@ -23,7 +24,6 @@ namespace libcam::cli {
 
 namespace {
 
-using Json = nlohmann::ordered_json;  // keys in the documented order
 
 struct FitFlags {
     std::string source;
@@ -243,13 +243,11 @@ std::string format_table(const std::string& source_name, const Camera& source, c
            format_choice(source, options, report);
 }
 
-Json number_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
-
 Json chosen_json(const CandidateReport& chosen, const Camera& source, const FitOptions& options, const FitReport& report) {
     Json out = {{"model", chosen.fit.candidate.name},
                           {"params", chosen.fit.params},
-                          {"rms_px", number_or_null(chosen.rms_px)},
-                          {"max_px", number_or_null(chosen.max_px)}};
+                          {"rms_px", finite_or_null(chosen.rms_px)},
+                          {"max_px", finite_or_null(chosen.max_px)}};
     if (options.motion != CameraMotion::None) {
         const Pose& motion = chosen.fit.camera.pose;
         out["motion"] = {{"rvec", {motion.rvec().x(), motion.rvec().y(), motion.rvec().z()}},
@@ -273,8 +271,8 @@ std::string format_json(const Camera& source, const Scene& scene, const FitOptio
     for (const CandidateReport& entry : report.candidates) {
         out["candidates"].push_back({{"model", entry.fit.candidate.name},
                                      {"n_params", entry.fit.candidate.num_params()},
-                                     {"rms_px", number_or_null(entry.rms_px)},
-                                     {"max_px", number_or_null(entry.max_px)},
+                                     {"rms_px", finite_or_null(entry.rms_px)},
+                                     {"max_px", finite_or_null(entry.max_px)},
                                      {"covers_scene", entry.covers_scene},
                                      {"pass", entry.pass}});
     }

@@ -10,6 +10,7 @@
 
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "json_output.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/verify.hpp"
 #include "libcam/io/camera_file.hpp"
@@ -153,20 +154,13 @@ std::string format_table(const std::string& file, const VerifyReport& report) {
 // ---------------------------------------------------------------------------------
 // JSON, keys in the order written ("pass" first).
 
-using Json = nlohmann::ordered_json;
-
-// JSON has no infinity or NaN: an error without a finite value is null.
-Json json_number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
 Json check_json(const VerifyCheck& check) {
     const bool measured = !check.skipped() && check.stats.count > 0;
-    auto stat = [&](double value) { return measured ? json_number(value) : Json(nullptr); };
     Json out;
     out["name"] = check.name;
     out["library"] = check.library;
-    out["median_px"] = stat(check.stats.median_px);
-    out["p99_px"] = stat(check.stats.p99_px);
-    out["max_px"] = stat(check.stats.max_px);
+    put_error_stats(out, check.stats, measured, {"median_px", "p99_px", "max_px"});
     out["pass"] = check.pass();
     out["status"] = status(check);
     out["tolerance_px"] = check.tolerance_px ? Json(*check.tolerance_px) : Json(nullptr);
@@ -178,8 +172,8 @@ Json check_json(const VerifyCheck& check) {
 Json summary_json(const std::optional<OpenCvDefaultSummary>& summary) {
     if (!summary) return nullptr;
     return {{"function", summary->function},
-            {"median_px", json_number(summary->median_px)},
-            {"max_px", json_number(summary->max_px)},
+            {"median_px", finite_or_null(summary->median_px)},
+            {"max_px", finite_or_null(summary->max_px)},
             {"worst_pixel", {summary->worst_pixel.x(), summary->worst_pixel.y()}},
             {"fraction_over_0_1px", summary->fraction_over_0_1px},
             {"fraction_over_1px", summary->fraction_over_1px}};
