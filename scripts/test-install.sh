@@ -16,7 +16,8 @@ cmake --install "$build" --prefix "$work/prefix" > "$work/install.log"
 for path in bin/libcam include/libcam/version.hpp include/libcam/convert/fov_convert.hpp \
             include/libcam/io/camera_file.hpp include/libcam/interop/formats.hpp include/libcam/report/image.hpp \
             lib/cmake/libcam/libcamConfig.cmake lib/pkgconfig/libcam.pc lib/pkgconfig/libcam-core.pc \
-            lib/pkgconfig/libcam-io.pc lib/pkgconfig/libcam-fit.pc lib/pkgconfig/libcam-report.pc; do
+            lib/pkgconfig/libcam-io.pc lib/pkgconfig/libcam-check.pc include/libcam/check/verify.hpp \
+            lib/pkgconfig/libcam-fit.pc lib/pkgconfig/libcam-report.pc; do
   [ -e "$work/prefix/$path" ] || { echo "test-install: missing $path in the install"; exit 1; }
 done
 # The detail/ folders (report's OpenCV helpers, io's per-format readers and the parsers'

@@ -21,7 +21,7 @@
 #include "cli_runner.hpp"
 #include "lens_cases.hpp"
 #include "libcam/error.hpp"
-#include "libcam/interop/verify.hpp"
+#include "libcam/check/verify.hpp"
 #include "libcam/io/camera_file.hpp"
 
 using namespace libcam;

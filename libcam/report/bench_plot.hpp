@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "libcam/interop/bench.hpp"
+#include "libcam/check/bench.hpp"
 #include "libcam/report/image.hpp"
 
 namespace libcam {

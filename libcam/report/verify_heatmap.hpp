@@ -1,10 +1,10 @@
 #pragma once
 // The picture of one `libcam verify` check's error over the image
-// (`libcam verify --heatmap`), drawn from its report (interop/verify.hpp).
+// (`libcam verify --heatmap`), drawn from its report (check/verify.hpp).
 
 #include <string_view>
 
-#include "libcam/interop/verify.hpp"
+#include "libcam/check/verify.hpp"
 #include "libcam/report/image.hpp"
 
 namespace libcam {

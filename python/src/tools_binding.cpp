@@ -10,7 +10,7 @@
 #include "libcam/error.hpp"
 #include "libcam/fit/fit.hpp"
 #include "libcam/fit/scene.hpp"
-#include "libcam/interop/verify.hpp"
+#include "libcam/check/verify.hpp"
 #include "libcam/remap/new_camera.hpp"
 #include "libcam/remap/remap_map.hpp"
 

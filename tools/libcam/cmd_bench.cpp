@@ -1,5 +1,5 @@
 // libcam bench: the speed/accuracy trade of every unprojection and projection method of
-// libcam, OpenCV and mrcal, measured on the same pixels in one run (libcam/interop/bench.hpp),
+// libcam, OpenCV and mrcal, measured on the same pixels in one run (libcam/check/bench.hpp),
 // printed as a table, as JSON, and drawn as time against worst error
 // (libcam/report/bench_plot.hpp).
 
@@ -16,7 +16,7 @@
 #include "commands.hpp"
 #include "json_output.hpp"
 #include "libcam/camera/simd.hpp"
-#include "libcam/interop/bench.hpp"
+#include "libcam/check/bench.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/report/bench_plot.hpp"

@@ -1,12 +1,12 @@
 // libcam demo: the built-in example. Converts the two worked example cameras to
 // calibrated cameras and checks every ray against OpenCV (projectPoints,
-// undistortPoints, Rodrigues) and mrcal (mrcal_project): libcam/interop/worked_examples.hpp.
+// undistortPoints, Rodrigues) and mrcal (mrcal_project): libcam/check/worked_examples.hpp.
 
 #include <iomanip>
 #include <iostream>
 
 #include "commands.hpp"
-#include "libcam/interop/worked_examples.hpp"
+#include "libcam/check/worked_examples.hpp"
 #include "libcam/text/number_format.hpp"
 
 namespace libcam::cli {

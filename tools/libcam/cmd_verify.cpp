@@ -1,5 +1,5 @@
 // libcam verify FILE: checks a camera file against OpenCV and mrcal over a grid of
-// pixels (libcam/interop/verify.hpp) and prints one table, or JSON; --heatmap draws one
+// pixels (libcam/check/verify.hpp) and prints one table, or JSON; --heatmap draws one
 // check's error over the image. Exit 0 when every check is inside its tolerance.
 
 #include <algorithm>
@@ -12,7 +12,7 @@
 #include "commands.hpp"
 #include "json_output.hpp"
 #include "libcam/error.hpp"
-#include "libcam/interop/verify.hpp"
+#include "libcam/check/verify.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/report/verify_heatmap.hpp"

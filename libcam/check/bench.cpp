@@ -1,4 +1,4 @@
-#include "libcam/interop/bench.hpp"
+#include "libcam/check/bench.hpp"
 
 #include <algorithm>
 #include <chrono>

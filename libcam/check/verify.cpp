@@ -1,4 +1,4 @@
-#include "libcam/interop/verify.hpp"
+#include "libcam/check/verify.hpp"
 
 #include <algorithm>
 #include <cmath>

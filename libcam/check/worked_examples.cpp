@@ -1,4 +1,4 @@
-#include "libcam/interop/worked_examples.hpp"
+#include "libcam/check/worked_examples.hpp"
 
 #include <algorithm>
 #include <cmath>
