@@ -49,13 +49,13 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # through the fitting code the other fit tests run here.
 # So does the comparison with mrcal's maps (277 s under the sanitizers, 17 s in step 1):
 # eight full maps through the remap code the remap tests run here on smaller images.
-# And Blender's renders (about 110 s in step 1): the time is Blender's, and the libcam code
-# they run (the Blender camera files, projection, render plans) is tested here by the
-# file, model and remap tests. And the new camera chosen for real lenses and for the
+# And Blender's renders (about 110 s in step 1; their program is not even built here): the
+# time is Blender's, and the libcam code they run (the Blender camera files, projection,
+# render plans) is tested here by the file, model and remap tests. And the new camera chosen for real lenses and for the
 # lenses where OpenCV's choosers fail (197 s under the sanitizers, 20 s in step 1): whole
 # maps of large real lenses, through the chooser and map code the other remap tests run
 # here on smaller images.
-asan_skipped="install_consumer|test_blender_render|The new camera for real lenses|The new camera where OpenCV's choosers fail|mrcal's splined calibrations become an OpenCV model|peers: libcam's remap maps against mrcal|rays both ways agree on every pixel of a 1920x1080 image|CAHVORE: libcam's rays reproject through mrcal_project|harness: float agrees with double within a multiple of float's epsilon|Unprojection agrees with mrcal_unproject and cv::undistortPoints wherever they converge inside the domain"
+asan_skipped="install_consumer|The new camera for real lenses|The new camera where OpenCV's choosers fail|mrcal's splined calibrations become an OpenCV model|peers: libcam's remap maps against mrcal|rays both ways agree on every pixel of a 1920x1080 image|CAHVORE: libcam's rays reproject through mrcal_project|harness: float agrees with double within a multiple of float's epsilon|Unprojection agrees with mrcal_unproject and cv::undistortPoints wherever they converge inside the domain"
 (cd "$root/build-asan" && ctest --output-on-failure --parallel "$jobs" --timeout 1800 -E "$asan_skipped")
 
 echo "== 3/3: fuzzing every reader and the number parser"
