@@ -591,7 +591,13 @@ std::optional<Field> Field::find(std::initializer_list<std::string_view> keys) c
 
 Field Field::at(std::initializer_list<std::string_view> keys) const {
     if (std::optional<Field> found = find(keys)) return *found;
-    throw FileError(*source_ + ": \"" + child_name(*keys.begin()) + "\": missing");
+    fail_at(*keys.begin(), "missing");
+}
+
+void Field::fail_at(std::string_view key, const std::string& what) const {
+    static const DocumentNode absent;  // no line: the key is not there
+    const DocumentNode* value = node_->find(key);
+    Field(value != nullptr ? *value : absent, child_name(key), source_).fail(what);
 }
 
 std::size_t Field::size() const {

@@ -105,6 +105,9 @@ public:
     // Throws FileError naming the source, line and field: "<source>: line L: \"<name>\": <what>"
     // ("<source>: \"<name>\": <what>" where the line is not known).
     [[noreturn]] void fail(const std::string& what) const;
+    // The same for a key of this map, whether or not it is there ("missing", or a value
+    // that disagrees with another key): "<source>: \"<name>.<key>\": <what>".
+    [[noreturn]] void fail_at(std::string_view key, const std::string& what) const;
 
 private:
     Field(const DocumentNode& node, std::string name, const std::string* source);

@@ -110,9 +110,7 @@ public:
     std::string string(const char* key) const { return field(key).text(); }
 
     // A key's error, whether or not the file has the key.
-    [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-        Field(top_.node(), key, top_.source()).fail(what);
-    }
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const { top_.fail_at(key, what); }
 
     // Numbers as a message shows them: [0, 0, 640, 480].
     static std::string listed(const Eigen::VectorXd& v) {

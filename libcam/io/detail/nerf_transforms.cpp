@@ -132,7 +132,7 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
     }
     const std::optional<double> fx = focal_length(keys, "fl_x", "camera_angle_x", size.width);
     const std::optional<double> fy_given = focal_length(keys, "fl_y", "camera_angle_y", size.height);
-    if (!fx && !fy_given) throw FileError(keys.top.source() + ": \"fl_x\": missing (and no camera_angle_x)");
+    if (!fx && !fy_given) keys.top.fail_at("fl_x", "missing (and no camera_angle_x)");
     const double fy = fy_given.value_or(*fx);
     // Without cx, cy: the image centre, or NeRF's W / 2 on request.
     const double unstated_shift =

@@ -23,6 +23,14 @@ ImageSize size_of(const Field& width, const Field& height) {
     return {static_cast<int>(width.integer(1, kMaxImageSide)), static_cast<int>(height.integer(1, kMaxImageSide))};
 }
 
+// A resolution written as [width, height] (Kalibr, EuRoC, basalt).
+ImageSize size_of(const Field& resolution) {
+    if (resolution.node().kind != DocumentNode::Kind::Sequence || resolution.size() != 2) {
+        resolution.fail("expected [width, height]");
+    }
+    return size_of(resolution.item(0), resolution.item(1));
+}
+
 // ---- Kalibr ----------------------------------------------------------------------------
 
 // A 4x4 homogeneous transform [R t; 0 0 0 1] as a pose (X_to = R X_from + t).
@@ -31,8 +39,7 @@ Pose read_transform(const Field& field) {
     if (node.kind != DocumentNode::Kind::Sequence || node.items.size() != 4) field.fail("expected 4 rows of 4 numbers");
     Eigen::Matrix4d m;
     for (int r = 0; r < 4; ++r) {
-        const Field row(node.items[static_cast<std::size_t>(r)], field.name() + "[" + std::to_string(r) + "]",
-                        field.source());
+        const Field row = field.item(static_cast<std::size_t>(r));
         const std::vector<double> values = row.numbers(4);
         if (values.size() != 4) row.fail("expected 4 numbers, got " + std::to_string(values.size()));
         for (int c = 0; c < 4; ++c) m(r, c) = values[static_cast<std::size_t>(c)];
@@ -93,11 +100,7 @@ NamedCamera read_kalibr_camera(const std::string& name, const Field& cam, const 
         const std::vector<double> values = distortion->numbers(kMaxLensCoefficients);
         coefficients.insert(coefficients.end(), values.begin(), values.end());
     }
-    const Field resolution = cam.at({"resolution"});
-    const DocumentNode& sizes = resolution.node();
-    if (sizes.kind != DocumentNode::Kind::Sequence || sizes.items.size() != 2) resolution.fail("expected [width, height]");
-    const ImageSize size = size_of(Field(sizes.items[0], resolution.name() + "[0]", source),
-                                   Field(sizes.items[1], resolution.name() + "[1]", source));
+    const ImageSize size = size_of(cam.at({"resolution"}));
 
     Camera camera;
     camera.size = size;
@@ -236,12 +239,8 @@ NamedCamera read_euroc_sensor(const Field& file, const std::string& source) {
     const Field intrinsics = file.at({"intrinsics"});
     const std::vector<double> k = intrinsics.numbers(4);
     if (k.size() != 4) intrinsics.fail("expected fu, fv, cu, cv");
-    const Field resolution = file.at({"resolution"});
-    const DocumentNode& sizes = resolution.node();
-    if (sizes.kind != DocumentNode::Kind::Sequence || sizes.items.size() != 2) resolution.fail("expected [width, height]");
     Camera camera;
-    camera.size = size_of(Field(sizes.items[0], resolution.name() + "[0]", source),
-                          Field(sizes.items[1], resolution.name() + "[1]", source));
+    camera.size = size_of(file.at({"resolution"}));
     camera.intrinsics = {k[0], k[1], k[2], k[3], 0.0};
     const Field coefficients = file.at({"distortion_coefficients"});
     camera.lens = {type, coefficients.numbers(4)};
@@ -441,8 +440,7 @@ std::vector<NamedCamera> parse_basalt_calibration(std::string_view text, const s
     std::vector<NamedCamera> cameras;
     for (std::size_t i = 0; i < count; ++i) {
         Camera camera = basalt_camera(intrinsics.item(i));
-        const Field size = resolution.item(i);
-        camera.size = size_of(size.item(0), size.item(1));
+        camera.size = size_of(resolution.item(i));
         if (poses) camera.pose = basalt_pose(poses->item(i));
         const std::string name = "cam" + std::to_string(i);
         cameras.push_back(checked(name, std::move(camera), source + ": \"value0.intrinsics[" + std::to_string(i) + "]\""));
