@@ -242,3 +242,42 @@ TEST_CASE("io alone: rig files that are wrong are refused, naming the file, line
     camera.intrinsics = {2, 2, 1.5, 1.5, 0};
     CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Camodocal), Catch::Contains("does not write them"));
 }
+
+TEST_CASE("io alone: JSON files read through the one tree: errors name the file and key, JSON's types are kept") {
+    const auto error_of = [](const std::string& text, CameraFormat format) {
+        return file_error_of([&] { (void)parse_camera_set(text, format, "c.json"); });
+    };
+    const std::string nerf_size = R"("w": 640, "h": 480)";
+    // JSON records no lines: the message has none (never "line 0").
+    CHECK(error_of("{\"fl_x\": 500, \"w\": 640.5, \"h\": 480}", CameraFormat::Nerf) ==
+          "c.json: \"w\": expected a whole number in [1, 1000000], got 640.5");
+    // A string that holds a number is still a string.
+    CHECK(error_of("{\"fl_x\": \"500\", " + nerf_size + "}", CameraFormat::Nerf) == "c.json: \"fl_x\": expected a number, got \"500\"");
+    CHECK(error_of(R"({"value0": {"intrinsics": [{"camera_type": "pinhole", "intrinsics": {"fx": 1, "fy": 1, "cx": 2, "cy": 2}}],
+                                     "resolution": [["4", 4]]}})",
+                   CameraFormat::Basalt) == "c.json: \"value0.resolution[0][0]\": expected an integer, got \"4\"");
+    // A number or boolean where text belongs is refused, and a boolean is no number.
+    CHECK(error_of("{\"fl_x\": 500, " + nerf_size + ", \"camera_model\": 7}", CameraFormat::Nerf) ==
+          "c.json: \"camera_model\": expected a string, got 7");
+    CHECK(error_of("{\"fl_x\": true, " + nerf_size + "}", CameraFormat::Nerf) == "c.json: \"fl_x\": expected a number, got true");
+    // instant-ngp's flags: false is no special lens; anything else is one.
+    CHECK(parse_camera_set("{\"fl_x\": 500, " + nerf_size + ", \"is_fisheye\": false}", CameraFormat::Nerf, "c.json")
+              .cameras.size() == 1);
+    CHECK(error_of("{\"fl_x\": 500, " + nerf_size + ", \"is_fisheye\": \"false\"}", CameraFormat::Nerf) ==
+          "c.json: \"is_fisheye\": instant-ngp's special lenses are not read by libcam");
+    // null is a value the writer did not have: an optional key's default, a required key missing.
+    CHECK(parse_camera("{\"fl_x\": 500, " + nerf_size + ", \"k1\": null}", CameraFormat::Nerf, "c.json").camera.lens.type ==
+          LensType::Pinhole);
+    CHECK(error_of(R"({"value0": {"intrinsics": [{"camera_type": "kb4", "intrinsics": {"fx": 1, "fy": null}}], "resolution": [[4, 4]]}})",
+                   CameraFormat::Basalt) == "c.json: \"value0.intrinsics[0].intrinsics.fy\": missing");
+    // A key given twice: its last value, as JSON libraries read it.
+    CHECK(parse_camera("{\"fl_x\": 400, " + nerf_size + ", \"fl_x\": 500}", CameraFormat::Nerf, "c.json").camera.intrinsics.fx ==
+          500.0);
+    // Parse errors and numbers past a double's range name the key they stopped in.
+    CHECK(error_of("{\"fl_x\": 1e999, " + nerf_size + "}", CameraFormat::Nerf) == "c.json: \"fl_x\": must be finite, got 1e999");
+    CHECK_THAT(error_of(R"({"value0": {"intrinsics": [{"camera_type": "kb4", )", CameraFormat::Basalt),
+               Catch::StartsWith("c.json: \"value0.intrinsics[0]\": not valid JSON: "));
+    // Nested past the depth limit: refused before anything recurses through it.
+    CHECK_THAT(error_of(std::string(40, '[') + std::string(40, ']'), CameraFormat::Open3d),
+               Catch::EndsWith(": nested more than 32 levels deep"));
+}

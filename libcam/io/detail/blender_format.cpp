@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "libcam/error.hpp"
-#include "libcam/io/detail/json_field.hpp"
+#include "libcam/io/detail/document.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -16,7 +16,6 @@ namespace libcam {
 
 namespace {
 
-using nlohmann::json;
 using nlohmann::ordered_json;
 
 constexpr std::string_view kFormatName = "libcam Blender cameras";
@@ -46,17 +45,18 @@ constexpr std::array<std::pair<SensorFit, std::string_view>, 3> kSensorFits = {{
     {SensorFit::Auto, "AUTO"}, {SensorFit::Horizontal, "HORIZONTAL"}, {SensorFit::Vertical, "VERTICAL"}}};
 
 // A number the file may leave out (Blender's default then).
-double number_or(const JsonField& camera, std::string_view key, double fallback) {
-    return camera.has(key) ? camera.at(key).number() : fallback;
+double number_or(const Field& camera, std::string_view key, double fallback) {
+    const std::optional<Field> value = camera.find({key});
+    return value ? value->number() : fallback;
 }
 
-BlenderCameraType camera_type(const JsonField& camera) {
-    const JsonField type = camera.at("type");
+BlenderCameraType camera_type(const Field& camera) {
+    const Field type = camera.at({"type"});
     const std::string text = type.text();
     if (text == "PERSP") return BlenderCameraType::Perspective;
     if (text == "ORTHO") type.fail("an orthographic camera has no ray through a centre; libcam models central cameras only");
     if (text != "PANO") type.fail("expected PERSP or PANO, got '" + text + "'");
-    const JsonField panorama = camera.at("panorama_type");
+    const Field panorama = camera.at({"panorama_type"});
     const std::string name = panorama.text();
     for (const PanoramaName& entry : kPanoramaTypes) {
         if (entry.name == name) return entry.type;
@@ -65,25 +65,25 @@ BlenderCameraType camera_type(const JsonField& camera) {
                   name + "'");
 }
 
-SensorFit sensor_fit(const JsonField& camera) {
-    if (!camera.has("sensor_fit")) return SensorFit::Auto;
-    const JsonField field = camera.at("sensor_fit");
-    const std::string text = field.text();
+SensorFit sensor_fit(const Field& camera) {
+    const std::optional<Field> field = camera.find({"sensor_fit"});
+    if (!field) return SensorFit::Auto;
+    const std::string text = field->text();
     for (const auto& [fit, name] : kSensorFits) {
         if (name == text) return fit;
     }
-    field.fail("expected AUTO, HORIZONTAL or VERTICAL, got '" + text + "'");
+    field->fail("expected AUTO, HORIZONTAL or VERTICAL, got '" + text + "'");
 }
 
 // The pose of a camera object's world matrix: its columns' lengths are the object's scale,
 // which Blender takes out before rendering; a mirrored or sheared matrix is refused.
-Pose pose_of_world_matrix(const JsonField& field) {
+Pose pose_of_world_matrix(const Field& field) {
     if (field.size() != 4) field.fail("expected 4 rows, got " + std::to_string(field.size()));
     Eigen::Matrix4d m;
     for (std::size_t r = 0; r < 4; ++r) {
-        const JsonField row = field.at(r);
+        const Field row = field.item(r);
         if (row.size() != 4) row.fail("expected 4 numbers, got " + std::to_string(row.size()));
-        for (std::size_t c = 0; c < 4; ++c) m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = row.at(c).number();
+        for (std::size_t c = 0; c < 4; ++c) m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = row.item(c).number();
     }
     if (m.row(3) != Eigen::RowVector4d(0, 0, 0, 1)) field.fail("the last row must be 0 0 0 1");
     Mat3 axes = m.topLeftCorner<3, 3>();
@@ -104,20 +104,21 @@ Pose pose_of_world_matrix(const JsonField& field) {
     return pose;
 }
 
-BlenderCamera blender_settings(const JsonField& camera) {
+BlenderCamera blender_settings(const Field& camera) {
     BlenderCamera b;
     b.type = camera_type(camera);
-    const int percentage = camera.has("resolution_percentage") ? camera.at("resolution_percentage").integer(1, 32767) : 100;
+    const std::optional<Field> percentage_field = camera.find({"resolution_percentage"});
+    const long long percentage = percentage_field ? percentage_field->integer(1, 32767) : 100;
     // Blender renders resolution x percentage / 100 pixels, rounded down.
     const auto rendered = [&](std::string_view key) {
-        const long long side = static_cast<long long>(camera.at(key).integer(1, 65536)) * percentage / 100;
-        if (side < 1) camera.at("resolution_percentage").fail("leaves no pixel of " + std::string(key));
+        const long long side = camera.at({key}).integer(1, 65536) * percentage / 100;
+        if (side < 1) percentage_field->fail("leaves no pixel of " + std::string(key));
         return static_cast<int>(side);
     };
     b.size = {rendered("resolution_x"), rendered("resolution_y")};
     b.pixel_aspect_x = number_or(camera, "pixel_aspect_x", 1.0);
     b.pixel_aspect_y = number_or(camera, "pixel_aspect_y", 1.0);
-    if (b.type == BlenderCameraType::Perspective) b.lens_mm = camera.at("lens").number();
+    if (b.type == BlenderCameraType::Perspective) b.lens_mm = camera.at({"lens"}).number();
     b.sensor_width_mm = number_or(camera, "sensor_width", b.sensor_width_mm);
     b.sensor_height_mm = number_or(camera, "sensor_height", b.sensor_height_mm);
     b.sensor_fit = sensor_fit(camera);
@@ -126,34 +127,37 @@ BlenderCamera blender_settings(const JsonField& camera) {
     switch (b.type) {
         case BlenderCameraType::Perspective: break;
         case BlenderCameraType::FisheyeEquisolid:
-            b.fisheye_lens_mm = camera.at("fisheye_lens").number();
+            b.fisheye_lens_mm = camera.at({"fisheye_lens"}).number();
             [[fallthrough]];
-        case BlenderCameraType::FisheyeEquidistant: b.fisheye_fov = camera.at("fisheye_fov").number(); break;
+        case BlenderCameraType::FisheyeEquidistant: b.fisheye_fov = camera.at({"fisheye_fov"}).number(); break;
         case BlenderCameraType::FisheyeLensPolynomial:
             for (std::size_t i = 0; i < b.fisheye_polynomial.size(); ++i) {
-                b.fisheye_polynomial[i] = camera.at("fisheye_polynomial_k" + std::to_string(i)).number();
+                b.fisheye_polynomial[i] = camera.at({"fisheye_polynomial_k" + std::to_string(i)}).number();
             }
             break;
         case BlenderCameraType::Equirectangular:
-            b.latitude_min = camera.at("latitude_min").number();
-            b.latitude_max = camera.at("latitude_max").number();
-            b.longitude_min = camera.at("longitude_min").number();
-            b.longitude_max = camera.at("longitude_max").number();
+            b.latitude_min = camera.at({"latitude_min"}).number();
+            b.latitude_max = camera.at({"latitude_max"}).number();
+            b.longitude_min = camera.at({"longitude_min"}).number();
+            b.longitude_max = camera.at({"longitude_max"}).number();
             break;
     }
     return b;
 }
 
-NamedCamera read_camera(const JsonField& entry) {
+NamedCamera read_camera(const Field& entry) {
     Camera camera;
     try {
         camera = camera_from_blender(blender_settings(entry));
     } catch (const InvalidArgument& error) {
         entry.fail(error.what());
     }
-    if (entry.has("matrix_world")) camera.pose = pose_of_world_matrix(entry.at("matrix_world"));
-    std::string name = entry.has("name") ? entry.at("name").text() : std::string();
-    if (entry.has("frame")) name += "@" + std::to_string(entry.at("frame").whole_number(-1048574, 1048574));
+    if (const std::optional<Field> matrix = entry.find({"matrix_world"})) camera.pose = pose_of_world_matrix(*matrix);
+    const std::optional<Field> name_field = entry.find({"name"});
+    std::string name = name_field ? name_field->text() : std::string();
+    if (const std::optional<Field> frame = entry.find({"frame"})) {
+        name += "@" + std::to_string(frame->whole_number(-1048574, 1048574));
+    }
     return {std::move(name), {std::move(camera), std::nullopt}};
 }
 
@@ -272,29 +276,19 @@ bool claims_blender_cameras(const DocumentNode& root) {
     return format != nullptr && format->kind == DocumentNode::Kind::Scalar && format->text == kFormatName;
 }
 
-namespace {
-
-bool is_blender_cameras(const nlohmann::json& root) {
-    if (!root.is_object()) return false;
-    const auto format = root.find("format");
-    return format != root.end() && format->is_string() && *format == kFormatName;
-}
-
-}  // namespace
-
 std::vector<NamedCamera> parse_blender_cameras(std::string_view text, const std::string& source) {
-    const json root = parse_json_document(text, source);
-    const JsonField top{root, "", source};
-    if (!is_blender_cameras(root)) top.fail("expected \"format\": \"" + std::string(kFormatName) + "\"");
-    const JsonField list = top.at("cameras");
+    const DocumentNode root = parse_json_tree(text, source);
+    const Field top(root, "", source);
+    if (!claims_blender_cameras(root)) top.fail("expected \"format\": \"" + std::string(kFormatName) + "\"");
+    const Field list = top.at({"cameras"});
     if (list.size() == 0) list.fail("no camera");
     std::vector<NamedCamera> cameras;
     for (std::size_t i = 0; i < list.size(); ++i) {
-        NamedCamera named = read_camera(list.at(i));
+        NamedCamera named = read_camera(list.item(i));
         try {
             named.file.camera.validate();
         } catch (const InvalidArgument& error) {
-            list.at(i).fail(error.what());
+            list.item(i).fail(error.what());
         }
         cameras.push_back(std::move(named));
     }

@@ -422,7 +422,148 @@ DocumentNode parse_opencv_xml_document(std::string_view text, const std::string&
     return tree;
 }
 
+// ---- JSON (nlohmann) ----
+
+namespace {
+
+// Builds the tree straight from nlohmann's parse events, so that no other tree is built
+// first, the depth is checked before anything nests deeper, and a parse error can name
+// the key it stopped in.
+class JsonTreeBuilder : public nlohmann::json_sax<nlohmann::json> {
+public:
+    explicit JsonTreeBuilder(const std::string& source) : source_(source) {}
+
+    DocumentNode take() { return std::move(root_); }
+    // Why the parse stopped, with the key it stopped in: "<source>: \"K[2]\": ...".
+    [[noreturn]] void refuse() const { throw FileError(source_ + where() + ": " + error_); }
+
+    bool null() override { return add(scalar(DocumentNode::Kind::Null, "", "null")); }
+    bool boolean(bool value) override { return add(scalar(DocumentNode::Kind::Scalar, value ? "true" : "false", "boolean")); }
+    bool number_integer(number_integer_t value) override { return number(std::to_string(value)); }
+    bool number_unsigned(number_unsigned_t value) override { return number(std::to_string(value)); }
+    bool number_float(number_float_t, const string_t& text) override { return number(text); }
+    bool string(string_t& value) override { return add(scalar(DocumentNode::Kind::Scalar, std::move(value), "string")); }
+    bool binary(binary_t&) override { return false; }  // not JSON text
+    bool start_object(std::size_t) override { return open(DocumentNode::Kind::Map); }
+    bool key(string_t& name) override {
+        open_.back().key = std::move(name);
+        return true;
+    }
+    bool end_object() override { return close(); }
+    bool start_array(std::size_t) override { return open(DocumentNode::Kind::Sequence); }
+    bool end_array() override { return close(); }
+    bool parse_error(std::size_t, const std::string& token, const nlohmann::detail::exception& error) override {
+        // 1e999 is JSON, but no double: said as every other number past range is.
+        constexpr int kNumberOverflow = 406;
+        error_ = error.id == kNumberOverflow ? "must be finite, got " + token : std::string("not valid JSON: ") + error.what();
+        return false;
+    }
+
+private:
+    struct Open {
+        DocumentNode node;
+        std::string key;                                   // a map's key waiting for its value
+        std::unordered_map<std::string, std::size_t> index;  // a map's keys so far, with their places
+    };
+
+    static DocumentNode scalar(DocumentNode::Kind kind, std::string text, std::string tag) {
+        DocumentNode node;
+        node.kind = kind;
+        node.text = std::move(text);
+        node.tag = std::move(tag);
+        return node;
+    }
+    bool number(std::string text) { return add(scalar(DocumentNode::Kind::Scalar, std::move(text), "number")); }
+
+    bool open(DocumentNode::Kind kind) {
+        if (open_.size() >= static_cast<std::size_t>(kMaxDocumentDepth)) {
+            error_ = "nested more than " + std::to_string(kMaxDocumentDepth) + " levels deep";
+            refuse();
+        }
+        Open frame;
+        frame.node.kind = kind;
+        open_.push_back(std::move(frame));
+        return true;
+    }
+    bool close() {
+        DocumentNode done = std::move(open_.back().node);
+        open_.pop_back();
+        return add(std::move(done));
+    }
+
+    // Puts a finished value where it belongs: the root, an array's next item, or the value
+    // of the key before it (in the place of an earlier value of the same key).
+    bool add(DocumentNode node) {
+        if (open_.empty()) {
+            root_ = std::move(node);
+            return true;
+        }
+        Open& parent = open_.back();
+        if (parent.node.kind == DocumentNode::Kind::Sequence) {
+            parent.node.items.push_back(std::move(node));
+            return true;
+        }
+        const auto [place, is_new] = parent.index.emplace(parent.key, parent.node.items.size());
+        if (is_new) {
+            parent.node.keys.push_back(std::move(parent.key));
+            parent.node.items.push_back(std::move(node));
+        } else {
+            parent.node.items[place->second] = std::move(node);
+        }
+        return true;
+    }
+
+    // The key path of the value being parsed: "\"intrinsics[0].fx\"", or nothing at the top.
+    std::string where() const {
+        std::string path;
+        for (const Open& frame : open_) {
+            if (frame.node.kind == DocumentNode::Kind::Sequence) {
+                path += "[" + std::to_string(frame.node.items.size()) + "]";
+            } else if (!frame.key.empty()) {
+                path += (path.empty() ? "" : ".") + frame.key;
+            }
+        }
+        return path.empty() ? "" : ": \"" + path + "\"";
+    }
+
+    const std::string& source_;
+    std::vector<Open> open_;
+    DocumentNode root_;
+    std::string error_;
+};
+
+}  // namespace
+
+DocumentNode parse_json_tree(std::string_view text, const std::string& source) {
+    JsonTreeBuilder builder(source);
+    if (!nlohmann::json::sax_parse(text.begin(), text.end(), &builder)) builder.refuse();
+    return builder.take();
+}
+
 // ---- Field ----
+
+namespace {
+
+// A scalar as a message quotes it: a JSON string in JSON's quotes, a JSON number or
+// boolean as it is, any other word in ''.
+std::string quoted(const DocumentNode& scalar) {
+    if (scalar.tag == "string") return nlohmann::json(scalar.text).dump();
+    if (scalar.tag == "number" || scalar.tag == "boolean") return scalar.text;
+    return "'" + std::string(trim(scalar.text)) + "'";
+}
+
+// What a value is, for a message that expected something else.
+std::string show(const DocumentNode& node) {
+    switch (node.kind) {
+        case DocumentNode::Kind::Null: return node.tag == "null" ? "null" : "no value";
+        case DocumentNode::Kind::Scalar: return quoted(node);
+        case DocumentNode::Kind::Sequence: return "a list of " + std::to_string(node.items.size());
+        case DocumentNode::Kind::Map: return "keys and values";
+    }
+    return "";
+}
+
+}  // namespace
 
 Field::Field(const DocumentNode& node, std::string name, const std::string& source)
     : Field(node, std::move(name), &source) {}
@@ -437,20 +578,36 @@ void Field::fail(const std::string& what) const {
 }
 
 std::optional<Field> Field::find(std::initializer_list<std::string_view> keys) const {
-    if (node_->kind != DocumentNode::Kind::Map) fail("expected keys and values");
+    if (node_->kind != DocumentNode::Kind::Map) fail("expected keys and values, got " + show(*node_));
     for (std::string_view key : keys) {
-        if (const DocumentNode* value = node_->find(key)) {
-            Field found(*value, child_name(key), source_);
-            if (value->kind == DocumentNode::Kind::Null) found.fail("has no value");
-            return found;
-        }
+        const DocumentNode* value = node_->find(key);
+        if (value == nullptr || value->tag == "null") continue;
+        Field found(*value, child_name(key), source_);
+        if (value->kind == DocumentNode::Kind::Null) found.fail("has no value");
+        return found;
     }
     return std::nullopt;
 }
 
 Field Field::at(std::initializer_list<std::string_view> keys) const {
     if (std::optional<Field> found = find(keys)) return *found;
-    throw FileError(*source_ + ": \"" + child_name(*keys.begin()) + "\": missing");
+    fail_at(*keys.begin(), "missing");
+}
+
+void Field::fail_at(std::string_view key, const std::string& what) const {
+    static const DocumentNode absent;  // no line: the key is not there
+    const DocumentNode* value = node_->find(key);
+    Field(value != nullptr ? *value : absent, child_name(key), source_).fail(what);
+}
+
+std::size_t Field::size() const {
+    if (node_->kind != DocumentNode::Kind::Sequence) fail("expected a list, got " + show(*node_));
+    return node_->items.size();
+}
+
+Field Field::item(std::size_t index) const {
+    if (index >= size()) fail("expected a list of at least " + std::to_string(index + 1) + ", got " + show(*node_));
+    return Field(node_->items[index], name_ + "[" + std::to_string(index) + "]", source_);
 }
 
 std::string Field::child_name(std::string_view key) const {
@@ -458,8 +615,16 @@ std::string Field::child_name(std::string_view key) const {
 }
 
 std::string Field::text() const {
-    if (node_->kind != DocumentNode::Kind::Scalar) fail("expected a single value");
+    if (node_->kind != DocumentNode::Kind::Scalar) fail("expected a single value, got " + show(*node_));
+    if (node_->tag == "number" || node_->tag == "boolean") fail("expected a string, got " + node_->text);
     return node_->text;
+}
+
+std::string Field::shown() const { return libcam::show(*node_); }
+
+std::optional<bool> Field::boolean() const {
+    if (node_->tag != "boolean") return std::nullopt;
+    return node_->text == "true";
 }
 
 double Field::number_at(const DocumentNode& scalar, std::size_t index, bool indexed) const {
@@ -469,23 +634,23 @@ double Field::number_at(const DocumentNode& scalar, std::size_t index, bool inde
         const std::string line = scalar.line > 0 ? ": line " + std::to_string(scalar.line) : "";
         throw FileError(*source_ + line + ": \"" + name_ + "\"[" + std::to_string(index) + "]: " + what);
     };
-    if (scalar.kind != DocumentNode::Kind::Scalar) fail("expected a number");
+    if (scalar.kind != DocumentNode::Kind::Scalar || scalar.tag == "string") fail("expected a number, got " + show(scalar));
     std::string_view word = trim(scalar.text);
-    const std::string_view quoted_word = word;
+    const std::string_view written = word;
     if (word.starts_with('+')) word.remove_prefix(1);
     double value = 0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (word.empty() || end != word.data() + word.size() || error == std::errc::invalid_argument) {
         // YAML's spellings of infinity and NaN, named as such.
-        std::string lower(quoted_word);
+        std::string lower(written);
         std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
         if (lower == ".inf" || lower == "+.inf" || lower == "-.inf" || lower == ".nan") {
-            fail("must be finite, got " + std::string(quoted_word));
+            fail("must be finite, got " + std::string(written));
         }
-        fail("expected a number, got '" + std::string(quoted_word) + "'");
+        fail("expected a number, got " + quoted(scalar));
     }
     if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
-        fail("must be finite, got " + std::string(quoted_word));
+        fail("must be finite, got " + std::string(written));
     }
     return value;
 }
@@ -493,18 +658,26 @@ double Field::number_at(const DocumentNode& scalar, std::size_t index, bool inde
 double Field::number() const { return number_at(*node_, 0, false); }
 
 long long Field::integer(long long min, long long max) const {
-    if (node_->kind != DocumentNode::Kind::Scalar) fail("expected an integer");
+    if (node_->kind != DocumentNode::Kind::Scalar || node_->tag == "string") fail("expected an integer, got " + show(*node_));
     std::string_view word = trim(node_->text);
-    const std::string shown(word);
+    const std::string written(word);
     if (word.starts_with('+')) word.remove_prefix(1);
     long long value = 0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
     const bool digits_only = !word.empty() && end == word.data() + word.size();
-    if (!digits_only || error == std::errc::invalid_argument) fail("expected an integer, got '" + shown + "'");
+    if (!digits_only || error == std::errc::invalid_argument) fail("expected an integer, got " + quoted(*node_));
     if (error == std::errc::result_out_of_range || value < min || value > max) {
-        fail("must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + shown);
+        fail("must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + written);
     }
     return value;
+}
+
+long long Field::whole_number(long long min, long long max) const {
+    const double value = number();
+    if (value != std::floor(value) || value < static_cast<double>(min) || value > static_cast<double>(max)) {
+        fail("expected a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + node_->text);
+    }
+    return static_cast<long long>(value);
 }
 
 std::vector<double> Field::numbers(std::size_t max_count) const {
@@ -517,45 +690,6 @@ std::vector<double> Field::numbers(std::size_t max_count) const {
     values.reserve(node_->items.size());
     for (std::size_t i = 0; i < node_->items.size(); ++i) values.push_back(number_at(node_->items[i], i, true));
     return values;
-}
-
-namespace {
-
-DocumentNode from_json(const nlohmann::ordered_json& value, int depth, const std::string& source) {
-    if (depth > kMaxDocumentDepth) {
-        throw FileError(source + ": nested deeper than " + std::to_string(kMaxDocumentDepth) + " levels");
-    }
-    DocumentNode node;
-    if (value.is_object()) {
-        node.kind = DocumentNode::Kind::Map;
-        for (const auto& [key, item] : value.items()) {
-            node.keys.push_back(key);
-            node.items.push_back(from_json(item, depth + 1, source));
-        }
-    } else if (value.is_array()) {
-        node.kind = DocumentNode::Kind::Sequence;
-        for (const nlohmann::ordered_json& item : value) node.items.push_back(from_json(item, depth + 1, source));
-    } else if (value.is_string()) {
-        node.kind = DocumentNode::Kind::Scalar;
-        node.text = value.get<std::string>();
-        node.tag = "string";
-    } else if (!value.is_null()) {
-        node.kind = DocumentNode::Kind::Scalar;
-        node.text = value.dump();
-    }
-    return node;
-}
-
-}  // namespace
-
-DocumentNode parse_json_tree(std::string_view text, const std::string& source) {
-    nlohmann::ordered_json root;
-    try {
-        root = nlohmann::ordered_json::parse(text.begin(), text.end());
-    } catch (const nlohmann::json::exception& error) {
-        throw FileError(source + ": not valid JSON: " + error.what());
-    }
-    return from_json(root, 0, source);
 }
 
 }  // namespace libcam

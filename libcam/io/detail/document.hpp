@@ -1,11 +1,11 @@
 #pragma once
-// A structured camera file (YAML, OpenCV's XML) as one small tree, so that every
-// reader of such a file (OpenCV's FileStorage layouts today, and the calibration
-// files of other tools that are YAML too) works on the same thing and reports
-// errors the same way: the file, the line, the field and the value.
+// A structured camera file (YAML, OpenCV's XML, JSON) as one small tree, so that every
+// reader of such a file (OpenCV's FileStorage layouts, and the calibration files of
+// other tools) works on the same thing and reports errors the same way: the file, the
+// line where the format records one, the field and the value.
 //
 // The parsers behind it are yaml-cpp (the YAML parser ROS and Kalibr read their
-// files with) and pugixml; neither appears in this header.
+// files with), pugixml and nlohmann JSON; none appears in this header.
 
 #include <cstddef>
 #include <optional>
@@ -21,7 +21,10 @@ struct DocumentNode {
     enum class Kind { Null, Scalar, Sequence, Map };
     Kind kind = Kind::Null;
     std::string text;                // Scalar: its text
-    std::string tag;                 // "opencv-matrix" for YAML's !!opencv-matrix or XML's type_id="opencv-matrix"
+    // "opencv-matrix" for YAML's !!opencv-matrix or XML's type_id="opencv-matrix"; JSON's
+    // type of a value: "string", "number", "boolean", "null" (a string that reads as a
+    // number is still a string).
+    std::string tag;
     std::vector<DocumentNode> items;  // Sequence: its items; Map: the values of `keys`
     std::vector<std::string> keys;    // Map: its keys, in file order, each once
     int line = 0;                    // where the node starts, counted from 1 (0: not known)
@@ -47,10 +50,12 @@ DocumentNode parse_yaml_document(std::string_view text, const std::string& sourc
 DocumentNode parse_opencv_xml_document(std::string_view text, const std::string& source);
 
 // Parses JSON into the same tree: objects are maps (keys in file order), arrays
-// sequences, strings, numbers and booleans scalars with their JSON text (a string without
-// its quotes, tagged "string"), null null. JSON records no lines (every node's is 0).
-// Throws FileError "<source>: not valid JSON: ..." or for a file nested deeper than
-// kMaxDocumentDepth.
+// sequences, strings, numbers and booleans scalars with their text as written (a string
+// without its quotes), null null; each tagged with its JSON type. A key given twice keeps
+// its first place and its last value, as JSON libraries read it. JSON records no lines
+// (every node's is 0). Throws FileError "<source>: \"<key.path>\": not valid JSON: ..."
+// (the key where parsing stopped), "... must be finite, got 1e999" for a number past a
+// double's range, or for a file nested deeper than kMaxDocumentDepth.
 DocumentNode parse_json_tree(std::string_view text, const std::string& source);
 
 // A double as YAML that every YAML reader takes as a float, Python's (PyYAML, which Kalibr
@@ -59,9 +64,10 @@ DocumentNode parse_json_tree(std::string_view text, const std::string& source);
 // and an integer).
 std::string yaml_number(double value);
 
-// A node with the name a user knows it by ("camera_matrix.data") and the file it came
-// from, for reading values with messages that say where a bad value is:
-// "<source>: line 7: \"camera_matrix.data\"[3]: must be finite, got .inf".
+// A node with the name a user knows it by ("camera_matrix.data", "frames[2].fl_x") and
+// the file it came from, for reading values with messages that say where a bad value is:
+// "<source>: line 7: \"camera_matrix.data\"[3]: must be finite, got .inf" (no line for
+// JSON, which records none).
 class Field {
 public:
     Field(const DocumentNode& node, std::string name, const std::string& source);
@@ -72,19 +78,36 @@ public:
 
     // A key of this map: the first of `keys` present (later names are older
     // spellings), or nothing. Fails unless this is a map, and when the key is there
-    // with no value (`key:` and nothing after it): a field left empty is not guessed at.
+    // with no value (YAML's `key:` and nothing after it): a field left empty is not
+    // guessed at. JSON's null counts as absent: JSON writers write it for a value they
+    // do not have.
     std::optional<Field> find(std::initializer_list<std::string_view> keys) const;
     // The same, failing with "missing" (naming the first key) when none is present.
     Field at(std::initializer_list<std::string_view> keys) const;
+    // A sequence's length; fails unless this is a sequence.
+    std::size_t size() const;
+    // Item `index` of a sequence, named "<name>[index]"; fails unless there is one.
+    Field item(std::size_t index) const;
 
-    std::string text() const;                             // a scalar's text
-    double number() const;                                // a finite number
+    std::string text() const;                             // a scalar's text, not a JSON number or boolean
+    double number() const;                                // a finite number, not a JSON string ("500")
     long long integer(long long min, long long max) const;  // a decimal integer in [min, max]
+    // A number with no fraction in [min, max] (instant-ngp writes sizes as 1080.0).
+    long long whole_number(long long min, long long max) const;
     // A sequence of finite numbers (a single scalar counts as one), at most max_count.
     std::vector<double> numbers(std::size_t max_count) const;
+    // true or false when this is a boolean (JSON's true and false), nothing otherwise.
+    std::optional<bool> boolean() const;
+    // The value as a message shows it: a word in '' (a JSON string in ""), "a list of 3",
+    // "keys and values", "null".
+    std::string shown() const;
 
-    // Throws FileError naming the source, line and field: "<source>: line L: \"<name>\": <what>".
+    // Throws FileError naming the source, line and field: "<source>: line L: \"<name>\": <what>"
+    // ("<source>: \"<name>\": <what>" where the line is not known).
     [[noreturn]] void fail(const std::string& what) const;
+    // The same for a key of this map, whether or not it is there ("missing", or a value
+    // that disagrees with another key): "<source>: \"<name>.<key>\": <what>".
+    [[noreturn]] void fail_at(std::string_view key, const std::string& what) const;
 
 private:
     Field(const DocumentNode& node, std::string name, const std::string* source);

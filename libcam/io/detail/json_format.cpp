@@ -4,11 +4,10 @@
 
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
-#include "libcam/io/detail/json_field.hpp"
+#include "libcam/io/detail/document.hpp"
 
 namespace libcam {
 
-using nlohmann::json;
 using ordered = nlohmann::ordered_json;  // output keeps the documented key order
 
 namespace {
@@ -59,52 +58,41 @@ std::string layout(const ordered& object) {
     return out + "}\n";
 }
 
-// Reading: the file's keys through JsonField (json_field.hpp), whose errors name the file
-// and the key, with the shapes this format uses: vectors, matrices, image sizes.
+// Reading: the file's keys through Field (document.hpp), whose errors name the file and
+// the key, with the shapes this format uses: vectors, matrices, image sizes.
 class Reader {
 public:
-    Reader(const json& root, std::string source) : source_(std::move(source)), top_{root, "", source_} {}
-    Reader(const Reader&) = delete;  // top_ refers to this reader's source_
-    Reader& operator=(const Reader&) = delete;
+    explicit Reader(const Field& top) : top_(top) {}
 
-    bool has(const char* key) const { return top_.has(key); }
-
-    // A key with a value (null counts as missing).
-    JsonField field(const char* key) const {
-        if (!has(key)) top_.at(key).fail("missing");  // at() names the key; null is missing too
-        return top_.at(key);
-    }
-    const json& at(const char* key) const { return field(key).value; }
-
-    double number(const char* key) const { return field(key).number(); }
-    // A number of a nested value (fov_deg.horizontal), named as given.
-    double number(const json& value, const std::string& name) const { return JsonField{value, name, source_}.number(); }
+    // A key with a value (null counts as missing), or nothing.
+    std::optional<Field> find(const char* key) const { return top_.find({key}); }
+    bool has(const char* key) const { return find(key).has_value(); }
+    Field field(const char* key) const { return top_.at({key}); }
 
     Eigen::VectorXd vector(const char* key, long expected = -1) const {
-        const JsonField values = field(key);
-        if (!values.value.is_array()) values.fail("expected an array of numbers, got " + values.value.dump());
-        if (expected >= 0 && static_cast<long>(values.size()) != expected) {
-            values.fail("expected " + std::to_string(expected) + " numbers, got " + std::to_string(values.size()));
+        const Field values = field(key);
+        const long count = static_cast<long>(values.size());
+        if (expected >= 0 && count != expected) {
+            values.fail("expected " + std::to_string(expected) + " numbers, got " + std::to_string(count));
         }
-        Eigen::VectorXd v(static_cast<Eigen::Index>(values.size()));
-        for (std::size_t i = 0; i < values.size(); ++i) v(static_cast<Eigen::Index>(i)) = values.at(i).number();
+        Eigen::VectorXd v(count);
+        for (long i = 0; i < count; ++i) v(i) = values.item(static_cast<std::size_t>(i)).number();
         return v;
     }
 
     Eigen::MatrixXd matrix(const char* key, long rows, long cols) const {
-        const JsonField value = field(key);
-        const std::string shape = std::to_string(rows) + "x" + std::to_string(cols);
-        if (!value.value.is_array() || static_cast<long>(value.value.size()) != rows) {
-            value.fail("expected " + shape + " nested arrays of numbers");
+        const Field value = field(key);
+        const std::string shape = std::to_string(rows) + "x" + std::to_string(cols) + " nested arrays of numbers";
+        if (value.node().kind != DocumentNode::Kind::Sequence || static_cast<long>(value.size()) != rows) {
+            value.fail("expected " + shape + ", got " + value.shown());
         }
         Eigen::MatrixXd m(rows, cols);
         for (long r = 0; r < rows; ++r) {
-            const JsonField row = value.at(static_cast<std::size_t>(r));
-            if (!row.value.is_array() || static_cast<long>(row.value.size()) != cols) {
-                value.fail("expected " + shape + " nested arrays of numbers; row " + std::to_string(r) + " is " +
-                           row.value.dump());
+            const Field row = value.item(static_cast<std::size_t>(r));
+            if (row.node().kind != DocumentNode::Kind::Sequence || static_cast<long>(row.size()) != cols) {
+                value.fail("expected " + shape + "; row " + std::to_string(r) + " is " + row.shown());
             }
-            for (long c = 0; c < cols; ++c) m(r, c) = row.at(static_cast<std::size_t>(c)).number();
+            for (long c = 0; c < cols; ++c) m(r, c) = row.item(static_cast<std::size_t>(c)).number();
         }
         return m;
     }
@@ -113,7 +101,7 @@ public:
         const Eigen::VectorXd v = vector(key, 2);
         for (int i = 0; i < 2; ++i) {
             if (v(i) != std::floor(v(i)) || v(i) < 1 || v(i) > static_cast<double>(kMaxImageSide)) {
-                fail(key, "expected two integers in [1, " + std::to_string(kMaxImageSide) + "], got " + at(key).dump());
+                fail(key, "expected two integers in [1, " + std::to_string(kMaxImageSide) + "], got " + listed(v));
             }
         }
         return {static_cast<long>(v(0)), static_cast<long>(v(1))};
@@ -121,13 +109,18 @@ public:
 
     std::string string(const char* key) const { return field(key).text(); }
 
-    [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-        JsonField{top_.value, key, source_}.fail(what);
+    // A key's error, whether or not the file has the key.
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const { top_.fail_at(key, what); }
+
+    // Numbers as a message shows them: [0, 0, 640, 480].
+    static std::string listed(const Eigen::VectorXd& v) {
+        std::string out = "[";
+        for (Eigen::Index i = 0; i < v.size(); ++i) out += (i == 0 ? "" : ", ") + format_number(v(i));
+        return out + "]";
     }
 
 private:
-    std::string source_;
-    JsonField top_;  // refers to source_: declared after it
+    Field top_;
 };
 
 // Runs a core validation and re-raises its message with the file name in front.
@@ -187,73 +180,10 @@ Camera read_calibrated(const Reader& in, const std::string& source) {
     return camera;
 }
 
-// Walks the text again with nlohmann's SAX interface to find the key path at which
-// parsing stopped, e.g. "t"[1]: , so an overflowing number names its key like every
-// other bad value does. Empty when the error is outside any key.
-class KeyPathSax : public nlohmann::json_sax<json> {
-public:
-    std::string path() const {
-        std::string out;
-        for (const Frame& frame : frames_) {
-            if (frame.in_array) {
-                out += "[" + std::to_string(frame.index) + "]";
-            } else if (!frame.key.empty()) {
-                out += out.empty() ? "\"" + frame.key + "\"" : "." + frame.key;
-            }
-        }
-        return out.empty() ? "" : out + ": ";
-    }
-
-    bool null() override { return value(); }
-    bool boolean(bool) override { return value(); }
-    bool number_integer(number_integer_t) override { return value(); }
-    bool number_unsigned(number_unsigned_t) override { return value(); }
-    bool number_float(number_float_t, const string_t&) override { return value(); }
-    bool string(string_t&) override { return value(); }
-    bool binary(binary_t&) override { return value(); }
-    bool start_object(std::size_t) override { return open(false); }
-    bool key(string_t& name) override {
-        frames_.back().key = name;
-        return true;
-    }
-    bool end_object() override { return close(); }
-    bool start_array(std::size_t) override { return open(true); }
-    bool end_array() override { return close(); }
-    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
-
-private:
-    struct Frame {
-        bool in_array = false;
-        long index = -1;
-        std::string key;
-    };
-    // A value (or a container) starts: an array moves to its next element.
-    bool value() {
-        if (!frames_.empty() && frames_.back().in_array) ++frames_.back().index;
-        return true;
-    }
-    bool open(bool array) {
-        value();
-        frames_.push_back({array, -1, {}});
-        return true;
-    }
-    bool close() {
-        frames_.pop_back();
-        return true;
-    }
-    std::vector<Frame> frames_;
-};
-
-std::string locate_json_error(std::string_view text) {
-    KeyPathSax sax;
-    json::sax_parse(text.begin(), text.end(), &sax, nlohmann::detail::input_format_t::json, false);
-    return sax.path();
-}
-
 CameraFile read_gl(const Reader& in, const std::string& source) {
     const Eigen::VectorXd viewport = in.vector("viewport", 4);
     if (viewport(0) != 0.0 || viewport(1) != 0.0) {
-        in.fail("viewport", "must start at (0, 0) to describe a whole image, got " + in.at("viewport").dump());
+        in.fail("viewport", "must start at (0, 0) to describe a whole image, got " + Reader::listed(viewport));
     }
     DepthRange depth_range = DepthRange::MinusOneToOne;
     if (in.has("depth_range")) {
@@ -310,11 +240,11 @@ FovCamera read_fov_camera(const Reader& in, const Camera& camera, const std::str
         }
         fov = candidate;
     }
-    if (in.has("fov_deg") && in.at("fov_deg").is_object()) {
-        const json& angles = in.at("fov_deg");
+    const std::optional<Field> angles = in.find("fov_deg");
+    if (angles && angles->node().kind == DocumentNode::Kind::Map) {
         const char* name = axis == FovAxis::Both ? "horizontal" : to_string(axis).data();
-        if (angles.contains(name)) {
-            const double stored = in.number(angles.at(name), std::string("fov_deg.") + name);
+        if (const std::optional<Field> angle = angles->find({name})) {
+            const double stored = angle->number();
             if (std::abs(stored - fov.fov_deg) > kConsistencyTolerance * fov.fov_deg) {
                 in.fail("fov_deg", std::string(name) + " " + format_number(stored) + " disagrees with K (" +
                                        format_number(fov.fov_deg) + ")");
@@ -374,16 +304,9 @@ std::string format_gl_json(const GlCamera& gl, const ImageSize& size) {
 }
 
 CameraFile parse_json_camera(std::string_view text, const std::string& source) {
-    json root;
-    try {
-        // Comments and trailing data are errors.
-        root = json::parse(text.begin(), text.end());
-    } catch (const json::exception& error) {
-        // Parse errors, and numbers that overflow a double (1e999): name where.
-        throw FileError(source + ": " + locate_json_error(text) + error.what());
-    }
-    if (!root.is_object()) throw FileError(source + ": expected a JSON object at the top level");
-    const Reader in(root, source);
+    const DocumentNode root = parse_json_tree(text, source);
+    if (root.kind != DocumentNode::Kind::Map) throw FileError(source + ": expected a JSON object at the top level");
+    const Reader in(Field(root, "", source));
     if (in.has("projection")) return read_gl(in, source);
 
     CameraFile file{read_calibrated(in, source), std::nullopt};

@@ -3,19 +3,18 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 
 #include "libcam/error.hpp"
-#include "libcam/io/detail/json_field.hpp"
+#include "libcam/io/detail/document.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
 namespace libcam {
 
 namespace {
-
-using nlohmann::json;
 
 // transforms.json's pixel (0, 0) is the image's top-left corner (COLMAP's convention,
 // which instant-ngp's and nerfstudio's ray code follow: pixel i's centre is at i + 0.5).
@@ -26,16 +25,15 @@ const Mat3 kGlToCv = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
 
 // A key of the frame, else of the file's top level (per-frame intrinsics override).
 struct Keys {
-    JsonField frame;
-    JsonField top;
+    Field frame;
+    Field top;
 
-    std::optional<JsonField> find(std::string_view key) const {
-        if (frame.has(key)) return frame.at(key);
-        if (top.has(key)) return top.at(key);
-        return std::nullopt;
+    std::optional<Field> find(std::string_view key) const {
+        if (std::optional<Field> own = frame.find({key})) return own;
+        return top.find({key});
     }
     double number_or(std::string_view key, double fallback) const {
-        const std::optional<JsonField> field = find(key);
+        const std::optional<Field> field = find(key);
         return field ? field->number() : fallback;
     }
 };
@@ -82,9 +80,10 @@ std::optional<ImageSize> image_header_size(const std::filesystem::path& path) {
 
 // The image a frame names, relative to the file's folder; NeRF's synthetic scenes leave
 // out the ".png".
-std::optional<ImageSize> frame_image_size(const JsonField& frame, const std::filesystem::path& folder) {
-    if (folder.empty() || !frame.has("file_path") || !frame.at("file_path").value.is_string()) return std::nullopt;
-    const std::filesystem::path image = folder / frame.at("file_path").text();
+std::optional<ImageSize> frame_image_size(const Field& frame, const std::filesystem::path& folder) {
+    const std::optional<Field> file_path = folder.empty() ? std::nullopt : frame.find({"file_path"});
+    if (!file_path || file_path->node().tag != "string") return std::nullopt;
+    const std::filesystem::path image = folder / file_path->text();
     std::error_code error;
     for (const std::filesystem::path& candidate : {image, std::filesystem::path(image.string() + ".png")}) {
         if (std::filesystem::is_regular_file(candidate, error)) return image_header_size(candidate);
@@ -94,9 +93,9 @@ std::optional<ImageSize> frame_image_size(const JsonField& frame, const std::fil
 
 // ---- intrinsics -----------------------------------------------------------------------------
 
-ImageSize read_size(const Keys& keys, const JsonField& first_frame, const ReadContext& context) {
-    const std::optional<JsonField> w = keys.find("w");
-    const std::optional<JsonField> h = keys.find("h");
+ImageSize read_size(const Keys& keys, const Field& first_frame, const ReadContext& context) {
+    const std::optional<Field> w = keys.find("w");
+    const std::optional<Field> h = keys.find("h");
     if (w.has_value() != h.has_value()) (w ? *w : *h).fail("given without \"" + std::string(w ? "h" : "w") + "\"");
     if (w) {
         const ImageSize size{w->whole_number(1, kMaxImageSide), h->whole_number(1, kMaxImageSide)};
@@ -115,10 +114,10 @@ ImageSize read_size(const Keys& keys, const JsonField& first_frame, const ReadCo
 
 // A focal length: fl_x, else from the edge-to-edge angle.
 std::optional<double> focal_length(const Keys& keys, std::string_view focal_key, std::string_view angle_key, long side) {
-    if (const std::optional<JsonField> focal = keys.find(focal_key)) return focal->number();
-    if (const std::optional<JsonField> angle = keys.find(angle_key)) {
+    if (const std::optional<Field> focal = keys.find(focal_key)) return focal->number();
+    if (const std::optional<Field> angle = keys.find(angle_key)) {
         const double radians = angle->number();
-        if (!(radians > 0 && radians < std::numbers::pi)) angle->fail("must be in (0, pi), got " + angle->value.dump());
+        if (!(radians > 0 && radians < std::numbers::pi)) angle->fail("must be in (0, pi), got " + angle->node().text);
         return static_cast<double>(side) / (2.0 * std::tan(radians / 2.0));
     }
     return std::nullopt;
@@ -127,19 +126,19 @@ std::optional<double> focal_length(const Keys& keys, std::string_view focal_key,
 Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& context) {
     const std::string model = keys.find("camera_model") ? keys.find("camera_model")->text() : "OPENCV";
     for (const char* unsupported : {"is_fisheye", "ftheta_p0", "latlong", "equirectangular"}) {
-        if (const std::optional<JsonField> key = keys.find(unsupported); key && !(key->value == false)) {
+        if (const std::optional<Field> key = keys.find(unsupported); key && key->boolean() != std::optional<bool>(false)) {
             key->fail("instant-ngp's special lenses are not read by libcam");
         }
     }
     const std::optional<double> fx = focal_length(keys, "fl_x", "camera_angle_x", size.width);
     const std::optional<double> fy_given = focal_length(keys, "fl_y", "camera_angle_y", size.height);
-    if (!fx && !fy_given) keys.top.at("fl_x").fail("missing (and no camera_angle_x)");
+    if (!fx && !fy_given) keys.top.fail_at("fl_x", "missing (and no camera_angle_x)");
     const double fy = fy_given.value_or(*fx);
     // Without cx, cy: the image centre, or NeRF's W / 2 on request.
     const double unstated_shift =
         context.options.nerf_principal_point == NerfPrincipalPoint::HalfSize ? 0.0 : kPixelCentre;
     const auto centre = [&](std::string_view key, long side) {
-        const std::optional<JsonField> given = keys.find(key);
+        const std::optional<Field> given = keys.find(key);
         return given ? given->number() - kPixelCentre : static_cast<double>(side) / 2.0 - unstated_shift;
     };
     Camera camera;
@@ -147,7 +146,7 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
     camera.intrinsics = {fx.value_or(fy), fy, centre("cx", size.width), centre("cy", size.height), 0.0};
     const auto coefficient = [&](std::string_view key) { return keys.number_or(key, 0.0); };
     if (model == "OPENCV" || model == "PINHOLE" || model == "SIMPLE_PINHOLE") {
-        if (const std::optional<JsonField> k4 = keys.find("k4"); k4 && k4->number() != 0.0) {
+        if (const std::optional<Field> k4 = keys.find("k4"); k4 && k4->number() != 0.0) {
             k4->fail("nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
         }
         const std::vector<double> opencv5 = {coefficient("k1"), coefficient("k2"), coefficient("p1"), coefficient("p2"),
@@ -161,7 +160,7 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
         }
     } else if (model == "OPENCV_FISHEYE") {
         for (const char* tangential : {"p1", "p2"}) {
-            if (const std::optional<JsonField> p = keys.find(tangential); p && p->number() != 0.0) {
+            if (const std::optional<Field> p = keys.find(tangential); p && p->number() != 0.0) {
                 p->fail("OPENCV_FISHEYE has no tangential coefficients");
             }
         }
@@ -179,13 +178,13 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
 }
 
 // A frame's camera-to-world matrix in OpenGL's axes, as libcam's world-to-camera pose.
-Pose read_pose(const JsonField& matrix) {
+Pose read_pose(const Field& matrix) {
     if (matrix.size() != 4 && matrix.size() != 3) matrix.fail("expected 4 rows of 4 numbers");
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
     for (std::size_t r = 0; r < matrix.size(); ++r) {
-        const JsonField row = matrix.at(r);
+        const Field row = matrix.item(r);
         if (row.size() != 4) row.fail("expected 4 numbers");
-        for (std::size_t c = 0; c < 4; ++c) m(static_cast<long>(r), static_cast<long>(c)) = row.at(c).number();
+        for (std::size_t c = 0; c < 4; ++c) m(static_cast<long>(r), static_cast<long>(c)) = row.item(c).number();
     }
     if ((m.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).cwiseAbs().maxCoeff() > 1e-9) matrix.fail("the last row must be 0 0 0 1");
     const Mat3 camera_to_world = nearest_rotation_if_rounded(m.topLeftCorner<3, 3>()) * kGlToCv;
@@ -206,22 +205,21 @@ bool claims_nerf_transforms(const DocumentNode& root) {
 }
 
 std::vector<NamedCamera> read_nerf_transforms(std::string_view text, const ReadContext& context) {
-    const json root = parse_json_document(text, context.source);
-    const JsonField top{root, "", context.source};
-    if (!root.is_object()) top.fail("expected an object");
-    const json no_frames = json::array();
-    const JsonField frames = top.has("frames") ? top.at("frames") : JsonField{no_frames, "frames", context.source};
-    const std::size_t count = frames.size();
-    const json empty = json::object();
-    const JsonField first_frame = count > 0 ? frames.at(0) : JsonField{empty, "frames[0]", context.source};
+    const DocumentNode root = parse_json_tree(text, context.source);
+    const Field top(root, "", context.source);
+    const std::optional<Field> frames = top.find({"frames"});
+    const std::size_t count = frames ? frames->size() : 0;
+    // A file without frames is one camera, read as a frame with no keys of its own.
+    DocumentNode no_keys;
+    no_keys.kind = DocumentNode::Kind::Map;
+    const Field first_frame = count > 0 ? frames->item(0) : Field(no_keys, "frames[0]", context.source);
     std::vector<NamedCamera> cameras;
-    const auto read_camera = [&](const JsonField& frame) {
-        if (!frame.value.is_object()) frame.fail("expected an object");
+    const auto read_camera = [&](const Field& frame) {
         const Keys keys{frame, top};
         Camera camera = read_intrinsics(keys, read_size(keys, first_frame, context), context);
         std::string name;
-        if (frame.has("transform_matrix")) camera.pose = read_pose(frame.at("transform_matrix"));
-        if (frame.has("file_path")) name = frame.at("file_path").text();
+        if (const std::optional<Field> matrix = frame.find({"transform_matrix"})) camera.pose = read_pose(*matrix);
+        if (const std::optional<Field> file_path = frame.find({"file_path"})) name = file_path->text();
         try {
             camera.validate();
         } catch (const InvalidArgument& error) {
@@ -229,8 +227,8 @@ std::vector<NamedCamera> read_nerf_transforms(std::string_view text, const ReadC
         }
         cameras.push_back({std::move(name), {std::move(camera), std::nullopt}});
     };
-    if (count == 0) read_camera(JsonField{empty, "frames[0]", context.source});
-    for (std::size_t i = 0; i < count; ++i) read_camera(frames.at(i));
+    if (count == 0) read_camera(first_frame);
+    for (std::size_t i = 0; i < count; ++i) read_camera(frames->item(i));
     return cameras;
 }
 

@@ -1,9 +1,10 @@
 #include "libcam/io/detail/open3d_format.hpp"
 
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "libcam/error.hpp"
-#include "libcam/io/detail/json_field.hpp"
+#include "libcam/io/detail/document.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -11,20 +12,19 @@ namespace libcam {
 
 namespace {
 
-using nlohmann::json;
-
 // n numbers of a JSON array.
-std::vector<double> numbers(const JsonField& field, std::size_t count) {
+std::vector<double> numbers(const Field& field, std::size_t count) {
     if (field.size() != count) field.fail("expected " + std::to_string(count) + " numbers, got " + std::to_string(field.size()));
     std::vector<double> values;
-    for (std::size_t i = 0; i < count; ++i) values.push_back(field.at(i).number());
+    for (std::size_t i = 0; i < count; ++i) values.push_back(field.item(i).number());
     return values;
 }
 
-Camera read_intrinsic(const JsonField& intrinsic) {
+Camera read_intrinsic(const Field& intrinsic) {
     Camera camera;
-    camera.size = {intrinsic.at("width").integer(1, kMaxImageSide), intrinsic.at("height").integer(1, kMaxImageSide)};
-    const JsonField matrix = intrinsic.at("intrinsic_matrix");
+    camera.size = {static_cast<long>(intrinsic.at({"width"}).integer(1, kMaxImageSide)),
+                   static_cast<long>(intrinsic.at({"height"}).integer(1, kMaxImageSide))};
+    const Field matrix = intrinsic.at({"intrinsic_matrix"});
     const std::vector<double> k = numbers(matrix, 9);  // column-major
     if (k[1] != 0.0 || k[2] != 0.0 || k[5] != 0.0 || k[8] != 1.0) {
         matrix.fail("expected Eigen's column-major [fx, 0, 0, s, fy, 0, cx, cy, 1]");
@@ -33,7 +33,7 @@ Camera read_intrinsic(const JsonField& intrinsic) {
     return camera;
 }
 
-Pose read_extrinsic(const JsonField& field) {
+Pose read_extrinsic(const Field& field) {
     const std::vector<double> e = numbers(field, 16);  // column-major
     const auto at = [&](int r, int c) { return e[static_cast<std::size_t>(4 * c + r)]; };
     if (at(3, 0) != 0.0 || at(3, 1) != 0.0 || at(3, 2) != 0.0 || at(3, 3) != 1.0) field.fail("the last row must be 0 0 0 1");
@@ -51,13 +51,13 @@ Pose read_extrinsic(const JsonField& field) {
     return pose;
 }
 
-Camera read_parameters(const JsonField& parameters) {
-    Camera camera = read_intrinsic(parameters.at("intrinsic"));
-    camera.pose = read_extrinsic(parameters.at("extrinsic"));
+Camera read_parameters(const Field& parameters) {
+    Camera camera = read_intrinsic(parameters.at({"intrinsic"}));
+    camera.pose = read_extrinsic(parameters.at({"extrinsic"}));
     return camera;
 }
 
-NamedCamera checked(std::string name, Camera camera, const JsonField& where) {
+NamedCamera checked(std::string name, Camera camera, const Field& where) {
     try {
         camera.validate();
     } catch (const InvalidArgument& error) {
@@ -77,20 +77,20 @@ bool claims_open3d_camera(const DocumentNode& root) {
 }
 
 std::vector<NamedCamera> parse_open3d_camera(std::string_view text, const std::string& source) {
-    const json root = parse_json_document(text, source);
-    const JsonField top{root, "", source};
-    if (!root.is_object()) top.fail("expected an object");
-    const std::string kind = top.has("class_name") ? top.at("class_name").text() : std::string();
+    const DocumentNode root = parse_json_tree(text, source);
+    const Field top(root, "", source);
+    const std::optional<Field> class_name = top.find({"class_name"});
+    const std::string kind = class_name ? class_name->text() : std::string();
     if (kind == "PinholeCameraTrajectory") {
-        const JsonField list = top.at("parameters");
+        const Field list = top.at({"parameters"});
         if (list.size() == 0) list.fail("no camera");
         std::vector<NamedCamera> cameras;
-        for (std::size_t i = 0; i < list.size(); ++i) cameras.push_back(checked("", read_parameters(list.at(i)), list.at(i)));
+        for (std::size_t i = 0; i < list.size(); ++i) cameras.push_back(checked("", read_parameters(list.item(i)), list.item(i)));
         return cameras;
     }
     if (kind == "PinholeCameraParameters") return {checked("", read_parameters(top), top)};
     if (!kind.empty() && kind != "PinholeCameraIntrinsic") {
-        top.at("class_name").fail("must be PinholeCameraIntrinsic, PinholeCameraParameters or PinholeCameraTrajectory, "
+        class_name->fail("must be PinholeCameraIntrinsic, PinholeCameraParameters or PinholeCameraTrajectory, "
                                   "got '" + kind + "'");
     }
     return {checked("", read_intrinsic(top), top)};

@@ -1,21 +1,18 @@
 #include "libcam/io/detail/openicc_format.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include "libcam/error.hpp"
-#include "libcam/io/detail/json_field.hpp"
+#include "libcam/io/detail/document.hpp"
 
 namespace libcam {
 
 bool claims_openicc_camera(const DocumentNode& root) { return root.find("intrinsic_type") != nullptr; }
 
 std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::string& source) {
-    const nlohmann::json root = parse_json_document(text, source);
-    const JsonField top{root, "", source};
-    if (!root.is_object()) top.fail("expected an object");
-    const JsonField type = top.at("intrinsic_type");
-    const JsonField k = top.at("intrinsics");
-    const auto value = [&](const char* key) { return k.at(key).number(); };
+    const DocumentNode root = parse_json_tree(text, source);
+    const Field top(root, "", source);
+    const Field type = top.at({"intrinsic_type"});
+    const Field k = top.at({"intrinsics"});
+    const auto value = [&](std::string_view key) { return k.at({key}).number(); };
     // The calibrator's writer puts each type's own parameters next to f, a, cx, cy and
     // skew; for any other type it writes none, so those files hold no lens to read.
     Lens lens;
@@ -36,11 +33,12 @@ std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::
                   "their parameters), got '" + type.text() + "'");
     }
     const double focal = value("focal_length");
-    const double aspect = k.has("aspect_ratio") ? value("aspect_ratio") : 1.0;
+    const double aspect = k.find({"aspect_ratio"}) ? value("aspect_ratio") : 1.0;
     Camera camera;
-    camera.size = {top.at("image_width").integer(1, kMaxImageSide), top.at("image_height").integer(1, kMaxImageSide)};
+    camera.size = {static_cast<long>(top.at({"image_width"}).integer(1, kMaxImageSide)),
+                   static_cast<long>(top.at({"image_height"}).integer(1, kMaxImageSide))};
     camera.intrinsics = {focal, aspect * focal, value("principal_pt_x"), value("principal_pt_y"),
-                         k.has("skew") ? value("skew") : 0.0};
+                         k.find({"skew"}) ? value("skew") : 0.0};
     camera.lens = std::move(lens);
     try {
         camera.validate();

@@ -8,7 +8,6 @@
 #include "libcam/error.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
-#include "libcam/io/detail/json_field.hpp"
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
@@ -24,6 +23,14 @@ ImageSize size_of(const Field& width, const Field& height) {
     return {static_cast<int>(width.integer(1, kMaxImageSide)), static_cast<int>(height.integer(1, kMaxImageSide))};
 }
 
+// A resolution written as [width, height] (Kalibr, EuRoC, basalt).
+ImageSize size_of(const Field& resolution) {
+    if (resolution.node().kind != DocumentNode::Kind::Sequence || resolution.size() != 2) {
+        resolution.fail("expected [width, height]");
+    }
+    return size_of(resolution.item(0), resolution.item(1));
+}
+
 // ---- Kalibr ----------------------------------------------------------------------------
 
 // A 4x4 homogeneous transform [R t; 0 0 0 1] as a pose (X_to = R X_from + t).
@@ -32,8 +39,7 @@ Pose read_transform(const Field& field) {
     if (node.kind != DocumentNode::Kind::Sequence || node.items.size() != 4) field.fail("expected 4 rows of 4 numbers");
     Eigen::Matrix4d m;
     for (int r = 0; r < 4; ++r) {
-        const Field row(node.items[static_cast<std::size_t>(r)], field.name() + "[" + std::to_string(r) + "]",
-                        field.source());
+        const Field row = field.item(static_cast<std::size_t>(r));
         const std::vector<double> values = row.numbers(4);
         if (values.size() != 4) row.fail("expected 4 numbers, got " + std::to_string(values.size()));
         for (int c = 0; c < 4; ++c) m(r, c) = values[static_cast<std::size_t>(c)];
@@ -94,11 +100,7 @@ NamedCamera read_kalibr_camera(const std::string& name, const Field& cam, const 
         const std::vector<double> values = distortion->numbers(kMaxLensCoefficients);
         coefficients.insert(coefficients.end(), values.begin(), values.end());
     }
-    const Field resolution = cam.at({"resolution"});
-    const DocumentNode& sizes = resolution.node();
-    if (sizes.kind != DocumentNode::Kind::Sequence || sizes.items.size() != 2) resolution.fail("expected [width, height]");
-    const ImageSize size = size_of(Field(sizes.items[0], resolution.name() + "[0]", source),
-                                   Field(sizes.items[1], resolution.name() + "[1]", source));
+    const ImageSize size = size_of(cam.at({"resolution"}));
 
     Camera camera;
     camera.size = size;
@@ -164,13 +166,11 @@ NamedCamera read_camodocal(const Field& file, const std::string& source) {
 
 // ---- basalt -------------------------------------------------------------------------------
 
-using nlohmann::json;
-
 // basalt's T_imu_cam: camera to IMU, px py pz and the unit quaternion qx qy qz qw.
-Pose basalt_pose(const JsonField& transform) {
-    const Eigen::Vector3d position(transform.at("px").number(), transform.at("py").number(), transform.at("pz").number());
-    Eigen::Quaterniond q(transform.at("qw").number(), transform.at("qx").number(), transform.at("qy").number(),
-                         transform.at("qz").number());
+Pose basalt_pose(const Field& transform) {
+    const auto value = [&](std::string_view key) { return transform.at({key}).number(); };
+    const Eigen::Vector3d position(value("px"), value("py"), value("pz"));
+    Eigen::Quaterniond q(value("qw"), value("qx"), value("qy"), value("qz"));
     if (std::abs(q.norm() - 1.0) > 1e-6) transform.fail("the quaternion's norm is " + std::to_string(q.norm()) + ", not 1");
     q.normalize();
     return Pose{q.toRotationMatrix(), position}.inverse();
@@ -191,17 +191,18 @@ std::string basalt_type_names() {
     return names + std::string(kBasaltOwnTypes);
 }
 
-Camera basalt_camera(const JsonField& entry) {
-    const std::string type = entry.at("camera_type").text();
-    const JsonField k = entry.at("intrinsics");
-    const auto value = [&](std::string_view key) { return k.at(key).number(); };
+Camera basalt_camera(const Field& entry) {
+    const Field camera_type = entry.at({"camera_type"});
+    const std::string type = camera_type.text();
+    const Field k = entry.at({"intrinsics"});
+    const auto value = [&](std::string_view key) { return k.at({key}).number(); };
     Camera camera;
     camera.intrinsics = {value("fx"), value("fy"), value("cx"), value("cy"), 0.0};
     if (type == "ucm") {
         // basalt's m = (x, y) / (alpha d + (1 - alpha) z) = UCM's (x, y) / (z + xi d) times
         // 1 / (1 - alpha), with xi = alpha / (1 - alpha).
         const double alpha = value("alpha");
-        if (!(alpha >= 0 && alpha < 1)) k.at("alpha").fail("must be in [0, 1), got " + std::to_string(alpha));
+        if (!(alpha >= 0 && alpha < 1)) k.at({"alpha"}).fail("must be in [0, 1), got " + std::to_string(alpha));
         const double scale = 1.0 / (1.0 - alpha);
         camera.intrinsics.fx *= scale;
         camera.intrinsics.fy *= scale;
@@ -212,7 +213,7 @@ Camera basalt_camera(const JsonField& entry) {
     // table's names.
     const auto models = lens_models();
     const auto found = std::find_if(models.begin(), models.end(), [&](const LensInfo& info) { return info.basalt == type; });
-    if (found == models.end()) entry.at("camera_type").fail("must be " + basalt_type_names() + ", got '" + type + "'");
+    if (found == models.end()) camera_type.fail("must be " + basalt_type_names() + ", got '" + type + "'");
     camera.lens.type = found->type;
     for (const std::string_view name : found->coefficients.view()) {
         camera.lens.coefficients.push_back(value(basalt_coefficient_name(name)));
@@ -238,12 +239,8 @@ NamedCamera read_euroc_sensor(const Field& file, const std::string& source) {
     const Field intrinsics = file.at({"intrinsics"});
     const std::vector<double> k = intrinsics.numbers(4);
     if (k.size() != 4) intrinsics.fail("expected fu, fv, cu, cv");
-    const Field resolution = file.at({"resolution"});
-    const DocumentNode& sizes = resolution.node();
-    if (sizes.kind != DocumentNode::Kind::Sequence || sizes.items.size() != 2) resolution.fail("expected [width, height]");
     Camera camera;
-    camera.size = size_of(Field(sizes.items[0], resolution.name() + "[0]", source),
-                          Field(sizes.items[1], resolution.name() + "[1]", source));
+    camera.size = size_of(file.at({"resolution"}));
     camera.intrinsics = {k[0], k[1], k[2], k[3], 0.0};
     const Field coefficients = file.at({"distortion_coefficients"});
     camera.lens = {type, coefficients.numbers(4)};
@@ -431,21 +428,20 @@ std::vector<NamedCamera> parse_camodocal(std::string_view text, const std::strin
 }
 
 std::vector<NamedCamera> parse_basalt_calibration(std::string_view text, const std::string& source) {
-    const json root = parse_json_document(text, source);
-    if (!root.is_object() || !root.contains("value0")) throw FileError(source + ": expected basalt's \"value0\" object");
-    const JsonField calibration{root.at("value0"), "value0", source};
-    const JsonField intrinsics = calibration.at("intrinsics");
-    const JsonField resolution = calibration.at("resolution");
-    const bool has_poses = calibration.has("T_imu_cam");
+    const DocumentNode root = parse_json_tree(text, source);
+    if (!claims_basalt_calibration(root)) throw FileError(source + ": expected basalt's \"value0\" object");
+    const Field calibration = Field(root, "", source).at({"value0"});
+    const Field intrinsics = calibration.at({"intrinsics"});
+    const Field resolution = calibration.at({"resolution"});
+    const std::optional<Field> poses = calibration.find({"T_imu_cam"});
     const std::size_t count = intrinsics.size();
     if (count == 0) intrinsics.fail("no camera");
     if (resolution.size() != count) resolution.fail("expected one [width, height] per camera (" + std::to_string(count) + ")");
     std::vector<NamedCamera> cameras;
     for (std::size_t i = 0; i < count; ++i) {
-        Camera camera = basalt_camera(intrinsics.at(i));
-        const JsonField size = resolution.at(i);
-        camera.size = {size.at(0).integer(1, kMaxImageSide), size.at(1).integer(1, kMaxImageSide)};
-        if (has_poses) camera.pose = basalt_pose(calibration.at("T_imu_cam").at(i));
+        Camera camera = basalt_camera(intrinsics.item(i));
+        camera.size = size_of(resolution.item(i));
+        if (poses) camera.pose = basalt_pose(poses->item(i));
         const std::string name = "cam" + std::to_string(i);
         cameras.push_back(checked(name, std::move(camera), source + ": \"value0.intrinsics[" + std::to_string(i) + "]\""));
     }
