@@ -62,9 +62,9 @@ cmake -S "$root/examples/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$wor
       -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
 cmake --build "$work/consumer" > "$work/build.log"
 check "$("$work/consumer/consumer")"
-# libcam::fit: a FOV camera's simplest model is the FOV form itself.
+# libcam::fit: a graphics camera's simplest model is the look-at form itself.
 check_fit() {
-  echo "$1" | grep -q "^chosen FOV max " || { echo "test-install: wrong fit from the consumer:"; echo "$1"; exit 1; }
+  echo "$1" | grep -q "^chosen LOOK_AT max " || { echo "test-install: wrong fit from the consumer:"; echo "$1"; exit 1; }
 }
 check_fit "$("$work/consumer/consumer_fit")"
 

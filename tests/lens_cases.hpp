@@ -135,7 +135,7 @@ inline std::vector<LensCase> lens_cases() {
                                      -0.00081237172954550494, 0.00067297684030310243},
                                     {752, 480}, {2138.7619122017772, 2131.5886210259278, 361.19856633263799, 248.27644773395667})},
         {"MEI xi 1", lens_camera(LensType::Mei, {1.0, -0.05, 0.01, 1e-3, -5e-4}, {1600, 1200}, 400, 400)},
-        // basalt's FOV test camera (basalt-headers' FovCamera::getTestProjections, 752x480);
+        // basalt's FOV test camera (basalt-headers' LookAtCamera::getTestProjections, 752x480);
         // a mild lens; and omega 2.5, whose image disc |m| < pi / omega reaches 180 degrees.
         {"FOV basalt", real_camera(LensType::Fov, {0.9259487501905697}, {752, 480}, {379.045, 379.008, 505.512, 509.969})},
         {"FOV mild", lens_camera(LensType::Fov, {0.3}, {1600, 1200}, 900, 910)},

@@ -36,8 +36,8 @@ inline FovAxis random_axis(int i) {
 
 // A FOV camera with a random eye, gaze, up (at least ~6 degrees from the gaze), fov in
 // [fov_low, fov_high] and the given size.
-inline FovCamera random_fov_camera(ImageSize size, FovAxis axis, double fov_low = 1.0, double fov_high = 179.0) {
-    FovCamera camera;
+inline LookAtCamera random_fov_camera(ImageSize size, FovAxis axis, double fov_low = 1.0, double fov_high = 179.0) {
+    LookAtCamera camera;
     camera.eye = random_vector(100.0);
     camera.gaze = random_unit() * uniform(0.1, 10.0);
     do camera.up = random_unit() * uniform(0.1, 10.0);

@@ -84,7 +84,7 @@ TEST_CASE("fit --json: chosen {model, params, rms_px, max_px}, candidates with t
     const json out = fit_json({files.fov, "--tolerance", "0.01"}, &err);
     CHECK(err.empty());  // a fit this quick shows no progress
     const json& chosen = out.at("chosen");
-    CHECK(chosen.at("model") == "FOV");
+    CHECK(chosen.at("model") == "LOOK_AT");
     REQUIRE(chosen.at("params").size() == 1);
     CHECK(chosen.at("params")[0].get<double>() == Approx(640.0 / std::tan(35.0 * std::numbers::pi / 180.0)).epsilon(1e-12));
     CHECK(chosen.at("rms_px").get<double>() < 1e-9);
@@ -94,7 +94,7 @@ TEST_CASE("fit --json: chosen {model, params, rms_px, max_px}, candidates with t
 
     const json& candidates = out.at("candidates");
     REQUIRE(candidates.size() == 6);  // 35 deg off the axis at most: not a wide scene
-    const std::vector<std::pair<std::string, int>> expected = {{"FOV", 1},     {"PINHOLE", 4}, {"OPENCV4", 8},
+    const std::vector<std::pair<std::string, int>> expected = {{"LOOK_AT", 1}, {"PINHOLE", 4}, {"OPENCV4", 8},
                                                                {"OPENCV5", 9}, {"OPENCV8", 12}, {"OPENCV12", 16}};
     for (std::size_t i = 0; i < expected.size(); ++i) {
         const json& entry = candidates[i];
@@ -107,12 +107,12 @@ TEST_CASE("fit --json: chosen {model, params, rms_px, max_px}, candidates with t
     }
 }
 
-TEST_CASE("fit prints the table and the choice, a FOV camera as fov on each axis and size") {
+TEST_CASE("fit prints the table and the choice, a look-at camera as fov on each axis and size") {
     Files files;
     const auto result = fit({files.fov, "--tolerance", "0.01"});
     INFO(result.describe());
     REQUIRE(result.exit_code == 0);
-    for (const std::string words : {"model", "params", "rms_px", "max_px", "covers", "pass", "OPENCV12", "chosen: FOV",
+    for (const std::string words : {"model", "params", "rms_px", "max_px", "covers", "pass", "OPENCV12", "chosen: LOOK_AT",
                                     "fov horizontal 70 deg", "size 1280x720", "--fov 70 --fov-axis horizontal --size 1280x720"}) {
         CHECK_THAT(result.out, Contains(words));
     }
@@ -125,7 +125,7 @@ TEST_CASE("fit -o writes the chosen camera, and an independent check finds it wi
     const libcam::PreparedCamera source(libcam::read_camera_file(files.mild).camera);
     const libcam::PreparedCamera chosen(libcam::read_camera_file(out).camera);
     const std::string model = report.at("chosen").at("model");
-    CHECK(libcam::lens_info(chosen.camera().lens.type).name == (model == "FOV" ? "PINHOLE" : model));
+    CHECK(libcam::lens_info(chosen.camera().lens.type).name == (model == "LOOK_AT" ? "PINHOLE" : model));
 
     double worst = 0.0;
     for (double y = 200.0; y <= 800.0; y += 3.0) {
@@ -207,7 +207,7 @@ TEST_CASE("fit refuses bad scenes and flags, and says when no model meets the to
     check_refused({files.mild, "--depth", "1,10"}, 2, "--depth");
     check_refused({files.mild, "--grid", "1x5"}, 2, "--grid");
     check_refused({files.mild, "-o", (files.dir / "x").string(), "--to", "png"}, 2, "--to");
-    check_refused({files.mild, "--model", "OPENCV4,LONLAT"}, 2, "--model: libcam fit cannot fit 'LONLAT'; it fits FOV, PINHOLE");
+    check_refused({files.mild, "--model", "OPENCV4,LONLAT"}, 2, "--model: libcam fit cannot fit 'LONLAT'; it fits LOOK_AT, PINHOLE");
     // No candidate: not even OPENCV4, the lens itself, comes closer than rounding.
     check_refused({files.mild, "--radius", "200", "--tolerance", "1e-300"}, 1, "no candidate model meets the tolerance 1e-300 px");
     // A splined source fitted on rays alone: the message suggests letting the camera rotate.

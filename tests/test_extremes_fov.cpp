@@ -1,5 +1,5 @@
 // The FOV camera and its conversions at the extremes, against the 113-bit
-// reference: libcam's own templated formulas (fov_formulas.hpp, pinhole_from_fov,
+// reference: libcam's own templated formulas (look_at_formulas.hpp, pinhole_from_fov,
 // look_at_formula_in) run in Quad from the very same inputs. Each extreme is a group of
 // rows (extremes.hpp) with a documented bound; the test cases assert the bounds and
 // `test_extremes "[table]"` prints the measured values.
@@ -40,8 +40,8 @@ const std::vector<double>& fov_sweep() {
 
 // A camera with a random pose (eye within 100 of the origin, up at least ~6 degrees
 // from the gaze), the given fov, axis and size.
-FovCamera swept_camera(double fov, FovAxis axis, ImageSize size) {
-    FovCamera camera = random_fov_camera(size, axis);
+LookAtCamera swept_camera(double fov, FovAxis axis, ImageSize size) {
+    LookAtCamera camera = random_fov_camera(size, axis);
     camera.fov_deg = fov;
     return camera;
 }
@@ -51,8 +51,8 @@ FovCamera swept_camera(double fov, FovAxis axis, ImageSize size) {
 // inputs' rounding. (Written into a fresh camera: GCC 12.2 at -O2 drops the rounding of
 // fov_deg when the same camera is rounded in place, member by member; a test case
 // below checks the result.)
-FovCamera rounded_to_float(const FovCamera& camera) {
-    FovCamera rounded = camera;
+LookAtCamera rounded_to_float(const LookAtCamera& camera) {
+    LookAtCamera rounded = camera;
     rounded.eye = camera.eye.cast<float>().cast<double>();
     rounded.gaze = camera.gaze.cast<float>().cast<double>();
     rounded.up = camera.up.cast<float>().cast<double>();
@@ -68,7 +68,7 @@ std::vector<Vec2> probe_pixels(const ImageSize& size) {
             {0, h - 1},   {(w - 1) / 2, (h - 1) / 2}, {w - 1, (h - 1) / 2}, {(w - 1) / 2, 0}};
 }
 
-std::string describe(const FovCamera& camera) {
+std::string describe(const LookAtCamera& camera) {
     std::ostringstream out;
     out << "fov " << camera.fov_deg << " " << to_string(camera.fov_axis) << " " << camera.size.width << "x"
         << camera.size.height;
@@ -117,7 +117,7 @@ struct FovSweepWorst {
     double px_scale_double = 0, px_scale_float = 0;  // the largest pixel_conditioning seen
 };
 
-void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
+void sweep_camera(const LookAtCamera& camera, FovSweepWorst& worst) {
     const auto where = [&] { return describe(camera); };
     // In double, against the reference from the same inputs.
     const FovPinholeT<Quad> pinhole_q = pinhole_from_fov<Quad>(camera);
@@ -140,11 +140,11 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
         worst.calibrated_rad.update(c_rad, at);
         worst.calibrated_px.update(c_px, at);
     }
-    const FovCamera back = to_fov_camera(calibrated, camera.fov_axis);
+    const LookAtCamera back = to_look_at_camera(calibrated, camera.fov_axis);
     worst.fov_back.update(ulps(back.fov_deg, Quad(camera.fov_deg)), where);
 
     // In float, against the reference from the float-rounded inputs.
-    const FovCamera camera_f = rounded_to_float(camera);
+    const LookAtCamera camera_f = rounded_to_float(camera);
     const FovPinholeT<Quad> pinhole_fq = pinhole_from_fov<Quad>(camera_f);
     const LookAtRayFormulaT<Quad> look_at_fq = look_at_formula_in<Quad>(camera_f);
     const FovPinholeT<float> pinhole_f = pinhole_from_fov<float>(camera_f);
@@ -174,9 +174,9 @@ void sweep_camera(const FovCamera& camera, FovSweepWorst& worst) {
 //   rounding: 3 ulps.
 constexpr double kFocalUlps = 3, kRayEps = 4, kPixelConditionings = 4, kFovBackUlps = 3;
 
-std::vector<Row> fov_extreme_rows(const std::string& extreme, const std::vector<FovCamera>& cameras) {
+std::vector<Row> fov_extreme_rows(const std::string& extreme, const std::vector<LookAtCamera>& cameras) {
     FovSweepWorst worst;
-    for (const FovCamera& camera : cameras) sweep_camera(camera, worst);
+    for (const LookAtCamera& camera : cameras) sweep_camera(camera, worst);
     const std::string tangent = "tan(fov/2) in long double, by its complement above 90 deg; one rounding to the type";
     return {
         {extreme, "fx, fy vs reference [ulp]", worst.focal_double.value, worst.focal_float.value, kFocalUlps,
@@ -198,9 +198,9 @@ std::vector<Row> fov_extreme_rows(const std::string& extreme, const std::vector<
 }
 
 // The same cameras every time, whichever test case (or the table) asks first.
-std::vector<FovCamera> cameras_at(const std::vector<double>& fovs, const std::vector<ImageSize>& sizes) {
+std::vector<LookAtCamera> cameras_at(const std::vector<double>& fovs, const std::vector<ImageSize>& sizes) {
     rng().seed(5);
-    std::vector<FovCamera> cameras;
+    std::vector<LookAtCamera> cameras;
     for (double fov : fovs)
         for (const ImageSize& size : sizes)
             for (FovAxis axis : kAxes) cameras.push_back(swept_camera(fov, axis, size));
@@ -232,8 +232,8 @@ double basis_error(const BasisT<Scalar>& basis, const BasisT<Quad>& reference) {
 }
 
 // A FOV camera through look_at, for the pose extremes (fov and size are ordinary).
-FovCamera posed_camera(const Vec3& eye, const Vec3& target, const Vec3& up) {
-    return FovCamera::look_at(eye, target, up, 60.0, FovAxis::Horizontal, {1920, 1080});
+LookAtCamera posed_camera(const Vec3& eye, const Vec3& target, const Vec3& up) {
+    return LookAtCamera::look_at(eye, target, up, 60.0, FovAxis::Horizontal, {1920, 1080});
 }
 
 // Eye 1e7 units from the origin, target 1 unit away. t = -R eye is ~1e7 long, so its
@@ -247,7 +247,7 @@ std::vector<Row> far_eye_rows() {
     for (int i = 0; i < 200; ++i) {
         const Vec3 eye = random_unit() * 1e7;
         const Vec3 target = eye + random_unit();
-        const FovCamera camera = posed_camera(eye, target, random_unit());
+        const LookAtCamera camera = posed_camera(eye, target, random_unit());
         const auto where = [&] {
             return "eye (" + std::to_string(eye.x()) + ", " + std::to_string(eye.y()) + ", " + std::to_string(eye.z()) +
                    ")";
@@ -264,7 +264,7 @@ std::vector<Row> far_eye_rows() {
                             q.focal.y() * target_q.y() / target_q.z() + q.principal_point.y());
         pixel_d.update(static_cast<double>((PreparedCamera(calibrated).project(target).pixel.cast<Quad>() - pixel_q).norm()), where);
         // Float, from the float-rounded inputs.
-        const FovCamera camera_f = rounded_to_float(camera);
+        const LookAtCamera camera_f = rounded_to_float(camera);
         const Vec3 target_f = target.cast<float>().cast<double>();
         const FovPinholeT<Quad> qf = pinhole_from_fov<Quad>(camera_f);
         const FovPinholeT<float> pf = pinhole_from_fov<float>(camera_f);
@@ -308,12 +308,12 @@ std::vector<Row> near_target_rows() {
     Worst basis_d, basis_f, input_limit;
     for (int i = 0; i < 200; ++i) {
         const Vec3 eye = random_vector(100.0);
-        const FovCamera camera = posed_camera(eye, eye + 1e-9 * random_unit(), random_unit());
+        const LookAtCamera camera = posed_camera(eye, eye + 1e-9 * random_unit(), random_unit());
         const auto where = [&] { return "gaze " + std::to_string(camera.gaze.norm()); };
         basis_d.update(basis_error(camera.basis(), basis_from_gaze_up<Quad>(camera.gaze.cast<Quad>(),
                                                                             camera.up.cast<Quad>(), Handedness::Left)),
                        where);
-        const FovCamera camera_f = rounded_to_float(camera);
+        const LookAtCamera camera_f = rounded_to_float(camera);
         basis_f.update(
             basis_error(
                 basis_from_gaze_up<float>(camera_f.gaze.cast<float>(), camera_f.up.cast<float>(), Handedness::Left),
@@ -333,7 +333,7 @@ std::vector<Row> near_target_rows() {
 }
 
 // Up at a small angle from the gaze, a toward a random perpendicular.
-FovCamera up_near_gaze(double angle) {
+LookAtCamera up_near_gaze(double angle) {
     const Vec3 gaze = random_unit() * uniform(0.1, 10.0);
     const Vec3 across = gaze.unitOrthogonal();
     return posed_camera(Vec3::Zero(), gaze,
@@ -379,18 +379,18 @@ std::vector<Row> up_near_gaze_rows() {
     Worst at_1e6_d, at_1e6_f, sweep_d, round_trip_d;
     for (double angle : {1e-6, 1e-7, 1e-8, 2e-9, 1.1e-9}) {
         for (int i = 0; i < 100; ++i) {
-            const FovCamera camera = up_near_gaze(angle);
+            const LookAtCamera camera = up_near_gaze(angle);
             const auto where = [&] { return "angle " + std::to_string(angle); };
             const BasisT<Quad> reference =
                 basis_from_gaze_up<Quad>(camera.gaze.cast<Quad>(), camera.up.cast<Quad>(), Handedness::Left);
             const double error = basis_error(camera.basis(), reference);
             sweep_d.update(error, where);
             // K, R, t -> look-at -> basis: the way back returns the camera's own up (v).
-            round_trip_d.update(basis_error(to_fov_camera(to_camera(camera), FovAxis::Horizontal).basis(), reference),
+            round_trip_d.update(basis_error(to_look_at_camera(to_camera(camera), FovAxis::Horizontal).basis(), reference),
                                 where);
             if (angle != 1e-6) continue;
             at_1e6_d.update(error, where);
-            const FovCamera camera_f = rounded_to_float(camera);
+            const LookAtCamera camera_f = rounded_to_float(camera);
             at_1e6_f.update(
                 basis_error(
                     basis_from_gaze_up<float>(camera_f.gaze.cast<float>(), camera_f.up.cast<float>(), Handedness::Left),
@@ -446,8 +446,8 @@ std::vector<Row> off_centre_rows() {
 }  // namespace
 
 TEST_CASE("extremes: the float-rounded inputs are floats") {
-    for (const FovCamera& camera : cameras_at(fov_sweep(), {{3, 3}})) {
-        const FovCamera rounded = rounded_to_float(camera);
+    for (const LookAtCamera& camera : cameras_at(fov_sweep(), {{3, 3}})) {
+        const LookAtCamera rounded = rounded_to_float(camera);
         REQUIRE(static_cast<float>(rounded.fov_deg) == rounded.fov_deg);
         REQUIRE(rounded.up.cast<float>().cast<double>() == rounded.up);
         REQUIRE(rounded.fov_deg == static_cast<double>(static_cast<float>(camera.fov_deg)));

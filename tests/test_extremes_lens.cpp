@@ -500,7 +500,7 @@ void sweep_fov(SweepCount& in_double) {
              {ImageSize{1, 1}, ImageSize{100000, 100000}, ImageSize{1, 10000}, ImageSize{100000, 10}}) {
             for (FovAxis axis : {FovAxis::Horizontal, FovAxis::Vertical, FovAxis::Diagonal, FovAxis::Both}) {
                 for (double eye_scale : {0.0, 1e7, 1e300}) {
-                    FovCamera fov_camera = random_fov_camera(size, axis);
+                    LookAtCamera fov_camera = random_fov_camera(size, axis);
                     fov_camera.fov_deg = fov;
                     fov_camera.eye = random_unit() * eye_scale;
                     Camera camera;

@@ -142,7 +142,7 @@ const char* extension(CameraFormat format) {
 TEST_CASE("Round trip through every format: K, R, t and size come back", "[files]") {
     TempDir dir;
     for (int i = 0; i < 16; ++i) {
-        const FovCamera fov = libcam::test::random_fov_camera(kSizes[i % std::size(kSizes)], libcam::test::random_axis(i));
+        const LookAtCamera fov = libcam::test::random_fov_camera(kSizes[i % std::size(kSizes)], libcam::test::random_axis(i));
         const Camera camera = to_camera(fov);
         for (CameraFormat format : kFormats) {
             CAPTURE(i, to_string(format), fov.size.width, fov.size.height, fov.fov_deg);
@@ -187,7 +187,7 @@ TEST_CASE("JSON with \"fov_axis\" reads back the FOV camera: same fov, gaze and 
     TempDir dir;
     for (int i = 0; i < 24; ++i) {
         const FovAxis axis = libcam::test::random_axis(i);
-        const FovCamera fov = i % 6 == 1   ? libcam::test::random_fov_camera(kSizes[i % 6], axis, 1.0, 1.0 + 1e-9)
+        const LookAtCamera fov = i % 6 == 1   ? libcam::test::random_fov_camera(kSizes[i % 6], axis, 1.0, 1.0 + 1e-9)
                               : i % 6 == 4 ? libcam::test::random_fov_camera(kSizes[i % 6], axis, 179.0 - 1e-9, 179.0)
                                            : libcam::test::random_fov_camera(kSizes[i % 6], axis);
         const fs::path path = dir.path() / ("fov" + std::to_string(i) + ".json");
@@ -196,7 +196,7 @@ TEST_CASE("JSON with \"fov_axis\" reads back the FOV camera: same fov, gaze and 
         write_camera_file(path, to_camera(fov), CameraFormat::Json, options);
         const CameraFile file = read_camera_file(path);
         REQUIRE(file.fov_camera.has_value());
-        const FovCamera& back = *file.fov_camera;
+        const LookAtCamera& back = *file.fov_camera;
         CAPTURE(i, to_string(axis), fov.fov_deg, back.fov_deg, fov.size.width, fov.size.height);
         CHECK(back.fov_axis == fov.fov_axis);
         CHECK(back.size == fov.size);

@@ -15,7 +15,7 @@ constexpr double kPi = std::numbers::pi;
 
 double deg(double radians) { return radians * 180.0 / kPi; }
 
-FovCamera camera_1920x1080(double fov, FovAxis axis) {
+LookAtCamera camera_1920x1080(double fov, FovAxis axis) {
     return {{1, 2, 3}, {0, 0, -1}, {0, 1, 0}, fov, axis, {1920, 1080}};
 }
 
@@ -47,7 +47,7 @@ TEST_CASE("K for every fov axis, by hand") {
 TEST_CASE("R has rows u, -v, gaze and t = -R eye") {
     // Camera at (0, 5, 5) looking at the origin (the second worked example camera):
     // u = (1,0,0), v = (0,1,-1)/sqrt2, w = (0,-1,-1)/sqrt2.
-    const Camera camera = to_camera(FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90, FovAxis::Both, {3, 3}));
+    const Camera camera = to_camera(LookAtCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90, FovAxis::Both, {3, 3}));
     const double s = 1 / std::sqrt(2.0);
     Mat3 expected;
     expected << 1, 0, 0,  //
@@ -75,10 +75,10 @@ TEST_CASE("round trip FOV camera -> K, R, t -> FOV camera") {
         const long width = std::max(1L, std::lround(1000 * std::sqrt(aspect)));
         const long height = std::max(1L, std::lround(1000 / std::sqrt(aspect)));
         const FovAxis axis = test::random_axis(i);
-        FovCamera original = test::random_fov_camera({width, height}, axis);
+        LookAtCamera original = test::random_fov_camera({width, height}, axis);
         if (i < 8) original.fov_deg = (i % 2 == 0) ? 1.0 : 179.0;  // the ends of the range, exactly
         // A diagonal fov must leave both axes under 180: always true; any fov < 180 is valid.
-        const FovCamera back = to_fov_camera(to_camera(original), axis);
+        const LookAtCamera back = to_look_at_camera(to_camera(original), axis);
         INFO("axis " << to_string(axis) << " fov " << original.fov_deg << " size " << width << "x" << height);
         REQUIRE(relative_error(back.fov_deg, original.fov_deg) < 1e-12);
         REQUIRE(back.fov_axis == axis);
@@ -107,7 +107,7 @@ TEST_CASE("rays both ways agree on every pixel of a 1920x1080 image") {
     long pixels = 0;
     for (int i = 0; i < 20; ++i) {
         const ImageSize size = i < 16 ? ImageSize{1920, 1080} : ImageSize{i % 2 ? 300L : 2400L, i % 2 ? 2400L : 300L};
-        const FovCamera fov = test::random_fov_camera(size, test::random_axis(i));
+        const LookAtCamera fov = test::random_fov_camera(size, test::random_axis(i));
         const PixelOrigin origin = i % 2 == 0 ? PixelOrigin::BottomLeft : PixelOrigin::TopLeft;
         const PreparedCamera camera(to_camera(fov));
         const LookAtRayFormula look_at = fov.look_at_formula();
@@ -138,8 +138,8 @@ TEST_CASE("fov angles and frustum of an off-centre camera, by hand") {
     REQUIRE(relative_error(d.fov_deg.horizontal, deg(std::atan(0.695) + std::atan(0.305))) < 1e-14);
     REQUIRE(relative_error(d.fov_deg.vertical, deg(std::atan(0.295) + std::atan(0.205))) < 1e-14);
     REQUIRE_FALSE(d.is_fov_camera());
-    REQUIRE_THROWS_AS(to_fov_camera(camera, FovAxis::Horizontal), NotRepresentable);
-    REQUIRE_THROWS_WITH(to_fov_camera(camera, FovAxis::Both), Catch::Matchers::Contains("principal point cx 30"));
+    REQUIRE_THROWS_AS(to_look_at_camera(camera, FovAxis::Horizontal), NotRepresentable);
+    REQUIRE_THROWS_WITH(to_look_at_camera(camera, FovAxis::Both), Catch::Matchers::Contains("principal point cx 30"));
 }
 
 TEST_CASE("fov angles of a centred camera, by hand") {
@@ -155,8 +155,8 @@ TEST_CASE("fov angles of a centred camera, by hand") {
     REQUIRE(d.fits_axis(FovAxis::Vertical));
     REQUIRE(d.fits_axis(FovAxis::Diagonal));
     REQUIRE_FALSE(d.fits_axis(FovAxis::Both));
-    REQUIRE_THROWS_WITH(to_fov_camera(camera, FovAxis::Both), Catch::Matchers::Contains("W/fx"));
-    REQUIRE(to_fov_camera(camera, FovAxis::Horizontal).fov_deg == Approx(90.0).epsilon(1e-15));
+    REQUIRE_THROWS_WITH(to_look_at_camera(camera, FovAxis::Both), Catch::Matchers::Contains("W/fx"));
+    REQUIRE(to_look_at_camera(camera, FovAxis::Horizontal).fov_deg == Approx(90.0).epsilon(1e-15));
 }
 
 TEST_CASE("skew and non-square pixels are reported, not dropped") {
@@ -172,16 +172,16 @@ TEST_CASE("skew and non-square pixels are reported, not dropped") {
     d = describe_fov(camera);
     REQUIRE_FALSE(d.fits_axis(FovAxis::Horizontal));
     REQUIRE_FALSE(d.fits_axis(FovAxis::Both));
-    REQUIRE_THROWS_WITH(to_fov_camera(camera, FovAxis::Vertical), Catch::Matchers::Contains("not square"));
+    REQUIRE_THROWS_WITH(to_look_at_camera(camera, FovAxis::Vertical), Catch::Matchers::Contains("not square"));
 }
 
 TEST_CASE("bad FOV cameras are refused with the field named") {
     using Catch::Matchers::Contains;
-    auto fov = [](double deg) { return FovCamera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, deg, FovAxis::Both, {3, 3}}; };
+    auto fov = [](double deg) { return LookAtCamera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, deg, FovAxis::Both, {3, 3}}; };
     for (double bad : {0.0, -5.0, 180.0, 200.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
         REQUIRE_THROWS_WITH(to_camera(fov(bad)), Contains("fov"));
     }
-    FovCamera camera = fov(90);
+    LookAtCamera camera = fov(90);
     camera.size = {0, 3};
     REQUIRE_THROWS_WITH(to_camera(camera), Contains("size") && Contains("width"));
     camera = fov(90);
@@ -192,7 +192,7 @@ TEST_CASE("bad FOV cameras are refused with the field named") {
     camera.up = {0, 1, 0};
     camera.eye = {0, std::nan(""), 0};
     REQUIRE_THROWS_WITH(to_camera(camera), Contains("eye"));
-    REQUIRE_THROWS_WITH(FovCamera::look_at({1, 2, 3}, {1, 2, 3}, {0, 1, 0}, 90, FovAxis::Both, {3, 3}),
+    REQUIRE_THROWS_WITH(LookAtCamera::look_at({1, 2, 3}, {1, 2, 3}, {0, 1, 0}, 90, FovAxis::Both, {3, 3}),
                         Contains("target") && Contains("eye"));
     camera = fov(90);
     camera.gaze = {0, 0, 0};
@@ -203,14 +203,14 @@ TEST_CASE("up close to the gaze: a clear error below the threshold, a correct ba
     // Gaze -z; up tilted from -z by angle a toward +y: up = (0, sin a, -cos a).
     // The basis then is u = gaze x up = (sin a, 0, 0)/sin a = (1, 0, 0) exactly, v = (0, 1, 0).
     for (double angle : {1e-3, 1e-6, 1e-8}) {
-        const FovCamera camera{{0, 0, 0}, {0, 0, -1}, {0, std::sin(angle), -std::cos(angle)}, 90, FovAxis::Both, {3, 3}};
+        const LookAtCamera camera{{0, 0, 0}, {0, 0, -1}, {0, std::sin(angle), -std::cos(angle)}, 90, FovAxis::Both, {3, 3}};
         const Basis b = camera.basis();
         INFO("angle " << angle);
         REQUIRE((b.u - Vec3(1, 0, 0)).norm() < 1e-15);
         REQUIRE((b.v - Vec3(0, 1, 0)).norm() < 1e-15);
         REQUIRE_NOTHROW(to_camera(camera));
     }
-    const FovCamera too_close{{0, 0, 0}, {0, 0, -1}, {0, 1e-12, -1}, 90, FovAxis::Both, {3, 3}};
+    const LookAtCamera too_close{{0, 0, 0}, {0, 0, -1}, {0, 1e-12, -1}, 90, FovAxis::Both, {3, 3}};
     REQUIRE_THROWS_AS(to_camera(too_close), InvalidArgument);
 }
 

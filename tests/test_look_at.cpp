@@ -12,6 +12,7 @@
 // Example camera 2: eye (0, 5, 5) looking at the origin, up +y.
 
 #include <catch2/catch.hpp>
+#include <type_traits>
 
 #include "libcam/convert/fov_convert.hpp"
 #include "support.hpp"
@@ -27,8 +28,8 @@ void require_near(const Vec3& actual, const Vec3& expected, double tolerance = 1
     REQUIRE((actual - expected).norm() <= tolerance * std::max(1.0, expected.norm()));
 }
 
-FovCamera example_camera_1() { return {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3}}; }
-FovCamera example_camera_2() { return FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3}); }
+LookAtCamera example_camera_1() { return {{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3}}; }
+LookAtCamera example_camera_2() { return LookAtCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3}); }
 
 // The world ray through a pixel (counted from the bottom-left) by the calibrated path,
 // scaled so it can be compared with the look-at formula's unnormalised d.
@@ -58,7 +59,7 @@ TEST_CASE("look-at example 1: basis of the camera at the origin looking down -z"
 }
 
 TEST_CASE("look-at example 1: rays of pixels (1, 1) and (0, 0)") {
-    const FovCamera camera = example_camera_1();
+    const LookAtCamera camera = example_camera_1();
     // (1,1): alpha = beta = (2 - 3 + 1)/3 = 0, so d = w = (0, 0, -1).
     require_near(camera.look_at_ray({1, 1}), {0, 0, -1});
     // (0,0): alpha = beta = (0 - 3 + 1)/3 = -2/3, d = (-2/3, -2/3, -1).
@@ -70,7 +71,7 @@ TEST_CASE("look-at example 1: rays of pixels (1, 1) and (0, 0)") {
 }
 
 TEST_CASE("look-at example 1: the lower-left corner of the field of view") {
-    const FovCamera camera = example_camera_1();
+    const LookAtCamera camera = example_camera_1();
     // alpha = beta = -1: d = -u - v + w = (-1, -1, -1).
     require_near(camera.field_ray(-1, -1), {-1, -1, -1});
     // The corner is the outer edge of pixel (0, 0): x = y = -0.5 gives (2(-0.5) - 3 + 1)/3 = -1.
@@ -89,7 +90,7 @@ TEST_CASE("look-at example 2: basis of the camera at (0, 5, 5) looking at the or
 }
 
 TEST_CASE("look-at example 2: rays of pixels (1, 1) and (0, 0) for the camera at (0, 5, 5)") {
-    const FovCamera camera = example_camera_2();
+    const LookAtCamera camera = example_camera_2();
     // (1,1): d = w = (0, -1, -1)/sqrt2; f(t) = (0, 5 - t/sqrt2, 5 - t/sqrt2).
     require_near(camera.look_at_ray({1, 1}), Vec3(0, -1, -1) / kRoot2);
     // (0,0): d = -2/3 u - 2/3 v + w
@@ -107,7 +108,7 @@ TEST_CASE("look-at example 2: rays of pixels (1, 1) and (0, 0) for the camera at
 }
 
 TEST_CASE("look-at example 2: the top centre of the field of view") {
-    const FovCamera camera = example_camera_2();
+    const LookAtCamera camera = example_camera_2();
     // alpha = 0, beta = 1: d = v + w = (0, 1, -1)/sqrt2 + (0, -1, -1)/sqrt2 = (0, 0, -sqrt2).
     require_near(camera.field_ray(0, 1), {0, 0, -kRoot2});
     // On pixels: x = 1 (centre column), y = 2.5 (top edge of the top row): (2(2.5) - 3 + 1)/3 = 1.
@@ -118,7 +119,7 @@ TEST_CASE("look-at example 2: the top centre of the field of view") {
 
 TEST_CASE("look-at formula: any eye and orthonormal basis") {
     for (int i = 0; i < 50; ++i) {
-        const FovCamera camera = test::random_fov_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
+        const LookAtCamera camera = test::random_fov_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
         const Basis b = camera.basis();
         // An orthonormal, left-handed basis with w along the gaze.
         REQUIRE(std::abs(b.u.dot(b.v)) < 1e-15);
@@ -135,7 +136,7 @@ TEST_CASE("look-at formula: any eye and orthonormal basis") {
 TEST_CASE("the right-handed basis describes the same rays") {
     // With the right-handed basis, the look-at formula holds with w replaced by -w.
     for (int i = 0; i < 20; ++i) {
-        const FovCamera camera = test::random_fov_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
+        const LookAtCamera camera = test::random_fov_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
         const Basis left = camera.basis(Handedness::Left);
         const Basis right = camera.basis(Handedness::Right);
         require_near(right.u, left.u);
@@ -148,7 +149,7 @@ TEST_CASE("the right-handed basis describes the same rays") {
 }
 
 TEST_CASE("the calibrated path reproduces every look-at ray") {
-    for (const FovCamera& fov : {example_camera_1(), example_camera_2()}) {
+    for (const LookAtCamera& fov : {example_camera_1(), example_camera_2()}) {
         const Camera camera = to_camera(fov);
         for (const Vec2& pixel : {Vec2(0, 0), Vec2(1, 1), Vec2(2, 0), Vec2(0, 2), Vec2(-0.5, -0.5), Vec2(1, 2.5)}) {
             const Vec3 d = fov.look_at_ray(pixel);
@@ -167,15 +168,15 @@ TEST_CASE("row origin: bottom-left pixel (0, 0) is the lower-left pixel, OpenCV 
 
 TEST_CASE("The look-at formula refuses a FOV camera built by hand that validate() refuses, naming the field") {
     using Catch::Matchers::Contains;
-    FovCamera zero_gaze;
+    LookAtCamera zero_gaze;
     zero_gaze.gaze = Vec3::Zero();
-    FovCamera nan_fov;
+    LookAtCamera nan_fov;
     nan_fov.fov_deg = std::nan("");
-    FovCamera up_along_gaze;
+    LookAtCamera up_along_gaze;
     up_along_gaze.up = up_along_gaze.gaze;
     for (const auto& entry : {std::pair{zero_gaze, "gaze"}, std::pair{nan_fov, "fov"}, std::pair{up_along_gaze, "up"}}) {
         // Not a structured binding: clang 14 (the sanitizer build) cannot capture one in a lambda.
-        const FovCamera& camera = entry.first;
+        const LookAtCamera& camera = entry.first;
         const char* field = entry.second;
         CAPTURE(field);
         CHECK_THAT(libcam::test::error_of([&] { (void)camera.look_at_ray({1, 1}); }), Contains(field));
@@ -184,3 +185,17 @@ TEST_CASE("The look-at formula refuses a FOV camera built by hand that validate(
         CHECK_THAT(libcam::test::error_of([&] { (void)camera.field_ray(0.5, 0.5); }), Contains(field));
     }
 }
+
+// The graphics camera's old name, kept for one release in its old header.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+#include "libcam/fov/fov_camera.hpp"
+TEST_CASE("FovCamera and to_fov_camera, the old names, are LookAtCamera and to_look_at_camera") {
+    static_assert(std::is_same_v<libcam::FovCamera, libcam::LookAtCamera>);
+    const libcam::LookAtCamera camera = libcam::LookAtCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0,
+                                                                      libcam::FovAxis::Both, {3, 3});
+    const libcam::LookAtCamera back = libcam::to_fov_camera(libcam::to_camera(camera), libcam::FovAxis::Both);
+    // 90 degrees on both axes of a square image: the same angle back, to the last bits.
+    CHECK(back.fov_deg == Approx(90.0).epsilon(1e-12));
+}
+#pragma GCC diagnostic pop

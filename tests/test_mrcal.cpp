@@ -358,7 +358,7 @@ TEST_CASE("libcam's .cameramodel keeps every digit where libmrcal's own writer r
 }
 
 TEST_CASE("The packed mrcal calls refuse partial points, mismatched outputs and invalid cameras, naming them") {
-    const Camera camera = to_camera(FovCamera{});
+    const Camera camera = to_camera(LookAtCamera{});
     std::vector<double> points{0.1, 0.2, 1.0, 0.3};  // one point and a stray number
     std::vector<double> pixels(2);
     const std::string partial = test::error_of([&] { mrcal_project_packed(camera, points, pixels); });
@@ -377,7 +377,7 @@ TEST_CASE("The packed mrcal calls refuse partial points, mismatched outputs and 
 
 TEST_CASE("mrcal_project_points: a point mrcal refuses gets a NaN pixel, the others mrcal's own") {
     // CAHVORE with a linearity of 1.5: mrcal projects only where 1.5 theta < 90 degrees.
-    Camera camera = to_camera(FovCamera{});
+    Camera camera = to_camera(LookAtCamera{});
     camera.lens = Lens{LensType::Cahvore, {0, 0, 0, 0, 0, 0, 0, 0, 1.5}};
     const double inside = radians_from_degrees(30), outside = radians_from_degrees(70);
     const std::vector<Vec3> points{Vec3(std::sin(inside), 0, std::cos(inside)), Vec3(0, std::sin(outside), std::cos(outside))};

@@ -30,8 +30,8 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 const ImageSize kSizes[] = {{1920, 1080}, {640, 4000}, {4000, 500}, {1000, 1000}, {3, 3}, {1, 1}, {7, 2}};
 
 // At least 20 random FOV cameras over every axis and size, plus the extreme angles.
-std::vector<FovCamera> test_cameras() {
-    std::vector<FovCamera> cameras;
+std::vector<LookAtCamera> test_cameras() {
+    std::vector<LookAtCamera> cameras;
     for (int i = 0; i < 28; ++i) {
         const ImageSize size = kSizes[i % std::size(kSizes)];
         const FovAxis axis = libcam::test::random_axis(i);
@@ -94,7 +94,7 @@ double pixel_tolerance(const Camera& camera, const Vec2& pixel, double depth) {
 
 // The look-at formula's ray, worked here by hand, with the half-angle tangents per axis
 // as docs/conventions.md ("Field-of-view axis") states them.
-Vec3 hand_look_at_ray(const FovCamera& c, double x, double y) {
+Vec3 hand_look_at_ray(const LookAtCamera& c, double x, double y) {
     const double W = static_cast<double>(c.size.width);
     const double H = static_cast<double>(c.size.height);
     const double t = std::tan(c.fov_deg * std::numbers::pi / 360.0);
@@ -121,7 +121,7 @@ TEST_CASE("cv::projectPoints maps points along the ray through a pixel back to t
     const std::vector<double> depths{0.5, 3.0, 100.0, 1e4};
     int checked = 0;
     double worst_over_tolerance = 0.0;
-    for (const FovCamera& fov : test_cameras()) {
+    for (const LookAtCamera& fov : test_cameras()) {
         const Camera camera = to_camera(fov);
         const PreparedCamera prepared(camera);
         CAPTURE(fov.size.width, fov.size.height, fov.fov_deg, to_string(fov.fov_axis));
@@ -150,7 +150,7 @@ TEST_CASE("cv::projectPoints meets 1e-9 px flat when the camera sits near the or
     // allows 1e-9 px at every depth and fov (measured worst: ~3e-10 px at fov 1 degree,
     // fx ~ 2.3e5): no conditioning allowance at all.
     for (int i = 0; i < 24; ++i) {
-        FovCamera fov = i % 3 == 0 ? random_fov_camera(kSizes[i % 3], libcam::test::random_axis(i), 1.0, 1.0 + 1e-9)
+        LookAtCamera fov = i % 3 == 0 ? random_fov_camera(kSizes[i % 3], libcam::test::random_axis(i), 1.0, 1.0 + 1e-9)
                                    : random_fov_camera(kSizes[i % 3], libcam::test::random_axis(i));
         fov.eye = libcam::test::random_vector(1.0);
         const Camera camera = to_camera(fov);
@@ -185,7 +185,7 @@ TEST_CASE("libcam's cv::Mat arguments hold K, rvec and tvec in OpenCV's layout",
 }
 
 TEST_CASE("cv::undistortPoints with no distortion is K^-1 [x, y, 1]", "[opencv]") {
-    for (const FovCamera& fov : test_cameras()) {
+    for (const LookAtCamera& fov : test_cameras()) {
         const Camera camera = to_camera(fov);
         CAPTURE(fov.size.width, fov.size.height, fov.fov_deg, to_string(fov.fov_axis));
         const std::vector<Vec2> pixels = pixel_grid(fov.size);
@@ -234,7 +234,7 @@ TEST_CASE("cv::undistortPoints agrees with normalized_from_pixel for a hand-made
 }
 
 TEST_CASE("cv::Rodrigues agrees with pose.R and pose.rvec() on random FOV cameras", "[opencv]") {
-    for (const FovCamera& fov : test_cameras()) {
+    for (const LookAtCamera& fov : test_cameras()) {
         const Pose pose = to_camera(fov).pose;
         cv::Mat R_cv;
         cv::Rodrigues(cv_vec(pose.rvec()), R_cv);
@@ -302,7 +302,7 @@ TEST_CASE("Rodrigues both ways near angle 0 and near pi, against cv::Rodrigues",
 
 TEST_CASE("Rotations of exactly 0 and exactly pi", "[opencv]") {
     // Identity: gaze +z, up -y is OpenCV's own camera frame.
-    FovCamera fov;
+    LookAtCamera fov;
     fov.gaze = Vec3(0, 0, 1);
     fov.up = Vec3(0, -1, 0);
     fov.size = {640, 480};
@@ -338,7 +338,7 @@ TEST_CASE("Rotations of exactly 0 and exactly pi", "[opencv]") {
 
 TEST_CASE("Bottom-left pixels (as the look-at formula counts them) project through OpenCV onto the flipped row",
           "[opencv][look-at]") {
-    for (const FovCamera& fov : test_cameras()) {
+    for (const LookAtCamera& fov : test_cameras()) {
         const Camera camera = to_camera(fov);
         const double H = static_cast<double>(fov.size.height);
         CAPTURE(fov.size.width, fov.size.height, fov.fov_deg, to_string(fov.fov_axis));
@@ -359,7 +359,7 @@ TEST_CASE("Bottom-left pixels (as the look-at formula counts them) project throu
 TEST_CASE("The two worked example cameras (3x3, 90 degrees), worked by hand, through OpenCV", "[opencv][look-at]") {
     // Example camera 1: eye at 0, gaze -z, up +y; pixel (0, 0) counted from the
     // bottom-left has d = (-2/3, -2/3, -1) and is the lower-left pixel, OpenCV pixel (0, 2).
-    const FovCamera fov = FovCamera::look_at(Vec3::Zero(), Vec3(0, 0, -1), Vec3(0, 1, 0), 90.0, FovAxis::Both, {3, 3});
+    const LookAtCamera fov = LookAtCamera::look_at(Vec3::Zero(), Vec3(0, 0, -1), Vec3(0, 1, 0), 90.0, FovAxis::Both, {3, 3});
     const Camera camera = to_camera(fov);
     CHECK(std::abs(camera.intrinsics.fx - 1.5) <= 1e-15);
     CHECK(std::abs(camera.intrinsics.fy - 1.5) <= 1e-15);
@@ -375,7 +375,7 @@ TEST_CASE("The two worked example cameras (3x3, 90 degrees), worked by hand, thr
 
     // Example camera 2: eye (0, 5, 5) looking at the origin; pixel (0, 0) counted from the
     // bottom-left has d = (-2/3, -sqrt2/3 - 1/sqrt2, sqrt2/3 - 1/sqrt2).
-    const FovCamera fov2 = FovCamera::look_at(Vec3(0, 5, 5), Vec3::Zero(), Vec3(0, 1, 0), 90.0, FovAxis::Both, {3, 3});
+    const LookAtCamera fov2 = LookAtCamera::look_at(Vec3(0, 5, 5), Vec3::Zero(), Vec3(0, 1, 0), 90.0, FovAxis::Both, {3, 3});
     const Camera camera2 = to_camera(fov2);
     const double s2 = std::sqrt(2.0);
     const Vec3 d00(-2.0 / 3, -s2 / 3 - 1 / s2, s2 / 3 - 1 / s2);

@@ -29,7 +29,7 @@ Camera random_camera(bool centred, bool skewed) {
 TEST_CASE("a centred camera gives gluPerspective's matrix") {
     // gluPerspective(fovy = 60, aspect = W/H, near, far): f = 1/tan(30 deg) = sqrt3,
     // [f/aspect 0 0 0; 0 f 0 0; 0 0 (far+near)/(near-far) 2 far near/(near-far); 0 0 -1 0].
-    const FovCamera fov{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60.0, FovAxis::Vertical, {1600, 900}};
+    const LookAtCamera fov{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 60.0, FovAxis::Vertical, {1600, 900}};
     const GlCamera gl = to_opengl(to_camera(fov), 0.5, 200.0);
     const double f = std::sqrt(3.0);
     const double aspect = 1600.0 / 900.0;
@@ -88,7 +88,7 @@ TEST_CASE("the GL pipeline and K [R | t] land on the same pixel") {
 }
 
 TEST_CASE("near and far map to the ends of the depth range") {
-    const FovCamera fov{{1, 2, 3}, {1, -1, 2}, {0, 1, 0}, 70.0, FovAxis::Horizontal, {800, 600}};
+    const LookAtCamera fov{{1, 2, 3}, {1, -1, 2}, {0, 1, 0}, 70.0, FovAxis::Horizontal, {800, 600}};
     const Camera camera = to_camera(fov);
     const Vec3 gaze = fov.gaze.normalized();
     for (const auto& [range, low] : {std::pair{DepthRange::MinusOneToOne, -1.0}, {DepthRange::ZeroToOne, 0.0}}) {
@@ -117,22 +117,22 @@ TEST_CASE("K, near and far come back from the projection matrix") {
 }
 
 TEST_CASE("a matrix that is not a perspective projection is refused, naming the entry") {
-    const GlCamera gl = to_opengl(to_camera(FovCamera{}), 0.1, 10.0);
+    const GlCamera gl = to_opengl(to_camera(LookAtCamera{}), 0.1, 10.0);
     Mat4 bad = gl.projection;
     bad(3, 2) = 1.0;
     REQUIRE_THROWS_WITH(intrinsics_from_opengl(bad, {1, 1}), Catch::Matchers::Contains("projection[3][2]"));
     bad = gl.projection;
     bad(1, 0) = 0.5;
     REQUIRE_THROWS_WITH(intrinsics_from_opengl(bad, {1, 1}), Catch::Matchers::Contains("projection[1][0]"));
-    REQUIRE_THROWS_WITH(to_opengl(to_camera(FovCamera{}), 1.0, 0.5), Catch::Matchers::Contains("far"));
-    REQUIRE_THROWS_WITH(to_opengl(to_camera(FovCamera{}), 0.0, 0.5), Catch::Matchers::Contains("near"));
+    REQUIRE_THROWS_WITH(to_opengl(to_camera(LookAtCamera{}), 1.0, 0.5), Catch::Matchers::Contains("far"));
+    REQUIRE_THROWS_WITH(to_opengl(to_camera(LookAtCamera{}), 0.0, 0.5), Catch::Matchers::Contains("near"));
 }
 
 TEST_CASE("gl_project flags a point it cannot place: behind the eye, or a matrix with NaN") {
-    GlCamera gl = to_opengl(to_camera(FovCamera{}), 0.1, 10.0);
-    const Vec3 in_view = FovCamera{}.eye + FovCamera{}.gaze;  // one unit along the gaze
+    GlCamera gl = to_opengl(to_camera(LookAtCamera{}), 0.1, 10.0);
+    const Vec3 in_view = LookAtCamera{}.eye + LookAtCamera{}.gaze;  // one unit along the gaze
     CHECK(gl_project(gl, in_view).valid);
-    CHECK_FALSE(gl_project(gl, FovCamera{}.eye - FovCamera{}.gaze).valid);
+    CHECK_FALSE(gl_project(gl, LookAtCamera{}.eye - LookAtCamera{}.gaze).valid);
     gl.projection(0, 0) = std::nan("");  // clip x NaN while w stays positive: was "valid" with a NaN window
     const GlWindowPoint nan_point = gl_project(gl, in_view);
     CHECK_FALSE(nan_point.valid);

@@ -1,5 +1,5 @@
-// Fits the simplest lens model to a 60-degree FOV camera through an installed libcam::fit:
-// the FOV form itself, within a pixel over the whole image.
+// Fits the simplest lens model to a 60-degree graphics camera through an installed
+// libcam::fit: the look-at form itself (LOOK_AT), within a pixel over the whole image.
 
 #include <cstdio>
 #include <string>
@@ -9,7 +9,7 @@
 
 int main() {
     using namespace libcam;
-    const FovCamera fov = FovCamera::look_at({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 60.0, FovAxis::Horizontal, {640, 480});
+    const LookAtCamera fov = LookAtCamera::look_at({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 60.0, FovAxis::Horizontal, {640, 480});
     const FitReport report = fit_scene(to_camera(fov), Scene::whole_image(), FitOptions{});
     if (!report.chosen) {
         std::printf("no candidate within the tolerance\n");

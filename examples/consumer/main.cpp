@@ -9,7 +9,7 @@
 
 int main() {
     using namespace libcam;
-    const FovCamera fov = FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3});
+    const LookAtCamera fov = LookAtCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, {3, 3});
     const Camera camera = to_camera(fov);
     const Vec2 pixel = opencv_pixel({0, 0}, PixelOrigin::BottomLeft, camera.size);
     const Ray ray = PreparedCamera(camera).ray(pixel);

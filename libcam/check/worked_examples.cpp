@@ -21,10 +21,10 @@ std::vector<WorkedExample> worked_examples() {
     std::vector<WorkedExample> examples(2);
     examples[0].name = "example 1";
     examples[0].title = examples[0].name + ": eye (0,0,0), gaze -z, up +y, 90 deg, 3x3";
-    examples[0].fov_camera = FovCamera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, size};
+    examples[0].fov_camera = LookAtCamera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, size};
     examples[1].name = "example 2";
     examples[1].title = examples[1].name + ": eye (0,5,5), target (0,0,0), up +y, 90 deg, 3x3";
-    examples[1].fov_camera = FovCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, size);
+    examples[1].fov_camera = LookAtCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, size);
     for (WorkedExample& example : examples) {
         for (const Vec2& pixel : pixels) example.pixels.push_back({pixel, Vec3::Zero(), Vec2::Zero()});
     }

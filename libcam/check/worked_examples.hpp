@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
-#include "libcam/fov/fov_camera.hpp"
+#include "libcam/graphics/look_at_camera.hpp"
 
 namespace libcam {
 
@@ -29,7 +29,7 @@ struct WorkedExampleCheck {
 struct WorkedExample {
     std::string name;   // "example 1"
     std::string title;  // the name and the camera
-    FovCamera fov_camera;
+    LookAtCamera fov_camera;
     Camera camera;  // to_camera(fov_camera)
     std::vector<WorkedExamplePixel> pixels;
     std::vector<WorkedExampleCheck> checks;

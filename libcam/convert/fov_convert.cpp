@@ -7,7 +7,7 @@
 
 namespace libcam {
 
-Camera to_camera(const FovCamera& fov_camera) {
+Camera to_camera(const LookAtCamera& fov_camera) {
     fov_camera.validate();
     const FovPinholeT<double> pinhole = pinhole_from_fov<double>(fov_camera);
     Camera camera;
@@ -69,7 +69,7 @@ FovAngles angles_of(const Frustum& f, const Camera& camera) {
     return angles;
 }
 
-bool nearly_equal(double a, double b, double scale) { return std::abs(a - b) <= kFovCameraTolerance * scale; }
+bool nearly_equal(double a, double b, double scale) { return std::abs(a - b) <= kLookAtCameraTolerance * scale; }
 
 }  // namespace
 
@@ -124,14 +124,14 @@ FovDescription describe_fov(const Camera& camera) {
     return description;
 }
 
-FovCamera to_fov_camera(const Camera& camera, FovAxis axis) {
+LookAtCamera to_look_at_camera(const Camera& camera, FovAxis axis) {
     const FovDescription description = describe_fov(camera);
     if (!description.fits_axis(axis)) {
         std::string reasons;
         for (const std::string& reason : description.deviations) reasons += (reasons.empty() ? "" : "; ") + reason;
         throw NotRepresentable("not a FOV camera on the " + std::string(to_string(axis)) + " axis: " + reasons);
     }
-    return FovCamera{description.eye,
+    return LookAtCamera{description.eye,
                      description.gaze,
                      description.up,
                      description.fov_deg.on_axis(axis),

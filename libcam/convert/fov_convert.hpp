@@ -18,13 +18,13 @@
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
-#include "libcam/fov/fov_camera.hpp"
+#include "libcam/graphics/look_at_camera.hpp"
 
 namespace libcam {
 
 // Relative tolerance for "is a FOV camera": principal point offset against the image
 // side, skew against fx, pixel-shape mismatch against fx.
-inline constexpr double kFovCameraTolerance = 1e-9;
+inline constexpr double kLookAtCameraTolerance = 1e-9;
 
 // The pinhole camera of a FOV camera, in Scalar: the one implementation behind
 // to_camera (in double), and the tests' reference (in 113 bits, from the same inputs).
@@ -37,7 +37,7 @@ struct FovPinholeT {
 };
 
 template <class Scalar>
-FovPinholeT<Scalar> pinhole_from_fov(const FovCamera& fov_camera) {
+FovPinholeT<Scalar> pinhole_from_fov(const LookAtCamera& fov_camera) {
     const ImageSize& size = fov_camera.size;
     const Vec2T<Scalar> tangents = half_tangents_of_fov<Scalar>(Scalar(fov_camera.fov_deg), fov_camera.fov_axis, size);
     const BasisT<Scalar> basis = basis_from_gaze_up<Scalar>(fov_camera.gaze.template cast<Scalar>(),
@@ -49,7 +49,7 @@ FovPinholeT<Scalar> pinhole_from_fov(const FovCamera& fov_camera) {
 }
 
 // Validates the FOV camera and returns its calibrated camera (PINHOLE lens).
-Camera to_camera(const FovCamera& fov_camera);
+Camera to_camera(const LookAtCamera& fov_camera);
 
 // Full angles in degrees. For a centred principal point, 2 atan(W / (2 fx)) and so on;
 // in general the angle spanned across the image through the principal point, and for
@@ -89,6 +89,6 @@ FovDescription describe_fov(const Camera& camera);
 
 // The FOV camera on `axis`; throws NotRepresentable with the reasons when the camera
 // is not one on that axis.
-FovCamera to_fov_camera(const Camera& camera, FovAxis axis);
+LookAtCamera to_look_at_camera(const Camera& camera, FovAxis axis);
 
 }  // namespace libcam

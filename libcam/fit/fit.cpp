@@ -19,13 +19,13 @@ constexpr double kNegligibleFraction = 1e-3;
 // Can the candidate's model express every camera of `lens` exactly (up to skew)? The
 // table says which models nest (lens_contains).
 bool contains_model(const Candidate& candidate, LensType lens) {
-    return !candidate.fov_camera && lens_contains(candidate.lens, lens);
+    return !candidate.look_at && lens_contains(candidate.lens, lens);
 }
 
 // How many of a candidate's parameters belong to K: f for FOV, cx cy at a sensor's
 // fixed scale, fx fy cx cy otherwise.
 std::size_t core_count(const Candidate& candidate) {
-    if (candidate.fov_camera) return 1;
+    if (candidate.look_at) return 1;
     return candidate.sensor_width_mm > 0.0 ? 2 : 4;
 }
 
@@ -35,7 +35,7 @@ Camera camera_from_params(const Candidate& candidate, const ImageSize& size, con
     Camera camera;
     camera.size = size;
     camera.pose = motion;
-    if (candidate.fov_camera) {
+    if (candidate.look_at) {
         camera.intrinsics = {params[0], params[0], size.centre_x(), size.centre_y(), 0.0};
         camera.lens = {LensType::Pinhole, {}};
         return camera;
@@ -67,7 +67,7 @@ detail::LeastSquaresState start_from(const Candidate& candidate, const Camera& b
     start.rotation = base.pose.rvec();
     start.shift = base.pose.t;
     const double focal = std::sqrt(k.fx * k.fy);
-    if (candidate.fov_camera) {
+    if (candidate.look_at) {
         start.params = {focal};
         return start;
     }
@@ -229,12 +229,15 @@ std::optional<std::size_t> choose(const std::vector<CandidateReport>& reports) {
 }  // namespace
 
 int Candidate::num_params() const {
-    if (fov_camera) return 1;
+    if (look_at) return 1;
     return static_cast<int>(core_count(*this)) + lens_info(lens).num_coefficients - held_coefficients;
 }
 
 namespace {
-const Candidate kFovCandidate{"FOV", LensType::Pinhole, true};
+const Candidate kLookAtCandidate{"LOOK_AT", LensType::Pinhole, true};
+// The look-at candidate's name before it was LOOK_AT, taken for one more release ("FOV"
+// also names Devernay and Faugeras' lens model, which libcam fit does not fit).
+constexpr std::string_view kLookAtOldName = "FOV";
 
 Candidate candidate_of(const LensInfo& info) {
     return {info.name, info.type, false, info.fit_sensor_width_mm, info.fit_held_coefficients};
@@ -242,9 +245,9 @@ Candidate candidate_of(const LensInfo& info) {
 }  // namespace
 
 std::vector<Candidate> candidates_for(double largest_angle_deg) {
-    // The FOV camera first (one parameter), then the table's candidates in its order,
+    // The look-at camera first (one parameter), then the table's candidates in its order,
     // simplest first.
-    std::vector<Candidate> list = {kFovCandidate};
+    std::vector<Candidate> list = {kLookAtCandidate};
     for (const LensInfo& info : lens_models()) {
         const bool wide = largest_angle_deg >= kWideSceneAngleDeg;
         if (info.fit == FitCandidate::Always || (info.fit == FitCandidate::WideScenes && wide)) {
@@ -255,7 +258,7 @@ std::vector<Candidate> candidates_for(double largest_angle_deg) {
 }
 
 std::string candidate_names() {
-    std::string names(kFovCandidate.name);
+    std::string names(kLookAtCandidate.name);
     for (const LensInfo& info : lens_models()) {
         if (info.fit != FitCandidate::No) names += ", " + std::string(info.name);
     }
@@ -263,7 +266,7 @@ std::string candidate_names() {
 }
 
 Candidate candidate_named(std::string_view name) {
-    if (name == kFovCandidate.name) return kFovCandidate;
+    if (name == kLookAtCandidate.name || name == kLookAtOldName) return kLookAtCandidate;
     for (const LensInfo& info : lens_models()) {
         if (info.name == name && info.fit != FitCandidate::No) return candidate_of(info);
     }

@@ -60,9 +60,9 @@ enum class CameraMotion {
 };
 
 struct Candidate {
-    std::string_view name;  // "FOV", or the lens model's name
+    std::string_view name;  // "LOOK_AT", or the lens model's name
     LensType lens = LensType::Pinhole;
-    bool fov_camera = false;  // square pixels, centred principal point, one focal length
+    bool look_at = false;  // a graphics (look-at) camera: square pixels, centred principal point, one focal length
     // From the table (LensInfo::fit_sensor_width_mm, fit_held_coefficients): for a model
     // measured in millimetres on a sensor, square pixels held at image width / this pixels
     // per millimetre (0: fx and fy fitted); and the leading coefficients held at 0.
@@ -80,7 +80,8 @@ struct Candidate {
 // in order of complexity (FISHEYE and STEREOGRAPHIC last, for wide scenes only).
 std::vector<Candidate> candidates_for(double largest_angle_deg);
 
-// The candidate a user names: "FOV" (the look-at camera) or a lens model the table lets
+// The candidate a user names: "LOOK_AT" (the graphics camera; "FOV" is its old name, taken
+// for one more release) or a lens model the table lets
 // `libcam fit` fit (FitCandidate other than No; OnRequest models only this way). Throws
 // InvalidArgument for another name, listing the ones it takes.
 Candidate candidate_named(std::string_view name);

@@ -217,7 +217,7 @@ LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSiz
     const auto solve = [&]<class Model, Core kCore>() {
         return solve_with<Model, kCore>(held, observations, std::move(start), options, hook);
     };
-    if (candidate.fov_camera) return solve.template operator()<PinholeLens<double>, Core::Focal>();
+    if (candidate.look_at) return solve.template operator()<PinholeLens<double>, Core::Focal>();
     return visit_lens_model<double>(candidate.lens, [&]<class Model>() -> LeastSquaresState {
         // Only the table's candidates are compiled for the solver (each is a Ceres
         // instantiation of its own).

@@ -19,7 +19,7 @@ std::string_view to_string(PixelOrigin origin);               // "bottom-left", 
 PixelOrigin pixel_origin_from_string(std::string_view text);  // throws InvalidArgument
 
 // A pixel's row in the other origin convention: y' = (H - 1) - y (its own inverse).
-// A template on the scalar type so that the FOV formulas (fov/fov_formulas.hpp) run it
+// A template on the scalar type so that the FOV formulas (graphics/look_at_formulas.hpp) run it
 // in the tests' 113-bit reference type too.
 template <class Scalar>
 Scalar flip_row(const std::type_identity_t<Scalar>& y, const ImageSize& size) {

@@ -9,7 +9,7 @@
 
 #include "libcam/camera/camera.hpp"
 #include "libcam/convert/opengl.hpp"
-#include "libcam/fov/fov_camera.hpp"
+#include "libcam/graphics/look_at_camera.hpp"
 
 namespace libcam {
 
@@ -24,7 +24,7 @@ inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(Camer
 // the file says so (libcam JSON records the fov axis).
 struct CameraFile {
     Camera camera;
-    std::optional<FovCamera> fov_camera;
+    std::optional<LookAtCamera> fov_camera;
 };
 
 // One camera of a file: the file's name for it (cam0, a camodocal camera_name, a COLMAP
@@ -44,7 +44,7 @@ struct CameraSet {
 };
 
 struct WriteOptions {
-    std::optional<FovCamera> fov_camera;  // JSON: record the FOV camera's own axis and up
+    std::optional<LookAtCamera> fov_camera;  // JSON: record the FOV camera's own axis and up
     double gl_near = 0.1;
     double gl_far = 1000.0;
     DepthRange gl_depth_range = DepthRange::MinusOneToOne;

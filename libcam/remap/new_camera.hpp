@@ -24,7 +24,7 @@
 #include <string>
 
 #include "libcam/camera/camera.hpp"
-#include "libcam/fov/fov_camera.hpp"
+#include "libcam/graphics/look_at_camera.hpp"
 
 namespace libcam {
 

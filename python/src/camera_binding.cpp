@@ -25,7 +25,7 @@
 
 namespace libcam::python {
 
-PythonCamera::PythonCamera(const Camera& camera, PixelOrigin origin, std::optional<FovCamera> fov_camera) {
+PythonCamera::PythonCamera(const Camera& camera, PixelOrigin origin, std::optional<LookAtCamera> fov_camera) {
     PreparedCamera prepared(camera);
     state_ = std::make_shared<State>(prepared, origin, std::move(fov_camera));
 }

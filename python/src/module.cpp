@@ -85,7 +85,7 @@ PythonCamera from_fov(double fov_deg, const py::object& size, const std::string&
                       const py::object& target, const py::object& gaze, const py::object& up,
                       const std::string& pixel_origin) {
     if (!target.is_none() && !gaze.is_none()) throw InvalidArgument("target, gaze: give one of them, not both");
-    FovCamera fov;
+    LookAtCamera fov;
     fov.size = size_from(size);
     fov.fov_deg = fov_deg;
     fov.fov_axis = fov_axis_from_string(axis);

@@ -467,10 +467,10 @@ def test_verify_and_fit(wide):
     assert "project-opencv" in names and "project-mrcal" in names
     project_opencv = report["checks"][names.index("project-opencv")]
     assert project_opencv["stats"]["max_px"] < project_opencv["tolerance_px"]
-    # A graphics camera is exactly the FOV model: the simplest candidate reproduces it.
+    # A graphics camera is exactly the look-at model: the simplest candidate reproduces it.
     render = libcam.from_fov(70, (320, 240), axis="horizontal")
     fitted = libcam.fit(render, tolerance=0.01)
-    assert fitted["chosen"]["model"] == "FOV"
+    assert fitted["chosen"]["model"] == "LOOK_AT"
     assert fitted["chosen"]["max_px"] < 1e-6
     assert abs(fitted["chosen"]["camera"].fov["horizontal"] - 70) < 1e-6
 

@@ -89,14 +89,14 @@ CameraFile CameraOptions::camera() const {
     if (fov_axis != "horizontal" && fov_axis != "vertical" && fov_axis != "diagonal" && fov_axis != "both") {
         throw UsageError("--fov-axis: expected horizontal, vertical, diagonal or both, got '" + fov_axis + "'");
     }
-    FovCamera fov_camera;
+    LookAtCamera fov_camera;
     fov_camera.fov_deg = parse_number("--fov", fov);
     fov_camera.fov_axis = fov_axis_from_string(fov_axis);
     fov_camera.size = parse_size("--size", size);
     fov_camera.eye = parse_vec3("--eye", eye);
     fov_camera.up = parse_vec3("--up", up);
     if (!target.empty()) {
-        fov_camera = FovCamera::look_at(fov_camera.eye, parse_vec3("--target", target), fov_camera.up,
+        fov_camera = LookAtCamera::look_at(fov_camera.eye, parse_vec3("--target", target), fov_camera.up,
                                         fov_camera.fov_deg, fov_camera.fov_axis, fov_camera.size);
     } else if (!gaze.empty()) {
         fov_camera.gaze = parse_vec3("--gaze", gaze);

@@ -64,7 +64,8 @@ void add_flags(CLI::App& command, FitFlags& flags) {
                        "Fitting lattice COLSxROWS over the image's pixel centres (mrcal's --gridn); default: "
                        "sized to the scene. The error is checked on a lattice 4x denser");
     command.add_option("--model", flags.models,
-                       "Fit only these models, comma-separated, simplest first (default: FOV, PINHOLE, OPENCV4, "
+                       "Fit only these models, comma-separated, simplest first (default: LOOK_AT, the graphics camera "
+                       "with one focal length and a centred principal point, then PINHOLE, OPENCV4, "
                        "OPENCV5, OPENCV8, OPENCV12, and FISHEYE, STEREOGRAPHIC for wide scenes). Also on request: "
                        "DOUBLE_SPHERE, UCM, EUCM, MEI, EQUISOLID, the thin-prism fisheyes, and Blender's "
                        "FISHEYE_LENS_POLYNOMIAL (square pixels, sensor 36 mm wide)");
@@ -138,14 +139,14 @@ std::string vec_text(const Vec3& v) {
     return format_number(v.x() + 0.0) + "," + format_number(v.y() + 0.0) + "," + format_number(v.z() + 0.0);
 }
 
-// The chosen FOV camera as a renderer takes it: fov on each axis, size, and the flags
+// The chosen look-at camera as a renderer takes it: fov on each axis, size, and the flags
 // that make it again with `libcam convert`.
 std::string fov_text(const Camera& camera) {
-    const FovCamera fov = to_fov_camera(camera, FovAxis::Horizontal);
+    const LookAtCamera fov = to_look_at_camera(camera, FovAxis::Horizontal);
     const FovDescription description = describe_fov(camera);
     const auto ten_digits = [](double value) { return format_short(value, 10); };
     std::ostringstream out;
-    out << "  FOV camera: fov horizontal " << ten_digits(description.fov_deg.horizontal) << " deg, vertical "
+    out << "  look-at camera: fov horizontal " << ten_digits(description.fov_deg.horizontal) << " deg, vertical "
         << ten_digits(description.fov_deg.vertical) << " deg, diagonal " << ten_digits(description.fov_deg.diagonal)
         << " deg; size " << camera.size.width << "x" << camera.size.height << "; f " << ten_digits(camera.intrinsics.fx)
         << " px\n";
@@ -232,7 +233,7 @@ std::string format_choice(const Camera& source, const FitOptions& options, const
     std::ostringstream out;
     out << "chosen: " << chosen.fit.candidate.name << " (" << params << (params == 1 ? " parameter" : " parameters")
         << "), max error " << short_number(chosen.max_px) << " px <= " << format_number(options.tolerance_px) << " px\n";
-    if (chosen.fit.candidate.fov_camera) out << fov_text(camera_in_world(chosen.fit, source));
+    if (chosen.fit.candidate.look_at) out << fov_text(camera_in_world(chosen.fit, source));
     if (chosen.fit.candidate.lens == LensType::LensPolynomial) out << blender_text(chosen.fit.camera, report);
     return out.str();
 }
@@ -253,7 +254,7 @@ Json chosen_json(const CandidateReport& chosen, const Camera& source, const FitO
         out["motion"] = {{"rvec", {motion.rvec().x(), motion.rvec().y(), motion.rvec().z()}},
                          {"shift", {motion.t.x(), motion.t.y(), motion.t.z()}}};
     }
-    if (chosen.fit.candidate.fov_camera) {
+    if (chosen.fit.candidate.look_at) {
         const FovDescription fov = describe_fov(camera_in_world(chosen.fit, source));
         out["fov_deg"] = {{"horizontal", fov.fov_deg.horizontal},
                           {"vertical", fov.fov_deg.vertical},
@@ -352,7 +353,7 @@ void write_outputs(const FitFlags& flags, const Camera& source, const Scene& sce
     if (!flags.output.empty()) {
         const Camera camera = camera_in_world(chosen.fit, source);
         WriteOptions write;
-        if (chosen.fit.candidate.fov_camera) write.fov_camera = to_fov_camera(camera, FovAxis::Horizontal);
+        if (chosen.fit.candidate.look_at) write.fov_camera = to_look_at_camera(camera, FovAxis::Horizontal);
         write_camera_file(flags.output, camera, output_format(flags), write);
     }
     if (!flags.heatmap.empty()) write_png(flags.heatmap, fit_heatmap(source, scene, options, chosen));

@@ -24,11 +24,11 @@ struct RayRow {
 
 // The FOV camera to run the look-at formula on: the file's own, or any axis on which the
 // calibrated camera is one.
-std::optional<FovCamera> look_at_camera(const CameraFile& file) {
+std::optional<LookAtCamera> look_at_camera(const CameraFile& file) {
     if (file.fov_camera) return file.fov_camera;
     const FovDescription description = describe_fov(file.camera);
     if (!description.is_fov_camera()) return std::nullopt;
-    return to_fov_camera(file.camera, description.fov_axes.front());
+    return to_look_at_camera(file.camera, description.fov_axes.front());
 }
 
 // + 0.0 prints zeros as 0, not -0.
@@ -160,7 +160,7 @@ Runner add_rays(CLI::App& app) {
         for (const std::string& text : flags->pixels) pixels.push_back(parse_vec2("--pixels", text));
         const PixelOrigin origin = flags->camera.origin();
         const CameraFile file = flags->camera.camera();
-        const std::optional<FovCamera> fov_camera = look_at_camera(file);
+        const std::optional<LookAtCamera> fov_camera = look_at_camera(file);
 
         std::vector<RayRow> rows;
         const PreparedCamera camera(file.camera);

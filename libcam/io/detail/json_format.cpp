@@ -212,12 +212,12 @@ CameraFile read_gl(const Reader& in, const std::string& source) {
 // The FOV camera a file records with "fov_axis". Its eye, gaze, up and fov are taken
 // from the file when they agree with K, R, t (so JSON -> JSON is exact), refused when
 // they do not.
-FovCamera read_fov_camera(const Reader& in, const Camera& camera, const std::string& source) {
+LookAtCamera read_fov_camera(const Reader& in, const Camera& camera, const std::string& source) {
     FovAxis axis{};
     validated(source, [&] { axis = fov_axis_from_string(in.string("fov_axis")); });
-    FovCamera fov;
+    LookAtCamera fov;
     try {
-        fov = to_fov_camera(camera, axis);
+        fov = to_look_at_camera(camera, axis);
     } catch (const NotRepresentable& error) {
         in.fail("fov_axis", error.what());
     }
@@ -231,7 +231,7 @@ FovCamera read_fov_camera(const Reader& in, const Camera& camera, const std::str
     }
     for (const char* key : {"gaze", "up"}) {
         if (!in.has(key)) continue;
-        FovCamera candidate = fov;
+        LookAtCamera candidate = fov;
         (key == std::string("gaze") ? candidate.gaze : candidate.up) = in.vector(key, 3);
         validated(source, [&] { candidate.validate(); });
         const Basis b = candidate.basis();
@@ -257,7 +257,7 @@ FovCamera read_fov_camera(const Reader& in, const Camera& camera, const std::str
 
 }  // namespace
 
-std::string format_json(const Camera& camera, const std::optional<FovCamera>& fov_camera) {
+std::string format_json(const Camera& camera, const std::optional<LookAtCamera>& fov_camera) {
     const FovDescription fov = describe_fov(camera);
     ordered out;
     out["model"] = lens_info(camera.lens.type).name;

@@ -33,7 +33,7 @@
 
 namespace libcam {
 
-std::string format_json(const Camera& camera, const std::optional<FovCamera>& fov_camera);
+std::string format_json(const Camera& camera, const std::optional<LookAtCamera>& fov_camera);
 std::string format_gl_json(const GlCamera& gl, const ImageSize& size);
 
 // Parses libcam JSON or gl JSON (chosen by the presence of "projection").

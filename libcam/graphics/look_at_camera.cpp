@@ -1,4 +1,4 @@
-#include "libcam/fov/fov_camera.hpp"
+#include "libcam/graphics/look_at_camera.hpp"
 
 #include <string>
 
@@ -24,7 +24,7 @@ FovAxis fov_axis_from_string(std::string_view text) {
                           std::string(text) + "'");
 }
 
-FovCamera FovCamera::look_at(const Vec3& eye, const Vec3& target, const Vec3& up, double fov_deg,
+LookAtCamera LookAtCamera::look_at(const Vec3& eye, const Vec3& target, const Vec3& up, double fov_deg,
                              FovAxis fov_axis, ImageSize size) {
     require_finite_all("eye", eye);
     require_finite_all("target", target);
@@ -37,10 +37,10 @@ FovCamera FovCamera::look_at(const Vec3& eye, const Vec3& target, const Vec3& up
     if (!gaze.allFinite()) {
         throw InvalidArgument("target: target - eye overflows (eye and target more than ~1.8e308 apart)");
     }
-    return FovCamera{eye, gaze, up, fov_deg, fov_axis, size};
+    return LookAtCamera{eye, gaze, up, fov_deg, fov_axis, size};
 }
 
-void FovCamera::validate() const {
+void LookAtCamera::validate() const {
     require_finite_all("eye", eye);
     require_finite_all("gaze", gaze);
     require_finite_all("up", up);
@@ -59,12 +59,12 @@ void FovCamera::validate() const {
     }
 }
 
-Basis FovCamera::basis(Handedness handedness) const {
+Basis LookAtCamera::basis(Handedness handedness) const {
     validate();
     return basis_from_gaze_up<double>(gaze, up, handedness);
 }
 
-Vec2 FovCamera::half_tangents() const {
+Vec2 LookAtCamera::half_tangents() const {
     validate();
     return half_tangents_of_fov<double>(fov_deg, fov_axis, size);
 }

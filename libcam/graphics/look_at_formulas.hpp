@@ -1,7 +1,7 @@
 #pragma once
 // The FOV camera's formulas (the look-at ray, the basis, the half-angle tangents, K
 // from the fov), each written once as a template on the scalar type. The double API
-// (FovCamera, to_camera) calls them in double; the tests call the very same code in a
+// (LookAtCamera, to_camera) calls them in double; the tests call the very same code in a
 // 113-bit type and use it as the reference (tests/reference.hpp). Where a double overload
 // of the same name exists, the template's scalar is never deduced (std::type_identity_t).
 
