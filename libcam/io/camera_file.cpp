@@ -145,8 +145,17 @@ FormatRow& row_of(CameraFormat format) {
                     std::string(row.library) + " (link it and call " + std::string(row.installer) + " first)");
 }
 
+constinit std::atomic<CameraFormatLoader> format_loader = nullptr;
+
+// Asks the program's loader, if it set one, to fill an empty row (set_camera_format_loader).
+void ask_loader(const FormatRow& row) {
+    const CameraFormatLoader load = format_loader.load(std::memory_order_acquire);
+    if (load != nullptr) load(row.format);
+}
+
 CameraReader reader_for(CameraFormat format, const std::string& source) {
     const FormatRow& row = row_of(format);
+    if (row.reader.load(std::memory_order_acquire) == nullptr) ask_loader(row);
     const CameraReader reader = row.reader.load(std::memory_order_acquire);
     if (reader == nullptr) throw_not_installed(row, "reading", source);
     return reader;
@@ -169,6 +178,7 @@ std::vector<CameraFileText> format_files(const Camera& camera, CameraFormat form
         throw NotRepresentable(destination + ": libcam reads " + std::string(row.title) +
                                " files but does not write them (it writes " + written_format_names() + ")");
     }
+    if (row.files_writer == nullptr && row.writer.load(std::memory_order_acquire) == nullptr) ask_loader(row);
     const CameraWriter writer = row.writer.load(std::memory_order_acquire);
     if (row.files_writer == nullptr && writer == nullptr) throw_not_installed(row, "writing", destination);
     camera.validate();
@@ -203,11 +213,23 @@ void install_camera_format(CameraFormat format, CameraReader reader, CameraWrite
     row.writer.store(writer, std::memory_order_release);
 }
 
+void set_camera_format_loader(CameraFormatLoader loader) { format_loader.store(loader, std::memory_order_release); }
+
 bool camera_format_installed(CameraFormat format) {
     const FormatRow& row = row_of(format);
-    const bool reads = row.set_reader != nullptr || row.reader.load(std::memory_order_acquire) != nullptr;
-    const bool writes = row.read_only || row.files_writer != nullptr || row.writer.load(std::memory_order_acquire) != nullptr;
-    return reads && writes;
+    const auto installed = [&row] {
+        const bool reads = row.set_reader != nullptr || row.reader.load(std::memory_order_acquire) != nullptr;
+        const bool writes =
+            row.read_only || row.files_writer != nullptr || row.writer.load(std::memory_order_acquire) != nullptr;
+        return reads && writes;
+    };
+    if (installed()) return true;
+    try {
+        ask_loader(row);
+    } catch (const Error&) {
+        return false;  // the loader could not fill it
+    }
+    return installed();
 }
 
 std::string_view to_string(CameraFormat format) {
