@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "commands_module.hpp"
+#include "libcam/interop/formats.hpp"
 #include "libcam/version.hpp"
 
 namespace {

@@ -10,7 +10,7 @@
 //
 // The module exports three C functions, by these names:
 
-#include "libcam/interop/formats.hpp"
+#include "libcam/io/format_table.hpp"
 
 namespace libcam::cli {
 
@@ -32,6 +32,6 @@ using RunEntry = int (*)(int argc, char** argv);
 // program's own install_camera_format: the module's copy of libcam::io has a table of its
 // own) with the readers and writers of libcam::interop.
 inline constexpr const char* kInstallFormatsEntry = "libcam_install_formats";
-using InstallFormatsEntry = void (*)(CameraFormatInstaller install);
+using InstallFormatsEntry = void (*)(decltype(&install_camera_format) install);
 
 }  // namespace libcam::cli
