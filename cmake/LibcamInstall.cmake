@@ -20,6 +20,8 @@ foreach(layer core io interop check fit report)
 endforeach()
 if(TARGET libcam_cli)
   install(TARGETS libcam_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  # Where the program looks for it (tools/CMakeLists.txt, LIBCAM_COMMANDS_MODULE_DIR).
+  install(TARGETS libcam_commands LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/libcam)
 endif()
 
 # Every public header; the detail/ folders (report's OpenCV helpers, io's per-format readers

@@ -17,7 +17,7 @@ for path in bin/libcam include/libcam/version.hpp include/libcam/convert/fov_con
             include/libcam/io/camera_file.hpp include/libcam/interop/formats.hpp include/libcam/report/image.hpp \
             lib/cmake/libcam/libcamConfig.cmake lib/pkgconfig/libcam.pc lib/pkgconfig/libcam-core.pc \
             lib/pkgconfig/libcam-io.pc lib/pkgconfig/libcam-check.pc include/libcam/check/verify.hpp \
-            lib/pkgconfig/libcam-fit.pc lib/pkgconfig/libcam-report.pc; do
+            lib/pkgconfig/libcam-fit.pc lib/pkgconfig/libcam-report.pc lib/libcam/libcam-commands.so; do
   [ -e "$work/prefix/$path" ] || { echo "test-install: missing $path in the install"; exit 1; }
 done
 # The detail/ folders (report's OpenCV helpers, io's per-format readers and the parsers'
@@ -31,6 +31,13 @@ third_party="$(cd "$work/prefix/include/libcam" && grep -rEn '#include *[<"](ope
   --include='*.hpp' . | grep -Ev '^\./(interop|fit|report)/' || true)"
 [ -z "$third_party" ] || { echo "test-install: installed headers include third-party headers:"; echo "$third_party"; exit 1; }
 "$work/prefix/bin/libcam" --version | grep -q "^libcam " || { echo "test-install: libcam --version"; exit 1; }
+# The installed program starts without OpenCV (tools/libcam/commands_module.hpp) and
+# finds its commands module in lib/libcam/ for the commands that need it.
+if LD_DEBUG=libs "$work/prefix/bin/libcam" --version 2>&1 >/dev/null | grep -q "calling init: .*opencv"; then
+  echo "test-install: the installed libcam --version loads OpenCV"; exit 1
+fi
+"$work/prefix/bin/libcam" verify --help | grep -q -- "--grid" || { echo "test-install: the installed libcam verify --help"; exit 1; }
+"$work/prefix/bin/libcam" demo | grep -q "all checks pass" || { echo "test-install: the installed libcam demo"; exit 1; }
 
 # The Python module, where the build made one: installed under the prefix (its
 # site-packages folder relative to it) and importable from there by the interpreter it

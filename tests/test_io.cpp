@@ -1,7 +1,7 @@
 // Camera files with libcam::io alone (this program links neither libcam::interop nor
 // OpenCV nor mrcal): libcam JSON and gl JSON are read and written; the formats that
 // libcam::interop plugs in fail loudly, naming what to link and what to call, and
-// write nothing.
+// write nothing, unless the program set a loader that fills them on demand.
 
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -11,6 +11,7 @@
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/format_table.hpp"
+#include "libcam/io/detail/json_format.hpp"
 #include "error_message.hpp"
 #include "temp_dir.hpp"
 
@@ -280,4 +281,43 @@ TEST_CASE("io alone: JSON files read through the one tree: errors name the file 
     // Nested past the depth limit: refused before anything recurses through it.
     CHECK_THAT(error_of(std::string(40, '[') + std::string(40, ']'), CameraFormat::Open3d),
                Catch::EndsWith(": nested more than 32 levels deep"));
+}
+
+namespace {
+
+// Stand-ins for a program's loader (set_camera_format_loader): one fills the cameramodel
+// row with libcam JSON's reader and writer, the other cannot.
+int loader_calls = 0;
+
+void fill_with_json(CameraFormat format) {
+    ++loader_calls;
+    install_camera_format(format, parse_json_camera, [](const Camera& camera, const WriteOptions& options) {
+        return format_camera(camera, CameraFormat::Json, options);
+    });
+}
+
+void refuse(CameraFormat) { throw FileError("the stand-in module is missing"); }
+
+// Empties the row and removes the loader whatever the case did: the cases above expect
+// them so.
+struct EmptyRowAfterwards {
+    ~EmptyRowAfterwards() {
+        install_camera_format(CameraFormat::Cameramodel, nullptr, nullptr);
+        set_camera_format_loader(nullptr);
+    }
+};
+
+}  // namespace
+
+TEST_CASE("io alone: a program's loader fills an empty row when it is wanted, or says why it cannot") {
+    const EmptyRowAfterwards restore;
+    set_camera_format_loader(refuse);
+    CHECK_FALSE(camera_format_installed(CameraFormat::Cameramodel));
+    CHECK(file_error_of([] { parse_camera("{}", CameraFormat::Cameramodel, "cam"); }) == "the stand-in module is missing");
+
+    set_camera_format_loader(fill_with_json);
+    const std::string text = format_camera(wide_camera(), CameraFormat::Cameramodel);
+    CHECK(parse_camera(text, CameraFormat::Cameramodel, "cam").camera.intrinsics.fx == 900.0);
+    CHECK(camera_format_installed(CameraFormat::Cameramodel));
+    CHECK(loader_calls == 1);  // once filled, the row is not asked for again
 }

@@ -20,6 +20,10 @@ std::string write_cameramodel(const Camera& camera, const WriteOptions&) { retur
 
 }  // namespace
 
-void register_interop_formats() { install_camera_format(CameraFormat::Cameramodel, read_cameramodel, write_cameramodel); }
+void register_interop_formats() { register_interop_formats(install_camera_format); }
+
+void register_interop_formats(CameraFormatInstaller install) {
+    install(CameraFormat::Cameramodel, read_cameramodel, write_cameramodel);
+}
 
 }  // namespace libcam

@@ -1,6 +1,6 @@
 #pragma once
 // The bridge to OpenCV: libcam cameras as the cv::Mat arguments of calib3d. (OpenCV's
-// camera files are read and written without OpenCV: io/opencv_storage.hpp.)
+// camera files are read and written without OpenCV: io/detail/opencv_storage.hpp.)
 
 #include <opencv2/core.hpp>
 #include <optional>

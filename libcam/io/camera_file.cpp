@@ -41,9 +41,28 @@ const FormatRow& row_of(CameraFormat format) {
                     std::string(row.library) + " (link it and call " + std::string(row.installer) + " first)");
 }
 
+constinit std::atomic<CameraFormatLoader> format_loader = nullptr;
+
+bool installed_now(const FormatRow& row) {
+    const auto index = static_cast<std::size_t>(row.format);
+    const bool reads = row.read != nullptr || installed_readers[index].load(std::memory_order_acquire) != nullptr;
+    const bool writes = row.read_only || row.write != nullptr ||
+                        installed_writers[index].load(std::memory_order_acquire) != nullptr;
+    return reads && writes;
+}
+
+// Asks the program's loader, if it set one, to fill a row that lacks its reader or writer
+// (set_camera_format_loader); the loader fills it or throws its own error.
+void ask_loader(const FormatRow& row) {
+    if (installed_now(row)) return;
+    const CameraFormatLoader load = format_loader.load(std::memory_order_acquire);
+    if (load != nullptr) load(row.format);
+}
+
 // Every camera of a file of the row's format, through its own reader or the one installed.
 std::vector<NamedCamera> read_with(const FormatRow& row, std::string_view text, const ReadContext& context) {
     if (row.read != nullptr) return row.read(text, context);
+    ask_loader(row);
     const CameraReader reader = installed_readers[static_cast<std::size_t>(row.format)].load(std::memory_order_acquire);
     if (reader == nullptr) throw_not_installed(row, "reading", context.source);
     return {{std::string(), reader(text, context.source)}};
@@ -80,6 +99,7 @@ std::vector<CameraFileText> format_files(const Camera& camera, CameraFormat form
         throw NotRepresentable(destination + ": libcam reads " + std::string(row.title) +
                                " files but does not write them (it writes " + written_format_names() + ")");
     }
+    if (!has_writer(row)) ask_loader(row);
     if (!has_writer(row)) write_with(row, camera, options, destination);  // throws, naming the library
     camera.validate();
     const auto write = [&](const Camera& held) { return write_with(row, held, options, destination); };
@@ -110,11 +130,17 @@ void install_camera_format(CameraFormat format, CameraReader reader, CameraWrite
     installed_writers[index].store(writer, std::memory_order_release);
 }
 
+void set_camera_format_loader(CameraFormatLoader loader) { format_loader.store(loader, std::memory_order_release); }
+
 bool camera_format_installed(CameraFormat format) {
     const FormatRow& row = row_of(format);
-    const bool reads = row.read != nullptr ||
-                       installed_readers[static_cast<std::size_t>(format)].load(std::memory_order_acquire) != nullptr;
-    return reads && (row.read_only || has_writer(row));
+    if (installed_now(row)) return true;
+    try {
+        ask_loader(row);
+    } catch (const Error&) {
+        return false;  // the loader could not fill it
+    }
+    return installed_now(row);
 }
 
 std::vector<CameraFormatInfo> camera_formats() {
@@ -136,10 +162,14 @@ std::vector<CameraFormatInfo> camera_formats() {
                               .lens_names = row.lens_names,
                               .refuses = row.refuses,
                               .library = row.library,
-                              .available = camera_format_installed(row.format)};
+                              // Without asking a loader, which may load a library; where one
+                              // is set, it fills the row on first use.
+                              .available = installed_now(row) ||
+                                           format_loader.load(std::memory_order_acquire) != nullptr};
         formats.push_back(std::move(info));
     }
     return formats;
+}
 }
 
 std::string_view to_string(CameraFormat format) {

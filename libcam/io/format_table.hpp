@@ -50,7 +50,14 @@ void check_text(std::string_view text, const std::string& source);
 // Safe to call while other threads read files.
 void install_camera_format(CameraFormat format, CameraReader reader, CameraWriter writer);
 
-// Whether the format's row has its reader and writer.
+// Whether the format's row has its reader and writer (after asking the loader, if any).
 bool camera_format_installed(CameraFormat format);
+
+// For a program that keeps libcam::interop in a library it loads only when needed: the
+// function that fills an empty row on demand. It is asked whenever an empty row's reader
+// or writer is wanted, before the error above, and either fills the row
+// (install_camera_format) or throws an Error saying why it cannot. None by default.
+using CameraFormatLoader = void (*)(CameraFormat format);
+void set_camera_format_loader(CameraFormatLoader loader);
 
 }  // namespace libcam

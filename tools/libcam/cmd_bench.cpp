@@ -205,8 +205,7 @@ std::string format_table(const std::vector<CaseResult>& results, const BenchSett
 }  // namespace
 
 Runner add_bench(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal");
+    CLI::App* command = add_command(app, "bench");
     auto flags = std::make_shared<BenchFlags>();
     command->add_option("--from", flags->from, "Camera file to measure (default: the built-in cases)");
     flags->selection.add_to(*command);

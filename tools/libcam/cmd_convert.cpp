@@ -9,8 +9,7 @@ namespace libcam::cli {
 
 
 Runner add_convert(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "convert", "Convert a FOV camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file");
+    CLI::App* command = add_command(app, "convert");
     struct Flags {
         CameraOptions camera;
         std::string to = "json";

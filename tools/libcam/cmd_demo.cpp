@@ -37,9 +37,7 @@ void print_example(const WorkedExample& example) {
 }  // namespace
 
 Runner add_demo(CLI::App& app) {
-    app.add_subcommand("demo",
-                       "The built-in example: convert the two worked example cameras and check them against "
-                       "OpenCV and mrcal");
+    add_command(app, "demo");
     return [] {
         std::cout << "libcam demo: the two worked example cameras, converted to K, R, t and checked against "
                      "OpenCV and mrcal\n"

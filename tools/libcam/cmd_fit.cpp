@@ -362,8 +362,7 @@ void write_outputs(const FitFlags& flags, const Camera& source, const Scene& sce
 }  // namespace
 
 Runner add_fit(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "fit", "The simplest lens model that reproduces a camera over a scene within a pixel tolerance");
+    CLI::App* command = add_command(app, "fit");
     auto flags = std::make_shared<FitFlags>();
     add_flags(*command, *flags);
 

@@ -85,8 +85,7 @@ std::string plain(const std::vector<CameraFormatInfo>& formats) {
 }  // namespace
 
 Runner add_formats(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "formats", "List every camera-file format: what libcam reads and writes, and the lens models each holds");
+    CLI::App* command = add_command(app, "formats");
     struct Flags {
         bool json = false;
         bool markdown = false;

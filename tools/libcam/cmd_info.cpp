@@ -85,7 +85,7 @@ Json camera_json(std::size_t index, const NamedCamera& named) {
 }  // namespace
 
 Runner add_info(CLI::App& app) {
-    CLI::App* command = app.add_subcommand("info", "Every camera a file holds: model, size, K, field of view, pose");
+    CLI::App* command = add_command(app, "info");
     struct Flags {
         std::string file;
         FileSelection selection;

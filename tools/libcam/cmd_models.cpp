@@ -135,7 +135,7 @@ Json models_json() {
 }  // namespace
 
 Runner add_models(CLI::App& app) {
-    CLI::App* command = app.add_subcommand("models", "Every lens model: its coefficients, abilities and other names");
+    CLI::App* command = add_command(app, "models");
     struct Flags {
         bool json = false;
         bool markdown = false;

@@ -111,7 +111,7 @@ std::string format_projections(const std::vector<ProjectedRow>& rows) {
 }  // namespace
 
 Runner add_project(CLI::App& app) {
-    CLI::App* command = app.add_subcommand("project", "The pixel of each world point (through R|t, K and the lens)");
+    CLI::App* command = add_command(app, "project");
     struct Flags {
         CameraOptions camera;
         std::vector<std::string> points;
@@ -140,7 +140,7 @@ Runner add_project(CLI::App& app) {
 }
 
 Runner add_rays(CLI::App& app) {
-    CLI::App* command = app.add_subcommand("rays", "World rays through pixels, by K^-1 and by the look-at formula");
+    CLI::App* command = add_command(app, "rays");
     struct Flags {
         CameraOptions camera;
         std::vector<std::string> pixels;

@@ -1,6 +1,5 @@
 // libcam remap: images from one camera to another (undistort a photo into a pinhole,
-// LONLAT or cylindrical camera chosen for it, or distort a render to the real lens), and libcam derive:
-// the camera of a resized, cropped, padded, binned or turned image.
+// LONLAT or cylindrical camera chosen for it, or distort a render to the real lens).
 
 #include <cmath>
 #include <filesystem>
@@ -238,9 +237,7 @@ int run_remap(const RemapFlags& flags) {
 }  // namespace
 
 Runner add_remap(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "remap", "Turn images from one camera into another: undistort into a pinhole, LONLAT or cylindrical camera chosen for the "
-                 "lens, or (--inverse) distort renders to the real lens");
+    CLI::App* command = add_command(app, "remap");
     auto flags = std::make_shared<RemapFlags>();
     command->add_option("--from", flags->from, "The lens's camera file (the camera the images were taken with)")
         ->required();
@@ -291,77 +288,6 @@ Runner add_remap(CLI::App& app) {
     command->add_option("-o,--output", flags->output, "Folder for the images (each keeps its file name)");
     command->add_option("images", flags->images, "Images to turn");
     return [flags] { return run_remap(*flags); };
-}
-
-Runner add_derive(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "derive", "The camera of a resized, cropped, padded, binned or quarter-turned image (one operation a call)");
-    struct Flags {
-        CameraOptions camera;
-        std::string resize, crop, pad, bin, rotate90;
-        std::string to = "json";
-        std::string output;
-    };
-    auto flags = std::make_shared<Flags>();
-    flags->camera.add_to(*command);
-    command->add_option("--resize", flags->resize, "A scale (0.5) or a new size WIDTHxHEIGHT");
-    command->add_option("--crop", flags->crop, "The pixels x0,y0,x1,y1 kept (x1, y1 excluded, as image[y0:y1, x0:x1])");
-    command->add_option("--pad", flags->pad, "Pixels added left,top,right,bottom");
-    command->add_option("--bin", flags->bin, "Each N x N block of pixels made one");
-    command->add_option("--rotate90", flags->rotate90, "Turn the image: cw, ccw or 180");
-    command->add_option("--to", flags->to, "Output format: " + written_formats_help())->capture_default_str();
-    command->add_option("-o,--output", flags->output, "Output file (written atomically); default stdout");
-    return [flags] {
-        const int given = !flags->resize.empty() + !flags->crop.empty() + !flags->pad.empty() + !flags->bin.empty() +
-                          !flags->rotate90.empty();
-        if (given != 1) throw UsageError("give one of --resize, --crop, --pad, --bin and --rotate90");
-        const Camera camera = flags->camera.camera().camera;
-        const auto longs = [](const std::string& flag, const std::string& text) {
-            std::vector<long> values;
-            for (const double v : parse_numbers(flag, text, 4)) {
-                if (v != std::floor(v) || std::abs(v) > 1e9) throw UsageError(flag + ": expected whole pixels, got '" + text + "'");
-                values.push_back(static_cast<long>(v));
-            }
-            return values;
-        };
-        Camera derived;
-        if (!flags->resize.empty()) {
-            derived = flags->resize.find('x') != std::string::npos
-                          ? resized(camera, parse_size("--resize", flags->resize))
-                          : scaled(camera, parse_number("--resize", flags->resize));
-        } else if (!flags->crop.empty()) {
-            const std::vector<long> v = longs("--crop", flags->crop);
-            derived = cropped(camera, v[0], v[1], v[2], v[3]);
-        } else if (!flags->pad.empty()) {
-            const std::vector<long> v = longs("--pad", flags->pad);
-            derived = padded(camera, v[0], v[1], v[2], v[3]);
-        } else if (!flags->bin.empty()) {
-            const double factor = parse_number("--bin", flags->bin);
-            if (factor != std::floor(factor) || factor < 1 || factor > 1e6) {
-                throw UsageError("--bin: expected a whole number of pixels, 1 or more, got '" + flags->bin + "'");
-            }
-            derived = binned(camera, static_cast<int>(factor));
-        } else {
-            const std::string& turn = flags->rotate90;
-            if (turn != "cw" && turn != "ccw" && turn != "180") {
-                throw UsageError("--rotate90: expected cw, ccw or 180, got '" + turn + "'");
-            }
-            derived = quarter_turns(camera, turn == "cw" ? 1 : turn == "180" ? 2 : 3);
-        }
-        CameraFormat format;
-        try {
-            format = camera_format_from_string(flags->to);
-        } catch (const InvalidArgument& error) {
-            throw UsageError(std::string("--to: ") + error.what());
-        }
-        if (camera_format_writes_folder(format)) {
-            if (flags->output.empty()) throw UsageError("--to " + flags->to + ": give the folder to write into (-o)");
-            write_camera_file(flags->output, derived, format);
-            return 0;
-        }
-        emit(format_camera(derived, format), flags->output);
-        return 0;
-    };
 }
 
 }  // namespace libcam::cli

@@ -106,9 +106,7 @@ int run_render_plan(const RenderPlanFlags& flags) {
 }  // namespace
 
 Runner add_render_plan(CLI::App& app) {
-    CLI::App* command = app.add_subcommand(
-        "render-plan", "How to render with Blender through a lens it cannot draw: the camera to render with and the "
-                       "map that turns its render into the lens's image");
+    CLI::App* command = add_command(app, "render-plan");
     auto flags = std::make_shared<RenderPlanFlags>();
     command->add_option("--from", flags->from, "The lens's camera file")->required();
     flags->selection.add_to(*command);

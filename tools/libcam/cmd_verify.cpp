@@ -196,8 +196,7 @@ std::string format_json(const VerifyReport& report) {
 }  // namespace
 
 Runner add_verify(CLI::App& app) {
-    CLI::App* command =
-        app.add_subcommand("verify", "Check a camera file against OpenCV and mrcal over a grid of pixels");
+    CLI::App* command = add_command(app, "verify");
     struct Flags {
         std::string file;
         std::string grid = "200x150";

@@ -4,7 +4,9 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <span>
 #include <string>
+#include <string_view>
 
 namespace libcam::cli {
 
@@ -23,6 +25,31 @@ Runner add_derive(CLI::App& app);
 Runner add_render_plan(CLI::App& app);
 Runner add_formats(CLI::App& app);
 Runner add_models(CLI::App& app);
+
+// Every subcommand, in the order --help lists them. A light one needs libcam::core and
+// libcam::io alone and runs in the program itself; the others run in the commands module
+// (commands_module.hpp).
+struct CommandInfo {
+    std::string_view name;
+    std::string_view description;
+    bool light;
+};
+const CommandInfo* find_command(std::string_view name);  // nullptr: no such command
+
+// The subcommand `name` with its description from the table.
+CLI::App* add_command(CLI::App& app, std::string_view name);
+
+// The subcommand a command line names (its first word that is not a flag); empty if none.
+std::string_view subcommand_of(int argc, char** argv);
+
+struct CommandAdder {
+    std::string_view name;
+    Runner (*add)(CLI::App& app);
+};
+
+// Parses and runs a command line: `here` are the commands this binary runs; the table's
+// others are listed by --help only. Returns the exit code; errors are one line on stderr.
+int run_commands(std::span<const CommandAdder> here, int argc, char** argv);
 
 // Writes text to stdout, or atomically to `path` when it is not empty.
 void emit(const std::string& text, const std::string& path);

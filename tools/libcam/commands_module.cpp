@@ -1,0 +1,48 @@
+// The commands module (commands_module.hpp): the whole `libcam` program, every command,
+// loaded by the light program for the commands that need OpenCV, mrcal, Ceres or images.
+// Everything in it is hidden but the three entries below.
+
+#include <opencv2/core/utility.hpp>
+#include <type_traits>
+
+#include "commands.hpp"
+#include "commands_module.hpp"
+#include "libcam/interop/formats.hpp"
+#include "libcam/version.hpp"
+
+namespace {
+
+using namespace libcam::cli;
+
+// OpenCV prints every cv::Exception to stderr before throwing it; libcam reports the
+// error itself, in one line.
+int quiet_opencv_errors(int, const char*, const char*, const char*, int, void*) { return 0; }
+
+constexpr CommandAdder kAllCommands[] = {
+    {"convert", add_convert}, {"info", add_info},   {"rays", add_rays},  {"project", add_project},
+    {"remap", add_remap},     {"derive", add_derive}, {"render-plan", add_render_plan},
+    {"verify", add_verify},   {"fit", add_fit},     {"bench", add_bench}, {"demo", add_demo},
+    {"formats", add_formats}, {"models", add_models},
+};
+
+}  // namespace
+
+#define LIBCAM_MODULE_ENTRY extern "C" __attribute__((visibility("default")))
+
+LIBCAM_MODULE_ENTRY const char* libcam_commands_version() { return LIBCAM_VERSION; }
+
+LIBCAM_MODULE_ENTRY int libcam_run_commands(int argc, char** argv) {
+    cv::redirectError(quiet_opencv_errors);
+    libcam::register_interop_formats();  // this copy of libcam::io's table: mrcal .cameramodel
+    return run_commands(kAllCommands, argc, argv);
+}
+
+LIBCAM_MODULE_ENTRY void libcam_install_formats(libcam::CameraFormatInstaller install) {
+    cv::redirectError(quiet_opencv_errors);
+    libcam::register_interop_formats(install);
+}
+
+// The entries have the types the program calls them with.
+static_assert(std::is_same_v<decltype(&libcam_commands_version), VersionEntry>);
+static_assert(std::is_same_v<decltype(&libcam_run_commands), RunEntry>);
+static_assert(std::is_same_v<decltype(&libcam_install_formats), InstallFormatsEntry>);
