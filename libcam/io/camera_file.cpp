@@ -170,7 +170,6 @@ std::vector<CameraFormatInfo> camera_formats() {
     }
     return formats;
 }
-}
 
 std::string_view to_string(CameraFormat format) {
     for (const FormatRow& row : format_rows()) {
