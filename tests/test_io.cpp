@@ -11,6 +11,7 @@
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/format_table.hpp"
+#include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/json_format.hpp"
 #include "error_message.hpp"
 #include "temp_dir.hpp"
@@ -41,6 +42,24 @@ void check_names_the_fix(const std::string& message, const std::string& where, c
 }
 
 }  // namespace
+
+TEST_CASE("io alone: every format's row reads and writes, or says why not") {
+    for (const detail::FormatRow& row : detail::format_rows()) {
+        INFO(row.name);
+        const bool filled_later = !row.installer.empty();
+        // Its own reader, or the library that fills it named.
+        CHECK((row.read != nullptr || filled_later));
+        // A writer exactly when it is not read only (a row filled later gets both).
+        if (!filled_later) CHECK(row.read_only == (row.write == nullptr));
+        CHECK_FALSE((filled_later && row.read_only));
+        CHECK_FALSE((row.read_only && row.write_only));
+        CHECK_FALSE(row.name.empty());
+        CHECK_FALSE(row.title.empty());
+        CHECK_FALSE(row.description.empty());
+        CHECK(row.content != 0u);
+        CHECK_FALSE(row.lenses.empty());
+    }
+}
 
 TEST_CASE("io alone: JSON, gl and OpenCV's YAML and XML are installed, mrcal's format is not") {
     CHECK(camera_format_installed(CameraFormat::Json));

@@ -195,21 +195,6 @@ constexpr bool rows_match_formats() {
 }
 static_assert(rows_match_formats(), "every CameraFormat needs exactly one row, in the enum's order");
 
-// A row reads and writes, or says why not: read-only rows have no writer, the others one
-// (or name the library that fills it), and a folder-writing row writes.
-constexpr bool rows_complete() {
-    for (const FormatRow& row : kRows) {
-        const bool filled_later = !row.installer.empty();
-        if (!filled_later && row.read == nullptr) return false;
-        if (!filled_later && row.read_only == (row.write != nullptr)) return false;
-        if (filled_later && row.read_only) return false;
-        if (row.read_only && row.write_only) return false;
-        if (row.name.empty() || row.title.empty() || row.description.empty() || row.content == 0) return false;
-        if (row.lenses.empty()) return false;
-    }
-    return true;
-}
-static_assert(rows_complete(), "a format row lacks its reader, writer, name or lens models");
 
 }  // namespace
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -128,38 +129,64 @@ bool is_kalibr_camera_key(std::string_view key) {
 
 // ---- camodocal ---------------------------------------------------------------------------
 
+// camodocal's models as data: each model_type, the lens model it is, the keys of K in
+// projection_parameters, and where each of the lens's coefficients is (section, key).
+struct CamodocalKey {
+    std::string_view section;
+    std::string_view key;
+};
+
+struct CamodocalModel {
+    std::string_view model_type;
+    LensType lens;
+    std::array<std::string_view, 4> k;  // fx, fy, cx, cy
+    std::array<CamodocalKey, 5> coefficients;
+    int coefficient_count;
+};
+
+constexpr CamodocalModel kCamodocalModels[] = {
+    {"PINHOLE", LensType::Opencv4, {"fx", "fy", "cx", "cy"},
+     {{{"distortion_parameters", "k1"}, {"distortion_parameters", "k2"}, {"distortion_parameters", "p1"},
+       {"distortion_parameters", "p2"}}},
+     4},
+    // Mei's model is cv::omnidir's: gamma1 gamma2 u0 v0 are K.
+    {"MEI", LensType::Mei, {"gamma1", "gamma2", "u0", "v0"},
+     {{{"mirror_parameters", "xi"}, {"distortion_parameters", "k1"}, {"distortion_parameters", "k2"},
+       {"distortion_parameters", "p1"}, {"distortion_parameters", "p2"}}},
+     5},
+    // camodocal's k2..k5 are theta's coefficients of theta^3..theta^9 (OpenCV fisheye's k1..k4).
+    {"KANNALA_BRANDT", LensType::Fisheye, {"mu", "mv", "u0", "v0"},
+     {{{"projection_parameters", "k2"}, {"projection_parameters", "k3"}, {"projection_parameters", "k4"},
+       {"projection_parameters", "k5"}}},
+     4},
+};
+
+// Every lens model's coefficient count matches the table's.
+static_assert([] {
+    for (const CamodocalModel& model : kCamodocalModels) {
+        if (lens_info(model.lens).num_coefficients != model.coefficient_count) return false;
+    }
+    return true;
+}());
+
 NamedCamera read_camodocal(const Field& file, const std::string& source) {
     const Field model_type = file.at({"model_type"});
-    const std::string model = model_type.text();
+    const std::string model_name = model_type.text();
     const std::string name = file.find({"camera_name"}) ? file.at({"camera_name"}).text() : std::string();
+    const auto found = std::find_if(std::begin(kCamodocalModels), std::end(kCamodocalModels),
+                                    [&](const CamodocalModel& model) { return model.model_type == model_name; });
+    if (found == std::end(kCamodocalModels)) {
+        model_type.fail("must be PINHOLE, MEI or KANNALA_BRANDT (libcam has no model for '" + model_name + "')");
+    }
     Camera camera;
     camera.size = size_of(file.at({"image_width"}), file.at({"image_height"}));
     const Field projection = file.at({"projection_parameters"});
-    const auto number = [](const Field& section, std::string_view key) { return section.at({key}).number(); };
-    if (model == "PINHOLE" || model == "MEI") {
-        const Field distortion = file.at({"distortion_parameters"});
-        std::vector<double> coefficients = {number(distortion, "k1"), number(distortion, "k2"), number(distortion, "p1"),
-                                            number(distortion, "p2")};
-        if (model == "PINHOLE") {
-            camera.intrinsics = {number(projection, "fx"), number(projection, "fy"), number(projection, "cx"),
-                                 number(projection, "cy"), 0.0};
-            camera.lens = {LensType::Opencv4, std::move(coefficients)};
-        } else {
-            // Mei's model is cv::omnidir's: gamma1 gamma2 u0 v0 are K.
-            coefficients.insert(coefficients.begin(), number(file.at({"mirror_parameters"}), "xi"));
-            camera.intrinsics = {number(projection, "gamma1"), number(projection, "gamma2"), number(projection, "u0"),
-                                 number(projection, "v0"), 0.0};
-            camera.lens = {LensType::Mei, std::move(coefficients)};
-        }
-    } else if (model == "KANNALA_BRANDT") {
-        // camodocal's k2..k5 are theta's coefficients of theta^3..theta^9 (OpenCV fisheye's k1..k4).
-        camera.intrinsics = {number(projection, "mu"), number(projection, "mv"), number(projection, "u0"),
-                             number(projection, "v0"), 0.0};
-        camera.lens = {LensType::Fisheye,
-                       {number(projection, "k2"), number(projection, "k3"), number(projection, "k4"),
-                        number(projection, "k5")}};
-    } else {
-        model_type.fail("must be PINHOLE, MEI or KANNALA_BRANDT (libcam has no model for '" + model + "')");
+    const auto k = [&](std::size_t i) { return projection.at({found->k[i]}).number(); };
+    camera.intrinsics = {k(0), k(1), k(2), k(3), 0.0};
+    camera.lens.type = found->lens;
+    for (int i = 0; i < found->coefficient_count; ++i) {
+        const CamodocalKey& where = found->coefficients[static_cast<std::size_t>(i)];
+        camera.lens.coefficients.push_back(file.at({where.section}).at({where.key}).number());
     }
     return checked(name, std::move(camera), source);
 }
