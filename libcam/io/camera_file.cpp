@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <cctype>
 #include <cstdint>
 
 #include "libcam/error.hpp"
@@ -41,15 +40,21 @@ const FormatRow& row_of(CameraFormat format) {
                     std::string(row.library) + " (link it and call " + std::string(row.installer) + " first)");
 }
 
+// The program's loader of rows filled at run time (set_camera_format_loader), or none.
 constinit std::atomic<CameraFormatLoader> format_loader = nullptr;
 
-bool installed_now(const FormatRow& row) {
-    const auto index = static_cast<std::size_t>(row.format);
-    const bool reads = row.read != nullptr || installed_readers[index].load(std::memory_order_acquire) != nullptr;
-    const bool writes = row.read_only || row.write != nullptr ||
-                        installed_writers[index].load(std::memory_order_acquire) != nullptr;
-    return reads && writes;
+// Whether the row can read and write now: its own functions, or ones installed.
+bool has_reader(const FormatRow& row) {
+    return row.read != nullptr ||
+           installed_readers[static_cast<std::size_t>(row.format)].load(std::memory_order_acquire) != nullptr;
 }
+
+bool has_writer(const FormatRow& row) {
+    return row.write != nullptr ||
+           installed_writers[static_cast<std::size_t>(row.format)].load(std::memory_order_acquire) != nullptr;
+}
+
+bool installed_now(const FormatRow& row) { return has_reader(row) && (row.read_only || has_writer(row)); }
 
 // Asks the program's loader, if it set one, to fill a row that lacks its reader or writer
 // (set_camera_format_loader); the loader fills it or throws its own error.
@@ -66,12 +71,6 @@ std::vector<NamedCamera> read_with(const FormatRow& row, std::string_view text, 
     const CameraReader reader = installed_readers[static_cast<std::size_t>(row.format)].load(std::memory_order_acquire);
     if (reader == nullptr) throw_not_installed(row, "reading", context.source);
     return {{std::string(), reader(text, context.source)}};
-}
-
-// Whether the row can write now (its own writer, or one installed).
-bool has_writer(const FormatRow& row) {
-    return row.write != nullptr ||
-           installed_writers[static_cast<std::size_t>(row.format)].load(std::memory_order_acquire) != nullptr;
 }
 
 std::vector<CameraFileText> write_with(const FormatRow& row, const Camera& camera, const WriteOptions& options,
@@ -100,7 +99,7 @@ std::vector<CameraFileText> format_files(const Camera& camera, CameraFormat form
                                " files but does not write them (it writes " + written_format_names() + ")");
     }
     if (!has_writer(row)) ask_loader(row);
-    if (!has_writer(row)) write_with(row, camera, options, destination);  // throws, naming the library
+    if (!has_writer(row)) throw_not_installed(row, "writing", destination);
     camera.validate();
     const auto write = [&](const Camera& held) { return write_with(row, held, options, destination); };
     try {
