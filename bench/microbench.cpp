@@ -189,9 +189,9 @@ void register_benchmarks() {
         benchmark::RegisterBenchmark(("ImageMemset/float" + bytes).c_str(), ImageMemset<float>, byte)->UseRealTime();
     }
     register_image_rays<UnprojectMethod::Exact>("pinhole", "wide", LensType::Pinhole);
-    register_image_rays<UnprojectMethod::Exact>("opencv8", "wide", LensType::Opencv8);
-    register_image_rays<UnprojectMethod::Fast>("opencv8", "wide", LensType::Opencv8);
-    register_image_rays<UnprojectMethod::Lut>("opencv8", "wide", LensType::Opencv8);
+    register_image_rays<UnprojectMethod::Exact>("opencv8", "wide", LensType::OpenCv8);
+    register_image_rays<UnprojectMethod::Fast>("opencv8", "wide", LensType::OpenCv8);
+    register_image_rays<UnprojectMethod::Lut>("opencv8", "wide", LensType::OpenCv8);
     register_image_rays<UnprojectMethod::Exact>("fisheye", "fisheye", LensType::Fisheye);
 }
 

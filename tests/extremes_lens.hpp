@@ -233,22 +233,22 @@ inline std::vector<HandFold> hand_folds() {
     std::vector<HandFold> folds;
     // d = r - 0.5 r^3: d' = 1 - 1.5 r^2.
     const Quad r4 = sqrt(Quad(1) / (3 * k_half));
-    folds.push_back({"OPENCV4 k1 = -0.5", lens(LensType::Opencv4, {-0.5, 0, 0, 0}), r4, r4 * (1 - k_half * r4 * r4)});
+    folds.push_back({"OPENCV4 k1 = -0.5", lens(LensType::OpenCv4, {-0.5, 0, 0, 0}), r4, r4 * (1 - k_half * r4 * r4)});
     // d = r (1 - 0.1 r^6): d' = 1 - 0.7 r^6.
     const Quad r5 = pow(Quad(1) / (7 * k_tenth), Quad(1) / 6);
     folds.push_back(
-        {"OPENCV5 k3 = -0.1", lens(LensType::Opencv5, {0, 0, 0, 0, -0.1}), r5, r5 * (1 - k_tenth * pow(r5, 6))});
+        {"OPENCV5 k3 = -0.1", lens(LensType::OpenCv5, {0, 0, 0, 0, -0.1}), r5, r5 * (1 - k_tenth * pow(r5, 6))});
     // d = r / (1 + 0.5 r^2): d' = (1 - 0.5 r^2) / (1 + 0.5 r^2)^2.
     const Quad r8 = sqrt(Quad(1) / k_half);
     folds.push_back(
-        {"OPENCV8 k4 = 0.5", lens(LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}), r8, r8 / (1 + k_half * r8 * r8)});
+        {"OPENCV8 k4 = 0.5", lens(LensType::OpenCv8, {0, 0, 0, 0, 0, 0.5, 0, 0}), r8, r8 / (1 + k_half * r8 * r8)});
     // d = r (1 - 0.2 r^4): d' = 1 - r^4.
     const Quad r12 = pow(Quad(1) / (5 * k_fifth), Quad(1) / 4);
-    folds.push_back({"OPENCV12 k2 = -0.2", lens(LensType::Opencv12, {0, -0.2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}), r12,
+    folds.push_back({"OPENCV12 k2 = -0.2", lens(LensType::OpenCv12, {0, -0.2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}), r12,
                      r12 * (1 - k_fifth * pow(r12, 4))});
     // d = r / (1 + 0.25 r^6): d' = (1 - 1.25 r^6) / (1 + 0.25 r^6)^2.
     const Quad r14 = pow(Quad(1) / (5 * k_quarter), Quad(1) / 6);
-    folds.push_back({"OPENCV14 k6 = 0.25", lens(LensType::Opencv14, {0, 0, 0, 0, 0, 0, 0, 0.25, 0, 0, 0, 0, 0, 0}), r14,
+    folds.push_back({"OPENCV14 k6 = 0.25", lens(LensType::OpenCv14, {0, 0, 0, 0, 0, 0, 0, 0.25, 0, 0, 0, 0, 0, 0}), r14,
                      r14 / (1 + k_quarter * pow(r14, 6))});
     // theta_d = theta (1 - 0.2 theta^2): theta_d' = 1 - 0.6 theta^2.
     const Quad rf = sqrt(Quad(1) / (3 * k_fifth));
@@ -284,12 +284,12 @@ struct ProjectionWorst {
 // they lie within ~1e-154 (r^2) or ~1e-77 (r^4) rad of the camera plane.
 template <class Scalar>
 bool intermediate_overflows(LensType type, const Vec3Q& point) {
-    const bool opencv = type == LensType::Opencv4 || type == LensType::Opencv5 || type == LensType::Opencv8 ||
-                        type == LensType::Opencv12 || type == LensType::Opencv14;
+    const bool opencv = type == LensType::OpenCv4 || type == LensType::OpenCv5 || type == LensType::OpenCv8 ||
+                        type == LensType::OpenCv12 || type == LensType::OpenCv14;
     if (!opencv || !(point.z() > 0)) return false;
     const Quad r2 = (point.x() * point.x() + point.y() * point.y()) / (point.z() * point.z());
     const Quad largest(std::numeric_limits<Scalar>::max());
-    const bool prism_or_tilt = type == LensType::Opencv12 || type == LensType::Opencv14;
+    const bool prism_or_tilt = type == LensType::OpenCv12 || type == LensType::OpenCv14;
     return r2 > largest || (prism_or_tilt && r2 * r2 > largest);
 }
 
@@ -427,13 +427,13 @@ inline std::vector<LensCase> coefficient_extremes() {
             cases.push_back({name.str(), with_coefficients_scaled(c.camera, scale)});
         }
     }
-    cases.push_back({"OPENCV4 k = -2, 1.5", lens_camera(LensType::Opencv4, {-2, 1.5, 0.01, -0.01})});
+    cases.push_back({"OPENCV4 k = -2, 1.5", lens_camera(LensType::OpenCv4, {-2, 1.5, 0.01, -0.01})});
     cases.push_back(
-        {"OPENCV8 k = 5, 3, .., 6, 4, 2", lens_camera(LensType::Opencv8, {5, 3, 0.001, 0.001, 1, 6, 4, 2})});
+        {"OPENCV8 k = 5, 3, .., 6, 4, 2", lens_camera(LensType::OpenCv8, {5, 3, 0.001, 0.001, 1, 6, 4, 2})});
     cases.push_back(
-        {"OPENCV12 prism 0.1", lens_camera(LensType::Opencv12, {0.1, 0, 0, 0, 0, 0, 0, 0, 0.1, -0.1, 0.05, 0.05})});
+        {"OPENCV12 prism 0.1", lens_camera(LensType::OpenCv12, {0.1, 0, 0, 0, 0, 0, 0, 0, 0.1, -0.1, 0.05, 0.05})});
     cases.push_back(
-        {"OPENCV14 tilt 0.3 rad", lens_camera(LensType::Opencv14, {0.1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.3, -0.3})});
+        {"OPENCV14 tilt 0.3 rad", lens_camera(LensType::OpenCv14, {0.1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0.3, -0.3})});
     cases.push_back({"FISHEYE k = 0.5, -0.3, 0.2, -0.05",
                      lens_camera(LensType::Fisheye, {0.5, -0.3, 0.2, -0.05}, {1600, 1200}, 300, 300)});
     return cases;

@@ -77,19 +77,19 @@ inline std::vector<double> splined_coefficients(int order, int nx, int ny, int f
 inline std::vector<LensCase> lens_cases() {
     std::vector<LensCase> cases{
         {"PINHOLE", lens_camera(LensType::Pinhole, {})},
-        {"OPENCV4 mild", lens_camera(LensType::Opencv4, {-0.05, 0.01, 2e-4, -3e-4})},
-        {"OPENCV4 strong", lens_camera(LensType::Opencv4, {-0.45, 0.05, 1.5e-3, -1e-3})},
-        {"OPENCV5 mild", lens_camera(LensType::Opencv5, {0.03, -0.01, -1e-4, 2e-4, 0.002})},
-        {"OPENCV5 strong", lens_camera(LensType::Opencv5, {-0.28, 0.07, 8e-4, -6e-4, -0.008})},
-        {"OPENCV8 mild", lens_camera(LensType::Opencv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005})},
+        {"OPENCV4 mild", lens_camera(LensType::OpenCv4, {-0.05, 0.01, 2e-4, -3e-4})},
+        {"OPENCV4 strong", lens_camera(LensType::OpenCv4, {-0.45, 0.05, 1.5e-3, -1e-3})},
+        {"OPENCV5 mild", lens_camera(LensType::OpenCv5, {0.03, -0.01, -1e-4, 2e-4, 0.002})},
+        {"OPENCV5 strong", lens_camera(LensType::OpenCv5, {-0.28, 0.07, 8e-4, -6e-4, -0.008})},
+        {"OPENCV8 mild", lens_camera(LensType::OpenCv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005})},
         {"OPENCV8 wide", wide_reference_camera()},
-        {"OPENCV12 mild", lens_camera(LensType::Opencv12, {-0.04, 0.008, 1e-4, 1e-4, 0.0, 0.01, 0.0, 0.0, 1e-3, -2e-4,
+        {"OPENCV12 mild", lens_camera(LensType::OpenCv12, {-0.04, 0.008, 1e-4, 1e-4, 0.0, 0.01, 0.0, 0.0, 1e-3, -2e-4,
                                                             -5e-4, 1e-4})},
-        {"OPENCV12 strong", lens_camera(LensType::Opencv12, {0.6, 0.05, 5e-4, -4e-4, 2e-4, 0.95, 0.15, 0.003, 4e-3,
+        {"OPENCV12 strong", lens_camera(LensType::OpenCv12, {0.6, 0.05, 5e-4, -4e-4, 2e-4, 0.95, 0.15, 0.003, 4e-3,
                                                               -1e-3, -3e-3, 8e-4})},
-        {"OPENCV14 mild", lens_camera(LensType::Opencv14, {-0.04, 0.008, 1e-4, 1e-4, 0.0, 0.01, 0.0, 0.0, 1e-3, -2e-4,
+        {"OPENCV14 mild", lens_camera(LensType::OpenCv14, {-0.04, 0.008, 1e-4, 1e-4, 0.0, 0.01, 0.0, 0.0, 1e-3, -2e-4,
                                                             -5e-4, 1e-4, 0.01, -0.02})},
-        {"OPENCV14 strong", lens_camera(LensType::Opencv14, {0.6, 0.05, 5e-4, -4e-4, 2e-4, 0.95, 0.15, 0.003, 4e-3,
+        {"OPENCV14 strong", lens_camera(LensType::OpenCv14, {0.6, 0.05, 5e-4, -4e-4, 2e-4, 0.95, 0.15, 0.003, 4e-3,
                                                               -1e-3, -3e-3, 8e-4, -0.05, 0.04})},
         {"FISHEYE mild", lens_camera(LensType::Fisheye, {-0.013, -0.0057, 0.0023, -0.0009}, {1600, 1200}, 420, 421)},
         {"FISHEYE strong", lens_camera(LensType::Fisheye, {0.08, -0.06, 0.012, -0.002}, {1600, 1200}, 300, 300)},
@@ -259,9 +259,9 @@ inline std::vector<FoldCase> fold_cases() {
     const double r4 = std::sqrt(1 / 1.5), theta = std::sqrt(1 / 0.6);
     return {
         // d = r (1 - 0.5 r^2): r_max = sqrt(1/1.5), d_max = r_max (1 - 0.5 r_max^2) = 2/3 r_max.
-        {"OPENCV4 k1 = -0.5", lens_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1600, 1200}, 900, 900), r4 * 2 / 3},
+        {"OPENCV4 k1 = -0.5", lens_camera(LensType::OpenCv4, {-0.5, 0, 0, 0}, {1600, 1200}, 900, 900), r4 * 2 / 3},
         // d = r / (1 + 0.5 r^2): r_max = sqrt 2, d_max = sqrt(2) / 2.
-        {"OPENCV8 k4 = 0.5", lens_camera(LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}, {1600, 1200}, 900, 900),
+        {"OPENCV8 k4 = 0.5", lens_camera(LensType::OpenCv8, {0, 0, 0, 0, 0, 0.5, 0, 0}, {1600, 1200}, 900, 900),
          std::sqrt(2.0) / 2},
         // theta_d = theta (1 - 0.2 theta^2): theta_max = sqrt(1/0.6), d_max = 2/3 theta_max.
         {"FISHEYE k1 = -0.2", lens_camera(LensType::Fisheye, {-0.2, 0, 0, 0}, {1600, 1200}, 700, 700), theta * 2 / 3},

@@ -242,7 +242,7 @@ TEST_CASE("Blender cameras back from libcam's: the settings worked by hand, and 
     // 1e-5 r^3 + 0.05 r - pi): fisheye_fov covers the whole domain, 2 pi.
     CHECK(blender.fisheye_fov == Approx(2 * std::numbers::pi).epsilon(1e-12));
 
-    camera.lens = {LensType::Opencv4, {0.1, 0.0, 0.0, 0.0}};
+    camera.lens = {LensType::OpenCv4, {0.1, 0.0, 0.0, 0.0}};
     CHECK_THAT(test::error_of([&] { blender_from_camera(camera); }),
                Catch::Contains("Blender has no camera for OPENCV4"));
     // A pinhole with fy = 41 / 40 fx: to Blender, pixels 1.025 times wider than tall (fewer

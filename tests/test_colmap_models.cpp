@@ -139,7 +139,7 @@ TEST_CASE("COLMAP: the principal point moves by half a pixel, the rest maps as t
     CHECK(radial.intrinsics.fy == 500);
     CHECK(radial.intrinsics.cx == 319.5);
     CHECK(radial.intrinsics.cy == 239.5);
-    CHECK(radial.lens.type == LensType::Opencv4);
+    CHECK(radial.lens.type == LensType::OpenCv4);
     CHECK(radial.lens.coefficients == std::vector<double>{0.1, -0.02, 0, 0});
 
     const Camera fisheye = camera_from_colmap("RADIAL_FISHEYE", std::vector<double>{500, 320, 240, 0.1, -0.02}, {640, 480});
@@ -148,7 +148,7 @@ TEST_CASE("COLMAP: the principal point moves by half a pixel, the rest maps as t
 
     // By default, the model COLMAP users know for the lens; OPENCV5 goes to FULL_OPENCV.
     Camera opencv5 = radial;
-    opencv5.lens = {LensType::Opencv5, {0.1, -0.02, 0.001, 0.002, 0.03}};
+    opencv5.lens = {LensType::OpenCv5, {0.1, -0.02, 0.001, 0.002, 0.03}};
     const ColmapCamera full = colmap_from_camera(opencv5);
     CHECK(full.model == "FULL_OPENCV");
     CHECK(full.params == std::vector<double>{500, 500, 320, 240, 0.1, -0.02, 0.001, 0.002, 0.03, 0, 0, 0});

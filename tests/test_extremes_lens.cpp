@@ -575,7 +575,7 @@ std::vector<Row> lens_rows() {
 TEST_CASE("extremes: OPENCV Jacobians where R = P/Q is evaluated in 1/r^2") {
     // At r = 1e60 P and Q overflow double, so R and its derivatives come from the 1/r^2
     // form; in Quad (range to 1e4932) the same point takes the plain form. Both agree.
-    const Camera camera = lens_camera(LensType::Opencv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005});
+    const Camera camera = lens_camera(LensType::OpenCv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005});
     using Model = OpenCv8Lens<double>;
     using ModelQ = OpenCv8Lens<Quad>;
     const auto lens = Model::parameters(camera.lens.coefficients);

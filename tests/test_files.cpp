@@ -345,8 +345,8 @@ TEST_CASE("Stereo files written by cv::FileStorage: stereo_calib's pair and ORB-
     CHECK(settings.cameras[3].name == "RIGHT");
     const Camera& left = settings.cameras[2].file.camera;
     const Camera& right = settings.cameras[3].file.camera;
-    CHECK(left.lens.type == LensType::Opencv5);
-    CHECK(right.lens.type == LensType::Opencv4);
+    CHECK(left.lens.type == LensType::OpenCv5);
+    CHECK(right.lens.type == LensType::OpenCv4);
     // The rectified right camera sits the baseline along x; the raw pair is the calibration's.
     const double baseline = -P2.at<double>(0, 3) / P2.at<double>(0, 0);
     CHECK(settings.cameras[1].file.camera.pose.centre().isApprox(Vec3(baseline, 0, 0), 1e-15));
@@ -804,7 +804,7 @@ TEST_CASE("OpenCV YAML in the layouts OpenCV reads: header or not, '---' or not,
         write_text(path, c.text);
         const Camera camera = read_camera_file(path).camera;
         check_hand_made_size_and_k(camera);
-        CHECK(camera.lens.type == LensType::Opencv5);
+        CHECK(camera.lens.type == LensType::OpenCv5);
         CHECK(camera.lens.coefficients == std::vector<double>{-0.1, 0.02, 1e-4, -2e-4, 0.003});
         // OpenCV reads the same K from the same file.
         check_opencv_k(opencv_reads_matrix(path, c.k_key), camera.intrinsics);
@@ -822,12 +822,12 @@ TEST_CASE("fisheye_model and distortion_model say whose coefficients a file hold
         LensType type;
     };
     const std::vector<Case> cases{
-        {"no flag: cv::projectPoints", head + k4, LensType::Opencv4},
-        {"the calibration sample's fisheye_model: 0", head + "fisheye_model: 0\n" + k4, LensType::Opencv4},
+        {"no flag: cv::projectPoints", head + k4, LensType::OpenCv4},
+        {"the calibration sample's fisheye_model: 0", head + "fisheye_model: 0\n" + k4, LensType::OpenCv4},
         {"the calibration sample's fisheye_model: 1", head + "fisheye_model: 1\n" + k4, LensType::Fisheye},
         {"ROS's equidistant", head + "distortion_model: equidistant\n" + k4, LensType::Fisheye},
         {"\"fisheye\", quoted", head + "distortion_model: \"fisheye\"\n" + k4, LensType::Fisheye},
-        {"ROS's plumb_bob", head + "distortion_model: plumb_bob\n" + k4, LensType::Opencv4},
+        {"ROS's plumb_bob", head + "distortion_model: plumb_bob\n" + k4, LensType::OpenCv4},
     };
     // OpenCV projects a point through the coefficients with the function the file names
     // (cv::fisheye::projectPoints for FISHEYE); libcam's camera must give the same pixel.

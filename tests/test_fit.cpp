@@ -41,7 +41,7 @@ Camera mildly_distorted() {
     Camera camera;
     camera.size = {1600, 1200};
     camera.intrinsics = {1200.0, 1200.0, camera.size.centre_x(), camera.size.centre_y(), 0.0};
-    camera.lens = {LensType::Opencv4, {-0.02, 0.004, 1e-4, -5e-5}};
+    camera.lens = {LensType::OpenCv4, {-0.02, 0.004, 1e-4, -5e-5}};
     return camera;
 }
 
@@ -452,7 +452,7 @@ TEST_CASE("a scene with no pixel that has a ray is refused") {
     Camera source;
     source.size = {1000, 750};
     source.intrinsics = {500.0, 500.0, 499.5, 374.5, 0.0};
-    source.lens = {LensType::Opencv4, {-0.5, 0.0, 0.0, 0.0}};
+    source.lens = {LensType::OpenCv4, {-0.5, 0.0, 0.0, 0.0}};
     CHECK_THROWS_WITH(fit_scene(source, Scene::rectangle({900, 650}, {999, 749}), {}), Contains("no pixel of it has a ray"));
     // The whole image: the corners are skipped and counted; the middle is fitted.
     FitOptions options;

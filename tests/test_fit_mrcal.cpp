@@ -99,7 +99,7 @@ TEST_CASE("libcam fit reaches an RMS no worse than mrcal-convert-lensmodel on mr
     TempDir dir;
     write_camera_file(dir / "source.cameramodel", source, CameraFormat::Cameramodel);
     const std::vector<Candidate> chain = {
-        {"FOV", LensType::Pinhole, true}, {"PINHOLE", LensType::Pinhole}, {"OPENCV4", LensType::Opencv4}, {"OPENCV5", LensType::Opencv5}};
+        {"FOV", LensType::Pinhole, true}, {"PINHOLE", LensType::Pinhole}, {"OPENCV4", LensType::OpenCv4}, {"OPENCV5", LensType::OpenCv5}};
 
     std::printf("%-7s %-6s %-8s %7s | %-26s | %-26s\n", "radius", "motion", "model", "samples", "RMS px (mrcal's printout)",
                 "RMS px per point");

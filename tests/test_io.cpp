@@ -26,7 +26,7 @@ Camera wide_camera() {
     Camera camera;
     camera.size = {1600, 1200};
     camera.intrinsics = {900.0, 910.0, 812.5, 592.5, 0.0};
-    camera.lens = {LensType::Opencv5, {0.03, -0.01, -1e-4, 2e-4, 0.002}};
+    camera.lens = {LensType::OpenCv5, {0.03, -0.01, -1e-4, 2e-4, 0.002}};
     camera.pose = Pose::from_rvec({0.1, -0.2, 0.3}, {1, 2, 3});
     return camera;
 }
@@ -89,7 +89,7 @@ TEST_CASE("io alone: an OpenCV YAML and XML camera is read, with the numbers wri
         CHECK(camera.intrinsics.fy == 510.0);
         CHECK(camera.intrinsics.cx == 319.5);
         CHECK(camera.intrinsics.cy == 239.5);
-        CHECK(camera.lens.type == LensType::Opencv4);
+        CHECK(camera.lens.type == LensType::OpenCv4);
         CHECK(camera.lens.coefficients == std::vector<double>{-0.25, 0.5, 0.0, 0.0});
         CHECK(camera.pose.R == Mat3::Identity());
     }
@@ -162,7 +162,7 @@ cam1:
     const CameraSet set = parse_camera_set(chain, CameraFormat::Kalibr, "chain.yaml");
     REQUIRE(set.cameras.size() == 2);
     CHECK(set.cameras[0].name == "cam0");
-    CHECK(set.cameras[0].file.camera.lens.type == LensType::Opencv4);
+    CHECK(set.cameras[0].file.camera.lens.type == LensType::OpenCv4);
     CHECK(set.cameras[0].file.camera.pose.t == Vec3::Zero());
     const Camera& cam1 = set.cameras[1].file.camera;
     CHECK(cam1.lens.type == LensType::Ucm);

@@ -61,11 +61,11 @@ TEST_CASE("COLMAP cameras.txt: every model as the libcam model that holds it, pi
     const std::vector<Expected> expected = {
         {LensType::Pinhole, 500, 500, {}},
         {LensType::Pinhole, 500, 510, {}},
-        {LensType::Opencv4, 500, 500, {0.1, 0, 0, 0}},
-        {LensType::Opencv4, 500, 500, {0.1, -0.02, 0, 0}},
-        {LensType::Opencv4, 500, 510, {0.1, -0.02, 0.001, 0.002}},
+        {LensType::OpenCv4, 500, 500, {0.1, 0, 0, 0}},
+        {LensType::OpenCv4, 500, 500, {0.1, -0.02, 0, 0}},
+        {LensType::OpenCv4, 500, 510, {0.1, -0.02, 0.001, 0.002}},
         {LensType::Fisheye, 300, 301, {0.01, 0.02, 0.03, 0.04}},
-        {LensType::Opencv8, 500, 510, {1, 2, 3, 4, 5, 6, 7, 8}},
+        {LensType::OpenCv8, 500, 510, {1, 2, 3, 4, 5, 6, 7, 8}},
         {LensType::Fov, 500, 510, {0.9}},
         {LensType::Fisheye, 300, 300, {0.05, 0, 0, 0}},
         {LensType::Fisheye, 300, 300, {0.05, 0.06, 0, 0}},
@@ -81,7 +81,7 @@ TEST_CASE("COLMAP cameras.txt: every model as the libcam model that holds it, pi
         CHECK(named.file.camera.lens.coefficients == expected[i].coefficients);
         CHECK(named.file.camera.size == ImageSize{640, 480});
     }
-    CHECK(select_camera(set, "id:7", "cameras.txt").file.camera.lens.type == LensType::Opencv8);
+    CHECK(select_camera(set, "id:7", "cameras.txt").file.camera.lens.type == LensType::OpenCv8);
 }
 
 TEST_CASE("COLMAP model folder: each image with its camera's intrinsics and its world-to-camera pose") {
@@ -107,7 +107,7 @@ TEST_CASE("COLMAP model folder: each image with its camera's intrinsics and its 
     CHECK(set.cameras[1].name == "right.png");
     CHECK(set.cameras[2].name == "id:3");
     const Camera& left = set.cameras[0].file.camera;
-    CHECK(left.lens.type == LensType::Opencv4);
+    CHECK(left.lens.type == LensType::OpenCv4);
     check_intrinsics(left, 700, 700, 399.5, 299.5);
     CHECK((left.pose.R - kQuarterTurnZ).cwiseAbs().maxCoeff() < 1e-6);  // the text printed 6 decimals
     CHECK(left.pose.t == Vec3(1, 2, 3));
@@ -261,7 +261,7 @@ TEST_CASE("COLMAP is written as cameras.txt and images.txt, and refuses what it 
     Camera camera;
     camera.size = {640, 480};
     camera.intrinsics = {500.0, 510.0, 319.5, 239.5, 0.0};
-    camera.lens = {LensType::Opencv5, {0.1, -0.02, 0.001, 0.002, 0.003}};
+    camera.lens = {LensType::OpenCv5, {0.1, -0.02, 0.001, 0.002, 0.003}};
     camera.pose = {kQuarterTurnZ, Vec3(1, 2, 3)};
     const std::vector<CameraFileText> files = format_camera_files(camera, CameraFormat::Colmap);
     REQUIRE(files.size() == 3);
@@ -276,7 +276,7 @@ TEST_CASE("COLMAP is written as cameras.txt and images.txt, and refuses what it 
     test::TempDir dir;
     write_camera_file(dir.path() / "model", camera, CameraFormat::Colmap);
     const Camera back = read_camera_file(dir.path() / "model").camera;
-    CHECK(back.lens.type == LensType::Opencv8);
+    CHECK(back.lens.type == LensType::OpenCv8);
     CHECK(back.intrinsics.cx == camera.intrinsics.cx);
     CHECK((back.pose.R - camera.pose.R).cwiseAbs().maxCoeff() < 1e-15);
 
@@ -287,7 +287,7 @@ TEST_CASE("COLMAP is written as cameras.txt and images.txt, and refuses what it 
     mei.lens = {LensType::Mei, {1.2, 0, 0, 0, 0}};
     CHECK_THROWS_WITH(format_camera_files(mei, CameraFormat::Colmap), Catch::StartsWith("COLMAP has no model for a MEI lens"));
     Camera prism = camera;
-    prism.lens = {LensType::Opencv12, {0, 0, 0, 0, 0, 0, 0, 0, 0.01, 0, 0, 0}};
+    prism.lens = {LensType::OpenCv12, {0, 0, 0, 0, 0, 0, 0, 0, 0.01, 0, 0, 0}};
     CHECK_THROWS_AS(format_camera_files(prism, CameraFormat::Colmap), NotRepresentable);
     CHECK_FALSE(fs::exists(dir.path() / "prism"));
 }
@@ -333,7 +333,7 @@ TEST_CASE("transforms.json: instant-ngp's and nerfstudio's intrinsics, per frame
     const CameraSet set = parse_camera_set(text, CameraFormat::Nerf, "t.json");
     REQUIRE(set.cameras.size() == 2);
     const Camera& a = set.cameras[0].file.camera;
-    CHECK(a.lens.type == LensType::Opencv4);
+    CHECK(a.lens.type == LensType::OpenCv4);
     CHECK(a.lens.coefficients == std::vector<double>{0.1, -0.01, 0.001, 0.002});
     check_intrinsics(a, 1000, 1001, 539.5, 959.5);
     CHECK(a.size == ImageSize{1080, 1920});
@@ -341,7 +341,7 @@ TEST_CASE("transforms.json: instant-ngp's and nerfstudio's intrinsics, per frame
     CHECK(a.pose.R == Mat3(Eigen::Vector3d(1, -1, -1).asDiagonal()));
     CHECK(a.pose.centre() == Vec3(1, 2, 3));
     const Camera& b = set.cameras[1].file.camera;
-    CHECK(b.lens.type == LensType::Opencv5);
+    CHECK(b.lens.type == LensType::OpenCv5);
     CHECK(b.intrinsics.fx == 900);
 
     const auto error_of = [](const std::string& json) {
@@ -423,7 +423,7 @@ TEST_CASE("transforms.json is written with COLMAP's pixel corner, OpenGL's camer
     CHECK_THROWS_WITH(format_camera(mei, CameraFormat::Nerf),
                       "transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE and LONLAT)");
     Camera rational = camera;
-    rational.lens = {LensType::Opencv8, {0, 0, 0, 0, 0, 0.1, 0, 0}};
+    rational.lens = {LensType::OpenCv8, {0, 0, 0, 0, 0, 0.1, 0, 0}};
     CHECK_THROWS_WITH(format_camera(rational, CameraFormat::Nerf),
                       "transforms.json holds OpenCV's k1 k2 p1 p2 k3 only; this OPENCV8 lens's k4 is 0.1");
 }
@@ -464,7 +464,7 @@ TEST_CASE(".cahvor: JPL's C, A, H, V as K and the camera's placement, and CAHVOR
     CHECK(distorted.lens.coefficients[3] == -0.1);
     // mrcal's OpenCV lens in a CAHV file.
     const Camera opencv = parse_camera(text + "LENSMODEL_OPENCV4 = 0.1 0.2 0.3 0.4\n", CameraFormat::Cahvor, "c").camera;
-    CHECK(opencv.lens.type == LensType::Opencv4);
+    CHECK(opencv.lens.type == LensType::OpenCv4);
     CHECK(opencv.lens.coefficients == std::vector<double>{0.1, 0.2, 0.3, 0.4});
 
     const auto error_of = [](const std::string& t) {
@@ -523,7 +523,7 @@ projection_matrix:
     CHECK(set.cameras[0].name == "right");
     CHECK(set.cameras[1].name == "right/rectified");
     const Camera& raw = set.cameras[0].file.camera;
-    CHECK(raw.lens.type == LensType::Opencv5);  // plumb_bob's five, as OpenCV's own files
+    CHECK(raw.lens.type == LensType::OpenCv5);  // plumb_bob's five, as OpenCV's own files
     check_intrinsics(raw, 500, 501, 320, 240);
     const Camera& rectified = set.cameras[1].file.camera;
     CHECK(rectified.lens.type == LensType::Pinhole);
@@ -584,9 +584,9 @@ TEST_CASE("Kalibr camchain written: each model's Kalibr names, its leading coeff
     camera.lens = {LensType::Fisheye, {0.1, 0.01, 0.001, 1e-4}};
     CHECK_THAT(format_camera(camera, CameraFormat::Kalibr), Catch::Contains("  distortion_model: equidistant\n"));
     // An OPENCV8 whose k3..k6 are 0 is an OPENCV4 (radtan); with k6 set it is refused.
-    camera.lens = {LensType::Opencv8, {0.1, 0.01, 0.001, 1e-4, 0, 0, 0, 0}};
+    camera.lens = {LensType::OpenCv8, {0.1, 0.01, 0.001, 1e-4, 0, 0, 0, 0}};
     CHECK_THAT(format_camera(camera, CameraFormat::Kalibr), Catch::Contains("  distortion_model: radtan\n"));
-    camera.lens = {LensType::Opencv8, {0.1, 0.01, 0.001, 1e-4, 0, 0, 0, 0.5}};
+    camera.lens = {LensType::OpenCv8, {0.1, 0.01, 0.001, 1e-4, 0, 0, 0, 0.5}};
     CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Kalibr), Catch::StartsWith("Kalibr has no model for a OPENCV8 lens"));
 }
 
@@ -620,7 +620,7 @@ TEST_CASE("Open3D's camera JSON: Eigen's column-major matrices, world-to-camera 
     CHECK(back.intrinsics.K() == camera.intrinsics.K());
     CHECK(back.pose.R == camera.pose.R);
     CHECK(back.pose.t == camera.pose.t);
-    camera.lens = {LensType::Opencv4, {0.1, 0, 0, 0}};
+    camera.lens = {LensType::OpenCv4, {0.1, 0, 0, 0}};
     CHECK_THROWS_WITH(format_camera(camera, CameraFormat::Open3d), "Open3D's cameras have no distortion; this camera's lens is OPENCV4");
     CHECK(file_error_of([&] { (void)parse_camera(R"({"width": 640, "height": 480, "intrinsic_matrix": [1, 2, 3]})",
                                                   CameraFormat::Open3d, "o.json"); }) ==
@@ -701,7 +701,7 @@ Stereo.T_c1_c2: !!opencv-matrix
     ReadOptions sized;
     sized.size = ImageSize{640, 480};
     const Camera tum = parse_camera(orb2, CameraFormat::OpenCvYaml, "tum1.yaml", sized).camera;
-    CHECK(tum.lens == Lens{LensType::Opencv5, {0.2624, -0.9531, -0.0054, 0.0026, 1.1633}});
+    CHECK(tum.lens == Lens{LensType::OpenCv5, {0.2624, -0.9531, -0.0054, 0.0026, 1.1633}});
     // ORB-SLAM2's RGB-D settings: Camera.bf next to DepthMapFactor is the depth sensor's
     // baseline, not a second image; KITTI's stereo settings (no DepthMapFactor) have one.
     const std::string rgbd = "%YAML:1.0\nCamera.fx: 400\nCamera.fy: 400\nCamera.cx: 320\nCamera.cy: 240\n"
@@ -747,8 +747,8 @@ T: [ -0.12, 0., 0.001 ]
 )";
     const CameraSet pair = parse_camera_set(stereo, CameraFormat::OpenCvYaml, "intrinsics.yml", sized);
     REQUIRE(pair.cameras.size() == 2);
-    CHECK(pair.cameras[0].file.camera.lens == Lens{LensType::Opencv5, {-0.1, 0.01, 0, 0, 0}});
-    CHECK(pair.cameras[1].file.camera.lens.type == LensType::Opencv5);
+    CHECK(pair.cameras[0].file.camera.lens == Lens{LensType::OpenCv5, {-0.1, 0.01, 0, 0, 0}});
+    CHECK(pair.cameras[1].file.camera.lens.type == LensType::OpenCv5);
     CHECK(pair.cameras[1].file.camera.pose.R == kQuarterTurnZ);
     CHECK(pair.cameras[1].file.camera.pose.t == Vec3(-0.12, 0, 0.001));
 }
@@ -842,7 +842,7 @@ TEST_CASE("basalt's calibration JSON written: every key basalt's loader asks for
     CHECK((back.pose.R - camera.pose.R).cwiseAbs().maxCoeff() < 1e-15);
     CHECK((back.pose.t - camera.pose.t).cwiseAbs().maxCoeff() < 1e-15);
 
-    camera.lens = {LensType::Opencv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}};
+    camera.lens = {LensType::OpenCv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}};
     const std::string radtan8 = format_camera(camera, CameraFormat::Basalt);
     CHECK_THAT(radtan8, Catch::Contains("\"camera_type\": \"pinhole-radtan8\""));
     CHECK_THAT(radtan8, Catch::Contains("\"k3\": 0.01"));
@@ -916,7 +916,7 @@ TEST_CASE("Blender's camera JSON: bpy's settings to K and the pose, worked by ha
     skewed.intrinsics.skew = 2;
     CHECK_THROWS_AS(format_camera(skewed, CameraFormat::Blender), NotRepresentable);
     Camera distorted = camera;
-    distorted.lens = {LensType::Opencv4, {0.1, 0, 0, 0}};
+    distorted.lens = {LensType::OpenCv4, {0.1, 0, 0, 0}};
     CHECK_THROWS_AS(format_camera(distorted, CameraFormat::BlenderJson), NotRepresentable);
     // ... and the refusal says what to do instead.
     CHECK_THROWS_WITH(format_camera(distorted, CameraFormat::Blender), Catch::Contains("libcam render-plan plans a render"));

@@ -24,12 +24,12 @@ bool holds(CameraFormat format, LensType type) {
         case CameraFormat::Json: return true;
         case CameraFormat::OpenCvYaml:
         case CameraFormat::OpenCvXml:
-            return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
-                   type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Opencv14 ||
+            return type == LensType::Pinhole || type == LensType::OpenCv4 || type == LensType::OpenCv5 ||
+                   type == LensType::OpenCv8 || type == LensType::OpenCv12 || type == LensType::OpenCv14 ||
                    type == LensType::Fisheye;
         case CameraFormat::Cameramodel:
-            return type == LensType::Pinhole || type == LensType::Opencv4 || type == LensType::Opencv5 ||
-                   type == LensType::Opencv8 || type == LensType::Opencv12 || type == LensType::Stereographic ||
+            return type == LensType::Pinhole || type == LensType::OpenCv4 || type == LensType::OpenCv5 ||
+                   type == LensType::OpenCv8 || type == LensType::OpenCv12 || type == LensType::Stereographic ||
                    type == LensType::Lonlat || type == LensType::Latlon || type == LensType::Cahvor ||
                    type == LensType::Cahvore || type == LensType::SplinedStereographic;
         case CameraFormat::Gl: return type == LensType::Pinhole;
@@ -73,11 +73,11 @@ TEST_CASE("OpenCV's file: the number of distortion coefficients names the model"
                "   data: [ " + dist_data + " ]\n";
     };
     const Camera opencv8 = parse_opencv_storage(yaml("8", "-0.1, 0.02, 1e-4, -2e-4, 0.003, 0.05, 0.004, 1e-5"), "8.yaml");
-    CHECK(opencv8.lens == Lens{LensType::Opencv8, {-0.1, 0.02, 1e-4, -2e-4, 0.003, 0.05, 0.004, 1e-5}});
+    CHECK(opencv8.lens == Lens{LensType::OpenCv8, {-0.1, 0.02, 1e-4, -2e-4, 0.003, 0.05, 0.004, 1e-5}});
     const Camera opencv4 = parse_opencv_storage(yaml("4", "-0.1, 0.02, 1e-4, -2e-4"), "4.yaml");
-    CHECK(opencv4.lens.type == LensType::Opencv4);
+    CHECK(opencv4.lens.type == LensType::OpenCv4);
     const Camera opencv14 = parse_opencv_storage(yaml("14", "1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 0.01, 0.02"), "14.yaml");
-    CHECK(opencv14.lens.type == LensType::Opencv14);
+    CHECK(opencv14.lens.type == LensType::OpenCv14);
     CHECK(parse_opencv_storage(yaml("5", "0., 0., 0., 0., 0."), "zeros.yaml").lens == Lens{});
     CHECK_THROWS_WITH(parse_opencv_storage(yaml("6", "1, 2, 3, 4, 5, 6"), "6.yaml"),
                       Catch::Contains("6.yaml") && Catch::Contains("4, 5, 8, 12 or 14"));
@@ -90,7 +90,7 @@ TEST_CASE("mrcal's files: its lens models map by name, configurations included, 
     };
     const Camera opencv8 = parse_cameramodel(
         cameramodel("LENSMODEL_OPENCV8", "500, 501, 319.5, 239.5, -0.1, 0.02, 1e-4, -2e-4, 0.003, 0.05, 0.004, 1e-5"), "a");
-    CHECK(opencv8.lens == Lens{LensType::Opencv8, {-0.1, 0.02, 1e-4, -2e-4, 0.003, 0.05, 0.004, 1e-5}});
+    CHECK(opencv8.lens == Lens{LensType::OpenCv8, {-0.1, 0.02, 1e-4, -2e-4, 0.003, 0.05, 0.004, 1e-5}});
     CHECK(parse_cameramodel(cameramodel("LENSMODEL_LATLON", "500, 501, 319.5, 239.5"), "b").lens.type == LensType::Latlon);
     const Camera cahvor =
         parse_cameramodel(cameramodel("LENSMODEL_CAHVOR", "500, 501, 319.5, 239.5, 0.01, -0.02, 0.1, 0.2, 0.3"), "c");
@@ -133,7 +133,7 @@ TEST_CASE("mrcal's files: its lens models map by name, configurations included, 
 }
 
 TEST_CASE("A JSON file's coefficients must match its model") {
-    const Camera camera = posed(lens_camera(LensType::Opencv5, {0.1, 0.01, 0, 0, 0.001}));
+    const Camera camera = posed(lens_camera(LensType::OpenCv5, {0.1, 0.01, 0, 0, 0.001}));
     std::string text = format_camera(camera, CameraFormat::Json);
     const std::size_t at = text.find("0.001");
     REQUIRE(at != std::string::npos);

@@ -121,7 +121,7 @@ TEST_CASE("The model table agrees with mrcal's metadata for every model both hav
         CHECK(mrcal_model_name(info.type) == mrcal_lensmodel_name_unconfigured(&model));
     }
     CHECK_FALSE(mrcal_has(LensType::Fisheye));
-    CHECK_FALSE(mrcal_has(LensType::Opencv14));
+    CHECK_FALSE(mrcal_has(LensType::OpenCv14));
     CHECK(lens_info(LensType::Fisheye).sees_behind_camera);
 }
 
@@ -322,7 +322,7 @@ TEST_CASE("STEREOGRAPHIC stays accurate near the backward axis: m = 2 tan(theta 
 }
 
 TEST_CASE("Points behind the camera and on its plane are flagged, not mirrored as cv::projectPoints does") {
-    const Camera camera = lens_camera(LensType::Opencv5, {-0.05, 0.01, 2e-4, -3e-4, 0.001});
+    const Camera camera = lens_camera(LensType::OpenCv5, {-0.05, 0.01, 2e-4, -3e-4, 0.001});
     const std::vector<Vec3> points{{0.3, -0.2, 0.0}, {0.3, -0.2, -1.0}, {0.0, 0.0, -2.0}, {0.0, 0.0, 0.0}};
     for (const Projection& p : PreparedCamera(camera).project_camera_points(points)) CHECK_FALSE(p.valid);
     // What OpenCV does instead: (x, y, -1) lands where (-x, -y, 1) does.
@@ -489,10 +489,10 @@ TEST_CASE("The fold-over radius is the same on every call: more lenses than the 
     };
     const double k1 = -0.3, k2 = 0.02;
     const std::vector<HandRadius> lenses{
-        {LensType::Opencv4, {-0.5, 0, 0, 0}, std::sqrt(1 / 1.5)},
-        {LensType::Opencv4, {k1, k2, 1e-3, 1e-3}, std::sqrt((-3 * k1 - std::sqrt(9 * k1 * k1 - 20 * k2)) / (10 * k2))},
-        {LensType::Opencv8, {0, 0, 0, 0, 0, 0.5, 0, 0}, std::sqrt(2.0)},
-        {LensType::Opencv8, {0, 0, 0, 0, 0, -0.25, 0, 0}, 2.0},
+        {LensType::OpenCv4, {-0.5, 0, 0, 0}, std::sqrt(1 / 1.5)},
+        {LensType::OpenCv4, {k1, k2, 1e-3, 1e-3}, std::sqrt((-3 * k1 - std::sqrt(9 * k1 * k1 - 20 * k2)) / (10 * k2))},
+        {LensType::OpenCv8, {0, 0, 0, 0, 0, 0.5, 0, 0}, std::sqrt(2.0)},
+        {LensType::OpenCv8, {0, 0, 0, 0, 0, -0.25, 0, 0}, 2.0},
         {LensType::Fisheye, {-0.2, 0, 0, 0}, std::sqrt(1 / 0.6)},
         {LensType::Fisheye, {0, 0, 0, 0}, std::numbers::pi},
     };
@@ -551,7 +551,7 @@ TEST_CASE("a lens with the wrong number of coefficients is refused and never rea
     Camera camera;
     camera.size = {640, 480};
     camera.intrinsics = {500.0, 500.0, 319.5, 239.5, 0.0};
-    camera.lens.type = LensType::Opencv8;
+    camera.lens.type = LensType::OpenCv8;
     camera.lens.coefficients = {0.1, 0.01, 0.0};  // OPENCV8 takes 8
     // Refused when the camera is prepared, before any point or pixel is computed.
     REQUIRE_THROWS_WITH(PreparedCamera(camera),
@@ -562,12 +562,12 @@ TEST_CASE("a lens with the wrong number of coefficients is refused and never rea
 
 TEST_CASE("The simplest equal lens drops only coefficients that are exactly 0, within the model's family") {
     using L = LensType;
-    CHECK(simplest_equal_lens({L::Opencv8, {0.1, 0.2, 0.3, 0.4, 0, 0, 0, 0}}) == Lens{L::Opencv4, {0.1, 0.2, 0.3, 0.4}});
-    CHECK(simplest_equal_lens({L::Opencv8, {0.1, 0.2, 0.3, 0.4, 0.5, 0, 0, 0}}) ==
-          Lens{L::Opencv5, {0.1, 0.2, 0.3, 0.4, 0.5}});
-    CHECK(simplest_equal_lens({L::Opencv8, {0, 0, 0, 0, 0, 0, 0, 0}}) == Lens{L::Pinhole, {}});
+    CHECK(simplest_equal_lens({L::OpenCv8, {0.1, 0.2, 0.3, 0.4, 0, 0, 0, 0}}) == Lens{L::OpenCv4, {0.1, 0.2, 0.3, 0.4}});
+    CHECK(simplest_equal_lens({L::OpenCv8, {0.1, 0.2, 0.3, 0.4, 0.5, 0, 0, 0}}) ==
+          Lens{L::OpenCv5, {0.1, 0.2, 0.3, 0.4, 0.5}});
+    CHECK(simplest_equal_lens({L::OpenCv8, {0, 0, 0, 0, 0, 0, 0, 0}}) == Lens{L::Pinhole, {}});
     // k6 alone keeps OPENCV8: k4..k6 go together; a tiny value is not 0.
-    CHECK(simplest_equal_lens({L::Opencv8, {0.1, 0, 0, 0, 0, 0, 0, 1e-300}}).type == L::Opencv8);
+    CHECK(simplest_equal_lens({L::OpenCv8, {0.1, 0, 0, 0, 0, 0, 0, 1e-300}}).type == L::OpenCv8);
     CHECK(simplest_equal_lens({L::Mei, {1.2, 0, 0, 0, 0}}) == Lens{L::Ucm, {1.2}});
     // FISHEYE is the smallest of its family; the other fisheye's coefficients are not its prefix.
     CHECK(simplest_equal_lens({L::Fisheye, {0, 0, 0, 0}}).type == L::Fisheye);

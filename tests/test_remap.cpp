@@ -449,8 +449,8 @@ TEST_CASE("A quarter turn of the camera is the quarter turn of its image: pixel 
     camera.intrinsics = {500, 510, 300.25, 250.75, 0};
     camera.pose = Pose::from_rvec(Vec3(0.1, 0.2, -0.3), Vec3(1, 2, 3));
     const std::vector<Lens> lenses = {
-        {LensType::Opencv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}},
-        {LensType::Opencv12, {-0.2, 0.05, 1e-3, -2e-3, 0.01, 0.1, 0.01, 0.001, 1e-3, -2e-4, 3e-3, -4e-4}},
+        {LensType::OpenCv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}},
+        {LensType::OpenCv12, {-0.2, 0.05, 1e-3, -2e-3, 0.01, 0.1, 0.01, 0.001, 1e-3, -2e-4, 3e-3, -4e-4}},
         {LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}},
         {LensType::Mei, {1.2, -0.1, 0.01, 2e-3, -1e-3}},
         {LensType::ThinPrismFisheye, {0.01, -0.002, 1e-3, -2e-3, 3e-4, -4e-5, 2e-3, -1e-3}},
@@ -546,7 +546,7 @@ TEST_CASE("Overscan: the least margin around a render that gives every lens pixe
     Camera lens_camera;
     lens_camera.size = {752, 480};
     lens_camera.intrinsics = {458.654, 457.296, 367.215, 248.375, 0.0};
-    lens_camera.lens = {LensType::Opencv4, {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05}};
+    lens_camera.lens = {LensType::OpenCv4, {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05}};
     const PreparedCamera lens(lens_camera);
     NewCameraRequest request;
     request.keep.reset();
@@ -606,7 +606,7 @@ TEST_CASE("The render plan: the lens itself when Blender draws it, else a pinhol
         Camera lens_camera;  // EuRoC's cam0
         lens_camera.size = {752, 480};
         lens_camera.intrinsics = {458.654, 457.296, 367.215, 248.375, 0.0};
-        lens_camera.lens = {LensType::Opencv4, {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05}};
+        lens_camera.lens = {LensType::OpenCv4, {-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05}};
         lens_camera.pose = Pose::from_rvec(Vec3(0.1, 0.2, -0.3), Vec3(1, 2, 3));
         const PreparedCamera lens(lens_camera);
         const RenderPlan plan = plan_render(lens, 2);

@@ -53,7 +53,7 @@ void check_png_round_trip(const Image& image) {
 
 TEST_CASE("verify_heatmap: an Image of the map, title, scale and legend, and PNG bytes of the same pixels") {
     // d = r (1 - 0.5 r^2) folds inside the image: part of it has no ray (hatched).
-    const Camera camera = lens_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1600, 1200});
+    const Camera camera = lens_camera(LensType::OpenCv4, {-0.5, 0, 0, 0}, {1600, 1200});
     VerifyOptions options;
     options.grid_columns = 32;
     options.grid_rows = 24;
@@ -86,9 +86,9 @@ TEST_CASE("verify_heatmap refuses a skipped check") {
 }
 
 TEST_CASE("fit_error_map: the fitted model's worst error at each tile centre, NaN where the source has no ray") {
-    const Camera source = lens_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {160, 120});
+    const Camera source = lens_camera(LensType::OpenCv4, {-0.5, 0, 0, 0}, {160, 120});
     FittedModel same;
-    same.candidate = {"OPENCV4", LensType::Opencv4};
+    same.candidate = {"OPENCV4", LensType::OpenCv4};
     same.camera = source;
     same.camera.pose = Pose{};
     const FitErrorMap map = fit_error_map(source, same, {1.0, 10.0}, 40, 30);
@@ -117,9 +117,9 @@ TEST_CASE("fit_error_map: the fitted model's worst error at each tile centre, Na
 }
 
 TEST_CASE("fit_heatmap: one picture pixel per tile, the scale bar beside it, a caption below") {
-    const Camera source = lens_camera(LensType::Opencv4, {-0.05, 0.01, 2e-4, -3e-4}, {320, 240});
+    const Camera source = lens_camera(LensType::OpenCv4, {-0.05, 0.01, 2e-4, -3e-4}, {320, 240});
     CandidateReport chosen;
-    chosen.fit.candidate = {"OPENCV4", LensType::Opencv4};
+    chosen.fit.candidate = {"OPENCV4", LensType::OpenCv4};
     chosen.fit.camera = source;
     chosen.fit.camera.pose = Pose{};
     chosen.max_px = 0.0;

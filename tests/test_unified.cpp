@@ -470,7 +470,7 @@ TEST_CASE("MEI without distortion is UCM, and its valid radius and angle are UCM
     CHECK(std::abs(edge.valid_angle() - 2 * std::numbers::pi / 3) <= 1e-15);
     // A perspective lens: the angle of its radius of (x/z, y/z); OPENCV4 k1 = -1/2 folds at
     // r = sqrt(2/3).
-    const PreparedCamera perspective(real_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1024, 768}, {300.0, 300.0, 515.0, 380.0}));
+    const PreparedCamera perspective(real_camera(LensType::OpenCv4, {-0.5, 0, 0, 0}, {1024, 768}, {300.0, 300.0, 515.0, 380.0}));
     CHECK(std::abs(perspective.valid_angle() - std::atan(fold)) <= 1e-15);
     CHECK_THAT(test::error_of([] {
                    PreparedCamera(real_camera(LensType::Mei, {-1.5, 0, 0, 0, 0}, {1024, 768}, {300.0, 300.0, 515.0, 380.0}));

@@ -249,7 +249,7 @@ TEST_CASE("libcam verify: the fraction of pixels without a ray, LONLAT worked by
 TEST_CASE("libcam verify --heatmap writes a PNG of the chosen check") {
     const TempDir dir;
     // d = r (1 - 0.5 r^2) folds at |m| = 0.544, inside the image: part of it has no ray.
-    const fs::path file = write_json_camera(dir, "fold", lens_camera(LensType::Opencv4, {-0.5, 0, 0, 0}, {1600, 1200}));
+    const fs::path file = write_json_camera(dir, "fold", lens_camera(LensType::OpenCv4, {-0.5, 0, 0, 0}, {1600, 1200}));
     for (const std::string check : {"", "undistort-opencv-default", "round-trip"}) {
         INFO("--check '" << check << "'");
         const fs::path png = dir / ("map" + check + ".png");

@@ -25,7 +25,7 @@ Camera wide_camera() {
     Camera camera;
     camera.size = {6016, 4016};
     camera.intrinsics = {2073.872915, 2077.452267, 3004.686823, 1997.377253, 0.0};
-    camera.lens = {LensType::Opencv8,
+    camera.lens = {LensType::OpenCv8,
                    {0.4791613797, 0.0266824914, 4.398264387e-05, -1.180073913e-05, 8.959722542e-05, 0.7666912469,
                     0.09633561231, 0.001407513313}};
     return camera;
@@ -46,9 +46,9 @@ Camera tum_vi_camera() {
 std::vector<ExampleCamera> example_cameras() {
     return {
         {"mild", "OPENCV8, 1600x1200, mild distortion",
-         synthetic_camera({1600, 1200}, 900, {LensType::Opencv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005}})},
+         synthetic_camera({1600, 1200}, 900, {LensType::OpenCv8, {0.1, 0.02, 1e-4, -1e-4, 0.001, 0.12, 0.015, 0.0005}})},
         {"strong", "OPENCV8, 1600x1200, folds over inside the corners",
-         synthetic_camera({1600, 1200}, 900, {LensType::Opencv8, {-0.33, 0.09, 1e-3, -8e-4, -0.01, 0.02, 0.003, 1e-4}})},
+         synthetic_camera({1600, 1200}, 900, {LensType::OpenCv8, {-0.33, 0.09, 1e-3, -8e-4, -0.01, 0.02, 0.003, 1e-4}})},
         {"fisheye", "FISHEYE, 1600x1200, corners past 90 degrees",
          synthetic_camera({1600, 1200}, 420, {LensType::Fisheye, {-0.013, -0.0057, 0.0023, -0.0009}})},
         {"wide", "OPENCV8, 6016x4016, a real wide-angle calibration", wide_camera()},

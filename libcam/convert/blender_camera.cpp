@@ -160,11 +160,11 @@ BlenderCamera blender_from_camera(const Camera& camera) {
         }
         // Every other model is named, with no default, so that the compiler asks about a
         // new model here: does Blender draw it?
-        case LensType::Opencv4:
-        case LensType::Opencv5:
-        case LensType::Opencv8:
-        case LensType::Opencv12:
-        case LensType::Opencv14:
+        case LensType::OpenCv4:
+        case LensType::OpenCv5:
+        case LensType::OpenCv8:
+        case LensType::OpenCv12:
+        case LensType::OpenCv14:
         case LensType::Stereographic:
         case LensType::Latlon:
         case LensType::DoubleSphere:

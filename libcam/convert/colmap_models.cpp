@@ -15,11 +15,11 @@ namespace {
 constexpr ColmapModel kColmapModels[] = {
     {"SIMPLE_PINHOLE", 0, "f, cx, cy", LensType::Pinhole, true, {}, 0},
     {"PINHOLE", 1, "fx, fy, cx, cy", LensType::Pinhole, false, {}, 0},
-    {"SIMPLE_RADIAL", 2, "f, cx, cy, k", LensType::Opencv4, true, {0}, 1},
-    {"RADIAL", 3, "f, cx, cy, k1, k2", LensType::Opencv4, true, {0, 1}, 2},
-    {"OPENCV", 4, "fx, fy, cx, cy, k1, k2, p1, p2", LensType::Opencv4, false, {0, 1, 2, 3}, 4},
+    {"SIMPLE_RADIAL", 2, "f, cx, cy, k", LensType::OpenCv4, true, {0}, 1},
+    {"RADIAL", 3, "f, cx, cy, k1, k2", LensType::OpenCv4, true, {0, 1}, 2},
+    {"OPENCV", 4, "fx, fy, cx, cy, k1, k2, p1, p2", LensType::OpenCv4, false, {0, 1, 2, 3}, 4},
     {"OPENCV_FISHEYE", 5, "fx, fy, cx, cy, k1, k2, k3, k4", LensType::Fisheye, false, {0, 1, 2, 3}, 4},
-    {"FULL_OPENCV", 6, "fx, fy, cx, cy, k1, k2, p1, p2, k3, k4, k5, k6", LensType::Opencv8, false,
+    {"FULL_OPENCV", 6, "fx, fy, cx, cy, k1, k2, p1, p2, k3, k4, k5, k6", LensType::OpenCv8, false,
      {0, 1, 2, 3, 4, 5, 6, 7}, 8},
     {"FOV", 7, "fx, fy, cx, cy, omega", LensType::Fov, false, {0}, 1},
     {"SIMPLE_RADIAL_FISHEYE", 8, "f, cx, cy, k", LensType::Fisheye, true, {0}, 1},
@@ -109,9 +109,9 @@ const ColmapModel& colmap_model_for(const Lens& lens) {
     LensType type = lens.type;
     // FULL_OPENCV holds the first eight of OpenCV's coefficients; the richer models'
     // others must be 0.
-    const auto eight = static_cast<std::size_t>(lens_info(LensType::Opencv8).num_coefficients);
-    if (lens_contains(type, LensType::Opencv8) && type != LensType::Opencv8 && all_zero_from(lens.coefficients, eight)) {
-        type = LensType::Opencv8;
+    const auto eight = static_cast<std::size_t>(lens_info(LensType::OpenCv8).num_coefficients);
+    if (lens_contains(type, LensType::OpenCv8) && type != LensType::OpenCv8 && all_zero_from(lens.coefficients, eight)) {
+        type = LensType::OpenCv8;
     }
     if (const ColmapModel* model = default_model(type)) return *model;
     throw NotRepresentable("COLMAP has no model for a " + std::string(lens_info(lens.type).name) + " lens (its models: " +

@@ -20,11 +20,11 @@
 // Every model: its enum name and the struct template implementing it (lens_models.hpp).
 #define LIBCAM_LENS_MODEL_LIST(_)      \
     _(Pinhole, PinholeLens)             \
-    _(Opencv4, OpenCv4Lens)             \
-    _(Opencv5, OpenCv5Lens)             \
-    _(Opencv8, OpenCv8Lens)             \
-    _(Opencv12, OpenCv12Lens)           \
-    _(Opencv14, OpenCv14Lens)           \
+    _(OpenCv4, OpenCv4Lens)             \
+    _(OpenCv5, OpenCv5Lens)             \
+    _(OpenCv8, OpenCv8Lens)             \
+    _(OpenCv12, OpenCv12Lens)           \
+    _(OpenCv14, OpenCv14Lens)           \
     _(Fisheye, FisheyeLens)             \
     _(Stereographic, StereographicLens) \
     _(Lonlat, LonlatLens)               \
@@ -156,24 +156,24 @@ inline constexpr LensInfo kLensTable[] = {
      .mrcal = "LENSMODEL_PINHOLE", .colmap = "PINHOLE", .kalibr = "pinhole-none", .basalt = "pinhole",
      .also_named = "Blender's perspective camera", .family = LensFamily::Perspective, .family_rank = 0,
      .fit = FitCandidate::Always},
-    {.type = LensType::Opencv4, .name = "OPENCV4", .coefficients = {"k1", "k2", "p1", "p2"}, .num_coefficients = 4,
+    {.type = LensType::OpenCv4, .name = "OPENCV4", .coefficients = {"k1", "k2", "p1", "p2"}, .num_coefficients = 4,
      .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::ProjectPoints,
      .mrcal = "LENSMODEL_OPENCV4", .colmap = "OPENCV", .kalibr = "pinhole-radtan", .basalt = "",
      .family = LensFamily::Perspective, .family_rank = 1, .fit = FitCandidate::Always},
-    {.type = LensType::Opencv5, .name = "OPENCV5", .coefficients = {"k1", "k2", "p1", "p2", "k3"},
+    {.type = LensType::OpenCv5, .name = "OPENCV5", .coefficients = {"k1", "k2", "p1", "p2", "k3"},
      .num_coefficients = 5, .sees_behind_camera = false, .inverse = Inverse::Solved,
      .opencv = OpenCvFunction::ProjectPoints, .mrcal = "LENSMODEL_OPENCV5", .colmap = "", .kalibr = "", .basalt = "",
      .family = LensFamily::Perspective, .family_rank = 2, .fit = FitCandidate::Always},
-    {.type = LensType::Opencv8, .name = "OPENCV8", .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"},
+    {.type = LensType::OpenCv8, .name = "OPENCV8", .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"},
      .num_coefficients = 8, .sees_behind_camera = false, .inverse = Inverse::Solved,
      .opencv = OpenCvFunction::ProjectPoints, .mrcal = "LENSMODEL_OPENCV8", .colmap = "FULL_OPENCV", .kalibr = "",
      .basalt = "pinhole-radtan8", .family = LensFamily::Perspective, .family_rank = 3, .fit = FitCandidate::Always},
-    {.type = LensType::Opencv12, .name = "OPENCV12",
+    {.type = LensType::OpenCv12, .name = "OPENCV12",
      .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6", "s1", "s2", "s3", "s4"}, .num_coefficients = 12,
      .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::ProjectPoints,
      .mrcal = "LENSMODEL_OPENCV12", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Perspective,
      .family_rank = 4, .fit = FitCandidate::Always},
-    {.type = LensType::Opencv14, .name = "OPENCV14",
+    {.type = LensType::OpenCv14, .name = "OPENCV14",
      .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6", "s1", "s2", "s3", "s4", "tauX", "tauY"},
      .num_coefficients = 14, .sees_behind_camera = false, .inverse = Inverse::Solved,
      .opencv = OpenCvFunction::ProjectPoints, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",

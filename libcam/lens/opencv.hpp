@@ -77,11 +77,11 @@ struct TiltMatrix {
 
 constexpr LensType opencv_lens_type(int n) {
     switch (n) {
-        case 4: return LensType::Opencv4;
-        case 5: return LensType::Opencv5;
-        case 8: return LensType::Opencv8;
-        case 12: return LensType::Opencv12;
-        default: return LensType::Opencv14;
+        case 4: return LensType::OpenCv4;
+        case 5: return LensType::OpenCv5;
+        case 8: return LensType::OpenCv8;
+        case 12: return LensType::OpenCv12;
+        default: return LensType::OpenCv14;
     }
 }
 

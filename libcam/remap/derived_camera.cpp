@@ -71,10 +71,10 @@ Lens lens_turned(const Lens& lens) {
         case LensType::Fov:
         case LensType::Equisolid:
         case LensType::LensPolynomial: return out;
-        case LensType::Opencv4:
-        case LensType::Opencv5:
-        case LensType::Opencv8: tangential(2, 3); return out;
-        case LensType::Opencv12:
+        case LensType::OpenCv4:
+        case LensType::OpenCv5:
+        case LensType::OpenCv8: tangential(2, 3); return out;
+        case LensType::OpenCv12:
             tangential(2, 3);
             prism(8, 4);
             return out;
@@ -89,7 +89,7 @@ Lens lens_turned(const Lens& lens) {
             return out;
         // Every model below is named, with no default, so that the compiler asks about a
         // new model here: can its coefficients be turned?
-        case LensType::Opencv14:  // the tilt (tauX, tauY) not yet turned
+        case LensType::OpenCv14:  // the tilt (tauX, tauY) not yet turned
         case LensType::Lonlat:    // the longitude runs across, the latitude down
         case LensType::Latlon:
         case LensType::Cylindrical:

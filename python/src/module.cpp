@@ -58,11 +58,11 @@ py::dict model_table() {
 LensType opencv_model_for(std::size_t count) {
     switch (count) {
         case 0: return LensType::Pinhole;
-        case 4: return LensType::Opencv4;
-        case 5: return LensType::Opencv5;
-        case 8: return LensType::Opencv8;
-        case 12: return LensType::Opencv12;
-        case 14: return LensType::Opencv14;
+        case 4: return LensType::OpenCv4;
+        case 5: return LensType::OpenCv5;
+        case 8: return LensType::OpenCv8;
+        case 12: return LensType::OpenCv12;
+        case 14: return LensType::OpenCv14;
         default: break;
     }
     throw InvalidArgument("dist: OpenCV takes 4, 5, 8, 12 or 14 coefficients, got " + std::to_string(count) +

@@ -102,10 +102,10 @@ struct OpenCvKey {
     const char* key;
     LensType type;
 };
-constexpr OpenCvKey kOpenCvKeys[] = {{"LENSMODEL_OPENCV12", LensType::Opencv12},
-                                     {"LENSMODEL_OPENCV8", LensType::Opencv8},
-                                     {"LENSMODEL_OPENCV5", LensType::Opencv5},
-                                     {"LENSMODEL_OPENCV4", LensType::Opencv4}};
+constexpr OpenCvKey kOpenCvKeys[] = {{"LENSMODEL_OPENCV12", LensType::OpenCv12},
+                                     {"LENSMODEL_OPENCV8", LensType::OpenCv8},
+                                     {"LENSMODEL_OPENCV5", LensType::OpenCv5},
+                                     {"LENSMODEL_OPENCV4", LensType::OpenCv4}};
 
 // "CAHVORE3,<linearity> = general": the linearity, else nullopt.
 std::optional<double> cahvore_linearity(const CahvorFile& file) {

@@ -72,20 +72,20 @@ constexpr L kEveryLens[] = {
 #undef LIBCAM_LENS_ROW
 };
 constexpr L kPinhole[] = {L::Pinhole};
-constexpr L kOpenCvFiles[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Opencv8, L::Opencv12, L::Opencv14, L::Fisheye};
-constexpr L kCameramodel[] = {L::Pinhole,       L::Opencv4, L::Opencv5, L::Opencv8, L::Opencv12,
+constexpr L kOpenCvFiles[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::OpenCv14, L::Fisheye};
+constexpr L kCameramodel[] = {L::Pinhole,       L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12,
                               L::Stereographic, L::Lonlat,  L::Latlon,  L::Cahvor,  L::Cahvore,
                               L::SplinedStereographic};
-constexpr L kKalibr[] = {L::Pinhole, L::Opencv4, L::Fisheye, L::Fov, L::Ucm, L::Mei, L::DoubleSphere, L::Eucm};
-constexpr L kBasalt[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Opencv8, L::Fisheye,
+constexpr L kKalibr[] = {L::Pinhole, L::OpenCv4, L::Fisheye, L::Fov, L::Ucm, L::Mei, L::DoubleSphere, L::Eucm};
+constexpr L kBasalt[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye,
                          L::DoubleSphere, L::Eucm, L::Ucm, L::Fov};
-constexpr L kCamodocal[] = {L::Opencv4, L::Mei, L::Fisheye};
-constexpr L kColmap[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Opencv8, L::Fisheye, L::Fov,
+constexpr L kCamodocal[] = {L::OpenCv4, L::Mei, L::Fisheye};
+constexpr L kColmap[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye, L::Fov,
                          L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm};
-constexpr L kNerf[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Fisheye, L::Lonlat};
-constexpr L kCahvor[] = {L::Pinhole, L::Cahvor, L::Cahvore, L::Opencv4, L::Opencv5, L::Opencv8, L::Opencv12};
-constexpr L kRos[] = {L::Pinhole, L::Opencv4, L::Opencv5, L::Opencv8, L::Fisheye};
-constexpr L kEuroc[] = {L::Opencv4, L::Fisheye};
+constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+constexpr L kCahvor[] = {L::Pinhole, L::Cahvor, L::Cahvore, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12};
+constexpr L kRos[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye};
+constexpr L kEuroc[] = {L::OpenCv4, L::Fisheye};
 constexpr L kOpenicc[] = {L::Pinhole, L::Fisheye, L::DoubleSphere, L::Eucm};
 constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat};
 

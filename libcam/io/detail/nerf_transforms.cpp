@@ -154,9 +154,9 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
         if (std::all_of(opencv5.begin(), opencv5.end(), [](double c) { return c == 0.0; })) {
             camera.lens = {LensType::Pinhole, {}};
         } else if (opencv5[4] == 0.0) {
-            camera.lens = {LensType::Opencv4, {opencv5.begin(), opencv5.begin() + 4}};
+            camera.lens = {LensType::OpenCv4, {opencv5.begin(), opencv5.begin() + 4}};
         } else {
-            camera.lens = {LensType::Opencv5, opencv5};
+            camera.lens = {LensType::OpenCv5, opencv5};
         }
     } else if (model == "OPENCV_FISHEYE") {
         for (const char* tangential : {"p1", "p2"}) {
@@ -261,11 +261,11 @@ std::string write_nerf_transforms(const Camera& camera, const WriteOptions& opti
     switch (lens.type) {
         case LensType::Pinhole:
             break;
-        case LensType::Opencv4:
-        case LensType::Opencv5:
-        case LensType::Opencv8:
-        case LensType::Opencv12:
-        case LensType::Opencv14: {
+        case LensType::OpenCv4:
+        case LensType::OpenCv5:
+        case LensType::OpenCv8:
+        case LensType::OpenCv12:
+        case LensType::OpenCv14: {
             require_zero_after(lens, 5, "OpenCV's k1 k2 p1 p2 k3 only");
             const char* names[] = {"k1", "k2", "p1", "p2", "k3"};
             for (std::size_t i = 0; i < std::min<std::size_t>(5, lens.coefficients.size()); ++i) {

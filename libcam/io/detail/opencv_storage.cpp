@@ -337,7 +337,7 @@ Camera orb_slam_camera(const Field& file, const std::string& prefix, const std::
         if (std::all_of(coefficients.begin(), coefficients.end(), [](double c) { return c == 0.0; })) {
             camera.lens = {LensType::Pinhole, {}};
         } else {
-            camera.lens = {coefficients[4] == 0.0 ? LensType::Opencv4 : LensType::Opencv5,
+            camera.lens = {coefficients[4] == 0.0 ? LensType::OpenCv4 : LensType::OpenCv5,
                            {coefficients.begin(), coefficients.begin() + (coefficients[4] == 0.0 ? 4 : 5)}};
         }
     }
@@ -457,13 +457,13 @@ std::pair<std::string, std::vector<double>> ros_distortion(const Lens& lens) {
     };
     switch (lens.type) {
         case LensType::Pinhole:
-        case LensType::Opencv4:
-        case LensType::Opencv5:
+        case LensType::OpenCv4:
+        case LensType::OpenCv5:
             coefficients.resize(5, 0.0);
             return {"plumb_bob", coefficients};
-        case LensType::Opencv8:
-        case LensType::Opencv12:
-        case LensType::Opencv14:
+        case LensType::OpenCv8:
+        case LensType::OpenCv12:
+        case LensType::OpenCv14:
             if (!zero_after(8)) break;
             coefficients.resize(8, 0.0);
             return {"rational_polynomial", coefficients};

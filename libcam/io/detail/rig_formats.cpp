@@ -145,7 +145,7 @@ struct CamodocalModel {
 };
 
 constexpr CamodocalModel kCamodocalModels[] = {
-    {"PINHOLE", LensType::Opencv4, {"fx", "fy", "cx", "cy"},
+    {"PINHOLE", LensType::OpenCv4, {"fx", "fy", "cx", "cy"},
      {{{"distortion_parameters", "k1"}, {"distortion_parameters", "k2"}, {"distortion_parameters", "p1"},
        {"distortion_parameters", "p2"}}},
      4},
@@ -257,7 +257,7 @@ NamedCamera read_euroc_sensor(const Field& file, const std::string& source) {
     if (camera_model.text() != "pinhole") camera_model.fail("must be pinhole, got '" + camera_model.text() + "'");
     const Field distortion_model = file.at({"distortion_model"});
     const std::string distortion = distortion_model.text();
-    LensType type = LensType::Opencv4;
+    LensType type = LensType::OpenCv4;
     if (distortion == "equidistant") {
         type = LensType::Fisheye;
     } else if (distortion != "radial-tangential" && distortion != "radtan") {
@@ -321,11 +321,11 @@ nlohmann::ordered_json basalt_intrinsics(const Camera& camera) {
         values["fy"] = k.fy / (1.0 + xi);
         values["alpha"] = xi / (1.0 + xi);
         type = "ucm";
-    } else if (lens_contains(LensType::Opencv8, camera.lens.type) && camera.lens.type != LensType::Pinhole) {
+    } else if (lens_contains(LensType::OpenCv8, camera.lens.type) && camera.lens.type != LensType::Pinhole) {
         std::vector<double> radtan8 = c;
         radtan8.resize(8, 0.0);
-        type = lens_info(LensType::Opencv8).basalt;
-        const std::span<const std::string_view> names = lens_info(LensType::Opencv8).coefficients.view();
+        type = lens_info(LensType::OpenCv8).basalt;
+        const std::span<const std::string_view> names = lens_info(LensType::OpenCv8).coefficients.view();
         for (std::size_t i = 0; i < names.size(); ++i) values[basalt_coefficient_name(names[i])] = radtan8[i];
     } else {
         const std::span<const std::string_view> names = lens_info(camera.lens.type).coefficients.view();
@@ -346,7 +346,7 @@ std::string format_basalt_calibration(const Camera& camera, const WriteOptions&)
         throw NotRepresentable("basalt's cameras have no skew; this camera's is " + yaml_number(camera.intrinsics.skew));
     }
     const LensType type = camera.lens.type;
-    if (lens_info(type).basalt.empty() && type != LensType::Ucm && !lens_contains(LensType::Opencv8, type)) {
+    if (lens_info(type).basalt.empty() && type != LensType::Ucm && !lens_contains(LensType::OpenCv8, type)) {
         throw NotRepresentable("basalt has no model for a " + std::string(lens_info(type).name) +
                                " lens (it holds pinhole, kb4 (FISHEYE), ds, eucm, ucm, fov and pinhole-radtan8 "
                                "(OPENCV8) cameras)");
