@@ -8,7 +8,6 @@
 
 #include "commands.hpp"
 #include "libcam/io/camera_formats.hpp"
-#include "parse.hpp"
 
 namespace libcam::cli {
 
@@ -91,12 +90,12 @@ Runner add_formats(CLI::App& app) {
         bool markdown = false;
     };
     auto flags = std::make_shared<Flags>();
-    command->add_flag("--json", flags->json,
-                      "Print a JSON array, one object per format: name, title, description, extensions, reads, "
-                      "writes, writes_folder, lens_models, lens_names, refuses, library, available");
-    command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md");
+    CLI::Option* json = command->add_flag(
+        "--json", flags->json,
+        "Print a JSON array, one object per format: name, title, description, extensions, reads, writes, "
+        "writes_folder, lens_models, lens_names, refuses, library, available");
+    command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md")->excludes(json);
     return [flags] {
-        if (flags->json && flags->markdown) throw UsageError("--json and --markdown: give one");
         const std::vector<CameraFormatInfo> formats = camera_formats();
         if (flags->json) {
             Json list = Json::array();

@@ -65,6 +65,14 @@ int run_reporting_errors(const Runner& run) {
 
 }  // namespace
 
+std::span<const CommandAdder> light_commands() {
+    static constexpr CommandAdder kLight[] = {
+        {"convert", add_convert}, {"info", add_info},       {"rays", add_rays},     {"project", add_project},
+        {"derive", add_derive},   {"formats", add_formats}, {"models", add_models},
+    };
+    return kLight;
+}
+
 const CommandInfo* find_command(std::string_view name) {
     for (const CommandInfo& info : kCommands) {
         if (info.name == name) return &info;

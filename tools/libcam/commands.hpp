@@ -47,6 +47,10 @@ struct CommandAdder {
     Runner (*add)(CLI::App& app);
 };
 
+// The commands the program runs itself, the light ones of the table (the commands module
+// runs these and the rest).
+std::span<const CommandAdder> light_commands();
+
 // Parses and runs a command line: `here` are the commands this binary runs; the table's
 // others are listed by --help only. Returns the exit code; errors are one line on stderr.
 int run_commands(std::span<const CommandAdder> here, int argc, char** argv);

@@ -4,6 +4,7 @@
 
 #include <opencv2/core/utility.hpp>
 #include <type_traits>
+#include <vector>
 
 #include "commands.hpp"
 #include "commands_module.hpp"
@@ -18,11 +19,10 @@ using namespace libcam::cli;
 // error itself, in one line.
 int quiet_opencv_errors(int, const char*, const char*, const char*, int, void*) { return 0; }
 
-constexpr CommandAdder kAllCommands[] = {
-    {"convert", add_convert}, {"info", add_info},   {"rays", add_rays},  {"project", add_project},
-    {"remap", add_remap},     {"derive", add_derive}, {"render-plan", add_render_plan},
-    {"verify", add_verify},   {"fit", add_fit},     {"bench", add_bench}, {"demo", add_demo},
-    {"formats", add_formats}, {"models", add_models},
+// The commands only the module runs; it runs the light ones too (light_commands()).
+constexpr CommandAdder kModuleCommands[] = {
+    {"remap", add_remap}, {"render-plan", add_render_plan}, {"verify", add_verify},
+    {"fit", add_fit},     {"bench", add_bench},             {"demo", add_demo},
 };
 
 }  // namespace
@@ -34,7 +34,9 @@ LIBCAM_MODULE_ENTRY const char* libcam_commands_version() { return LIBCAM_VERSIO
 LIBCAM_MODULE_ENTRY int libcam_run_commands(int argc, char** argv) {
     cv::redirectError(quiet_opencv_errors);
     libcam::register_interop_formats();  // this copy of libcam::io's table: mrcal .cameramodel
-    return run_commands(kAllCommands, argc, argv);
+    std::vector<CommandAdder> all(light_commands().begin(), light_commands().end());
+    all.insert(all.end(), std::begin(kModuleCommands), std::end(kModuleCommands));
+    return run_commands(all, argc, argv);
 }
 
 LIBCAM_MODULE_ENTRY void libcam_install_formats(libcam::CameraFormatInstaller install) {

@@ -12,21 +12,12 @@
 #include "libcam/io/format_table.hpp"
 #include "module_loader.hpp"
 
-namespace {
-
 using namespace libcam::cli;
-
-constexpr CommandAdder kLightCommands[] = {
-    {"convert", add_convert}, {"info", add_info},       {"rays", add_rays},     {"project", add_project},
-    {"derive", add_derive},   {"formats", add_formats}, {"models", add_models},
-};
-
-}  // namespace
 
 int main(int argc, char** argv) {
     const std::string_view name = subcommand_of(argc, argv);
     const CommandInfo* command = find_command(name);
     if (command != nullptr && !command->light) return run_in_commands_module(name, argc, argv);
     libcam::set_camera_format_loader(load_format_from_commands_module);
-    return run_commands(kLightCommands, argc, argv);
+    return run_commands(light_commands(), argc, argv);
 }

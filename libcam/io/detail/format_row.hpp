@@ -35,12 +35,6 @@ enum class Content : unsigned {
 constexpr unsigned operator|(Content a, Content b) { return static_cast<unsigned>(a) | static_cast<unsigned>(b); }
 constexpr unsigned operator|(unsigned a, Content b) { return a | static_cast<unsigned>(b); }
 
-// Every camera a file holds, from its bytes. Formats whose files are text get the text
-// already checked to be UTF-8 (check_text) unless the row says it has a binary form.
-using SetReader = CameraSetReader;
-// Every file holding the camera: one unnamed file, or a folder's named files.
-using FilesWriter = CameraFilesWriter;
-
 struct FormatRow {
     CameraFormat format;
     std::string_view name;         // what --to, --from-format and camera_format_from_string take
@@ -53,9 +47,11 @@ struct FormatRow {
     // Whether a parsed file of a shared extension is this format, by its keys; nullptr:
     // the default for its content when no other row claims the file.
     bool (*claims)(const DocumentNode& root) = nullptr;
-    // nullptr: filled at run time by the library named below (install_camera_format).
-    SetReader read = nullptr;
-    FilesWriter write = nullptr;
+    // Every camera a file holds, from its bytes (checked to be UTF-8 text first unless the
+    // row says it has a binary form); every file holding one camera. nullptr: filled at
+    // run time by the library named below (install_camera_format).
+    CameraSetReader read = nullptr;
+    CameraFilesWriter write = nullptr;
     bool read_only = false;      // libcam reads these files but does not write them
     bool write_only = false;     // written, not read back (its reader takes another format's files, or none)
     bool writes_folder = false;  // written as several files into a folder
@@ -90,8 +86,5 @@ template <std::vector<NamedCamera> (*parse)(std::string_view, const std::string&
 std::vector<NamedCamera> with_source(std::string_view text, const ReadContext& context) {
     return parse(text, context.source);
 }
-
-// Whether a parsed document is a map holding `key`.
-inline bool has_key(const DocumentNode& root, std::string_view key) { return root.find(key) != nullptr; }
 
 }  // namespace libcam::detail

@@ -61,7 +61,7 @@ std::vector<NamedCamera> read_blender_script(std::string_view text, const ReadCo
 
 // ROS's camera_info: the keys of its rectified camera tell it from OpenCV's own YAML.
 bool claims_ros_camera_info(const DocumentNode& root) {
-    return has_key(root, "projection_matrix") || has_key(root, "rectification_matrix");
+    return root.find("projection_matrix") != nullptr || root.find("rectification_matrix") != nullptr;
 }
 
 // ---- the lens models each format holds ------------------------------------------------
