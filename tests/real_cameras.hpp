@@ -20,4 +20,18 @@ inline bool real_cameras_present(const std::filesystem::path& folder = real_came
     return false;
 }
 
+// The folder of real reconstructions and calibrations with their observations, or a
+// file or folder inside it ("opencv-calib-outputs2/hpfily/out_camera_data.xml").
+inline std::filesystem::path real_data_path(const std::filesystem::path& inside = {}) {
+    return std::filesystem::path(LIBCAM_REAL_DATA) / inside;
+}
+
+// Whether `path` (in the real-data folder) is there; when not, warns that the test is skipped.
+inline bool real_data_present(const std::filesystem::path& path) {
+    std::error_code error;
+    if (std::filesystem::exists(path, error)) return true;
+    WARN("skipped: no real data at " << path.string());
+    return false;
+}
+
 }  // namespace libcam::test

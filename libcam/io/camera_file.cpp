@@ -397,8 +397,9 @@ CameraFormat detect_format(std::string_view text, const std::filesystem::path& p
 
 }  // namespace
 
-CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format,
-                          const ReadOptions& options) {
+namespace detail {
+
+LocatedFile locate_camera_file(const std::filesystem::path& path, std::optional<CameraFormat> format) {
     const std::string source = path.string();
     std::filesystem::path file = path;
     std::error_code error;
@@ -417,11 +418,21 @@ CameraSet read_camera_set(const std::filesystem::path& path, std::optional<Camer
             throw FileError(source + ": a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)");
         }
     }
-    const std::string text = read_text_file(file);
+    LocatedFile located{file, format.value_or(CameraFormat::Json), read_text_file(file)};
     const std::string file_source = file.string();
-    if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw FileError(file_source + ": file is empty");
-    const CameraFormat chosen = format ? *format : detect_format(text, file, file_source);
-    return parse_in_context(text, chosen, {file_source, file.parent_path().empty() ? "." : file.parent_path(), options});
+    if (located.text.find_first_not_of(" \t\r\n") == std::string::npos) throw FileError(file_source + ": file is empty");
+    if (!format) located.format = detect_format(located.text, file, file_source);
+    return located;
+}
+
+}  // namespace detail
+
+CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format,
+                          const ReadOptions& options) {
+    const detail::LocatedFile located = detail::locate_camera_file(path, format);
+    const std::filesystem::path& file = located.file;
+    return parse_in_context(located.text, located.format,
+                            {file.string(), file.parent_path().empty() ? "." : file.parent_path(), options});
 }
 
 CameraFile read_camera_file(const std::filesystem::path& path, std::string_view camera,

@@ -20,7 +20,7 @@
 //
 // Domain: 0 <= x < 8192 (Cephes' bound for float's reduction); the models pass at most
 // pi, and the accuracy is measured on [0, pi]. NaN past the domain, and for NaN.
-// Accuracy: the sine_cosine row of docs/numerical-limits.md (tests/test_extremes_lens.cpp).
+// Accuracy: the sine_cosine row of docs/numerical-limits.md (tests/lens/test_extremes_lens.cpp).
 
 #include <cmath>
 #include <limits>

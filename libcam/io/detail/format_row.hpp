@@ -8,6 +8,7 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -15,6 +16,7 @@
 
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
+#include "libcam/io/observations.hpp"
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam::detail {
@@ -58,6 +60,10 @@ struct FormatRow {
     bool binary = false;         // has a binary form: its reader checks the text itself
     // The file of this format in a folder given as the path (COLMAP's sparse/0), or empty.
     std::filesystem::path (*file_in_folder)(const std::filesystem::path& folder) = nullptr;
+    // The observations its files hold (io/observations.hpp), from the file detection chose
+    // (COLMAP: its cameras file, beside the rest of the model); nullptr: it holds none.
+    ObservationSet (*read_observations)(const std::filesystem::path& file, const ObservationReadOptions& options) =
+        nullptr;
     // The lens models its files hold exactly, whatever their coefficients.
     std::span<const LensType> lenses = {};
     // In words: the peer's own names for them, and what it cannot hold (skew, a pose...).
@@ -70,6 +76,16 @@ struct FormatRow {
 
 // Every row, in CameraFormat's order (format_rows.cpp).
 std::span<const FormatRow> format_rows();
+
+// The file a path names for reading (a folder's cameras file, for COLMAP's sparse/0), its
+// format (`format`, or the one its extension and contents say) and its text; throws
+// FileError for a folder of no format and an empty file (camera_file.cpp).
+struct LocatedFile {
+    std::filesystem::path file;
+    CameraFormat format;
+    std::string text;
+};
+LocatedFile locate_camera_file(const std::filesystem::path& path, std::optional<CameraFormat> format);
 
 // A writer of one file in the table's form.
 template <std::string (*write)(const Camera&, const WriteOptions&)>

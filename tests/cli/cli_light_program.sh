@@ -3,7 +3,7 @@
 # OpenCV, libmrcal nor Ceres and loads none of them for --version or a JSON camera, while
 # the commands that need them and mrcal's .cameramodel format still work through the
 # commands module beside it; without the module, such a command fails in one line.
-# Usage: tests/cli_light_program.sh PATH_TO_LIBCAM
+# Usage: tests/cli/cli_light_program.sh PATH_TO_LIBCAM
 set -euo pipefail
 program="${1:?usage: cli_light_program.sh PATH_TO_LIBCAM}"
 work="$(mktemp -d)"

@@ -1,0 +1,246 @@
+#include "libcam/check/reproject.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "libcam/camera/parallel.hpp"
+
+namespace libcam {
+
+std::string_view to_string(ResidualStatus status) {
+    switch (status) {
+        case ResidualStatus::Counted: return "counted";
+        case ResidualStatus::Outlier: return "outlier";
+        case ResidualStatus::BehindCamera: return "behind the camera";
+        case ResidualStatus::OutsideDomain: return "past the lens's valid domain";
+        case ResidualStatus::OutsideImage: return "off the image";
+    }
+    return "?";
+}
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Whether an OpenCV pixel lies on the image: within half a pixel of the outer centres.
+bool on_image(const Vec2& pixel, const ImageSize& size) {
+    return pixel.x() >= -0.5 && pixel.y() >= -0.5 && pixel.x() <= size.width - 0.5 && pixel.y() <= size.height - 0.5;
+}
+
+ObservationResidual residual_of(const ObservationSet& set, const std::vector<PreparedCamera>& cameras,
+                                const Observation& observation) {
+    const ObservedView& view = set.views[static_cast<std::size_t>(observation.view)];
+    const PreparedCamera& camera = cameras[static_cast<std::size_t>(view.camera)];
+    const Vec3 camera_point = view.pose.camera_from_world(set.points[static_cast<std::size_t>(observation.point)]);
+    const Projection projection = camera.project_camera_point(camera_point);
+    ObservationResidual out;
+    if (!projection.valid) {
+        out.projected = Vec2(kNaN, kNaN);
+        out.residual = Vec2(kNaN, kNaN);
+        out.error_px = kInfinity;
+        out.status = camera_point.z() <= 0.0 ? ResidualStatus::BehindCamera : ResidualStatus::OutsideDomain;
+    } else {
+        out.projected = projection.pixel;
+        out.residual = projection.pixel - observation.pixel;
+        out.error_px = out.residual.norm();
+    }
+    if (!observation.inlier) {
+        out.status = ResidualStatus::Outlier;
+    } else if (out.status == ResidualStatus::Counted && !on_image(observation.pixel, camera.camera().size)) {
+        out.status = ResidualStatus::OutsideImage;
+    }
+    return out;
+}
+
+bool weighted(const ObservationSet& set) {
+    return std::any_of(set.observations.begin(), set.observations.end(),
+                       [](const Observation& o) { return o.weight != 1.0; });
+}
+
+// Recomputes a stored number by its definition, from the counted residuals; and the
+// per-point means COLMAP stores, for the comparison point by point.
+std::vector<double> per_point_mean_errors(const ObservationSet& set, const std::vector<ObservationResidual>& residuals) {
+    std::vector<double> sum(set.points.size(), 0.0);
+    std::vector<std::size_t> count(set.points.size(), 0);
+    for (std::size_t i = 0; i < residuals.size(); ++i) {
+        if (residuals[i].status != ResidualStatus::Counted) continue;
+        const auto point = static_cast<std::size_t>(set.observations[i].point);
+        sum[point] += residuals[i].error_px;
+        ++count[point];
+    }
+    for (std::size_t p = 0; p < sum.size(); ++p) sum[p] = count[p] == 0 ? kNaN : sum[p] / static_cast<double>(count[p]);
+    return sum;
+}
+
+double recompute(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
+                 const ResidualStats& all, ReportedMeasure measure) {
+    switch (measure) {
+        case ReportedMeasure::RmsOverObservations: return all.stats.rms_px;
+        case ReportedMeasure::MeanOfPointMeans: {
+            double sum = 0.0;
+            std::size_t points = 0;
+            for (const double mean : per_point_mean_errors(set, residuals)) {
+                if (std::isnan(mean)) continue;
+                sum += mean;
+                ++points;
+            }
+            return points == 0 ? kNaN : sum / static_cast<double>(points);
+        }
+        case ReportedMeasure::RmsOverComponents:
+            return all.weighted_rms_px.value_or(all.stats.rms_px) / std::sqrt(2.0);
+    }
+    return kNaN;
+}
+
+PerItemComparison compare_items(const std::vector<double>& stored, const std::vector<double>& recomputed,
+                                const std::vector<std::string>& names) {
+    PerItemComparison comparison;
+    for (std::size_t i = 0; i < stored.size(); ++i) {
+        if (std::isnan(stored[i]) || std::isnan(recomputed[i])) continue;
+        ++comparison.compared;
+        const double difference = std::abs(stored[i] - recomputed[i]);
+        if (comparison.compared == 1 || difference > comparison.max_abs_difference) {
+            comparison.max_abs_difference = difference;
+            comparison.worst_item = names[i];
+        }
+    }
+    return comparison;
+}
+
+ConventionCheck convention_check(const std::vector<ObservationResidual>& residuals, const ResidualStats& all) {
+    ConventionCheck check;
+    if (all.stats.count == 0) return check;
+    check.best_shift_px = -all.bias;
+    check.rms_px = all.stats.rms_px;
+    // The half-pixel shift on each axis nearest the best one: where a file written in the
+    // other convention puts its projections.
+    const Vec2 half(std::copysign(0.5, check.best_shift_px.x()), std::copysign(0.5, check.best_shift_px.y()));
+    double sum_squares = 0.0;
+    for (std::size_t i = 0; i < residuals.size(); ++i) {
+        if (residuals[i].status == ResidualStatus::Counted) sum_squares += (residuals[i].residual + half).squaredNorm();
+    }
+    check.rms_half_shift_px = std::sqrt(sum_squares / static_cast<double>(all.stats.count));
+    // Suspect only when the best shift is itself near the half pixel on both axes and the
+    // half-pixel shift takes away at least a third of the RMS: noise and a calibration's
+    // own small bias do neither.
+    const bool near_half = (check.best_shift_px - half).cwiseAbs().maxCoeff() < 0.2;
+    check.suspect = near_half && check.rms_half_shift_px < (2.0 / 3.0) * check.rms_px;
+    return check;
+}
+
+}  // namespace
+
+ResidualStats residual_stats(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
+                             const std::vector<std::size_t>& indices) {
+    std::vector<double> errors;
+    Vec2 sum = Vec2::Zero();
+    double sum_errors = 0.0;
+    double weighted_squares = 0.0;
+    const auto add = [&](std::size_t i) {
+        const ObservationResidual& r = residuals[i];
+        if (r.status != ResidualStatus::Counted) return;
+        errors.push_back(r.error_px);
+        sum += r.residual;
+        sum_errors += r.error_px;
+        const double weight = set.observations[i].weight;
+        weighted_squares += weight * weight * r.error_px * r.error_px;
+    };
+    if (indices.empty()) {
+        for (std::size_t i = 0; i < residuals.size(); ++i) add(i);
+    } else {
+        for (const std::size_t i : indices) add(i);
+    }
+    ResidualStats out;
+    const std::size_t n = errors.size();
+    out.stats = error_stats(std::move(errors));
+    if (n > 0) {
+        out.mean_px = sum_errors / static_cast<double>(n);
+        out.bias = sum / static_cast<double>(n);
+        if (weighted(set)) out.weighted_rms_px = std::sqrt(weighted_squares / static_cast<double>(n));
+    }
+    return out;
+}
+
+std::vector<std::size_t> worst_observations(const std::vector<ObservationResidual>& residuals, std::size_t n) {
+    std::vector<std::size_t> counted;
+    for (std::size_t i = 0; i < residuals.size(); ++i) {
+        if (residuals[i].status == ResidualStatus::Counted) counted.push_back(i);
+    }
+    n = std::min(n, counted.size());
+    const auto larger = [&](std::size_t a, std::size_t b) {
+        return residuals[a].error_px > residuals[b].error_px || (residuals[a].error_px == residuals[b].error_px && a < b);
+    };
+    std::partial_sort(counted.begin(), counted.begin() + static_cast<std::ptrdiff_t>(n), counted.end(), larger);
+    counted.resize(n);
+    return counted;
+}
+
+Reprojection reproject(const ObservationSet& set, int threads) {
+    std::vector<PreparedCamera> cameras;
+    cameras.reserve(set.cameras.size());
+    for (const ObservedCamera& camera : set.cameras) {
+        Camera at_origin = camera.camera;
+        at_origin.pose = Pose{};
+        cameras.emplace_back(at_origin);
+    }
+    Reprojection out;
+    out.residuals.resize(set.observations.size());
+    parallel_chunks(set.observations.size(), worker_count(threads), 4096, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) out.residuals[i] = residual_of(set, cameras, set.observations[i]);
+    });
+
+    ReprojectionSummary& summary = out.summary;
+    for (const ObservationResidual& r : out.residuals) {
+        switch (r.status) {
+            case ResidualStatus::Counted: break;
+            case ResidualStatus::Outlier: ++summary.outliers; break;
+            case ResidualStatus::BehindCamera: ++summary.behind_camera; break;
+            case ResidualStatus::OutsideDomain: ++summary.outside_domain; break;
+            case ResidualStatus::OutsideImage: ++summary.outside_image; break;
+        }
+    }
+    summary.all = residual_stats(set, out.residuals, {});
+
+    std::vector<std::vector<std::size_t>> by_view(set.views.size());
+    std::vector<std::vector<std::size_t>> by_camera(set.cameras.size());
+    for (std::size_t i = 0; i < set.observations.size(); ++i) {
+        const auto view = static_cast<std::size_t>(set.observations[i].view);
+        by_view[view].push_back(i);
+        by_camera[static_cast<std::size_t>(set.views[view].camera)].push_back(i);
+    }
+    std::vector<std::string> view_names;
+    std::vector<double> view_rms;
+    for (std::size_t v = 0; v < set.views.size(); ++v) {
+        // A view without observations has no statistics (residual_stats takes an empty
+        // list of indices as "all").
+        ResidualStats stats = by_view[v].empty() ? ResidualStats{} : residual_stats(set, out.residuals, by_view[v]);
+        view_names.push_back(set.views[v].name);
+        view_rms.push_back(stats.stats.count == 0 ? kNaN : stats.stats.rms_px);
+        summary.per_view.push_back({set.views[v].name, std::move(stats)});
+    }
+    for (std::size_t c = 0; c < set.cameras.size(); ++c) {
+        ResidualStats stats = by_camera[c].empty() ? ResidualStats{} : residual_stats(set, out.residuals, by_camera[c]);
+        summary.per_camera.push_back({set.cameras[c].name, std::move(stats)});
+    }
+
+    for (const ReportedNumber& number : set.reported) {
+        summary.reported.push_back({number, recompute(set, out.residuals, summary.all, number.measure)});
+    }
+    if (!set.reported_per_view.empty()) {
+        summary.per_view_reported = compare_items(set.reported_per_view, view_rms, view_names);
+    }
+    if (!set.reported_per_point.empty()) {
+        std::vector<std::string> point_names;
+        point_names.reserve(set.point_ids.size());
+        for (const std::int64_t id : set.point_ids) point_names.push_back(std::to_string(id));
+        summary.per_point_reported =
+            compare_items(set.reported_per_point, per_point_mean_errors(set, out.residuals), point_names);
+    }
+    summary.convention = convention_check(out.residuals, summary.all);
+    return out;
+}
+
+}  // namespace libcam

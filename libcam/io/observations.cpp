@@ -1,0 +1,100 @@
+#include "libcam/io/observations.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "libcam/error.hpp"
+#include "libcam/io/detail/format_row.hpp"
+
+namespace libcam {
+
+std::string_view to_string(ObservationTool tool) {
+    switch (tool) {
+        case ObservationTool::OpenCvCalibration: return "OpenCV's calibration sample";
+        case ObservationTool::Mrcal: return "mrcal";
+        case ObservationTool::Colmap: return "COLMAP";
+        case ObservationTool::OpenSfm: return "OpenSfM";
+        case ObservationTool::OpenMvg: return "OpenMVG";
+        case ObservationTool::Table: return "a table of observations";
+    }
+    return "?";
+}
+
+std::string_view definition_of(ReportedMeasure measure) {
+    switch (measure) {
+        case ReportedMeasure::RmsOverObservations:
+            return "the root of the mean over every observation of its squared residual length";
+        case ReportedMeasure::MeanOfPointMeans:
+            return "the mean over 3D points of each point's mean residual length over the observations of its track";
+        case ReportedMeasure::RmsOverComponents:
+            return "the root of the mean over every x and y residual of the inliers, each weighted, squared";
+    }
+    return "?";
+}
+
+namespace {
+
+void require(bool holds, const ObservationSet& set, const std::string& what) {
+    if (!holds) throw FileError(set.source + ": " + what);
+}
+
+bool finite(const Vec2& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
+bool finite(const Vec3& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+
+}  // namespace
+
+void check_observations(const ObservationSet& set) {
+    require(set.point_ids.size() == set.points.size(), set,
+            "point_ids: " + std::to_string(set.point_ids.size()) + " ids for " + std::to_string(set.points.size()) +
+                " points");
+    require(set.reported_per_view.empty() || set.reported_per_view.size() == set.views.size(), set,
+            "reported per view: " + std::to_string(set.reported_per_view.size()) + " numbers for " +
+                std::to_string(set.views.size()) + " views");
+    require(set.reported_per_point.empty() || set.reported_per_point.size() == set.points.size(), set,
+            "reported per point: " + std::to_string(set.reported_per_point.size()) + " numbers for " +
+                std::to_string(set.points.size()) + " points");
+    for (std::size_t i = 0; i < set.cameras.size(); ++i) {
+        validated_camera(set.cameras[i].camera, set.source + ": camera " + set.cameras[i].name);
+    }
+    for (std::size_t i = 0; i < set.views.size(); ++i) {
+        const ObservedView& view = set.views[i];
+        require(view.camera >= 0 && static_cast<std::size_t>(view.camera) < set.cameras.size(), set,
+                "view " + view.name + ": camera index " + std::to_string(view.camera) + " is not one of the " +
+                    std::to_string(set.cameras.size()) + " cameras");
+        try {
+            view.pose.validate("pose");
+        } catch (const Error& error) {
+            throw FileError(set.source + ": view " + view.name + ": " + error.what());
+        }
+    }
+    for (std::size_t i = 0; i < set.points.size(); ++i) {
+        require(finite(set.points[i]), set, "point " + std::to_string(set.point_ids[i]) + ": not finite");
+    }
+    for (std::size_t i = 0; i < set.observations.size(); ++i) {
+        const Observation& o = set.observations[i];
+        const std::string where = "observation " + std::to_string(i) + ": ";
+        require(o.view >= 0 && static_cast<std::size_t>(o.view) < set.views.size(), set,
+                where + "view index " + std::to_string(o.view) + " out of range");
+        require(o.point >= 0 && static_cast<std::size_t>(o.point) < set.points.size(), set,
+                where + "point index " + std::to_string(o.point) + " out of range");
+        require(finite(o.pixel), set, where + "pixel not finite");
+        require(std::isfinite(o.weight), set, where + "weight not finite");
+    }
+}
+
+ObservationSet read_observations(const std::filesystem::path& path, const ObservationReadOptions& options) {
+    const detail::LocatedFile located = detail::locate_camera_file(path, std::nullopt);
+    const detail::FormatRow& row = detail::format_rows()[static_cast<std::size_t>(located.format)];
+    if (row.read_observations == nullptr) {
+        throw FileError(path.string() + ": a " + std::string(row.title) +
+                        " file, which holds no observations (files that do: OpenCV's calibration output, "
+                        "a .cameramodel with optimization_inputs, a COLMAP model, OpenSfM's reconstruction.json, "
+                        "OpenMVG's sfm_data.json, or a table with a camera file)");
+    }
+    ObservationSet set = row.read_observations(located.file, options);
+    if (set.source.empty()) set.source = path.string();
+    check_observations(set);
+    return set;
+}
+
+}  // namespace libcam

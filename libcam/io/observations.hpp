@@ -1,0 +1,134 @@
+#pragma once
+// Observations: the pixels where a tool saw known points (a calibration's board corners,
+// a reconstruction's tracks), with the cameras and poses the tool solved from them, and
+// the numbers the tool stored about its own fit. read_observations reads them from the
+// files calibration and reconstruction tools write; libcam/check/reproject.hpp checks
+// them; docs/reprojection.md defines each tool's number.
+//
+//   const ObservationSet set = read_observations("sparse/0");
+//   for (const Observation& o : set.observations)
+//       ... set.views[o.view], set.points[o.point], o.pixel ...
+//
+// Everything is in libcam's conventions whatever the file's: pixels are OpenCV's (centre
+// of the top-left pixel at (0, 0)), poses world-to-camera (x_cam = R X + t). What the
+// file's own pixels were is kept (pixel_offset), so residuals can be written back in them.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "libcam/camera/camera.hpp"
+
+namespace libcam {
+
+// Which tool wrote the file: it decides what the file's stored numbers mean.
+enum class ObservationTool {
+    OpenCvCalibration,  // OpenCV's calibration sample (out_camera_data.yml/.xml)
+    Mrcal,              // mrcal's optimization_inputs in a .cameramodel
+    Colmap,             // a COLMAP model's images and points3D
+    OpenSfm,            // OpenSfM's reconstruction.json with tracks.csv
+    OpenMvg,            // OpenMVG's sfm_data.json with its structure
+    Table,              // a CSV or JSON table of observations, with a camera file
+};
+
+// One set of intrinsics (a COLMAP camera, an mrcal camera). Its `camera.pose` is the
+// identity: each view has its own.
+struct ObservedCamera {
+    std::string name;  // the file's name or id for it ("1", "cam0")
+    Camera camera;
+};
+
+// One image: which camera took it, and where that camera was.
+struct ObservedView {
+    std::string name;  // the image's name, or "view 3" where the file names none
+    int camera = 0;    // index into ObservationSet::cameras
+    Pose pose;         // world (for a board: the board's frame) to camera
+};
+
+// One observed pixel of one point in one view.
+struct Observation {
+    int view = 0;             // index into ObservationSet::views
+    int point = 0;            // index into ObservationSet::points
+    Vec2 pixel = Vec2::Zero();  // where the tool saw it, in OpenCV's pixels
+    double weight = 1.0;      // the tool's weight (mrcal's); 1 where the tool has none
+    bool inlier = true;       // false where the tool marked it an outlier
+};
+
+// What a tool's number is: each tool averages something different and calls it "the
+// reprojection error" (docs/reprojection.md). `d` is an observation's residual vector,
+// projected minus observed, in pixels.
+enum class ReportedMeasure {
+    RmsOverObservations,  // sqrt(sum |d|^2 / N) over every observation (OpenCV's avg_reprojection_error)
+    MeanOfPointMeans,     // the mean over 3D points of each point's mean |d| over its track (COLMAP)
+    RmsOverComponents,    // sqrt(sum (dx^2 + dy^2) / 2N) over inliers, weights applied (mrcal's printed RMS)
+};
+// The definition in words, for reports.
+std::string_view definition_of(ReportedMeasure measure);
+
+// A number the tool stored (or printed) about its fit, by the file's own key.
+struct ReportedNumber {
+    std::string key;  // "avg_reprojection_error", "mean_point_error_px"
+    double value = 0.0;
+    ReportedMeasure measure = ReportedMeasure::RmsOverObservations;
+};
+
+// The board whose corners a calibration observed.
+struct ObservedBoard {
+    int width = 0;   // corners per row
+    int height = 0;  // rows of corners
+    double spacing = 0.0;  // between neighbouring corners, in the file's unit
+    // mrcal's calobject_warp (the board's bow, in its unit), zero where the tool has none;
+    // ObservationSet::points already hold the corners it moves.
+    Vec2 warp = Vec2::Zero();
+};
+
+struct ObservationSet {
+    ObservationTool tool = ObservationTool::Table;
+    std::string source;  // the file or folder read, for messages
+    // The file's pixels minus OpenCV's: (0.5, 0.5) for COLMAP, OpenSfM and OpenMVG
+    // whose top-left pixel's centre is (0.5, 0.5); zero for OpenCV and mrcal.
+    Vec2 pixel_offset = Vec2::Zero();
+    std::vector<ObservedCamera> cameras;
+    std::vector<ObservedView> views;
+    // The observed points, world frame; for a board, its corners in the board's frame
+    // (corner i * width + j at (j, i, 0) * spacing, warp applied), shared by every view.
+    std::vector<Vec3> points;
+    // The file's own id of each point (COLMAP's POINT3D_ID, OpenSfM's track id, the
+    // board's corner index), for the rows a user can find in the file again.
+    std::vector<std::int64_t> point_ids;
+    std::vector<Observation> observations;
+    std::optional<ObservedBoard> board;
+    // What the tool stored about its fit: whole-file numbers; one per view, the RMS over
+    // the view's observations (OpenCV's per_view_reprojection_errors), empty where the file
+    // stores none; one per point, the mean |d| over its track (COLMAP's ERROR column, NaN
+    // for a point without one), empty where the file stores none.
+    std::vector<ReportedNumber> reported;
+    std::vector<double> reported_per_view;
+    std::vector<double> reported_per_point;
+};
+
+struct ObservationReadOptions {
+    // For a table of observations (CSV or JSON): the camera file whose cameras (by name or
+    // position) the table's first column names. Unused by the other formats.
+    std::filesystem::path camera_file;
+};
+
+// Reads the observations a file or folder holds: OpenCV's calibration output (YAML or XML),
+// a .cameramodel with mrcal's optimization_inputs, a COLMAP model folder (text, binary,
+// COLMAP 3.12's rigs and frames), OpenSfM's reconstruction.json (tracks.csv beside it),
+// OpenMVG's sfm_data.json, or a table (.csv or .json) with options.camera_file.
+// Throws FileError naming the file, the field and the value for a malformed file, and for
+// a camera file that holds no observations.
+ObservationSet read_observations(const std::filesystem::path& path, const ObservationReadOptions& options = {});
+
+// The name of the tool ("OpenCV's calibration sample", "COLMAP") for messages and reports.
+std::string_view to_string(ObservationTool tool);
+
+// Throws FileError "<source>: <what>" unless every index is in range, every camera
+// valid, every pixel and weight finite, and point_ids as long as points: what every
+// reader promises, checked once here.
+void check_observations(const ObservationSet& set);
+
+}  // namespace libcam
