@@ -14,7 +14,7 @@ namespace libcam::cli {
 namespace {
 
 // In the order `libcam --help` lists them.
-constexpr std::array<CommandInfo, 13> kCommands = {{
+constexpr std::array<CommandInfo, 14> kCommands = {{
     {"convert", "Convert a FOV camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file", true},
     {"info", "Every camera a file holds: model, size, K, field of view, pose", true},
     {"rays", "World rays through pixels, by K^-1 and by the look-at formula", true},
@@ -29,6 +29,10 @@ constexpr std::array<CommandInfo, 13> kCommands = {{
      "its render into the lens's image",
      false},
     {"verify", "Check a camera file against OpenCV and mrcal over a grid of pixels", false},
+    {"reproject",
+     "Reproject the observations of a calibration or reconstruction (OpenCV, mrcal, COLMAP, OpenSfM, OpenMVG) and "
+     "reproduce each tool's own reprojection error",
+     false},
     {"fit", "The simplest lens model that reproduces a camera over a scene within a pixel tolerance", false},
     {"bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal", false},
     {"demo",

@@ -25,6 +25,7 @@ Runner add_derive(CLI::App& app);
 Runner add_render_plan(CLI::App& app);
 Runner add_formats(CLI::App& app);
 Runner add_models(CLI::App& app);
+Runner add_reproject(CLI::App& app);
 
 // Every subcommand, in the order --help lists them. A light one needs libcam::core and
 // libcam::io alone and runs in the program itself; the others run in the commands module

@@ -23,6 +23,7 @@ int quiet_opencv_errors(int, const char*, const char*, const char*, int, void*) 
 constexpr CommandAdder kModuleCommands[] = {
     {"remap", add_remap}, {"render-plan", add_render_plan}, {"verify", add_verify},
     {"fit", add_fit},     {"bench", add_bench},             {"demo", add_demo},
+    {"reproject", add_reproject},
 };
 
 }  // namespace
