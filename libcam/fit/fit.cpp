@@ -10,11 +10,7 @@
 
 namespace libcam {
 
-namespace {
-
-// A fit whose RMS error is below this fraction of the tolerance stops: its largest
-// error, a few times its RMS, is far inside the tolerance, so no decision can change.
-constexpr double kNegligibleFraction = 1e-3;
+namespace detail {
 
 // Can the candidate's model express every camera of `lens` exactly (up to skew)? The
 // table says which models nest (lens_contains).
@@ -95,6 +91,20 @@ detail::LeastSquaresState start_from(const Candidate& candidate, const Camera& b
     return start;
 }
 
+}  // namespace detail
+
+using detail::camera_from_params;
+using detail::contains_model;
+using detail::start_from;
+using detail::core_count;
+using detail::camera_from_state;
+
+namespace {
+
+// A fit whose RMS error is below this fraction of the tolerance stops: its largest
+// error, a few times its RMS, is far inside the tolerance, so no decision can change.
+constexpr double kNegligibleFraction = 1e-3;
+
 // Where a candidate's fit starts, the better result kept: the previous candidate's
 // solution when the candidate contains that model (the FOV camera is a PINHOLE), so it
 // never fits worse than the simpler model; and the source, exactly when the candidate
@@ -115,9 +125,9 @@ std::vector<detail::LeastSquaresState> starts_for(const Candidate& candidate, co
 
 // The observations the starting camera projects (the solver needs every residual at
 // the start); the others this model cannot represent at all.
-std::vector<Observation> representable(const Camera& start, const std::vector<Observation>& observations) {
+std::vector<FitSample> representable(const Camera& start, const std::vector<FitSample>& observations) {
     const std::vector<double> errors = reprojection_errors(start, observations);
-    std::vector<Observation> kept;
+    std::vector<FitSample> kept;
     for (std::size_t i = 0; i < observations.size(); ++i) {
         if (std::isfinite(errors[i])) kept.push_back(observations[i]);
     }
@@ -142,10 +152,10 @@ struct Attempt {
 // reaches more: a few rounds at most.
 constexpr int kMaxWideningRounds = 8;
 
-Attempt attempt(const Candidate& candidate, const Camera& source, const std::vector<Observation>& observations,
+Attempt attempt(const Candidate& candidate, const Camera& source, const std::vector<FitSample>& observations,
                 detail::LeastSquaresState start, const SolveOptions& options, const detail::IterationHook& hook) {
     Camera start_camera = camera_from_state(candidate, source.size, start);
-    std::vector<Observation> kept = representable(start_camera, observations);
+    std::vector<FitSample> kept = representable(start_camera, observations);
     Attempt result{std::move(start), observations.size() - kept.size()};
     if (kept.empty()) return result;
     for (int round = 1;; ++round) {
@@ -155,7 +165,7 @@ Attempt attempt(const Candidate& candidate, const Camera& source, const std::vec
         result.state =
             detail::solve_least_squares(candidate, source.size, kept, result.state, guarded, hook);
         const Camera solved = camera_from_state(candidate, source.size, result.state);
-        std::vector<Observation> reached = representable(solved, observations);
+        std::vector<FitSample> reached = representable(solved, observations);
         if (reached.size() <= kept.size() || round == kMaxWideningRounds) {
             result.unrepresentable = observations.size() - kept.size();
             result.rms_px = measure(solved, kept).stats.rms_px;
@@ -166,7 +176,7 @@ Attempt attempt(const Candidate& candidate, const Camera& source, const std::vec
     }
 }
 
-FittedModel fit_one(const Candidate& candidate, const Camera& source, const std::vector<Observation>& observations,
+FittedModel fit_one(const Candidate& candidate, const Camera& source, const std::vector<FitSample>& observations,
                     const FittedModel* previous, const SolveOptions& options, const detail::IterationHook& hook) {
     std::optional<Attempt> best;
     for (detail::LeastSquaresState& start : starts_for(candidate, source, previous)) {
@@ -276,8 +286,8 @@ Candidate candidate_named(std::string_view name) {
                           std::string(name) + "'; it fits " + candidate_names());
 }
 
-std::vector<Observation> observations_of(const ScenePixels& pixels, const std::vector<double>& depths) {
-    std::vector<Observation> observations;
+std::vector<FitSample> observations_of(const ScenePixels& pixels, const std::vector<double>& depths) {
+    std::vector<FitSample> observations;
     const std::vector<double> unit = {1.0};
     for (const double depth : depths.empty() ? unit : depths) {
         for (std::size_t i = 0; i < pixels.pixels.size(); ++i) {
@@ -294,7 +304,7 @@ Camera camera_in_world(const FittedModel& fitted, const Camera& source) {
     return camera;
 }
 
-std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<Observation>& observations,
+std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<FitSample>& observations,
                                         const std::vector<Candidate>& candidates, const SolveOptions& options) {
     if (observations.empty()) throw InvalidArgument("fit: no observations to fit");
     std::vector<FittedModel> fitted;
@@ -310,10 +320,10 @@ std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<
     return fitted;
 }
 
-std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<Observation>& observations) {
+std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<FitSample>& observations) {
     std::vector<Vec3> moved;
     moved.reserve(observations.size());
-    for (const Observation& observation : observations) moved.push_back(fitted.pose.camera_from_world(observation.point));
+    for (const FitSample& observation : observations) moved.push_back(fitted.pose.camera_from_world(observation.point));
     const std::vector<Projection> projections = PreparedCamera(fitted).project_camera_points(moved);
     std::vector<double> errors(observations.size(), std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < observations.size(); ++i) {
@@ -322,7 +332,7 @@ std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<
     return errors;
 }
 
-ModelError measure(const Camera& fitted, const std::vector<Observation>& observations) {
+ModelError measure(const Camera& fitted, const std::vector<FitSample>& observations) {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     std::vector<double> projected = reprojection_errors(fitted, observations);
     ModelError error;
@@ -337,8 +347,8 @@ FitReport fit_scene(const Camera& source, const Scene& scene, const FitOptions& 
     validate_options(options);
     FitReport report;
     report.sampling = sample_scene(PreparedCamera(source), scene, options.lattice);
-    const std::vector<Observation> fit_set = observations_of(report.sampling.fit, options.depths);
-    const std::vector<Observation> check_set = observations_of(report.sampling.check, options.depths);
+    const std::vector<FitSample> fit_set = observations_of(report.sampling.fit, options.depths);
+    const std::vector<FitSample> check_set = observations_of(report.sampling.check, options.depths);
     report.fit_observations = fit_set.size();
     report.check_observations = check_set.size();
     report.largest_angle_deg = largest_angle_deg(report.sampling.check);

@@ -91,14 +91,14 @@ std::string candidate_names();
 
 // A pixel and the point that should land on it, in the source camera's frame (a unit
 // ray for a fit on rays alone, or a point at a depth along it).
-struct Observation {
+struct FitSample {
     Vec3 point = Vec3::Zero();
     Vec2 pixel = Vec2::Zero();
 };
 
 // One observation per pixel and depth: the pixel's unit ray times each depth, or the
 // unit ray alone when `depths` is empty.
-std::vector<Observation> observations_of(const ScenePixels& pixels, const std::vector<double>& depths);
+std::vector<FitSample> observations_of(const ScenePixels& pixels, const std::vector<double>& depths);
 
 struct FittedModel {
     Candidate candidate;
@@ -133,12 +133,12 @@ struct SolveOptions {
     // fit_scene passes the denser check samples of the boundary: a fit is often best
     // right at the edge of its model's valid domain, and without these it would fold
     // over between the fitting samples.
-    std::vector<Observation> must_project;
+    std::vector<FitSample> must_project;
 };
 
 // Fits every candidate to the observations, each by Levenberg-Marquardt (Ceres).
 // Observations must be non-empty.
-std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<Observation>& observations,
+std::vector<FittedModel> fit_candidates(const Camera& source, const std::vector<FitSample>& observations,
                                         const std::vector<Candidate>& candidates, const SolveOptions& options = {});
 
 struct ModelError {
@@ -152,10 +152,10 @@ struct ModelError {
 
 // |pixel - projection| for each observation through a fitted camera (in the source
 // camera's frame); +infinity where the observation leaves the model's valid domain.
-std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<Observation>& observations);
+std::vector<double> reprojection_errors(const Camera& fitted, const std::vector<FitSample>& observations);
 
 // Their statistics.
-ModelError measure(const Camera& fitted, const std::vector<Observation>& observations);
+ModelError measure(const Camera& fitted, const std::vector<FitSample>& observations);
 
 struct FitOptions {
     double tolerance_px = 1.0;

@@ -84,7 +84,7 @@ public:
     static constexpr int kHeld = lens_info(Model::type).fit_held_coefficients;
     static constexpr int kParams = kCoreParams + Model::num_coefficients - kHeld;
 
-    ReprojectionResiduals(const std::vector<Observation>& observations, const std::vector<Observation>& must_project,
+    ReprojectionResiduals(const std::vector<FitSample>& observations, const std::vector<FitSample>& must_project,
                           const HeldIntrinsics& held)
         : observations_(observations), must_project_(must_project), held_(held) {}
 
@@ -132,14 +132,14 @@ private:
         const double move[3] = {scalar_part(shift[0]), scalar_part(shift[1]), scalar_part(shift[2])};
         const typename Model::Parameters lens = lens_parameters<Model, kHeld>(values.data() + kCoreParams);
         Vec2 m;
-        for (const Observation& guard : must_project_) {
+        for (const FitSample& guard : must_project_) {
             if (!project<double>(lens, guard.point, turn, move, m)) return false;
         }
         return true;
     }
 
-    const std::vector<Observation>& observations_;
-    const std::vector<Observation>& must_project_;
+    const std::vector<FitSample>& observations_;
+    const std::vector<FitSample>& must_project_;
     HeldIntrinsics held_;
 };
 
@@ -179,7 +179,7 @@ ceres::Solver::Options solver_options() {
 }
 
 template <class Model, Core kCore>
-LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<Observation>& observations,
+LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSample>& observations,
                              LeastSquaresState state, const SolveOptions& settings, const IterationHook& hook) {
     using Residuals = ReprojectionResiduals<Model, kCore>;
     if (state.params.size() != static_cast<std::size_t>(Residuals::kParams)) {
@@ -206,28 +206,84 @@ LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<Obser
     return state;
 }
 
-}  // namespace
+template <class Model, Core kCore>
+ViewsState solve_views_with(const HeldIntrinsics& held, const std::vector<std::vector<FitSample>>& views,
+                            ViewsState state, bool hold_intrinsics) {
+    using Residuals = ReprojectionResiduals<Model, kCore>;
+    if (state.params.size() != static_cast<std::size_t>(Residuals::kParams) || state.rotations.size() != views.size() ||
+        state.shifts.size() != views.size()) {
+        throw InvalidArgument("fit: a start that does not match the model and the views");
+    }
+    static const std::vector<FitSample> kNoGuards;
+    ceres::Problem problem;
+    std::size_t observations = 0;
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        if (views[v].empty()) continue;
+        auto* cost = new ceres::AutoDiffCostFunction<Residuals, ceres::DYNAMIC, Residuals::kParams, 3, 3>(
+            new Residuals(views[v], kNoGuards, held), static_cast<int>(2 * views[v].size()));
+        problem.AddResidualBlock(cost, nullptr, state.params.data(), state.rotations[v].data(), state.shifts[v].data());
+        observations += views[v].size();
+    }
+    if (observations == 0) throw InvalidArgument("fit: no observations to fit");
+    if (hold_intrinsics) problem.SetParameterBlockConstant(state.params.data());
+    ceres::Solver::Options options = solver_options();
+    // The poses are independent given the intrinsics: Ceres eliminates them (the Schur
+    // complement), leaving a system the size of the intrinsics.
+    if (views.size() > 1 && !hold_intrinsics) options.linear_solver_type = ceres::DENSE_SCHUR;
+    options.max_num_iterations = 200;
+    options.function_tolerance = 1e-12;
+    options.parameter_tolerance = 1e-12;
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    if (summary.termination_type == ceres::FAILURE) {
+        throw InvalidArgument("fit: the solver failed for " + std::string(lens_info(Model::type).name) + ": " +
+                              summary.message);
+    }
+    state.iterations = static_cast<int>(summary.iterations.size());
+    return state;
+}
 
-LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSize& size,
-                                      const std::vector<Observation>& observations, LeastSquaresState start,
-                                      const SolveOptions& options, const IterationHook& hook) {
-    HeldIntrinsics held;
-    held.image_centre = {size.centre_x(), size.centre_y()};
-    if (candidate.sensor_width_mm > 0.0) held.focal = candidate.sensor_pixels_per_mm(size.width);
-    const auto solve = [&]<class Model, Core kCore>() {
-        return solve_with<Model, kCore>(held, observations, std::move(start), options, hook);
-    };
-    if (candidate.look_at) return solve.template operator()<PinholeLens<double>, Core::Focal>();
-    return visit_lens_model<double>(candidate.lens, [&]<class Model>() -> LeastSquaresState {
+// Calls body.template operator()<Model, kCore>() for the candidate's model and K.
+template <class Body>
+auto with_candidate(const Candidate& candidate, Body&& body) {
+    using Result = decltype(body.template operator()<PinholeLens<double>, Core::Focal>());
+    if (candidate.look_at) return body.template operator()<PinholeLens<double>, Core::Focal>();
+    return visit_lens_model<double>(candidate.lens, [&]<class Model>() -> Result {
         // Only the table's candidates are compiled for the solver (each is a Ceres
         // instantiation of its own).
         constexpr LensInfo info = lens_info(Model::type);
         if constexpr (info.fit != FitCandidate::No) {
             constexpr Core kCore = info.fit_sensor_width_mm > 0.0 ? Core::PrincipalPoint : Core::Full;
-            return solve.template operator()<Model, kCore>();
+            return body.template operator()<Model, kCore>();
         } else {
             throw InvalidArgument("fit: " + std::string(info.name) + " is not a fit candidate");
         }
+    });
+}
+
+HeldIntrinsics held_for(const Candidate& candidate, const ImageSize& size) {
+    HeldIntrinsics held;
+    held.image_centre = {size.centre_x(), size.centre_y()};
+    if (candidate.sensor_width_mm > 0.0) held.focal = candidate.sensor_pixels_per_mm(size.width);
+    return held;
+}
+
+}  // namespace
+
+ViewsState solve_views(const Candidate& candidate, const ImageSize& size,
+                       const std::vector<std::vector<FitSample>>& views, ViewsState start, bool hold_intrinsics) {
+    const HeldIntrinsics held = held_for(candidate, size);
+    return with_candidate(candidate, [&]<class Model, Core kCore>() {
+        return solve_views_with<Model, kCore>(held, views, std::move(start), hold_intrinsics);
+    });
+}
+
+LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSize& size,
+                                      const std::vector<FitSample>& observations, LeastSquaresState start,
+                                      const SolveOptions& options, const IterationHook& hook) {
+    const HeldIntrinsics held = held_for(candidate, size);
+    return with_candidate(candidate, [&]<class Model, Core kCore>() {
+        return solve_with<Model, kCore>(held, observations, std::move(start), options, hook);
     });
 }
 

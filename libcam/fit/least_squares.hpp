@@ -33,7 +33,34 @@ using IterationHook = std::function<void(int)>;
 // point (the image centre), a sensor-scale candidate's pixels per millimetre. Calls
 // `hook` after each iteration (options.progress is fit_candidates' business).
 LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSize& size,
-                                      const std::vector<Observation>& observations, LeastSquaresState start,
+                                      const std::vector<FitSample>& observations, LeastSquaresState start,
                                       const SolveOptions& options, const IterationHook& hook);
+
+// Several views of known points through one camera (a calibration's board views): the
+// candidate's intrinsics shared, each view's pose (Rodrigues rotation, translation: world
+// to camera) its own. Residuals, two per observation: K lens(R(rotation) point + shift) -
+// pixel. With `hold_intrinsics` only the poses move (a held-out view's pose, solved with
+// intrinsics fitted on the other views).
+struct ViewsState {
+    std::vector<double> params;    // the candidate's free intrinsics
+    std::vector<Vec3> rotations;   // one per view
+    std::vector<Vec3> shifts;      // one per view
+    int iterations = 0;
+};
+ViewsState solve_views(const Candidate& candidate, const ImageSize& size,
+                       const std::vector<std::vector<FitSample>>& views, ViewsState start, bool hold_intrinsics);
+
+// The camera that a candidate's parameters describe, with pose `pose` (fit.cpp).
+Camera camera_from_params(const Candidate& candidate, const ImageSize& size, const std::vector<double>& params,
+                          const Pose& pose);
+// A camera's intrinsics and lens as a start for `candidate` (with the camera's pose as its
+// motion): exact when the candidate's model contains the camera's, else the model's own
+// start with the camera's K (fit.cpp).
+LeastSquaresState start_from(const Candidate& candidate, const Camera& base);
+// Whether the candidate's model can express every camera of `lens` exactly.
+bool contains_model(const Candidate& candidate, LensType lens);
+// How many of a candidate's parameters belong to K (f; cx cy; fx fy cx cy).
+std::size_t core_count(const Candidate& candidate);
+Camera camera_from_state(const Candidate& candidate, const ImageSize& size, const LeastSquaresState& state);
 
 }  // namespace libcam::detail

@@ -36,7 +36,7 @@ constexpr Lattice kMrcalGrid{30, 20};
 constexpr double kSameMinimum = 1e-9;
 
 // mrcal-convert-lensmodel's sample set, by its own recipe (see the file comment).
-std::vector<Observation> mrcal_samples(const Camera& source, double radius, const std::vector<double>& distances) {
+std::vector<FitSample> mrcal_samples(const Camera& source, double radius, const std::vector<double>& distances) {
     const Vec2 centre((source.size.width - 1) / 2.0, (source.size.height - 1) / 2.0);
     const PreparedCamera prepared(source);
     ScenePixels pixels;
@@ -61,11 +61,11 @@ struct MrcalFit {
 };
 
 // RMS of |project(point) - pixel| through a camera whose pose maps the source frame to its own.
-double rms_through(const Camera& camera, const std::vector<Observation>& observations) {
+double rms_through(const Camera& camera, const std::vector<FitSample>& observations) {
     double sum = 0.0;
     std::size_t invalid = 0;
     const PreparedCamera prepared(camera);
-    for (const Observation& o : observations) {
+    for (const FitSample& o : observations) {
         const Projection p = prepared.project(o.point);
         invalid += p.valid ? 0 : 1;
         sum += (p.pixel - o.pixel).squaredNorm();
@@ -75,7 +75,7 @@ double rms_through(const Camera& camera, const std::vector<Observation>& observa
 }
 
 MrcalFit run_mrcal(const TempDir& dir, const std::string& model, double radius, bool with_motion,
-                   const std::vector<Observation>& observations) {
+                   const std::vector<FitSample>& observations) {
     std::vector<std::string> args = {"--sampled", "--radius", std::to_string(radius), "--outdir", dir.path().string(), "-f"};
     if (with_motion) args.insert(args.end(), {"--distance", "10,1000"});
     else args.push_back("--intrinsics-only");
@@ -108,7 +108,7 @@ TEST_CASE("libcam fit reaches an RMS no worse than mrcal-convert-lensmodel on mr
         for (const bool with_motion : {false, true}) {
             // --intrinsics-only places the points at distance 10; rays alone, as libcam without motion.
             const std::vector<double> distances = with_motion ? std::vector<double>{10.0, 1000.0} : std::vector<double>{10.0};
-            const std::vector<Observation> samples = mrcal_samples(source, radius, distances);
+            const std::vector<FitSample> samples = mrcal_samples(source, radius, distances);
             SolveOptions options;
             options.motion = with_motion ? CameraMotion::RotationAndShift : CameraMotion::None;
             const std::vector<FittedModel> fitted = fit_candidates(source, samples, chain, options);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "camera_options.hpp"
+#include "fit_observations.hpp"
 #include "commands.hpp"
 #include "json_output.hpp"
 #include "libcam/convert/blender_camera.hpp"
@@ -41,11 +42,29 @@ struct FitFlags {
     std::string output;
     std::string to;
     std::string heatmap;
+    std::string observations;
+    int folds = 5;
+    double margin = 0.05;
 };
 
 void add_flags(CLI::App& command, FitFlags& flags) {
-    command.add_option("source", flags.source, "Camera file (any format libcam reads: libcam info lists its cameras)")
-        ->required();
+    auto* source = command.add_option("source", flags.source,
+                                      "Camera file (any format libcam reads: libcam info lists its cameras)");
+    auto* observations = command.add_option(
+        "--observations", flags.observations,
+        "Instead of a camera: a calibration's or reconstruction's observations (what libcam reproject reads); "
+        "each model is fitted to them, intrinsics and every view's pose, and judged on views held out of the fit");
+    source->excludes(observations);
+    command.add_option("--folds", flags.folds, "With --observations: the views are dealt into this many folds")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1000))
+        ->needs(observations);
+    command.add_option("--margin", flags.margin,
+                       "With --observations: the chosen model's held-out RMS may exceed the best one's by this "
+                       "fraction")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 10.0))
+        ->needs(observations);
     flags.selection.add_to(command);
     auto* radius = command.add_option("--radius", flags.radius, "Scene: a circle of this radius in pixels ...");
     command.add_option("--center", flags.center, "... around this pixel x,y (default: the image centre)")->needs(radius);
@@ -367,6 +386,21 @@ Runner add_fit(CLI::App& app) {
     add_flags(*command, *flags);
 
     return [flags] {
+        if (!flags->observations.empty()) {
+            if (!flags->heatmap.empty()) throw UsageError("--heatmap: not with --observations (libcam reproject draws them)");
+            ObservationFitFlags fit;
+            fit.source = flags->observations;
+            fit.camera = flags->selection.camera;
+            fit.candidates = candidates_from(flags->models);
+            fit.folds = flags->folds;
+            fit.margin = flags->margin;
+            fit.json = flags->json;
+            fit.output = flags->output;
+            if (!flags->to.empty()) output_format(*flags);  // a bad --to is a usage error before any work
+            fit.to = flags->to;
+            return run_fit_observations(fit);
+        }
+        if (flags->source.empty()) throw UsageError("a camera file, or --observations FILE, is required");
         FitOptions options = options_from(*flags);
         if (!flags->to.empty()) output_format(*flags);  // a bad --to is a usage error before any work
         const Camera source = flags->selection.read(flags->source).camera;

@@ -1,0 +1,216 @@
+#include "libcam/fit/observation_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "libcam/error.hpp"
+#include "libcam/fit/least_squares.hpp"
+#include "libcam/text/number_format.hpp"
+
+namespace libcam {
+
+namespace {
+
+using detail::ViewsState;
+
+std::vector<std::vector<FitSample>> samples_of_views(const std::vector<FitView>& views,
+                                                      const std::vector<std::size_t>& which) {
+    std::vector<std::vector<FitSample>> out;
+    for (const std::size_t v : which) out.push_back(views[v].observations);
+    return out;
+}
+
+ViewsState start_state(const std::vector<double>& params, const std::vector<Pose>& poses,
+                       const std::vector<std::size_t>& which) {
+    ViewsState state;
+    state.params = params;
+    for (const std::size_t v : which) {
+        state.rotations.push_back(poses[v].rvec());
+        state.shifts.push_back(poses[v].t);
+    }
+    return state;
+}
+
+// The sum of squared residuals of the views `which`, and their count, under a fitted state.
+struct SquaredError {
+    double sum = 0.0;
+    std::size_t count = 0;
+};
+SquaredError squared_error(const Candidate& candidate, const ImageSize& size, const std::vector<FitView>& views,
+                           const std::vector<std::size_t>& which, const ViewsState& state) {
+    SquaredError out;
+    for (std::size_t i = 0; i < which.size(); ++i) {
+        const Camera camera = detail::camera_from_params(candidate, size, state.params,
+                                                         Pose::from_rvec(state.rotations[i], state.shifts[i]));
+        const PreparedCamera prepared(camera);
+        for (const FitSample& o : views[which[i]].observations) {
+            const Projection p = prepared.project(o.point);
+            out.sum += p.valid ? (p.pixel - o.pixel).squaredNorm() : std::numeric_limits<double>::infinity();
+            ++out.count;
+        }
+    }
+    return out;
+}
+
+std::vector<std::size_t> all_views(std::size_t n) {
+    std::vector<std::size_t> out(n);
+    for (std::size_t i = 0; i < n; ++i) out[i] = i;
+    return out;
+}
+
+// The names of a candidate's parameters, in their order (fit.hpp's Candidate).
+std::vector<std::string> parameter_names(const Candidate& candidate) {
+    if (candidate.look_at) return {"f"};
+    std::vector<std::string> names;
+    if (detail::core_count(candidate) == 4) names = {"fx", "fy"};
+    names.insert(names.end(), {"cx", "cy"});
+    const auto coefficients = lens_info(candidate.lens).coefficients.view();
+    for (std::size_t i = static_cast<std::size_t>(candidate.held_coefficients); i < coefficients.size(); ++i) {
+        names.emplace_back(coefficients[i]);
+    }
+    return names;
+}
+
+// Parameters whose fold-to-fold spread exceeds their size: the data do not pin them down.
+std::vector<std::string> undetermined(const Candidate& candidate, const std::vector<double>& params,
+                                      const std::vector<std::vector<double>>& per_fold) {
+    std::vector<std::string> flags;
+    if (per_fold.size() < 2) return flags;
+    const std::vector<std::string> names = parameter_names(candidate);
+    for (std::size_t p = 0; p < params.size(); ++p) {
+        double low = per_fold[0][p], high = per_fold[0][p];
+        for (const std::vector<double>& fold : per_fold) {
+            low = std::min(low, fold[p]);
+            high = std::max(high, fold[p]);
+        }
+        if (high - low > std::abs(params[p])) {
+            flags.push_back(names[p] + " = " + format_short(params[p], 4) + " ranges from " + format_short(low, 4) +
+                            " to " + format_short(high, 4) + " over the folds: the data do not determine it");
+        }
+    }
+    return flags;
+}
+
+ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& start, const std::vector<FitView>& views,
+                                   const std::vector<Pose>& start_poses, const ObservationCandidate* previous,
+                                   int folds) {
+    ObservationCandidate out;
+    out.candidate = candidate;
+    const ImageSize& size = start.size;
+    // From the simpler candidate's solution where this model contains it (never worse
+    // than it), else from the file's own camera.
+    Camera base = start;
+    base.pose = Pose{};
+    if (previous != nullptr && previous->fitted && detail::contains_model(candidate, previous->camera.lens.type)) {
+        base = previous->camera;
+    }
+    const std::vector<double> start_params = detail::start_from(candidate, base).params;
+    const std::vector<std::size_t> every = all_views(views.size());
+    const ViewsState full = detail::solve_views(candidate, size, samples_of_views(views, every),
+                                                start_state(start_params, start_poses, every), false);
+    out.params = full.params;
+    out.camera = detail::camera_from_params(candidate, size, full.params, Pose{});
+    const SquaredError training = squared_error(candidate, size, views, every, full);
+    out.rms_px = std::sqrt(training.sum / static_cast<double>(training.count));
+
+    std::vector<Pose> fitted_poses;
+    for (std::size_t v = 0; v < views.size(); ++v) fitted_poses.push_back(Pose::from_rvec(full.rotations[v], full.shifts[v]));
+    SquaredError heldout;
+    std::vector<std::vector<double>> per_fold;
+    for (int fold = 0; fold < folds; ++fold) {
+        std::vector<std::size_t> train, test;
+        for (std::size_t v = 0; v < views.size(); ++v) (static_cast<int>(v % static_cast<std::size_t>(folds)) == fold ? test : train).push_back(v);
+        const ViewsState trained = detail::solve_views(candidate, size, samples_of_views(views, train),
+                                                       start_state(full.params, fitted_poses, train), false);
+        per_fold.push_back(trained.params);
+        for (const std::size_t v : test) {
+            // The held-out view's pose alone, from the file's pose: nothing of the view
+            // enters the intrinsics it is measured with.
+            const ViewsState posed = detail::solve_views(candidate, size, samples_of_views(views, {v}),
+                                                         start_state(trained.params, start_poses, {v}), true);
+            const SquaredError e = squared_error(candidate, size, views, {v}, posed);
+            heldout.sum += e.sum;
+            heldout.count += e.count;
+        }
+    }
+    out.heldout_rms_px = std::sqrt(heldout.sum / static_cast<double>(heldout.count));
+    out.heldout_count = heldout.count;
+    out.flags = undetermined(candidate, out.params, per_fold);
+    out.fitted = true;
+    return out;
+}
+
+// The simplest candidate within the margin of the best held-out RMS, and why.
+void choose(ObservationFitReport& report) {
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < report.candidates.size(); ++i) {
+        const ObservationCandidate& c = report.candidates[i];
+        if (c.fitted && std::isfinite(c.heldout_rms_px) &&
+            (!best || c.heldout_rms_px < report.candidates[*best].heldout_rms_px)) {
+            best = i;
+        }
+    }
+    if (!best) {
+        report.reason = "no candidate could be fitted";
+        return;
+    }
+    const double limit = report.candidates[*best].heldout_rms_px * (1.0 + report.margin);
+    for (std::size_t i = 0; i < report.candidates.size(); ++i) {
+        const ObservationCandidate& c = report.candidates[i];
+        if (!c.fitted || !(c.heldout_rms_px <= limit)) continue;
+        report.chosen = i;
+        const ObservationCandidate& top = report.candidates[*best];
+        report.reason = std::string(c.candidate.name) + ": the simplest model whose held-out RMS (" +
+                        format_short(c.heldout_rms_px, 4) + " px) is within " + format_short(100.0 * report.margin) +
+                        "% of the best (" + std::string(top.candidate.name) + ", " +
+                        format_short(top.heldout_rms_px, 4) + " px)";
+        return;
+    }
+}
+
+}  // namespace
+
+ObservationFitReport fit_observations(const Camera& start, const std::vector<FitView>& views,
+                                      const ObservationFitOptions& options) {
+    if (views.size() < 2) {
+        throw InvalidArgument("fit --observations: " + std::to_string(views.size()) +
+                              " views: cross-validation needs at least two");
+    }
+    start.validate();
+    ObservationFitReport report;
+    report.views = views.size();
+    for (const FitView& view : views) report.observations += view.observations.size();
+    report.folds = std::clamp(options.folds, 2, static_cast<int>(views.size()));
+    report.margin = options.margin;
+
+    std::vector<Candidate> candidates = options.candidates;
+    if (candidates.empty()) {
+        // The widest observed angle, through the file's own camera.
+        const PreparedCamera prepared(Camera{start.size, start.intrinsics, start.lens, Pose{}});
+        double widest = 0.0;
+        for (const FitView& view : views) {
+            for (const FitSample& o : view.observations) {
+                const Unprojection u = prepared.unproject(o.pixel);
+                if (u.valid) widest = std::max(widest, std::acos(std::clamp(u.direction.normalized().z(), -1.0, 1.0)));
+            }
+        }
+        candidates = candidates_for(widest * 180.0 / 3.14159265358979323846);
+    }
+    std::vector<Pose> start_poses;
+    for (const FitView& view : views) start_poses.push_back(view.pose);
+    for (const Candidate& candidate : candidates) {
+        const ObservationCandidate* previous = report.candidates.empty() ? nullptr : &report.candidates.back();
+        try {
+            report.candidates.push_back(fit_candidate(candidate, start, views, start_poses, previous, report.folds));
+        } catch (const Error& error) {
+            ObservationCandidate failed;
+            failed.candidate = candidate;
+            failed.failure = error.what();
+            report.candidates.push_back(std::move(failed));
+        }
+    }
+    choose(report);
+    return report;
+}
+
+}  // namespace libcam
