@@ -12,6 +12,7 @@
 #include "libcam/interop/formats.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/version.hpp"
+#include "observations_binding.hpp"
 #include "tools_binding.hpp"
 
 namespace libcam::python {
@@ -151,6 +152,7 @@ PYBIND11_MODULE(_libcam, m) {
 
     bind_camera(m);
     bind_tools(m);
+    bind_observations(m);
 
     m.def(
         "simd_target", [] { return std::string(simd_target_name(simd_target())); },
