@@ -15,6 +15,7 @@ packages=(
   nlohmann-json3-dev     # JSON camera files
   libyaml-cpp-dev        # YAML camera files (OpenCV, and the YAML of other tools)
   libpugixml-dev         # OpenCV's XML camera files
+  libzip-dev             # the .npz archive of mrcal's observations in a .cameramodel
   libopenexr-dev         # remap maps written as two-channel EXR images
   libbenchmark-dev       # micro-benchmarks
   libceres-dev           # model fitting

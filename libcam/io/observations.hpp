@@ -62,7 +62,11 @@ struct Observation {
 enum class ReportedMeasure {
     RmsOverObservations,  // sqrt(sum |d|^2 / N) over every observation (OpenCV's avg_reprojection_error)
     MeanOfPointMeans,     // the mean over 3D points of each point's mean |d| over its track (COLMAP)
-    RmsOverComponents,    // sqrt(sum (dx^2 + dy^2) / 2N) over inliers, weights applied (mrcal's printed RMS)
+    // sqrt(sum (dx^2 + dy^2) / 2N) over inliers, weights applied: the RMS of mrcal's
+    // residuals_chessboard. Not mrcal-calibrate-cameras' printed "RMS reprojection error"
+    // (mrcal_optimize's rms_reproj_error__pixels), which also counts each outlier as two
+    // zeros, a point's range penalty and the regularization terms, none of them stored.
+    RmsOverComponents,
 };
 // The definition in words, for reports.
 std::string_view definition_of(ReportedMeasure measure);

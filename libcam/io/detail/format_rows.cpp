@@ -10,6 +10,7 @@
 #include "libcam/io/detail/colmap_format.hpp"
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/json_format.hpp"
+#include "libcam/io/detail/mrcal_observations.hpp"
 #include "libcam/io/detail/nerf_transforms.hpp"
 #include "libcam/io/detail/open3d_format.hpp"
 #include "libcam/io/detail/opencv_storage.hpp"
@@ -111,7 +112,8 @@ constexpr FormatRow kRows[] = {
      .lenses = kOpenCvFiles, .lens_names = "4, 5, 8, 12 or 14 coefficients, or cv::fisheye's 4"},
     {.format = CameraFormat::Cameramodel, .name = "cameramodel", .title = "mrcal .cameramodel",
      .description = "mrcal's .cameramodel, read and written by libmrcal's own parser",
-     .extensions = {".cameramodel"}, .content = static_cast<unsigned>(C::PythonDict), .lenses = kCameramodel,
+     .extensions = {".cameramodel"}, .content = static_cast<unsigned>(C::PythonDict),
+     .read_observations = read_mrcal_observations, .lenses = kCameramodel,
      .lens_names = "mrcal's LENSMODEL_ names", .refuses = "skew", .library = "libcam::interop",
      .installer = "libcam::register_interop_formats()"},
     {.format = CameraFormat::Gl, .name = "gl", .title = "gl JSON",

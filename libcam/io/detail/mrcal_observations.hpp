@@ -1,0 +1,23 @@
+#pragma once
+// mrcal's optimization_inputs in a .cameramodel: the solve mrcal-calibrate-cameras ran,
+// kept in the file as a Python bytes literal holding base85 text of an .npz archive
+// (mrcal's cameramodel.py, _serialize_optimization_inputs). Read here without mrcal:
+// every camera of the solve, one view per board observation (and per camera seeing
+// discrete points), the board's corners with mrcal's calobject_warp applied, and each
+// observation's weight (negative or zero: mrcal's outlier).
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "libcam/io/observations.hpp"
+
+namespace libcam::detail {
+
+// The cameramodel row's read_observations.
+ObservationSet read_mrcal_observations(const std::filesystem::path& file, const ObservationReadOptions& options);
+
+// The observations of a .cameramodel's text; `source` names it in messages.
+ObservationSet parse_mrcal_observations(std::string_view text, const std::string& source);
+
+}  // namespace libcam::detail

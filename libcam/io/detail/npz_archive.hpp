@@ -1,0 +1,33 @@
+#pragma once
+// numpy's .npz archives (np.savez, np.savez_compressed): a zip of .npy arrays, opened
+// with libzip; each .npy's header (magic, version, the dict of descr, fortran_order and
+// shape) is read here. Only what mrcal stores is handled: little-endian float64, int32,
+// int64, bool, and unicode strings, in C order; anything else is refused by name.
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace libcam::detail {
+
+struct NpyArray {
+    std::string descr;                // numpy's dtype string: "<f8", "<i4", "|b1", "<U17"
+    std::vector<std::size_t> shape;   // empty for a scalar
+    std::vector<double> numbers;      // the elements in C order, for a numeric dtype
+    std::string text;                 // the string, for a scalar "<U..." (trailing NULs dropped)
+
+    bool is_text() const { return descr.starts_with("<U"); }
+    std::size_t size() const;  // the number of elements
+};
+
+// One .npy file's bytes; `where` names it in messages ("x.cameramodel: optimization_inputs:
+// intrinsics"). Throws FileError "<where>: <what>" for what it does not handle.
+NpyArray parse_npy(std::string_view bytes, const std::string& where);
+
+// Every array of an .npz archive by name (the zip's member name without ".npy"). Throws
+// FileError "<where>: <what>" for a corrupt archive or array.
+std::map<std::string, NpyArray> read_npz(std::string_view bytes, const std::string& where);
+
+}  // namespace libcam::detail

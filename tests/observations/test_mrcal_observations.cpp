@@ -1,0 +1,172 @@
+// mrcal's optimization_inputs in a .cameramodel, read without mrcal, against mrcal itself:
+// mrcal_optimization_inputs.py (python3-mrcal) counts the file's observations and gives
+// mrcal's measurement vector x (its weighted residuals, mrcal.optimizer_callback), and
+// writes the small models and the spoiled ones the malformed cases read.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "libcam/check/reproject.hpp"
+#include "libcam/error.hpp"
+#include "libcam/io/observations.hpp"
+#include "real_cameras.hpp"
+
+namespace {
+
+using namespace libcam;
+namespace fs = std::filesystem;
+
+// Beside this file (found from the docs folder: __FILE__ is relative to the build folder).
+const fs::path kScript = fs::path(LIBCAM_DOCS_DIR).parent_path() / "tests/observations/mrcal_optimization_inputs.py";
+
+// The command's standard output; fails the test unless it exits 0.
+std::string run(const std::string& command) {
+    std::FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::string output;
+    char buffer[65536];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
+    const int status = pclose(pipe);
+    INFO(command);
+    REQUIRE(status == 0);
+    return output;
+}
+
+nlohmann::json mrcal_summary(const fs::path& model) {
+    return nlohmann::json::parse(run("/usr/bin/python3 '" + kScript.string() + "' summary '" + model.string() + "'"));
+}
+
+fs::path small_model(const std::string& variant) {
+    const fs::path folder = fs::temp_directory_path() / "libcam_test_mrcal_observations";
+    fs::create_directories(folder);
+    const fs::path model = folder / (variant + ".cameramodel");
+    run("/usr/bin/python3 '" + kScript.string() + "' write '" + model.string() + "' " + variant);
+    return model;
+}
+
+// Compares libcam's reading and reprojection of `model` with mrcal's; returns the largest
+// difference between libcam's weighted residual and mrcal's measurement.
+double compare_with_mrcal(const fs::path& model) {
+    const nlohmann::json mrcal = mrcal_summary(model);
+    const ObservationSet set = read_observations(model);
+    CHECK(set.tool == ObservationTool::Mrcal);
+    REQUIRE(set.board.has_value());
+    CHECK(set.board->width == mrcal["width"].get<int>());
+    CHECK(set.board->height == mrcal["height"].get<int>());
+    const std::size_t corners = mrcal["corners"].get<std::size_t>();
+    const std::size_t per_view = static_cast<std::size_t>(set.board->width * set.board->height);
+    CHECK(set.views.size() >= mrcal["views"].get<std::size_t>());
+    const std::vector<double> board_x = mrcal["board_x"].get<std::vector<double>>();
+    const std::vector<double> point_x = mrcal["point_x"].get<std::vector<double>>();
+    REQUIRE(set.observations.size() == corners + point_x.size() / 2);
+    CHECK(set.points.size() >= per_view);
+
+    const Reprojection r = reproject(set);
+    double largest = 0.0;
+    std::size_t outliers = 0, inliers = 0;
+    for (std::size_t i = 0; i < set.observations.size(); ++i) {
+        const Observation& o = set.observations[i];
+        const double* x = i < corners ? &board_x[2 * i] : &point_x[2 * (i - corners)];
+        if (!o.inlier) {
+            ++outliers;
+            CHECK(r.residuals[i].status == ResidualStatus::Outlier);
+            continue;
+        }
+        ++inliers;
+        CHECK(r.residuals[i].status == ResidualStatus::Counted);
+        const Vec2 weighted = o.weight * r.residuals[i].residual;
+        largest = std::max({largest, std::abs(weighted.x() - x[0]), std::abs(weighted.y() - x[1])});
+    }
+    CHECK(outliers >= mrcal["outliers"].get<std::size_t>());
+    CHECK(r.summary.all.stats.count == inliers);
+    if (point_x.empty()) {
+        // mrcal's RMS over the inliers' x and y residuals, weighted and not: libcam's
+        // weighted RMS of |d| is sqrt(2) times the one over components.
+        REQUIRE(r.summary.all.weighted_rms_px.has_value());
+        CHECK(*r.summary.all.weighted_rms_px / std::sqrt(2.0) ==
+              Approx(mrcal["rms_weighted_inliers"].get<double>()).epsilon(1e-9));
+        CHECK(r.summary.all.stats.rms_px / std::sqrt(2.0) ==
+              Approx(mrcal["rms_unweighted_inliers"].get<double>()).epsilon(1e-9));
+    }
+    return largest;
+}
+
+}  // namespace
+
+TEST_CASE("mrcal observations: the real solves in opencv8-0/1 and splined-0/1 give mrcal's own residuals") {
+    const fs::path folder = test::real_cameras_folder("mrcal");
+    if (!test::real_cameras_present(folder)) return;
+    for (const char* name : {"opencv8-0.cameramodel", "opencv8-1.cameramodel"}) {
+        INFO(name);
+        // 186 board views of 10 x 10 corners, 3 of them outliers, OPENCV8.
+        const double largest = compare_with_mrcal(folder / name);
+        CHECK(largest < 1e-9);
+    }
+    for (const char* name : {"splined-0.cameramodel", "splined-1.cameramodel"}) {
+        INFO(name);
+        const double largest = compare_with_mrcal(folder / name);
+        CHECK(largest < 1e-9);
+    }
+    const ObservationSet set = read_observations(folder / "opencv8-0.cameramodel");
+    CHECK(set.views.size() == 186);
+    CHECK(set.observations.size() == 18600);
+    CHECK(set.cameras.size() == 1);
+    CHECK(set.cameras[0].camera.lens.type == LensType::OpenCv8);
+    CHECK(set.board->spacing == 0.077);
+    const ObservationSet splined = read_observations(folder / "splined-0.cameramodel");
+    CHECK(splined.cameras[0].camera.lens.type == LensType::SplinedStereographic);
+    CHECK(splined.cameras[0].camera.lens.coefficients.size() == 4 + 2 * 30 * 20);
+}
+
+TEST_CASE("mrcal observations: a small solve with a warped board, weights, an outlier and points") {
+    const fs::path model = small_model("good");
+    CHECK(compare_with_mrcal(model) < 1e-9);
+    const ObservationSet set = read_observations(model);
+    // 2 board views of 3 x 2 corners and one view of the 3 points from the reference camera.
+    CHECK(set.views.size() == 3);
+    CHECK(set.points.size() == 6 + 3);
+    CHECK(set.board->warp == Vec2(0.002, -0.001));
+    // Corner (row 1, column 1) of a 3 x 2 board: x r = 1/2, y r = 1: z = 0.002 * 4 * 0.25.
+    CHECK(set.points[4].x() == Approx(0.1));
+    CHECK(set.points[4].y() == Approx(0.1));
+    CHECK(set.points[4].z() == Approx(0.002).epsilon(1e-12));
+}
+
+TEST_CASE("mrcal observations: a malformed file gives one line naming the file, the array and the value") {
+    const auto message_of = [](const fs::path& model) -> std::string {
+        try {
+            read_observations(model);
+        } catch (const FileError& error) {
+            return error.what();
+        }
+        return "no error";
+    };
+    const auto written = [](const std::string& name, const std::string& text) {
+        const fs::path path = fs::temp_directory_path() / "libcam_test_mrcal_observations" / name;
+        fs::create_directories(path.parent_path());
+        std::ofstream(path) << text;
+        return path;
+    };
+    using Catch::Matchers::Contains;
+    const std::string head = "{\n    'lensmodel': 'LENSMODEL_PINHOLE',\n    'intrinsics': [1, 1, 0, 0],\n";
+    CHECK_THAT(message_of(written("none.cameramodel", head + "}\n")), Contains("none.cameramodel: no 'optimization_inputs'"));
+    CHECK_THAT(message_of(written("truncated.cameramodel", head + "    'optimization_inputs': b'P)h>@6aWAK2mk")),
+               Contains("line 4: string literal not closed"));
+    // base64.b85encode(b"not a zip archive!!") from Python: 20 bytes, not a zip.
+    CHECK_THAT(message_of(written("corrupt.cameramodel",
+                                  head + "    'optimization_inputs': b'Zf|rTVIX>Ga3EoFV`yo1Wg#H',\n}\n")),
+               Contains("corrupt.cameramodel: optimization_inputs: not a zip archive"));
+    CHECK_THAT(message_of(written("base85.cameramodel", head + "    'optimization_inputs': b'abc\"de',\n}\n")),
+               Contains("optimization_inputs: byte 3 ('\"') is not base85"));
+    CHECK_THAT(message_of(small_model("float32-intrinsics")),
+               Contains("float32-intrinsics.cameramodel: optimization_inputs: intrinsics: dtype '<f4'"));
+    CHECK_THAT(message_of(small_model("mismatched-imagersizes")),
+               Contains("optimization_inputs: imagersizes: shape (2, 2) of <i4, expected (1, 2) of numbers"));
+    CHECK_THAT(message_of(small_model("frame-out-of-range")),
+               Contains("indices_frame_camintrinsics_camextrinsics: row 1: frame 7 is not one of the 2"));
+}
