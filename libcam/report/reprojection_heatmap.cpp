@@ -77,8 +77,10 @@ RegionGrid regions_of(const ObservationSet& set, const Reprojection& r, int came
 
 double region_rms(const Region& region) { return std::sqrt(region.sum_squares / static_cast<double>(region.count)); }
 
-// The regions coloured, with their arrows, into `map`; returns the arrows' factor.
-double draw_regions(cv::Mat& map, const RegionGrid& grid, double top_rms) {
+// The regions coloured, with their arrows, into `map` (`scale` picture pixels per image
+// pixel); returns the arrows' factor: an arrow is that many times the mean residual,
+// both in image pixels.
+double draw_regions(cv::Mat& map, const RegionGrid& grid, double top_rms, double scale) {
     const double cell_w = static_cast<double>(map.cols) / grid.columns;
     const double cell_h = static_cast<double>(map.rows) / grid.rows;
     double longest_mean = 0.0;
@@ -88,7 +90,7 @@ double draw_regions(cv::Mat& map, const RegionGrid& grid, double top_rms) {
     // The longest arrow spans about one region: the factor is a round number.
     double factor = 1.0;
     if (longest_mean > 0.0) {
-        const double wanted = 0.9 * std::min(cell_w, cell_h) / longest_mean;
+        const double wanted = 0.9 * std::min(cell_w, cell_h) / (scale * longest_mean);
         factor = std::pow(10.0, std::floor(std::log10(wanted)));
         for (const double step : {5.0, 2.0}) {
             if (factor * step <= wanted) {
@@ -114,7 +116,7 @@ double draw_regions(cv::Mat& map, const RegionGrid& grid, double top_rms) {
             map(cell) = cv::Scalar(colour[0], colour[1], colour[2]);
             const Vec2 mean = region.sum / static_cast<double>(region.count);
             const cv::Point2d centre(cell.x + cell.width / 2.0, cell.y + cell.height / 2.0);
-            const cv::Point2d tip(centre.x + factor * mean.x(), centre.y + factor * mean.y());
+            const cv::Point2d tip(centre.x + scale * factor * mean.x(), centre.y + scale * factor * mean.y());
             cv::arrowedLine(map, centre, tip, kArrow, 1, cv::LINE_AA, 0, 0.25);
         }
     }
@@ -180,8 +182,7 @@ Image reprojection_heatmap(const ObservationSet& set, const Reprojection& reproj
     cv::Mat canvas(kTitleHeight + map_area_height + kBarChartHeight, map_width + kScaleBarWidth, CV_8UC3,
                    cv::Scalar(0, 0, 0));
     cv::Mat map = canvas(cv::Rect(0, kTitleHeight, map_width, map_height));
-    // Residuals are drawn in image pixels: the arrows' factor is per picture pixel.
-    const double factor = draw_regions(map, grid, top_rms) / scale;
+    const double factor = draw_regions(map, grid, top_rms, scale);
     draw_scale_bar(canvas, map_width + 12, kTitleHeight + 10, std::max(60, map_area_height - 90), top_rms);
     draw_text(canvas,
               std::string(to_string(set.tool)) + ", camera " + set.cameras[static_cast<std::size_t>(camera)].name +
