@@ -213,3 +213,105 @@ TEST_CASE("OpenCV's calibration sample: jrebort-mcc's degenerate lens (k3 = -199
     CHECK(r.summary.outside_domain == 0);
     CHECK(r.summary.all.stats.count == set.observations.size());
 }
+
+namespace {
+
+// A small output of the sample, made by hand: a 2x2 board (square 10), two views, with
+// `replace` applied to the text (a key's line swapped for a malformed one).
+std::string hand_made_output(const std::string& from = {}, const std::string& to = {}) {
+    std::string text =
+        "%YAML:1.0\r\n---\r\n"
+        "image_width: 640\r\nimage_height: 480\r\n"
+        "board_width: 2\r\nboard_height: 2\r\nsquare_size: 10.\r\n"
+        "camera_matrix: !!opencv-matrix\r\n   rows: 3\r\n   cols: 3\r\n   dt: d\r\n"
+        "   data: [ 500., 0., 320., 0., 500., 240., 0., 0., 1. ]\r\n"
+        "distortion_coefficients: !!opencv-matrix\r\n   rows: 5\r\n   cols: 1\r\n   dt: d\r\n"
+        "   data: [ 0., 0., 0., 0., 0. ]\r\n"
+        "avg_reprojection_error: 0.5\r\n"
+        "per_view_reprojection_errors: !!opencv-matrix\r\n   rows: 2\r\n   cols: 1\r\n   dt: f\r\n"
+        "   data: [ 0.5, 0.5 ]\r\n"
+        "extrinsic_parameters: !!opencv-matrix\r\n   rows: 2\r\n   cols: 6\r\n   dt: d\r\n"
+        "   data: [ 0., 0., 0., 0., 0., 100., 0., 0., 0., -10., 0., 50. ]\r\n"
+        "image_points: !!opencv-matrix\r\n   rows: 2\r\n   cols: 4\r\n   dt: \"2f\"\r\n"
+        "   data: [ 320.5, 240., 370., 240.5, 320., 290., 370., 290.,\r\n"
+        "       220., 240., 320., 240., 220., 340., 320., 340. ]\r\n";
+    if (!from.empty()) {
+        const std::size_t at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        text.replace(at, from.size(), to);
+    }
+    return text;
+}
+
+std::filesystem::path write_hand_made(const std::string& name, const std::string& text) {
+    const std::filesystem::path path = std::filesystem::temp_directory_path() / ("libcam_test_opencv_outputs_" + name);
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+std::string error_reading(const std::filesystem::path& path) {
+    try {
+        (void)read_observations(path);
+    } catch (const FileError& error) {
+        return error.what();
+    }
+    return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("OpenCV's calibration sample: a hand-made output, worked by hand") {
+    // View 0: the board 100 in front, corners (0,0,100) (10,0,100) (0,10,100) (10,10,100)
+    // project to (320,240) (370,240) (320,290) (370,290); the file's pixels are off by
+    // (0.5, 0), (0, 0.5), 0, 0: |d|^2 = 0.25 + 0.25 = 0.5 over 4, RMS sqrt(0.125).
+    // View 1: t = (-10, 0, 50): corners at x = -10, 0 -> 220, 320 and y = 0, 10 -> 240, 340:
+    // exact. Overall sqrt(0.5 / 8) = 0.25.
+    const std::filesystem::path path = write_hand_made("good.yml", hand_made_output());
+    const ObservationSet set = read_observations(path);
+    REQUIRE(set.observations.size() == 8);
+    CHECK(set.points[3] == Vec3(10.0, 10.0, 0.0));
+    CHECK(set.observations[1].pixel == Vec2(370.0, 240.5));
+    CHECK(set.views[1].pose.t == Vec3(-10.0, 0.0, 50.0));
+    const Reprojection r = reproject(set);
+    CHECK(r.residuals[0].residual.x() == Approx(-0.5).margin(1e-12));
+    CHECK(r.summary.per_view[0].residuals.stats.rms_px == Approx(std::sqrt(0.125)).epsilon(1e-12));
+    CHECK(r.summary.per_view[1].residuals.stats.rms_px == Approx(0.0).margin(1e-12));
+    CHECK(r.summary.reported[0].recomputed == Approx(0.25).epsilon(1e-12));
+    std::filesystem::remove(path);
+}
+
+TEST_CASE("OpenCV's calibration sample: malformed outputs give one line naming the file, field and value") {
+    struct Case {
+        const char* name;
+        std::string from, to;
+        std::vector<std::string> said;  // what the message must hold
+    };
+    const Case cases[] = {
+        {"points-per-view.yml", "board_width: 2", "board_width: 3",
+         {"\"image_points\"", "4 points per view", "6 corners"}},
+        {"extrinsic-rows.yml", "   rows: 2\r\n   cols: 6\r\n   dt: d\r\n   data: [ 0., 0., 0., 0., 0., 100.,",
+         "   rows: 3\r\n   cols: 6\r\n   dt: d\r\n   data: [ 0., 0., 0., 0., 0., 100., 0., 0., 0., 0., 0., 100.,",
+         {"\"extrinsic_parameters\"", "is 3x6", "expected 2x6", "the 2 views of image_points"}},
+        {"extrinsic-count.yml", "   rows: 2\r\n   cols: 6", "   rows: 3\r\n   cols: 6",
+         {"\"extrinsic_parameters.data\"", "holds 12 numbers", "3x6"}},
+        {"extrinsic-shape.yml", "   rows: 2\r\n   cols: 6\r\n   dt: d\r\n   data: [ 0., 0., 0., 0., 0., 100., 0., 0., 0., -10., 0., 50. ]",
+         "   rows: 3\r\n   cols: 4\r\n   dt: d\r\n   data: [ 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 100. ]",
+         {"\"extrinsic_parameters\"", "is 3x4", "expected 2x6", "or 6x4"}},
+        {"non-numeric.yml", "370., 290.,\r\n", "370., abc,\r\n", {"line 33", "\"image_points.data\"[7]", "'abc'"}},
+        {"per-view-count.yml", "   data: [ 0.5, 0.5 ]", "   data: [ 0.5 ]",
+         {"\"per_view_reprojection_errors", "1 numbers", "rows x cols is 2x1"}},
+        {"one-channel.yml", "   cols: 4\r\n   dt: \"2f\"", "   cols: 8\r\n   dt: f", {"\"image_points\"", "2-channel", "1 channel"}},
+        {"no-points.yml", "image_points:", "other_points:", {"\"image_points\": missing", "no observations"}},
+        {"square.yml", "square_size: 10.", "square_size: -1.", {"\"square_size\"", "must be > 0", "-1."}},
+    };
+    for (const Case& c : cases) {
+        INFO(c.name);
+        const std::filesystem::path path = write_hand_made(c.name, hand_made_output(c.from, c.to));
+        const std::string message = error_reading(path);
+        INFO(message);
+        CHECK(message.find(path.string() + ":") == 0);
+        CHECK(message.find('\n') == std::string::npos);
+        for (const std::string& part : c.said) CHECK(message.find(part) != std::string::npos);
+        std::filesystem::remove(path);
+    }
+}
