@@ -315,3 +315,21 @@ TEST_CASE("OpenCV's calibration sample: malformed outputs give one line naming t
         std::filesystem::remove(path);
     }
 }
+
+TEST_CASE("OpenCV's calibration sample: fisheye_model 1 reads cv::fisheye's lens, projected as cv::fisheye::projectPoints") {
+    const std::string text = hand_made_output(
+        "distortion_coefficients: !!opencv-matrix\r\n   rows: 5\r\n   cols: 1\r\n   dt: d\r\n   data: [ 0., 0., 0., 0., 0. ]",
+        "fisheye_model: 1\r\ndistortion_coefficients: !!opencv-matrix\r\n   rows: 4\r\n   cols: 1\r\n   dt: d\r\n"
+        "   data: [ 0.05, -0.01, 0.002, 0. ]");
+    const std::filesystem::path path = write_hand_made("fisheye.yml", text);
+    const ObservationSet set = read_observations(path);
+    CHECK(set.cameras.front().camera.lens.type == LensType::Fisheye);
+    const Reprojection r = reproject(set);
+    const OpenCvProjections opencv = project_with_opencv(path);
+    for (std::size_t i = 0; i < set.observations.size(); ++i) {
+        const Observation& o = set.observations[i];
+        const cv::Point2d expected = opencv.projected[static_cast<std::size_t>(o.view)][static_cast<std::size_t>(o.point)];
+        CHECK((r.residuals[i].projected - Vec2(expected.x, expected.y)).norm() <= 1e-9);
+    }
+    std::filesystem::remove(path);
+}
