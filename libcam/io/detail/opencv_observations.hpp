@@ -14,7 +14,8 @@
 //   grid_points                          the board's corners as the sample solved them
 //                                        (calibrateCameraRO), 3 floats each; optional
 //
-// The 2011 sample spelled them image_Width, Board_Width... Extrinsic_Parameters, Image_points
+// The 2011 sample spelled them image_Width, board_Width, square_Size, Camera_Matrix,
+// Avg_Reprojection_Error, Per_View_Reprojection_Errors, Extrinsic_Parameters, Image_points
 // (both are read). Some copies of the sample write extrinsic_parameters as 3N x 4, a
 // stacked [R | t] per view; that is read too.
 //
