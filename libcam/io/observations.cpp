@@ -5,6 +5,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/detail/format_row.hpp"
+#include "libcam/io/detail/observation_table.hpp"
 
 namespace libcam {
 
@@ -83,6 +84,12 @@ void check_observations(const ObservationSet& set) {
 }
 
 ObservationSet read_observations(const std::filesystem::path& path, const ObservationReadOptions& options) {
+    // A table names no format of its own: the camera file says it is one.
+    if (!options.camera_file.empty()) {
+        ObservationSet set = read_observation_table(path, options.camera_file);
+        check_observations(set);
+        return set;
+    }
     const detail::LocatedFile located = detail::locate_camera_file(path, std::nullopt);
     const detail::FormatRow& row = detail::format_rows()[static_cast<std::size_t>(located.format)];
     if (row.read_observations == nullptr) {

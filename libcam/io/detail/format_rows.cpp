@@ -13,6 +13,7 @@
 #include "libcam/io/detail/mrcal_observations.hpp"
 #include "libcam/io/detail/nerf_transforms.hpp"
 #include "libcam/io/detail/open3d_format.hpp"
+#include "libcam/io/detail/opencv_observations.hpp"
 #include "libcam/io/detail/opencv_storage.hpp"
 #include "libcam/io/detail/openicc_format.hpp"
 #include "libcam/io/detail/rig_formats.hpp"
@@ -104,12 +105,13 @@ constexpr FormatRow kRows[] = {
      .description = "OpenCV's cv::FileStorage YAML with the keys of its calibration sample; stereo pairs and "
                     "ORB-SLAM's settings too",
      .extensions = {".yaml", ".yml"}, .content = static_cast<unsigned>(C::Yaml), .read = read_opencv_storage,
-     .write = one_file<write_opencv_yaml>, .lenses = kOpenCvFiles,
+     .write = one_file<write_opencv_yaml>, .read_observations = read_opencv_observations, .lenses = kOpenCvFiles,
      .lens_names = "4, 5, 8, 12 or 14 coefficients, or cv::fisheye's 4"},
     {.format = CameraFormat::OpenCvXml, .name = "opencv-xml", .title = "OpenCV XML",
      .description = "the same in cv::FileStorage XML", .extensions = {".xml"},
      .content = static_cast<unsigned>(C::Xml), .read = read_opencv_storage, .write = one_file<write_opencv_xml>,
-     .lenses = kOpenCvFiles, .lens_names = "4, 5, 8, 12 or 14 coefficients, or cv::fisheye's 4"},
+     .read_observations = read_opencv_observations, .lenses = kOpenCvFiles,
+     .lens_names = "4, 5, 8, 12 or 14 coefficients, or cv::fisheye's 4"},
     {.format = CameraFormat::Cameramodel, .name = "cameramodel", .title = "mrcal .cameramodel",
      .description = "mrcal's .cameramodel, read and written by libmrcal's own parser",
      .extensions = {".cameramodel"}, .content = static_cast<unsigned>(C::PythonDict),

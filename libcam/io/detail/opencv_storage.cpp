@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <optional>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "libcam/error.hpp"
@@ -41,10 +43,7 @@ std::string opencv_number(double value) {
     return text;
 }
 
-struct Matrix {
-    long long rows = 0, cols = 0;
-    std::vector<double> values;  // row-major
-};
+using Matrix = OpenCvMatrix;
 
 std::string yaml_matrix(const std::string& key, const Matrix& m) {
     std::string out = key + ": !!opencv-matrix\n   rows: " + std::to_string(m.rows) + "\n   cols: " +
@@ -66,40 +65,64 @@ Matrix column(const std::vector<double>& values) {
 
 // ---- reading ----
 
+// The element type of an opencv-matrix: dt is a type letter (d, f, i, u, s, w, c, h),
+// after a channel count for a matrix of several channels ("2f": CV_32FC2, the image
+// points of the calibration sample), which XML writes in quotes.
+std::pair<int, char> element_type(const Field& dt, int max_channels) {
+    std::string type = dt.text();
+    if (type.size() >= 2 && type.front() == '"' && type.back() == '"') type = type.substr(1, type.size() - 2);
+    static constexpr std::string_view kDepths = "dfiuswch";
+    int channels = 1;
+    if (type.size() == 2 && type[0] >= '1' && type[0] <= '4') channels = type[0] - '0';
+    const bool known = !type.empty() && type.size() <= 2 && kDepths.find(type.back()) != std::string_view::npos &&
+                       (type.size() == 1 || channels > 1 || type[0] == '1');
+    if (!known || channels > max_channels) {
+        dt.fail(max_channels == 1
+                    ? "expected a one-channel element type (d, f, i, u, s, w, c or h), got '" + type + "'"
+                    : "expected an element type of at most " + std::to_string(max_channels) +
+                          " channels (d, f, ..., or \"2f\"), got '" + type + "'");
+    }
+    return {channels, type.back()};
+}
+
+}  // namespace
+
 // A matrix as cv::FileStorage writes it (a map tagged opencv-matrix with rows, cols,
 // dt and data), or a plain list of numbers, which OpenCV reads as a column.
-Matrix read_matrix(const Field& field) {
+OpenCvMatrix read_opencv_matrix(const Field& field, long long max_elements, int max_channels) {
     const DocumentNode& node = field.node();
     if (node.kind != DocumentNode::Kind::Map) {
-        std::vector<double> values = field.numbers(static_cast<std::size_t>(kMaxMatrixElements));
+        std::vector<double> values = field.numbers(static_cast<std::size_t>(max_elements));
         return column(values);
     }
     if (!node.tag.empty() && node.tag != "opencv-matrix") field.fail("expected an opencv-matrix, got a " + node.tag);
     Matrix m;
-    m.rows = field.at({"rows"}).integer(0, kMaxMatrixElements);
-    m.cols = field.at({"cols"}).integer(0, kMaxMatrixElements);
-    if (m.rows * m.cols > kMaxMatrixElements) {
-        field.fail("declares " + std::to_string(m.rows) + "x" + std::to_string(m.cols) + " (at most " +
-                   std::to_string(kMaxMatrixElements) + " elements)");
-    }
+    m.rows = field.at({"rows"}).integer(0, max_elements);
+    m.cols = field.at({"cols"}).integer(0, max_elements);
     // ROS's camera_info writes rows, cols and data without OpenCV's tag and dt.
     if (const std::optional<Field> dt = node.tag.empty() ? field.find({"dt"}) : std::optional<Field>(field.at({"dt"}))) {
-        // One channel of any element type: the numbers are read as doubles whatever it is.
-        static constexpr std::string_view kSingleChannel[] = {"d", "f", "i", "u", "s", "w", "c", "h"};
-        const std::string type = dt->text();
-        if (std::find(std::begin(kSingleChannel), std::end(kSingleChannel), type) == std::end(kSingleChannel)) {
-            dt->fail("expected a one-channel element type (d, f, i, u, s, w, c or h), got '" + type + "'");
-        }
+        std::tie(m.channels, m.depth) = element_type(*dt, max_channels);
     }
-    if (m.rows * m.cols == 0) return m;
+    const long long count = m.rows * m.cols * m.channels;
+    if (count > max_elements) {
+        field.fail("declares " + std::to_string(m.rows) + "x" + std::to_string(m.cols) +
+                   (m.channels > 1 ? "x" + std::to_string(m.channels) + " channels" : "") + " (at most " +
+                   std::to_string(max_elements) + " elements)");
+    }
+    if (count == 0) return m;
     const Field data = field.at({"data"});
-    m.values = data.numbers(static_cast<std::size_t>(kMaxMatrixElements));
-    if (static_cast<long long>(m.values.size()) != m.rows * m.cols) {
-        data.fail("holds " + std::to_string(m.values.size()) + " numbers, but rows x cols is " + std::to_string(m.rows) +
-                  "x" + std::to_string(m.cols));
+    m.values = data.numbers(static_cast<std::size_t>(max_elements));
+    if (static_cast<long long>(m.values.size()) != count) {
+        data.fail("holds " + std::to_string(m.values.size()) + " numbers, but rows x cols" +
+                  (m.channels > 1 ? " x channels" : "") + " is " + std::to_string(m.rows) + "x" +
+                  std::to_string(m.cols) + (m.channels > 1 ? "x" + std::to_string(m.channels) : ""));
     }
     return m;
 }
+
+namespace {
+
+Matrix read_matrix(const Field& field) { return read_opencv_matrix(field, kMaxMatrixElements, 1); }
 
 Vec3 read_vector3(const Field& field) {
     const Matrix m = read_matrix(field);
@@ -430,6 +453,14 @@ std::vector<NamedCamera> read_stereo(const Field& file, const ReadOptions& optio
 }
 
 }  // namespace
+
+DocumentNode parse_opencv_storage_tree(std::string_view text, const std::string& source) {
+    return parse_tree(text, source);
+}
+
+Camera read_opencv_storage_camera(const Field& file, const std::string& source) {
+    return read_single(file, {}, source);
+}
 
 Camera parse_opencv_storage(std::string_view text, const std::string& source) {
     return parse_opencv_storage_set(text, source, {}).front().file.camera;

@@ -26,8 +26,10 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "libcam/camera/camera.hpp"
+#include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
 
 namespace libcam {
@@ -60,6 +62,27 @@ Camera parse_opencv_storage(std::string_view text, const std::string& source);
 // A camera the file does not size takes ReadOptions::size; without it, refused.
 std::vector<NamedCamera> parse_opencv_storage_set(std::string_view text, const std::string& source,
                                                   const ReadOptions& options);
+
+// ---- the pieces the calibration sample's observations are read with (opencv_observations.cpp) ----
+
+// The file's tree: XML when its first character is '<', YAML otherwise; a map, else FileError.
+DocumentNode parse_opencv_storage_tree(std::string_view text, const std::string& source);
+
+// The calibration sample's camera from the file's tree (image size, camera_matrix,
+// distortion_coefficients; cv::fisheye's with fisheye_model 1), as parse_opencv_storage.
+Camera read_opencv_storage_camera(const Field& file, const std::string& source);
+
+// A matrix as cv::FileStorage writes it: rows x cols elements of `channels` numbers each
+// (dt "2f" is CV_32FC2), row-major; or a plain list of numbers, read as a column.
+struct OpenCvMatrix {
+    long long rows = 0, cols = 0;
+    std::vector<double> values;  // rows * cols * channels
+    int channels = 1;
+    char depth = 'd';  // dt's type letter: 'f' for float, 'd' for double...
+};
+// Refuses more than `max_elements` numbers (before reading them) and more than
+// `max_channels` channels, naming the field.
+OpenCvMatrix read_opencv_matrix(const Field& field, long long max_elements, int max_channels);
 
 // ROS's camera_info YAML (camera_calibration_parsers): image_width, image_height,
 // camera_name, camera_matrix, distortion_model (plumb_bob, rational_polynomial,
