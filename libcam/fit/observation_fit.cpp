@@ -99,22 +99,25 @@ ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& sta
     const ImageSize& size = start.size;
     // From the simpler candidate's solution where this model contains it (never worse
     // than it), else from the file's own camera.
+    // The poses start with the intrinsics they were solved with.
     Camera base = start;
     base.pose = Pose{};
+    const std::vector<Pose>* base_poses = &start_poses;
     if (previous != nullptr && previous->fitted && detail::contains_model(candidate, previous->camera.lens.type)) {
         base = previous->camera;
+        base_poses = &previous->poses;
     }
     const std::vector<double> start_params = detail::start_from(candidate, base).params;
     const std::vector<std::size_t> every = all_views(views.size());
     const ViewsState full = detail::solve_views(candidate, size, samples_of_views(views, every),
-                                                start_state(start_params, start_poses, every), false);
+                                                start_state(start_params, *base_poses, every), false);
     out.params = full.params;
     out.camera = detail::camera_from_params(candidate, size, full.params, Pose{});
     const SquaredError training = squared_error(candidate, size, views, every, full);
     out.rms_px = std::sqrt(training.sum / static_cast<double>(training.count));
 
-    std::vector<Pose> fitted_poses;
-    for (std::size_t v = 0; v < views.size(); ++v) fitted_poses.push_back(Pose::from_rvec(full.rotations[v], full.shifts[v]));
+    for (std::size_t v = 0; v < views.size(); ++v) out.poses.push_back(Pose::from_rvec(full.rotations[v], full.shifts[v]));
+    const std::vector<Pose>& fitted_poses = out.poses;
     SquaredError heldout;
     std::vector<std::vector<double>> per_fold;
     for (int fold = 0; fold < folds; ++fold) {
@@ -124,10 +127,11 @@ ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& sta
                                                        start_state(full.params, fitted_poses, train), false);
         per_fold.push_back(trained.params);
         for (const std::size_t v : test) {
-            // The held-out view's pose alone, from the file's pose: nothing of the view
-            // enters the intrinsics it is measured with.
+            // The held-out view's pose alone, with the intrinsics fitted without it (from its
+            // pose in the fit on every view, a start near the answer: nothing of the view
+            // enters the intrinsics it is measured with).
             const ViewsState posed = detail::solve_views(candidate, size, samples_of_views(views, {v}),
-                                                         start_state(trained.params, start_poses, {v}), true);
+                                                         start_state(trained.params, fitted_poses, {v}), true);
             const SquaredError e = squared_error(candidate, size, views, {v}, posed);
             heldout.sum += e.sum;
             heldout.count += e.count;

@@ -48,6 +48,7 @@ struct ObservationCandidate {
     std::string failure;       // why not, when not fitted
     Camera camera;             // fitted on every view (pose: identity)
     std::vector<double> params;
+    std::vector<Pose> poses;   // each view's, fitted with it
     double rms_px = 0.0;       // over every view, after the fit on every view
     double heldout_rms_px = 0.0;  // over every held-out view, each with intrinsics fitted without it
     std::size_t heldout_count = 0;
