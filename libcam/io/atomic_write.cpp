@@ -81,12 +81,25 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 std::string read_text_file(const std::filesystem::path& path) {
     std::error_code error;
     if (std::filesystem::is_directory(path, error)) throw FileError(path.string() + ": is a directory");
-    std::ifstream in(path, std::ios::binary);
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) throw FileError(path.string() + ": cannot open: " + reason());
-    std::ostringstream text;
-    text << in.rdbuf();
+    // One read of the size the file has (COLMAP's images.bin runs to hundreds of MB); a
+    // file of no size known (a pipe, /proc's files, which say 0) is read as a stream.
+    const std::streamoff size = in.tellg();
+    if (size > 0 && in.seekg(0)) {
+        std::string text(static_cast<std::size_t>(size), '\0');
+        in.read(text.data(), size);
+        if (in.bad()) throw FileError(path.string() + ": read failed");
+        text.resize(static_cast<std::size_t>(in.gcount()));  // shorter if it shrank meanwhile
+        return text;
+    }
+    in.clear();
+    in.seekg(0);
+    in.clear();  // a pipe cannot seek, and is read from where it is
+    std::ostringstream stream;
+    stream << in.rdbuf();
     if (in.bad()) throw FileError(path.string() + ": read failed");
-    return text.str();
+    return stream.str();
 }
 
 }  // namespace libcam

@@ -68,18 +68,21 @@ void check_observations(const ObservationSet& set) {
             throw FileError(set.source + ": view " + view.name + ": " + error.what());
         }
     }
+    // Messages are made only for a failure: a reconstruction holds millions of observations.
     for (std::size_t i = 0; i < set.points.size(); ++i) {
-        require(finite(set.points[i]), set, "point " + std::to_string(set.point_ids[i]) + ": not finite");
+        if (!finite(set.points[i])) require(false, set, "point " + std::to_string(set.point_ids[i]) + ": not finite");
     }
     for (std::size_t i = 0; i < set.observations.size(); ++i) {
         const Observation& o = set.observations[i];
-        const std::string where = "observation " + std::to_string(i) + ": ";
-        require(o.view >= 0 && static_cast<std::size_t>(o.view) < set.views.size(), set,
-                where + "view index " + std::to_string(o.view) + " out of range");
-        require(o.point >= 0 && static_cast<std::size_t>(o.point) < set.points.size(), set,
-                where + "point index " + std::to_string(o.point) + " out of range");
-        require(finite(o.pixel), set, where + "pixel not finite");
-        require(std::isfinite(o.weight), set, where + "weight not finite");
+        const auto where = [&] { return "observation " + std::to_string(i) + ": "; };
+        if (o.view < 0 || static_cast<std::size_t>(o.view) >= set.views.size()) {
+            require(false, set, where() + "view index " + std::to_string(o.view) + " out of range");
+        }
+        if (o.point < 0 || static_cast<std::size_t>(o.point) >= set.points.size()) {
+            require(false, set, where() + "point index " + std::to_string(o.point) + " out of range");
+        }
+        if (!finite(o.pixel)) require(false, set, where() + "pixel not finite");
+        if (!std::isfinite(o.weight)) require(false, set, where() + "weight not finite");
     }
 }
 

@@ -46,19 +46,6 @@ Pose pose_from(const Eigen::Vector4d& q_wxyz, const Vec3& t, const std::string& 
     return pose;
 }
 
-struct ColmapCameraRecord {
-    std::uint64_t id;
-    Camera camera;
-};
-
-struct ColmapImage {
-    std::uint64_t id;
-    std::uint64_t camera_id;
-    std::string name;
-    Pose pose;
-    std::string where;
-};
-
 // ---- text --------------------------------------------------------------------------------
 
 // The words of one line of a COLMAP text file, with the line's number for messages.
@@ -70,8 +57,12 @@ public:
             at = line.find_first_not_of(" \t\r", at);
             if (at == std::string_view::npos) break;
             const std::size_t end = std::min(line.find_first_of(" \t\r", at), line.size());
-            words_.push_back(line.substr(at, end - at));
+            std::string_view word = line.substr(at, end - at);
             at = end;
+            // kapture writes ", " between fields; COLMAP's own reader (std::stold, std::stoul
+            // on each space-separated word) ignores the comma, and so does this one.
+            if (word.back() == ',') word.remove_suffix(1);
+            if (!word.empty()) words_.push_back(word);
         }
     }
 
@@ -112,26 +103,55 @@ private:
 
 constexpr std::uint64_t kMaxId = 0xFFFFFFFFu;  // COLMAP's ids are 32-bit
 
-// Calls `each` with every line that is not blank or a comment; `each` returns whether
-// the line after it belongs to it (images.txt's line of points) and is to be skipped.
+// Calls `each(line, following, its number)` with every line that is not blank or a
+// comment and the raw line after it (empty at the end of the file); `each` returns whether
+// that following line belongs to it (images.txt's line of points) and is to be skipped.
 template <class Each>
 void for_each_line(std::string_view text, const std::string& source, Each&& each) {
     std::size_t at = 0;
     int number = 0;
-    bool skip_next = false;
-    while (at < text.size()) {
+    const auto next_line = [&] {
         const std::size_t end = std::min(text.find('\n', at), text.size());
         const std::string_view line = text.substr(at, end - at);
         at = end + 1;
         ++number;
-        if (skip_next) {
-            skip_next = false;
-            continue;
-        }
+        return line;
+    };
+    while (at < text.size()) {
+        const std::string_view line = next_line();
         const auto start = line.find_first_not_of(" \t\r");
         if (start == std::string_view::npos || line[start] == '#') continue;
-        skip_next = each(TextLine(line, number, source));
+        const int line_number = number;
+        const std::string_view following =
+            at < text.size() ? text.substr(at, std::min(text.find('\n', at), text.size()) - at) : std::string_view();
+        if (each(TextLine(line, line_number, source), following, line_number + 1) && at < text.size()) next_line();
     }
+}
+
+// The words of a line of numbers (POINTS2D), separated by spaces, tabs, '\r' or commas,
+// without TextLine's vector of words: these lines hold most of a model.
+class NumberWords {
+public:
+    explicit NumberWords(std::string_view line) : line_(line) {}
+
+    bool next(std::string_view& word) {
+        constexpr std::string_view kSeparators = " \t\r,";
+        at_ = line_.find_first_not_of(kSeparators, at_);
+        if (at_ == std::string_view::npos) return false;
+        const std::size_t end = std::min(line_.find_first_of(kSeparators, at_), line_.size());
+        word = line_.substr(at_, end - at_);
+        at_ = end;
+        return true;
+    }
+
+private:
+    std::string_view line_;
+    std::size_t at_ = 0;
+};
+
+bool parse_double(std::string_view word, double& value) {
+    const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+    return error == std::errc() && end == word.data() + word.size() && std::isfinite(value);
 }
 
 const ColmapModel& model_named(const TextLine& line) {
@@ -142,7 +162,7 @@ const ColmapModel& model_named(const TextLine& line) {
 
 std::vector<ColmapCameraRecord> read_cameras_text(std::string_view text, const std::string& source) {
     std::vector<ColmapCameraRecord> cameras;
-    for_each_line(text, source, [&](const TextLine& line) {
+    for_each_line(text, source, [&](const TextLine& line, std::string_view, int) {
         if (line.size() < 4) line.fail("CAMERA_ID MODEL WIDTH HEIGHT PARAMS", "expected at least 4 words");
         const std::uint64_t id = line.integer(0, "CAMERA_ID", 0, kMaxId);
         const ColmapModel& model = model_named(line);
@@ -162,9 +182,39 @@ std::vector<ColmapCameraRecord> read_cameras_text(std::string_view text, const s
     return cameras;
 }
 
-std::vector<ColmapImage> read_images_text(std::string_view text, const std::string& source) {
+// An image's line of POINTS2D: X Y POINT3D_ID triples, -1 for a 2-D point of no 3-D point.
+std::vector<ColmapPoint2D> points2d_from_text(std::string_view line, int number, const std::string& source) {
+    const auto fail = [&](std::size_t index, const char* field, const std::string& what) {
+        throw FileError(source + ": line " + std::to_string(number) + ": POINTS2D[" + std::to_string(index) + "]: " +
+                        field + ": " + what);
+    };
+    std::vector<ColmapPoint2D> points;
+    points.reserve(line.size() / 24);
+    NumberWords words(line);
+    std::string_view word;
+    while (words.next(word)) {
+        const std::size_t index = points.size();
+        ColmapPoint2D point{};
+        if (!parse_double(word, point.x)) fail(index, "X", "expected a finite number, got '" + std::string(word) + "'");
+        if (!words.next(word)) fail(index, "Y", "the line ends before it");
+        if (!parse_double(word, point.y)) fail(index, "Y", "expected a finite number, got '" + std::string(word) + "'");
+        if (!words.next(word)) fail(index, "POINT3D_ID", "the line ends before it");
+        if (word == "-1") {
+            point.point3d_id = kColmapNoPoint3D;
+        } else {
+            const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), point.point3d_id);
+            if (error != std::errc() || end != word.data() + word.size() || point.point3d_id == kColmapNoPoint3D) {
+                fail(index, "POINT3D_ID", "expected -1 or a point's id, got '" + std::string(word) + "'");
+            }
+        }
+        points.push_back(point);
+    }
+    return points;
+}
+
+std::vector<ColmapImage> read_images_text(std::string_view text, const std::string& source, bool with_points) {
     std::vector<ColmapImage> images;
-    for_each_line(text, source, [&](const TextLine& line) {
+    for_each_line(text, source, [&](const TextLine& line, std::string_view following, int following_number) {
         if (line.size() < 10) {
             line.fail("IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME", "expected 10 words, got " + std::to_string(line.size()));
         }
@@ -180,8 +230,11 @@ std::vector<ColmapImage> read_images_text(std::string_view text, const std::stri
         image.name = std::string(first.data(), static_cast<std::size_t>(last.data() + last.size() - first.data()));
         image.where = line.where() + ": image " + std::to_string(image.id);
         image.pose = pose_from({values[0], values[1], values[2], values[3]}, {values[4], values[5], values[6]}, image.where);
+        // The next line holds its 2-D points; where the file ends first, it has none (COLMAP
+        // drops such an image; its own writer never ends so).
+        if (with_points) image.points = points2d_from_text(following, following_number, source);
         images.push_back(std::move(image));
-        return true;  // the next line holds its 2-D points
+        return true;
     });
     return images;
 }
@@ -217,9 +270,12 @@ public:
         return value;
     }
 
-    void skip(std::uint64_t bytes, const std::string& what) {
+    // The next `bytes` bytes, for a block of records read with load().
+    const char* take(std::uint64_t bytes, const std::string& what) {
         need(bytes, what);
+        const char* block = bytes_.data() + at_;
         at_ += static_cast<std::size_t>(bytes);
+        return block;
     }
 
     std::size_t remaining() const { return bytes_.size() - at_; }
@@ -276,16 +332,27 @@ std::vector<ColmapCameraRecord> read_cameras_binary(std::string_view bytes, cons
     return cameras;
 }
 
-std::vector<ColmapImage> read_images_binary(std::string_view bytes, const std::string& source) {
+// A little-endian value at `at`, which then moves past it.
+template <class T>
+T load(const char*& at) {
+    T value;
+    std::memcpy(&value, at, sizeof(T));
+    at += sizeof(T);
+    return value;
+}
+
+std::vector<ColmapImage> read_images_binary(std::string_view bytes, const std::string& source, bool with_points) {
     BinaryReader in(bytes, source);
     constexpr std::size_t kSmallestRecord = 4 + 7 * 8 + 4 + 1 + 8;
     const std::uint64_t count = in.count("the number of images", kSmallestRecord);
     std::vector<ColmapImage> images;
+    images.reserve(static_cast<std::size_t>(count));
     for (std::uint64_t i = 0; i < count; ++i) {
         const std::string what = "image " + std::to_string(i);
+        const std::string at = in.where();
         ColmapImage image;
-        image.where = in.where() + ": " + what;
         image.id = in.read<std::uint32_t>(what + " id");
+        image.where = at + ": image " + std::to_string(image.id);
         double values[7];
         for (double& value : values) {
             value = in.read<double>(what + " pose");
@@ -294,12 +361,91 @@ std::vector<ColmapImage> read_images_binary(std::string_view bytes, const std::s
         image.camera_id = in.read<std::uint32_t>(what + " camera id");
         image.name = in.text(what + " name");
         const std::uint64_t points = in.count(what + " number of points", 24);
-        in.skip(points * 24, what + " points");
+        const char* block = in.take(points * 24, what + " points");
+        if (with_points) {
+            image.points.resize(static_cast<std::size_t>(points));
+            for (std::size_t k = 0; k < image.points.size(); ++k) {
+                ColmapPoint2D& point = image.points[k];
+                point.x = load<double>(block);
+                point.y = load<double>(block);
+                point.point3d_id = load<std::uint64_t>(block);
+                if (!std::isfinite(point.x) || !std::isfinite(point.y)) {
+                    throw FileError(image.where + ": POINTS2D[" + std::to_string(k) + "]: the pixel (" +
+                                    format_number(point.x) + ", " + format_number(point.y) + ") is not finite");
+                }
+            }
+        }
         image.pose = pose_from({values[0], values[1], values[2], values[3]}, {values[4], values[5], values[6]}, image.where);
         images.push_back(std::move(image));
     }
     if (in.remaining() != 0) in.fail("bytes after the last image");
     return images;
+}
+
+// ---- points3D ----------------------------------------------------------------------------
+
+ColmapPoints3D read_points3d_text(std::string_view text, const std::string& source) {
+    ColmapPoints3D points;
+    for_each_line(text, source, [&](const TextLine& line, std::string_view, int) {
+        if (line.size() < 8) {
+            line.fail("POINT3D_ID X Y Z R G B ERROR TRACK", "expected at least 8 words, got " + std::to_string(line.size()));
+        }
+        if ((line.size() - 8) % 2 != 0) line.fail("TRACK", "expected (IMAGE_ID, POINT2D_IDX) pairs, got an odd count");
+        points.ids.push_back(line.integer(0, "POINT3D_ID", 0, kColmapNoPoint3D - 1));
+        points.xyz.emplace_back(line.number(1, "X"), line.number(2, "Y"), line.number(3, "Z"));
+        const char* const kColour[] = {"R", "G", "B"};
+        for (std::size_t i = 0; i < 3; ++i) line.integer(4 + i, kColour[i], 0, 255);
+        points.errors.push_back(line.number(7, "ERROR"));
+        for (std::size_t i = 8; i < line.size(); i += 2) {
+            points.track.push_back({static_cast<std::uint32_t>(line.integer(i, "TRACK IMAGE_ID", 0, kMaxId)),
+                                    static_cast<std::uint32_t>(line.integer(i + 1, "TRACK POINT2D_IDX", 0, kMaxId))});
+        }
+        points.track_begin.push_back(points.track.size());
+        return false;
+    });
+    return points;
+}
+
+ColmapPoints3D read_points3d_binary(std::string_view bytes, const std::string& source) {
+    BinaryReader in(bytes, source);
+    // id, X Y Z, R G B, ERROR, track length
+    constexpr std::size_t kRecord = 8 + 3 * 8 + 3 + 8 + 8;
+    const std::uint64_t count = in.count("the number of points", kRecord);
+    ColmapPoints3D points;
+    const auto n = static_cast<std::size_t>(count);
+    points.ids.reserve(n);
+    points.xyz.reserve(n);
+    points.errors.reserve(n);
+    points.track_begin.reserve(n + 1);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (in.remaining() < kRecord) in.fail("point " + std::to_string(i) + ": the file ends inside it");
+        // Messages are built only on failure: a model holds hundreds of thousands of points.
+        const char* at = in.take(kRecord, "a point");
+        const auto id = load<std::uint64_t>(at);
+        const Vec3 xyz{load<double>(at), load<double>(at), load<double>(at)};
+        at += 3;  // the colour
+        const auto error = load<double>(at);
+        const auto length = load<std::uint64_t>(at);
+        if (id == kColmapNoPoint3D) in.fail("point " + std::to_string(i) + ": POINT3D_ID is -1, which names no point");
+        if (!std::isfinite(xyz.x()) || !std::isfinite(xyz.y()) || !std::isfinite(xyz.z()) || !std::isfinite(error)) {
+            throw FileError(source + ": point " + std::to_string(id) + ": XYZ or ERROR is not finite");
+        }
+        if (length > in.remaining() / 8) {
+            in.fail("point " + std::to_string(id) + ": the track length " + std::to_string(length) +
+                    " is more than the file holds");
+        }
+        const char* block = in.take(length * 8, "a track");
+        for (std::uint64_t k = 0; k < length; ++k) {
+            const auto image_id = load<std::uint32_t>(block);
+            points.track.push_back({image_id, load<std::uint32_t>(block)});
+        }
+        points.ids.push_back(id);
+        points.xyz.push_back(xyz);
+        points.errors.push_back(error);
+        points.track_begin.push_back(points.track.size());
+    }
+    if (in.remaining() != 0) in.fail("bytes after the last point");
+    return points;
 }
 
 // ---- the set -----------------------------------------------------------------------------
@@ -340,6 +486,25 @@ std::vector<NamedCamera> camera_set(const std::vector<ColmapCameraRecord>& camer
 
 }  // namespace
 
+std::vector<ColmapCameraRecord> read_colmap_cameras(std::string_view bytes, const std::string& source, bool binary) {
+    if (binary) return read_cameras_binary(bytes, source);
+    check_text(bytes, source);
+    return read_cameras_text(bytes, source);
+}
+
+std::vector<ColmapImage> read_colmap_images(std::string_view bytes, const std::string& source, bool binary,
+                                            bool with_points) {
+    if (binary) return read_images_binary(bytes, source, with_points);
+    check_text(bytes, source);
+    return read_images_text(bytes, source, with_points);
+}
+
+ColmapPoints3D read_colmap_points3d(std::string_view bytes, const std::string& source, bool binary) {
+    if (binary) return read_points3d_binary(bytes, source);
+    check_text(bytes, source);
+    return read_points3d_text(bytes, source);
+}
+
 std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder) {
     std::error_code error;
     for (const char* name : {"cameras.bin", "cameras.txt"}) {
@@ -350,22 +515,13 @@ std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder
 
 std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadContext& context) {
     const bool binary = text.find('\0') != std::string_view::npos;
-    if (!binary) check_text(text, context.source);
-    const std::vector<ColmapCameraRecord> cameras =
-        binary ? read_cameras_binary(text, context.source) : read_cameras_text(text, context.source);
+    const std::vector<ColmapCameraRecord> cameras = read_colmap_cameras(text, context.source, binary);
     std::vector<ColmapImage> images;
     if (!context.folder.empty()) {
         const std::filesystem::path images_file = context.folder / (binary ? "images.bin" : "images.txt");
         std::error_code error;
         if (std::filesystem::is_regular_file(images_file, error)) {
-            const std::string bytes = read_text_file(images_file);
-            const std::string images_source = images_file.string();
-            if (binary) {
-                images = read_images_binary(bytes, images_source);
-            } else {
-                check_text(bytes, images_source);
-                images = read_images_text(bytes, images_source);
-            }
+            images = read_colmap_images(read_text_file(images_file), images_file.string(), binary, false);
         }
     }
     return camera_set(cameras, images, context.source);

@@ -27,13 +27,67 @@
 // RAD_TAN_THIN_PRISM_FISHEYE (COLMAP 3.10 and later); skew and any other model are
 // refused.
 
+#include <cstdint>
 #include <filesystem>
+#include <limits>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "libcam/io/format_table.hpp"
 
 namespace libcam {
+
+// The files of a model, parsed as COLMAP stores them (ids, COLMAP's pixels), for the
+// readers of the model's cameras (below) and of its observations (colmap_observations.hpp).
+
+// One line or record of cameras.txt or cameras.bin.
+struct ColmapCameraRecord {
+    std::uint64_t id;
+    Camera camera;  // at the origin
+};
+
+// POINT3D_ID of a 2-D point that is no 3-D point's: -1 in text, its 64-bit pattern in binary.
+inline constexpr std::uint64_t kColmapNoPoint3D = std::numeric_limits<std::uint64_t>::max();
+
+// One of an image's POINTS2D: COLMAP's pixel (top-left pixel's centre at (0.5, 0.5)).
+struct ColmapPoint2D {
+    double x;
+    double y;
+    std::uint64_t point3d_id;  // kColmapNoPoint3D for none
+};
+
+// One image of images.txt or images.bin.
+struct ColmapImage {
+    std::uint64_t id;
+    std::uint64_t camera_id;
+    std::string name;
+    Pose pose;                          // world to camera
+    std::vector<ColmapPoint2D> points;  // read only when asked for
+    std::string where;                  // "<file>: line 5: image 3", for messages
+};
+
+// points3D.txt or points3D.bin, one entry per point, tracks flattened.
+struct ColmapPoints3D {
+    struct TrackElement {
+        std::uint32_t image_id;
+        std::uint32_t point2d_index;
+    };
+    std::vector<std::uint64_t> ids;
+    std::vector<Vec3> xyz;
+    std::vector<double> errors;  // COLMAP's ERROR: -1 where it has none
+    // Point i's track is track[track_begin[i] .. track_begin[i + 1]).
+    std::vector<std::size_t> track_begin{0};
+    std::vector<TrackElement> track;
+};
+
+// Each file's records, `binary` saying which form (.bin or .txt); a text file is checked to
+// be text first. Throws FileError naming the file, the line or byte, the field and the value.
+std::vector<ColmapCameraRecord> read_colmap_cameras(std::string_view bytes, const std::string& source, bool binary);
+// `with_points`: keep each image's POINTS2D (the camera reader needs only the poses).
+std::vector<ColmapImage> read_colmap_images(std::string_view bytes, const std::string& source, bool binary,
+                                            bool with_points);
+ColmapPoints3D read_colmap_points3d(std::string_view bytes, const std::string& source, bool binary);
 
 // Every camera of a cameras.txt or cameras.bin (told apart by a NUL byte, which text
 // never has), with the images file of the same kind beside it when context.folder has one.

@@ -8,6 +8,7 @@
 #include "libcam/io/detail/blender_format.hpp"
 #include "libcam/io/detail/cahvor_format.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
+#include "libcam/io/detail/colmap_observations.hpp"
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/json_format.hpp"
 #include "libcam/io/detail/mrcal_observations.hpp"
@@ -141,7 +142,7 @@ constexpr FormatRow kRows[] = {
                     "cameras.txt, images.txt and points3D.txt into a folder",
      .extensions = {".bin"}, .content = C::Table | C::Binary, .read = read_colmap_model,
      .write = write_colmap_model, .writes_folder = true, .binary = true, .file_in_folder = colmap_cameras_file_in,
-     .lenses = kColmap,
+     .read_observations = read_colmap_observations, .lenses = kColmap,
      .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
                    "SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, SIMPLE_FISHEYE, FISHEYE, FOV, THIN_PRISM_FISHEYE, "
                    "RAD_TAN_THIN_PRISM_FISHEYE, EUCM",
