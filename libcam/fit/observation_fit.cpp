@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "libcam/error.hpp"
 #include "libcam/fit/least_squares.hpp"
@@ -98,19 +100,36 @@ ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& sta
     out.candidate = candidate;
     const ImageSize& size = start.size;
     // From the simpler candidate's solution where this model contains it (never worse
-    // than it), else from the file's own camera.
-    // The poses start with the intrinsics they were solved with.
-    Camera base = start;
-    base.pose = Pose{};
-    const std::vector<Pose>* base_poses = &start_poses;
+    // than it), and from the file's own camera; the poses start with the intrinsics they
+    // were solved with. The better fit is kept. A start that leaves an observation outside
+    // the model's domain is skipped (the solver needs every residual at its start).
+    Camera own = start;
+    own.pose = Pose{};
+    std::vector<std::pair<Camera, const std::vector<Pose>*>> starts;
     if (previous != nullptr && previous->fitted && detail::contains_model(candidate, previous->camera.lens.type)) {
-        base = previous->camera;
-        base_poses = &previous->poses;
+        starts.emplace_back(previous->camera, &previous->poses);
     }
-    const std::vector<double> start_params = detail::start_from(candidate, base).params;
+    starts.emplace_back(own, &start_poses);
     const std::vector<std::size_t> every = all_views(views.size());
-    const ViewsState full = detail::solve_views(candidate, size, samples_of_views(views, every),
-                                                start_state(start_params, *base_poses, every), false);
+    std::optional<ViewsState> best;
+    double best_sum = std::numeric_limits<double>::infinity();
+    std::string failure = "no start projects every observation";
+    for (const auto& [base, base_poses] : starts) {
+        const ViewsState from = start_state(detail::start_from(candidate, base).params, *base_poses, every);
+        if (!std::isfinite(squared_error(candidate, size, views, every, from).sum)) continue;
+        try {
+            ViewsState solved = detail::solve_views(candidate, size, samples_of_views(views, every), from, false);
+            const double sum = squared_error(candidate, size, views, every, solved).sum;
+            if (sum < best_sum) {
+                best_sum = sum;
+                best = std::move(solved);
+            }
+        } catch (const InvalidArgument& error) {
+            failure = error.what();
+        }
+    }
+    if (!best) throw InvalidArgument(failure);
+    const ViewsState& full = *best;
     out.params = full.params;
     out.camera = detail::camera_from_params(candidate, size, full.params, Pose{});
     const SquaredError training = squared_error(candidate, size, views, every, full);
