@@ -386,7 +386,7 @@ CameraFormat detect_format(std::string_view text, const std::filesystem::path& p
     for (const FormatRow* row : candidates) shared &= row->content;
     if (const std::optional<DocumentNode> root = parsed_for_claims(text, shared, source)) {
         for (const FormatRow* row : candidates) {
-            if (row->claims != nullptr && root->kind == DocumentNode::Kind::Map && row->claims(*root)) return row->format;
+            if (row->claims != nullptr && row->claims(*root)) return row->format;
         }
     }
     for (const FormatRow* row : candidates) {

@@ -91,8 +91,8 @@ struct ObservedBoard {
 struct ObservationSet {
     ObservationTool tool = ObservationTool::Table;
     std::string source;  // the file or folder read, for messages
-    // The file's pixels minus OpenCV's: (0.5, 0.5) for COLMAP, OpenSfM and OpenMVG
-    // whose top-left pixel's centre is (0.5, 0.5); zero for OpenCV and mrcal.
+    // The file's pixels minus OpenCV's: (0.5, 0.5) for COLMAP and OpenSfM, whose top-left
+    // pixel's centre is (0.5, 0.5); zero for OpenCV, mrcal and OpenMVG.
     Vec2 pixel_offset = Vec2::Zero();
     std::vector<ObservedCamera> cameras;
     std::vector<ObservedView> views;

@@ -144,7 +144,7 @@ PYBIND11_MODULE(_libcam, m) {
     m.attr("models") = model_table();
     m.attr("formats") = [] {
         py::list names;
-        for (int i = 0; i <= static_cast<int>(CameraFormat::BlenderJson); ++i) {
+        for (std::size_t i = 0; i < kCameraFormatCount; ++i) {
             names.append(std::string(to_string(static_cast<CameraFormat>(i))));
         }
         return py::tuple(names);

@@ -16,6 +16,8 @@
 #include "libcam/io/detail/open3d_format.hpp"
 #include "libcam/io/detail/opencv_observations.hpp"
 #include "libcam/io/detail/opencv_storage.hpp"
+#include "libcam/io/detail/openmvg_format.hpp"
+#include "libcam/io/detail/opensfm_format.hpp"
 #include "libcam/io/detail/openicc_format.hpp"
 #include "libcam/io/detail/rig_formats.hpp"
 
@@ -91,6 +93,8 @@ constexpr L kRos[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye
 constexpr L kEuroc[] = {L::OpenCv4, L::Fisheye};
 constexpr L kOpenicc[] = {L::Pinhole, L::Fisheye, L::DoubleSphere, L::Eucm};
 constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat};
+constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 
 using C = Content;
 
@@ -187,6 +191,19 @@ constexpr FormatRow kRows[] = {
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_blender_cameras,
      .read = with_source<parse_blender_cameras>, .write = one_file<format_blender_json>, .lenses = kBlender,
      .lens_names = "as for blender", .refuses = "skew"},
+    {.format = CameraFormat::OpenSfm, .name = "opensfm", .title = "OpenSfM reconstruction.json",
+     .description = "OpenSfM's reconstruction.json (tracks.csv beside it holds the observations), and the camera "
+                    "dictionaries of camera_models.json and OpenDroneMap's cameras.json",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_opensfm,
+     .read = read_opensfm, .read_only = true, .read_observations = read_opensfm_observations, .lenses = kOpenSfm,
+     .lens_names = "perspective, brown, radial, simple_radial, fisheye, fisheye_opencv, spherical",
+     .refuses = "fisheye62, fisheye624, dual"},
+    {.format = CameraFormat::OpenMvg, .name = "openmvg", .title = "OpenMVG sfm_data.json",
+     .description = "OpenMVG's sfm_data.json: views, intrinsics, extrinsics and the structure's observations",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_openmvg,
+     .read = read_openmvg, .read_only = true, .read_observations = read_openmvg_observations, .lenses = kOpenMvg,
+     .lens_names = "pinhole, pinhole_radial_k1, pinhole_radial_k3, pinhole_brown_t2, fisheye, spherical",
+     .refuses = "any other intrinsic type"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
