@@ -75,38 +75,46 @@ std::vector<double> per_point_mean_errors(const ObservationSet& set, const std::
     return sum;
 }
 
-double recompute(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
-                 const ResidualStats& all, ReportedMeasure measure) {
+// The mean of the per-point means, over the points that have one.
+double mean_of_point_means(const std::vector<double>& point_means) {
+    double sum = 0.0;
+    std::size_t points = 0;
+    for (const double mean : point_means) {
+        if (std::isnan(mean)) continue;
+        sum += mean;
+        ++points;
+    }
+    return points == 0 ? kNaN : sum / static_cast<double>(points);
+}
+
+// `point_means`: per_point_mean_errors, computed once by the caller when some number needs it.
+double recompute(const ResidualStats& all, const std::vector<double>& point_means, ReportedMeasure measure) {
     switch (measure) {
         case ReportedMeasure::RmsOverObservations: return all.stats.rms_px;
-        case ReportedMeasure::MeanOfPointMeans: {
-            double sum = 0.0;
-            std::size_t points = 0;
-            for (const double mean : per_point_mean_errors(set, residuals)) {
-                if (std::isnan(mean)) continue;
-                sum += mean;
-                ++points;
-            }
-            return points == 0 ? kNaN : sum / static_cast<double>(points);
-        }
+        case ReportedMeasure::MeanOfPointMeans: return mean_of_point_means(point_means);
         case ReportedMeasure::RmsOverComponents:
             return all.weighted_rms_px.value_or(all.stats.rms_px) / std::sqrt(2.0);
     }
     return kNaN;
 }
 
+// The stored numbers against the recomputed ones; `name_of(i)` names the item where the
+// difference is largest (called once: a model's points are many).
+template <class NameOf>
 PerItemComparison compare_items(const std::vector<double>& stored, const std::vector<double>& recomputed,
-                                const std::vector<std::string>& names) {
+                                NameOf&& name_of) {
     PerItemComparison comparison;
+    std::size_t worst = 0;
     for (std::size_t i = 0; i < stored.size(); ++i) {
         if (std::isnan(stored[i]) || std::isnan(recomputed[i])) continue;
         ++comparison.compared;
         const double difference = std::abs(stored[i] - recomputed[i]);
         if (comparison.compared == 1 || difference > comparison.max_abs_difference) {
             comparison.max_abs_difference = difference;
-            comparison.worst_item = names[i];
+            worst = i;
         }
     }
+    if (comparison.compared > 0) comparison.worst_item = name_of(worst);
     return comparison;
 }
 
@@ -229,13 +237,11 @@ Reprojection reproject(const ObservationSet& set, int threads) {
         by_view[view].push_back(i);
         by_camera[static_cast<std::size_t>(set.views[view].camera)].push_back(i);
     }
-    std::vector<std::string> view_names;
     std::vector<double> view_rms;
     for (std::size_t v = 0; v < set.views.size(); ++v) {
         // A view without observations has no statistics (residual_stats takes an empty
         // list of indices as "all").
         ResidualStats stats = by_view[v].empty() ? ResidualStats{} : stats_of(set, out.residuals, by_view[v], set_weighted);
-        view_names.push_back(set.views[v].name);
         view_rms.push_back(stats.stats.count == 0 ? kNaN : stats.stats.rms_px);
         summary.per_view.push_back({set.views[v].name, std::move(stats)});
     }
@@ -248,18 +254,22 @@ Reprojection reproject(const ObservationSet& set, int threads) {
         summary.per_camera.push_back({set.cameras[c].name, std::move(stats)});
     }
 
+    const bool needs_point_means =
+        !set.reported_per_point.empty() ||
+        std::any_of(set.reported.begin(), set.reported.end(),
+                    [](const ReportedNumber& n) { return n.measure == ReportedMeasure::MeanOfPointMeans; });
+    const std::vector<double> point_means =
+        needs_point_means ? per_point_mean_errors(set, out.residuals) : std::vector<double>{};
     for (const ReportedNumber& number : set.reported) {
-        summary.reported.push_back({number, recompute(set, out.residuals, summary.all, number.measure)});
+        summary.reported.push_back({number, recompute(summary.all, point_means, number.measure)});
     }
     if (!set.reported_per_view.empty()) {
-        summary.per_view_reported = compare_items(set.reported_per_view, view_rms, view_names);
+        summary.per_view_reported =
+            compare_items(set.reported_per_view, view_rms, [&](std::size_t v) { return set.views[v].name; });
     }
     if (!set.reported_per_point.empty()) {
-        std::vector<std::string> point_names;
-        point_names.reserve(set.point_ids.size());
-        for (const std::int64_t id : set.point_ids) point_names.push_back(std::to_string(id));
-        summary.per_point_reported =
-            compare_items(set.reported_per_point, per_point_mean_errors(set, out.residuals), point_names);
+        summary.per_point_reported = compare_items(set.reported_per_point, point_means,
+                                                   [&](std::size_t p) { return std::to_string(set.point_ids[p]); });
     }
     summary.convention = convention_check(out.residuals, summary.all);
     return out;
