@@ -94,8 +94,8 @@ check_io_refuses_cameramodel "$work/consumer/consumer_io"
 # sees are listed (-MD) and none may be OpenCV's, mrcal's, Ceres's or nlohmann's.
 c++ -std=c++20 -MD -MF "$work/consumer-io.d" -I"$work/prefix/include" $(pkg-config --cflags eigen3) \
     "$root/examples/consumer/io_main.cpp" -o "$work/consumer-io-bare" -L"$work/prefix/lib" -lcam_io -lcam_core \
-    -lyaml-cpp -lpugixml
-if grep -Eiq "opencv|mrcal|ceres|nlohmann|yaml-cpp|pugixml" "$work/consumer-io.d"; then
+    -lyaml-cpp -lpugixml -lzip
+if grep -Eiq "opencv|mrcal|ceres|nlohmann|yaml-cpp|pugixml|zip\.h" "$work/consumer-io.d"; then
   echo "test-install: the io consumer includes a header of OpenCV, mrcal, Ceres, nlohmann, yaml-cpp or pugixml:"
   grep -Eio "[^ ]*(opencv|mrcal|ceres|nlohmann|yaml-cpp|pugixml)[^ ]*" "$work/consumer-io.d" | sort -u
   exit 1
