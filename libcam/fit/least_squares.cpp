@@ -2,6 +2,7 @@
 
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
+#include <glog/logging.h>
 
 #include <array>
 #include <cmath>
@@ -162,9 +163,22 @@ private:
     double negligible_rms_px_;
 };
 
+// Ceres reports a rejected step or a singular system through glog, to stderr when the
+// program has not set glog up: lines a user of libcam fit cannot act on (the solver
+// recovers, and a failed candidate is reported as such). Quiet unless the program set up
+// glog itself, once per process.
+void quiet_solver_log() {
+    static const bool quieted = [] {
+        if (!google::IsGoogleLoggingInitialized()) FLAGS_minloglevel = google::GLOG_FATAL;
+        return true;
+    }();
+    (void)quieted;
+}
+
 // Levenberg-Marquardt, converged to rounding: the fit's error is what `libcam fit`
 // reports, and it has to be the model's best, not the solver's first acceptable one.
 ceres::Solver::Options solver_options() {
+    quiet_solver_log();
     ceres::Solver::Options options;
     options.minimizer_type = ceres::TRUST_REGION;
     options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;

@@ -95,7 +95,7 @@ std::vector<std::string> undetermined(const Candidate& candidate, const std::vec
 
 ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& start, const std::vector<FitView>& views,
                                    const std::vector<Pose>& start_poses, const ObservationCandidate* previous,
-                                   int folds) {
+                                   const std::vector<int>& fold_of, int folds) {
     ObservationCandidate out;
     out.candidate = candidate;
     const ImageSize& size = start.size;
@@ -139,19 +139,26 @@ ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& sta
     const std::vector<Pose>& fitted_poses = out.poses;
     SquaredError heldout;
     std::vector<std::vector<double>> per_fold;
+    std::size_t unreached = 0;  // held-out views the model fitted without them cannot project
     for (int fold = 0; fold < folds; ++fold) {
         std::vector<std::size_t> train, test;
-        for (std::size_t v = 0; v < views.size(); ++v) (static_cast<int>(v % static_cast<std::size_t>(folds)) == fold ? test : train).push_back(v);
+        for (std::size_t v = 0; v < views.size(); ++v) (fold_of[v] == fold ? test : train).push_back(v);
         const ViewsState trained = detail::solve_views(candidate, size, samples_of_views(views, train),
                                                        start_state(full.params, fitted_poses, train), false);
         per_fold.push_back(trained.params);
         for (const std::size_t v : test) {
             // The held-out view's pose alone, with the intrinsics fitted without it (from its
             // pose in the fit on every view, a start near the answer: nothing of the view
-            // enters the intrinsics it is measured with).
-            const ViewsState posed = detail::solve_views(candidate, size, samples_of_views(views, {v}),
-                                                         start_state(trained.params, fitted_poses, {v}), true);
-            const SquaredError e = squared_error(candidate, size, views, {v}, posed);
+            // enters the intrinsics it is measured with). Where that model cannot even
+            // project the view (it folds over there), the view counts as infinitely wrong.
+            const ViewsState from = start_state(trained.params, fitted_poses, {v});
+            SquaredError e = squared_error(candidate, size, views, {v}, from);
+            if (std::isfinite(e.sum)) {
+                e = squared_error(candidate, size, views, {v},
+                                  detail::solve_views(candidate, size, samples_of_views(views, {v}), from, true));
+            } else {
+                ++unreached;
+            }
             heldout.sum += e.sum;
             heldout.count += e.count;
         }
@@ -159,8 +166,43 @@ ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& sta
     out.heldout_rms_px = std::sqrt(heldout.sum / static_cast<double>(heldout.count));
     out.heldout_count = heldout.count;
     out.flags = undetermined(candidate, out.params, per_fold);
+    if (unreached > 0) {
+        out.flags.push_back(std::to_string(unreached) +
+                            " held-out views fall where the model fitted without them folds over: it does not "
+                            "generalise to them");
+    }
     out.fitted = true;
     return out;
+}
+
+// Views that repeat another (the same points, each seen within kRepeatPx): a board left
+// still while frames were taken. Such views go into one fold together, else a held-out
+// view would have its twin among the training views and could not show an overfit.
+constexpr double kRepeatPx = 2.0;
+
+bool repeats(const FitView& a, const FitView& b) {
+    if (a.observations.size() != b.observations.size()) return false;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.observations.size(); ++i) {
+        if (a.observations[i].point != b.observations[i].point) return false;
+        sum += (a.observations[i].pixel - b.observations[i].pixel).norm();
+    }
+    return sum < kRepeatPx * static_cast<double>(a.observations.size());
+}
+
+// Each view's group of repeats (the index of its first member), by union of pairs.
+std::vector<std::size_t> repeat_groups(const std::vector<FitView>& views) {
+    std::vector<std::size_t> group(views.size());
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        group[v] = v;
+        for (std::size_t u = 0; u < v; ++u) {
+            if (group[u] == u && repeats(views[u], views[v])) {
+                group[v] = u;
+                break;
+            }
+        }
+    }
+    return group;
 }
 
 // The simplest candidate within the margin of the best held-out RMS, and why.
@@ -203,7 +245,25 @@ ObservationFitReport fit_observations(const Camera& start, const std::vector<Fit
     ObservationFitReport report;
     report.views = views.size();
     for (const FitView& view : views) report.observations += view.observations.size();
-    report.folds = std::clamp(options.folds, 2, static_cast<int>(views.size()));
+    // Folds dealt by group of repeated views, in turn.
+    const std::vector<std::size_t> group = repeat_groups(views);
+    std::vector<std::size_t> groups;
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        if (group[v] == v) groups.push_back(v);
+    }
+    if (groups.size() < 2) {
+        throw InvalidArgument("fit --observations: the " + std::to_string(views.size()) +
+                              " views are one pose repeated (each within " + format_short(kRepeatPx) +
+                              " px of the first): views held out would be seen in training, so nothing can be "
+                              "judged; a calibration needs views of the board in different poses");
+    }
+    report.repeated_views = views.size() - groups.size();
+    report.folds = std::clamp(options.folds, 2, static_cast<int>(groups.size()));
+    std::vector<int> fold_of(views.size());
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        const auto position = static_cast<std::size_t>(std::find(groups.begin(), groups.end(), group[v]) - groups.begin());
+        fold_of[v] = static_cast<int>(position % static_cast<std::size_t>(report.folds));
+    }
     report.margin = options.margin;
 
     std::vector<Candidate> candidates = options.candidates;
@@ -224,7 +284,8 @@ ObservationFitReport fit_observations(const Camera& start, const std::vector<Fit
     for (const Candidate& candidate : candidates) {
         const ObservationCandidate* previous = report.candidates.empty() ? nullptr : &report.candidates.back();
         try {
-            report.candidates.push_back(fit_candidate(candidate, start, views, start_poses, previous, report.folds));
+            report.candidates.push_back(
+                fit_candidate(candidate, start, views, start_poses, previous, fold_of, report.folds));
         } catch (const Error& error) {
             ObservationCandidate failed;
             failed.candidate = candidate;

@@ -9,6 +9,9 @@
 // residuals counted. A model with more parameters than the data determine fits its
 // training views better and the held-out ones worse.
 //
+// Views that repeat another (a board left still while frames were taken) are held out
+// together: a held-out view whose twin is in training could not show an overfit.
+//
 // The choice is the simplest candidate whose held-out RMS is within a margin of the best
 // candidate's. A parameter whose value changes from fold to fold by more than its own size
 // is flagged: the data do not determine it (a k3 of -19949 on a telephoto lens).
@@ -60,6 +63,9 @@ struct ObservationFitReport {
     std::size_t views = 0;
     std::size_t observations = 0;
     int folds = 0;
+    // Views that repeat an earlier one (the same points within 2 px each: a board left
+    // still); each is held out with the view it repeats, never against it.
+    std::size_t repeated_views = 0;
     double margin = 0.0;
     std::vector<ObservationCandidate> candidates;
     std::optional<std::size_t> chosen;  // index into candidates

@@ -116,3 +116,26 @@ TEST_CASE("fit --observations needs two views") {
     start.intrinsics = {600.0, 600.0, 319.5, 239.5, 0.0};
     CHECK_THROWS_WITH(fit_observations(start, one, {}), Catch::Contains("at least two"));
 }
+
+TEST_CASE("fit --observations holds out repeated views together, and refuses one pose repeated") {
+    std::vector<FitView> views = board_views(5);
+    Camera start;
+    start.size = {640, 480};
+    start.intrinsics = {600.0, 600.0, 319.5, 239.5, 0.0};
+    ObservationFitOptions options;
+    options.candidates = {candidate_named("OPENCV4")};
+    options.folds = 4;
+    // Three views taken again with the board left still: the same corners within a pixel.
+    for (const std::size_t copy : {2u, 7u, 9u}) {
+        FitView again = views[copy];
+        for (FitSample& o : again.observations) o.pixel += Vec2(0.4, -0.3);
+        views.push_back(again);
+    }
+    const ObservationFitReport report = fit_observations(start, views, options);
+    CHECK(report.repeated_views == 3);
+    REQUIRE(report.candidates.front().fitted);
+    CHECK(report.candidates.front().heldout_rms_px < 1.2 * kNoisePx * std::sqrt(2.0));
+
+    std::vector<FitView> still(6, views.front());
+    CHECK_THROWS_WITH(fit_observations(start, still, options), Catch::Contains("one pose repeated"));
+}

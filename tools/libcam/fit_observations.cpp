@@ -74,7 +74,11 @@ std::string format_text(const ObservationSet& set, int camera, const ResidualSta
     const Camera& own = set.cameras[static_cast<std::size_t>(camera)].camera;
     std::ostringstream out;
     out << set.source << ": camera " << set.cameras[static_cast<std::size_t>(camera)].name << ", " << report.views
-        << " views, " << report.observations << " observations, " << report.folds << " folds by view\n";
+        << " views, " << report.observations << " observations, " << report.folds << " folds by view";
+    if (report.repeated_views > 0) {
+        out << " (" << report.repeated_views << " views repeat another within 2 px and are held out with it)";
+    }
+    out << "\n";
     out << "the file's own model: " << lens_text(own) << "; on these observations rms "
         << format_short(file_fit.stats.rms_px, 4) << " px\n\n";
     out << "candidate                  params  rms px    held-out rms px\n";
@@ -114,6 +118,7 @@ std::string format_json(const ObservationSet& set, int camera, const ResidualSta
     out["views"] = report.views;
     out["observations"] = report.observations;
     out["folds"] = report.folds;
+    out["repeated_views"] = report.repeated_views;
     out["margin"] = report.margin;
     const Camera& own = set.cameras[static_cast<std::size_t>(camera)].camera;
     out["file_model"] = {{"model", std::string(lens_info(own.lens.type).name)},
