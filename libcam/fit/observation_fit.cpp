@@ -93,29 +93,16 @@ std::vector<std::string> undetermined(const Candidate& candidate, const std::vec
     return flags;
 }
 
-ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& start, const std::vector<FitView>& views,
-                                   const std::vector<Pose>& start_poses, const ObservationCandidate* previous,
-                                   const std::vector<int>& fold_of, int folds) {
-    ObservationCandidate out;
-    out.candidate = candidate;
-    const ImageSize& size = start.size;
-    // From the simpler candidate's solution where this model contains it (never worse
-    // than it), and from the file's own camera; the poses start with the intrinsics they
-    // were solved with. The better fit is kept. A start that leaves an observation outside
-    // the model's domain is skipped (the solver needs every residual at its start).
-    Camera own = start;
-    own.pose = Pose{};
-    std::vector<std::pair<Camera, const std::vector<Pose>*>> starts;
-    if (previous != nullptr && previous->fitted && detail::contains_model(candidate, previous->camera.lens.type)) {
-        starts.emplace_back(previous->camera, &previous->poses);
-    }
-    starts.emplace_back(own, &start_poses);
+// The fit on every view from the best of `starts` (each: intrinsics and every view's pose).
+// A start that leaves an observation outside the model's domain is skipped (the solver
+// needs every residual at its start).
+ViewsState fit_every_view(const Candidate& candidate, const ImageSize& size, const std::vector<FitView>& views,
+                          const std::vector<ViewsState>& starts) {
     const std::vector<std::size_t> every = all_views(views.size());
     std::optional<ViewsState> best;
     double best_sum = std::numeric_limits<double>::infinity();
     std::string failure = "no start projects every observation";
-    for (const auto& [base, base_poses] : starts) {
-        const ViewsState from = start_state(detail::start_from(candidate, base).params, *base_poses, every);
+    for (const ViewsState& from : starts) {
         if (!std::isfinite(squared_error(candidate, size, views, every, from).sum)) continue;
         try {
             ViewsState solved = detail::solve_views(candidate, size, samples_of_views(views, every), from, false);
@@ -129,45 +116,116 @@ ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& sta
         }
     }
     if (!best) throw InvalidArgument(failure);
-    const ViewsState& full = *best;
-    out.params = full.params;
-    out.camera = detail::camera_from_params(candidate, size, full.params, Pose{});
-    const SquaredError training = squared_error(candidate, size, views, every, full);
-    out.rms_px = std::sqrt(training.sum / static_cast<double>(training.count));
+    return *best;
+}
 
-    for (std::size_t v = 0; v < views.size(); ++v) out.poses.push_back(Pose::from_rvec(full.rotations[v], full.shifts[v]));
-    const std::vector<Pose>& fitted_poses = out.poses;
+struct CrossValidation {
     SquaredError heldout;
-    std::vector<std::vector<double>> per_fold;
+    std::vector<std::vector<double>> per_fold;  // each fold's fitted intrinsics
     std::size_t unreached = 0;  // held-out views the model fitted without them cannot project
+    // The best fold's intrinsics with every view's pose under them (its training views'
+    // and its held-out views'): a start for the fit on every view, and its total error.
+    std::optional<ViewsState> best_fold;
+    double best_fold_sum = std::numeric_limits<double>::infinity();
+};
+
+CrossValidation cross_validate(const Candidate& candidate, const ImageSize& size, const std::vector<FitView>& views,
+                               const ViewsState& full, const std::vector<int>& fold_of, int folds) {
+    CrossValidation out;
     for (int fold = 0; fold < folds; ++fold) {
         std::vector<std::size_t> train, test;
         for (std::size_t v = 0; v < views.size(); ++v) (fold_of[v] == fold ? test : train).push_back(v);
-        const ViewsState trained = detail::solve_views(candidate, size, samples_of_views(views, train),
-                                                       start_state(full.params, fitted_poses, train), false);
-        per_fold.push_back(trained.params);
+        ViewsState from_full;
+        from_full.params = full.params;
+        for (const std::size_t v : train) {
+            from_full.rotations.push_back(full.rotations[v]);
+            from_full.shifts.push_back(full.shifts[v]);
+        }
+        const ViewsState trained = detail::solve_views(candidate, size, samples_of_views(views, train), from_full, false);
+        out.per_fold.push_back(trained.params);
+        ViewsState complete = full;  // this fold's intrinsics and every view's pose under them
+        complete.params = trained.params;
+        for (std::size_t i = 0; i < train.size(); ++i) {
+            complete.rotations[train[i]] = trained.rotations[i];
+            complete.shifts[train[i]] = trained.shifts[i];
+        }
+        double fold_sum = squared_error(candidate, size, views, train, trained).sum;
         for (const std::size_t v : test) {
             // The held-out view's pose alone, with the intrinsics fitted without it (from its
             // pose in the fit on every view, a start near the answer: nothing of the view
             // enters the intrinsics it is measured with). Where that model cannot even
             // project the view (it folds over there), the view counts as infinitely wrong.
-            const ViewsState from = start_state(trained.params, fitted_poses, {v});
-            SquaredError e = squared_error(candidate, size, views, {v}, from);
+            ViewsState posed{trained.params, {full.rotations[v]}, {full.shifts[v]}, 0};
+            SquaredError e = squared_error(candidate, size, views, {v}, posed);
             if (std::isfinite(e.sum)) {
-                e = squared_error(candidate, size, views, {v},
-                                  detail::solve_views(candidate, size, samples_of_views(views, {v}), from, true));
+                posed = detail::solve_views(candidate, size, samples_of_views(views, {v}), posed, true);
+                e = squared_error(candidate, size, views, {v}, posed);
+                complete.rotations[v] = posed.rotations[0];
+                complete.shifts[v] = posed.shifts[0];
             } else {
-                ++unreached;
+                ++out.unreached;
             }
-            heldout.sum += e.sum;
-            heldout.count += e.count;
+            out.heldout.sum += e.sum;
+            out.heldout.count += e.count;
+            fold_sum += e.sum;
+        }
+        if (fold_sum < out.best_fold_sum) {
+            out.best_fold_sum = fold_sum;
+            out.best_fold = std::move(complete);
         }
     }
-    out.heldout_rms_px = std::sqrt(heldout.sum / static_cast<double>(heldout.count));
-    out.heldout_count = heldout.count;
-    out.flags = undetermined(candidate, out.params, per_fold);
-    if (unreached > 0) {
-        out.flags.push_back(std::to_string(unreached) +
+    return out;
+}
+
+ObservationCandidate fit_candidate(const Candidate& candidate, const Camera& start, const std::vector<FitView>& views,
+                                   const std::vector<Pose>& start_poses, const ObservationCandidate* previous,
+                                   const std::vector<FitSample>& observed_rays, const std::vector<int>& fold_of,
+                                   int folds) {
+    ObservationCandidate out;
+    out.candidate = candidate;
+    const ImageSize& size = start.size;
+    const std::vector<std::size_t> every = all_views(views.size());
+    // From the simpler candidate's solution where this model contains it (never worse
+    // than it); from the candidate fitted to the file's own camera over the observed
+    // pixels (libcam fit's fit on rays: near the answer whatever the file's model, where
+    // the file's K undistorted is far from it over a wide lens); and from the file's own
+    // camera. The poses start with the intrinsics they were solved with.
+    Camera own = start;
+    own.pose = Pose{};
+    std::vector<ViewsState> starts;
+    if (previous != nullptr && previous->fitted && detail::contains_model(candidate, previous->camera.lens.type)) {
+        starts.push_back(start_state(detail::start_from(candidate, previous->camera).params, previous->poses, every));
+    }
+    try {
+        const std::vector<FittedModel> to_file = fit_candidates(own, observed_rays, {candidate});
+        if (!to_file.empty()) {
+            starts.push_back(start_state(detail::start_from(candidate, to_file.front().camera).params, start_poses, every));
+        }
+    } catch (const InvalidArgument&) {
+        // The candidate cannot take the file's camera's rays: the other starts remain.
+    }
+    starts.push_back(start_state(detail::start_from(candidate, own).params, start_poses, every));
+    ViewsState full = fit_every_view(candidate, size, views, starts);
+    CrossValidation validation = cross_validate(candidate, size, views, full, fold_of, folds);
+    // A fold that found intrinsics fitting every view better than the fit on every view
+    // did (a poorer basin it started in, over a wide lens) is where that fit starts again,
+    // once.
+    const double full_sum = squared_error(candidate, size, views, every, full).sum;
+    if (validation.best_fold && validation.best_fold_sum < 0.99 * full_sum) {
+        full = fit_every_view(candidate, size, views, {full, *validation.best_fold});
+        validation = cross_validate(candidate, size, views, full, fold_of, folds);
+    }
+
+    out.params = full.params;
+    out.camera = detail::camera_from_params(candidate, size, full.params, Pose{});
+    for (std::size_t v = 0; v < views.size(); ++v) out.poses.push_back(Pose::from_rvec(full.rotations[v], full.shifts[v]));
+    const SquaredError training = squared_error(candidate, size, views, every, full);
+    out.rms_px = std::sqrt(training.sum / static_cast<double>(training.count));
+    out.heldout_rms_px = std::sqrt(validation.heldout.sum / static_cast<double>(validation.heldout.count));
+    out.heldout_count = validation.heldout.count;
+    out.flags = undetermined(candidate, out.params, validation.per_fold);
+    if (validation.unreached > 0) {
+        out.flags.push_back(std::to_string(validation.unreached) +
                             " held-out views fall where the model fitted without them folds over: it does not "
                             "generalise to them");
     }
@@ -204,6 +262,10 @@ std::vector<std::size_t> repeat_groups(const std::vector<FitView>& views) {
     }
     return group;
 }
+
+// The rays of the file's camera a candidate's start is fitted to: enough to pin down 16
+// parameters over the image, few enough to cost little beside the fit itself.
+constexpr std::size_t kRaySamples = 2000;
 
 // The simplest candidate within the margin of the best held-out RMS, and why.
 void choose(ObservationFitReport& report) {
@@ -266,26 +328,32 @@ ObservationFitReport fit_observations(const Camera& start, const std::vector<Fit
     }
     report.margin = options.margin;
 
-    std::vector<Candidate> candidates = options.candidates;
-    if (candidates.empty()) {
-        // The widest observed angle, through the file's own camera.
-        const PreparedCamera prepared(Camera{start.size, start.intrinsics, start.lens, Pose{}});
-        double widest = 0.0;
-        for (const FitView& view : views) {
-            for (const FitSample& o : view.observations) {
-                const Unprojection u = prepared.unproject(o.pixel);
-                if (u.valid) widest = std::max(widest, std::acos(std::clamp(u.direction.normalized().z(), -1.0, 1.0)));
-            }
+    // The observed pixels' rays through the file's own camera (at most kRaySamples of
+    // them, evenly through the observations), and the widest of their angles.
+    const PreparedCamera prepared(Camera{start.size, start.intrinsics, start.lens, Pose{}});
+    std::vector<FitSample> observed_rays;
+    double widest = 0.0;
+    const std::size_t stride = std::max<std::size_t>(1, report.observations / kRaySamples);
+    std::size_t index = 0;
+    for (const FitView& view : views) {
+        for (const FitSample& o : view.observations) {
+            if (index++ % stride != 0) continue;
+            const Unprojection u = prepared.unproject(o.pixel);
+            if (!u.valid) continue;
+            const Vec3 ray = u.direction.normalized();
+            widest = std::max(widest, std::acos(std::clamp(ray.z(), -1.0, 1.0)));
+            observed_rays.push_back({ray, o.pixel});
         }
-        candidates = candidates_for(widest * 180.0 / 3.14159265358979323846);
     }
+    std::vector<Candidate> candidates = options.candidates;
+    if (candidates.empty()) candidates = candidates_for(widest * 180.0 / 3.14159265358979323846);
     std::vector<Pose> start_poses;
     for (const FitView& view : views) start_poses.push_back(view.pose);
     for (const Candidate& candidate : candidates) {
         const ObservationCandidate* previous = report.candidates.empty() ? nullptr : &report.candidates.back();
         try {
             report.candidates.push_back(
-                fit_candidate(candidate, start, views, start_poses, previous, fold_of, report.folds));
+                fit_candidate(candidate, start, views, start_poses, previous, observed_rays, fold_of, report.folds));
         } catch (const Error& error) {
             ObservationCandidate failed;
             failed.candidate = candidate;

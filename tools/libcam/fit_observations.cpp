@@ -60,8 +60,12 @@ std::vector<FitView> fit_views(const ObservationSet& set, const Reprojection& re
     return views;
 }
 
+// The model and its coefficients by name; a model of many (a splined one), by their count.
 std::string lens_text(const Camera& camera) {
     std::string text = std::string(lens_info(camera.lens.type).name);
+    if (camera.lens.coefficients.size() > 16) {
+        return text + " (" + std::to_string(camera.lens.coefficients.size()) + " coefficients)";
+    }
     const auto names = lens_info(camera.lens.type).coefficients.view();
     for (std::size_t i = 0; i < camera.lens.coefficients.size(); ++i) {
         text += " " + std::string(i < names.size() ? names[i] : "c") + " " + format_short(camera.lens.coefficients[i], 6);
