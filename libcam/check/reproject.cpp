@@ -144,6 +144,7 @@ ConventionCheck convention_check(const std::vector<ObservationResidual>& residua
 ResidualStats stats_of(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
                        const std::vector<std::size_t>& indices, bool set_weighted) {
     std::vector<double> errors;
+    errors.reserve(indices.empty() ? residuals.size() : indices.size());
     Vec2 sum = Vec2::Zero();
     double sum_errors = 0.0;
     double weighted_squares = 0.0;
@@ -172,6 +173,43 @@ ResidualStats stats_of(const ObservationSet& set, const std::vector<ObservationR
     return out;
 }
 
+// The statistics of the counted residuals of each of `groups` groups (a view, a camera),
+// `group_of(observation)` naming each observation's: one pass, the errors of each group
+// laid side by side in one array (a million observations in thousands of views).
+template <class GroupOf>
+std::vector<ResidualStats> group_stats(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
+                                       std::size_t groups, bool set_weighted, GroupOf&& group_of) {
+    std::vector<std::size_t> start(groups + 1, 0);
+    for (std::size_t i = 0; i < residuals.size(); ++i) {
+        if (residuals[i].status == ResidualStatus::Counted) ++start[group_of(set.observations[i]) + 1];
+    }
+    for (std::size_t g = 0; g < groups; ++g) start[g + 1] += start[g];
+    std::vector<double> errors(start[groups]);
+    std::vector<std::size_t> filled(start.begin(), start.end() - 1);
+    std::vector<Vec2> sum(groups, Vec2::Zero());
+    std::vector<double> sum_errors(groups, 0.0), weighted_squares(groups, 0.0);
+    for (std::size_t i = 0; i < residuals.size(); ++i) {
+        const ObservationResidual& r = residuals[i];
+        if (r.status != ResidualStatus::Counted) continue;
+        const std::size_t g = group_of(set.observations[i]);
+        errors[filled[g]++] = r.error_px;
+        sum[g] += r.residual;
+        sum_errors[g] += r.error_px;
+        const double weight = set.observations[i].weight;
+        weighted_squares[g] += weight * weight * r.error_px * r.error_px;
+    }
+    std::vector<ResidualStats> out(groups);
+    for (std::size_t g = 0; g < groups; ++g) {
+        const std::size_t n = start[g + 1] - start[g];
+        out[g].stats = error_stats_in_place(std::span<double>(errors.data() + start[g], n));
+        if (n == 0) continue;
+        out[g].mean_px = sum_errors[g] / static_cast<double>(n);
+        out[g].bias = sum[g] / static_cast<double>(n);
+        if (set_weighted) out[g].weighted_rms_px = std::sqrt(weighted_squares[g] / static_cast<double>(n));
+    }
+    return out;
+}
+
 }  // namespace
 
 ResidualStats residual_stats(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
@@ -180,17 +218,26 @@ ResidualStats residual_stats(const ObservationSet& set, const std::vector<Observ
 }
 
 std::vector<std::size_t> worst_observations(const std::vector<ObservationResidual>& residuals, std::size_t n) {
-    std::vector<std::size_t> counted;
-    for (std::size_t i = 0; i < residuals.size(); ++i) {
-        if (residuals[i].status == ResidualStatus::Counted) counted.push_back(i);
-    }
-    n = std::min(n, counted.size());
+    // Larger error first; among equal errors, the earlier observation.
     const auto larger = [&](std::size_t a, std::size_t b) {
         return residuals[a].error_px > residuals[b].error_px || (residuals[a].error_px == residuals[b].error_px && a < b);
     };
-    std::partial_sort(counted.begin(), counted.begin() + static_cast<std::ptrdiff_t>(n), counted.end(), larger);
-    counted.resize(n);
-    return counted;
+    // The n largest kept in a heap whose top is the smallest of them: one pass, n entries.
+    std::vector<std::size_t> kept;
+    if (n == 0) return kept;
+    kept.reserve(n + 1);
+    for (std::size_t i = 0; i < residuals.size(); ++i) {
+        if (residuals[i].status != ResidualStatus::Counted) continue;
+        if (kept.size() == n && !larger(i, kept.front())) continue;
+        kept.push_back(i);
+        std::push_heap(kept.begin(), kept.end(), larger);
+        if (kept.size() > n) {
+            std::pop_heap(kept.begin(), kept.end(), larger);
+            kept.pop_back();
+        }
+    }
+    std::sort_heap(kept.begin(), kept.end(), larger);
+    return kept;
 }
 
 Reprojection reproject(const ObservationSet& set, int threads) {
@@ -220,38 +267,23 @@ Reprojection reproject(const ObservationSet& set, int threads) {
     const bool set_weighted = weighted(set);
     summary.all = stats_of(set, out.residuals, {}, set_weighted);
 
-    std::vector<std::vector<std::size_t>> by_view(set.views.size());
-    std::vector<std::vector<std::size_t>> by_camera(set.cameras.size());
-    {
-        std::vector<std::size_t> view_counts(set.views.size(), 0);
-        std::vector<std::size_t> camera_counts(set.cameras.size(), 0);
-        for (const Observation& o : set.observations) {
-            ++view_counts[static_cast<std::size_t>(o.view)];
-            ++camera_counts[static_cast<std::size_t>(set.views[static_cast<std::size_t>(o.view)].camera)];
-        }
-        for (std::size_t v = 0; v < by_view.size(); ++v) by_view[v].reserve(view_counts[v]);
-        for (std::size_t c = 0; c < by_camera.size(); ++c) by_camera[c].reserve(camera_counts[c]);
-    }
-    for (std::size_t i = 0; i < set.observations.size(); ++i) {
-        const auto view = static_cast<std::size_t>(set.observations[i].view);
-        by_view[view].push_back(i);
-        by_camera[static_cast<std::size_t>(set.views[view].camera)].push_back(i);
-    }
+    std::vector<std::size_t> camera_of_view(set.views.size());
+    for (std::size_t v = 0; v < set.views.size(); ++v) camera_of_view[v] = static_cast<std::size_t>(set.views[v].camera);
+    std::vector<ResidualStats> per_view = group_stats(set, out.residuals, set.views.size(), set_weighted,
+                                                      [&](const Observation& o) { return static_cast<std::size_t>(o.view); });
+    // A model of one camera has the statistics of all for it.
+    std::vector<ResidualStats> per_camera =
+        set.cameras.size() == 1
+            ? std::vector<ResidualStats>{summary.all}
+            : group_stats(set, out.residuals, set.cameras.size(), set_weighted,
+                          [&](const Observation& o) { return camera_of_view[static_cast<std::size_t>(o.view)]; });
     std::vector<double> view_rms;
     for (std::size_t v = 0; v < set.views.size(); ++v) {
-        // A view without observations has no statistics (residual_stats takes an empty
-        // list of indices as "all").
-        ResidualStats stats = by_view[v].empty() ? ResidualStats{} : stats_of(set, out.residuals, by_view[v], set_weighted);
-        view_rms.push_back(stats.stats.count == 0 ? kNaN : stats.stats.rms_px);
-        summary.per_view.push_back({set.views[v].name, std::move(stats)});
+        view_rms.push_back(per_view[v].stats.count == 0 ? kNaN : per_view[v].stats.rms_px);
+        summary.per_view.push_back({set.views[v].name, std::move(per_view[v])});
     }
     for (std::size_t c = 0; c < set.cameras.size(); ++c) {
-        // A camera that took every view (a model of one camera) has the statistics of all.
-        const bool every = by_camera[c].size() == set.observations.size();
-        ResidualStats stats = by_camera[c].empty() ? ResidualStats{}
-                              : every             ? summary.all
-                                                  : stats_of(set, out.residuals, by_camera[c], set_weighted);
-        summary.per_camera.push_back({set.cameras[c].name, std::move(stats)});
+        summary.per_camera.push_back({set.cameras[c].name, std::move(per_camera[c])});
     }
 
     const bool needs_point_means =

@@ -18,7 +18,9 @@ double nearest_rank_quantile(std::span<const double> sorted, double q) {
     return sorted[nearest_rank_index(sorted.size(), q)];
 }
 
-ErrorStats error_stats(std::vector<double> errors_px) {
+ErrorStats error_stats(std::vector<double> errors_px) { return error_stats_in_place(errors_px); }
+
+ErrorStats error_stats_in_place(std::span<double> errors_px) {
     ErrorStats stats;
     stats.count = errors_px.size();
     if (errors_px.empty()) return stats;

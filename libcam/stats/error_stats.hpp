@@ -29,6 +29,9 @@ struct ErrorStats {
 };
 
 ErrorStats error_stats(std::vector<double> errors_px);
+// The same, reordering the caller's errors instead of copying them (a report of a million
+// errors in groups).
+ErrorStats error_stats_in_place(std::span<double> errors_px);
 
 // One field of the statistics, by the name every report gives it (JSON keys, Python dict
 // keys): count, median_px, p99_px, max_px, rms_px, in that order.

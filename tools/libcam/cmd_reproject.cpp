@@ -16,14 +16,14 @@
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/observations.hpp"
-#include "libcam/report/image.hpp"
-#include "libcam/report/reprojection_heatmap.hpp"
 #include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
 
 namespace {
+
+ReprojectionHeatmapWriter heatmap_writer = nullptr;
 
 struct Flags {
     std::string source;
@@ -280,6 +280,8 @@ std::string observations_csv(const ObservationSet& set, const Reprojection& r) {
 
 }  // namespace
 
+void set_reprojection_heatmap_writer(ReprojectionHeatmapWriter writer) { heatmap_writer = writer; }
+
 Runner add_reproject(CLI::App& app) {
     CLI::App* command = add_command(app, "reproject");
     auto flags = std::make_shared<Flags>();
@@ -317,7 +319,10 @@ Runner add_reproject(CLI::App& app) {
         if (!flags->observations_out.empty()) {
             write_file_atomically(flags->observations_out, observations_csv(set, reprojection));
         }
-        if (!flags->heatmap.empty()) write_png(flags->heatmap, reprojection_heatmap(set, reprojection));
+        if (!flags->heatmap.empty()) {
+            if (heatmap_writer == nullptr) throw Error("--heatmap: drawn by the commands module, which is not loaded");
+            heatmap_writer(flags->heatmap, set, reprojection);
+        }
         emit(flags->json ? format_json(set, reprojection, worst) : format_text(set, reprojection, worst), "");
         return 0;
     };

@@ -32,7 +32,7 @@ constexpr std::array<CommandInfo, 14> kCommands = {{
     {"reproject",
      "Reproject the observations of a calibration or reconstruction (OpenCV, mrcal, COLMAP, OpenSfM, OpenMVG) and "
      "reproduce each tool's own reprojection error",
-     false},
+     true, "--heatmap"},
     {"fit", "The simplest lens model that reproduces a camera over a scene within a pixel tolerance", false},
     {"bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal", false},
     {"demo",
@@ -72,7 +72,7 @@ int run_reporting_errors(const Runner& run) {
 std::span<const CommandAdder> light_commands() {
     static constexpr CommandAdder kLight[] = {
         {"convert", add_convert}, {"info", add_info},       {"rays", add_rays},     {"project", add_project},
-        {"derive", add_derive},   {"formats", add_formats}, {"models", add_models},
+        {"derive", add_derive},   {"formats", add_formats}, {"models", add_models}, {"reproject", add_reproject},
     };
     return kLight;
 }
@@ -87,6 +87,20 @@ const CommandInfo* find_command(std::string_view name) {
 CLI::App* add_command(CLI::App& app, std::string_view name) {
     const CommandInfo* info = find_command(name);
     return app.add_subcommand(std::string(name), info == nullptr ? std::string() : std::string(info->description));
+}
+
+bool runs_in_module(const CommandInfo& command, int argc, char** argv) {
+    if (!command.light) return true;
+    if (command.module_flag.empty()) return false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view word = argv[i];
+        if (word == command.module_flag ||
+            (word.starts_with(command.module_flag) && word.size() > command.module_flag.size() &&
+             word[command.module_flag.size()] == '=')) {
+            return true;
+        }
+    }
+    return false;
 }
 
 std::string_view subcommand_of(int argc, char** argv) {

@@ -34,8 +34,31 @@ struct CommandInfo {
     std::string_view name;
     std::string_view description;
     bool light;
+    // A flag that sends a light command to the commands module (reproject's --heatmap,
+    // drawn with OpenCV); empty: none.
+    std::string_view module_flag = {};
 };
 const CommandInfo* find_command(std::string_view name);  // nullptr: no such command
+
+// Whether the command line runs in the commands module: a command that is not light, or a
+// light one given its module flag.
+bool runs_in_module(const CommandInfo& command, int argc, char** argv);
+
+}  // namespace libcam::cli
+
+namespace libcam {
+struct ObservationSet;
+struct Reprojection;
+}  // namespace libcam
+
+namespace libcam::cli {
+
+// reproject --heatmap's picture, which the commands module draws (libcam::report): the
+// module sets it when it starts; the program alone never needs it (main sends --heatmap
+// to the module).
+using ReprojectionHeatmapWriter = void (*)(const std::string& path, const ObservationSet& set,
+                                           const Reprojection& reprojection);
+void set_reprojection_heatmap_writer(ReprojectionHeatmapWriter writer);
 
 // The subcommand `name` with its description from the table.
 CLI::App* add_command(CLI::App& app, std::string_view name);

@@ -9,6 +9,8 @@
 #include "commands.hpp"
 #include "commands_module.hpp"
 #include "libcam/interop/formats.hpp"
+#include "libcam/report/image.hpp"
+#include "libcam/report/reprojection_heatmap.hpp"
 #include "libcam/version.hpp"
 
 namespace {
@@ -23,8 +25,12 @@ int quiet_opencv_errors(int, const char*, const char*, const char*, int, void*) 
 constexpr CommandAdder kModuleCommands[] = {
     {"remap", add_remap}, {"render-plan", add_render_plan}, {"verify", add_verify},
     {"fit", add_fit},     {"bench", add_bench},             {"demo", add_demo},
-    {"reproject", add_reproject},
 };
+
+void write_reprojection_heatmap(const std::string& path, const libcam::ObservationSet& set,
+                                const libcam::Reprojection& reprojection) {
+    libcam::write_png(path, libcam::reprojection_heatmap(set, reprojection));
+}
 
 }  // namespace
 
@@ -35,6 +41,7 @@ LIBCAM_MODULE_ENTRY const char* libcam_commands_version() { return LIBCAM_VERSIO
 LIBCAM_MODULE_ENTRY int libcam_run_commands(int argc, char** argv) {
     cv::redirectError(quiet_opencv_errors);
     libcam::register_interop_formats();  // this copy of libcam::io's table: mrcal .cameramodel
+    set_reprojection_heatmap_writer(write_reprojection_heatmap);
     std::vector<CommandAdder> all(light_commands().begin(), light_commands().end());
     all.insert(all.end(), std::begin(kModuleCommands), std::end(kModuleCommands));
     return run_commands(all, argc, argv);

@@ -17,7 +17,7 @@ using namespace libcam::cli;
 int main(int argc, char** argv) {
     const std::string_view name = subcommand_of(argc, argv);
     const CommandInfo* command = find_command(name);
-    if (command != nullptr && !command->light) return run_in_commands_module(name, argc, argv);
+    if (command != nullptr && runs_in_module(*command, argc, argv)) return run_in_commands_module(name, argc, argv);
     libcam::set_camera_format_loader(load_format_from_commands_module);
     return run_commands(light_commands(), argc, argv);
 }
