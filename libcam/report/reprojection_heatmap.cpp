@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "libcam/error.hpp"
+#include "libcam/lens/lens_model.hpp"
 #include "libcam/report/detail/colour_scale.hpp"
 #include "libcam/report/detail/cv_image.hpp"
 #include "libcam/text/number_format.hpp"
@@ -186,7 +187,8 @@ Image reprojection_heatmap(const ObservationSet& set, const Reprojection& reproj
     draw_scale_bar(canvas, map_width + 12, kTitleHeight + 10, std::max(60, map_area_height - 90), top_rms);
     draw_text(canvas,
               std::string(to_string(set.tool)) + ", camera " + set.cameras[static_cast<std::size_t>(camera)].name +
-                  ": " + std::to_string(summary.all.stats.count) + " residuals, RMS " +
+                  " (" + std::string(lens_info(set.cameras[static_cast<std::size_t>(camera)].camera.lens.type).name) +
+                  "): " + std::to_string(summary.all.stats.count) + " residuals, RMS " +
                   format_short(summary.all.stats.rms_px, 4) + " px; arrows: mean residual x" + format_short(factor, 3),
               {8, 20}, 0.5);
     draw_view_bars(canvas, cv::Rect(8, kTitleHeight + map_area_height + 4, canvas.cols - 16, kBarChartHeight - 8),
