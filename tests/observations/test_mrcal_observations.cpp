@@ -13,6 +13,7 @@
 
 #include "libcam/check/reproject.hpp"
 #include "libcam/error.hpp"
+#include "temp_dir.hpp"
 #include "libcam/io/observations.hpp"
 #include "real_cameras.hpp"
 
@@ -41,10 +42,14 @@ nlohmann::json mrcal_summary(const fs::path& model) {
     return nlohmann::json::parse(run("/usr/bin/python3 '" + kScript.string() + "' summary '" + model.string() + "'"));
 }
 
+// A folder of this test program's own, removed when it ends (two runs at once never share it).
+const fs::path& scratch_folder() {
+    static const libcam::test::TempDir folder;
+    return folder.path();
+}
+
 fs::path small_model(const std::string& variant) {
-    const fs::path folder = fs::temp_directory_path() / "libcam_test_mrcal_observations";
-    fs::create_directories(folder);
-    const fs::path model = folder / (variant + ".cameramodel");
+    const fs::path model = scratch_folder() / (variant + ".cameramodel");
     run("/usr/bin/python3 '" + kScript.string() + "' write '" + model.string() + "' " + variant);
     return model;
 }
@@ -147,8 +152,7 @@ TEST_CASE("mrcal observations: a malformed file gives one line naming the file, 
         return "no error";
     };
     const auto written = [](const std::string& name, const std::string& text) {
-        const fs::path path = fs::temp_directory_path() / "libcam_test_mrcal_observations" / name;
-        fs::create_directories(path.parent_path());
+        const fs::path path = scratch_folder() / name;
         std::ofstream(path) << text;
         return path;
     };
