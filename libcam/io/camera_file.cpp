@@ -157,6 +157,7 @@ std::vector<CameraFormatInfo> camera_formats() {
                               .reads = !row.write_only,
                               .writes = !row.read_only,
                               .writes_folder = row.writes_folder,
+                              .observations = row.read_observations != nullptr,
                               .lenses = {row.lenses.begin(), row.lenses.end()},
                               .lens_names = row.lens_names,
                               .refuses = row.refuses,

@@ -19,6 +19,7 @@ struct CameraFormatInfo {
     bool reads = true;
     bool writes = true;
     bool writes_folder = false;    // written as several files into a folder
+    bool observations = false;     // its files may hold observations (read_observations, io/observations.hpp)
     std::vector<LensType> lenses;  // the lens models its files hold exactly
     std::string_view lens_names;   // the format's own names for them, in words
     std::string_view refuses;      // what it cannot hold besides other lens models (skew, a pose)

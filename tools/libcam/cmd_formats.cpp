@@ -27,10 +27,11 @@ std::vector<std::string_view> lens_names(const CameraFormatInfo& format) {
     return names;
 }
 
-std::string_view access(const CameraFormatInfo& format) {
-    if (!format.writes) return "reads";
-    if (!format.reads) return "writes";
-    return format.writes_folder ? "reads, writes a folder" : "reads, writes";
+std::string access(const CameraFormatInfo& format) {
+    std::string text = !format.writes ? "reads" : !format.reads ? "writes"
+                       : format.writes_folder ? "reads, writes a folder" : "reads, writes";
+    if (format.observations) text += "; observations";
+    return text;
 }
 
 // The models a format holds, in words: "every model" where it holds them all.
@@ -48,6 +49,7 @@ Json format_json(const CameraFormatInfo& format) {
     out["reads"] = format.reads;
     out["writes"] = format.writes;
     out["writes_folder"] = format.writes_folder;
+    out["observations"] = format.observations;
     out["lens_models"] = lens_names(format);
     out["lens_names"] = format.lens_names;
     out["refuses"] = format.refuses;
@@ -93,7 +95,7 @@ Runner add_formats(CLI::App& app) {
     CLI::Option* json = command->add_flag(
         "--json", flags->json,
         "Print a JSON array, one object per format: name, title, description, extensions, reads, writes, "
-        "writes_folder, lens_models, lens_names, refuses, library, available");
+        "writes_folder, observations, lens_models, lens_names, refuses, library, available");
     command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md")->excludes(json);
     return [flags] {
         const std::vector<CameraFormatInfo> formats = camera_formats();
