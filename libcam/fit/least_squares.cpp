@@ -192,6 +192,18 @@ ceres::Solver::Options solver_options() {
     return options;
 }
 
+// Runs the solver; throws InvalidArgument naming the model where it fails outright.
+// Returns the iterations it took.
+int solve_or_throw(const ceres::Solver::Options& options, ceres::Problem& problem, LensType model) {
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    if (summary.termination_type == ceres::FAILURE) {
+        throw InvalidArgument("fit: the solver failed for " + std::string(lens_info(model).name) + ": " +
+                              summary.message);
+    }
+    return static_cast<int>(summary.iterations.size());
+}
+
 template <class Model, Core kCore>
 LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSample>& observations,
                              LeastSquaresState state, const SolveOptions& settings, const IterationHook& hook) {
@@ -210,13 +222,7 @@ LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSa
     ceres::Solver::Options options = solver_options();
     IterationWatch watch(hook, observations.size(), settings.negligible_rms_px);
     options.callbacks.push_back(&watch);
-    ceres::Solver::Summary summary;
-    ceres::Solve(options, &problem, &summary);
-    if (summary.termination_type == ceres::FAILURE) {
-        throw InvalidArgument("fit: the solver failed for " + std::string(lens_info(Model::type).name) + ": " +
-                              summary.message);
-    }
-    state.iterations = static_cast<int>(summary.iterations.size());
+    state.iterations = solve_or_throw(options, problem, Model::type);
     return state;
 }
 
@@ -247,13 +253,7 @@ ViewsState solve_views_with(const HeldIntrinsics& held, const std::vector<std::v
     options.max_num_iterations = 200;
     options.function_tolerance = 1e-12;
     options.parameter_tolerance = 1e-12;
-    ceres::Solver::Summary summary;
-    ceres::Solve(options, &problem, &summary);
-    if (summary.termination_type == ceres::FAILURE) {
-        throw InvalidArgument("fit: the solver failed for " + std::string(lens_info(Model::type).name) + ": " +
-                              summary.message);
-    }
-    state.iterations = static_cast<int>(summary.iterations.size());
+    state.iterations = solve_or_throw(options, problem, Model::type);
     return state;
 }
 

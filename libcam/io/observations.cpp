@@ -86,6 +86,25 @@ void check_observations(const ObservationSet& set) {
     }
 }
 
+namespace detail {
+
+std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::string& source, std::string_view where) {
+    std::vector<NamedCamera> cameras;
+    for (const ObservedView& view : set.views) {
+        const ObservedCamera& intrinsics = set.cameras[static_cast<std::size_t>(view.camera)];
+        Camera camera = intrinsics.camera;
+        camera.pose = view.pose;
+        cameras.push_back({view.name, {camera, std::nullopt}, intrinsics.name});
+    }
+    if (cameras.empty()) {
+        for (const ObservedCamera& camera : set.cameras) cameras.push_back({camera.name, {camera.camera, std::nullopt}});
+    }
+    if (cameras.empty()) throw FileError(source + ": " + std::string(where) + "no camera");
+    return cameras;
+}
+
+}  // namespace detail
+
 ObservationSet read_observations(const std::filesystem::path& path, const ObservationReadOptions& options) {
     // A table names no format of its own: the camera file says it is one.
     if (!options.camera_file.empty()) {

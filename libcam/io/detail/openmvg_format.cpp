@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "libcam/error.hpp"
+#include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/lens/lens_model.hpp"
 
@@ -233,19 +234,7 @@ SfmData read_sfm_data(std::string_view text, const std::string& source) {
 bool claims_openmvg(const DocumentNode& root) { return root.find("sfm_data_version") != nullptr; }
 
 std::vector<NamedCamera> read_openmvg(std::string_view text, const ReadContext& context) {
-    const SfmData read = read_sfm_data(text, context.source);
-    std::vector<NamedCamera> cameras;
-    for (const ObservedView& view : read.set.views) {
-        const ObservedCamera& intrinsics = read.set.cameras[static_cast<std::size_t>(view.camera)];
-        Camera camera = intrinsics.camera;
-        camera.pose = view.pose;
-        cameras.push_back({view.name, {camera, std::nullopt}, intrinsics.name});
-    }
-    if (cameras.empty()) {
-        for (const ObservedCamera& camera : read.set.cameras) cameras.push_back({camera.name, {camera.camera, std::nullopt}});
-    }
-    if (cameras.empty()) throw FileError(context.source + ": \"intrinsics\": no camera");
-    return cameras;
+    return detail::cameras_of_views(read_sfm_data(text, context.source).set, context.source, "\"intrinsics\": ");
 }
 
 ObservationSet read_openmvg_observations(const std::filesystem::path& file, const ObservationReadOptions&) {

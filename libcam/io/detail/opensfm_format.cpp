@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "libcam/error.hpp"
+#include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/lens/lens_model.hpp"
 
@@ -261,19 +262,7 @@ bool claims_opensfm(const DocumentNode& root) {
 }
 
 std::vector<NamedCamera> read_opensfm(std::string_view text, const ReadContext& context) {
-    const Reconstructions read = read_reconstructions(text, context.source);
-    std::vector<NamedCamera> cameras;
-    for (const ObservedView& view : read.set.views) {
-        const ObservedCamera& intrinsics = read.set.cameras[static_cast<std::size_t>(view.camera)];
-        Camera camera = intrinsics.camera;
-        camera.pose = view.pose;
-        cameras.push_back({view.name, {camera, std::nullopt}, intrinsics.name});
-    }
-    if (cameras.empty()) {
-        for (const ObservedCamera& camera : read.set.cameras) cameras.push_back({camera.name, {camera.camera, std::nullopt}});
-    }
-    if (cameras.empty()) throw FileError(context.source + ": no camera");
-    return cameras;
+    return detail::cameras_of_views(read_reconstructions(text, context.source).set, context.source, "");
 }
 
 ObservationSet read_opensfm_observations(const std::filesystem::path& file, const ObservationReadOptions&) {
