@@ -29,6 +29,10 @@ using Clock = std::chrono::steady_clock;
 struct Outcome {
     std::vector<double> errors_px;  // one per point with a result
     std::size_t total = 0;          // points attempted
+    // Maps only: the largest distance from libcam's exact double map where both give a
+    // source, and the points where one gives a source and the other not.
+    std::optional<double> max_from_exact_px;
+    std::size_t defined_differently = 0;
 };
 
 struct Contender {
@@ -64,6 +68,8 @@ std::vector<BenchRow> measure(std::vector<Contender>& candidates, int repeat) {
                 c.row.error = error_stats(outcome.errors_px);
                 c.row.invalid_fraction =
                     outcome.total ? 1.0 - static_cast<double>(outcome.errors_px.size()) / static_cast<double>(outcome.total) : 0.0;
+                c.row.max_from_exact_px = outcome.max_from_exact_px;
+                if (outcome.total) c.row.defined_differently = double(outcome.defined_differently) / double(outcome.total);
             }
         }
     }
@@ -176,6 +182,7 @@ struct Workspace {
     Points3<float> frame_float;
     ValidFlags frame_valid;
     RemapMap map;     // the last libcam map built
+    RemapMapFloat map_float;
     cv::Mat cv_map, cv_map_y;  // the last OpenCV map built: CV_32FC2, or x and y as CV_32F
 };
 
@@ -608,118 +615,176 @@ std::vector<BenchRow> full_frame_rows(const Setup& setup, const Unprojector<doub
 // ---------------------------------------------------------------------------------
 // Remap maps: every pixel of a target image and the source pixel that sees its ray.
 
-// How far each target pixel of a sample of about 100,000 is sent back by the source
-// pixel its map gives: the source pixel unprojected (exact) and projected by the
-// target, against the target pixel. A pixel without a source, or with one off the
-// source image, counts as no result.
+// "32FC2" or "32F x2": how an OpenCV map of `type` holds a pixel's two coordinates.
+std::string opencv_map_type_name(int type) { return type == CV_32FC2 ? "32FC2" : "32F x2"; }
+
+// The target pixels a map is measured on: about 100,000, every stride-th of the image.
+struct MapSample {
+    std::size_t n = 0, width = 0, stride = 1;
+    std::vector<std::size_t> indices;
+};
+
+MapSample map_sample(const ImageSize& size) {
+    MapSample sample;
+    sample.width = static_cast<std::size_t>(size.width);
+    sample.n = sample.width * static_cast<std::size_t>(size.height);
+    sample.stride = std::max<std::size_t>(1, sample.n / 100'000) | 1;  // odd: not aligned with rows
+    for (std::size_t k = 0; k < sample.n; k += sample.stride) sample.indices.push_back(k);
+    return sample;
+}
+
+// One direction of the maps: target and source, and libcam's exact double map at the
+// sample, the reference the other maps are compared with (NaN: no source).
+struct MapDirection {
+    const PreparedCamera& target;
+    const PreparedCamera& source;
+    bool inverse;
+    std::vector<Vec2> exact;
+};
+
+std::vector<Vec2> exact_at_sample(const MapDirection& direction, const MapSample& sample) {
+    RemapOptions options;
+    options.threads = 2;
+    const RemapMap map = build_remap_map(direction.target, direction.source, options);
+    std::vector<Vec2> exact;
+    for (std::size_t k : sample.indices) exact.emplace_back(map.x[k], map.y[k]);
+    return exact;
+}
+
+// How far each sampled target pixel is sent back by the source pixel its map gives: the
+// source pixel unprojected (exact) and projected by the target, against the target
+// pixel; a pixel without a source, or with one off the source image, counts as no
+// result. And how far the map is from libcam's exact double map where both give a
+// source, and at how many sampled pixels one gives a source and the other not.
 template <class SourceOf>
-Outcome map_outcome(const PreparedCamera& target, const PreparedCamera& source, SourceOf source_of) {
-    const ImageSize size = target.camera().size;
-    const std::size_t width = static_cast<std::size_t>(size.width);
-    const std::size_t n = width * static_cast<std::size_t>(size.height);
-    const std::size_t stride = std::max<std::size_t>(1, n / 100'000) | 1;  // odd: not aligned with rows
+Outcome map_outcome(const MapDirection& direction, const MapSample& sample, SourceOf source_of) {
     std::vector<Vec2> targets, sources;
-    for (std::size_t k = 0; k < n; k += stride) {
+    Outcome outcome;
+    outcome.total = sample.indices.size();
+    outcome.max_from_exact_px = 0;
+    for (std::size_t i = 0; i < sample.indices.size(); ++i) {
+        const std::size_t k = sample.indices[i];
         const Vec2 at = source_of(k);
-        if (!at.allFinite() || !on_image(at.x(), at.y(), source.camera().size)) continue;
-        targets.emplace_back(double(k % width), double(k / width));
+        const bool has = at.allFinite() && on_image(at.x(), at.y(), direction.source.camera().size);
+        const bool exact_has = direction.exact[i].allFinite();
+        if (has != exact_has) ++outcome.defined_differently;
+        if (has && exact_has) outcome.max_from_exact_px = std::max(*outcome.max_from_exact_px, (at - direction.exact[i]).norm());
+        if (!has) continue;
+        targets.emplace_back(double(k % sample.width), double(k / sample.width));
         sources.push_back(at);
     }
-    Outcome outcome;
-    outcome.total = (n + stride - 1) / stride;
-    const std::vector<Unprojection> rays = source.unproject(sources);
+    const std::vector<Unprojection> rays = direction.source.unproject(sources);
     for (std::size_t i = 0; i < rays.size(); ++i) {
         if (!rays[i].valid) continue;
-        const Projection back = target.project_camera_point(rays[i].direction);
+        const Projection back = direction.target.project_camera_point(rays[i].direction);
         if (back.valid) outcome.errors_px.push_back((back.pixel - targets[i]).norm());
     }
     return outcome;
 }
 
-// The map from a pinhole with the lens's K (undistorting) and the one from the lens to
-// that pinhole (distorting a render), built by libcam with each method, and OpenCV's
-// maps for the lenses OpenCV has them for, each allocated afresh as a user's first call
-// would. OpenCV runs on as many threads as libcam in the same row.
-void add_maps(std::vector<Contender>& out, const Setup& setup, const PreparedCamera& lens, const PreparedCamera& pinhole,
-              Workspace& work) {
-    const Camera& camera = lens.camera();
-    const std::size_t n = static_cast<std::size_t>(camera.size.width) * static_cast<std::size_t>(camera.size.height);
-    const auto libcam_source = [&work](std::size_t k) { return Vec2(work.map.x[k], work.map.y[k]); };
-    for (const bool inverse : {false, true}) {
-        const PreparedCamera& target = inverse ? lens : pinhole;
-        const PreparedCamera& source = inverse ? pinhole : lens;
-        for (UnprojectMethod method : {UnprojectMethod::Exact, UnprojectMethod::Fast}) {
-            for (const RunOn on : runs_of(setup)) {
-                const std::string name = std::string(inverse ? "inverse-" : "") + std::string(method_name(method));
-                Contender c{row(setup, "map", name, "double", on), n, nullptr, nullptr};
-                c.run = [&, method, on] {
-                    const SimdTargetFor forced(on.instruction_set);
-                    RemapOptions options;
-                    options.method = method;
-                    options.threads = on.threads;
-                    work.map = RemapMap();  // freed first, as OpenCV's rows free theirs
-                    work.map = build_remap_map(target, source, options);
-                };
-                c.outcome = [&, libcam_source] { return map_outcome(target, source, libcam_source); };
-                out.push_back(std::move(c));
-            }
+// libcam's map in Scalar for one direction, each method (a PINHOLE target's rays are the
+// same for both: the undistorting direction has exact only), each allocated afresh as a
+// user's first call would.
+template <class Scalar>
+void add_libcam_maps(std::vector<Contender>& out, const Setup& setup, const MapDirection& direction,
+                     const MapSample& sample, BasicRemapMap<Scalar>& map) {
+    const auto source_of = [&map](std::size_t k) { return Vec2(double(map.x[k]), double(map.y[k])); };
+    for (UnprojectMethod method : {UnprojectMethod::Exact, UnprojectMethod::Fast}) {
+        if (!direction.inverse && method != UnprojectMethod::Exact) continue;
+        for (const RunOn on : runs_of(setup)) {
+            const std::string name = std::string(direction.inverse ? "inverse-" : "") + std::string(method_name(method));
+            Contender c{row(setup, "map", name, scalar_name<Scalar>(), on), sample.n, nullptr, nullptr};
+            c.run = [&, method, on] {
+                const SimdTargetFor forced(on.instruction_set);
+                RemapOptions options;
+                options.method = method;
+                options.threads = on.threads;
+                map = BasicRemapMap<Scalar>();  // freed first, as OpenCV's rows free theirs
+                map = build_remap_map<Scalar>(direction.target, direction.source, options);
+            };
+            c.outcome = [&, source_of] { return map_outcome(direction, sample, source_of); };
+            out.push_back(std::move(c));
         }
     }
+}
+
+// OpenCV's maps for the lenses OpenCV has them for: the undistortion map as one CV_32FC2
+// and as two CV_32F maps (cv::fisheye's takes no CV_32FC2), the distortion map
+// (initInverseRectificationMap) for the projectPoints models. OpenCV runs on as many
+// threads as libcam in the same row.
+void add_opencv_maps(std::vector<Contender>& out, const Setup& setup, const MapDirection& undistort,
+                     const MapDirection& distort, const MapSample& sample, Workspace& work) {
+    const Camera& camera = setup.bench_case.camera;
     const OpenCvFunction function = lens_info(camera.lens.type).opencv;
     if (function != OpenCvFunction::ProjectPoints && function != OpenCvFunction::Fisheye) return;
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
     const cv::Mat D = opencv_distortion(camera.lens);
     const cv::Size size(static_cast<int>(camera.size.width), static_cast<int>(camera.size.height));
+    struct OpenCvMap {
+        std::string name;
+        const MapDirection& direction;
+        std::function<void()> build;
+    };
+    const auto fresh = [&work] {
+        work.cv_map = cv::Mat();
+        work.cv_map_y = cv::Mat();
+    };
+    std::vector<OpenCvMap> maps;
+    if (function == OpenCvFunction::ProjectPoints) {
+        for (const int type : {CV_32FC2, CV_32FC1}) {
+            maps.push_back({std::string("initUndistortRectifyMap ") + opencv_map_type_name(type), undistort, [&work, fresh, K, D, size, type] {
+                                fresh();
+                                cv::initUndistortRectifyMap(K, D, cv::noArray(), K, size, type, work.cv_map,
+                                                            type == CV_32FC2 ? cv::_OutputArray(cv::noArray()) : work.cv_map_y);
+                            }});
+        }
+        maps.push_back({"initInverseRectificationMap 32FC2", distort, [&work, fresh, K, D, size] {
+                            fresh();
+                            cv::initInverseRectificationMap(K, D, cv::noArray(), K, size, CV_32FC2, work.cv_map, cv::noArray());
+                        }});
+    } else {
+        maps.push_back({"fisheye::initUndistortRectifyMap 32F x2", undistort, [&work, fresh, K, D, size] {
+                            fresh();
+                            cv::fisheye::initUndistortRectifyMap(K, D, cv::Matx33d::eye(), K, size, CV_32F, work.cv_map,
+                                                                 work.cv_map_y);
+                        }});
+    }
     const auto opencv_source = [&work](std::size_t k) {
         const int i = static_cast<int>(k);
         if (work.cv_map_y.empty()) return Vec2(work.cv_map.at<cv::Vec2f>(i)[0], work.cv_map.at<cv::Vec2f>(i)[1]);
         return Vec2(work.cv_map.at<float>(i), work.cv_map_y.at<float>(i));
     };
-    struct OpenCvMap {
-        const char* name;
-        bool inverse;
-        std::function<void()> build;
-    };
-    std::vector<OpenCvMap> maps;
-    if (function == OpenCvFunction::ProjectPoints) {
-        maps.push_back({"initUndistortRectifyMap", false, [&, K, D, size] {
-                            work.cv_map = cv::Mat();
-                            cv::initUndistortRectifyMap(K, D, cv::noArray(), K, size, CV_32FC2, work.cv_map, cv::noArray());
-                        }});
-        maps.push_back({"initInverseRectificationMap", true, [&, K, D, size] {
-                            work.cv_map = cv::Mat();
-                            cv::initInverseRectificationMap(K, D, cv::noArray(), K, size, CV_32FC2, work.cv_map, cv::noArray());
-                        }});
-    } else {
-        // cv::fisheye's takes no CV_32FC2: x and y in two maps.
-        maps.push_back({"fisheye::initUndistortRectifyMap", false, [&, K, D, size] {
-                            work.cv_map = cv::Mat();
-                            work.cv_map_y = cv::Mat();
-                            cv::fisheye::initUndistortRectifyMap(K, D, cv::Matx33d::eye(), K, size, CV_32F, work.cv_map,
-                                                                 work.cv_map_y);
-                        }});
-    }
     for (const OpenCvMap& map : maps) {
         for (int threads : setup.settings.threads) {
-            Contender c{row(setup, "map", "opencv", map.name, "float", threads), n, nullptr, nullptr};
+            Contender c{row(setup, "map", "opencv", map.name, "float", threads), sample.n, nullptr, nullptr};
             c.run = [build = map.build, threads] {
                 const OpenCvThreads using_threads(threads);
                 build();
             };
-            const PreparedCamera& target = map.inverse ? lens : pinhole;
-            const PreparedCamera& source = map.inverse ? pinhole : lens;
-            c.outcome = [&, opencv_source] {
+            c.outcome = [&, opencv_source, direction = &map.direction] {
                 // The map as one row of n pixels, whatever shape OpenCV gave it.
                 work.cv_map = work.cv_map.reshape(0, 1);
                 if (!work.cv_map_y.empty()) work.cv_map_y = work.cv_map_y.reshape(0, 1);
-                return map_outcome(target, source, opencv_source);
+                return map_outcome(*direction, sample, opencv_source);
             };
             out.push_back(std::move(c));
         }
     }
 }
 
-// The maps between the lens and a pinhole with the same K and size.
+// Each map row's time over that of OpenCV's undistortion map (CV_32FC2, or cv::fisheye's
+// two CV_32F maps) at the same thread count.
+void set_map_ratios(std::vector<BenchRow>& rows) {
+    for (BenchRow& r : rows) {
+        const auto reference = std::find_if(rows.begin(), rows.end(), [&](const BenchRow& o) {
+            return o.library == "opencv" && o.threads == r.threads &&
+                   (o.method == "initUndistortRectifyMap 32FC2" || o.method == "fisheye::initUndistortRectifyMap 32F x2");
+        });
+        if (reference != rows.end()) r.ratio = r.ns_per_point / reference->ns_per_point;
+    }
+}
+
+// The maps between the lens and a pinhole with the same K and size, both ways.
 std::vector<BenchRow> map_rows(const Setup& setup, Workspace& work) {
     Camera pinhole = setup.bench_case.camera;
     pinhole.lens = Lens{};
@@ -727,10 +792,21 @@ std::vector<BenchRow> map_rows(const Setup& setup, Workspace& work) {
     const PreparedCamera prepared_pinhole(pinhole);
     lens.unprojector();  // tables built before timing, as in the other rows
     prepared_pinhole.unprojector();
+    const MapSample sample = map_sample(setup.bench_case.camera.size);
+    MapDirection undistort{prepared_pinhole, lens, false, {}};
+    MapDirection distort{lens, prepared_pinhole, true, {}};
+    undistort.exact = exact_at_sample(undistort, sample);
+    distort.exact = exact_at_sample(distort, sample);
     std::vector<Contender> candidates;
-    add_maps(candidates, setup, lens, prepared_pinhole, work);
+    for (const MapDirection* direction : {&undistort, &distort}) {
+        add_libcam_maps(candidates, setup, *direction, sample, work.map);
+        add_libcam_maps(candidates, setup, *direction, sample, work.map_float);
+    }
+    add_opencv_maps(candidates, setup, undistort, distort, sample, work);
     std::vector<BenchRow> rows = measure(candidates, setup.settings.repeat);
+    set_map_ratios(rows);
     work.map = RemapMap();
+    work.map_float = RemapMapFloat();
     work.cv_map.release();
     work.cv_map_y.release();
     return rows;
@@ -743,7 +819,8 @@ BenchResult run_bench(const std::string& name, const Camera& camera, const Bench
     const PixelGrid grid_shape{settings.grid_x, settings.grid_y};
     grid_shape.validate("bench grid");
     const BenchCase bench_case{name, camera};
-    const std::vector<Vec2> grid = grid_shape.pixels(camera.size);
+    // The map rows need no grid: their pixels are every pixel of the image.
+    const std::vector<Vec2> grid = settings.maps ? std::vector<Vec2>{} : grid_shape.pixels(camera.size);
     const Setup setup{bench_case, settings, std::string(lens_info(camera.lens.type).name), grid, rays_of(camera, grid)};
     BenchResult result;
     std::optional<Unprojector<double>> unprojector_double;
@@ -753,14 +830,14 @@ BenchResult run_bench(const std::string& name, const Camera& camera, const Bench
     Workspace work;
     // OpenCV's rows run on one thread, like libcam's 1-thread rows.
     const OpenCvThreads one_thread(1);
+    if (settings.maps) {
+        result.rows = map_rows(setup, work);
+        return result;
+    }
     result.rows = grid_rows(setup, *unprojector_double, *unprojector_float, work);
     if (settings.full_frame) {
         std::vector<BenchRow> frame = full_frame_rows(setup, *unprojector_double, *unprojector_float, work);
         result.rows.insert(result.rows.end(), frame.begin(), frame.end());
-    }
-    if (settings.maps) {
-        std::vector<BenchRow> maps = map_rows(setup, work);
-        result.rows.insert(result.rows.end(), maps.begin(), maps.end());
     }
     return result;
 }

@@ -7,6 +7,7 @@
 // libcam (which the tests check against OpenCV and mrcal); its statistics are
 // stats/error_stats.hpp's.
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,13 @@ struct BenchRow {
     double ns_per_point = 0;          // median over the repetitions
     std::optional<ErrorStats> error;  // none for the memset reference; count 0 when no point had a result
     double invalid_fraction = 0;      // points flagged, not finite, or whose ray cannot be projected back
+    // Maps only: the time over OpenCV's undistortion map's (CV_32FC2; cv::fisheye's two
+    // CV_32F maps) at the same thread count (NaN: no such OpenCV row); the largest distance
+    // from libcam's exact double map where both give a source; the fraction of pixels
+    // where one gives a source and the other not.
+    double ratio = std::numeric_limits<double>::quiet_NaN();
+    std::optional<double> max_from_exact_px;
+    double defined_differently = 0;
 };
 
 struct BenchSettings {
@@ -39,7 +47,9 @@ struct BenchSettings {
     // empty: the one in use (simd_target()). Rows at more threads use the one in use.
     std::vector<SimdTarget> simd_targets;
     bool full_frame = false;         // also every pixel's ray, and the memset reference
-    bool maps = false;               // also the remap maps between the lens and a pinhole with its K
+    // Instead of the rows above, the remap maps between the lens and a pinhole with its K
+    // and size, both ways, and OpenCV's: every pixel of the image, no grid.
+    bool maps = false;
 };
 
 struct BenchResult {

@@ -60,19 +60,36 @@ struct UninitialisedAllocator : std::allocator<T> {
 };
 
 // One coordinate of every target pixel, row by row.
-using MapCoordinates = std::vector<double, UninitialisedAllocator<double>>;
+template <class Scalar>
+using MapCoordinatesOf = std::vector<Scalar, UninitialisedAllocator<Scalar>>;
+using MapCoordinates = MapCoordinatesOf<double>;
 
-struct RemapMap {
-    ImageSize size;           // the target image
-    ImageSize source_size;    // the source image
-    MapCoordinates x, y;      // source pixel of target pixel (i % width, i / width); NaN: no source
+// Scalar: double, or float for the 8 bytes per pixel cv::remap reads (CV_32FC2's or two
+// CV_32F maps' worth). A float map is the double map rounded once: each coordinate is
+// computed in double and rounded to float, and the pixels without a source are the same.
+template <class Scalar>
+struct BasicRemapMap {
+    ImageSize size;                    // the target image
+    ImageSize source_size;             // the source image
+    MapCoordinatesOf<Scalar> x, y;     // source pixel of target pixel (i % width, i / width); NaN: no source
     std::size_t with_source = 0;
 
     bool has_source(std::size_t i) const { return x[i] == x[i]; }
 };
 
+using RemapMap = BasicRemapMap<double>;
+using RemapMapFloat = BasicRemapMap<float>;
+
 // Throws InvalidArgument for a rotation that is not one (naming "rotation").
-RemapMap build_remap_map(const PreparedCamera& target, const PreparedCamera& source, const RemapOptions& options = {});
+// build_remap_map<float>(...) gives the float map. A PINHOLE target (undistorting, the
+// common case) takes its rays from K^-1 [x y 1] directly, row by row, without the
+// unprojector: the same rays, with no per-pixel check to make.
+template <class Scalar = double>
+BasicRemapMap<Scalar> build_remap_map(const PreparedCamera& target, const PreparedCamera& source,
+                                      const RemapOptions& options = {});
+
+extern template RemapMap build_remap_map<double>(const PreparedCamera&, const PreparedCamera&, const RemapOptions&);
+extern template RemapMapFloat build_remap_map<float>(const PreparedCamera&, const PreparedCamera&, const RemapOptions&);
 
 // The rotation between two cameras' poses: X_target = R X_source for a direction, so
 // R = R_target R_source^T (their rotations from the same world).

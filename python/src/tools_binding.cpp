@@ -188,7 +188,7 @@ py::tuple new_camera(const PythonCamera& source, const std::string& model, const
 }
 
 template <class T>
-py::tuple map_arrays(const RemapMap& map) {
+py::tuple map_arrays(const BasicRemapMap<T>& map) {
     const std::vector<py::ssize_t> shape{map.size.height, map.size.width};
     py::array_t<T> coordinates = new_array<T>(shape, 2);
     py::array_t<bool> mask = new_array<bool>(shape, 0);
@@ -198,8 +198,8 @@ py::tuple map_arrays(const RemapMap& map) {
     {
         py::gil_scoped_release release;
         for (std::size_t i = 0; i < n; ++i) {
-            out[2 * i] = T(map.x[i]);
-            out[2 * i + 1] = T(map.y[i]);
+            out[2 * i] = map.x[i];
+            out[2 * i + 1] = map.y[i];
             valid[i] = map.has_source(i);
         }
     }
@@ -218,12 +218,16 @@ py::tuple remap_map(const PythonCamera& target, const PythonCamera& source, cons
     if (!type.is(py::dtype::of<float>()) && !type.is(py::dtype::of<double>())) {
         throw py::type_error("dtype: expected numpy.float32 or numpy.float64, got " + type.attr("name").cast<std::string>());
     }
-    RemapMap map;
-    {
-        py::gil_scoped_release release;
-        map = build_remap_map(target.prepared(), source.prepared(), options);
-    }
-    return type.is(py::dtype::of<float>()) ? map_arrays<float>(map) : map_arrays<double>(map);
+    // A float map is built in float (the double map rounded once): half the memory.
+    const auto built = [&]<class T>() {
+        BasicRemapMap<T> map;
+        {
+            py::gil_scoped_release release;
+            map = build_remap_map<T>(target.prepared(), source.prepared(), options);
+        }
+        return map_arrays<T>(map);
+    };
+    return type.is(py::dtype::of<float>()) ? built.template operator()<float>() : built.template operator()<double>();
 }
 
 }  // namespace

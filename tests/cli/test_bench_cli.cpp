@@ -108,7 +108,7 @@ TEST_CASE("bench --plot writes a PNG and --save-json the JSON beside the table, 
     CHECK(out["rows"][0]["model"] == "PINHOLE");
 }
 
-TEST_CASE("bench --maps: libcam's maps both ways with each method, and OpenCV's for the lenses it has them for") {
+TEST_CASE("bench --maps: libcam's maps both ways in double and float, and OpenCV's for the lenses it has them for") {
     TempDir dir;
     const auto camera_file = [&](const std::string& name, const std::string& distortion) {
         const std::string path = (dir / name).string();
@@ -124,28 +124,41 @@ TEST_CASE("bench --maps: libcam's maps both ways with each method, and OpenCV's 
         "fisheye.yaml", "distortion_model: fisheye\ndistortion_coefficients: !!opencv-matrix\n  rows: 4\n  cols: 1\n"
                         "  dt: d\n  data: [0.05, -0.01, 0.002, -0.0003]\n");
     for (const auto& [path, opencv_maps] :
-         {std::pair{radial, std::vector<std::string>{"initUndistortRectifyMap", "initInverseRectificationMap"}},
-          std::pair{fisheye, std::vector<std::string>{"fisheye::initUndistortRectifyMap"}}}) {
+         {std::pair{radial, std::vector<std::string>{"initUndistortRectifyMap 32FC2", "initUndistortRectifyMap 32F x2",
+                                                     "initInverseRectificationMap 32FC2"}},
+          std::pair{fisheye, std::vector<std::string>{"fisheye::initUndistortRectifyMap 32F x2"}}}) {
         INFO(path);
         const json out = bench_json({"--from", path, "--maps", "--threads", "1,2"});
         std::set<std::string> maps;
         for (const json& row : out["rows"]) {
-            if (row["op"] != "map") continue;
-            maps.insert(row["library"].get<std::string>() + " " + row["method"].get<std::string>() + " " +
+            REQUIRE(row["op"] == "map");  // --maps: the map rows alone
+            const std::string method = row["method"].get<std::string>();
+            maps.insert(row["library"].get<std::string>() + " " + method + " " + row["scalar"].get<std::string>() + " " +
                         std::to_string(row["threads"].get<int>()));
             CHECK(row["ns_per_point"].get<double>() > 0);
+            CHECK(row["ratio_to_opencv"].get<double>() > 0);
             if (row["library"] == "libcam") {
+                INFO(method << " " << row["scalar"]);
+                const bool in_float = row["scalar"] == "float";
                 // Each map entry sent back through the target lands on its pixel: exact to
-                // rounding, fast within its documented 0.01 px.
-                CHECK(row["max_px"].get<double>() <= (row["method"].get<std::string>().ends_with("fast") ? 0.01 : 1e-9));
+                // rounding (a float's, 160 px wide: 1e-5 px), fast within its documented 0.01 px.
+                CHECK(row["max_px"].get<double>() <= (method.ends_with("fast") ? 0.01 : in_float ? 1e-4 : 1e-9));
+                // The same pixels without a source as the exact double map, and its values:
+                // the same bits in double, rounded once in float.
+                CHECK(row["defined_differently"].get<double>() == 0);
+                const double from_exact = row["max_from_exact_px"].get<double>();
+                if (method.ends_with("fast")) CHECK(from_exact <= 0.01);
+                else CHECK(from_exact <= (in_float ? 2e-5 : 0.0));
             }
         }
         std::set<std::string> expected;
-        for (const char* method : {"exact", "fast", "inverse-exact", "inverse-fast"}) {
-            for (const char* threads : {"1", "2"}) expected.insert(std::string("libcam ") + method + " " + threads);
-        }
-        for (const std::string& method : opencv_maps) {
-            for (const char* threads : {"1", "2"}) expected.insert("opencv " + method + " " + threads);
+        for (const char* threads : {"1", "2"}) {
+            for (const char* scalar : {" double ", " float "}) {
+                for (const char* method : {"exact", "inverse-exact", "inverse-fast"}) {
+                    expected.insert(std::string("libcam ") + method + scalar + threads);
+                }
+            }
+            for (const std::string& method : opencv_maps) expected.insert("opencv " + method + " float " + threads);
         }
         CHECK(maps == expected);
     }

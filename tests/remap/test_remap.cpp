@@ -239,6 +239,83 @@ TEST_CASE("A pinhole to a CYLINDRICAL panorama: libcam's map is OpenCV's stitchi
     CHECK(c.opencv_only == 0);
 }
 
+TEST_CASE("The float map is the double map rounded once: the same pixels without a source, every coordinate "
+          "the double one rounded to float", "[remap]") {
+    // Both directions (undistorting: a PINHOLE target, its rays from K^-1 row by row;
+    // distorting: the lens's unprojection), turned and not, a lens whose corners have no
+    // ray in the pinhole (the fisheye's, past 90 degrees) and a skewed pinhole.
+    const Camera wide = binned(example_camera("wide"), 8);
+    Camera fisheye = example_camera("fisheye");
+    Camera fisheye_pinhole = fisheye;
+    fisheye_pinhole.lens = Lens{};
+    fisheye_pinhole.intrinsics.fx *= 0.3;  // a pinhole as wide as the lens sees
+    fisheye_pinhole.intrinsics.fy *= 0.3;
+    Camera wide_pinhole = wide;
+    wide_pinhole.lens = Lens{};
+    wide_pinhole.intrinsics.skew = 3.0;  // the skewed pinhole's rays too
+    struct Pair {
+        const char* name;
+        Camera target, source;
+    };
+    for (const Pair& pair : {Pair{"wide undistorted", wide_pinhole, wide}, Pair{"wide distorted", wide, wide_pinhole},
+                             Pair{"fisheye undistorted", fisheye_pinhole, fisheye},
+                             Pair{"fisheye distorted", fisheye, fisheye_pinhole}}) {
+        for (const Mat3& rotation : {Mat3(Mat3::Identity()), small_rotation()}) {
+            for (UnprojectMethod method : {UnprojectMethod::Exact, UnprojectMethod::Fast}) {
+                INFO(pair.name << (rotation.isIdentity() ? "" : ", turned") << ", method " << method_name(method));
+                const PreparedCamera target(pair.target), source(pair.source);
+                const RemapOptions options{rotation, method, 2};
+                const RemapMap exact = build_remap_map(target, source, options);
+                const RemapMapFloat rounded = build_remap_map<float>(target, source, options);
+                REQUIRE(rounded.x.size() == exact.x.size());
+                CHECK(rounded.with_source == exact.with_source);
+                CHECK(rounded.size.width == exact.size.width);
+                CHECK(rounded.source_size.height == exact.source_size.height);
+                std::size_t differ = 0;
+                for (std::size_t i = 0; i < exact.x.size(); ++i) {
+                    const bool same = exact.has_source(i)
+                                          ? rounded.x[i] == static_cast<float>(exact.x[i]) && rounded.y[i] == static_cast<float>(exact.y[i])
+                                          : !rounded.has_source(i) && std::isnan(rounded.y[i]);
+                    differ += same ? 0 : 1;
+                }
+                CHECK(differ == 0);
+                // The cases hold pixels both with and without a source: a lens pixel whose
+                // ray the pinhole does not see has none.
+                if (pair.target.lens.type != LensType::Pinhole) CHECK(exact.with_source < exact.x.size());
+                CHECK(exact.with_source > 0);
+            }
+        }
+    }
+}
+
+TEST_CASE("A PINHOLE target's map is each pixel's ray (Camera::unproject) projected by the source, to 1e-9 px",
+          "[remap]") {
+    const Camera lens = binned(example_camera("strong"), 4);
+    Camera pinhole = lens;
+    pinhole.lens = Lens{};
+    pinhole.intrinsics.skew = 2.5;
+    const PreparedCamera target(pinhole), source(lens);
+    const Mat3 rotation = small_rotation();
+    const RemapMap map = build_remap_map(target, source, {rotation, UnprojectMethod::Exact, 1});
+    const std::size_t width = static_cast<std::size_t>(pinhole.size.width);
+    double worst = 0;
+    std::size_t disagree = 0;
+    for (std::size_t i = 0; i < map.x.size(); ++i) {
+        const Vec2 pixel(double(i % width), double(i / width));
+        const Unprojection ray = target.unproject(pixel);
+        REQUIRE(ray.valid);
+        const Projection seen = source.project_camera_point(rotation.transpose() * ray.direction);
+        const bool has = seen.valid && on_image(seen.pixel.x(), seen.pixel.y(), lens.size);
+        if (has != map.has_source(i)) {
+            ++disagree;
+            continue;
+        }
+        if (has) worst = std::max(worst, (Vec2(map.x[i], map.y[i]) - seen.pixel).norm());
+    }
+    CHECK(disagree == 0);
+    CHECK(worst <= 1e-9);
+}
+
 TEST_CASE("The inverse map (pinhole render to the lens): each source pixel's ray projects back onto its lens pixel "
           "within 1e-6 px, where cv::initInverseRectificationMap is off by more",
           "[remap][opencv]") {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -56,7 +57,11 @@ std::string case_names(const std::vector<BenchCase>& cases, const std::string& l
 std::vector<BenchCase> chosen_cases(const BenchFlags& flags) {
     if (!flags.from.empty()) return {{flags.from, flags.selection.read(flags.from).camera}};
     std::vector<BenchCase> all = builtin_bench_cases();
-    if (flags.cases.empty()) return all;
+    if (flags.cases.empty()) return flags.maps ? map_bench_cases() : all;
+    for (const BenchCase& map_case : map_bench_cases()) {
+        const bool listed = std::any_of(all.begin(), all.end(), [&](const BenchCase& c) { return c.name == map_case.name; });
+        if (!listed) all.push_back(map_case);
+    }
     std::vector<BenchCase> chosen;
     for (const std::string& name : flags.cases) {
         const auto found = std::find_if(all.begin(), all.end(), [&](const BenchCase& c) { return c.name == name; });
@@ -122,6 +127,11 @@ nlohmann::json row_json(const BenchRow& row) {
     const bool measured = row.error && row.error->count > 0;
     put_error_stats(out, measured ? *row.error : ErrorStats{}, measured, {"median_px", "p99_px", "max_px"});
     out["invalid_fraction"] = finite_or_null<nlohmann::json>(row.invalid_fraction);
+    if (row.op == "map") {
+        out["ratio_to_opencv"] = finite_or_null<nlohmann::json>(row.ratio);
+        out["max_from_exact_px"] = finite_or_null<nlohmann::json>(row.max_from_exact_px.value_or(std::numeric_limits<double>::quiet_NaN()));
+        out["defined_differently"] = row.defined_differently;
+    }
     return out;
 }
 
@@ -157,7 +167,43 @@ std::string error_text(const BenchRow& row, double ErrorStats::*statistic) {
     return row.error && row.error->count > 0 ? number_text((*row.error).*statistic, 3) : "-";
 }
 
+// The map rows: time per target pixel, over OpenCV's undistortion map, and accuracy.
+void format_map_table(std::ostream& out, const std::vector<BenchRow>& rows) {
+    out << std::setw(8) << "library" << std::setw(42) << "map" << std::setw(7) << "scalar" << std::setw(8) << "threads"
+        << std::setw(7) << "simd" << std::setw(11) << "ns/pixel" << std::setw(9) << "/ OpenCV" << std::setw(11) << "max px"
+        << std::setw(13) << "vs exact px" << std::setw(10) << "differ" << "no source\n";
+    for (const BenchRow& row : rows) {
+        const std::string vs_exact = row.max_from_exact_px ? number_text(*row.max_from_exact_px, 3) : "-";
+        out << std::setw(8) << row.library << std::setw(42) << row.method << std::setw(7) << row.scalar << std::setw(8)
+            << row.threads << std::setw(7) << row.simd << std::setw(11) << number_text(row.ns_per_point, 4) << std::setw(9)
+            << number_text(row.ratio, 3) << std::setw(11) << error_text(row, &ErrorStats::max_px) << std::setw(13) << vs_exact
+            << std::setw(10) << (number_text(100 * row.defined_differently, 3) + "%")
+            << number_text(100 * row.invalid_fraction, 3) << "%\n";
+    }
+}
+
+std::string format_maps(const std::vector<CaseResult>& results) {
+    std::ostringstream out;
+    out << std::left;
+    out << "batch kernels: " << simd_target_name(simd_target()) << " in use\n";
+    for (const CaseResult& r : results) {
+        const Camera& camera = r.bench_case.camera;
+        out << "camera " << r.bench_case.name << ": " << lens_info(camera.lens.type).name << ", " << camera.size.width << "x"
+            << camera.size.height << "; maps between it and a pinhole with its K and size\n";
+        format_map_table(out, r.result.rows);
+        out << "\n";
+    }
+    out << "map: exact, float: libcam's map to the pinhole (undistorting); inverse-*: the pinhole's pixels in the lens "
+           "image (distorting). ns/pixel: median time per target pixel, map allocated afresh each time; / OpenCV: over "
+           "initUndistortRectifyMap 32FC2 (fisheye::initUndistortRectifyMap for FISHEYE) at the same threads; max px: "
+           "farthest a sampled target pixel is sent back by its map entry (unprojected exactly, projected by the "
+           "target); vs exact px: farthest from libcam's exact double map where both give a source; differ: sampled "
+           "pixels where one gives a source and the other not; no source: none on the source image\n";
+    return out.str();
+}
+
 std::string format_table(const std::vector<CaseResult>& results, const BenchSettings& settings) {
+    if (settings.maps) return format_maps(results);
     std::ostringstream out;
     out << std::left;
     out << "batch kernels: " << simd_target_name(simd_target()) << " in use; this CPU runs";
@@ -191,14 +237,6 @@ std::string format_table(const std::vector<CaseResult>& results, const BenchSett
     }
     out << "error: distance in px from the pixel to the projection of the result by libcam (checked against OpenCV "
            "and mrcal in the tests); invalid: flagged, not finite, or a ray outside the lens's domain\n";
-    const bool has_maps = std::any_of(results.begin(), results.end(), [](const CaseResult& r) {
-        return std::any_of(r.result.rows.begin(), r.result.rows.end(), [](const BenchRow& row) { return row.op == "map"; });
-    });
-    if (has_maps) {
-        out << "map: ns per target pixel; error: distance in px from a target pixel to where the source pixel its map "
-               "gives is sent back (unprojected exactly, projected by the target); invalid: no source on the source "
-               "image\n";
-    }
     return out.str();
 }
 
@@ -221,8 +259,9 @@ Runner add_bench(CLI::App& app) {
     command->add_flag("--full-frame", flags->full_frame,
                       "Also time every pixel's ray for the lens and for a pinhole with the same K, against memset");
     command->add_flag("--maps", flags->maps,
-                      "Also time building the remap maps between the lens and a pinhole with the same K and size: "
-                      "undistorting (exact, fast) and distorting (inverse-exact, inverse-fast), against OpenCV's maps");
+                      "Instead, time building the remap maps between the lens and a pinhole with the same K and size, "
+                      "in double and float: undistorting (exact) and distorting (inverse-exact, inverse-fast), against "
+                      "OpenCV's maps (default cases: hd, wide, fisheye)");
     command->add_flag("--json", flags->json, "Print JSON: {\"rows\": [...], \"cameras\": [...]}");
     command->add_option("--save-json", flags->json_file, "Also write the JSON to this file (the table still goes to stdout)");
     command->add_option("--plot", flags->plot, "Write a PNG: time per point against worst error, per camera");
