@@ -413,7 +413,10 @@ void add_board_observations(const Inputs& inputs, const std::vector<Pose>& frame
         const int camera = index_in(indices.numbers[3 * n + 1], 0, set.cameras.size(), row, "camera intrinsics");
         const int extrinsic = index_in(indices.numbers[3 * n + 2], -1, extrinsics.size(), row, "camera extrinsics");
         const Pose pose = camera_from_reference(extrinsics, extrinsic).after(frames[static_cast<std::size_t>(frame)]);
-        set.views.push_back({"observation " + std::to_string(n) + " (frame " + std::to_string(frame) + ")", camera, pose});
+        // Named as mrcal indexes board observations: by frame, and camera where there are several.
+        std::string name = "frame " + std::to_string(frame);
+        if (set.cameras.size() > 1) name += " camera " + std::to_string(camera);
+        set.views.push_back({std::move(name), camera, pose});
         for (std::size_t corner = 0; corner < corners; ++corner) {
             const double* xyw = observed->numbers.data() + 3 * (n * corners + corner);
             set.observations.push_back(observation_of(xyw, static_cast<int>(set.views.size() - 1), int(corner)));
