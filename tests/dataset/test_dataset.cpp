@@ -1,0 +1,217 @@
+// `libcam dataset`, run as a user runs it, on COLMAP models this test writes (an OPENCV
+// camera and the RealSense T265's OPENCV_FISHEYE, observations projected by the lens
+// formulas written out here), on small images with Gaussian blobs drawn at the
+// observations, and on real COLMAP models; the output read back with read_observations
+// and checked against a pinhole projection worked out here, the blobs' centroids, and
+// COLMAP's own model_analyzer.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "cli_runner.hpp"
+#include "libcam/check/reproject.hpp"
+#include "libcam/io/observations.hpp"
+#include "real_cameras.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using libcam::test::run_libcam;
+using libcam::test::TempDir;
+using Json = nlohmann::json;
+
+struct World {
+    double x, y, z;
+};
+
+// A lens written out: OpenCV pixels of a camera-frame point, or false off the lens.
+struct Lens {
+    std::string colmap_line;  // "1 MODEL W H params" (COLMAP's pixels)
+    int width, height;
+    double fx, fy, cx, cy;  // OpenCV's pixels
+    double k[4];
+    bool fisheye;
+
+    bool project(double X, double Y, double Z, double& u, double& v) const {
+        if (Z <= 0) return false;
+        const double a = X / Z, b = Y / Z, r2 = a * a + b * b;
+        double xd, yd;
+        if (fisheye) {  // Kannala-Brandt: theta_d = theta (1 + k1 theta^2 + ... + k4 theta^8)
+            const double r = std::sqrt(r2), theta = std::atan(r);
+            if (theta > 1.45) return false;  // keep to where the polynomial rises
+            const double t2 = theta * theta;
+            const double theta_d = theta * (1 + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3]))));
+            const double scale = r > 0 ? theta_d / r : 1.0;
+            xd = a * scale;
+            yd = b * scale;
+        } else {  // OpenCV: k1, k2, p1, p2
+            const double radial = 1 + k[0] * r2 + k[1] * r2 * r2;
+            xd = a * radial + 2 * k[2] * a * b + k[3] * (r2 + 2 * a * a);
+            yd = b * radial + k[2] * (r2 + 2 * b * b) + 2 * k[3] * a * b;
+        }
+        u = fx * xd + cx;
+        v = fy * yd + cy;
+        return u >= 0 && v >= 0 && u <= width - 1 && v <= height - 1;
+    }
+};
+
+Lens opencv_lens(int width, int height) {
+    const double scale = width / 320.0;
+    Lens lens{"", width, height, 300 * scale, 290 * scale, 165.3 * scale, 114.7 * scale, {-0.25, 0.06, 0.001, -0.0015}, false};
+    std::ostringstream line;
+    line.precision(17);
+    line << "1 OPENCV " << width << " " << height << " " << lens.fx << " " << lens.fy << " " << lens.cx + 0.5 << " "
+         << lens.cy + 0.5 << " " << lens.k[0] << " " << lens.k[1] << " " << lens.k[2] << " " << lens.k[3];
+    lens.colmap_line = line.str();
+    return lens;
+}
+
+// The T265's left camera (Basalt's kb4 calibration).
+Lens t265_lens() {
+    Lens lens{"", 848, 800, 286.60144163375528, 286.4617087423328, 422.2765876951761, 395.2246466040553,
+              {-0.006762412326815424, 0.045170283325720008, -0.043515167278210638, 0.008374959821591333}, true};
+    std::ostringstream line;
+    line.precision(17);
+    line << "1 OPENCV_FISHEYE 848 800 " << lens.fx << " " << lens.fy << " " << lens.cx + 0.5 << " " << lens.cy + 0.5;
+    for (const double k : lens.k) line << " " << k;
+    lens.colmap_line = line.str();
+    return lens;
+}
+
+// Image i: turned by 0.05 i rad about y, moved by (0.2 i, 0.05 i, 0): x_cam = R X + t.
+struct ViewPose {
+    double qw, qy, tx, ty;
+    void apply(const World& p, double& X, double& Y, double& Z) const {
+        const double angle = 2 * std::atan2(qy, qw), c = std::cos(angle), s = std::sin(angle);
+        X = c * p.x + s * p.z + tx;
+        Y = p.y + ty;
+        Z = -s * p.x + c * p.z;
+    }
+};
+
+ViewPose view_pose(int i) { return {std::cos(0.025 * i), std::sin(0.025 * i), -0.2 * i, -0.05 * i}; }
+
+// A model of `views` images named by `names`, of the points of `grid` x `grid` x 3 spread
+// across `spread` (tan of the half angle) at depths 3 to 5, each seen where the lens
+// images it. Returns how many observations it holds.
+struct Written {
+    std::vector<World> points;
+    std::size_t observations = 0;
+    std::vector<std::pair<int, std::size_t>> seen;  // (view, point) of each observation
+};
+
+Written write_model(const fs::path& folder, const Lens& lens, const std::vector<std::string>& names, int grid, double spread) {
+    fs::create_directories(folder);
+    Written written;
+    for (int d = 0; d < 3; ++d) {
+        for (int i = 0; i < grid; ++i) {
+            for (int j = 0; j < grid; ++j) {
+                const double z = 3.0 + d;
+                const double jitter = 0.37 * ((i * 7 + j * 3 + d) % 5) / 5.0;
+                written.points.push_back({z * spread * (-1 + 2.0 * (j + jitter) / grid) + 0.2 * names.size() / 2,
+                                          z * spread * (-1 + 2.0 * (i + jitter) / grid), z});
+            }
+        }
+    }
+    std::ostringstream images;
+    images.precision(17);
+    std::vector<std::string> tracks(written.points.size());
+    for (std::size_t view = 0; view < names.size(); ++view) {
+        const ViewPose pose = view_pose(static_cast<int>(view));
+        images << view + 1 << " " << pose.qw << " 0 " << pose.qy << " 0 " << pose.tx << " " << pose.ty << " 0 1 "
+               << names[view] << "\n";
+        int index = 0;
+        for (std::size_t p = 0; p < written.points.size(); ++p) {
+            double X, Y, Z, u, v;
+            pose.apply(written.points[p], X, Y, Z);
+            if (!lens.project(X, Y, Z, u, v)) continue;
+            images << (index ? " " : "") << u + 0.5 << " " << v + 0.5 << " " << p + 1;
+            tracks[p] += " " + std::to_string(view + 1) + " " + std::to_string(index++);
+            ++written.observations;
+            written.seen.emplace_back(static_cast<int>(view), p);
+        }
+        images << "\n";
+    }
+    std::ostringstream points;
+    points.precision(17);
+    for (std::size_t p = 0; p < written.points.size(); ++p) {
+        if (tracks[p].empty()) continue;
+        points << p + 1 << " " << written.points[p].x << " " << written.points[p].y << " " << written.points[p].z
+               << " 10 20 30 0" << tracks[p] << "\n";
+    }
+    libcam::test::write_whole_file(folder / "cameras.txt", lens.colmap_line + "\n");
+    libcam::test::write_whole_file(folder / "images.txt", images.str());
+    libcam::test::write_whole_file(folder / "points3D.txt", points.str());
+    return written;
+}
+
+Json run_json(const std::vector<std::string>& args, int expected_exit = 0) {
+    const libcam::test::CliResult result = run_libcam(args);
+    INFO(result.describe());
+    REQUIRE(result.exit_code == expected_exit);
+    return Json::parse(result.out);
+}
+
+// Every kept observation is the new pinhole's x = fx X / Z + cx of its point (OpenCV's
+// pixels, as read_observations gives them), and as many are kept as the pinhole puts on
+// its image.
+void check_pinhole_geometry(const fs::path& model, const Written& written, const Json& summary) {
+    const libcam::ObservationSet set = libcam::read_observations(model);
+    REQUIRE(set.cameras.size() == 1);
+    const libcam::Camera& camera = set.cameras[0].camera;
+    REQUIRE(camera.lens.type == libcam::LensType::Pinhole);
+    const auto& k = camera.intrinsics;
+    double worst = 0;
+    for (const libcam::Observation& o : set.observations) {
+        const libcam::Vec3 X = set.views[o.view].pose.R * set.points[o.point] + set.views[o.view].pose.t;
+        const double u = k.fx * X.x() / X.z() + k.cx, v = k.fy * X.y() / X.z() + k.cy;
+        worst = std::max(worst, std::hypot(u - o.pixel.x(), v - o.pixel.y()));
+    }
+    CHECK(worst < 1e-6);
+    // The observations the pinhole should keep: those whose point it puts on its image.
+    std::size_t on_image = 0;
+    for (const auto& [view, point] : written.seen) {
+        double X, Y, Z;
+        view_pose(view).apply(written.points[point], X, Y, Z);
+        const double u = k.fx * X / Z + k.cx, v = k.fy * Y / Z + k.cy;
+        on_image += u >= -0.5 && v >= -0.5 && u <= camera.size.width - 0.5 && v <= camera.size.height - 0.5;
+    }
+    CHECK(set.observations.size() == on_image);
+    CHECK(summary["observations_in"].get<std::size_t>() == written.observations);
+    CHECK(summary["observations_kept"].get<std::size_t>() == set.observations.size());
+    WARN("kept " << set.observations.size() << " of " << written.observations << ", largest error " << worst << " px");
+}
+
+}  // namespace
+
+TEST_CASE("dataset: an OPENCV model's observations land where the new pinhole projects their points", "[dataset]") {
+    TempDir dir;
+    const Lens lens = opencv_lens(1280, 960);
+    const Written written = write_model(dir / "in", lens, {"a.png", "b.png", "c.png", "d.png"}, 12, 0.6);
+    for (const std::string camera : {"valid", "all", "fov:70"}) {
+        const fs::path out = dir / ("out-" + camera.substr(0, 3));
+        const Json summary = run_json({"dataset", (dir / "in").string(), "-o", out.string(), "--no-images", "--json",
+                                       "--camera", camera, "--text"});
+        INFO(camera);
+        check_pinhole_geometry(out / "sparse" / "0", written, summary);
+        CHECK(summary["cameras"][0]["source_model"] == "OPENCV");
+        if (camera == "valid") CHECK(summary["observations_kept"] < summary["observations_in"]);
+        if (camera == "all") CHECK(summary["observations_kept"] == summary["observations_in"]);
+    }
+}
+
+TEST_CASE("dataset: the T265 fisheye's observations land where the new pinhole projects their points", "[dataset]") {
+    TempDir dir;
+    const Written written = write_model(dir / "in", t265_lens(), {"f0.png", "f1.png", "f2.png"}, 16, 6.0);
+    const fs::path out = dir / "out";
+    const Json summary = run_json({"dataset", (dir / "in").string(), "-o", out.string(), "--no-images", "--json"});
+    check_pinhole_geometry(out / "sparse" / "0", written, summary);
+    CHECK(summary["cameras"][0]["source_model"] == "OPENCV_FISHEYE");
+    CHECK(summary["observations_kept"] < summary["observations_in"]);  // the periphery no pinhole holds
+}
