@@ -97,7 +97,7 @@ struct ViewPose {
 
 ViewPose view_pose(int i) { return {std::cos(0.025 * i), std::sin(0.025 * i), -0.2 * i, -0.05 * i}; }
 
-// A model of `views` images named by `names`, of the points of `grid` x `grid` x 3 spread
+// A model of images named by `names`, of the points of `grid` x `grid` x `depths` spread
 // across `spread` (tan of the half angle) at depths 3 to 5, each seen where the lens
 // images it. Returns how many observations it holds.
 struct Written {
@@ -106,10 +106,11 @@ struct Written {
     std::vector<std::pair<int, std::size_t>> seen;  // (view, point) of each observation
 };
 
-Written write_model(const fs::path& folder, const Lens& lens, const std::vector<std::string>& names, int grid, double spread) {
+Written write_model(const fs::path& folder, const Lens& lens, const std::vector<std::string>& names, int grid, double spread,
+                    int depths = 3) {
     fs::create_directories(folder);
     Written written;
-    for (int d = 0; d < 3; ++d) {
+    for (int d = 0; d < depths; ++d) {
         for (int i = 0; i < grid; ++i) {
             for (int j = 0; j < grid; ++j) {
                 const double z = 3.0 + d;
@@ -214,4 +215,137 @@ TEST_CASE("dataset: the T265 fisheye's observations land where the new pinhole p
     check_pinhole_geometry(out / "sparse" / "0", written, summary);
     CHECK(summary["cameras"][0]["source_model"] == "OPENCV_FISHEYE");
     CHECK(summary["observations_kept"] < summary["observations_in"]);  // the periphery no pinhole holds
+}
+
+namespace {
+
+// A blob at each of an image's observations: exp(-d^2 / 2 sigma^2), OpenCV's pixels.
+cv::Mat blob_image(const Lens& lens, int view, const std::vector<World>& points, int depth, int channels) {
+    cv::Mat image(lens.height, lens.width, CV_64F, cv::Scalar(0));
+    const double sigma = 1.2;
+    for (const World& point : points) {
+        double X, Y, Z, u, v;
+        view_pose(view).apply(point, X, Y, Z);
+        if (!lens.project(X, Y, Z, u, v)) continue;
+        for (int y = std::max(0, int(v) - 6); y <= std::min(lens.height - 1, int(v) + 6); ++y) {
+            for (int x = std::max(0, int(u) - 6); x <= std::min(lens.width - 1, int(u) + 6); ++x) {
+                image.at<double>(y, x) += std::exp(-((x - u) * (x - u) + (y - v) * (y - v)) / (2 * sigma * sigma));
+            }
+        }
+    }
+    cv::Mat typed;
+    image.convertTo(typed, depth, depth == CV_16U ? 65535.0 : 255.0);
+    if (channels == 1) return typed;
+    cv::Mat colour;
+    cv::merge(std::vector<cv::Mat>(static_cast<std::size_t>(channels), typed), colour);
+    return colour;
+}
+
+// Points far enough apart that their blobs do not touch (sparse grid).
+Written write_blob_model(const fs::path& folder, const fs::path& images, const std::vector<std::string>& names) {
+    const Lens lens = opencv_lens(320, 240);
+    const Written written = write_model(folder, lens, names, 7, 0.45, 1);
+    fs::create_directories(images);
+    const int kinds[][2] = {{CV_8U, 1}, {CV_16U, 1}, {CV_8U, 3}};
+    for (std::size_t view = 0; view < names.size(); ++view) {
+        const auto& kind = kinds[view % 3];
+        fs::create_directories((images / names[view]).parent_path());
+        REQUIRE(cv::imwrite((images / names[view]).string(),
+                            blob_image(lens, static_cast<int>(view), written.points, kind[0], kind[1])));
+    }
+    return written;
+}
+
+// The intensity centroid of the blob around `pixel`, over a window of radius 4.
+bool centroid(const cv::Mat& image, const libcam::Vec2& pixel, libcam::Vec2& found) {
+    const int cx = static_cast<int>(std::lround(pixel.x())), cy = static_cast<int>(std::lround(pixel.y()));
+    const int r = 4;
+    if (cx - r < 0 || cy - r < 0 || cx + r >= image.cols || cy + r >= image.rows) return false;
+    cv::Mat gray;
+    image.convertTo(gray, CV_64F);
+    if (gray.channels() > 1) cv::extractChannel(gray, gray, 0);
+    double sum = 0, sx = 0, sy = 0;
+    for (int y = cy - r; y <= cy + r; ++y) {
+        for (int x = cx - r; x <= cx + r; ++x) {
+            const double w = gray.at<double>(y, x);
+            sum += w;
+            sx += w * x;
+            sy += w * y;
+        }
+    }
+    if (sum <= 0) return false;
+    found = {sx / sum, sy / sum};
+    return true;
+}
+
+std::map<std::string, std::string> files_under(const fs::path& folder) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+        if (entry.is_regular_file()) files[fs::relative(entry.path(), folder).string()] = libcam::test::read_whole_file(entry.path());
+    }
+    return files;
+}
+
+}  // namespace
+
+TEST_CASE("dataset: each blob of the undistorted images is at its moved observation", "[dataset]") {
+    TempDir dir;
+    const std::vector<std::string> names = {"g8.png", "g16.png", "rgb.png", "sub/h8.png"};
+    write_blob_model(dir / "scene" / "sparse" / "0", dir / "scene" / "images", names);
+    const fs::path out = dir / "out";
+    // The images beside the model's grandparent, found without --images.
+    const Json summary = run_json({"dataset", (dir / "scene" / "sparse" / "0").string(), "-o", out.string(), "--json",
+                                   "--threads", "2"});
+    CHECK(summary["images_out"] == names.size());
+    const libcam::ObservationSet set = libcam::read_observations(out / "sparse" / "0");
+    std::map<std::string, cv::Mat> images;
+    for (const std::string& name : names) {
+        const cv::Mat source = cv::imread((dir / "scene" / "images" / name).string(), cv::IMREAD_UNCHANGED);
+        images[name] = cv::imread((out / "images" / name).string(), cv::IMREAD_UNCHANGED);
+        REQUIRE(!images[name].empty());
+        CHECK(images[name].type() == source.type());
+    }
+    double worst = 0;
+    std::size_t measured = 0;
+    for (const libcam::Observation& o : set.observations) {
+        libcam::Vec2 found;
+        if (!centroid(images[set.views[o.view].name], o.pixel, found)) continue;
+        worst = std::max(worst, (found - o.pixel).norm());
+        ++measured;
+    }
+    CHECK(measured > 100);
+    CHECK(worst < 0.1);
+    WARN(measured << " blobs, largest centroid distance " << worst << " px");
+}
+
+TEST_CASE("dataset: a run started again finishes the rest, the same bytes; a missing image is named", "[dataset]") {
+    TempDir dir;
+    const std::vector<std::string> names = {"a.png", "b.png", "c.png", "d.png", "e.png"};
+    write_blob_model(dir / "model", dir / "pictures", names);
+    const fs::path out = dir / "out";
+    const std::vector<std::string> args = {"dataset", (dir / "model").string(), "--images", (dir / "pictures").string(),
+                                           "-o", out.string(), "--json", "--threads", "3"};
+    run_json(args);
+    const auto first = files_under(out);
+    fs::remove(out / "images" / "c.png");
+    const Json again = run_json(args);
+    CHECK(again["images_written"] == 1);
+    CHECK(again["images_kept"] == 4);
+    CHECK(files_under(out) == first);
+
+    // Another interpolation: the stamp differs, every image is made again.
+    std::vector<std::string> linear = args;
+    linear.insert(linear.end(), {"--interpolation", "linear"});
+    CHECK(run_json(linear)["images_written"] == 5);
+
+    fs::remove(dir / "pictures" / "b.png");
+    const fs::path fresh = dir / "fresh";
+    std::vector<std::string> missing = args;
+    missing[5] = fresh.string();
+    const libcam::test::CliResult result = run_libcam(missing);
+    INFO(result.describe());
+    CHECK(result.exit_code == 1);
+    CHECK(std::count(result.err.begin(), result.err.end(), '\n') == 1);
+    CHECK(result.err.find("b.png") != std::string::npos);
+    for (const std::string& name : names) CHECK(fs::exists(fresh / "images" / name) == (name != "b.png"));
 }
