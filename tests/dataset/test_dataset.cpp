@@ -349,3 +349,115 @@ TEST_CASE("dataset: a run started again finishes the rest, the same bytes; a mis
     CHECK(result.err.find("b.png") != std::string::npos);
     for (const std::string& name : names) CHECK(fs::exists(fresh / "images" / name) == (name != "b.png"));
 }
+
+namespace {
+
+// Each observation's residual carried into the output's pixels: J r, with J the map from
+// the source camera's pixels to the new camera's at the observation (central differences
+// through the rays), and r the source's residual. The output's residual is that to second
+// order in r. By (view name, point id), with the pixel each moves to (a point may be
+// seen twice in one image).
+using Key = std::pair<std::string, std::int64_t>;
+struct Carried {
+    libcam::Vec2 pixel;
+    double error_px;
+};
+
+std::map<Key, std::vector<Carried>> carried_errors(const libcam::ObservationSet& in, const libcam::ObservationSet& out) {
+    std::map<std::string, int> camera_of_view;
+    for (const libcam::ObservedView& view : out.views) camera_of_view[view.name] = view.camera;
+    const libcam::Reprojection reprojection = libcam::reproject(in);
+    std::vector<libcam::PreparedCamera> sources, targets;
+    for (const libcam::ObservedCamera& camera : in.cameras) sources.emplace_back(camera.camera);
+    for (const libcam::ObservedCamera& camera : out.cameras) targets.emplace_back(camera.camera);
+    std::map<Key, std::vector<Carried>> carried;
+    for (std::size_t i = 0; i < in.observations.size(); ++i) {
+        const libcam::Observation& o = in.observations[i];
+        const libcam::ObservedView& view = in.views[static_cast<std::size_t>(o.view)];
+        const libcam::PreparedCamera& source = sources[static_cast<std::size_t>(view.camera)];
+        const libcam::PreparedCamera& target = targets[static_cast<std::size_t>(camera_of_view.at(view.name))];
+        const auto moved = [&](const libcam::Vec2& pixel) {
+            return target.project_camera_point(source.unproject(pixel).direction).pixel;
+        };
+        const double h = 1e-3;
+        Eigen::Matrix2d jacobian;
+        jacobian.col(0) = (moved(o.pixel + libcam::Vec2(h, 0)) - moved(o.pixel - libcam::Vec2(h, 0))) / (2 * h);
+        jacobian.col(1) = (moved(o.pixel + libcam::Vec2(0, h)) - moved(o.pixel - libcam::Vec2(0, h))) / (2 * h);
+        carried[{view.name, in.point_ids[static_cast<std::size_t>(o.point)]}].push_back(
+            {moved(o.pixel), (jacobian * reprojection.residuals[i].residual).norm()});
+    }
+    return carried;
+}
+
+}  // namespace
+
+TEST_CASE("dataset: real COLMAP models keep each point's reprojection error", "[dataset][real]") {
+    for (const char* name : {"colmap-halogenname-south-building/sparse/0", "colmap-bartoszek-test_colmap/sparse/0",
+                             "colmap-vijayvamsi7-table/final_try_1_workspace/sparse/0",
+                             "colmap-consideringname-ggbond-3dgs/distorted/sparse/0"}) {
+        const fs::path model = libcam::test::real_data_path(name);
+        if (!libcam::test::real_data_present(model)) {
+            WARN("skipped: " << model << " is absent");
+            continue;
+        }
+        INFO(name);
+        TempDir dir;
+        const Json summary = run_json({"dataset", model.string(), "-o", (dir / "out").string(), "--no-images", "--json"});
+        const libcam::ObservationSet in = libcam::read_observations(model);
+        const libcam::ObservationSet out = libcam::read_observations(dir / "out" / "sparse" / "0");
+        CHECK(summary["observations_in"].get<std::size_t>() == in.observations.size());
+        CHECK(summary["observations_kept"].get<std::size_t>() == out.observations.size());
+        // The ERROR column written is the output's own recomputation.
+        const libcam::Reprojection reprojection = libcam::reproject(out);
+        REQUIRE(reprojection.summary.per_point_reported);
+        CHECK(reprojection.summary.per_point_reported->max_abs_difference < 1e-9);
+        // Each point's mean error in the new pixels is its source residuals' carried there.
+        const std::map<Key, std::vector<Carried>> carried = carried_errors(in, out);
+        struct Sums {
+            double output = 0, carried = 0;
+            int count = 0;
+        };
+        std::map<std::int64_t, Sums> sums;
+        for (std::size_t i = 0; i < out.observations.size(); ++i) {
+            const libcam::Observation& o = out.observations[i];
+            const std::int64_t id = out.point_ids[static_cast<std::size_t>(o.point)];
+            Sums& sum = sums[id];
+            sum.output += reprojection.residuals[i].error_px;
+            const std::vector<Carried>& candidates = carried.at({out.views[static_cast<std::size_t>(o.view)].name, id});
+            sum.carried += std::min_element(candidates.begin(), candidates.end(), [&](const Carried& a, const Carried& b) {
+                               return (a.pixel - o.pixel).norm() < (b.pixel - o.pixel).norm();
+                           })->error_px;
+            ++sum.count;
+        }
+        double worst = 0;
+        for (const auto& [id, sum] : sums) worst = std::max(worst, std::abs(sum.output - sum.carried) / sum.count);
+        CHECK(worst < 0.01);
+        WARN(name << ": " << out.observations.size() << " of " << in.observations.size()
+                  << " observations kept; largest difference of a point's mean error from its carried one " << worst << " px");
+    }
+}
+
+TEST_CASE("dataset: COLMAP's model_analyzer reads the output", "[dataset][colmap]") {
+    const std::string colmap = COLMAP_PROGRAM;
+    if (colmap.empty() || !fs::exists(colmap)) {
+        WARN("skipped: no colmap program");
+        return;
+    }
+    TempDir dir;
+    write_model(dir / "in", t265_lens(), {"f0.png", "f1.png", "f2.png"}, 16, 6.0);
+    for (const bool text : {false, true}) {
+        const fs::path out = dir / (text ? "text" : "binary");
+        std::vector<std::string> args = {"dataset", (dir / "in").string(), "-o", out.string(), "--no-images", "--json"};
+        if (text) args.push_back("--text");
+        const Json summary = run_json(args);
+        const libcam::test::CliResult analysed =
+            libcam::test::run_program(colmap, {"model_analyzer", "--path", (out / "sparse" / "0").string()});
+        INFO(analysed.describe());
+        CHECK(analysed.exit_code == 0);
+        const std::string printed = analysed.out + analysed.err;
+        CHECK(printed.find("Cameras: 1") != std::string::npos);
+        CHECK(printed.find("Images: 3") != std::string::npos);
+        CHECK(printed.find("Observations: " + std::to_string(summary["observations_kept"].get<std::size_t>())) !=
+              std::string::npos);
+    }
+}
