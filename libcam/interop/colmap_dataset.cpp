@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <opencv2/core/utility.hpp>
@@ -227,42 +228,95 @@ void write_image(const fs::path& path, const cv::Mat& image) {
     write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
-// One camera's images: their map (none: copied as they are) and what to do with each.
 struct ImageJob {
+    std::size_t camera;
     fs::path source, target;
 };
 
-// Runs each job on `threads` workers, each holding one image at a time; returns how many
+// One camera's map, built by the first worker that needs it and released when its last
+// image is done: jobs run in camera order, so at most one map per worker is in memory.
+class CameraMaps {
+public:
+    CameraMaps(const std::vector<DatasetCamera>& cameras, const std::vector<ImageJob>& jobs, int threads)
+        : cameras_(cameras), slots_(cameras.size()), threads_(threads) {
+        for (const ImageJob& job : jobs) ++slots_[job.camera].remaining;
+    }
+
+    // The camera's map; nullptr for a camera kept as it was (its images are copied).
+    std::shared_ptr<const PreparedRemap> take(std::size_t camera) {
+        if (cameras_[camera].kept) return nullptr;
+        Slot& slot = slots_[camera];
+        const std::lock_guard<std::mutex> lock(slot.lock);
+        if (!slot.map) {
+            RemapOptions options;
+            options.threads = threads_;
+            slot.map = std::make_shared<const PreparedRemap>(prepare_remap(
+                build_remap_map(PreparedCamera(cameras_[camera].camera), PreparedCamera(cameras_[camera].source), options)));
+        }
+        return slot.map;
+    }
+
+    void done(std::size_t camera) {
+        Slot& slot = slots_[camera];
+        const std::lock_guard<std::mutex> lock(slot.lock);
+        if (--slot.remaining == 0) slot.map.reset();
+    }
+
+private:
+    struct Slot {
+        std::mutex lock;
+        std::shared_ptr<const PreparedRemap> map;
+        std::size_t remaining = 0;
+    };
+    const std::vector<DatasetCamera>& cameras_;
+    std::vector<Slot> slots_;
+    int threads_;
+};
+
+void run_job(const ImageJob& job, const PreparedRemap* map, Interpolation interpolation) {
+    std::error_code error;
+    if (!fs::is_regular_file(job.source, error)) throw FileError(job.source.string() + ": no such image file");
+    fs::create_directories(job.target.parent_path());
+    if (map == nullptr) {
+        write_file_atomically(job.target, read_text_file(job.source));
+        return;
+    }
+    const cv::Mat image = cv::imread(job.source.string(), cv::IMREAD_UNCHANGED);
+    if (image.empty()) throw FileError(job.source.string() + ": not an image OpenCV can read");
+    cv::Mat result;
+    try {
+        result = remap_image(image, *map, interpolation);
+    } catch (const InvalidArgument& wrong_size) {
+        throw FileError(job.source.string() + ": " + wrong_size.what());
+    }
+    write_image(job.target, result);
+}
+
+// Runs the jobs on `threads` workers, each holding one image at a time; returns how many
 // failed (reported through `report`, one line each).
-std::size_t run_jobs(const std::vector<ImageJob>& jobs, const PreparedRemap* map, Interpolation interpolation, int threads,
+std::size_t run_jobs(const std::vector<ImageJob>& jobs, CameraMaps& maps, Interpolation interpolation, int threads,
                      const std::function<void(const std::string&)>& report) {
     std::atomic<std::size_t> next{0}, failed{0};
     std::mutex report_lock;
+    std::exception_ptr fatal;  // a map that cannot be built stops every worker
     const auto work = [&] {
         for (std::size_t i = next++; i < jobs.size(); i = next++) {
             const ImageJob& job = jobs[i];
             try {
-                std::error_code error;
-                if (!fs::is_regular_file(job.source, error)) throw FileError(job.source.string() + ": no such image file");
-                fs::create_directories(job.target.parent_path());
-                if (map == nullptr) {
-                    write_file_atomically(job.target, read_text_file(job.source));
-                    continue;
-                }
-                const cv::Mat image = cv::imread(job.source.string(), cv::IMREAD_UNCHANGED);
-                if (image.empty()) throw FileError(job.source.string() + ": not an image OpenCV can read");
-                cv::Mat result;
+                const std::shared_ptr<const PreparedRemap> map = maps.take(job.camera);
                 try {
-                    result = remap_image(image, *map, interpolation);
-                } catch (const InvalidArgument& wrong_size) {
-                    throw FileError(job.source.string() + ": " + wrong_size.what());
+                    run_job(job, map.get(), interpolation);
+                } catch (const std::exception& error) {
+                    ++failed;
+                    const std::lock_guard<std::mutex> lock(report_lock);
+                    if (report) report(error.what());
                 }
-                write_image(job.target, result);
-            } catch (const std::exception& error) {
-                ++failed;
+            } catch (...) {
                 const std::lock_guard<std::mutex> lock(report_lock);
-                if (report) report(error.what());
+                if (!fatal) fatal = std::current_exception();
+                next = jobs.size();
             }
+            maps.done(job.camera);
         }
     };
     const std::size_t workers = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1, std::max<std::size_t>(jobs.size(), 1));
@@ -270,6 +324,7 @@ std::size_t run_jobs(const std::vector<ImageJob>& jobs, const PreparedRemap* map
     for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
     work();
     for (std::thread& thread : pool) thread.join();
+    if (fatal) std::rethrow_exception(fatal);
     return failed;
 }
 
@@ -300,33 +355,25 @@ void write_images(const DatasetOptions& options, const std::vector<ColmapImage>&
     const std::string stamp = stamp_of(new_records, options.interpolation);
     const bool earlier_run_matches = stamp_matches(stamp_file, stamp);
     write_file_atomically(stamp_file, stamp);
-    const OpenCvThreads opencv_threads(options.threads);
-    // Camera by camera, so that one map at a time is in memory.
-    for (std::size_t c = 0; c < summary.cameras.size(); ++c) {
-        std::vector<ImageJob> jobs;
-        for (std::size_t i = 0; i < images.size(); ++i) {
-            if (camera_of[i] != c) continue;
-            ImageJob job{options.images / images[i].name, folder / images[i].name};
-            std::error_code error;
-            if (earlier_run_matches && fs::is_regular_file(job.target, error)) {
-                ++summary.images_kept;
-                continue;
-            }
-            jobs.push_back(std::move(job));
+    // In camera order, so that each camera's map is built once and soon released.
+    std::vector<std::size_t> order(images.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return camera_of[a] < camera_of[b]; });
+    std::vector<ImageJob> jobs;
+    for (const std::size_t i : order) {
+        ImageJob job{camera_of[i], options.images / images[i].name, folder / images[i].name};
+        std::error_code error;
+        if (earlier_run_matches && fs::is_regular_file(job.target, error)) {
+            ++summary.images_kept;
+            continue;
         }
-        if (jobs.empty()) continue;
-        const DatasetCamera& camera = summary.cameras[c];
-        std::optional<PreparedRemap> map;
-        if (!camera.kept) {
-            RemapOptions remap;
-            remap.threads = options.threads;
-            map = prepare_remap(build_remap_map(PreparedCamera(camera.camera), PreparedCamera(camera.source), remap));
-        }
-        const std::size_t failed =
-            run_jobs(jobs, map ? &*map : nullptr, options.interpolation, options.threads, options.on_image_error);
-        summary.images_failed += failed;
-        summary.images_written += jobs.size() - failed;
+        jobs.push_back(std::move(job));
     }
+    const OpenCvThreads opencv_threads(options.threads);
+    // Each map built with a share of the threads: the other workers are busy with images.
+    CameraMaps maps(summary.cameras, jobs, std::max(1, options.threads / 2));
+    summary.images_failed = run_jobs(jobs, maps, options.interpolation, options.threads, options.on_image_error);
+    summary.images_written = jobs.size() - summary.images_failed;
 }
 
 }  // namespace
