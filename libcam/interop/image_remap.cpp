@@ -126,7 +126,9 @@ std::pair<cv::Mat, cv::Mat> opencv_fixed_point_map(const RemapMap& map) {
     return fixed;
 }
 
-cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolation interpolation) {
+PreparedRemap prepare_remap(const RemapMap& map) { return {float_map(map, kNoSourceCoordinate, true), map.source_size}; }
+
+cv::Mat remap_image(const cv::Mat& source_image, const PreparedRemap& map, Interpolation interpolation) {
     if (source_image.cols != map.source_size.width || source_image.rows != map.source_size.height) {
         throw InvalidArgument("image: " + std::to_string(source_image.cols) + "x" + std::to_string(source_image.rows) +
                               " pixels, but the source camera's image is " + std::to_string(map.source_size.width) +
@@ -134,9 +136,13 @@ cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolat
     }
     const int flags[] = {cv::INTER_NEAREST, cv::INTER_LINEAR, cv::INTER_CUBIC, cv::INTER_LANCZOS4};
     cv::Mat target;
-    cv::remap(source_image, target, float_map(map, kNoSourceCoordinate, true), cv::Mat(),
-              flags[static_cast<int>(interpolation)], cv::BORDER_CONSTANT, cv::Scalar::all(0));
+    cv::remap(source_image, target, map.xy, cv::Mat(), flags[static_cast<int>(interpolation)], cv::BORDER_CONSTANT,
+              cv::Scalar::all(0));
     return target;
+}
+
+cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolation interpolation) {
+    return remap_image(source_image, prepare_remap(map), interpolation);
 }
 
 void check_map_file_name(const std::filesystem::path& path) {

@@ -37,6 +37,15 @@ std::pair<cv::Mat, cv::Mat> opencv_fixed_point_map(const RemapMap& map);
 // another size.
 cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolation interpolation);
 
+// The same map made ready once for many images of one camera (the float maps
+// remap_image builds each call), and the images through it.
+struct PreparedRemap {
+    cv::Mat xy;              // CV_32FC2
+    ImageSize source_size;
+};
+PreparedRemap prepare_remap(const RemapMap& map);
+cv::Mat remap_image(const cv::Mat& source_image, const PreparedRemap& map, Interpolation interpolation);
+
 // The map as a file of source coordinates, NaN where there is no source, in double's
 // precision rounded to float32: an OpenEXR image with channels R (x) and G (y), or a
 // NumPy .npy array of shape (height, width, 2). Chosen by the extension (.exr, .npy);

@@ -14,7 +14,7 @@ namespace libcam::cli {
 namespace {
 
 // In the order `libcam --help` lists them.
-constexpr std::array<CommandInfo, 14> kCommands = {{
+constexpr std::array<CommandInfo, 15> kCommands = {{
     {"convert", "Convert a FOV camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file", true},
     {"info", "Every camera a file holds: model, size, K, field of view, pose", true},
     {"rays", "World rays through pixels, by K^-1 and by the look-at formula", true},
@@ -22,6 +22,9 @@ constexpr std::array<CommandInfo, 14> kCommands = {{
     {"remap",
      "Turn images from one camera into another: undistort into a pinhole, LONLAT or cylindrical camera chosen for "
      "the lens, or (--inverse) distort renders to the real lens",
+     false},
+    {"dataset",
+     "A whole COLMAP reconstruction into pinhole cameras: images undistorted, observations moved to the new pixels",
      false},
     {"derive", "The camera of a resized, cropped, padded, binned or quarter-turned image (one operation a call)", true},
     {"render-plan",

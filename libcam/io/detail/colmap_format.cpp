@@ -176,7 +176,7 @@ std::vector<ColmapCameraRecord> read_cameras_text(std::string_view text, const s
         std::vector<double> parameters;
         for (std::size_t i = 0; i < count; ++i) parameters.push_back(line.number(4 + i, "PARAMS[" + std::to_string(i) + "]"));
         const std::string where = line.where() + ": camera " + std::to_string(id);
-        cameras.push_back({id, validated_camera(camera_from_parameters(model, size, parameters, where), where)});
+        cameras.push_back({id, validated_camera(camera_from_parameters(model, size, parameters, where), where), model.name});
         return false;
     });
     return cameras;
@@ -326,7 +326,7 @@ std::vector<ColmapCameraRecord> read_cameras_binary(std::string_view bytes, cons
             parameters.push_back(value);
         }
         const ImageSize size{static_cast<long>(width), static_cast<long>(height)};
-        cameras.push_back({id, validated_camera(camera_from_parameters(*found, size, parameters, where), where)});
+        cameras.push_back({id, validated_camera(camera_from_parameters(*found, size, parameters, where), where), found->name});
     }
     if (in.remaining() != 0) in.fail("bytes after the last camera");
     return cameras;
@@ -394,7 +394,9 @@ ColmapPoints3D read_points3d_text(std::string_view text, const std::string& sour
         points.ids.push_back(line.integer(0, "POINT3D_ID", 0, kColmapNoPoint3D - 1));
         points.xyz.emplace_back(line.number(1, "X"), line.number(2, "Y"), line.number(3, "Z"));
         const char* const kColour[] = {"R", "G", "B"};
-        for (std::size_t i = 0; i < 3; ++i) line.integer(4 + i, kColour[i], 0, 255);
+        std::array<std::uint8_t, 3> colour{};
+        for (std::size_t i = 0; i < 3; ++i) colour[i] = static_cast<std::uint8_t>(line.integer(4 + i, kColour[i], 0, 255));
+        points.colours.push_back(colour);
         points.errors.push_back(line.number(7, "ERROR"));
         for (std::size_t i = 8; i < line.size(); i += 2) {
             points.track.push_back({static_cast<std::uint32_t>(line.integer(i, "TRACK IMAGE_ID", 0, kMaxId)),
@@ -416,6 +418,7 @@ ColmapPoints3D read_points3d_binary(std::string_view bytes, const std::string& s
     points.ids.reserve(n);
     points.xyz.reserve(n);
     points.errors.reserve(n);
+    points.colours.reserve(n);
     points.track_begin.reserve(n + 1);
     for (std::size_t i = 0; i < n; ++i) {
         if (in.remaining() < kRecord) in.fail("point " + std::to_string(i) + ": the file ends inside it");
@@ -423,7 +426,9 @@ ColmapPoints3D read_points3d_binary(std::string_view bytes, const std::string& s
         const char* at = in.take(kRecord, "a point");
         const auto id = load<std::uint64_t>(at);
         const Vec3 xyz{load<double>(at), load<double>(at), load<double>(at)};
-        at += 3;  // the colour
+        const std::array<std::uint8_t, 3> colour{static_cast<std::uint8_t>(at[0]), static_cast<std::uint8_t>(at[1]),
+                                                 static_cast<std::uint8_t>(at[2])};
+        at += 3;
         const auto error = load<double>(at);
         const auto length = load<std::uint64_t>(at);
         if (id == kColmapNoPoint3D) in.fail("point " + std::to_string(i) + ": POINT3D_ID is -1, which names no point");
@@ -442,6 +447,7 @@ ColmapPoints3D read_points3d_binary(std::string_view bytes, const std::string& s
         points.ids.push_back(id);
         points.xyz.push_back(xyz);
         points.errors.push_back(error);
+        points.colours.push_back(colour);
         points.track_begin.push_back(points.track.size());
     }
     if (in.remaining() != 0) in.fail("bytes after the last point");

@@ -27,6 +27,7 @@
 // RAD_TAN_THIN_PRISM_FISHEYE (COLMAP 3.10 and later); skew and any other model are
 // refused.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -45,6 +46,7 @@ namespace libcam {
 struct ColmapCameraRecord {
     std::uint64_t id;
     Camera camera;  // at the origin
+    std::string_view model = {};  // COLMAP's name of the file's model (colmap_models()'s table)
 };
 
 // POINT3D_ID of a 2-D point that is no 3-D point's: -1 in text, its 64-bit pattern in binary.
@@ -76,6 +78,7 @@ struct ColmapPoints3D {
     std::vector<std::uint64_t> ids;
     std::vector<Vec3> xyz;
     std::vector<double> errors;  // COLMAP's ERROR: -1 where it has none
+    std::vector<std::array<std::uint8_t, 3>> colours;  // R, G, B
     // Point i's track is track[track_begin[i] .. track_begin[i + 1]).
     std::vector<std::size_t> track_begin{0};
     std::vector<TrackElement> track;
@@ -96,6 +99,16 @@ std::vector<NamedCamera> read_colmap_model(std::string_view cameras, const ReadC
 // cameras.txt, images.txt and points3D.txt holding the camera. Throws NotRepresentable for what
 // COLMAP cannot hold.
 std::vector<CameraFileText> write_colmap_model(const Camera& camera, const WriteOptions& options);
+
+// A whole model's three files (cameras, images, points3D), text or binary, as COLMAP
+// writes them: each camera by the COLMAP model that holds its lens exactly
+// (colmap_from_camera), pixels in COLMAP's convention as the records hold them, every
+// image with its POINTS2D. Throws NotRepresentable for a camera COLMAP cannot hold.
+struct ColmapModelBytes {
+    std::string cameras, images, points3d;
+};
+ColmapModelBytes write_colmap_files(const std::vector<ColmapCameraRecord>& cameras, const std::vector<ColmapImage>& images,
+                                    const ColmapPoints3D& points, bool binary);
 
 // The cameras file of a COLMAP model folder (cameras.bin, else cameras.txt), or empty.
 std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder);

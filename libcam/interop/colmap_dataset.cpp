@@ -1,0 +1,431 @@
+#include "libcam/interop/colmap_dataset.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <thread>
+
+#include "libcam/camera/parallel.hpp"
+#include "libcam/convert/colmap_models.hpp"
+#include "libcam/error.hpp"
+#include "libcam/io/atomic_write.hpp"
+#include "libcam/io/detail/colmap_format.hpp"
+#include "libcam/lens/lens_model.hpp"
+#include "libcam/remap/remap_map.hpp"
+
+namespace libcam {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ColmapModelRead {
+    std::vector<ColmapCameraRecord> cameras;
+    std::vector<ColmapImage> images;
+    ColmapPoints3D points;
+};
+
+ColmapModelRead read_model(const fs::path& folder) {
+    const fs::path cameras_file = colmap_cameras_file_in(folder);
+    if (cameras_file.empty()) throw FileError(folder.string() + ": no cameras.bin or cameras.txt: not a COLMAP model folder");
+    const bool binary = cameras_file.extension() == ".bin";
+    const std::string extension = binary ? ".bin" : ".txt";
+    const fs::path images_file = folder / ("images" + extension);
+    const fs::path points_file = folder / ("points3D" + extension);
+    for (const fs::path& file : {images_file, points_file}) {
+        std::error_code error;
+        if (!fs::is_regular_file(file, error)) throw FileError(file.string() + ": missing (a COLMAP model has cameras, images and points3D)");
+    }
+    ColmapModelRead model;
+    model.cameras = read_colmap_cameras(read_text_file(cameras_file), cameras_file.string(), binary);
+    model.images = read_colmap_images(read_text_file(images_file), images_file.string(), binary, true);
+    model.points = read_colmap_points3d(read_text_file(points_file), points_file.string(), binary);
+    return model;
+}
+
+// The new camera of one source camera: the source itself when it is already a pinhole and
+// nothing asks for another view or size, else new_camera's choice, which must be a pinhole.
+DatasetCamera choose_camera(const ColmapCameraRecord& record, const NewCameraRequest& asked, int threads) {
+    DatasetCamera chosen;
+    chosen.id = record.id;
+    chosen.source_model = std::string(record.model);
+    chosen.source = record.camera;
+    const bool pinhole = simplest_equal_lens(record.camera.lens).type == LensType::Pinhole;
+    if (pinhole && record.camera.intrinsics.skew == 0.0 && !asked.size && asked.keep) {
+        chosen.camera = record.camera;
+        chosen.camera.lens = Lens{};
+        chosen.kept = true;
+        chosen.why = "already a pinhole: kept, its images copied";
+        return chosen;
+    }
+    NewCameraRequest request = asked;
+    request.model = LensType::Pinhole;
+    request.rotation = Mat3::Identity();
+    request.threads = threads;
+    const std::string name = "camera " + std::to_string(record.id) + " (" + chosen.source_model + ")";
+    NewCamera picked;
+    try {
+        picked = choose_new_camera(PreparedCamera(record.camera), request);
+    } catch (const InvalidArgument& error) {
+        throw InvalidArgument(name + ": " + error.what());
+    }
+    if (picked.camera.lens.type != LensType::Pinhole) {
+        throw InvalidArgument(name + ": no pinhole keeps every pixel of this lens (" + picked.why +
+                              "); ask for valid or a field of view");
+    }
+    chosen.camera = picked.camera;
+    chosen.why = picked.why;
+    return chosen;
+}
+
+// Positions of ids: COLMAP's ids are 32-bit, so a map is small enough and simple.
+template <class Items, class IdOf>
+std::map<std::uint64_t, std::size_t> index_by_id(const Items& items, IdOf&& id_of, const std::string& what) {
+    std::map<std::uint64_t, std::size_t> index;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        if (!index.emplace(id_of(items[i]), i).second) {
+            throw FileError(what + " id " + std::to_string(id_of(items[i])) + " appears more than once");
+        }
+    }
+    return index;
+}
+
+// Each image's POINTS2D moved into its new camera; `kept_index[image][k]` is the new
+// position of POINTS2D k, or -1 where it was dropped.
+std::vector<std::vector<int>> move_points2d(std::vector<ColmapImage>& images, const std::vector<std::size_t>& camera_of,
+                                            const std::vector<PreparedCamera>& sources,
+                                            const std::vector<PreparedCamera>& targets, int threads) {
+    std::vector<std::vector<int>> kept_index(images.size());
+    parallel_chunks(images.size(), threads, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const PreparedCamera& source = sources[camera_of[i]];
+            const PreparedCamera& target = targets[camera_of[i]];
+            std::vector<ColmapPoint2D> moved;
+            std::vector<int>& index = kept_index[i];
+            index.assign(images[i].points.size(), -1);
+            for (std::size_t k = 0; k < images[i].points.size(); ++k) {
+                const ColmapPoint2D& point = images[i].points[k];
+                const Unprojection ray =
+                    source.unproject(Vec2(point.x - kColmapPixelShift, point.y - kColmapPixelShift));
+                if (!ray.valid) continue;
+                const Projection pixel = target.project_camera_point(ray.direction);
+                if (!pixel.valid || !on_image(pixel.pixel.x(), pixel.pixel.y(), target.camera().size)) continue;
+                index[k] = static_cast<int>(moved.size());
+                moved.push_back({pixel.pixel.x() + kColmapPixelShift, pixel.pixel.y() + kColmapPixelShift, point.point3d_id});
+            }
+            images[i].points = std::move(moved);
+        }
+    });
+    return kept_index;
+}
+
+// The points' tracks renumbered to the kept POINTS2D, points left with none dropped, each
+// ERROR recomputed in the new cameras' pixels.
+ColmapPoints3D carry_points(const ColmapPoints3D& points, const std::vector<ColmapImage>& images,
+                            const std::map<std::uint64_t, std::size_t>& image_index,
+                            const std::vector<std::vector<int>>& kept_index, const std::vector<std::size_t>& camera_of,
+                            const std::vector<PreparedCamera>& targets, const std::string& source) {
+    ColmapPoints3D out;
+    for (std::size_t i = 0; i < points.ids.size(); ++i) {
+        const std::size_t track_start = out.track.size();
+        double error_sum = 0.0;
+        std::size_t error_count = 0;
+        for (std::size_t k = points.track_begin[i]; k < points.track_begin[i + 1]; ++k) {
+            const auto [image_id, index] = points.track[k];
+            const auto found = image_index.find(image_id);
+            if (found == image_index.end() || index >= kept_index[found->second].size()) {
+                throw FileError(source + ": point " + std::to_string(points.ids[i]) + ": track element (" +
+                                std::to_string(image_id) + ", " + std::to_string(index) + ") names no image's POINTS2D");
+            }
+            const int kept = kept_index[found->second][index];
+            if (kept < 0) continue;
+            out.track.push_back({image_id, static_cast<std::uint32_t>(kept)});
+            const ColmapImage& image = images[found->second];
+            const Projection projected =
+                targets[camera_of[found->second]].project_camera_point(image.pose.R * points.xyz[i] + image.pose.t);
+            if (!projected.valid) continue;
+            const ColmapPoint2D& seen = image.points[static_cast<std::size_t>(kept)];
+            error_sum += (projected.pixel + Vec2(kColmapPixelShift, kColmapPixelShift) - Vec2(seen.x, seen.y)).norm();
+            ++error_count;
+        }
+        if (out.track.size() == track_start) continue;
+        out.ids.push_back(points.ids[i]);
+        out.xyz.push_back(points.xyz[i]);
+        out.colours.push_back(points.colours[i]);
+        out.errors.push_back(error_count ? error_sum / static_cast<double>(error_count) : points.errors[i]);
+        out.track_begin.push_back(out.track.size());
+    }
+    return out;
+}
+
+// POINTS2D naming a point the output does not have (dropped, or never in the file) made
+// pointless, as COLMAP marks a 2-D point of no 3-D point.
+void unlink_missing_points(std::vector<ColmapImage>& images, const ColmapPoints3D& points) {
+    std::vector<std::uint64_t> ids = points.ids;
+    std::sort(ids.begin(), ids.end());
+    for (ColmapImage& image : images) {
+        for (ColmapPoint2D& point : image.points) {
+            if (point.point3d_id != kColmapNoPoint3D && !std::binary_search(ids.begin(), ids.end(), point.point3d_id)) {
+                point.point3d_id = kColmapNoPoint3D;
+            }
+        }
+    }
+}
+
+std::size_t count_with_point(const std::vector<ColmapImage>& images) {
+    std::size_t count = 0;
+    for (const ColmapImage& image : images) {
+        for (const ColmapPoint2D& point : image.points) count += point.point3d_id != kColmapNoPoint3D;
+    }
+    return count;
+}
+
+void write_model(const fs::path& folder, const ColmapModelBytes& bytes, bool binary) {
+    fs::create_directories(folder);
+    const std::string extension = binary ? ".bin" : ".txt";
+    write_file_atomically(folder / ("cameras" + extension), bytes.cameras);
+    write_file_atomically(folder / ("images" + extension), bytes.images);
+    write_file_atomically(folder / ("points3D" + extension), bytes.points3d);
+    // A model of the other kind from an earlier run would be read instead of this one
+    // (COLMAP reads .bin first).
+    const std::string other = binary ? ".txt" : ".bin";
+    for (const char* name : {"cameras", "images", "points3D"}) fs::remove(folder / (name + other));
+}
+
+// ---- images ------------------------------------------------------------------------------
+
+std::string stamp_of(const std::vector<ColmapCameraRecord>& cameras, Interpolation interpolation) {
+    const char* const kNames[] = {"nearest", "linear", "cubic", "lanczos"};
+    return std::string("libcam dataset: the images here were made with these cameras\ninterpolation ") +
+           kNames[static_cast<int>(interpolation)] + "\n" + write_colmap_files(cameras, {}, {}, false).cameras;
+}
+
+bool stamp_matches(const fs::path& file, const std::string& stamp) {
+    std::error_code error;
+    if (!fs::is_regular_file(file, error)) return false;
+    try {
+        return read_text_file(file) == stamp;
+    } catch (const FileError&) {
+        return false;
+    }
+}
+
+void write_image(const fs::path& path, const cv::Mat& image) {
+    std::vector<unsigned char> bytes;
+    bool encoded = false;
+    try {
+        encoded = cv::imencode(path.extension().string(), image, bytes);
+    } catch (const cv::Exception&) {
+        encoded = false;
+    }
+    if (!encoded) throw FileError(path.string() + ": OpenCV cannot write an image of this type as " + path.extension().string());
+    write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+struct ImageJob {
+    std::size_t camera;
+    fs::path source, target;
+};
+
+// One camera's map, built by the first worker that needs it and released when its last
+// image is done: jobs run in camera order, so at most one map per worker is in memory.
+class CameraMaps {
+public:
+    CameraMaps(const std::vector<DatasetCamera>& cameras, const std::vector<ImageJob>& jobs, int threads)
+        : cameras_(cameras), slots_(cameras.size()), threads_(threads) {
+        for (const ImageJob& job : jobs) ++slots_[job.camera].remaining;
+    }
+
+    // The camera's map; nullptr for a camera kept as it was (its images are copied).
+    std::shared_ptr<const PreparedRemap> take(std::size_t camera) {
+        if (cameras_[camera].kept) return nullptr;
+        Slot& slot = slots_[camera];
+        const std::lock_guard<std::mutex> lock(slot.lock);
+        if (!slot.map) {
+            RemapOptions options;
+            options.threads = threads_;
+            slot.map = std::make_shared<const PreparedRemap>(prepare_remap(
+                build_remap_map(PreparedCamera(cameras_[camera].camera), PreparedCamera(cameras_[camera].source), options)));
+        }
+        return slot.map;
+    }
+
+    void done(std::size_t camera) {
+        Slot& slot = slots_[camera];
+        const std::lock_guard<std::mutex> lock(slot.lock);
+        if (--slot.remaining == 0) slot.map.reset();
+    }
+
+private:
+    struct Slot {
+        std::mutex lock;
+        std::shared_ptr<const PreparedRemap> map;
+        std::size_t remaining = 0;
+    };
+    const std::vector<DatasetCamera>& cameras_;
+    std::vector<Slot> slots_;
+    int threads_;
+};
+
+void run_job(const ImageJob& job, const PreparedRemap* map, Interpolation interpolation) {
+    std::error_code error;
+    if (!fs::is_regular_file(job.source, error)) throw FileError(job.source.string() + ": no such image file");
+    fs::create_directories(job.target.parent_path());
+    if (map == nullptr) {
+        write_file_atomically(job.target, read_text_file(job.source));
+        return;
+    }
+    const cv::Mat image = cv::imread(job.source.string(), cv::IMREAD_UNCHANGED);
+    if (image.empty()) throw FileError(job.source.string() + ": not an image OpenCV can read");
+    cv::Mat result;
+    try {
+        result = remap_image(image, *map, interpolation);
+    } catch (const InvalidArgument& wrong_size) {
+        throw FileError(job.source.string() + ": " + wrong_size.what());
+    }
+    write_image(job.target, result);
+}
+
+// Runs the jobs on `threads` workers, each holding one image at a time; returns how many
+// failed (reported through `report`, one line each).
+std::size_t run_jobs(const std::vector<ImageJob>& jobs, CameraMaps& maps, Interpolation interpolation, int threads,
+                     const std::function<void(const std::string&)>& report) {
+    std::atomic<std::size_t> next{0}, failed{0};
+    std::mutex report_lock;
+    std::exception_ptr fatal;  // a map that cannot be built stops every worker
+    const auto work = [&] {
+        for (std::size_t i = next++; i < jobs.size(); i = next++) {
+            const ImageJob& job = jobs[i];
+            try {
+                const std::shared_ptr<const PreparedRemap> map = maps.take(job.camera);
+                try {
+                    run_job(job, map.get(), interpolation);
+                } catch (const std::exception& error) {
+                    ++failed;
+                    const std::lock_guard<std::mutex> lock(report_lock);
+                    if (report) report(error.what());
+                }
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(report_lock);
+                if (!fatal) fatal = std::current_exception();
+                next = jobs.size();
+            }
+            maps.done(job.camera);
+        }
+    };
+    const std::size_t workers = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1, std::max<std::size_t>(jobs.size(), 1));
+    std::vector<std::thread> pool;
+    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+    work();
+    for (std::thread& thread : pool) thread.join();
+    if (fatal) std::rethrow_exception(fatal);
+    return failed;
+}
+
+// OpenCV's own threads off while the workers run: each image is one worker's.
+class OpenCvThreads {
+public:
+    explicit OpenCvThreads(int threads) : before_(cv::getNumThreads()) {
+        if (threads > 1) cv::setNumThreads(1);
+    }
+    ~OpenCvThreads() { cv::setNumThreads(before_); }
+    OpenCvThreads(const OpenCvThreads&) = delete;
+    OpenCvThreads& operator=(const OpenCvThreads&) = delete;
+
+private:
+    int before_;
+};
+
+void write_images(const DatasetOptions& options, const std::vector<ColmapImage>& images,
+                  const std::vector<std::size_t>& camera_of, const std::vector<ColmapCameraRecord>& new_records,
+                  DatasetSummary& summary) {
+    const fs::path folder = options.output / "images";
+    fs::create_directories(folder);
+    std::error_code same_error;
+    if (fs::exists(options.images) && fs::equivalent(folder, options.images, same_error)) {
+        throw FileError(folder.string() + ": is the source images folder itself: give another output folder");
+    }
+    const fs::path stamp_file = options.output / kStampName;
+    const std::string stamp = stamp_of(new_records, options.interpolation);
+    const bool earlier_run_matches = stamp_matches(stamp_file, stamp);
+    write_file_atomically(stamp_file, stamp);
+    // In camera order, so that each camera's map is built once and soon released.
+    std::vector<std::size_t> order(images.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return camera_of[a] < camera_of[b]; });
+    std::vector<ImageJob> jobs;
+    for (const std::size_t i : order) {
+        ImageJob job{camera_of[i], options.images / images[i].name, folder / images[i].name};
+        std::error_code error;
+        if (earlier_run_matches && fs::is_regular_file(job.target, error)) {
+            ++summary.images_kept;
+            continue;
+        }
+        jobs.push_back(std::move(job));
+    }
+    const OpenCvThreads opencv_threads(options.threads);
+    // Each map built with a share of the threads: the other workers are busy with images.
+    CameraMaps maps(summary.cameras, jobs, std::max(1, options.threads / 2));
+    summary.images_failed = run_jobs(jobs, maps, options.interpolation, options.threads, options.on_image_error);
+    summary.images_written = jobs.size() - summary.images_failed;
+}
+
+}  // namespace
+
+DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
+    const int threads = worker_count(options.threads);
+    ColmapModelRead model = read_model(options.model);
+    const std::string source = options.model.string();
+    const auto camera_index = index_by_id(model.cameras, [](const ColmapCameraRecord& c) { return c.id; }, source + ": camera");
+    const auto image_index = index_by_id(model.images, [](const ColmapImage& i) { return i.id; }, source + ": image");
+
+    DatasetSummary summary;
+    summary.images_in = model.images.size();
+    summary.points_in = model.points.ids.size();
+    summary.observations_in = count_with_point(model.images);
+    std::vector<std::size_t> camera_of(model.images.size());
+    for (std::size_t i = 0; i < model.images.size(); ++i) {
+        const auto found = camera_index.find(model.images[i].camera_id);
+        if (found == camera_index.end()) {
+            throw FileError(model.images[i].where + ": CAMERA_ID " + std::to_string(model.images[i].camera_id) +
+                            " is not in the cameras file");
+        }
+        camera_of[i] = found->second;
+        summary.points2d_in += model.images[i].points.size();
+    }
+
+    std::vector<PreparedCamera> sources, targets;
+    std::vector<ColmapCameraRecord> new_records;
+    for (const ColmapCameraRecord& record : model.cameras) {
+        summary.cameras.push_back(choose_camera(record, options.camera, threads));
+        sources.emplace_back(record.camera);
+        targets.emplace_back(summary.cameras.back().camera);
+        new_records.push_back({record.id, summary.cameras.back().camera, "PINHOLE"});
+    }
+    for (const std::size_t c : camera_of) ++summary.cameras[c].images;
+
+    const std::vector<std::vector<int>> kept_index = move_points2d(model.images, camera_of, sources, targets, threads);
+    const ColmapPoints3D points =
+        carry_points(model.points, model.images, image_index, kept_index, camera_of, targets, source);
+    unlink_missing_points(model.images, points);
+    summary.points_kept = points.ids.size();
+    summary.observations_kept = count_with_point(model.images);
+    for (const ColmapImage& image : model.images) summary.points2d_kept += image.points.size();
+
+    summary.model_out = options.output / "sparse" / "0";
+    write_model(summary.model_out, write_colmap_files(new_records, model.images, points, !options.text), !options.text);
+    if (!options.images.empty()) {
+        DatasetOptions resolved = options;
+        resolved.threads = threads;
+        write_images(resolved, model.images, camera_of, new_records, summary);
+    }
+    return summary;
+}
+
+}  // namespace libcam

@@ -1,0 +1,89 @@
+#pragma once
+// A whole COLMAP reconstruction turned into pinhole cameras, for the tools that take
+// nothing else (3D Gaussian Splatting, most MVS): every camera replaced by a pinhole
+// chosen for its lens (remap/new_camera.hpp), every image undistorted into it, every 2-D
+// observation moved to the pixel of the same ray in the new camera.
+//
+//   DatasetOptions options;
+//   options.model = "scene/sparse/0";  options.images = "scene/images";  options.output = "out";
+//   const DatasetSummary summary = make_pinhole_dataset(options);
+//   // out/sparse/0/{cameras,images,points3D}.bin, out/images/<each image's name>
+//
+// What it keeps: the new camera looks along the source's axes (no rotation), so each image
+// keeps its pose; each 3-D point keeps its position, colour and track. An observation is
+// unprojected through its source camera and projected through the new one (the exact
+// ray, not the image map's interpolation); one whose ray has no pixel on the new image is
+// dropped, from its image's POINTS2D and from its point's track (the remaining POINT2D_IDX
+// renumbered), and a point left with no observation is dropped. Each point's ERROR is
+// recomputed in the new pixels (the mean over its track, as COLMAP defines it).
+//
+// Images: read whole (any depth, channels and format OpenCV reads), remapped with one map
+// per camera shared by its images, written in the same format under the same name, each
+// to a temporary file renamed into place; N workers, one image each in memory at a time.
+// An image already in the output from an earlier run with the same cameras and
+// interpolation (the stamp file kStampName in the output folder says) is kept, so a
+// stopped run started again finishes the rest. A source camera that is already a
+// pinhole, given no --size or field of view, is kept as it is and its images copied.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "libcam/interop/image_remap.hpp"
+#include "libcam/remap/new_camera.hpp"
+
+namespace libcam {
+
+struct DatasetOptions {
+    std::filesystem::path model;   // a COLMAP model folder (cameras, images, points3D; .bin or .txt)
+    std::filesystem::path images;  // the source images; empty: write the model alone
+    std::filesystem::path output;  // gets sparse/0/ and images/
+    // The new camera of each source camera: `keep` or `fov_deg` on `fov_axis`, and `size`
+    // (default each source's); model and rotation are not used (always a pinhole, no turn).
+    NewCameraRequest camera;
+    Interpolation interpolation = Interpolation::Cubic;
+    int threads = 1;
+    bool text = false;  // write the model as text instead of binary
+    // Called, one call at a time, with one line for each image that could not be read or
+    // written; the others go on.
+    std::function<void(const std::string&)> on_image_error;
+};
+
+struct DatasetCamera {
+    std::uint64_t id = 0;        // COLMAP's CAMERA_ID, the same in the output
+    std::string source_model;    // COLMAP's model name of the source camera
+    Camera source;
+    Camera camera;               // the new pinhole
+    std::string why;             // how it was chosen
+    std::size_t images = 0;      // images taking it
+    bool kept = false;           // the source was already a pinhole, kept: its images copied
+};
+
+struct DatasetSummary {
+    std::vector<DatasetCamera> cameras;
+    std::size_t observations_in = 0;    // POINTS2D with a 3-D point
+    std::size_t observations_kept = 0;
+    std::size_t points2d_in = 0;        // every POINTS2D entry
+    std::size_t points2d_kept = 0;
+    std::size_t points_in = 0;          // 3-D points
+    std::size_t points_kept = 0;
+    std::size_t images_in = 0;          // images of the model
+    std::size_t images_written = 0;
+    std::size_t images_kept = 0;        // already in the output from an earlier run
+    std::size_t images_failed = 0;
+    std::filesystem::path model_out;    // the folder the model was written to
+};
+
+// The name of the file in the output folder that says which cameras and interpolation
+// made the images there.
+inline constexpr const char* kStampName = ".libcam-dataset";
+
+// Throws FileError for a malformed model or an output that cannot be written,
+// InvalidArgument when no pinhole can be chosen for a camera (naming it); an image that
+// cannot be read or written is reported through on_image_error and counted instead.
+DatasetSummary make_pinhole_dataset(const DatasetOptions& options);
+
+}  // namespace libcam

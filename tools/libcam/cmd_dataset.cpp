@@ -1,0 +1,173 @@
+// libcam dataset: a whole COLMAP reconstruction into pinhole cameras, its images
+// undistorted and its observations moved (libcam/interop/colmap_dataset.hpp).
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+
+#include "commands.hpp"
+#include "json_output.hpp"
+#include "libcam/camera/parallel.hpp"
+#include "libcam/error.hpp"
+#include "libcam/interop/colmap_dataset.hpp"
+#include "libcam/text/number_format.hpp"
+#include "parse.hpp"
+
+namespace libcam::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct DatasetFlags {
+    std::string source;
+    std::string output;
+    std::string images;
+    std::string camera = "valid";
+    std::string size;
+    std::string interpolation = "cubic";
+    int threads = 0;
+    bool text = false;
+    bool no_images = false;
+    bool json = false;
+};
+
+// --camera: valid, all, or fov:DEG (horizontal, edge to edge).
+NewCameraRequest camera_request(const DatasetFlags& flags) {
+    NewCameraRequest request;
+    if (!flags.size.empty()) request.size = parse_size("--size", flags.size);
+    if (flags.camera == "valid") {
+        request.keep = Keep::Valid;
+    } else if (flags.camera == "all") {
+        request.keep = Keep::All;
+    } else if (flags.camera.starts_with("fov:")) {
+        request.keep.reset();
+        request.fov_deg = parse_number("--camera", flags.camera.substr(4));
+        request.fov_axis = FovAxis::Horizontal;
+    } else {
+        throw UsageError("--camera: expected valid (no pixel without a source), all (every source pixel kept) or "
+                         "fov:DEG (the horizontal field of view), got '" + flags.camera + "'");
+    }
+    return request;
+}
+
+// The images beside the model: X/images for the model X/sparse/0.
+fs::path default_images(const fs::path& model) {
+    const fs::path folder = fs::absolute(model).lexically_normal();
+    const fs::path trimmed = folder.has_filename() ? folder : folder.parent_path();
+    return trimmed.parent_path().parent_path() / "images";
+}
+
+Json camera_json(const DatasetCamera& camera) {
+    const Intrinsics& k = camera.camera.intrinsics;
+    return Json{{"id", camera.id},
+                {"source_model", camera.source_model},
+                {"model", "PINHOLE"},
+                {"fx", k.fx},
+                {"fy", k.fy},
+                {"cx", k.cx},
+                {"cy", k.cy},
+                {"width", camera.camera.size.width},
+                {"height", camera.camera.size.height},
+                {"images", camera.images},
+                {"why", camera.why}};
+}
+
+std::string summary_json(const DatasetSummary& s, double seconds) {
+    Json out;
+    out["model"] = s.model_out.string();
+    out["observations_in"] = s.observations_in;
+    out["observations_kept"] = s.observations_kept;
+    out["points2d_in"] = s.points2d_in;
+    out["points2d_kept"] = s.points2d_kept;
+    out["points_in"] = s.points_in;
+    out["points_kept"] = s.points_kept;
+    out["images_in"] = s.images_in;
+    out["images_out"] = s.images_written + s.images_kept;
+    out["images_written"] = s.images_written;
+    out["images_kept"] = s.images_kept;
+    out["images_failed"] = s.images_failed;
+    out["cameras"] = Json::array();
+    for (const DatasetCamera& camera : s.cameras) out["cameras"].push_back(camera_json(camera));
+    out["time_s"] = seconds;
+    return out.dump(2) + "\n";
+}
+
+std::string summary_text(const DatasetSummary& s, double seconds, bool with_images) {
+    std::string out = "model: " + s.model_out.string() + "\n";
+    for (const DatasetCamera& camera : s.cameras) {
+        const Intrinsics& k = camera.camera.intrinsics;
+        out += "camera " + std::to_string(camera.id) + ": " + camera.source_model + " " +
+               std::to_string(camera.source.size.width) + "x" + std::to_string(camera.source.size.height) +
+               " -> PINHOLE " + std::to_string(camera.camera.size.width) + "x" + std::to_string(camera.camera.size.height) +
+               " fx " + format_short(k.fx, 8) + " fy " + format_short(k.fy, 8) + " cx " + format_short(k.cx, 8) + " cy " +
+               format_short(k.cy, 8) + " (OpenCV's pixels), " + std::to_string(camera.images) + " images: " + camera.why +
+               "\n";
+    }
+    out += "observations: " + std::to_string(s.observations_kept) + " of " + std::to_string(s.observations_in) +
+           " kept (" + std::to_string(s.observations_in - s.observations_kept) + " land off their new image)\n";
+    out += "points: " + std::to_string(s.points_kept) + " of " + std::to_string(s.points_in) + " kept\n";
+    if (with_images) {
+        out += "images: " + std::to_string(s.images_written + s.images_kept) + " of " + std::to_string(s.images_in) +
+               " in the output (" + std::to_string(s.images_written) + " written, " + std::to_string(s.images_kept) +
+               " already there, " + std::to_string(s.images_failed) + " failed)\n";
+    }
+    out += "time: " + format_short(seconds, 3) + " s\n";
+    return out;
+}
+
+int run_dataset(const DatasetFlags& flags) {
+    if (flags.threads < 0) throw UsageError("--threads: expected 0 (one per core) or more");
+    if (flags.no_images && !flags.images.empty()) throw UsageError("--images: not with --no-images");
+    DatasetOptions options;
+    options.model = flags.source;
+    options.output = flags.output;
+    options.camera = camera_request(flags);
+    options.threads = worker_count(flags.threads);
+    options.text = flags.text;
+    try {
+        options.interpolation = interpolation_from_string(flags.interpolation);
+    } catch (const InvalidArgument& error) {
+        throw UsageError(std::string("--") + error.what());
+    }
+    if (!flags.no_images) options.images = flags.images.empty() ? default_images(flags.source) : fs::path(flags.images);
+    if (!options.images.empty() && !fs::is_directory(options.images)) {
+        throw FileError(options.images.string() + ": no such images folder (give --images, or --no-images)");
+    }
+    options.on_image_error = [](const std::string& line) { std::cerr << "libcam: error: " << line << "\n"; };
+    const auto start = std::chrono::steady_clock::now();
+    const DatasetSummary summary = make_pinhole_dataset(options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    emit(flags.json ? summary_json(summary, seconds) : summary_text(summary, seconds, !flags.no_images), "");
+    return summary.images_failed == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+Runner add_dataset(CLI::App& app) {
+    CLI::App* command = add_command(app, "dataset");
+    auto flags = std::make_shared<DatasetFlags>();
+    command->add_option("SRC", flags->source, "A COLMAP model folder (cameras, images, points3D; .bin or .txt)")
+        ->required();
+    command->add_option("-o,--output", flags->output, "The folder to write: sparse/0/ (the model) and images/")
+        ->required();
+    command->add_option("--images", flags->images,
+                        "The source images (default: images beside the model's grandparent: X/images for X/sparse/0)");
+    command->add_option("--camera", flags->camera,
+                        "Each new pinhole: valid (every pixel has a source: no black borders), all (keeps every "
+                        "source pixel) or fov:DEG (this horizontal field of view)")
+        ->capture_default_str();
+    command->add_option("--size", flags->size, "The new cameras' image size WIDTHxHEIGHT (default: each source's)");
+    command->add_option("--interpolation", flags->interpolation, "nearest, linear, cubic or lanczos (cv::remap)")
+        ->capture_default_str();
+    command->add_option("--threads", flags->threads, "Images worked on at once, and threads per map (0: one per core)")
+        ->capture_default_str();
+    command->add_flag("--text", flags->text, "Write the model as text (cameras.txt, ...) instead of binary");
+    command->add_flag("--no-images", flags->no_images, "Write the model alone");
+    command->add_flag("--json", flags->json,
+                      "Print {\"observations_in\", \"observations_kept\", \"images_in\", \"images_out\", \"cameras\", "
+                      "\"time_s\", ...}");
+    return [flags] { return run_dataset(*flags); };
+}
+
+}  // namespace libcam::cli
