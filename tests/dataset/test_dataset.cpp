@@ -318,7 +318,7 @@ TEST_CASE("dataset: each blob of the undistorted images is at its moved observat
     WARN(measured << " blobs, largest centroid distance " << worst << " px");
 }
 
-TEST_CASE("dataset: a run started again finishes the rest, the same bytes; a missing image is named", "[dataset]") {
+TEST_CASE("dataset: a run started again finishes the rest, the same bytes, and a missing image is named", "[dataset]") {
     TempDir dir;
     const std::vector<std::string> names = {"a.png", "b.png", "c.png", "d.png", "e.png"};
     write_blob_model(dir / "model", dir / "pictures", names);
