@@ -216,17 +216,6 @@ bool stamp_matches(const fs::path& file, const std::string& stamp) {
     }
 }
 
-void write_image(const fs::path& path, const cv::Mat& image) {
-    std::vector<unsigned char> bytes;
-    bool encoded = false;
-    try {
-        encoded = cv::imencode(path.extension().string(), image, bytes);
-    } catch (const cv::Exception&) {
-        encoded = false;
-    }
-    if (!encoded) throw FileError(path.string() + ": OpenCV cannot write an image of this type as " + path.extension().string());
-    write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-}
 
 struct ImageJob {
     std::size_t camera;
@@ -281,8 +270,7 @@ void run_job(const ImageJob& job, const PreparedRemap* map, Interpolation interp
         write_file_atomically(job.target, read_text_file(job.source));
         return;
     }
-    const cv::Mat image = cv::imread(job.source.string(), cv::IMREAD_UNCHANGED);
-    if (image.empty()) throw FileError(job.source.string() + ": not an image OpenCV can read");
+    const cv::Mat image = read_image(job.source);
     cv::Mat result;
     try {
         result = remap_image(image, *map, interpolation);

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <vector>
@@ -186,6 +187,26 @@ void write_stmap_file(const std::filesystem::path& path, const RemapMap& map, co
         throw FileError(path.string() + ": OpenEXR could not write the STMap: " + error.what());
     }
     write_file_atomically(path, bytes);
+}
+
+cv::Mat read_image(const std::filesystem::path& path) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) throw FileError(path.string() + ": no such image file");
+    cv::Mat image = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    if (image.empty()) throw FileError(path.string() + ": not an image OpenCV can read");
+    return image;
+}
+
+void write_image(const std::filesystem::path& path, const cv::Mat& image) {
+    std::vector<unsigned char> bytes;
+    bool encoded = false;
+    try {
+        encoded = cv::imencode(path.extension().string(), image, bytes);
+    } catch (const cv::Exception&) {
+        encoded = false;
+    }
+    if (!encoded) throw FileError(path.string() + ": OpenCV cannot write an image of this type as " + path.extension().string());
+    write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace libcam

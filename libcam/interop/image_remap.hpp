@@ -46,6 +46,13 @@ struct PreparedRemap {
 PreparedRemap prepare_remap(const RemapMap& map);
 cv::Mat remap_image(const cv::Mat& source_image, const PreparedRemap& map, Interpolation interpolation);
 
+// An image file read whole, its bit depth and channels as they are (IMREAD_UNCHANGED);
+// FileError naming the file when it is missing or not an image OpenCV reads.
+cv::Mat read_image(const std::filesystem::path& path);
+// The image encoded by its file's extension and written atomically (io/atomic_write.hpp);
+// FileError naming the file when OpenCV cannot write this image as that type.
+void write_image(const std::filesystem::path& path, const cv::Mat& image);
+
 // The map as a file of source coordinates, NaN where there is no source, in double's
 // precision rounded to float32: an OpenEXR image with channels R (x) and G (y), or a
 // NumPy .npy array of shape (height, width, 2). Chosen by the extension (.exr, .npy);

@@ -123,25 +123,7 @@ UnprojectMethod method_from(const std::string& text) {
     throw UsageError("--method: expected exact or fast, got '" + text + "'");
 }
 
-// An image read whole, or a one-line error naming it.
-cv::Mat read_image(const std::string& path) {
-    if (!fs::is_regular_file(path)) throw FileError(path + ": no such image file");
-    cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
-    if (image.empty()) throw FileError(path + ": not an image OpenCV can read");
-    return image;
-}
 
-void write_image(const fs::path& path, const cv::Mat& image) {
-    std::vector<unsigned char> bytes;
-    bool encoded = false;
-    try {
-        encoded = cv::imencode(path.extension().string(), image, bytes);
-    } catch (const cv::Exception&) {
-        encoded = false;
-    }
-    if (!encoded) throw FileError(path.string() + ": OpenCV cannot write an image of this type as " + path.extension().string());
-    write_file_atomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-}
 
 std::string percent(std::size_t part, std::size_t whole) {
     return format_short(100.0 * static_cast<double>(part) / static_cast<double>(std::max<std::size_t>(whole, 1)), 4) + "%";
