@@ -1,5 +1,5 @@
 // COLMAP models' observations (io/detail/colmap_observations.hpp): the real models of
-// ../shared/real-data (SOURCES.md section 1 gives their counts and the numbers COLMAP
+// the folder of real data beside the source tree (its SOURCES.md, section 1, gives their counts and the numbers COLMAP
 // stored and model_analyzer printed), and small models written here whose numbers are
 // worked by hand.
 

@@ -1,6 +1,6 @@
 // OpenSfM's reconstruction.json with tracks.csv, and OpenMVG's sfm_data.json: cameras and
 // observations, on hand-made files whose pixels are worked out by hand from each tool's
-// formulas, and on the real files of ../shared/real-data (SOURCES.md section 5 gives the
+// formulas, and on the real files of the folder of real data beside the source tree (its SOURCES.md, section 5, gives the
 // expected numbers, recomputed there independently of libcam).
 
 #include <catch2/catch.hpp>
