@@ -214,7 +214,7 @@ constexpr FormatRow kRows[] = {
      .lens_names = "a pinhole with its principal point at the image centre", .refuses = "distortion"},
     {.format = CameraFormat::Llff, .name = "llff", .title = "LLFF poses_bounds.npy",
      .description = "LLFF's poses_bounds.npy (imgs2poses.py), as NeRF's LLFF scenes ship it: per image a 3x5 "
-                    "[R | centre | H W focal], near and far",
+                    "matrix of rotation, centre and H, W, focal, then near and far",
      .extensions = {".npy"}, .content = static_cast<unsigned>(C::Binary), .read = read_llff_poses,
      .read_only = true, .binary = true, .lenses = kPinhole,
      .lens_names = "a pinhole with one focal length, its principal point at the image centre",
