@@ -257,7 +257,8 @@ TEST_CASE("llff: each malformed field is refused with the file, the field and th
     CHECK(llff_error(rows) == "poses_bounds.npy: row 0: column 8: must be finite, got nan");
     rows = kLlffRows;
     rows[0][0] = 2.0;
-    CHECK(llff_error(rows).find("poses_bounds.npy: row 0: columns 0-2, 5-7, 10-12 (the camera-to-world rotation)") == 0);
+    CHECK(llff_error(rows).find("poses_bounds.npy: row 0: columns 0-2, 5-7, 10-12 (the camera-to-world rotation)") ==
+          0);
     rows = kLlffRows;
     rows[0][14] = -500.0;
     const std::string focal = llff_error(rows);

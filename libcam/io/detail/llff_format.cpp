@@ -59,7 +59,8 @@ Pose read_pose(const Row& row) {
 Camera read_camera(const Row& row, NerfPrincipalPoint principal_point) {
     for (std::size_t r = 0; r < 3; ++r) {
         for (std::size_t c = 0; c < 5; ++c) {
-            if (!std::isfinite(row.matrix(r, c))) row.fail(r, c, "must be finite, got " + std::to_string(row.matrix(r, c)));
+            const double value = row.matrix(r, c);
+            if (!std::isfinite(value)) row.fail(r, c, "must be finite, got " + std::to_string(value));
         }
     }
     Camera camera;
