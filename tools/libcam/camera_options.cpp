@@ -16,9 +16,9 @@ void FileSelection::add_to(CLI::App& command) {
     command.add_option("--image-size", image_size,
                        "The image size WIDTHxHEIGHT, for a file that does not record it (NeRF's synthetic scenes)");
     command.add_option("--nerf-principal-point", nerf_principal_point,
-                       "transforms.json without cx, cy: centre (the image's centre, where Blender rendered NeRF's "
-                       "synthetic scenes) or half-size (W/2, H/2 with pixel centres at integers, where NeRF's own "
-                       "ray code puts it, half a pixel off)")
+                       "transforms.json without cx, cy, and LLFF's poses_bounds.npy: centre (the image's centre, "
+                       "where Blender rendered NeRF's synthetic scenes and COLMAP put LLFF's) or half-size (W/2, "
+                       "H/2 with pixel centres at integers, where NeRF's own ray code puts it, half a pixel off)")
         ->capture_default_str();
 }
 

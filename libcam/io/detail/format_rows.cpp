@@ -10,7 +10,9 @@
 #include "libcam/io/detail/colmap_format.hpp"
 #include "libcam/io/detail/colmap_observations.hpp"
 #include "libcam/io/detail/format_row.hpp"
+#include "libcam/io/detail/gs_cameras.hpp"
 #include "libcam/io/detail/json_format.hpp"
+#include "libcam/io/detail/llff_format.hpp"
 #include "libcam/io/detail/mrcal_observations.hpp"
 #include "libcam/io/detail/nerf_transforms.hpp"
 #include "libcam/io/detail/open3d_format.hpp"
@@ -204,6 +206,19 @@ constexpr FormatRow kRows[] = {
      .read = read_openmvg, .read_only = true, .read_observations = read_openmvg_observations, .lenses = kOpenMvg,
      .lens_names = "pinhole, pinhole_radial_k1, pinhole_radial_k3, pinhole_brown_t2, fisheye, spherical",
      .refuses = "any other intrinsic type"},
+    {.format = CameraFormat::GsCameras, .name = "gs-cameras", .title = "3D Gaussian Splatting cameras.json",
+     .description = "the cameras.json 3D Gaussian Splatting writes beside its model: per image a size, fx, fy, "
+                    "centre and rotation",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_gs_cameras,
+     .read = read_gs_cameras, .read_only = true, .lenses = kPinhole,
+     .lens_names = "a pinhole with its principal point at the image centre", .refuses = "distortion"},
+    {.format = CameraFormat::Llff, .name = "llff", .title = "LLFF poses_bounds.npy",
+     .description = "LLFF's poses_bounds.npy (imgs2poses.py), as NeRF's LLFF scenes ship it: per image a 3x5 "
+                    "matrix of rotation, centre and H, W, focal, then near and far",
+     .extensions = {".npy"}, .content = static_cast<unsigned>(C::Binary), .read = read_llff_poses,
+     .read_only = true, .binary = true, .lenses = kPinhole,
+     .lens_names = "a pinhole with one focal length, its principal point at the image centre",
+     .refuses = "distortion"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
