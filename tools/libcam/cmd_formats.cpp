@@ -58,13 +58,23 @@ Json format_json(const CameraFormatInfo& format) {
     return out;
 }
 
+// A table cell's text: a '|' in it would end the cell.
+std::string cell(std::string_view text) {
+    std::string out;
+    for (const char c : text) {
+        if (c == '|') out += '\\';
+        out += c;
+    }
+    return out;
+}
+
 std::string markdown(const std::vector<CameraFormatInfo>& formats) {
     std::ostringstream out;
     out << "| format | what | libcam | lens models it holds | the format's names | cannot hold |\n";
     out << "|---|---|---|---|---|---|\n";
     for (const CameraFormatInfo& format : formats) {
-        out << "| `" << format.name << "` | " << format.description << " | " << access(format) << " | "
-            << lens_models_text(format) << " | " << format.lens_names << " | " << format.refuses << " |\n";
+        out << "| `" << format.name << "` | " << cell(format.description) << " | " << access(format) << " | "
+            << lens_models_text(format) << " | " << cell(format.lens_names) << " | " << cell(format.refuses) << " |\n";
     }
     return out.str();
 }
