@@ -338,7 +338,10 @@ Content sniff_content(std::string_view text, const std::string& source) {
         return Content::PythonDict;  // only comments: mrcal's parser says what is missing
     }
     if (body.starts_with("%YAML") || body.starts_with("---")) return Content::Yaml;
-    if (body.starts_with("<?xml") || body.starts_with("<opencv_storage>")) return Content::Xml;
+    if (body.starts_with("<?xml") || body.starts_with("<opencv_storage>") || body.starts_with("<document") ||
+        body.starts_with("<calibration>")) {
+        return Content::Xml;
+    }
     if (body.starts_with("{")) {
         // JSON has no comments and quotes its keys with '"'; mrcal writes comments and ''.
         const bool commented = body.data() != text.data() + text.find_first_not_of(" \t\r\n");
@@ -356,12 +359,13 @@ Content sniff_content(std::string_view text, const std::string& source) {
 
 // The file parsed once as the structure its candidates share, for their claims; nullopt
 // when it does not parse (the chosen reader then says where it is broken) or is not
-// JSON or YAML.
+// JSON, YAML or XML.
 std::optional<DocumentNode> parsed_for_claims(std::string_view text, unsigned content, const std::string& source) {
     try {
         check_text(text, source);
         if (content & static_cast<unsigned>(Content::Json)) return parse_json_tree(text, source);
         if (content & static_cast<unsigned>(Content::Yaml)) return parse_yaml_document(text, source);
+        if (content & static_cast<unsigned>(Content::Xml)) return parse_xml_outline(text, source);
     } catch (const FileError&) {
     }
     return std::nullopt;

@@ -422,6 +422,26 @@ DocumentNode parse_opencv_xml_document(std::string_view text, const std::string&
     return tree;
 }
 
+DocumentNode parse_xml_outline(std::string_view text, const std::string& source) {
+    pugi::xml_document document;
+    const pugi::xml_parse_result result = document.load_buffer(text.data(), text.size());
+    if (!result) {
+        throw FileError(source + ": line " + std::to_string(LineIndex(text).line_of(result.offset)) +
+                        ": not valid XML: " + result.description());
+    }
+    const pugi::xml_node root = document.document_element();
+    DocumentNode children{.kind = DocumentNode::Kind::Map};
+    for (const pugi::xml_node child : root.children()) {
+        if (child.type() != pugi::node_element || children.find(child.name()) != nullptr) continue;
+        children.keys.emplace_back(child.name());
+        children.items.emplace_back();
+    }
+    DocumentNode outline{.kind = DocumentNode::Kind::Map};
+    outline.keys.emplace_back(root.name());
+    outline.items.push_back(std::move(children));
+    return outline;
+}
+
 // ---- JSON (nlohmann) ----
 
 namespace {

@@ -49,6 +49,11 @@ DocumentNode parse_yaml_document(std::string_view text, const std::string& sourc
 // holds several whitespace-separated words; the attribute type_id becomes the tag.
 DocumentNode parse_opencv_xml_document(std::string_view text, const std::string& source);
 
+// The outline of any XML file, for telling formats apart by their elements: a map whose
+// one key is the root element's name, holding a map of its child elements' names (each
+// once, with no value). Throws FileError "<source>: line L: not valid XML: ...".
+DocumentNode parse_xml_outline(std::string_view text, const std::string& source);
+
 // Parses JSON into the same tree: objects are maps (keys in file order), arrays
 // sequences, strings, numbers and booleans scalars with their text as written (a string
 // without its quotes), null null; each tagged with its JSON type. A key given twice keeps

@@ -26,7 +26,7 @@ namespace libcam::detail {
 enum class Content : unsigned {
     Json = 1u << 0,        // '{' and "double-quoted" keys
     Yaml = 1u << 1,        // %YAML, ---, or "key:" first
-    Xml = 1u << 2,         // <?xml or <opencv_storage>
+    Xml = 1u << 2,         // <?xml, <opencv_storage>, or Metashape's <document> or <calibration>
     PythonDict = 1u << 3,  // mrcal's text: a Python dict, # comments first
     KeyValue = 1u << 4,    // "key = value" lines (JPL's cahvor)
     Table = 1u << 5,       // lines of numbers and words (COLMAP's cameras.txt)

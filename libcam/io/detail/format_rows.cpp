@@ -13,6 +13,7 @@
 #include "libcam/io/detail/gs_cameras.hpp"
 #include "libcam/io/detail/json_format.hpp"
 #include "libcam/io/detail/llff_format.hpp"
+#include "libcam/io/detail/metashape_format.hpp"
 #include "libcam/io/detail/mrcal_observations.hpp"
 #include "libcam/io/detail/nerf_transforms.hpp"
 #include "libcam/io/detail/open3d_format.hpp"
@@ -97,6 +98,7 @@ constexpr L kOpenicc[] = {L::Pinhole, L::Fisheye, L::DoubleSphere, L::Eucm};
 constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat};
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 
 using C = Content;
 
@@ -219,6 +221,12 @@ constexpr FormatRow kRows[] = {
      .read_only = true, .binary = true, .lenses = kPinhole,
      .lens_names = "a pinhole with one focal length, its principal point at the image centre",
      .refuses = "distortion"},
+    {.format = CameraFormat::Metashape, .name = "metashape", .title = "Agisoft Metashape XML",
+     .description = "Agisoft Metashape's (PhotoScan's) cameras.xml from Export Cameras, and its Export Calibration "
+                    "XML", .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_metashape,
+     .read = read_metashape, .read_only = true, .lenses = kMetashape,
+     .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical",
+     .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without

@@ -1,0 +1,327 @@
+#include "libcam/io/detail/metashape_format.hpp"
+
+#include <pugixml.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "libcam/error.hpp"
+#include "libcam/geometry/image_size.hpp"
+#include "libcam/lens/lens_model.hpp"
+
+namespace libcam {
+
+namespace {
+
+// The file, for messages that name the line of an element: "<source>: line L: <what>".
+class Source {
+public:
+    Source(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+
+    [[noreturn]] void fail(const pugi::xml_node& node, const std::string& what) const {
+        throw FileError(name_ + ": line " + std::to_string(line_of(node)) + ": " + what);
+    }
+
+    // The numbers of an element's text, exactly `count` of them ("<where> <element>").
+    std::vector<double> numbers(const pugi::xml_node& element, std::size_t count, const std::string& where) const {
+        std::vector<double> values;
+        std::string_view rest = element.text().get();
+        while (true) {
+            const auto start = rest.find_first_not_of(" \t\r\n");
+            if (start == std::string_view::npos) break;
+            rest.remove_prefix(start);
+            const std::string_view word = rest.substr(0, rest.find_first_of(" \t\r\n"));
+            double value = 0.0;
+            const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+            if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value)) {
+                fail(element, where + " <" + element.name() + ">: must be a finite number, got '" + std::string(word) + "'");
+            }
+            if (values.size() == count) {
+                fail(element, where + " <" + element.name() + ">: expected " + std::to_string(count) + " numbers, got more");
+            }
+            values.push_back(value);
+            rest.remove_prefix(word.size());
+        }
+        if (values.size() != count) {
+            fail(element, where + " <" + element.name() + ">: expected " + std::to_string(count) + " numbers, got " +
+                              std::to_string(values.size()));
+        }
+        return values;
+    }
+
+    // A child element's one number, or `fallback` where the element is absent.
+    double number_or(const pugi::xml_node& parent, const char* name, double fallback, const std::string& where) const {
+        const pugi::xml_node element = parent.child(name);
+        return element ? numbers(element, 1, where)[0] : fallback;
+    }
+
+    // An image side: a whole number of pixels, from an attribute or an element's text.
+    long side(const pugi::xml_node& node, std::string_view text, const std::string& field) const {
+        long value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc() || end != text.data() + text.size() || value < 1 || value > kMaxImageSide) {
+            fail(node, field + ": must be a whole number of pixels in [1, " + std::to_string(kMaxImageSide) + "], got '" +
+                           std::string(text) + "'");
+        }
+        return value;
+    }
+
+    const std::string& name() const { return name_; }
+
+private:
+    int line_of(const pugi::xml_node& node) const {
+        const std::ptrdiff_t offset = node.offset_debug();
+        if (offset < 0) return 0;
+        const std::string_view before = text_.substr(0, std::min<std::size_t>(static_cast<std::size_t>(offset), text_.size()));
+        return static_cast<int>(std::count(before.begin(), before.end(), '\n')) + 1;
+    }
+
+    std::string_view text_;
+    const std::string& name_;
+};
+
+// A calibration's numbers as Metashape writes them (absent ones are 0).
+struct Calibration {
+    std::string type = "frame";
+    ImageSize size;
+    double f = 0.0, cx = 0.0, cy = 0.0, b1 = 0.0, b2 = 0.0;
+    double k1 = 0.0, k2 = 0.0, k3 = 0.0, k4 = 0.0, p1 = 0.0, p2 = 0.0;
+};
+
+Calibration read_terms(const Source& source, const pugi::xml_node& calibration, Calibration out, const std::string& where) {
+    const pugi::xml_node f = calibration.child("f");
+    if (!f) source.fail(calibration, where + ": <calibration> has no <f>");
+    out.f = source.numbers(f, 1, where)[0];
+    double* const terms[] = {&out.cx, &out.cy, &out.b1, &out.b2, &out.k1, &out.k2,
+                             &out.k3, &out.k4, &out.p1, &out.p2};
+    const char* const names[] = {"cx", "cy", "b1", "b2", "k1", "k2", "k3", "k4", "p1", "p2"};
+    for (std::size_t i = 0; i < std::size(names); ++i) *terms[i] = source.number_or(calibration, names[i], 0.0, where);
+    return out;
+}
+
+ImageSize resolution(const Source& source, const pugi::xml_node& element, const std::string& where) {
+    return {source.side(element, element.attribute("width").value(), where + " <resolution> width"),
+            source.side(element, element.attribute("height").value(), where + " <resolution> height")};
+}
+
+// Metashape's camera as libcam's (the header says how each term maps).
+Camera camera_from(const Source& source, const pugi::xml_node& node, const Calibration& c, const std::string& where) {
+    Camera camera;
+    camera.size = c.size;
+    const double centre_x = 0.5 * static_cast<double>(c.size.width) - 0.5;
+    const double centre_y = 0.5 * static_cast<double>(c.size.height) - 0.5;
+    camera.intrinsics = {c.f + c.b1, c.f, centre_x + c.cx, centre_y + c.cy, c.b2};
+    const auto refuse = [&](const std::string& what) {
+        throw NotRepresentable(source.name() + ": " + where + ": " + what);
+    };
+    if (c.type == "frame") {
+        if (c.k4 != 0.0) {
+            refuse("k4 = " + format_number(c.k4) + ": libcam has no model with Metashape's r^8 radial term (OpenCV's "
+                   "models stop at r^6)");
+        }
+        camera.lens = simplest_equal_lens({LensType::OpenCv5, {c.k1, c.k2, c.p2, c.p1, c.k3}});
+    } else if (c.type == "fisheye") {
+        if (c.p1 != 0.0 || c.p2 != 0.0) {
+            refuse("a fisheye sensor's tangential terms (p1 = " + format_number(c.p1) + ", p2 = " + format_number(c.p2) +
+                   ") have no libcam model (FISHEYE is Kannala-Brandt's radial polynomial only)");
+        }
+        camera.lens = {LensType::Fisheye, {c.k1, c.k2, c.k3, c.k4}};
+    } else if (c.type == "spherical") {
+        if (c.b1 != 0.0 || c.b2 != 0.0 || c.k1 != 0.0 || c.k2 != 0.0 || c.k3 != 0.0 || c.k4 != 0.0 || c.p1 != 0.0 ||
+            c.p2 != 0.0) {
+            refuse("a spherical sensor with distortion or affinity terms has no libcam model (LONLAT has none)");
+        }
+        camera.lens = {LensType::Lonlat, {}};
+    } else {
+        source.fail(node, where + ": camera type '" + c.type + "' is refused: libcam reads frame, fisheye and "
+                                  "spherical sensors");
+    }
+    return validated_camera(camera, source.name() + ": " + where);
+}
+
+// x_out = scale R x + t: Metashape's chunk and component transforms.
+struct Similarity {
+    double scale = 1.0;
+    Mat3 R = Mat3::Identity();
+    Vec3 t = Vec3::Zero();
+
+    // This applied after `inner`.
+    Similarity after(const Similarity& inner) const {
+        return {scale * inner.scale, R * inner.R, scale * (R * inner.t) + t};
+    }
+};
+
+Similarity read_similarity(const Source& source, const pugi::xml_node& transform, const std::string& where) {
+    Similarity out;
+    if (!transform) return out;
+    if (const pugi::xml_node rotation = transform.child("rotation")) {
+        const std::vector<double> r = source.numbers(rotation, 9, where + " <transform>");
+        for (int i = 0; i < 9; ++i) out.R(i / 3, i % 3) = r[static_cast<std::size_t>(i)];
+    }
+    if (const pugi::xml_node translation = transform.child("translation")) {
+        const std::vector<double> t = source.numbers(translation, 3, where + " <transform>");
+        out.t = Vec3(t[0], t[1], t[2]);
+    }
+    out.scale = source.number_or(transform, "scale", 1.0, where + " <transform>");
+    if (!(out.scale > 0.0)) source.fail(transform, where + " <transform> <scale>: must be > 0, got " + format_number(out.scale));
+    return out;
+}
+
+// A camera's world-to-camera pose from its 4x4 camera-to-chunk (or -component) matrix
+// and the similarity taking that frame to the world. The similarity's scale stretches the
+// camera's position but not its axes: the world point X_world = s R M X_cam + T seen
+// from the camera is X_cam = (R M)^T (X_world - T) / s, and projection x = X/Z does not
+// see the 1/s, so libcam's pose is the rigid part (R M)^T, -(R M)^T T.
+Pose camera_pose(const Source& source, const pugi::xml_node& transform, const Similarity& to_world,
+                 const std::string& where) {
+    const std::vector<double> m = source.numbers(transform, 16, where);
+    if (m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0) {
+        source.fail(transform, where + " <transform>: the last row must be 0 0 0 1, got " + format_number(m[12]) + " " +
+                                   format_number(m[13]) + " " + format_number(m[14]) + " " + format_number(m[15]));
+    }
+    Similarity camera;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) camera.R(i, j) = m[static_cast<std::size_t>(4 * i + j)];
+        camera.t(i) = m[static_cast<std::size_t>(4 * i + 3)];
+    }
+    const Similarity world = to_world.after(camera);
+    return Pose::from_centre(world.R.transpose(), world.t);
+}
+
+struct Sensor {
+    std::string label;
+    std::optional<Camera> camera;  // none: the sensor has no calibration
+};
+
+std::string sensor_where(const pugi::xml_node& sensor) {
+    return std::string("sensor ") + sensor.attribute("id").value() + " ('" + sensor.attribute("label").value() + "')";
+}
+
+// The adjusted calibration where there is one (what alignment solved), else the initial.
+pugi::xml_node chosen_calibration(const pugi::xml_node& sensor) {
+    pugi::xml_node initial;
+    for (const pugi::xml_node calibration : sensor.children("calibration")) {
+        if (std::string_view(calibration.attribute("class").value()) == "adjusted") return calibration;
+        if (!initial) initial = calibration;
+    }
+    return initial;
+}
+
+Sensor read_sensor(const Source& source, const pugi::xml_node& sensor) {
+    const std::string where = sensor_where(sensor);
+    const pugi::xml_node calibration = chosen_calibration(sensor);
+    if (!calibration) return {sensor.attribute("label").value(), std::nullopt};
+    Calibration terms;
+    terms.type = calibration.attribute("type") ? calibration.attribute("type").value() : sensor.attribute("type").as_string("frame");
+    const pugi::xml_node size = calibration.child("resolution") ? calibration.child("resolution") : sensor.child("resolution");
+    if (!size) source.fail(sensor, where + ": no <resolution>");
+    terms.size = resolution(source, size, where);
+    return {sensor.attribute("label").value(), camera_from(source, calibration, read_terms(source, calibration, terms, where), where)};
+}
+
+// A chunk's aligned cameras, or where none is aligned, its calibrated sensors.
+void read_chunk(const Source& source, const pugi::xml_node& chunk, std::vector<NamedCamera>& out) {
+    std::map<std::string, Sensor, std::less<>> sensors;
+    std::vector<std::string> sensor_order;
+    for (const pugi::xml_node sensor : chunk.child("sensors").children("sensor")) {
+        const std::string id = sensor.attribute("id").value();
+        if (sensors.contains(id)) source.fail(sensor, sensor_where(sensor) + ": sensor id " + id + " given twice");
+        sensors.emplace(id, read_sensor(source, sensor));
+        sensor_order.push_back(id);
+    }
+    const Similarity chunk_to_world = read_similarity(source, chunk.child("transform"), "chunk");
+    std::map<std::string, Similarity, std::less<>> components;
+    for (const pugi::xml_node component : chunk.child("components").children("component")) {
+        const std::string where = std::string("component ") + component.attribute("id").value();
+        components[component.attribute("id").value()] =
+            chunk_to_world.after(read_similarity(source, component.child("transform"), where));
+    }
+    std::vector<pugi::xml_node> cameras;  // camera groups (folders) hold cameras too
+    for (const pugi::xml_node node : chunk.child("cameras").children()) {
+        if (std::string_view(node.name()) == "camera") cameras.push_back(node);
+        if (std::string_view(node.name()) == "group") {
+            for (const pugi::xml_node camera : node.children("camera")) cameras.push_back(camera);
+        }
+    }
+    const std::size_t first = out.size();
+    for (const pugi::xml_node camera : cameras) {
+        const pugi::xml_node transform = camera.child("transform");
+        if (!transform) continue;
+        const std::string where = std::string("camera ") + camera.attribute("id").value() + " ('" +
+                                  camera.attribute("label").value() + "')";
+        const auto sensor = sensors.find(std::string_view(camera.attribute("sensor_id").value()));
+        if (sensor == sensors.end()) {
+            source.fail(camera, where + ": sensor_id '" + camera.attribute("sensor_id").value() + "' is not a sensor");
+        }
+        if (!sensor->second.camera) {
+            source.fail(camera, where + ": its sensor '" + sensor->second.label + "' has no calibration");
+        }
+        Similarity to_world = chunk_to_world;
+        if (const pugi::xml_attribute component_id = camera.attribute("component_id")) {
+            const auto component = components.find(std::string_view(component_id.value()));
+            if (component == components.end()) {
+                source.fail(camera, where + ": component_id '" + component_id.value() + "' is not a component");
+            }
+            to_world = component->second;
+        }
+        Camera posed = *sensor->second.camera;
+        posed.pose = camera_pose(source, transform, to_world, where);
+        out.push_back({camera.attribute("label").value(), {validated_camera(posed, source.name() + ": " + where), {}},
+                       sensor->second.label});
+    }
+    if (out.size() != first) return;
+    for (const std::string& id : sensor_order) {
+        const Sensor& sensor = sensors.at(id);
+        if (sensor.camera) out.push_back({sensor.label, {*sensor.camera, {}}, sensor.label});
+    }
+}
+
+// Export Calibration's file: <calibration><projection>frame</projection><width>... .
+NamedCamera read_calibration_file(const Source& source, const pugi::xml_node& root) {
+    Calibration terms;
+    const pugi::xml_node projection = root.child("projection");
+    if (projection) terms.type = projection.text().get();
+    const pugi::xml_node width = root.child("width");
+    const pugi::xml_node height = root.child("height");
+    if (!width || !height) source.fail(root, "<calibration>: no <width> and <height>");
+    terms.size = {source.side(width, width.text().get(), "<calibration> <width>"),
+                  source.side(height, height.text().get(), "<calibration> <height>")};
+    return {std::string(), {camera_from(source, root, read_terms(source, root, terms, "<calibration>"), "<calibration>"), {}}};
+}
+
+}  // namespace
+
+std::vector<NamedCamera> read_metashape(std::string_view text, const ReadContext& context) {
+    pugi::xml_document document;
+    const pugi::xml_parse_result result = document.load_buffer(text.data(), text.size());
+    if (!result) {
+        const std::string_view before = text.substr(0, std::min<std::size_t>(static_cast<std::size_t>(std::max<std::ptrdiff_t>(result.offset, 0)), text.size()));
+        throw FileError(context.source + ": line " + std::to_string(std::count(before.begin(), before.end(), '\n') + 1) +
+                        ": not valid XML: " + result.description());
+    }
+    const Source source(text, context.source);
+    const pugi::xml_node root = document.document_element();
+    const std::string_view name = root.name();
+    if (name == "calibration") return {read_calibration_file(source, root)};
+    if (name == "collection") {
+        source.fail(root, "PhotoScan's pre-1.0 <collection> files are not read (their cx, cy are not Metashape's)");
+    }
+    if (name != "document") {
+        source.fail(root, "expected Metashape's <document> or <calibration>, got <" + std::string(name) + ">");
+    }
+    std::vector<NamedCamera> cameras;
+    for (const pugi::xml_node chunk : root.children("chunk")) read_chunk(source, chunk, cameras);
+    if (cameras.empty()) source.fail(root, "<document>: no aligned camera and no calibrated sensor");
+    return cameras;
+}
+
+bool claims_metashape(const DocumentNode& outline) {
+    if (const DocumentNode* document = outline.find("document")) return document->find("chunk") != nullptr;
+    if (const DocumentNode* calibration = outline.find("calibration")) return calibration->find("projection") != nullptr;
+    return false;
+}
+
+}  // namespace libcam

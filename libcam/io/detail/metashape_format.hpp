@@ -1,0 +1,46 @@
+#pragma once
+// Agisoft Metashape's (formerly PhotoScan's) camera XML: the document its "Export
+// Cameras" writes (cameras.xml, <document version="1.5.0"> and 2.x) and the calibration
+// file its "Export Calibration" writes (<calibration><projection>frame</projection>...).
+//
+//   document > chunk > sensors > sensor (id, label, type; resolution width height;
+//              calibration class="adjusted" or "initial": f cx cy b1 b2 k1..k4 p1 p2)
+//   document > chunk > components > component (id; transform: rotation, translation, scale)
+//   document > chunk > cameras > camera (id, sensor_id, component_id, label; transform:
+//              16 numbers, row-major, camera to chunk, or to its component)
+//   document > chunk > transform (rotation, translation, scale: chunk to world)
+//
+// Metashape's frame camera (its manual's appendix "Camera models"): x = X/Z, y = Y/Z,
+// r^2 = x^2 + y^2, x' = x (1 + K1 r^2 + K2 r^4 + K3 r^6 + K4 r^8) + P1 (r^2 + 2 x^2) +
+// 2 P2 x y, y' = y (1 + ...) + P2 (r^2 + 2 y^2) + 2 P1 x y, u = w/2 + cx + x' (f + B1) +
+// y' B2, v = h/2 + cy + y' f, where pixel (0, 0) is the image's top-left corner (the
+// top-left pixel's centre is (0.5, 0.5)). So, in OpenCV's terms: fx = f + B1, fy = f,
+// skew = B2, cx = w/2 + cx - 0.5, cy = h/2 + cy - 0.5, and OpenCV's p1 is Metashape's P2,
+// its p2 Metashape's P1 (the tangential terms are swapped). Read as OPENCV5, or the
+// simplest OpenCV model that is the same lens; K4 (r^8) has no OpenCV model and is refused
+// unless 0. A fisheye sensor first maps x by atan(r)/r, which with P1 = P2 = 0 is
+// Kannala-Brandt (FISHEYE, k1..k4 = K1..K4); a spherical one is LONLAT (u = w/2 + f lon,
+// v = h/2 + f lat). Any other type, and tangential terms on a fisheye, are refused.
+//
+// Reading gives one camera per aligned camera (one with a transform), named by its label,
+// its sensor's label as intrinsics_name, and its pose in the chunk's world frame. Where no
+// camera is aligned, one camera per calibrated sensor, named by its label, without a pose.
+// Cameras that are not aligned in a document where others are, are not read (they have no
+// pose). Sensors with no calibration (Metashape then guesses from EXIF) give no camera.
+// A calibration file gives one camera without a pose and without a name.
+
+#include <string_view>
+#include <vector>
+
+#include "libcam/io/detail/document.hpp"
+#include "libcam/io/format_table.hpp"
+
+namespace libcam {
+
+std::vector<NamedCamera> read_metashape(std::string_view text, const ReadContext& context);
+
+// Whether an XML file's outline (parse_xml_outline) is Metashape's: <document> holding a
+// <chunk>, or <calibration> holding a <projection>.
+bool claims_metashape(const DocumentNode& outline);
+
+}  // namespace libcam

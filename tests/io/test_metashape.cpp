@@ -1,0 +1,325 @@
+// Agisoft Metashape's cameras.xml and calibration XML: the real files of
+// real-data/metashape (SOURCES.md section 4 gives their numbers), and small documents
+// whose pixels are worked out here with Metashape's own formula (its manual's appendix
+// "Camera models"), which is what pins the P1/P2 swap, b1/b2 and the pixel centre.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/error.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "error_message.hpp"
+#include "real_cameras.hpp"
+#include "temp_dir.hpp"
+
+using namespace libcam;
+using libcam::test::file_error_of;
+
+namespace {
+
+std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
+    const std::filesystem::path path = dir.path() / name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+// Metashape's terms of a frame or fisheye sensor.
+struct Terms {
+    double w, h, f, cx, cy, b1, b2, k1, k2, k3, k4, p1, p2;
+};
+
+// Metashape's pixel of a camera-frame point (its convention: the top-left pixel's centre
+// is (0.5, 0.5)), by the manual's formula, written out term by term.
+Vec2 metashape_pixel(const Terms& c, const Vec3& point, bool fisheye) {
+    double x = point.x() / point.z();
+    double y = point.y() / point.z();
+    if (fisheye) {
+        const double r0 = std::sqrt(x * x + y * y);
+        x = x * std::atan(r0) / r0;
+        y = y * std::atan(r0) / r0;
+    }
+    const double r2 = x * x + y * y;
+    const double radial = 1 + c.k1 * r2 + c.k2 * r2 * r2 + c.k3 * r2 * r2 * r2 + c.k4 * r2 * r2 * r2 * r2;
+    const double xd = x * radial + (c.p1 * (r2 + 2 * x * x) + 2 * c.p2 * x * y);
+    const double yd = y * radial + (c.p2 * (r2 + 2 * y * y) + 2 * c.p1 * x * y);
+    return {c.w * 0.5 + c.cx + xd * c.f + xd * c.b1 + yd * c.b2, c.h * 0.5 + c.cy + yd * c.f};
+}
+
+const Terms kFrame{640, 480, 1000, 12.5, -7.25, 3, -1.5, 0.1, -0.05, 0.01, 0, 0.002, -0.003};
+
+std::string sensor_xml(const Terms& c, const std::string& type) {
+    auto n = [](double v) { return std::to_string(v); };
+    return "      <sensor id=\"0\" label=\"lens A\" type=\"" + type + "\">\n"
+           "        <resolution width=\"640\" height=\"480\"/>\n"
+           "        <calibration type=\"" + type + "\" class=\"initial\">\n"
+           "          <resolution width=\"640\" height=\"480\"/>\n          <f>999</f>\n        </calibration>\n"
+           "        <calibration type=\"" + type + "\" class=\"adjusted\">\n"
+           "          <resolution width=\"640\" height=\"480\"/>\n"
+           "          <f>" + n(c.f) + "</f><cx>" + n(c.cx) + "</cx><cy>" + n(c.cy) + "</cy><b1>" + n(c.b1) +
+           "</b1><b2>" + n(c.b2) + "</b2>\n          <k1>" + n(c.k1) + "</k1><k2>" + n(c.k2) + "</k2><k3>" +
+           n(c.k3) + "</k3><k4>" + n(c.k4) + "</k4><p1>" + n(c.p1) + "</p1><p2>" + n(c.p2) + "</p2>\n"
+           "        </calibration>\n      </sensor>\n";
+}
+
+// A camera-to-chunk rotation about y and a chunk-to-world rotation about z, scale 2.
+const Mat3 kCameraToChunk = (Mat3() << 0.6, 0, 0.8, 0, 1, 0, -0.8, 0, 0.6).finished();
+const Vec3 kCameraInChunk(1, -2, 0.5);
+const Mat3 kChunkToWorld = (Mat3() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
+const Vec3 kChunkTranslation(10, 20, 30);
+constexpr double kChunkScale = 2.0;
+
+std::string document_xml(const std::string& sensor, const std::string& version = "2.0.0") {
+    return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<document version=\"" + version + "\">\n"
+           "  <chunk label=\"Chunk 1\" enabled=\"true\">\n    <sensors next_id=\"1\">\n" + sensor +
+           "    </sensors>\n    <components next_id=\"1\" active_id=\"0\">\n"
+           "      <component id=\"0\" label=\"Component 1\"/>\n    </components>\n"
+           "    <cameras next_id=\"3\" next_group_id=\"1\">\n"
+           "      <group id=\"0\" label=\"folder\" type=\"folder\">\n"
+           "      <camera id=\"0\" sensor_id=\"0\" component_id=\"0\" label=\"IMG_0001\">\n"
+           "        <transform>0.6 0 0.8 1 0 1 0 -2 -0.8 0 0.6 0.5 0 0 0 1</transform>\n      </camera>\n"
+           "      </group>\n"
+           "      <camera id=\"1\" sensor_id=\"0\" component_id=\"0\" label=\"IMG_0002\"/>\n"
+           "    </cameras>\n"
+           "    <transform>\n      <rotation locked=\"true\">0 -1 0 1 0 0 0 0 1</rotation>\n"
+           "      <translation locked=\"true\">10 20 30</translation>\n      <scale locked=\"true\">2</scale>\n"
+           "    </transform>\n  </chunk>\n</document>\n";
+}
+
+// A world point and the same point in the camera's own (chunk-scaled) frame, undoing
+// Metashape's chain world = s R_chunk (R_cam X_cam + t_cam) + t_chunk by hand.
+Vec3 camera_point_of(const Vec3& world) {
+    const Vec3 in_chunk = kChunkToWorld.transpose() * (world - kChunkTranslation) / kChunkScale;
+    return kCameraToChunk.transpose() * (in_chunk - kCameraInChunk);
+}
+
+void check_pixels(const Camera& camera, const Terms& terms, bool fisheye) {
+    const PreparedCamera prepared(camera);
+    const Vec3 camera_in_world = kChunkScale * (kChunkToWorld * kCameraInChunk) + kChunkTranslation;
+    const Vec3 forward = kChunkToWorld * kCameraToChunk * Vec3(0, 0, 1);
+    const Vec3 right = kChunkToWorld * kCameraToChunk * Vec3(1, 0, 0);
+    const Vec3 down = kChunkToWorld * kCameraToChunk * Vec3(0, 1, 0);
+    for (const auto& [a, b] : {std::pair{0.0, 0.0}, {0.3, -0.2}, {-0.25, 0.35}, {0.4, 0.3}}) {
+        const Vec3 world = camera_in_world + 7.0 * forward + 7.0 * a * right + 7.0 * b * down;
+        const Vec2 expected = metashape_pixel(terms, camera_point_of(world), fisheye) - Vec2(0.5, 0.5);
+        const Projection got = prepared.project(world);
+        REQUIRE(got.valid);
+        CHECK(std::abs(got.pixel.x() - expected.x()) < 1e-9);
+        CHECK(std::abs(got.pixel.y() - expected.y()) < 1e-9);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("metashape: a frame sensor projects as Metashape's formula, P1/P2 swapped, b1 b2 as fx and skew") {
+    const test::TempDir dir;
+    const auto path = write_file(dir, "cameras.xml", document_xml(sensor_xml(kFrame, "frame")));
+    const CameraSet set = read_camera_set(path);
+    CHECK(set.format == CameraFormat::Metashape);
+    // The camera without a transform (IMG_0002, not aligned) is not read.
+    REQUIRE(set.cameras.size() == 1);
+    CHECK(set.cameras[0].name == "IMG_0001");
+    CHECK(set.cameras[0].intrinsics_name == "lens A");
+    const Camera& camera = set.cameras[0].file.camera;
+    CHECK(camera.lens.type == LensType::OpenCv5);
+    CHECK(camera.intrinsics.fx == 1003.0);
+    CHECK(camera.intrinsics.fy == 1000.0);
+    CHECK(camera.intrinsics.skew == -1.5);
+    CHECK(camera.intrinsics.cx == 320 + 12.5 - 0.5);
+    CHECK(camera.intrinsics.cy == 240 - 7.25 - 0.5);
+    check_pixels(camera, kFrame, false);
+}
+
+TEST_CASE("metashape: a fisheye sensor is Kannala-Brandt, k4 included") {
+    Terms fisheye{640, 480, 300, -4, 6.5, 0, 0, 0.02, -0.01, 0.003, -0.0007, 0, 0};
+    const test::TempDir dir;
+    const auto path = write_file(dir, "cameras.xml", document_xml(sensor_xml(fisheye, "fisheye")));
+    const Camera camera = read_camera_set(path).cameras.at(0).file.camera;
+    CHECK(camera.lens.type == LensType::Fisheye);
+    check_pixels(camera, fisheye, true);
+}
+
+TEST_CASE("metashape: with no aligned camera, each calibrated sensor is a camera without a pose") {
+    const test::TempDir dir;
+    std::string text = document_xml(sensor_xml(kFrame, "frame"), "1.5.0");
+    text.replace(text.find("<transform>0.6"), std::string("<transform>").size(), "<reference>");
+    text.replace(text.find("</transform>\n      </camera>"), std::string("</transform>").size(), "</reference>");
+    const CameraSet set = read_camera_set(write_file(dir, "cameras.xml", text));
+    REQUIRE(set.cameras.size() == 1);
+    CHECK(set.cameras[0].name == "lens A");
+    CHECK(set.cameras[0].file.camera.pose.R == Mat3::Identity());
+    CHECK(set.cameras[0].file.camera.pose.t == Vec3::Zero());
+}
+
+TEST_CASE("metashape: a spherical sensor is LONLAT") {
+    const test::TempDir dir;
+    const std::string sensor = "      <sensor id=\"0\" label=\"360\" type=\"spherical\">\n"
+                               "        <resolution width=\"4000\" height=\"2000\"/>\n"
+                               "        <calibration type=\"spherical\" class=\"adjusted\">\n"
+                               "          <resolution width=\"4000\" height=\"2000\"/><f>636.6</f>\n"
+                               "        </calibration>\n      </sensor>\n";
+    const Camera camera = read_camera_set(write_file(dir, "cameras.xml", document_xml(sensor))).cameras.at(0).file.camera;
+    CHECK(camera.lens.type == LensType::Lonlat);
+    // The point X in the camera's frame, taken to the world by Metashape's chain and back
+    // by the pose read (which sees it scaled by the chunk's scale: LONLAT does not mind).
+    const Vec3 in_camera = camera.pose.R * (kChunkScale * (kChunkToWorld * (kCameraToChunk * Vec3(1, -0.5, 2) +
+                                                                             kCameraInChunk)) + kChunkTranslation) +
+                           camera.pose.t;
+    // Metashape: u = w/2 + f atan2(X, Z), v = h/2 + f atan2(Y, sqrt(X^2 + Z^2)), in its +0.5 pixels.
+    const Vec3 X(1, -0.5, 2);
+    const Vec2 expected(2000 + 636.6 * std::atan2(X.x(), X.z()) - 0.5,
+                        1000 + 636.6 * std::atan2(X.y(), std::hypot(X.x(), X.z())) - 0.5);
+    const Projection got = PreparedCamera(camera).project_camera_point(in_camera);
+    REQUIRE(got.valid);
+    CHECK(std::abs(got.pixel.x() - expected.x()) < 1e-9);
+    CHECK(std::abs(got.pixel.y() - expected.y()) < 1e-9);
+}
+
+TEST_CASE("metashape: the calibration XML of Export Calibration is one camera") {
+    const test::TempDir dir;
+    const auto path = write_file(dir, "lens.xml",
+                                 "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<calibration>\n"
+                                 "  <projection>frame</projection>\n  <width>640</width>\n  <height>480</height>\n"
+                                 "  <f>1000</f>\n  <cx>12.5</cx>\n  <cy>-7.25</cy>\n  <b1>3</b1>\n  <b2>-1.5</b2>\n"
+                                 "  <k1>0.1</k1>\n  <k2>-0.05</k2>\n  <k3>0.01</k3>\n  <p1>0.002</p1>\n"
+                                 "  <p2>-0.003</p2>\n  <date>2020-07-15T09:43:30Z</date>\n</calibration>\n");
+    const CameraSet set = read_camera_set(path);
+    CHECK(set.format == CameraFormat::Metashape);
+    REQUIRE(set.cameras.size() == 1);
+    const Camera& camera = set.cameras[0].file.camera;
+    const PreparedCamera prepared(camera);
+    for (const Vec3& point : {Vec3(0.1, 0.2, 1), Vec3(-0.3, 0.25, 1), Vec3(0.35, -0.3, 1.5)}) {
+        const Vec2 expected = metashape_pixel(kFrame, point, false) - Vec2(0.5, 0.5);
+        const Projection got = prepared.project_camera_point(point);
+        CHECK(std::abs(got.pixel.x() - expected.x()) < 1e-9);
+        CHECK(std::abs(got.pixel.y() - expected.y()) < 1e-9);
+    }
+}
+
+TEST_CASE("metashape: what libcam cannot hold, and malformed files, are refused in one line") {
+    const test::TempDir dir;
+    Terms with_k4 = kFrame;
+    with_k4.k4 = 0.001;
+    const auto k4 = write_file(dir, "k4.xml", document_xml(sensor_xml(with_k4, "frame")));
+    CHECK_THROWS_WITH(read_camera_set(k4), Catch::Contains("k4.xml: sensor 0 ('lens A'): k4 = 0.001"));
+
+    std::string bad_f = document_xml(sensor_xml(kFrame, "frame"));
+    bad_f.replace(bad_f.find("<f>1000.000000</f>"), 18, "<f>abc</f>");
+    const auto bad = write_file(dir, "bad_f.xml", bad_f);
+    CHECK(file_error_of([&] { read_camera_set(bad); }) ==
+          bad.string() + ": line 13: sensor 0 ('lens A') <f>: must be a finite number, got 'abc'");
+
+    std::string short_transform = document_xml(sensor_xml(kFrame, "frame"));
+    short_transform.replace(short_transform.find(" 0 0 0 1</transform>"), 20, " 0 0 0</transform>");
+    const auto cut = write_file(dir, "cut.xml", short_transform);
+    CHECK(file_error_of([&] { read_camera_set(cut); }) ==
+          cut.string() + ": line 24: camera 0 ('IMG_0001') <transform>: expected 16 numbers, got 15");
+
+    std::string no_sensor = document_xml(sensor_xml(kFrame, "frame"));
+    no_sensor.replace(no_sensor.find("sensor_id=\"0\""), 13, "sensor_id=\"7\"");
+    const auto orphan = write_file(dir, "orphan.xml", no_sensor);
+    CHECK(file_error_of([&] { read_camera_set(orphan); }) ==
+          orphan.string() + ": line 23: camera 0 ('IMG_0001'): sensor_id '7' is not a sensor");
+
+    const auto collection = write_file(dir, "old.xml", "<?xml version=\"1.0\"?>\n<document><collection/></document>\n");
+    CHECK_THROWS_AS(read_camera_set(collection, CameraFormat::Metashape), FileError);
+}
+
+// ---- real files (real-data/metashape; SOURCES.md section 4) ---------------------------
+
+TEST_CASE("metashape: hwiyoung calib_lcam.xml and calib_lcam2.xml (Export Calibration)") {
+    for (const auto& [name, cy] : {std::pair{"calib_lcam.xml", -12.57474453}, {"calib_lcam2.xml", 12.57474453}}) {
+        const auto path = test::real_data_path(std::string("metashape/hwiyoung-MappingLocalization/calibration/") + name);
+        if (!test::real_data_present(path)) {
+            WARN("skipped: " << path << " is absent");
+            continue;
+        }
+        const CameraSet set = read_camera_set(path);
+        CHECK(set.format == CameraFormat::Metashape);
+        REQUIRE(set.cameras.size() == 1);
+        const Camera& camera = set.cameras[0].file.camera;
+        CHECK(camera.size.width == 1384);
+        CHECK(camera.size.height == 1032);
+        CHECK(camera.intrinsics.fx == 1278.27004761879825);
+        CHECK(camera.intrinsics.fy == 1278.27004761879825);
+        CHECK(camera.intrinsics.cx == Approx(692 - 10.21222021 - 0.5).epsilon(1e-15));
+        CHECK(camera.intrinsics.cy == Approx(516 + cy - 0.5).epsilon(1e-15));
+        CHECK(camera.lens.type == LensType::OpenCv5);
+        // OpenCV's k1 k2 p1 p2 k3: Metashape's p2 first, then its p1.
+        CHECK(camera.lens.coefficients == std::vector<double>{-0.17759609150540318, 0.15681000753497404,
+                                                               -8.50563182421899e-05, 0.00039689851424900256,
+                                                               -0.08057988377985598});
+    }
+}
+
+TEST_CASE("metashape: hwiyoung cameras.xml (1.5.0, no camera aligned) gives its two calibrated sensors") {
+    const auto path = test::real_data_path("metashape/hwiyoung-MappingLocalization/cameras.xml");
+    if (!test::real_data_present(path)) {
+        WARN("skipped: " << path << " is absent");
+        return;
+    }
+    const CameraSet set = read_camera_set(path);
+    REQUIRE(set.cameras.size() == 2);  // train_L and train_R; test_L and test_R have no calibration
+    CHECK(set.cameras[0].name == "train_L");
+    CHECK(set.cameras[1].name == "train_R");
+    CHECK(set.cameras[0].file.camera.intrinsics.fx == 1278.2700476188);
+    CHECK(set.cameras[0].file.camera.intrinsics.cy == Approx(516 + 12.57474453 - 0.5).epsilon(1e-15));
+}
+
+TEST_CASE("metashape: lab336 cameras.xml (2.0.0): 47 sensors, 47 aligned cameras") {
+    const auto path = test::real_data_path("metashape/lab336-4DGS-Preprocess/cameras.xml");
+    if (!test::real_data_present(path)) {
+        WARN("skipped: " << path << " is absent");
+        return;
+    }
+    const CameraSet set = read_camera_set(path);
+    REQUIRE(set.cameras.size() == 47);
+    const NamedCamera& first = set.cameras[0];
+    CHECK(first.name == "1");
+    CHECK(first.intrinsics_name == "unknown");
+    const Camera& camera = first.file.camera;
+    CHECK(camera.intrinsics.fx == 2856.9524860679976);
+    CHECK(camera.intrinsics.cx == Approx(2112 + 3.1437666644205513 - 0.5).epsilon(1e-15));
+    CHECK(camera.intrinsics.cy == Approx(1120 + 10.928669663959289 - 0.5).epsilon(1e-15));
+    CHECK(camera.lens.type == LensType::OpenCv4);
+    CHECK(camera.lens.coefficients == std::vector<double>{0.053295306997250054, -0.064655168915133746, 0, 0});
+    // Its transform: camera to chunk, the chunk having no transform of its own.
+    const Vec3 centre = camera.pose.centre();
+    CHECK(centre.x() == Approx(0.696751976213839).margin(1e-12));
+    CHECK(centre.y() == Approx(-2.1700298864605485).margin(1e-12));
+    CHECK(centre.z() == Approx(-3.8210114260949233).margin(1e-12));
+    CHECK(camera.pose.R(0, 1) == 0.14160089135320919);  // R = the transform's rotation transposed
+    CHECK(set.cameras[46].name == "47");
+}
+
+TEST_CASE("metashape: bitbyt3r cameras.xml (1.5): b1 b2 as fx and skew, 94 cameras") {
+    const auto path = test::real_data_path("metashape/bitbyt3r-metashape-automation/cameras.xml");
+    if (!test::real_data_present(path)) {
+        WARN("skipped: " << path << " is absent");
+        return;
+    }
+    const CameraSet set = read_camera_set(path);
+    REQUIRE(set.cameras.size() == 94);
+    CHECK(set.cameras[0].name == "001");
+    CHECK(set.cameras[0].intrinsics_name == "Canon EOS REBEL T5i (37mm)");
+    const Camera& camera = set.cameras[0].file.camera;
+    CHECK(camera.intrinsics.fx == 8397.0800252741 + 0.256163863908223);
+    CHECK(camera.intrinsics.fy == 8397.0800252741);
+    CHECK(camera.intrinsics.skew == -22.8315524998528);
+    CHECK(camera.intrinsics.cx == 2591.5);
+    CHECK(camera.intrinsics.cy == 1727.5);
+    CHECK(camera.lens.coefficients == std::vector<double>{-0.0603472625149708, 0.184858521842878, 0.00126022593561743,
+                                                           -0.00119014441157678});
+    CHECK(camera.pose.centre().x() == Approx(-0.54581061063111036).margin(1e-12));
+}
+
+TEST_CASE("metashape: OpenCV's XML stays OpenCV's, and PhotoScan's pre-1.0 collection is refused") {
+    const auto opencv = test::real_data_path("metashape/3dom-fbk-deep-image-matching/camera_calib.xml");
+    if (test::real_data_present(opencv)) CHECK(read_camera_set(opencv).format == CameraFormat::OpenCvXml);
+    const auto old = test::real_data_path("metashape/amarburg-photoscan_outputs/demo/cameras.xml");
+    if (test::real_data_present(old)) {
+        CHECK_THROWS_WITH(read_camera_set(old, CameraFormat::Metashape), Catch::Contains("<collection>"));
+    }
+}
