@@ -92,8 +92,6 @@ double recompute(const ResidualStats& all, const std::vector<double>& point_mean
     switch (measure) {
         case ReportedMeasure::RmsOverObservations: return all.stats.rms_px;
         case ReportedMeasure::MeanOfPointMeans: return mean_of_point_means(point_means);
-        case ReportedMeasure::RmsOverComponents:
-            return all.weighted_rms_px.value_or(all.stats.rms_px) / std::sqrt(2.0);
     }
     return kNaN;
 }

@@ -27,8 +27,6 @@ std::string_view definition_of(ReportedMeasure measure) {
             return "the root of the mean over every observation of its squared residual length";
         case ReportedMeasure::MeanOfPointMeans:
             return "the mean over 3D points of each point's mean residual length over the observations of its track";
-        case ReportedMeasure::RmsOverComponents:
-            return "the root of the mean over every x and y residual of the inliers, each weighted, squared";
     }
     return "?";
 }

@@ -62,11 +62,9 @@ struct Observation {
 enum class ReportedMeasure {
     RmsOverObservations,  // sqrt(sum |d|^2 / N) over every observation (OpenCV's avg_reprojection_error)
     MeanOfPointMeans,     // the mean over 3D points of each point's mean |d| over its track (COLMAP)
-    // sqrt(sum (dx^2 + dy^2) / 2N) over inliers, weights applied: the RMS of mrcal's
-    // residuals_chessboard. Not mrcal-calibrate-cameras' printed "RMS reprojection error"
-    // (mrcal_optimize's rms_reproj_error__pixels), which also counts each outlier as two
-    // zeros, a point's range penalty and the regularization terms, none of them stored.
-    RmsOverComponents,
+    // mrcal stores no number; the one mrcal-calibrate-cameras prints (mrcal_optimize's
+    // rms_reproj_error__pixels) also counts each outlier as two zeros, a point's range
+    // penalty and the regularization terms, which no file keeps (docs/reprojection.md).
 };
 // The definition in words, for reports.
 std::string_view definition_of(ReportedMeasure measure);
