@@ -1,5 +1,6 @@
 #include "libcam/io/observations.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <string>
 
@@ -29,6 +30,21 @@ std::string_view definition_of(ReportedMeasure measure) {
             return "the mean over 3D points of each point's mean residual length over the observations of its track";
     }
     return "?";
+}
+
+int observed_camera_index(const ObservationSet& set, std::string_view selector) {
+    for (std::size_t i = 0; i < set.cameras.size(); ++i) {
+        if (set.cameras[i].name == selector) return static_cast<int>(i);
+    }
+    std::size_t position = 0;
+    const auto [end, error] = std::from_chars(selector.data(), selector.data() + selector.size(), position);
+    if (error == std::errc() && end == selector.data() + selector.size() && position < set.cameras.size()) {
+        return static_cast<int>(position);
+    }
+    std::string names;
+    for (const ObservedCamera& camera : set.cameras) names += (names.empty() ? "" : ", ") + camera.name;
+    throw InvalidArgument("no camera '" + std::string(selector) + "' in " + set.source + " (its cameras: " + names +
+                          "; or a position from 0 to " + std::to_string(set.cameras.size() - 1) + ")");
 }
 
 namespace {

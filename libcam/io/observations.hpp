@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
@@ -124,6 +125,10 @@ struct ObservationReadOptions {
 // Throws FileError naming the file, the field and the value for a malformed file, and for
 // a camera file that holds no observations.
 ObservationSet read_observations(const std::filesystem::path& path, const ObservationReadOptions& options = {});
+
+// The index of the camera `selector` names: its name in the file, or its position counting
+// from 0. Throws InvalidArgument naming the file and listing its cameras.
+int observed_camera_index(const ObservationSet& set, std::string_view selector);
 
 // The name of the tool ("OpenCV's calibration sample", "COLMAP") for messages and reports.
 std::string_view to_string(ObservationTool tool);

@@ -5,7 +5,6 @@
 // --observations-out (one CSV row per observation) and --heatmap (the residual field).
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -36,20 +35,13 @@ struct Flags {
     int threads = 0;
 };
 
-// The index of the camera `selector` names (its name in the file, or its position).
+// The index of the camera --camera names; a usage error naming the flag otherwise.
 int camera_index(const ObservationSet& set, const std::string& selector) {
-    for (std::size_t i = 0; i < set.cameras.size(); ++i) {
-        if (set.cameras[i].name == selector) return static_cast<int>(i);
+    try {
+        return observed_camera_index(set, selector);
+    } catch (const InvalidArgument& error) {
+        throw UsageError(std::string("--camera: ") + error.what());
     }
-    std::size_t position = 0;
-    const auto [end, error] = std::from_chars(selector.data(), selector.data() + selector.size(), position);
-    if (error == std::errc() && end == selector.data() + selector.size() && position < set.cameras.size()) {
-        return static_cast<int>(position);
-    }
-    std::string names;
-    for (const ObservedCamera& camera : set.cameras) names += (names.empty() ? "" : ", ") + camera.name;
-    throw UsageError("--camera: no camera '" + selector + "' in " + set.source + " (its cameras: " + names +
-                     "; or a position from 0 to " + std::to_string(set.cameras.size() - 1) + ")");
 }
 
 // The observations of one camera's views. The file's own numbers are about every camera,

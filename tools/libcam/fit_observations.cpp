@@ -27,17 +27,11 @@ int camera_of(const ObservationSet& set, const std::string& selector) {
         }
         return 0;
     }
-    for (std::size_t i = 0; i < set.cameras.size(); ++i) {
-        if (set.cameras[i].name == selector) return static_cast<int>(i);
-    }
     try {
-        const double position = parse_number("--camera", selector);
-        if (position >= 0 && position < static_cast<double>(set.cameras.size()) && position == std::floor(position)) {
-            return static_cast<int>(position);
-        }
-    } catch (const UsageError&) {
+        return observed_camera_index(set, selector);
+    } catch (const InvalidArgument& error) {
+        throw UsageError(std::string("--camera: ") + error.what());
     }
-    throw UsageError("--camera: no camera '" + selector + "' in " + set.source);
 }
 
 // The views of one camera with the observations its tool counted: inliers that project
