@@ -137,38 +137,49 @@ ConventionCheck convention_check(const std::vector<ObservationResidual>& residua
     return check;
 }
 
+// The sums one group's statistics are made of: every statistic but the quantiles, defined
+// once for a whole set (residual_stats) and for its views and cameras (group_stats).
+struct ResidualSums {
+    Vec2 residual = Vec2::Zero();
+    double error = 0.0;
+    double weighted_squares = 0.0;
+
+    void add(const ObservationResidual& r, double weight) {
+        residual += r.residual;
+        error += r.error_px;
+        weighted_squares += weight * weight * r.error_px * r.error_px;
+    }
+    // The statistics of the group whose errors (reordered here) these sums are.
+    ResidualStats finish(std::span<double> errors, bool set_weighted) const {
+        ResidualStats out;
+        const std::size_t n = errors.size();
+        out.stats = error_stats_in_place(errors);
+        if (n == 0) return out;
+        out.mean_px = error / static_cast<double>(n);
+        out.bias = residual / static_cast<double>(n);
+        if (set_weighted) out.weighted_rms_px = std::sqrt(weighted_squares / static_cast<double>(n));
+        return out;
+    }
+};
+
 // residual_stats, told whether the set is weighted: reproject asks that once, not once
 // per view over every observation (a model of 2000 views and a million observations).
 ResidualStats stats_of(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
                        const std::vector<std::size_t>& indices, bool set_weighted) {
     std::vector<double> errors;
     errors.reserve(indices.empty() ? residuals.size() : indices.size());
-    Vec2 sum = Vec2::Zero();
-    double sum_errors = 0.0;
-    double weighted_squares = 0.0;
+    ResidualSums sums;
     const auto add = [&](std::size_t i) {
-        const ObservationResidual& r = residuals[i];
-        if (r.status != ResidualStatus::Counted) return;
-        errors.push_back(r.error_px);
-        sum += r.residual;
-        sum_errors += r.error_px;
-        const double weight = set.observations[i].weight;
-        weighted_squares += weight * weight * r.error_px * r.error_px;
+        if (residuals[i].status != ResidualStatus::Counted) return;
+        errors.push_back(residuals[i].error_px);
+        sums.add(residuals[i], set.observations[i].weight);
     };
     if (indices.empty()) {
         for (std::size_t i = 0; i < residuals.size(); ++i) add(i);
     } else {
         for (const std::size_t i : indices) add(i);
     }
-    ResidualStats out;
-    const std::size_t n = errors.size();
-    out.stats = error_stats(std::move(errors));
-    if (n > 0) {
-        out.mean_px = sum_errors / static_cast<double>(n);
-        out.bias = sum / static_cast<double>(n);
-        if (set_weighted) out.weighted_rms_px = std::sqrt(weighted_squares / static_cast<double>(n));
-    }
-    return out;
+    return sums.finish(errors, set_weighted);
 }
 
 // The statistics of the counted residuals of each of `groups` groups (a view, a camera),
@@ -184,26 +195,17 @@ std::vector<ResidualStats> group_stats(const ObservationSet& set, const std::vec
     for (std::size_t g = 0; g < groups; ++g) start[g + 1] += start[g];
     std::vector<double> errors(start[groups]);
     std::vector<std::size_t> filled(start.begin(), start.end() - 1);
-    std::vector<Vec2> sum(groups, Vec2::Zero());
-    std::vector<double> sum_errors(groups, 0.0), weighted_squares(groups, 0.0);
+    std::vector<ResidualSums> sums(groups);
     for (std::size_t i = 0; i < residuals.size(); ++i) {
-        const ObservationResidual& r = residuals[i];
-        if (r.status != ResidualStatus::Counted) continue;
+        if (residuals[i].status != ResidualStatus::Counted) continue;
         const std::size_t g = group_of(set.observations[i]);
-        errors[filled[g]++] = r.error_px;
-        sum[g] += r.residual;
-        sum_errors[g] += r.error_px;
-        const double weight = set.observations[i].weight;
-        weighted_squares[g] += weight * weight * r.error_px * r.error_px;
+        errors[filled[g]++] = residuals[i].error_px;
+        sums[g].add(residuals[i], set.observations[i].weight);
     }
-    std::vector<ResidualStats> out(groups);
+    std::vector<ResidualStats> out;
+    out.reserve(groups);
     for (std::size_t g = 0; g < groups; ++g) {
-        const std::size_t n = start[g + 1] - start[g];
-        out[g].stats = error_stats_in_place(std::span<double>(errors.data() + start[g], n));
-        if (n == 0) continue;
-        out[g].mean_px = sum_errors[g] / static_cast<double>(n);
-        out[g].bias = sum[g] / static_cast<double>(n);
-        if (set_weighted) out[g].weighted_rms_px = std::sqrt(weighted_squares[g] / static_cast<double>(n));
+        out.push_back(sums[g].finish(std::span<double>(errors.data() + start[g], start[g + 1] - start[g]), set_weighted));
     }
     return out;
 }
