@@ -134,7 +134,7 @@ ObservationSet read_observations(const std::filesystem::path& path, const Observ
                         "a .cameramodel with optimization_inputs, a COLMAP model, OpenSfM's reconstruction.json, "
                         "OpenMVG's sfm_data.json, or a table with a camera file)");
     }
-    ObservationSet set = row.read_observations(located.file, options);
+    ObservationSet set = row.read_observations(located.file, located.text, options);
     if (set.source.empty()) set.source = path.string();
     check_observations(set);
     return set;

@@ -183,13 +183,17 @@ void add_observations(ObservationSet& set, std::vector<ColmapImage>& images, con
 
 }  // namespace
 
-ObservationSet read_colmap_observations(const std::filesystem::path& file, const ObservationReadOptions&) {
+ObservationSet read_colmap_observations(const std::filesystem::path& file, std::string_view text,
+                                        const ObservationReadOptions&) {
     const ModelFiles files = model_files(file);
+    // The model's files, the one detection read (`file`) not read again.
+    const auto text_of = [&](const std::filesystem::path& path) {
+        return path == file ? std::string(text) : read_text_file(path);
+    };
     const std::vector<ColmapCameraRecord> cameras =
-        read_colmap_cameras(read_text_file(files.cameras), files.cameras.string(), files.binary);
-    std::vector<ColmapImage> images =
-        read_colmap_images(read_text_file(files.images), files.images.string(), files.binary, true);
-    ColmapPoints3D points = read_colmap_points3d(read_text_file(files.points3d), files.points3d.string(), files.binary);
+        read_colmap_cameras(text_of(files.cameras), files.cameras.string(), files.binary);
+    std::vector<ColmapImage> images = read_colmap_images(text_of(files.images), files.images.string(), files.binary, true);
+    ColmapPoints3D points = read_colmap_points3d(text_of(files.points3d), files.points3d.string(), files.binary);
     check_count(images.size(), files.images, "images");
     check_count(points.ids.size(), files.points3d, "points");
 

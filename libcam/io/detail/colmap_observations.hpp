@@ -24,6 +24,7 @@ namespace libcam {
 
 // `file`: any file of the model (cameras.bin, images.txt, ...); its extension says whether
 // the .bin or the .txt files are read, and all three must be there.
-ObservationSet read_colmap_observations(const std::filesystem::path& file, const ObservationReadOptions& options);
+ObservationSet read_colmap_observations(const std::filesystem::path& file, std::string_view text,
+                                        const ObservationReadOptions& options);
 
 }  // namespace libcam

@@ -61,9 +61,10 @@ struct FormatRow {
     // The file of this format in a folder given as the path (COLMAP's sparse/0), or empty.
     std::filesystem::path (*file_in_folder)(const std::filesystem::path& folder) = nullptr;
     // The observations its files hold (io/observations.hpp), from the file detection chose
-    // (COLMAP: its cameras file, beside the rest of the model); nullptr: it holds none.
-    ObservationSet (*read_observations)(const std::filesystem::path& file, const ObservationReadOptions& options) =
-        nullptr;
+    // (COLMAP: its cameras file, beside the rest of the model) and the text detection read
+    // of it, not read again; nullptr: it holds none.
+    ObservationSet (*read_observations)(const std::filesystem::path& file, std::string_view text,
+                                        const ObservationReadOptions& options) = nullptr;
     // The lens models its files hold exactly, whatever their coefficients.
     std::span<const LensType> lenses = {};
     // In words: the peer's own names for them, and what it cannot hold (skew, a pose...).

@@ -10,7 +10,6 @@
 #include <optional>
 
 #include "libcam/error.hpp"
-#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/npz_archive.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
@@ -472,8 +471,9 @@ ObservationSet parse_mrcal_observations(std::string_view text, const std::string
     return set;
 }
 
-ObservationSet read_mrcal_observations(const std::filesystem::path& file, const ObservationReadOptions&) {
-    return parse_mrcal_observations(read_text_file(file), file.string());
+ObservationSet read_mrcal_observations(const std::filesystem::path& file, std::string_view text,
+                                       const ObservationReadOptions&) {
+    return parse_mrcal_observations(text, file.string());
 }
 
 }  // namespace libcam::detail

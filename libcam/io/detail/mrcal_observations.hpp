@@ -15,7 +15,8 @@
 namespace libcam::detail {
 
 // The cameramodel row's read_observations.
-ObservationSet read_mrcal_observations(const std::filesystem::path& file, const ObservationReadOptions& options);
+ObservationSet read_mrcal_observations(const std::filesystem::path& file, std::string_view text,
+                                       const ObservationReadOptions& options);
 
 // The observations of a .cameramodel's text; `source` names it in messages.
 ObservationSet parse_mrcal_observations(std::string_view text, const std::string& source);

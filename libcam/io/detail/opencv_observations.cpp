@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "libcam/error.hpp"
-#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/detail/opencv_storage.hpp"
 
@@ -128,9 +127,10 @@ std::vector<double> read_per_view_errors(const Field& field, std::size_t views) 
 
 }  // namespace
 
-ObservationSet read_opencv_observations(const std::filesystem::path& file, const ObservationReadOptions&) {
+ObservationSet read_opencv_observations(const std::filesystem::path& file, std::string_view text,
+                                        const ObservationReadOptions&) {
     const std::string source = file.string();
-    const DocumentNode tree = parse_opencv_storage_tree(read_text_file(file), source);
+    const DocumentNode tree = parse_opencv_storage_tree(text, source);
     const Field root(tree, "", source);
     const std::optional<Field> image_points = root.find({"image_points", "Image_points"});
     if (!image_points) {

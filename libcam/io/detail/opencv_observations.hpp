@@ -32,6 +32,7 @@ namespace libcam {
 
 // Throws FileError naming the file, the key and the value; for a file with OpenCV's
 // camera but no image_points, saying that it holds none.
-ObservationSet read_opencv_observations(const std::filesystem::path& file, const ObservationReadOptions& options);
+ObservationSet read_opencv_observations(const std::filesystem::path& file, std::string_view text,
+                                        const ObservationReadOptions& options);
 
 }  // namespace libcam

@@ -9,7 +9,6 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/detail/format_row.hpp"
-#include "libcam/io/atomic_write.hpp"
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
@@ -237,9 +236,10 @@ std::vector<NamedCamera> read_openmvg(std::string_view text, const ReadContext& 
     return detail::cameras_of_views(read_sfm_data(text, context.source).set, context.source, "\"intrinsics\": ");
 }
 
-ObservationSet read_openmvg_observations(const std::filesystem::path& file, const ObservationReadOptions&) {
+ObservationSet read_openmvg_observations(const std::filesystem::path& file, std::string_view text,
+                                         const ObservationReadOptions&) {
     const std::string source = file.string();
-    SfmData read = read_sfm_data(read_text_file(file), source);
+    SfmData read = read_sfm_data(text, source);
     if (read.set.observations.empty()) {
         throw FileError(source + ": \"structure\": no observation in a view with a pose (an sfm_data.json before "
                                  "SfM, or one saved without its structure)");

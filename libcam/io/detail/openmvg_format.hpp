@@ -41,7 +41,8 @@ namespace libcam {
 
 std::vector<NamedCamera> read_openmvg(std::string_view text, const ReadContext& context);
 
-ObservationSet read_openmvg_observations(const std::filesystem::path& file, const ObservationReadOptions& options);
+ObservationSet read_openmvg_observations(const std::filesystem::path& file, std::string_view text,
+                                         const ObservationReadOptions& options);
 
 // Whether a parsed JSON file is an sfm_data.json: an object with "sfm_data_version".
 bool claims_openmvg(const DocumentNode& root);

@@ -265,9 +265,10 @@ std::vector<NamedCamera> read_opensfm(std::string_view text, const ReadContext& 
     return detail::cameras_of_views(read_reconstructions(text, context.source).set, context.source, "");
 }
 
-ObservationSet read_opensfm_observations(const std::filesystem::path& file, const ObservationReadOptions&) {
+ObservationSet read_opensfm_observations(const std::filesystem::path& file, std::string_view text,
+                                         const ObservationReadOptions&) {
     const std::string source = file.string();
-    Reconstructions read = read_reconstructions(read_text_file(file), source);
+    Reconstructions read = read_reconstructions(text, source);
     if (read.camera_dictionary) {
         throw FileError(source + ": OpenSfM's cameras alone, which hold no observations (they are in "
                                  "reconstruction.json with tracks.csv beside it)");

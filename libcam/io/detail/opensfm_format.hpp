@@ -47,7 +47,8 @@ namespace libcam {
 std::vector<NamedCamera> read_opensfm(std::string_view text, const ReadContext& context);
 
 // The reconstructions of reconstruction.json with the rows of the tracks.csv beside it.
-ObservationSet read_opensfm_observations(const std::filesystem::path& file, const ObservationReadOptions& options);
+ObservationSet read_opensfm_observations(const std::filesystem::path& file, std::string_view text,
+                                         const ObservationReadOptions& options);
 
 // Whether a parsed JSON file is OpenSfM's: a list whose first item has "shots" or
 // "cameras", or an object whose first value has "projection_type".
