@@ -226,8 +226,9 @@ struct ImageJob {
 // image is done: jobs run in camera order, so at most one map per worker is in memory.
 class CameraMaps {
 public:
-    CameraMaps(const std::vector<DatasetCamera>& cameras, const std::vector<ImageJob>& jobs, int threads)
-        : cameras_(cameras), slots_(cameras.size()), threads_(threads) {
+    CameraMaps(const std::vector<DatasetCamera>& cameras, const std::vector<ImageJob>& jobs, Interpolation interpolation,
+               int threads)
+        : cameras_(cameras), slots_(cameras.size()), interpolation_(interpolation), threads_(threads) {
         for (const ImageJob& job : jobs) ++slots_[job.camera].remaining;
     }
 
@@ -240,7 +241,8 @@ public:
             RemapOptions options;
             options.threads = threads_;
             slot.map = std::make_shared<const PreparedRemap>(prepare_remap(
-                build_remap_map(PreparedCamera(cameras_[camera].camera), PreparedCamera(cameras_[camera].source), options)));
+                build_remap_map(PreparedCamera(cameras_[camera].camera), PreparedCamera(cameras_[camera].source), options),
+                interpolation_));
         }
         return slot.map;
     }
@@ -259,10 +261,11 @@ private:
     };
     const std::vector<DatasetCamera>& cameras_;
     std::vector<Slot> slots_;
+    Interpolation interpolation_;
     int threads_;
 };
 
-void run_job(const ImageJob& job, const PreparedRemap* map, Interpolation interpolation) {
+void run_job(const ImageJob& job, const PreparedRemap* map) {
     std::error_code error;
     if (!fs::is_regular_file(job.source, error)) throw FileError(job.source.string() + ": no such image file");
     fs::create_directories(job.target.parent_path());
@@ -273,7 +276,7 @@ void run_job(const ImageJob& job, const PreparedRemap* map, Interpolation interp
     const cv::Mat image = read_image(job.source);
     cv::Mat result;
     try {
-        result = remap_image(image, *map, interpolation);
+        result = remap_image(image, *map);
     } catch (const InvalidArgument& wrong_size) {
         throw FileError(job.source.string() + ": " + wrong_size.what());
     }
@@ -282,7 +285,7 @@ void run_job(const ImageJob& job, const PreparedRemap* map, Interpolation interp
 
 // Runs the jobs on `threads` workers, each holding one image at a time; returns how many
 // failed (reported through `report`, one line each).
-std::size_t run_jobs(const std::vector<ImageJob>& jobs, CameraMaps& maps, Interpolation interpolation, int threads,
+std::size_t run_jobs(const std::vector<ImageJob>& jobs, CameraMaps& maps, int threads,
                      const std::function<void(const std::string&)>& report) {
     std::atomic<std::size_t> next{0}, failed{0};
     std::mutex report_lock;
@@ -293,7 +296,7 @@ std::size_t run_jobs(const std::vector<ImageJob>& jobs, CameraMaps& maps, Interp
             try {
                 const std::shared_ptr<const PreparedRemap> map = maps.take(job.camera);
                 try {
-                    run_job(job, map.get(), interpolation);
+                    run_job(job, map.get());
                 } catch (const std::exception& error) {
                     ++failed;
                     const std::lock_guard<std::mutex> lock(report_lock);
@@ -359,8 +362,8 @@ void write_images(const DatasetOptions& options, const std::vector<ColmapImage>&
     }
     const OpenCvThreads opencv_threads(options.threads);
     // Each map built with a share of the threads: the other workers are busy with images.
-    CameraMaps maps(summary.cameras, jobs, std::max(1, options.threads / 2));
-    summary.images_failed = run_jobs(jobs, maps, options.interpolation, options.threads, options.on_image_error);
+    CameraMaps maps(summary.cameras, jobs, options.interpolation, std::max(1, options.threads / 2));
+    summary.images_failed = run_jobs(jobs, maps, options.threads, options.on_image_error);
     summary.images_written = jobs.size() - summary.images_failed;
 }
 

@@ -127,9 +127,17 @@ std::pair<cv::Mat, cv::Mat> opencv_fixed_point_map(const RemapMap& map) {
     return fixed;
 }
 
-PreparedRemap prepare_remap(const RemapMap& map) { return {float_map(map, kNoSourceCoordinate, true), map.source_size}; }
+PreparedRemap prepare_remap(const RemapMap& map, Interpolation interpolation) {
+    PreparedRemap prepared;
+    prepared.source_size = map.source_size;
+    prepared.interpolation = interpolation;
+    const bool nearest = interpolation == Interpolation::Nearest;
+    cv::convertMaps(float_map(map, kNoSourceCoordinate, true), cv::Mat(), prepared.xy, prepared.fraction, CV_16SC2,
+                    nearest);
+    return prepared;
+}
 
-cv::Mat remap_image(const cv::Mat& source_image, const PreparedRemap& map, Interpolation interpolation) {
+cv::Mat remap_image(const cv::Mat& source_image, const PreparedRemap& map) {
     if (source_image.cols != map.source_size.width || source_image.rows != map.source_size.height) {
         throw InvalidArgument("image: " + std::to_string(source_image.cols) + "x" + std::to_string(source_image.rows) +
                               " pixels, but the source camera's image is " + std::to_string(map.source_size.width) +
@@ -137,13 +145,13 @@ cv::Mat remap_image(const cv::Mat& source_image, const PreparedRemap& map, Inter
     }
     const int flags[] = {cv::INTER_NEAREST, cv::INTER_LINEAR, cv::INTER_CUBIC, cv::INTER_LANCZOS4};
     cv::Mat target;
-    cv::remap(source_image, target, map.xy, cv::Mat(), flags[static_cast<int>(interpolation)], cv::BORDER_CONSTANT,
-              cv::Scalar::all(0));
+    cv::remap(source_image, target, map.xy, map.fraction, flags[static_cast<int>(map.interpolation)],
+              cv::BORDER_CONSTANT, cv::Scalar::all(0));
     return target;
 }
 
 cv::Mat remap_image(const cv::Mat& source_image, const RemapMap& map, Interpolation interpolation) {
-    return remap_image(source_image, prepare_remap(map), interpolation);
+    return remap_image(source_image, prepare_remap(map, interpolation));
 }
 
 void check_map_file_name(const std::filesystem::path& path) {
