@@ -200,10 +200,11 @@ void write_model(const fs::path& folder, const ColmapModelBytes& bytes, bool bin
 
 // ---- images ------------------------------------------------------------------------------
 
-std::string stamp_of(const std::vector<ColmapCameraRecord>& cameras, Interpolation interpolation) {
+std::string stamp_of(const std::vector<ColmapCameraRecord>& cameras, Interpolation interpolation, int jpeg_quality) {
     const char* const kNames[] = {"nearest", "linear", "cubic", "lanczos"};
     return std::string("libcam dataset: the images here were made with these cameras\ninterpolation ") +
-           kNames[static_cast<int>(interpolation)] + "\n" + write_colmap_files(cameras, {}, {}, false).cameras;
+           kNames[static_cast<int>(interpolation)] + "\njpeg quality " + std::to_string(jpeg_quality) + "\n" +
+           write_colmap_files(cameras, {}, {}, false).cameras;
 }
 
 bool stamp_matches(const fs::path& file, const std::string& stamp) {
@@ -220,6 +221,7 @@ bool stamp_matches(const fs::path& file, const std::string& stamp) {
 struct ImageJob {
     std::size_t camera;
     fs::path source, target;
+    int jpeg_quality = kDefaultJpegQuality;
 };
 
 // One camera's map, built by the first worker that needs it and released when its last
@@ -280,7 +282,7 @@ void run_job(const ImageJob& job, const PreparedRemap* map) {
     } catch (const InvalidArgument& wrong_size) {
         throw FileError(job.source.string() + ": " + wrong_size.what());
     }
-    write_image(job.target, result);
+    write_image(job.target, result, job.jpeg_quality);
 }
 
 // Runs the jobs on `threads` workers, each holding one image at a time; returns how many
@@ -343,7 +345,7 @@ void write_images(const DatasetOptions& options, const std::vector<ColmapImage>&
         throw FileError(folder.string() + ": is the source images folder itself: give another output folder");
     }
     const fs::path stamp_file = options.output / kStampName;
-    const std::string stamp = stamp_of(new_records, options.interpolation);
+    const std::string stamp = stamp_of(new_records, options.interpolation, options.jpeg_quality);
     const bool earlier_run_matches = stamp_matches(stamp_file, stamp);
     write_file_atomically(stamp_file, stamp);
     // In camera order, so that each camera's map is built once and soon released.
@@ -352,7 +354,7 @@ void write_images(const DatasetOptions& options, const std::vector<ColmapImage>&
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return camera_of[a] < camera_of[b]; });
     std::vector<ImageJob> jobs;
     for (const std::size_t i : order) {
-        ImageJob job{camera_of[i], options.images / images[i].name, folder / images[i].name};
+        ImageJob job{camera_of[i], options.images / images[i].name, folder / images[i].name, options.jpeg_quality};
         std::error_code error;
         if (earlier_run_matches && fs::is_regular_file(job.target, error)) {
             ++summary.images_kept;

@@ -45,6 +45,7 @@ struct DatasetOptions {
     // (default each source's); model and rotation are not used (always a pinhole, no turn).
     NewCameraRequest camera;
     Interpolation interpolation = Interpolation::Cubic;
+    int jpeg_quality = kDefaultJpegQuality;  // 1 to 100, for the images written as JPEG
     int threads = 1;
     bool text = false;  // write the model as text instead of binary
     // Called, one call at a time, with one line for each image that could not be read or

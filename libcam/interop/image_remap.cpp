@@ -205,11 +205,11 @@ cv::Mat read_image(const std::filesystem::path& path) {
     return image;
 }
 
-void write_image(const std::filesystem::path& path, const cv::Mat& image) {
+void write_image(const std::filesystem::path& path, const cv::Mat& image, int jpeg_quality) {
     std::vector<unsigned char> bytes;
     bool encoded = false;
     try {
-        encoded = cv::imencode(path.extension().string(), image, bytes);
+        encoded = cv::imencode(path.extension().string(), image, bytes, {cv::IMWRITE_JPEG_QUALITY, jpeg_quality});
     } catch (const cv::Exception&) {
         encoded = false;
     }

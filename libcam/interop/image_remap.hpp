@@ -54,8 +54,10 @@ cv::Mat remap_image(const cv::Mat& source_image, const PreparedRemap& map);
 // FileError naming the file when it is missing or not an image OpenCV reads.
 cv::Mat read_image(const std::filesystem::path& path);
 // The image encoded by its file's extension and written atomically (io/atomic_write.hpp);
-// FileError naming the file when OpenCV cannot write this image as that type.
-void write_image(const std::filesystem::path& path, const cv::Mat& image);
+// FileError naming the file when OpenCV cannot write this image as that type. A JPEG's
+// quality, 1 to 100 (OpenCV's default 95), is `jpeg_quality`.
+inline constexpr int kDefaultJpegQuality = 95;
+void write_image(const std::filesystem::path& path, const cv::Mat& image, int jpeg_quality = kDefaultJpegQuality);
 
 // The map as a file of source coordinates, NaN where there is no source, in double's
 // precision rounded to float32: an OpenEXR image with channels R (x) and G (y), or a

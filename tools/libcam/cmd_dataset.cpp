@@ -26,6 +26,7 @@ struct DatasetFlags {
     std::string camera = "valid";
     std::string size;
     std::string interpolation = "cubic";
+    int jpeg_quality = kDefaultJpegQuality;
     int threads = 0;
     bool text = false;
     bool no_images = false;
@@ -125,6 +126,10 @@ int run_dataset(const DatasetFlags& flags) {
     options.camera = camera_request(flags);
     options.threads = worker_count(flags.threads);
     options.text = flags.text;
+    if (flags.jpeg_quality < 1 || flags.jpeg_quality > 100) {
+        throw UsageError("--jpeg-quality: expected 1 to 100, got " + std::to_string(flags.jpeg_quality));
+    }
+    options.jpeg_quality = flags.jpeg_quality;
     try {
         options.interpolation = interpolation_from_string(flags.interpolation);
     } catch (const InvalidArgument& error) {
@@ -159,6 +164,8 @@ Runner add_dataset(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--size", flags->size, "The new cameras' image size WIDTHxHEIGHT (default: each source's)");
     command->add_option("--interpolation", flags->interpolation, "nearest, linear, cubic or lanczos (cv::remap)")
+        ->capture_default_str();
+    command->add_option("--jpeg-quality", flags->jpeg_quality, "The quality of the images written as JPEG, 1 to 100")
         ->capture_default_str();
     command->add_option("--threads", flags->threads, "Images worked on at once, and threads per map (0: one per core)")
         ->capture_default_str();
