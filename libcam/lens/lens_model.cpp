@@ -9,6 +9,16 @@
 
 namespace libcam {
 
+std::optional<LensType> opencv_model_with(std::size_t count) {
+    for (const LensInfo& info : lens_models()) {
+        if (info.opencv == OpenCvFunction::ProjectPoints && info.num_coefficients > 0 &&
+            static_cast<std::size_t>(info.num_coefficients) == count) {
+            return info.type;
+        }
+    }
+    return std::nullopt;
+}
+
 std::optional<LensType> lens_type_from_name(std::string_view name) {
     constexpr std::string_view mrcal_prefix = "LENSMODEL_";
     if (name.starts_with(mrcal_prefix)) name.remove_prefix(mrcal_prefix.size());

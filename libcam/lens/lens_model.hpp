@@ -319,6 +319,10 @@ std::string_view to_string(OpenCvFunction function);
 // Accepts "PINHOLE" and mrcal's "LENSMODEL_PINHOLE"; nullopt for an unknown name.
 std::optional<LensType> lens_type_from_name(std::string_view name);
 
+// OpenCV's radial-tangential model (cv::projectPoints) with `count` coefficients (4, 5,
+// 8, 12 or 14): how a distortion vector tells its model; nothing for another count.
+std::optional<LensType> opencv_model_with(std::size_t count);
+
 // The simplest model of `type`'s family (its rank 0), which names the family: PINHOLE
 // for OPENCV8, UCM for MEI, FISHEYE for RAD_TAN_THIN_PRISM_FISHEYE.
 constexpr const LensInfo& lens_family_base(LensType type) {

@@ -813,6 +813,47 @@ TEST_CASE("OpenImuCameraCalibrator's JSON, as UMI ships its GoPro calibration: f
     CHECK_THROWS_AS(format_camera(camera, CameraFormat::Openicc), NotRepresentable);
 }
 
+TEST_CASE("OpenImuCameraCalibrator's layout as other writers fill it: focal lengths, OpenCV's list, the image's shape refused") {
+    // A script writing cv2.calibrateCamera's K and dist in the calibrator's layout
+    // (focal_length_x, focal_length_y, "radial_distortion": dist[0], OpenCV's order).
+    const Camera opencv = parse_camera(R"({"image_width": 1920.0, "image_height": 1080, "intrinsic_type": "PINHOLE",
+        "intrinsics": {"focal_length_x": 1000.5, "focal_length_y": 998.25, "principal_pt_x": 961.5,
+        "principal_pt_y": 540.75, "skew": 0.0, "radial_distortion": [-0.12, 0.03, 0.001, -0.002, 0.004]}})",
+                                       CameraFormat::Openicc, "gopro_intrinsics_pinhole.json").camera;
+    check_intrinsics(opencv, 1000.5, 998.25, 961.5, 540.75);
+    CHECK(opencv.lens == Lens{LensType::OpenCv5, {-0.12, 0.03, 0.001, -0.002, 0.004}});
+    const Camera four = parse_camera(R"({"image_width": 640, "image_height": 480, "intrinsic_type": "PINHOLE",
+        "intrinsics": {"focal_length_x": 500, "focal_length_y": 501, "principal_pt_x": 320, "principal_pt_y": 240,
+        "dist_coeffs": [0.1, -0.2, 0.0, 0.0]}})",
+                                     CameraFormat::Openicc, "s21.json").camera;
+    CHECK(four.lens == Lens{LensType::OpenCv4, {0.1, -0.2, 0.0, 0.0}});
+    // A RealSense's PINHOLE with fisheye keys at 0 and aspect_ratio 1: no distortion.
+    const auto realsense = [](const std::string& aspect, const std::string& k1) {
+        return R"({"image_width": 848, "image_height": 480, "intrinsic_type": "PINHOLE", "intrinsics": {"aspect_ratio": )" +
+               aspect + R"(, "focal_length": 419.8328552246094, "principal_pt_x": 429.5089416503906,
+               "principal_pt_y": 237.1636505126953, "radial_distortion_1": )" + k1 +
+               R"(, "radial_distortion_2": 0.0, "skew": 0.0}})";
+    };
+    const Camera plain = parse_camera(realsense("1.0", "0.0"), CameraFormat::Openicc, "realsense_intrinsics.json").camera;
+    check_intrinsics(plain, 419.8328552246094, 419.8328552246094, 429.5089416503906, 237.1636505126953);
+    CHECK(plain.lens.type == LensType::Pinhole);
+    // 848 / 480 = 1.7666...: the image's shape in the focal's aspect, which would make fy
+    // 742 px: refused, saying so.
+    CHECK_THAT(file_error_of([&] {
+                   (void)parse_camera(realsense("1.7666666666666666", "0.0"), CameraFormat::Openicc, "r.json");
+               }),
+               Catch::Contains("r.json: \"intrinsics.aspect_ratio\": 1.7666666666666666 is the image's width / height"));
+    CHECK_THAT(file_error_of([&] { (void)parse_camera(realsense("1.0", "0.1"), CameraFormat::Openicc, "k.json"); }),
+               Catch::Contains("k.json: \"intrinsics.radial_distortion_1\": a PINHOLE with fisheye coefficients"));
+    CHECK_THAT(file_error_of([&] {
+                   (void)parse_camera(R"({"image_width": 640, "image_height": 480, "intrinsic_type": "PINHOLE",
+                       "intrinsics": {"focal_length_x": 500, "focal_length_y": 501, "principal_pt_x": 320,
+                       "principal_pt_y": 240, "dist_coeffs": [0.1, -0.2, 0.0]}})",
+                                      CameraFormat::Openicc, "three.json");
+               }),
+               Catch::Contains("three.json: \"intrinsics.dist_coeffs\": expected OpenCV's 4, 5, 8, 12 or 14 coefficients"));
+}
+
 TEST_CASE("basalt's calibration JSON written: every key basalt's loader asks for, UCM in basalt's parametrisation") {
     Camera camera;
     camera.size = {512, 512};

@@ -21,18 +21,6 @@ namespace {
 // declares more (rows: 2000000000) is refused before anything is allocated for it.
 constexpr long long kMaxMatrixElements = 64;
 
-// OpenCV's radial-tangential models (cv::projectPoints), told apart by their number of
-// coefficients; PINHOLE's empty list is written as five zeros and read back as PINHOLE.
-std::optional<LensType> opencv_model_with(std::size_t count) {
-    for (const LensInfo& info : lens_models()) {
-        if (info.opencv == OpenCvFunction::ProjectPoints && info.num_coefficients > 0 &&
-            static_cast<std::size_t>(info.num_coefficients) == count) {
-            return info.type;
-        }
-    }
-    return std::nullopt;
-}
-
 // ---- writing ----
 
 // A double as OpenCV writes one: every digit that matters, and a '.' when the shortest

@@ -1,11 +1,59 @@
 #include "libcam/io/detail/openicc_format.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
 #include "libcam/error.hpp"
 #include "libcam/io/detail/document.hpp"
 
 namespace libcam {
 
 bool claims_openicc_camera(const DocumentNode& root) { return root.find("intrinsic_type") != nullptr; }
+
+namespace {
+
+// A PINHOLE's distortion as scripts that share the calibrator's layout write it (the
+// calibrator itself writes none): OpenCV's list from cv2.calibrateCamera under
+// "radial_distortion" or "dist_coeffs", or radial_distortion_1..4 left at 0.
+Lens pinhole_distortion(const Field& k) {
+    for (const std::string_view key : {"radial_distortion", "dist_coeffs"}) {
+        const std::optional<Field> list = k.find({key});
+        if (!list) continue;
+        const std::vector<double> values = list->numbers(14);
+        if (std::all_of(values.begin(), values.end(), [](double v) { return v == 0.0; })) return {};
+        const std::optional<LensType> type = opencv_model_with(values.size());
+        if (!type) list->fail("expected OpenCV's 4, 5, 8, 12 or 14 coefficients (k1 k2 p1 p2 k3 ...), got " + list->shown());
+        return {*type, values};
+    }
+    for (const std::string_view key : {"radial_distortion_1", "radial_distortion_2", "radial_distortion_3", "radial_distortion_4"}) {
+        const std::optional<Field> value = k.find({key});
+        if (value && value->number() != 0.0) {
+            value->fail("a PINHOLE with fisheye coefficients is not one of the calibrator's models: give FISHEYE as "
+                        "intrinsic_type if they are its radial distortion");
+        }
+    }
+    return {};
+}
+
+// fx and fy: the calibrator's focal_length and aspect_ratio (fy / fx), or the focal
+// lengths themselves as some writers store them.
+std::pair<double, double> focal_lengths(const Field& k, ImageSize size) {
+    if (const std::optional<Field> fx = k.find({"focal_length_x"})) return {fx->number(), k.at({"focal_length_y"}).number()};
+    const double focal = k.at({"focal_length"}).number();
+    const std::optional<Field> aspect = k.find({"aspect_ratio"});
+    if (!aspect) return {focal, focal};
+    // One writer stores the image's width / height there: read as fy / fx it would make a
+    // camera stretched by that much, silently.
+    const double shape = static_cast<double>(size.width) / static_cast<double>(size.height);
+    if (aspect->number() != 1.0 && std::abs(aspect->number() - shape) < 1e-9 * shape) {
+        aspect->fail(aspect->shown() + " is the image's width / height, not the calibrator's fy / fx: this file's "
+                     "writer stored the image's shape; give focal_length_x and focal_length_y, or 1");
+    }
+    return {focal, aspect->number() * focal};
+}
+
+}  // namespace
 
 std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::string& source) {
     const DocumentNode root = parse_json_tree(text, source);
@@ -24,7 +72,7 @@ std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::
     } else if (type.text() == "EXTENDED_UNIFIED") {
         lens = {LensType::Eucm, {value("alpha"), value("beta")}};
     } else if (type.text() == "PINHOLE") {
-        lens = {LensType::Pinhole, {}};  // the calibrator writes no distortion for it
+        lens = pinhole_distortion(k);
     } else if (type.text() == "DIVISION_UNDISTORTION") {
         type.fail("libcam has no model for the division undistortion lens (FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED "
                   "and PINHOLE are read)");
@@ -32,12 +80,11 @@ std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::
         type.fail("must be FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED or PINHOLE (the types the calibrator writes with "
                   "their parameters), got '" + type.text() + "'");
     }
-    const double focal = value("focal_length");
-    const double aspect = k.find({"aspect_ratio"}) ? value("aspect_ratio") : 1.0;
     Camera camera;
-    camera.size = {static_cast<long>(top.at({"image_width"}).integer(1, kMaxImageSide)),
-                   static_cast<long>(top.at({"image_height"}).integer(1, kMaxImageSide))};
-    camera.intrinsics = {focal, aspect * focal, value("principal_pt_x"), value("principal_pt_y"),
+    camera.size = {static_cast<long>(top.at({"image_width"}).whole_number(1, kMaxImageSide)),
+                   static_cast<long>(top.at({"image_height"}).whole_number(1, kMaxImageSide))};
+    const auto [fx, fy] = focal_lengths(k, camera.size);
+    camera.intrinsics = {fx, fy, value("principal_pt_x"), value("principal_pt_y"),
                          k.find({"skew"}) ? value("skew") : 0.0};
     camera.lens = std::move(lens);
     try {
