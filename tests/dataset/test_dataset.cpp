@@ -72,13 +72,17 @@ Lens opencv_lens(int width, int height) {
     return lens;
 }
 
-// The T265's left camera (Basalt's kb4 calibration).
-Lens t265_lens() {
-    Lens lens{"", 848, 800, 286.60144163375528, 286.4617087423328, 422.2765876951761, 395.2246466040553,
+// The T265's left camera (Basalt's kb4 calibration), its image scaled by `scale` (1: the
+// real 848x800).
+Lens t265_lens(double scale = 1.0) {
+    const auto centre = [scale](double c) { return (c + 0.5) * scale - 0.5; };
+    Lens lens{"", static_cast<int>(848 * scale), static_cast<int>(800 * scale), 286.60144163375528 * scale,
+              286.4617087423328 * scale, centre(422.2765876951761), centre(395.2246466040553),
               {-0.006762412326815424, 0.045170283325720008, -0.043515167278210638, 0.008374959821591333}, true};
     std::ostringstream line;
     line.precision(17);
-    line << "1 OPENCV_FISHEYE 848 800 " << lens.fx << " " << lens.fy << " " << lens.cx + 0.5 << " " << lens.cy + 0.5;
+    line << "1 OPENCV_FISHEYE " << lens.width << " " << lens.height << " " << lens.fx << " " << lens.fy << " "
+         << lens.cx + 0.5 << " " << lens.cy + 0.5;
     for (const double k : lens.k) line << " " << k;
     lens.colmap_line = line.str();
     return lens;
@@ -459,5 +463,188 @@ TEST_CASE("dataset: COLMAP's model_analyzer reads the output", "[dataset][colmap
         CHECK(printed.find("Images: 3") != std::string::npos);
         CHECK(printed.find("Observations: " + std::to_string(summary["observations_kept"].get<std::size_t>())) !=
               std::string::npos);
+    }
+}
+
+namespace {
+
+// Each kept observation at its view's pinhole projection of its point (fx X/Z + cx, the
+// view's camera and turned pose as the output model has them); returns the largest distance.
+double worst_pinhole_distance(const libcam::ObservationSet& set) {
+    double worst = 0;
+    for (const libcam::Observation& o : set.observations) {
+        const libcam::ObservedView& view = set.views[static_cast<std::size_t>(o.view)];
+        const libcam::Camera& camera = set.cameras[static_cast<std::size_t>(view.camera)].camera;
+        REQUIRE(camera.lens.type == libcam::LensType::Pinhole);
+        const auto& k = camera.intrinsics;
+        const libcam::Vec3 X = view.pose.R * set.points[static_cast<std::size_t>(o.point)] + view.pose.t;
+        REQUIRE(X.z() > 0);
+        worst = std::max(worst, std::hypot(k.fx * X.x() / X.z() + k.cx - o.pixel.x(), k.fy * X.y() / X.z() + k.cy - o.pixel.y()));
+    }
+    return worst;
+}
+
+void write_black_images(const fs::path& folder, const std::vector<std::string>& names, int width, int height) {
+    fs::create_directories(folder);
+    for (const std::string& name : names) {
+        REQUIRE(cv::imwrite((folder / name).string(), cv::Mat(height, width, CV_8U, cv::Scalar(0))));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("dataset: --camera views splits the T265 fisheye and keeps its observations, COLMAP's undistorter far fewer",
+          "[dataset][views]") {
+    TempDir dir;
+    const std::vector<std::string> names = {"f0.png", "f1.png", "f2.png"};
+    const Written written = write_model(dir / "in", t265_lens(), names, 16, 6.0);
+    const fs::path out = dir / "out";
+    const Json summary =
+        run_json({"dataset", (dir / "in").string(), "-o", out.string(), "--no-images", "--json", "--camera", "views"});
+    const std::size_t views = summary["cameras"].size();
+    CHECK(views > 1);
+    CHECK(summary["cameras"][0]["views"] == views);
+    CHECK(summary["model_images_out"] == names.size() * views);
+    // Every observation the lens makes (each inside its valid domain: the test's lens
+    // projected it) is kept, counted once.
+    CHECK(summary["observations_in"].get<std::size_t>() == written.observations);
+    const std::size_t kept = summary["observations_kept"].get<std::size_t>();
+    CHECK(kept >= 0.99 * static_cast<double>(written.observations));
+    const libcam::ObservationSet set = libcam::read_observations(out / "sparse" / "0");
+    CHECK(set.cameras.size() == views);
+    CHECK(set.views.size() == names.size() * views);
+    std::size_t per_view = 0;
+    for (const Json& camera : summary["cameras"]) per_view += camera["observations"].get<std::size_t>();
+    CHECK(per_view == set.observations.size());
+    CHECK(set.observations.size() >= kept);  // an observation in two views is in both
+    const double worst = worst_pinhole_distance(set);
+    CHECK(worst < 1e-6);
+
+    // COLMAP's own undistortion of the same model, which keeps one pinhole per camera.
+    const std::string colmap = COLMAP_PROGRAM;
+    if (colmap.empty() || !fs::exists(colmap)) {
+        WARN("libcam views: " << kept << " of " << written.observations << " observations kept in " << views
+                              << " views; COLMAP skipped: no colmap program");
+        return;
+    }
+    write_black_images(dir / "images", names, 848, 800);
+    const libcam::test::CliResult undistorted = libcam::test::run_program(
+        colmap, {"image_undistorter", "--image_path", (dir / "images").string(), "--input_path", (dir / "in").string(),
+                 "--output_path", (dir / "colmap").string(), "--output_type", "COLMAP"});
+    INFO(undistorted.describe());
+    REQUIRE(undistorted.exit_code == 0);
+    // COLMAP moves every POINTS2D and writes it, on its image or not: those its
+    // undistorted images hold are the ones on them.
+    const libcam::ObservationSet by_colmap = libcam::read_observations(dir / "colmap" / "sparse");
+    std::size_t colmap_kept = 0;
+    for (const libcam::Observation& o : by_colmap.observations) {
+        const libcam::ImageSize& size =
+            by_colmap.cameras[static_cast<std::size_t>(by_colmap.views[static_cast<std::size_t>(o.view)].camera)].camera.size;
+        colmap_kept += std::isfinite(o.pixel.x()) && std::isfinite(o.pixel.y()) && o.pixel.x() >= -0.5 &&
+                       o.pixel.y() >= -0.5 && o.pixel.x() <= size.width - 0.5 && o.pixel.y() <= size.height - 0.5;
+    }
+    CHECK(colmap_kept < 0.75 * static_cast<double>(kept));
+    WARN("T265 fisheye, " << written.observations << " observations: libcam dataset --camera views keeps " << kept << " in "
+                          << views << " views (largest distance from the pinhole projection " << worst
+                          << " px); colmap image_undistorter keeps " << colmap_kept << " on its "
+                          << by_colmap.cameras[0].camera.size.width << "x" << by_colmap.cameras[0].camera.size.height
+                          << " images (of the " << by_colmap.observations.size() << " it writes); " << summary["cameras"][0]["why"]);
+}
+
+TEST_CASE("dataset: each view's blobs are at its moved observations, each with a mask, and a stopped run finishes",
+          "[dataset][views]") {
+    TempDir dir;
+    const Lens lens = t265_lens(0.5);
+    const Written written = write_model(dir / "scene" / "sparse" / "0", lens, {"a.png"}, 9, 6.0, 1);
+    fs::create_directories(dir / "scene" / "images");
+    REQUIRE(cv::imwrite((dir / "scene" / "images" / "a.png").string(), blob_image(lens, 0, written.points, CV_8U, 1)));
+    const fs::path out = dir / "out";
+    const std::vector<std::string> args = {"dataset", (dir / "scene" / "sparse" / "0").string(), "-o", out.string(),
+                                           "--json", "--camera", "views", "--masks", "--threads", "2"};
+    const Json summary = run_json(args);
+    const std::size_t views = summary["cameras"].size();
+    REQUIRE(views > 1);
+    CHECK(summary["images_out"] == views);
+    CHECK(summary["observations_kept"] == summary["observations_in"]);
+    const libcam::ObservationSet set = libcam::read_observations(out / "sparse" / "0");
+    std::map<std::string, cv::Mat> images;
+    for (const libcam::ObservedView& view : set.views) {
+        CHECK(view.name == "a_view" + std::to_string(&view - set.views.data()) + ".png");
+        const cv::Mat image = cv::imread((out / "images" / view.name).string(), cv::IMREAD_UNCHANGED);
+        const cv::Mat mask = cv::imread((out / "masks" / (view.name + ".png")).string(), cv::IMREAD_UNCHANGED);
+        REQUIRE(!image.empty());
+        REQUIRE(!mask.empty());
+        CHECK(mask.type() == CV_8U);
+        CHECK(mask.size() == image.size());
+        // Black wherever the mask says there is no source; the mask 0 or 255.
+        CHECK(cv::countNonZero(mask == 0 & image != 0) == 0);
+        CHECK(cv::countNonZero(mask != 0 & mask != 255) == 0);
+        CHECK(cv::countNonZero(mask) > 0);
+        images[view.name] = image;
+    }
+    // A blob far off a view's axis is stretched unevenly by the pinhole (1/cos^2 of the
+    // angle radially), which moves its centroid off its centre, and the fisheye's periphery
+    // packs blobs so close that a neighbour enters the window: the blobs within 35 degrees
+    // of their view's axis and 10 px of no other are held to 0.15 px.
+    double worst = 0, worst_any = 0;
+    std::size_t measured = 0;
+    const auto crowded = [&](const libcam::Observation& o) {
+        for (const libcam::Observation& other : set.observations) {
+            if (&other != &o && other.view == o.view && (other.pixel - o.pixel).norm() < 10) return true;
+        }
+        return false;
+    };
+    for (const libcam::Observation& o : set.observations) {
+        const libcam::ObservedView& view = set.views[static_cast<std::size_t>(o.view)];
+        const auto& k = set.cameras[static_cast<std::size_t>(view.camera)].camera.intrinsics;
+        const double off_axis = std::atan(std::hypot((o.pixel.x() - k.cx) / k.fx, (o.pixel.y() - k.cy) / k.fy));
+        libcam::Vec2 found;
+        if (!centroid(images[view.name], o.pixel, found)) continue;
+        worst_any = std::max(worst_any, (found - o.pixel).norm());
+        if (off_axis > 35 * M_PI / 180 || crowded(o)) continue;
+        worst = std::max(worst, (found - o.pixel).norm());
+        ++measured;
+    }
+    CHECK(measured > 20);
+    CHECK(worst < 0.15);
+    WARN(views << " views, " << measured << " lone blobs within 35 deg of their view's axis, largest centroid distance "
+               << worst << " px (" << worst_any << " px over all)");
+
+    // Started again with a view's image and another's mask gone: those two made again.
+    const auto first = files_under(out);
+    fs::remove(out / "images" / set.views[1].name);
+    fs::remove(out / "masks" / (set.views[0].name + ".png"));
+    const Json again = run_json(args);
+    CHECK(again["images_written"] == 2);
+    CHECK(again["images_kept"] == views - 2);
+    CHECK(files_under(out) == first);
+}
+
+TEST_CASE("dataset: a mask is 255 exactly where the undistorted image has a source pixel", "[dataset][masks]") {
+    TempDir dir;
+    const Lens lens = opencv_lens(320, 240);
+    write_model(dir / "model", lens, {"a.png", "b.jpg"}, 6, 0.4, 1);
+    fs::create_directories(dir / "images");
+    for (const char* name : {"a.png", "b.jpg"}) {
+        REQUIRE(cv::imwrite((dir / "images" / name).string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar(200, 180, 160))));
+    }
+    for (const std::string interpolation : {"nearest", "cubic"}) {
+        const fs::path out = dir / interpolation;
+        // all: the pinhole that keeps every source pixel, black in its corners.
+        run_json({"dataset", (dir / "model").string(), "--images", (dir / "images").string(), "-o", out.string(), "--json",
+                  "--camera", "all", "--masks", "--interpolation", interpolation});
+        for (const char* name : {"a.png", "b.jpg"}) {
+            INFO(interpolation << " " << name);
+            const cv::Mat image = cv::imread((out / "images" / name).string(), cv::IMREAD_GRAYSCALE);
+            const cv::Mat mask = cv::imread((out / "masks" / (std::string(name) + ".png")).string(), cv::IMREAD_UNCHANGED);
+            REQUIRE(!mask.empty());
+            REQUIRE(mask.size() == image.size());
+            const int black = cv::countNonZero(mask == 0);
+            CHECK(black > 0);
+            // JPEG's ringing leaves a few grey levels where the image is black.
+            const int threshold = std::string(name) == "b.jpg" ? 40 : 0;
+            CHECK(cv::countNonZero((mask == 255) != (image > threshold)) == 0);
+            WARN(interpolation << " " << name << ": " << black << " of " << mask.total() << " pixels without a source");
+        }
     }
 }
