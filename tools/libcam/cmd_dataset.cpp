@@ -112,13 +112,14 @@ std::string summary_text(const DatasetSummary& s, double seconds, bool with_imag
                                                         std::to_string(camera.views) + " (yaw " + format_short(camera.yaw_deg, 3) +
                                                         " deg, pitch " + format_short(camera.pitch_deg, 3) + " deg)"
                                                   : "";
-        const std::string from = camera.id != camera.source_id ? " (source camera " + std::to_string(camera.source_id) + ")" : "";
+        const std::string from = camera.views > 1 || camera.id != camera.source_id ? " (source camera " + std::to_string(camera.source_id) + ")" : "";
         out += "camera " + std::to_string(camera.id) + from + view + ": " + camera.source_model + " " +
                std::to_string(camera.source.size.width) + "x" + std::to_string(camera.source.size.height) +
                " -> PINHOLE " + std::to_string(camera.camera.size.width) + "x" + std::to_string(camera.camera.size.height) +
                " fx " + format_short(k.fx, 8) + " fy " + format_short(k.fy, 8) + " cx " + format_short(k.cx, 8) + " cy " +
                format_short(k.cy, 8) + " (OpenCV's pixels), " + std::to_string(camera.images) + " images, " +
-               std::to_string(camera.observations) + " observations: " + camera.why + "\n";
+               std::to_string(camera.observations) + " observations" +
+               (camera.view == 0 ? ": " + camera.why : std::string()) + "\n";
     }
     out += "observations: " + std::to_string(s.observations_kept) + " of " + std::to_string(s.observations_in) +
            " kept (" + std::to_string(s.observations_in - s.observations_kept) + " land off their new image" +
