@@ -151,7 +151,7 @@ middle = fit(canvas, height)
 angular = scale * summary["cameras"][0]["fx"] / K[0][0]
 right = cv2.resize(colmap_image, None, fx=angular, fy=angular, interpolation=cv2.INTER_AREA)
 right = cv2.copyMakeBorder(right, 0, height - right.shape[0], 0, 0, cv2.BORDER_CONSTANT, value=(255, 255, 255))
-right = cv2.copyMakeBorder(right, 0, 0, 0, max(0, 240 - right.shape[1]), cv2.BORDER_CONSTANT, value=(255, 255, 255))
+right = cv2.copyMakeBorder(right, 0, 0, 0, max(0, 200 - right.shape[1]), cv2.BORDER_CONSTANT, value=(255, 255, 255))
 gap = np.full((height, 12, 3), 255, np.uint8)
 row = np.hstack([left, gap, middle, gap, right])
 
@@ -162,7 +162,7 @@ def caption(width, text):
 kept = sum(1 for c in summary["cameras"])
 captions = np.hstack([caption(left.shape[1] + 12, "T265 fisheye (each view outlined)"),
                       caption(middle.shape[1] + 12, f"libcam dataset --camera views: {kept} pinholes"),
-                      caption(right.shape[1], "colmap image_undistorter, same scale")])
+                      caption(right.shape[1], "colmap image_undistorter")])
 cv2.imwrite(out, np.vstack([captions, row]), [cv2.IMWRITE_PNG_COMPRESSION, 9])
 PY
 echo "wrote $here/dataset-views.png"
