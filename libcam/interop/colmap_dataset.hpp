@@ -17,6 +17,10 @@
 // renumbered), and a point left with no observation is dropped. Each point's ERROR is
 // recomputed in the new pixels (the mean over its track, as COLMAP defines it).
 //
+// With `views` (dataset_views.hpp) a wide lens becomes several pinholes turned away from
+// its axis: each source image becomes one image per view (its pose turned), each
+// observation is written in every view it lands on and its point's track names each.
+//
 // Images: read whole (any depth, channels and format OpenCV reads), remapped with one map
 // per camera shared by its images, written in the same format under the same name, each
 // to a temporary file renamed into place; N workers, one image each in memory at a time.

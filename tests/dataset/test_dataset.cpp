@@ -15,6 +15,7 @@
 
 #include "cli_runner.hpp"
 #include "libcam/check/reproject.hpp"
+#include "libcam/interop/dataset_views.hpp"
 #include "libcam/io/observations.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
@@ -647,4 +648,40 @@ TEST_CASE("dataset: a mask is 255 exactly where the undistorted image has a sour
             WARN(interpolation << " " << name << ": " << black << " of " << mask.total() << " pixels without a source");
         }
     }
+}
+
+TEST_CASE("dataset views: a whole LONLAT panorama is split into pinholes that hold each of its pixels' rays",
+          "[dataset][views]") {
+    // mrcal's LONLAT over the whole sphere: x = fx lon + cx, y = fy lat + cy.
+    const long width = 240, height = 120;
+    libcam::Camera panorama;
+    panorama.size = {width, height};
+    const double f = static_cast<double>(width) / (2 * M_PI);
+    panorama.intrinsics = {f, f, (width - 1) / 2.0, (height - 1) / 2.0, 0.0};
+    panorama.lens = {libcam::LensType::Lonlat, {}};
+    const libcam::LensViews chosen = libcam::choose_views(libcam::PreparedCamera(panorama), {}, 2);
+    INFO(chosen.why);
+    REQUIRE(chosen.views.size() > 1);
+    CHECK(chosen.views.size() <= 6);
+    // Each pixel's ray, by the formula above, on some view's image (the view's turn and
+    // pinhole applied here), and within 60 degrees of that view's axis.
+    std::size_t held = 0;
+    for (long y = 0; y < height; ++y) {
+        for (long x = 0; x < width; ++x) {
+            const double lon = (x - panorama.intrinsics.cx) / f, lat = (y - panorama.intrinsics.cy) / f;
+            const libcam::Vec3 ray(std::cos(lat) * std::sin(lon), std::sin(lat), std::cos(lat) * std::cos(lon));
+            bool on_a_view = false;
+            for (const libcam::LensView& view : chosen.views) {
+                const libcam::Vec3 d = view.turn * ray;
+                if (d.z() < std::cos(60.0 * M_PI / 180) - 1e-12) continue;
+                const auto& k = view.camera.intrinsics;
+                const double u = k.fx * d.x() / d.z() + k.cx, v = k.fy * d.y() / d.z() + k.cy;
+                on_a_view = on_a_view || (u >= -0.5 && v >= -0.5 && u <= view.camera.size.width - 0.5 &&
+                                          v <= view.camera.size.height - 0.5);
+            }
+            held += on_a_view;
+        }
+    }
+    CHECK(held == static_cast<std::size_t>(width * height));
+    WARN(chosen.why);
 }
