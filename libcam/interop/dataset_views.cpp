@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <atomic>
 #include <mutex>
 #include <optional>
 #include <cmath>
@@ -76,22 +77,29 @@ std::vector<Layout> candidate_layouts() {
     return layouts;
 }
 
-// What a layout makes of the rays: each view's box of tangents, or nothing when a ray is
-// further than kViewHalfAngleDeg from every view's axis.
+// What a layout makes of rays: each view's box of tangents, the rays given to the view
+// whose axis is nearest.
 struct Boxes {
     std::vector<Eigen::AlignedBox2d> tangents;
     std::vector<Mat3> turns;
 };
 
-std::optional<Boxes> boxes_of(const Layout& layout, const std::vector<Vec3>& rays, int threads) {
-    const double nearest_allowed = std::cos(kViewHalfAngleDeg * kDegree);
+Boxes empty_boxes(const Layout& layout) {
     Boxes boxes;
     for (const Direction& axis : layout.axes) boxes.turns.push_back(turn_of(axis.yaw_deg, axis.pitch_deg));
+    boxes.tangents.assign(boxes.turns.size(), Eigen::AlignedBox2d());
+    return boxes;
+}
+
+// Widens `boxes` by `rays` (unit length); false, leaving them part-widened, when a ray is
+// further than `limit_deg` from every view's axis.
+bool widen(Boxes& boxes, const std::vector<Vec3>& rays, double limit_deg, int threads) {
+    const double nearest_allowed = std::cos(limit_deg * kDegree);
     const std::size_t views = boxes.turns.size();
-    std::vector<Boxes> parts;
     std::mutex lock;
-    bool held = true;
+    std::atomic<bool> held{true};
     parallel_chunks(rays.size(), threads, 4096, [&](std::size_t begin, std::size_t end) {
+        if (!held) return;
         std::vector<Eigen::AlignedBox2d> part(views);
         for (std::size_t i = begin; i < end; ++i) {
             std::size_t best = 0;
@@ -101,7 +109,6 @@ std::optional<Boxes> boxes_of(const Layout& layout, const std::vector<Vec3>& ray
                 if (dot > best_dot) best_dot = dot, best = k;
             }
             if (best_dot < nearest_allowed) {
-                const std::lock_guard<std::mutex> guard(lock);
                 held = false;
                 return;
             }
@@ -109,16 +116,11 @@ std::optional<Boxes> boxes_of(const Layout& layout, const std::vector<Vec3>& ray
             part[best].extend(Vec2(d.x() / d.z(), d.y() / d.z()));
         }
         const std::lock_guard<std::mutex> guard(lock);
-        parts.push_back({std::move(part), {}});
-    });
-    if (!held) return std::nullopt;
-    boxes.tangents.assign(views, Eigen::AlignedBox2d());
-    for (const Boxes& part : parts) {
         for (std::size_t k = 0; k < views; ++k) {
-            if (!part.tangents[k].isEmpty()) boxes.tangents[k].extend(part.tangents[k]);
+            if (!part[k].isEmpty()) boxes.tangents[k].extend(part[k]);
         }
-    }
-    return boxes;
+    });
+    return held;
 }
 
 // The smallest pinhole of `focal` pixels per unit tangent whose pixel centres span the box.
@@ -134,20 +136,35 @@ Camera pinhole_over(const Eigen::AlignedBox2d& box, double focal, const Mat3& tu
     return camera;
 }
 
-// Every pixel centre's ray and the extra rays, each of unit length.
-std::vector<Vec3> rays_of(const PreparedCamera& source, std::span<const Vec3> extra_rays, int threads) {
-    const ImageSize& size = source.camera().size;
+// The rays (unit length) of the pixel centres of `rows` that have one, every `step`-th
+// column and the last.
+std::vector<Vec3> pixel_rays(const PreparedCamera& source, const std::vector<long>& rows, long step, int threads) {
+    const long width = source.camera().size.width;
     std::vector<Vec2> pixels;
-    pixels.reserve(static_cast<std::size_t>(size.width * size.height));
-    for (long y = 0; y < size.height; ++y) {
-        for (long x = 0; x < size.width; ++x) pixels.emplace_back(static_cast<double>(x), static_cast<double>(y));
+    for (const long y : rows) {
+        for (long x = 0; x < width; x += step) pixels.emplace_back(static_cast<double>(x), static_cast<double>(y));
+        if ((width - 1) % step != 0) pixels.emplace_back(static_cast<double>(width - 1), static_cast<double>(y));
     }
-    const std::vector<Unprojection> unprojected = source.unproject(pixels, threads);
     std::vector<Vec3> rays;
-    rays.reserve(unprojected.size() + extra_rays.size());
-    for (const Unprojection& ray : unprojected) {
+    rays.reserve(pixels.size());
+    for (const Unprojection& ray : source.unproject(pixels, threads)) {
         if (ray.valid) rays.push_back(ray.direction.normalized());
     }
+    return rays;
+}
+
+// The choice is made on the rays of a sample of the pixels (every `step`-th row and column,
+// and the last): at most about kSampledPixels of them.
+constexpr double kSampledPixels = 250000;
+
+std::vector<Vec3> sampled_rays(const PreparedCamera& source, std::span<const Vec3> extra_rays, int threads) {
+    const ImageSize& size = source.camera().size;
+    const double area = static_cast<double>(size.width) * static_cast<double>(size.height);
+    const long step = std::max(1L, static_cast<long>(std::ceil(std::sqrt(area / kSampledPixels))));
+    std::vector<long> rows;
+    for (long y = 0; y < size.height; y += step) rows.push_back(y);
+    if (rows.back() != size.height - 1) rows.push_back(size.height - 1);
+    std::vector<Vec3> rays = pixel_rays(source, rows, step, threads);
     if (rays.empty()) {
         throw InvalidArgument("lens: no pixel of the " + std::to_string(size.width) + "x" + std::to_string(size.height) +
                               " image has a ray");
@@ -156,16 +173,46 @@ std::vector<Vec3> rays_of(const PreparedCamera& source, std::span<const Vec3> ex
     return rays;
 }
 
+// The chosen layout's boxes over every pixel's ray, a block of rows at a time (so that a
+// large image's rays are never all in memory). A pixel between the samples may lie a little
+// past kViewHalfAngleDeg from its view's axis; one a pinhole cannot hold at all (past
+// kHardLimitDeg) is refused.
+constexpr double kHardLimitDeg = 85.0;
+
+void widen_by_every_pixel(Boxes& boxes, const PreparedCamera& source, int threads) {
+    const long height = source.camera().size.height, block = 64;
+    for (long row = 0; row < height; row += block) {
+        std::vector<long> rows;
+        for (long y = row; y < std::min(height, row + block); ++y) rows.push_back(y);
+        if (!widen(boxes, pixel_rays(source, rows, 1, threads), kHardLimitDeg, threads)) {
+            throw InvalidArgument("a pixel's ray is more than " + format_short(kHardLimitDeg, 3) +
+                                  " deg from every view's axis (between the pixels the views were chosen on)");
+        }
+    }
+}
+
 double widest_angle_deg(const std::vector<Vec3>& rays) {
     double smallest_z = 1;
     for (const Vec3& ray : rays) smallest_z = std::min(smallest_z, ray.z());
     return std::acos(std::clamp(smallest_z, -1.0, 1.0)) / kDegree;
 }
 
+double pixels_of(const Boxes& boxes, double focal, std::size_t& views) {
+    double pixels = 0;
+    views = 0;
+    for (const Eigen::AlignedBox2d& box : boxes.tangents) {
+        if (box.isEmpty()) continue;
+        ++views;
+        const Vec2 sides = focal * box.sizes();
+        pixels += (std::ceil(sides.x()) + 1) * (std::ceil(sides.y()) + 1);
+    }
+    return pixels;
+}
+
 }  // namespace
 
 LensViews choose_views(const PreparedCamera& source, std::span<const Vec3> extra_rays, int threads) {
-    const std::vector<Vec3> rays = rays_of(source, extra_rays, threads);
+    const std::vector<Vec3> rays = sampled_rays(source, extra_rays, threads);
     const Intrinsics& k = source.camera().intrinsics;
     const double focal = std::sqrt(k.fx * k.fy);
     const std::vector<Layout> layouts = candidate_layouts();
@@ -175,16 +222,10 @@ LensViews choose_views(const PreparedCamera& source, std::span<const Vec3> extra
     double best_pixels = 0;
     for (const Layout& layout : layouts) {
         if (best && layout.axes.size() > best_views) break;  // fewer views always win
-        std::optional<Boxes> boxes = boxes_of(layout, rays, threads);
-        if (!boxes) continue;
+        Boxes boxes = empty_boxes(layout);
+        if (!widen(boxes, rays, kViewHalfAngleDeg, threads)) continue;
         std::size_t views = 0;
-        double pixels = 0;
-        for (const Eigen::AlignedBox2d& box : boxes->tangents) {
-            if (box.isEmpty()) continue;
-            ++views;
-            const Vec2 sides = focal * box.sizes();
-            pixels += (std::ceil(sides.x()) + 1) * (std::ceil(sides.y()) + 1);
-        }
+        const double pixels = pixels_of(boxes, focal, views);
         if (!best || views < best_views || (views == best_views && pixels < best_pixels)) {
             best = &layout;
             best_boxes = std::move(boxes);
@@ -198,6 +239,8 @@ LensViews choose_views(const PreparedCamera& source, std::span<const Vec3> extra
                               " deg off its axis: no layout of pinhole views tried holds it (each view keeps within " +
                               format_short(kViewHalfAngleDeg, 3) + " deg of its axis)");
     }
+    widen_by_every_pixel(*best_boxes, source, threads);
+    best_pixels = pixels_of(*best_boxes, focal, best_views);
     LensViews chosen;
     for (std::size_t v = 0; v < best->axes.size(); ++v) {
         if (best_boxes->tangents[v].isEmpty()) continue;
