@@ -3,15 +3,17 @@
 // several pinhole views turned away from its axis (colmap_dataset.hpp's make_pinhole_dataset
 // calls these; they are here so that the rest of the dataset code stays one view per camera).
 //
-// The choice (choose_views): every ray the lens has (each pixel centre of its image that
-// unprojects) and every observation's ray. A lens whose rays all lie within
+// The choice (choose_views): the rays the lens has (the pixel centres of its image that
+// unproject, every step-th row and column for at most about 250000 of them, and the last
+// row and column) and every observation's ray. A lens whose rays all lie within
 // kViewHalfAngleDeg of its axis stays one view. A wider one is tried against a fixed list of layouts, each a set of view axes
 // given by a yaw (about the source's y, towards +x) and a pitch (towards +y): each ray goes
 // to the view whose axis is nearest, and a layout holds the lens when every ray is within
 // kViewHalfAngleDeg of its view's axis. Each view is then the smallest pinhole (the
 // source's pixels per radian at its centre, square pixels) whose image holds every ray
 // given to it, so a view is cropped to what the lens sees. Of the layouts that hold the
-// lens, the one with the fewest views wins, then the one with the fewest pixels.
+// lens, the one with the fewest views wins, then the one with the fewest pixels; its views
+// are then sized over the ray of every pixel, so every pixel that has a ray lands on one.
 //
 // Each view's turn Q is its axes relative to the source's (d_view = Q d_source, as
 // RemapOptions::rotation): its pose is R_view = Q R_source, t_view = Q t_source.
