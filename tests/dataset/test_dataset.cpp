@@ -200,7 +200,7 @@ TEST_CASE("dataset: an OPENCV model's observations land where the new pinhole pr
     TempDir dir;
     const Lens lens = opencv_lens(1280, 960);
     const Written written = write_model(dir / "in", lens, {"a.png", "b.png", "c.png", "d.png"}, 12, 0.6);
-    for (const std::string camera : {"valid", "all", "fov:70"}) {
+    for (const std::string camera : {"valid", "all", "fov:70", "views"}) {
         const fs::path out = dir / ("out-" + camera.substr(0, 3));
         const Json summary = run_json({"dataset", (dir / "in").string(), "-o", out.string(), "--no-images", "--json",
                                        "--camera", camera, "--text"});
@@ -209,6 +209,10 @@ TEST_CASE("dataset: an OPENCV model's observations land where the new pinhole pr
         CHECK(summary["cameras"][0]["source_model"] == "OPENCV");
         if (camera == "valid") CHECK(summary["observations_kept"] < summary["observations_in"]);
         if (camera == "all") CHECK(summary["observations_kept"] == summary["observations_in"]);
+        if (camera == "views") {  // a lens one pinhole holds well: one view, every observation
+            CHECK(summary["cameras"][0]["views"] == 1);
+            CHECK(summary["observations_kept"] == summary["observations_in"]);
+        }
     }
 }
 
