@@ -689,3 +689,75 @@ TEST_CASE("dataset views: a whole LONLAT panorama is split into pinholes that ho
     CHECK(held == static_cast<std::size_t>(width * height));
     WARN(chosen.why);
 }
+
+TEST_CASE("dataset views: the T265's factory calibration (kapture's COLMAP cameras) split so every pixel lands on a view",
+          "[dataset][views][real]") {
+    const fs::path cameras = libcam::test::real_data_path("kapture-samples/t265/colmap/cameras.txt");
+    if (!libcam::test::real_data_present(cameras)) {
+        WARN("skipped: " << cameras << " is absent");
+        return;
+    }
+    // Its two OPENCV_FISHEYE cameras, one image each at the origin, no points.
+    TempDir dir;
+    fs::create_directories(dir / "in");
+    fs::copy_file(cameras, dir / "in" / "cameras.txt");
+    libcam::test::write_whole_file(dir / "in" / "images.txt", "1 1 0 0 0 0 0 0 1 left.png\n\n2 1 0 0 0 0 0 0 2 right.png\n\n");
+    libcam::test::write_whole_file(dir / "in" / "points3D.txt", "");
+    const Json summary = run_json({"dataset", (dir / "in").string(), "-o", (dir / "out").string(), "--no-images", "--json",
+                                   "--camera", "views", "--text"});
+    const libcam::ObservationSet out = libcam::read_observations(dir / "out" / "sparse" / "0");
+    REQUIRE(out.views.size() == summary["cameras"].size());
+    // Each source pixel (every 4th), unprojected by Kannala-Brandt's formula inverted here
+    // (Newton's method, where theta_d still rises), on the image of one of its camera's
+    // views: the view's turn is its pose's rotation (the source's is the identity).
+    std::istringstream lines(libcam::test::read_whole_file(cameras));
+    std::string line;
+    std::size_t checked = 0, held = 0;
+    while (std::getline(lines, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream fields(line);
+        std::uint64_t id;
+        std::string model;
+        double width, height, fx, fy, cx, cy, k[4];
+        fields >> id >> model >> width >> height >> fx >> fy >> cx >> cy >> k[0] >> k[1] >> k[2] >> k[3];
+        REQUIRE(model == "OPENCV_FISHEYE");
+        const std::string name = id == 1 ? "left" : "right";
+        std::vector<const libcam::ObservedView*> views;
+        for (const libcam::ObservedView& view : out.views) {
+            if (view.name.rfind(name + "_view", 0) == 0) views.push_back(&view);
+        }
+        CHECK(views.size() > 1);
+        for (double y = 0; y < height; y += 4) {
+            for (double x = 0; x < width; x += 4) {
+                const double a = (x + 0.5 - cx) / fx, b = (y + 0.5 - cy) / fy, theta_d = std::hypot(a, b);
+                double theta = theta_d;
+                bool rising = true;
+                for (int i = 0; i < 40; ++i) {
+                    const double t2 = theta * theta;
+                    const double f = theta * (1 + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3])))) - theta_d;
+                    const double df = 1 + t2 * (3 * k[0] + t2 * (5 * k[1] + t2 * (7 * k[2] + t2 * 9 * k[3])));
+                    rising = rising && df > 0;
+                    theta -= f / df;
+                }
+                if (!rising || (theta <= 0 && theta_d > 0)) continue;
+                const double s = theta_d > 0 ? std::sin(theta) / theta_d : 0;
+                const libcam::Vec3 ray(a * s, b * s, std::cos(theta));
+                ++checked;
+                for (const libcam::ObservedView* view : views) {
+                    const libcam::Vec3 d = view->pose.R * ray;
+                    const libcam::Camera& camera = out.cameras[static_cast<std::size_t>(view->camera)].camera;
+                    const auto& kv = camera.intrinsics;
+                    if (d.z() <= 0) continue;
+                    const double u = kv.fx * d.x() / d.z() + kv.cx, v = kv.fy * d.y() / d.z() + kv.cy;
+                    if (u >= -0.5 && v >= -0.5 && u <= camera.size.width - 0.5 && v <= camera.size.height - 0.5) {
+                        ++held;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    CHECK(checked > 40000);
+    CHECK(held == checked);
+    WARN(held << " of " << checked << " pixels on a view; " << summary["cameras"][0]["why"]);
+}
