@@ -51,12 +51,15 @@ ColmapModelRead read_model(const fs::path& folder) {
     return model;
 }
 
-// The new camera of one source camera: the source itself when it is already a pinhole and
-// nothing asks for another view or size, else new_camera's choice, which must be a pinhole.
+// Whether a source camera is kept as it is: already a pinhole, and nothing asks for another
+// view or size.
 bool kept_as_is(const ColmapCameraRecord& record, const NewCameraRequest& asked) {
     const bool pinhole = simplest_equal_lens(record.camera.lens).type == LensType::Pinhole;
     return pinhole && record.camera.intrinsics.skew == 0.0 && !asked.size && asked.keep;
 }
+
+// The new camera of one source camera: the source itself when kept_as_is, else
+// new_camera's choice, which must be a pinhole.
 
 DatasetCamera choose_camera(const ColmapCameraRecord& record, const NewCameraRequest& asked, int threads) {
     DatasetCamera chosen;
