@@ -14,10 +14,12 @@
 #include "libcam/camera/parallel.hpp"
 #include "libcam/convert/colmap_models.hpp"
 #include "libcam/error.hpp"
+#include "libcam/interop/dataset_views.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/remap/remap_map.hpp"
+#include "libcam/text/number_format.hpp"
 
 namespace libcam {
 
@@ -49,15 +51,23 @@ ColmapModelRead read_model(const fs::path& folder) {
     return model;
 }
 
-// The new camera of one source camera: the source itself when it is already a pinhole and
-// nothing asks for another view or size, else new_camera's choice, which must be a pinhole.
+// Whether a source camera is kept as it is: already a pinhole, and nothing asks for another
+// view or size.
+bool kept_as_is(const ColmapCameraRecord& record, const NewCameraRequest& asked) {
+    const bool pinhole = simplest_equal_lens(record.camera.lens).type == LensType::Pinhole;
+    return pinhole && record.camera.intrinsics.skew == 0.0 && !asked.size && asked.keep;
+}
+
+// The new camera of one source camera: the source itself when kept_as_is, else
+// new_camera's choice, which must be a pinhole.
+
 DatasetCamera choose_camera(const ColmapCameraRecord& record, const NewCameraRequest& asked, int threads) {
     DatasetCamera chosen;
     chosen.id = record.id;
+    chosen.source_id = record.id;
     chosen.source_model = std::string(record.model);
     chosen.source = record.camera;
-    const bool pinhole = simplest_equal_lens(record.camera.lens).type == LensType::Pinhole;
-    if (pinhole && record.camera.intrinsics.skew == 0.0 && !asked.size && asked.keep) {
+    if (kept_as_is(record, asked)) {
         chosen.camera = record.camera;
         chosen.camera.lens = Lens{};
         chosen.kept = true;
@@ -100,7 +110,8 @@ std::map<std::uint64_t, std::size_t> index_by_id(const Items& items, IdOf&& id_o
 // position of POINTS2D k, or -1 where it was dropped.
 std::vector<std::vector<int>> move_points2d(std::vector<ColmapImage>& images, const std::vector<std::size_t>& camera_of,
                                             const std::vector<PreparedCamera>& sources,
-                                            const std::vector<PreparedCamera>& targets, int threads) {
+                                            const std::vector<PreparedCamera>& targets, const std::vector<Mat3>& turns,
+                                            int threads) {
     std::vector<std::vector<int>> kept_index(images.size());
     parallel_chunks(images.size(), threads, 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
@@ -114,7 +125,7 @@ std::vector<std::vector<int>> move_points2d(std::vector<ColmapImage>& images, co
                 const Unprojection ray =
                     source.unproject(Vec2(point.x - kColmapPixelShift, point.y - kColmapPixelShift));
                 if (!ray.valid) continue;
-                const Projection pixel = target.project_camera_point(ray.direction);
+                const Projection pixel = target.project_camera_point(turns[camera_of[i]] * ray.direction);
                 if (!pixel.valid || !on_image(pixel.pixel.x(), pixel.pixel.y(), target.camera().size)) continue;
                 index[k] = static_cast<int>(moved.size());
                 moved.push_back({pixel.pixel.x() + kColmapPixelShift, pixel.pixel.y() + kColmapPixelShift, point.point3d_id});
@@ -186,6 +197,57 @@ std::size_t count_with_point(const std::vector<ColmapImage>& images) {
     return count;
 }
 
+// Each source POINTS2D counted once however many views hold it (kept_index of output
+// image e are the places of its source's POINTS2D), and each camera's observations.
+void count_kept(const std::vector<ColmapImage>& images, const std::vector<std::vector<int>>& kept_index,
+                const std::vector<std::size_t>& source_of, const std::vector<std::size_t>& camera_of,
+                DatasetSummary& summary) {
+    std::map<std::size_t, std::vector<std::uint8_t>> kept;  // by source image: 1 kept, 2 kept with its 3-D point
+    for (std::size_t e = 0; e < images.size(); ++e) {
+        std::vector<std::uint8_t>& of_source = kept[source_of[e]];
+        of_source.resize(kept_index[e].size(), 0);
+        for (std::size_t k = 0; k < kept_index[e].size(); ++k) {
+            const int at = kept_index[e][k];
+            if (at < 0) continue;
+            const bool with_point = images[e].points[static_cast<std::size_t>(at)].point3d_id != kColmapNoPoint3D;
+            of_source[k] = std::max<std::uint8_t>(of_source[k], with_point ? 2 : 1);
+        }
+        for (const ColmapPoint2D& point : images[e].points) {
+            summary.cameras[camera_of[e]].observations += point.point3d_id != kColmapNoPoint3D;
+        }
+    }
+    for (const auto& [image, flags] : kept) {
+        for (const std::uint8_t flag : flags) {
+            summary.points2d_kept += flag > 0;
+            summary.observations_kept += flag == 2;
+        }
+    }
+}
+
+// --camera views: the model's cameras, images and tracks replaced by the views'
+// (dataset_views.hpp), `source_of` and `source_names` saying where each image comes from.
+void split_model_into_views(ColmapModelRead& model, std::vector<std::size_t>& camera_of,
+                            std::vector<std::size_t>& source_of, std::vector<std::string>& source_names,
+                            std::vector<ColmapCameraRecord>& new_records, DatasetSummary& summary,
+                            const std::string& source, int threads) {
+    NewCameraRequest keep_all;
+    keep_all.keep = Keep::All;
+    std::vector<std::optional<DatasetCamera>> as_is(model.cameras.size());
+    for (std::size_t c = 0; c < model.cameras.size(); ++c) {
+        if (kept_as_is(model.cameras[c], keep_all)) as_is[c] = choose_camera(model.cameras[c], keep_all, threads);
+    }
+    ViewSplit split = split_into_views(model.cameras, model.images, model.points, camera_of, as_is, source, threads);
+    std::vector<std::string> names;
+    for (const std::size_t i : split.source_of) names.push_back(model.images[i].name);
+    source_names = std::move(names);
+    summary.cameras = std::move(split.cameras);
+    new_records = std::move(split.records);
+    model.images = std::move(split.images);
+    model.points = std::move(split.points);
+    camera_of = std::move(split.camera_of);
+    source_of = std::move(split.source_of);
+}
+
 void write_model(const fs::path& folder, const ColmapModelBytes& bytes, bool binary) {
     fs::create_directories(folder);
     const std::string extension = binary ? ".bin" : ".txt";
@@ -200,11 +262,19 @@ void write_model(const fs::path& folder, const ColmapModelBytes& bytes, bool bin
 
 // ---- images ------------------------------------------------------------------------------
 
-std::string stamp_of(const std::vector<ColmapCameraRecord>& cameras, Interpolation interpolation, int jpeg_quality) {
+std::string stamp_of(const std::vector<ColmapCameraRecord>& cameras, const std::vector<DatasetCamera>& chosen,
+                     Interpolation interpolation, int jpeg_quality) {
     const char* const kNames[] = {"nearest", "linear", "cubic", "lanczos"};
-    return std::string("libcam dataset: the images here were made with these cameras\ninterpolation ") +
-           kNames[static_cast<int>(interpolation)] + "\njpeg quality " + std::to_string(jpeg_quality) + "\n" +
-           write_colmap_files(cameras, {}, {}, false).cameras;
+    std::string stamp = std::string("libcam dataset: the images here were made with these cameras\ninterpolation ") +
+                        kNames[static_cast<int>(interpolation)] + "\njpeg quality " + std::to_string(jpeg_quality) + "\n" +
+                        write_colmap_files(cameras, {}, {}, false).cameras;
+    for (const DatasetCamera& camera : chosen) {
+        if (camera.turn == Mat3::Identity()) continue;  // a run without views writes no turns
+        stamp += "turn of camera " + std::to_string(camera.id);
+        for (const double entry : camera.turn.reshaped<Eigen::RowMajor>()) stamp += " " + format_number(entry);
+        stamp += "\n";
+    }
+    return stamp;
 }
 
 bool stamp_matches(const fs::path& file, const std::string& stamp) {
@@ -222,6 +292,7 @@ struct ImageJob {
     std::size_t camera;
     fs::path source, target;
     int jpeg_quality = kDefaultJpegQuality;
+    fs::path mask;  // empty: no mask
 };
 
 // One camera's map, built by the first worker that needs it and released when its last
@@ -242,6 +313,7 @@ public:
         if (!slot.map) {
             RemapOptions options;
             options.threads = threads_;
+            options.rotation = cameras_[camera].turn;
             slot.map = std::make_shared<const PreparedRemap>(prepare_remap(
                 build_remap_map(PreparedCamera(cameras_[camera].camera), PreparedCamera(cameras_[camera].source), options),
                 interpolation_));
@@ -267,12 +339,35 @@ private:
     int threads_;
 };
 
+// 255 where the map gives the target pixel a source pixel, 0 where remap_image leaves it
+// black: the fixed-point map's whole pixel is kNoSourceCoordinate there (exactly, and no
+// source pixel is that far off the image).
+cv::Mat source_mask(const PreparedRemap& map) {
+    constexpr short kNoSource = static_cast<short>(kNoSourceCoordinate);
+    cv::Mat mask(map.xy.rows, map.xy.cols, CV_8U);
+    for (int y = 0; y < mask.rows; ++y) {
+        const cv::Vec2s* coordinates = map.xy.ptr<cv::Vec2s>(y);
+        std::uint8_t* row = mask.ptr<std::uint8_t>(y);
+        for (int x = 0; x < mask.cols; ++x) row[x] = coordinates[x][0] == kNoSource ? 0 : 255;
+    }
+    return mask;
+}
+
+void write_mask(const fs::path& path, const cv::Mat& mask) {
+    fs::create_directories(path.parent_path());
+    write_image(path, mask);
+}
+
 void run_job(const ImageJob& job, const PreparedRemap* map) {
     std::error_code error;
     if (!fs::is_regular_file(job.source, error)) throw FileError(job.source.string() + ": no such image file");
     fs::create_directories(job.target.parent_path());
     if (map == nullptr) {
         write_file_atomically(job.target, read_text_file(job.source));
+        if (!job.mask.empty()) {
+            const cv::Mat image = read_image(job.source);
+            write_mask(job.mask, cv::Mat(image.rows, image.cols, CV_8U, cv::Scalar(255)));
+        }
         return;
     }
     const cv::Mat image = read_image(job.source);
@@ -283,6 +378,7 @@ void run_job(const ImageJob& job, const PreparedRemap* map) {
         throw FileError(job.source.string() + ": " + wrong_size.what());
     }
     write_image(job.target, result, job.jpeg_quality);
+    if (!job.mask.empty()) write_mask(job.mask, source_mask(*map));
 }
 
 // Runs the jobs on `threads` workers, each holding one image at a time; returns how many
@@ -335,9 +431,10 @@ private:
     int before_;
 };
 
+// `source_names[i]`: the source image of output image i (its own name but with views).
 void write_images(const DatasetOptions& options, const std::vector<ColmapImage>& images,
-                  const std::vector<std::size_t>& camera_of, const std::vector<ColmapCameraRecord>& new_records,
-                  DatasetSummary& summary) {
+                  const std::vector<std::string>& source_names, const std::vector<std::size_t>& camera_of,
+                  const std::vector<ColmapCameraRecord>& new_records, DatasetSummary& summary) {
     const fs::path folder = options.output / "images";
     fs::create_directories(folder);
     std::error_code same_error;
@@ -345,7 +442,7 @@ void write_images(const DatasetOptions& options, const std::vector<ColmapImage>&
         throw FileError(folder.string() + ": is the source images folder itself: give another output folder");
     }
     const fs::path stamp_file = options.output / kStampName;
-    const std::string stamp = stamp_of(new_records, options.interpolation, options.jpeg_quality);
+    const std::string stamp = stamp_of(new_records, summary.cameras, options.interpolation, options.jpeg_quality);
     const bool earlier_run_matches = stamp_matches(stamp_file, stamp);
     write_file_atomically(stamp_file, stamp);
     // In camera order, so that each camera's map is built once and soon released.
@@ -354,9 +451,11 @@ void write_images(const DatasetOptions& options, const std::vector<ColmapImage>&
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return camera_of[a] < camera_of[b]; });
     std::vector<ImageJob> jobs;
     for (const std::size_t i : order) {
-        ImageJob job{camera_of[i], options.images / images[i].name, folder / images[i].name, options.jpeg_quality};
+        ImageJob job{camera_of[i], options.images / source_names[i], folder / images[i].name, options.jpeg_quality, {}};
+        if (options.masks) job.mask = options.output / "masks" / (images[i].name + ".png");
         std::error_code error;
-        if (earlier_run_matches && fs::is_regular_file(job.target, error)) {
+        if (earlier_run_matches && fs::is_regular_file(job.target, error) &&
+            (job.mask.empty() || fs::is_regular_file(job.mask, error))) {
             ++summary.images_kept;
             continue;
         }
@@ -376,7 +475,7 @@ DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
     ColmapModelRead model = read_model(options.model);
     const std::string source = options.model.string();
     const auto camera_index = index_by_id(model.cameras, [](const ColmapCameraRecord& c) { return c.id; }, source + ": camera");
-    const auto image_index = index_by_id(model.images, [](const ColmapImage& i) { return i.id; }, source + ": image");
+    auto image_index = index_by_id(model.images, [](const ColmapImage& i) { return i.id; }, source + ": image");
 
     DatasetSummary summary;
     summary.images_in = model.images.size();
@@ -393,30 +492,44 @@ DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
         summary.points2d_in += model.images[i].points.size();
     }
 
-    std::vector<PreparedCamera> sources, targets;
     std::vector<ColmapCameraRecord> new_records;
-    for (const ColmapCameraRecord& record : model.cameras) {
-        summary.cameras.push_back(choose_camera(record, options.camera, threads));
-        sources.emplace_back(record.camera);
-        targets.emplace_back(summary.cameras.back().camera);
-        new_records.push_back({record.id, summary.cameras.back().camera, "PINHOLE"});
+    std::vector<std::size_t> source_of(model.images.size());  // each output image's source image
+    for (std::size_t i = 0; i < source_of.size(); ++i) source_of[i] = i;
+    std::vector<std::string> source_names;
+    for (const ColmapImage& image : model.images) source_names.push_back(image.name);
+    if (options.views) {
+        split_model_into_views(model, camera_of, source_of, source_names, new_records, summary, source, threads);
+        image_index = index_by_id(model.images, [](const ColmapImage& i) { return i.id; }, source + ": image");
+    } else {
+        for (const ColmapCameraRecord& record : model.cameras) {
+            summary.cameras.push_back(choose_camera(record, options.camera, threads));
+            new_records.push_back({record.id, summary.cameras.back().camera, "PINHOLE"});
+        }
+    }
+    std::vector<PreparedCamera> sources, targets;
+    std::vector<Mat3> turns;
+    for (const DatasetCamera& camera : summary.cameras) {
+        sources.emplace_back(camera.source);
+        targets.emplace_back(camera.camera);
+        turns.push_back(camera.turn);
     }
     for (const std::size_t c : camera_of) ++summary.cameras[c].images;
 
-    const std::vector<std::vector<int>> kept_index = move_points2d(model.images, camera_of, sources, targets, threads);
+    const std::vector<std::vector<int>> kept_index =
+        move_points2d(model.images, camera_of, sources, targets, turns, threads);
     const ColmapPoints3D points =
         carry_points(model.points, model.images, image_index, kept_index, camera_of, targets, source);
     unlink_missing_points(model.images, points);
     summary.points_kept = points.ids.size();
-    summary.observations_kept = count_with_point(model.images);
-    for (const ColmapImage& image : model.images) summary.points2d_kept += image.points.size();
+    count_kept(model.images, kept_index, source_of, camera_of, summary);
+    summary.model_images_out = model.images.size();
 
     summary.model_out = options.output / "sparse" / "0";
     write_model(summary.model_out, write_colmap_files(new_records, model.images, points, !options.text), !options.text);
     if (!options.images.empty()) {
         DatasetOptions resolved = options;
         resolved.threads = threads;
-        write_images(resolved, model.images, camera_of, new_records, summary);
+        write_images(resolved, model.images, source_names, camera_of, new_records, summary);
     }
     return summary;
 }

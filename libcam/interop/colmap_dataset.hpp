@@ -17,6 +17,10 @@
 // renumbered), and a point left with no observation is dropped. Each point's ERROR is
 // recomputed in the new pixels (the mean over its track, as COLMAP defines it).
 //
+// With `views` (dataset_views.hpp) a wide lens becomes several pinholes turned away from
+// its axis: each source image becomes one image per view (its pose turned), each
+// observation is written in every view it lands on and its point's track names each.
+//
 // Images: read whole (any depth, channels and format OpenCV reads), remapped with one map
 // per camera shared by its images, written in the same format under the same name, each
 // to a temporary file renamed into place; N workers, one image each in memory at a time.
@@ -48,6 +52,12 @@ struct DatasetOptions {
     int jpeg_quality = kDefaultJpegQuality;  // 1 to 100, for the images written as JPEG
     int threads = 1;
     bool text = false;  // write the model as text instead of binary
+    // Split a lens wider than one pinhole holds well into several pinhole views, each with
+    // its own camera, images and turned pose (dataset_views.hpp); `camera` is then unused.
+    bool views = false;
+    // Also write masks/<image name>.png: 255 where the output pixel has a source pixel, 0
+    // where it is black (COLMAP's mask convention, ImageReader.mask_path).
+    bool masks = false;
     // Called, one call at a time, with one line for each image that could not be read or
     // written; the others go on.
     std::function<void(const std::string&)> on_image_error;
@@ -61,17 +71,26 @@ struct DatasetCamera {
     std::string why;             // how it was chosen
     std::size_t images = 0;      // images taking it
     bool kept = false;           // the source was already a pinhole, kept: its images copied
+    // With views: `id` is new, one per source camera and view; this camera is view `view`
+    // of the `views` of source camera `source_id`, turned by `turn` (its axes relative to
+    // the source's: yaw_deg about y towards +x, then pitch_deg towards +y).
+    std::uint64_t source_id = 0;
+    std::size_t view = 0, views = 1;
+    Mat3 turn = Mat3::Identity();
+    double yaw_deg = 0, pitch_deg = 0;
+    std::size_t observations = 0;  // observations (with a 3-D point) written in its images
 };
 
 struct DatasetSummary {
     std::vector<DatasetCamera> cameras;
     std::size_t observations_in = 0;    // POINTS2D with a 3-D point
-    std::size_t observations_kept = 0;
+    std::size_t observations_kept = 0;  // each source observation once, however many views hold it
     std::size_t points2d_in = 0;        // every POINTS2D entry
     std::size_t points2d_kept = 0;
     std::size_t points_in = 0;          // 3-D points
     std::size_t points_kept = 0;
     std::size_t images_in = 0;          // images of the model
+    std::size_t model_images_out = 0;   // images of the output model (more than images_in with views)
     std::size_t images_written = 0;
     std::size_t images_kept = 0;        // already in the output from an earlier run
     std::size_t images_failed = 0;

@@ -15,6 +15,7 @@
 
 #include "cli_runner.hpp"
 #include "libcam/check/reproject.hpp"
+#include "libcam/interop/dataset_views.hpp"
 #include "libcam/io/observations.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
@@ -72,13 +73,17 @@ Lens opencv_lens(int width, int height) {
     return lens;
 }
 
-// The T265's left camera (Basalt's kb4 calibration).
-Lens t265_lens() {
-    Lens lens{"", 848, 800, 286.60144163375528, 286.4617087423328, 422.2765876951761, 395.2246466040553,
+// The T265's left camera (Basalt's kb4 calibration), its image scaled by `scale` (1: the
+// real 848x800).
+Lens t265_lens(double scale = 1.0) {
+    const auto centre = [scale](double c) { return (c + 0.5) * scale - 0.5; };
+    Lens lens{"", static_cast<int>(848 * scale), static_cast<int>(800 * scale), 286.60144163375528 * scale,
+              286.4617087423328 * scale, centre(422.2765876951761), centre(395.2246466040553),
               {-0.006762412326815424, 0.045170283325720008, -0.043515167278210638, 0.008374959821591333}, true};
     std::ostringstream line;
     line.precision(17);
-    line << "1 OPENCV_FISHEYE 848 800 " << lens.fx << " " << lens.fy << " " << lens.cx + 0.5 << " " << lens.cy + 0.5;
+    line << "1 OPENCV_FISHEYE " << lens.width << " " << lens.height << " " << lens.fx << " " << lens.fy << " "
+         << lens.cx + 0.5 << " " << lens.cy + 0.5;
     for (const double k : lens.k) line << " " << k;
     lens.colmap_line = line.str();
     return lens;
@@ -195,7 +200,7 @@ TEST_CASE("dataset: an OPENCV model's observations land where the new pinhole pr
     TempDir dir;
     const Lens lens = opencv_lens(1280, 960);
     const Written written = write_model(dir / "in", lens, {"a.png", "b.png", "c.png", "d.png"}, 12, 0.6);
-    for (const std::string camera : {"valid", "all", "fov:70"}) {
+    for (const std::string camera : {"valid", "all", "fov:70", "views"}) {
         const fs::path out = dir / ("out-" + camera.substr(0, 3));
         const Json summary = run_json({"dataset", (dir / "in").string(), "-o", out.string(), "--no-images", "--json",
                                        "--camera", camera, "--text"});
@@ -204,6 +209,10 @@ TEST_CASE("dataset: an OPENCV model's observations land where the new pinhole pr
         CHECK(summary["cameras"][0]["source_model"] == "OPENCV");
         if (camera == "valid") CHECK(summary["observations_kept"] < summary["observations_in"]);
         if (camera == "all") CHECK(summary["observations_kept"] == summary["observations_in"]);
+        if (camera == "views") {  // a lens one pinhole holds well: one view, every observation
+            CHECK(summary["cameras"][0]["views"] == 1);
+            CHECK(summary["observations_kept"] == summary["observations_in"]);
+        }
     }
 }
 
@@ -460,4 +469,295 @@ TEST_CASE("dataset: COLMAP's model_analyzer reads the output", "[dataset][colmap
         CHECK(printed.find("Observations: " + std::to_string(summary["observations_kept"].get<std::size_t>())) !=
               std::string::npos);
     }
+}
+
+namespace {
+
+// Each kept observation at its view's pinhole projection of its point (fx X/Z + cx, the
+// view's camera and turned pose as the output model has them); returns the largest distance.
+double worst_pinhole_distance(const libcam::ObservationSet& set) {
+    double worst = 0;
+    for (const libcam::Observation& o : set.observations) {
+        const libcam::ObservedView& view = set.views[static_cast<std::size_t>(o.view)];
+        const libcam::Camera& camera = set.cameras[static_cast<std::size_t>(view.camera)].camera;
+        REQUIRE(camera.lens.type == libcam::LensType::Pinhole);
+        const auto& k = camera.intrinsics;
+        const libcam::Vec3 X = view.pose.R * set.points[static_cast<std::size_t>(o.point)] + view.pose.t;
+        REQUIRE(X.z() > 0);
+        worst = std::max(worst, std::hypot(k.fx * X.x() / X.z() + k.cx - o.pixel.x(), k.fy * X.y() / X.z() + k.cy - o.pixel.y()));
+    }
+    return worst;
+}
+
+void write_black_images(const fs::path& folder, const std::vector<std::string>& names, int width, int height) {
+    fs::create_directories(folder);
+    for (const std::string& name : names) {
+        REQUIRE(cv::imwrite((folder / name).string(), cv::Mat(height, width, CV_8U, cv::Scalar(0))));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("dataset: --camera views splits the T265 fisheye and keeps its observations, COLMAP's undistorter far fewer",
+          "[dataset][views]") {
+    TempDir dir;
+    const std::vector<std::string> names = {"f0.png", "f1.png", "f2.png"};
+    const Written written = write_model(dir / "in", t265_lens(), names, 16, 6.0);
+    const fs::path out = dir / "out";
+    const Json summary =
+        run_json({"dataset", (dir / "in").string(), "-o", out.string(), "--no-images", "--json", "--camera", "views"});
+    const std::size_t views = summary["cameras"].size();
+    CHECK(views > 1);
+    CHECK(summary["cameras"][0]["views"] == views);
+    CHECK(summary["model_images_out"] == names.size() * views);
+    // Every observation the lens makes (each inside its valid domain: the test's lens
+    // projected it) is kept, counted once.
+    CHECK(summary["observations_in"].get<std::size_t>() == written.observations);
+    const std::size_t kept = summary["observations_kept"].get<std::size_t>();
+    CHECK(kept >= 0.99 * static_cast<double>(written.observations));
+    const libcam::ObservationSet set = libcam::read_observations(out / "sparse" / "0");
+    CHECK(set.cameras.size() == views);
+    CHECK(set.views.size() == names.size() * views);
+    std::size_t per_view = 0;
+    for (const Json& camera : summary["cameras"]) per_view += camera["observations"].get<std::size_t>();
+    CHECK(per_view == set.observations.size());
+    CHECK(set.observations.size() >= kept);  // an observation in two views is in both
+    const double worst = worst_pinhole_distance(set);
+    CHECK(worst < 1e-6);
+
+    // COLMAP's own undistortion of the same model, which keeps one pinhole per camera.
+    const std::string colmap = COLMAP_PROGRAM;
+    if (colmap.empty() || !fs::exists(colmap)) {
+        WARN("libcam views: " << kept << " of " << written.observations << " observations kept in " << views
+                              << " views; COLMAP skipped: no colmap program");
+        return;
+    }
+    write_black_images(dir / "images", names, 848, 800);
+    const libcam::test::CliResult undistorted = libcam::test::run_program(
+        colmap, {"image_undistorter", "--image_path", (dir / "images").string(), "--input_path", (dir / "in").string(),
+                 "--output_path", (dir / "colmap").string(), "--output_type", "COLMAP"});
+    INFO(undistorted.describe());
+    REQUIRE(undistorted.exit_code == 0);
+    // COLMAP moves every POINTS2D and writes it, on its image or not: those its
+    // undistorted images hold are the ones on them.
+    const libcam::ObservationSet by_colmap = libcam::read_observations(dir / "colmap" / "sparse");
+    std::size_t colmap_kept = 0;
+    for (const libcam::Observation& o : by_colmap.observations) {
+        const libcam::ImageSize& size =
+            by_colmap.cameras[static_cast<std::size_t>(by_colmap.views[static_cast<std::size_t>(o.view)].camera)].camera.size;
+        colmap_kept += std::isfinite(o.pixel.x()) && std::isfinite(o.pixel.y()) && o.pixel.x() >= -0.5 &&
+                       o.pixel.y() >= -0.5 && o.pixel.x() <= size.width - 0.5 && o.pixel.y() <= size.height - 0.5;
+    }
+    CHECK(colmap_kept < 0.75 * static_cast<double>(kept));
+    WARN("T265 fisheye, " << written.observations << " observations: libcam dataset --camera views keeps " << kept << " in "
+                          << views << " views (largest distance from the pinhole projection " << worst
+                          << " px); colmap image_undistorter keeps " << colmap_kept << " on its "
+                          << by_colmap.cameras[0].camera.size.width << "x" << by_colmap.cameras[0].camera.size.height
+                          << " images (of the " << by_colmap.observations.size() << " it writes); " << summary["cameras"][0]["why"]);
+}
+
+TEST_CASE("dataset: each view's blobs are at its moved observations, each with a mask, and a stopped run finishes",
+          "[dataset][views]") {
+    TempDir dir;
+    const Lens lens = t265_lens(0.5);
+    const Written written = write_model(dir / "scene" / "sparse" / "0", lens, {"a.png"}, 9, 6.0, 1);
+    fs::create_directories(dir / "scene" / "images");
+    REQUIRE(cv::imwrite((dir / "scene" / "images" / "a.png").string(), blob_image(lens, 0, written.points, CV_8U, 1)));
+    const fs::path out = dir / "out";
+    const std::vector<std::string> args = {"dataset", (dir / "scene" / "sparse" / "0").string(), "-o", out.string(),
+                                           "--json", "--camera", "views", "--masks", "--threads", "2"};
+    const Json summary = run_json(args);
+    const std::size_t views = summary["cameras"].size();
+    REQUIRE(views > 1);
+    CHECK(summary["images_out"] == views);
+    CHECK(summary["observations_kept"] == summary["observations_in"]);
+    const libcam::ObservationSet set = libcam::read_observations(out / "sparse" / "0");
+    std::map<std::string, cv::Mat> images;
+    for (const libcam::ObservedView& view : set.views) {
+        CHECK(view.name == "a_view" + std::to_string(&view - set.views.data()) + ".png");
+        const cv::Mat image = cv::imread((out / "images" / view.name).string(), cv::IMREAD_UNCHANGED);
+        const cv::Mat mask = cv::imread((out / "masks" / (view.name + ".png")).string(), cv::IMREAD_UNCHANGED);
+        REQUIRE(!image.empty());
+        REQUIRE(!mask.empty());
+        CHECK(mask.type() == CV_8U);
+        CHECK(mask.size() == image.size());
+        // Black wherever the mask says there is no source; the mask 0 or 255.
+        CHECK(cv::countNonZero(mask == 0 & image != 0) == 0);
+        CHECK(cv::countNonZero(mask != 0 & mask != 255) == 0);
+        CHECK(cv::countNonZero(mask) > 0);
+        images[view.name] = image;
+    }
+    // A blob far off a view's axis is stretched unevenly by the pinhole (1/cos^2 of the
+    // angle radially), which moves its centroid off its centre, and the fisheye's periphery
+    // packs blobs so close that a neighbour enters the window: the blobs within 35 degrees
+    // of their view's axis and 10 px of no other are held to 0.15 px.
+    double worst = 0, worst_any = 0;
+    std::size_t measured = 0;
+    const auto crowded = [&](const libcam::Observation& o) {
+        for (const libcam::Observation& other : set.observations) {
+            if (&other != &o && other.view == o.view && (other.pixel - o.pixel).norm() < 10) return true;
+        }
+        return false;
+    };
+    for (const libcam::Observation& o : set.observations) {
+        const libcam::ObservedView& view = set.views[static_cast<std::size_t>(o.view)];
+        const auto& k = set.cameras[static_cast<std::size_t>(view.camera)].camera.intrinsics;
+        const double off_axis = std::atan(std::hypot((o.pixel.x() - k.cx) / k.fx, (o.pixel.y() - k.cy) / k.fy));
+        libcam::Vec2 found;
+        if (!centroid(images[view.name], o.pixel, found)) continue;
+        worst_any = std::max(worst_any, (found - o.pixel).norm());
+        if (off_axis > 35 * M_PI / 180 || crowded(o)) continue;
+        worst = std::max(worst, (found - o.pixel).norm());
+        ++measured;
+    }
+    CHECK(measured > 20);
+    CHECK(worst < 0.15);
+    WARN(views << " views, " << measured << " lone blobs within 35 deg of their view's axis, largest centroid distance "
+               << worst << " px (" << worst_any << " px over all)");
+
+    // Started again with a view's image and another's mask gone: those two made again.
+    const auto first = files_under(out);
+    fs::remove(out / "images" / set.views[1].name);
+    fs::remove(out / "masks" / (set.views[0].name + ".png"));
+    const Json again = run_json(args);
+    CHECK(again["images_written"] == 2);
+    CHECK(again["images_kept"] == views - 2);
+    CHECK(files_under(out) == first);
+}
+
+TEST_CASE("dataset: a mask is 255 exactly where the undistorted image has a source pixel", "[dataset][masks]") {
+    TempDir dir;
+    const Lens lens = opencv_lens(320, 240);
+    write_model(dir / "model", lens, {"a.png", "b.jpg"}, 6, 0.4, 1);
+    fs::create_directories(dir / "images");
+    for (const char* name : {"a.png", "b.jpg"}) {
+        REQUIRE(cv::imwrite((dir / "images" / name).string(), cv::Mat(240, 320, CV_8UC3, cv::Scalar(200, 180, 160))));
+    }
+    for (const std::string interpolation : {"nearest", "cubic"}) {
+        const fs::path out = dir / interpolation;
+        // all: the pinhole that keeps every source pixel, black in its corners.
+        run_json({"dataset", (dir / "model").string(), "--images", (dir / "images").string(), "-o", out.string(), "--json",
+                  "--camera", "all", "--masks", "--interpolation", interpolation});
+        for (const char* name : {"a.png", "b.jpg"}) {
+            INFO(interpolation << " " << name);
+            const cv::Mat image = cv::imread((out / "images" / name).string(), cv::IMREAD_GRAYSCALE);
+            const cv::Mat mask = cv::imread((out / "masks" / (std::string(name) + ".png")).string(), cv::IMREAD_UNCHANGED);
+            REQUIRE(!mask.empty());
+            REQUIRE(mask.size() == image.size());
+            const int black = cv::countNonZero(mask == 0);
+            CHECK(black > 0);
+            // JPEG's ringing leaves a few grey levels where the image is black.
+            const int threshold = std::string(name) == "b.jpg" ? 40 : 0;
+            CHECK(cv::countNonZero((mask == 255) != (image > threshold)) == 0);
+            WARN(interpolation << " " << name << ": " << black << " of " << mask.total() << " pixels without a source");
+        }
+    }
+}
+
+TEST_CASE("dataset views: a whole LONLAT panorama is split into pinholes that hold each of its pixels' rays",
+          "[dataset][views]") {
+    // mrcal's LONLAT over the whole sphere: x = fx lon + cx, y = fy lat + cy.
+    const long width = 240, height = 120;
+    libcam::Camera panorama;
+    panorama.size = {width, height};
+    const double f = static_cast<double>(width) / (2 * M_PI);
+    panorama.intrinsics = {f, f, (width - 1) / 2.0, (height - 1) / 2.0, 0.0};
+    panorama.lens = {libcam::LensType::Lonlat, {}};
+    const libcam::LensViews chosen = libcam::choose_views(libcam::PreparedCamera(panorama), {}, 2);
+    INFO(chosen.why);
+    REQUIRE(chosen.views.size() > 1);
+    CHECK(chosen.views.size() <= 6);
+    // Each pixel's ray, by the formula above, on some view's image (the view's turn and
+    // pinhole applied here), and within 60 degrees of that view's axis.
+    std::size_t held = 0;
+    for (long y = 0; y < height; ++y) {
+        for (long x = 0; x < width; ++x) {
+            const double lon = (x - panorama.intrinsics.cx) / f, lat = (y - panorama.intrinsics.cy) / f;
+            const libcam::Vec3 ray(std::cos(lat) * std::sin(lon), std::sin(lat), std::cos(lat) * std::cos(lon));
+            bool on_a_view = false;
+            for (const libcam::LensView& view : chosen.views) {
+                const libcam::Vec3 d = view.turn * ray;
+                if (d.z() < std::cos(60.0 * M_PI / 180) - 1e-12) continue;
+                const auto& k = view.camera.intrinsics;
+                const double u = k.fx * d.x() / d.z() + k.cx, v = k.fy * d.y() / d.z() + k.cy;
+                on_a_view = on_a_view || (u >= -0.5 && v >= -0.5 && u <= view.camera.size.width - 0.5 &&
+                                          v <= view.camera.size.height - 0.5);
+            }
+            held += on_a_view;
+        }
+    }
+    CHECK(held == static_cast<std::size_t>(width * height));
+    WARN(chosen.why);
+}
+
+TEST_CASE("dataset views: the T265's factory calibration (kapture's COLMAP cameras) split so every pixel lands on a view",
+          "[dataset][views][real]") {
+    const fs::path cameras = libcam::test::real_data_path("kapture-samples/t265/colmap/cameras.txt");
+    if (!libcam::test::real_data_present(cameras)) {
+        WARN("skipped: " << cameras << " is absent");
+        return;
+    }
+    // Its two OPENCV_FISHEYE cameras, one image each at the origin, no points.
+    TempDir dir;
+    fs::create_directories(dir / "in");
+    fs::copy_file(cameras, dir / "in" / "cameras.txt");
+    libcam::test::write_whole_file(dir / "in" / "images.txt", "1 1 0 0 0 0 0 0 1 left.png\n\n2 1 0 0 0 0 0 0 2 right.png\n\n");
+    libcam::test::write_whole_file(dir / "in" / "points3D.txt", "");
+    const Json summary = run_json({"dataset", (dir / "in").string(), "-o", (dir / "out").string(), "--no-images", "--json",
+                                   "--camera", "views", "--text"});
+    const libcam::ObservationSet out = libcam::read_observations(dir / "out" / "sparse" / "0");
+    REQUIRE(out.views.size() == summary["cameras"].size());
+    // Each source pixel (every 4th), unprojected by Kannala-Brandt's formula inverted here
+    // (Newton's method, where theta_d still rises), on the image of one of its camera's
+    // views: the view's turn is its pose's rotation (the source's is the identity).
+    std::istringstream lines(libcam::test::read_whole_file(cameras));
+    std::string line;
+    std::size_t checked = 0, held = 0;
+    while (std::getline(lines, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream fields(line);
+        std::uint64_t id;
+        std::string model;
+        double width, height, fx, fy, cx, cy, k[4];
+        fields >> id >> model >> width >> height >> fx >> fy >> cx >> cy >> k[0] >> k[1] >> k[2] >> k[3];
+        REQUIRE(model == "OPENCV_FISHEYE");
+        const std::string name = id == 1 ? "left" : "right";
+        std::vector<const libcam::ObservedView*> views;
+        for (const libcam::ObservedView& view : out.views) {
+            if (view.name.rfind(name + "_view", 0) == 0) views.push_back(&view);
+        }
+        CHECK(views.size() > 1);
+        for (double y = 0; y < height; y += 4) {
+            for (double x = 0; x < width; x += 4) {
+                const double a = (x + 0.5 - cx) / fx, b = (y + 0.5 - cy) / fy, theta_d = std::hypot(a, b);
+                double theta = theta_d;
+                bool rising = true;
+                for (int i = 0; i < 40; ++i) {
+                    const double t2 = theta * theta;
+                    const double f = theta * (1 + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3])))) - theta_d;
+                    const double df = 1 + t2 * (3 * k[0] + t2 * (5 * k[1] + t2 * (7 * k[2] + t2 * 9 * k[3])));
+                    rising = rising && df > 0;
+                    theta -= f / df;
+                }
+                if (!rising || (theta <= 0 && theta_d > 0)) continue;
+                const double s = theta_d > 0 ? std::sin(theta) / theta_d : 0;
+                const libcam::Vec3 ray(a * s, b * s, std::cos(theta));
+                ++checked;
+                for (const libcam::ObservedView* view : views) {
+                    const libcam::Vec3 d = view->pose.R * ray;
+                    const libcam::Camera& camera = out.cameras[static_cast<std::size_t>(view->camera)].camera;
+                    const auto& kv = camera.intrinsics;
+                    if (d.z() <= 0) continue;
+                    const double u = kv.fx * d.x() / d.z() + kv.cx, v = kv.fy * d.y() / d.z() + kv.cy;
+                    if (u >= -0.5 && v >= -0.5 && u <= camera.size.width - 0.5 && v <= camera.size.height - 0.5) {
+                        ++held;
+                        break;
+                    }
+                }
+            }
+        }
+    }
+    CHECK(checked > 40000);
+    CHECK(held == checked);
+    WARN(held << " of " << checked << " pixels on a view; " << summary["cameras"][0]["why"]);
 }

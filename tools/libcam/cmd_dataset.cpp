@@ -31,6 +31,7 @@ struct DatasetFlags {
     bool text = false;
     bool no_images = false;
     bool json = false;
+    bool masks = false;
 };
 
 // --camera: valid, all, or fov:DEG (horizontal, edge to edge).
@@ -41,13 +42,16 @@ NewCameraRequest camera_request(const DatasetFlags& flags) {
         request.keep = Keep::Valid;
     } else if (flags.camera == "all") {
         request.keep = Keep::All;
+    } else if (flags.camera == "views") {
+        if (!flags.size.empty()) throw UsageError("--size: not with --camera views (each view's size is its own)");
     } else if (flags.camera.starts_with("fov:")) {
         request.keep.reset();
         request.fov_deg = parse_number("--camera", flags.camera.substr(4));
         request.fov_axis = FovAxis::Horizontal;
     } else {
-        throw UsageError("--camera: expected valid (no pixel without a source), all (every source pixel kept) or "
-                         "fov:DEG (the horizontal field of view), got '" + flags.camera + "'");
+        throw UsageError("--camera: expected valid (no pixel without a source), all (every source pixel kept), "
+                         "fov:DEG (the horizontal field of view) or views (a wide lens split into several pinholes), "
+                         "got '" + flags.camera + "'");
     }
     return request;
 }
@@ -71,6 +75,12 @@ Json camera_json(const DatasetCamera& camera) {
                 {"width", camera.camera.size.width},
                 {"height", camera.camera.size.height},
                 {"images", camera.images},
+                {"observations", camera.observations},
+                {"source_id", camera.source_id},
+                {"view", camera.view},
+                {"views", camera.views},
+                {"yaw_deg", camera.yaw_deg},
+                {"pitch_deg", camera.pitch_deg},
                 {"why", camera.why}};
 }
 
@@ -84,6 +94,7 @@ std::string summary_json(const DatasetSummary& s, double seconds) {
     out["points_in"] = s.points_in;
     out["points_kept"] = s.points_kept;
     out["images_in"] = s.images_in;
+    out["model_images_out"] = s.model_images_out;
     out["images_out"] = s.images_written + s.images_kept;
     out["images_written"] = s.images_written;
     out["images_kept"] = s.images_kept;
@@ -98,20 +109,29 @@ std::string summary_text(const DatasetSummary& s, double seconds, bool with_imag
     std::string out = "model: " + s.model_out.string() + "\n";
     for (const DatasetCamera& camera : s.cameras) {
         const Intrinsics& k = camera.camera.intrinsics;
-        out += "camera " + std::to_string(camera.id) + ": " + camera.source_model + " " +
+        const std::string view = camera.views > 1 ? " view " + std::to_string(camera.view) + " of " +
+                                                        std::to_string(camera.views) + " (yaw " + format_short(camera.yaw_deg, 3) +
+                                                        " deg, pitch " + format_short(camera.pitch_deg, 3) + " deg)"
+                                                  : "";
+        const std::string from = camera.views > 1 || camera.id != camera.source_id ? " (source camera " + std::to_string(camera.source_id) + ")" : "";
+        out += "camera " + std::to_string(camera.id) + from + view + ": " + camera.source_model + " " +
                std::to_string(camera.source.size.width) + "x" + std::to_string(camera.source.size.height) +
                " -> PINHOLE " + std::to_string(camera.camera.size.width) + "x" + std::to_string(camera.camera.size.height) +
                " fx " + format_short(k.fx, 8) + " fy " + format_short(k.fy, 8) + " cx " + format_short(k.cx, 8) + " cy " +
-               format_short(k.cy, 8) + " (OpenCV's pixels), " + std::to_string(camera.images) + " images: " + camera.why +
-               "\n";
+               format_short(k.cy, 8) + " (OpenCV's pixels), " + std::to_string(camera.images) + " images, " +
+               std::to_string(camera.observations) + " observations" +
+               (camera.view == 0 ? ": " + camera.why : std::string()) + "\n";
     }
     out += "observations: " + std::to_string(s.observations_kept) + " of " + std::to_string(s.observations_in) +
-           " kept (" + std::to_string(s.observations_in - s.observations_kept) + " land off their new image)\n";
+           " kept (" + std::to_string(s.observations_in - s.observations_kept) + " land off their new image" +
+           (s.model_images_out != s.images_in ? "; each counted once, however many views hold it" : "") + ")\n";
     out += "points: " + std::to_string(s.points_kept) + " of " + std::to_string(s.points_in) + " kept\n";
     if (with_images) {
-        out += "images: " + std::to_string(s.images_written + s.images_kept) + " of " + std::to_string(s.images_in) +
+        out += "images: " + std::to_string(s.images_written + s.images_kept) + " of " + std::to_string(s.model_images_out) +
                " in the output (" + std::to_string(s.images_written) + " written, " + std::to_string(s.images_kept) +
                " already there, " + std::to_string(s.images_failed) + " failed)\n";
+        if (s.model_images_out != s.images_in) out += "images: " + std::to_string(s.model_images_out) +
+                                                      " in the model, the views of " + std::to_string(s.images_in) + "\n";
     }
     out += "time: " + format_short(seconds, 3) + " s\n";
     return out;
@@ -130,6 +150,9 @@ int run_dataset(const DatasetFlags& flags) {
         throw UsageError("--jpeg-quality: expected 1 to 100, got " + std::to_string(flags.jpeg_quality));
     }
     options.jpeg_quality = flags.jpeg_quality;
+    options.views = flags.camera == "views";
+    options.masks = flags.masks;
+    if (flags.masks && flags.no_images) throw UsageError("--masks: not with --no-images");
     try {
         options.interpolation = interpolation_from_string(flags.interpolation);
     } catch (const InvalidArgument& error) {
@@ -160,7 +183,9 @@ Runner add_dataset(CLI::App& app) {
                         "The source images (default: images beside the model's grandparent: X/images for X/sparse/0)");
     command->add_option("--camera", flags->camera,
                         "Each new pinhole: valid (every pixel has a source: no black borders), all (keeps every "
-                        "source pixel) or fov:DEG (this horizontal field of view)")
+                        "source pixel), fov:DEG (this horizontal field of view) or views (a lens wider than one "
+                        "pinhole holds well split into several pinhole views, each its own camera and images "
+                        "<stem>_view<k><ext>, together holding every pixel's ray)")
         ->capture_default_str();
     command->add_option("--size", flags->size, "The new cameras' image size WIDTHxHEIGHT (default: each source's)");
     command->add_option("--interpolation", flags->interpolation, "nearest, linear, cubic or lanczos (cv::remap)")
@@ -171,6 +196,8 @@ Runner add_dataset(CLI::App& app) {
         ->capture_default_str();
     command->add_flag("--text", flags->text, "Write the model as text (cameras.txt, ...) instead of binary");
     command->add_flag("--no-images", flags->no_images, "Write the model alone");
+    command->add_flag("--masks", flags->masks,
+                      "Also write masks/<image name>.png: 255 where the pixel has a source pixel, 0 where it is black");
     command->add_flag("--json", flags->json,
                       "Print {\"observations_in\", \"observations_kept\", \"images_in\", \"images_out\", \"cameras\", "
                       "\"time_s\", ...}");
