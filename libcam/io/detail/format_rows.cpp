@@ -90,7 +90,7 @@ constexpr L kBasalt[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fish
 constexpr L kCamodocal[] = {L::OpenCv4, L::Mei, L::Fisheye};
 constexpr L kColmap[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye, L::Fov,
                          L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm};
-constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat, L::RadTanThinPrismFisheye};
 constexpr L kCahvor[] = {L::Pinhole, L::Cahvor, L::Cahvore, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12};
 constexpr L kRos[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye};
 constexpr L kEuroc[] = {L::OpenCv4, L::Fisheye};
