@@ -499,12 +499,14 @@ std::string write_nerf_transforms(const Camera& camera, const WriteOptions& opti
     return out.dump(2) + "\n";
 }
 
-std::vector<CameraFileText> write_nerf_scene(const std::vector<NamedCamera>& cameras, const NerfWorld& world) {
+std::vector<CameraFileText> write_nerf_scene(const std::vector<NamedCamera>& cameras, const NerfWorld& world,
+                                             const std::string& ply_file_path) {
     nlohmann::ordered_json out;
     if (world.source == NerfWorld::Source::AppliedTransform) {
         if (world.has_transform) out["applied_transform"] = matrix_json(world.transform);
         if (world.has_scale) out["applied_scale"] = world.scale;
     }
+    if (!ply_file_path.empty()) out["ply_file_path"] = ply_file_path;
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
     for (const NamedCamera& named : cameras) {
         nlohmann::ordered_json frame;

@@ -36,16 +36,17 @@
 // right, y up, z backwards); libcam's pose is its inverse with OpenCV's axes. Rotations
 // printed in float32 are read as the nearest rotation (geometry/pose.hpp).
 //
-// The world: nerfstudio moves the source's world (COLMAP's model, whose points are in
-// ply_file_path) before it writes the frames, and records how as "applied_transform" (3x4
-// [A | b]) and "applied_scale" s: x_frames = s (A x_source + b). Its trainer records the
-// whole move to its training world the same way in dataparser_transforms.json
-// ("transform", "scale"), in its output folder, beside the poses it exports. libcam reports
-// every pose in the SOURCE world (the one to compare with the COLMAP model the frames came
-// from): x_source = A^T (x_frames / s - b); A must be a rotation. A dataparser_transforms.json
-// beside the transforms.json read says its frames are in the training world; a file with
-// both is refused (which move came first is not recorded). NerfWorld keeps the move as read,
-// so that writing the frames back (write_nerf_scene) gives the same numbers.
+// The world: nerfstudio moves the source's world (its COLMAP model's) before it writes
+// the frames and the sparse points of ply_file_path, and records how as
+// "applied_transform" (3x4 [A | b]) and "applied_scale" s: x_frames = s (A x_source + b).
+// Its trainer records the whole move to its training world the same way in
+// dataparser_transforms.json ("transform", "scale"), in its output folder, beside the poses
+// it exports. libcam reports every pose in the SOURCE world (the one to compare with the
+// COLMAP model the frames came from): x_source = A^T (x_frames / s - b); A must be a
+// rotation. A dataparser_transforms.json beside the transforms.json read says its frames
+// are in the training world; a file with both is refused (which move came first is not
+// recorded). NerfWorld keeps the move as read, so that writing the frames back
+// (write_nerf_scene) gives the same numbers.
 //
 // Reading gives one camera per frame, named by its file_path; a file without frames
 // gives one camera without a pose. Writing one camera (write_nerf_transforms) gives one
@@ -100,8 +101,10 @@ NerfScene read_nerf_scene(std::string_view text, const ReadContext& context);
 // intrinsics, the poses moved into `world`'s frames world, and the move written back the
 // way it was read: applied_transform / applied_scale, or (Source::DataparserTransforms) a
 // second file, dataparser_transforms.json, to write beside it. Throws NotRepresentable for
-// a lens transforms.json cannot hold (as write_nerf_transforms).
-std::vector<CameraFileText> write_nerf_scene(const std::vector<NamedCamera>& cameras, const NerfWorld& world);
+// a lens transforms.json cannot hold (as write_nerf_transforms). A ply_file_path that is not
+// empty is written as nerfstudio's key of that name (the frames' world's points).
+std::vector<CameraFileText> write_nerf_scene(const std::vector<NamedCamera>& cameras, const NerfWorld& world,
+                                             const std::string& ply_file_path = {});
 
 // Whether a parsed JSON file is a transforms.json: an object with "frames", "camera_angle_x" or
 // "fl_x" and without libcam's "K".
