@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
+#include "real_cameras.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "temp_dir.hpp"
 
@@ -266,4 +267,21 @@ TEST_CASE("dataset: a COLMAP model into NeRF's layout reads back as the COLMAP o
     const std::string ply = libcam::test::read_whole_file(dir / "nerf" / "sparse_pc.ply");
     CHECK(ply.find("element vertex 2\n") != std::string::npos);
     CHECK(ply.find("\n0.10000000000000001 0.20000000000000001 5 10 20 30\n") != std::string::npos);
+}
+
+TEST_CASE("dataset: a real per-frame transforms.json, colmap-nerf-multicam-sangminkim, into a COLMAP model", "[dataset][real]") {
+    const fs::path json = libcam::test::real_data_path("colmap-nerf-multicam-sangminkim/transforms.json");
+    if (!libcam::test::real_data_present(json)) return;
+    TempDir dir;
+    const Json summary = run_json({"dataset", json.string(), "-o", (dir / "out").string(), "--no-images", "--json"});
+    // SOURCES.md: 42 frames, 39 with cameras.txt's camera 2 and 3 with its camera 1 (the
+    // first frame's is camera 2).
+    CHECK(summary["images_in"] == 42);
+    REQUIRE(summary["cameras"].size() == 2);
+    CHECK(summary["cameras"][0]["images"] == 39);
+    CHECK(summary["cameras"][1]["images"] == 3);
+    const libcam::CameraSet model = libcam::read_camera_set(dir / "out" / "sparse" / "0");
+    REQUIRE(model.cameras.size() == 42);
+    // file_path ./images/robot/... : named under the images folder.
+    CHECK(model.cameras[0].name == "robot/000000-color.png");
 }
