@@ -41,15 +41,22 @@ bool all_under_images(const std::vector<fs::path>& paths) {
     });
 }
 
+// The frames of a transforms.json; refused without frames (one camera, not a dataset).
 NerfScene read_scene(const fs::path& json) {
     const std::string text = read_text_file(json);
-    return read_nerf_scene(text, {json.string(), json.parent_path(), {}});
+    NerfScene scene = read_nerf_scene(text, {json.string(), json.parent_path(), {}});
+    if (scene.cameras.size() == 1 && scene.cameras[0].name.empty() && !scene.posed[0]) {
+        throw FileError(json.string() + ": \"frames\": missing: a dataset needs frames, each with its image and pose");
+    }
+    return scene;
 }
 
 std::vector<fs::path> image_paths(const NerfScene& scene, const fs::path& json) {
     std::vector<fs::path> paths;
     for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
-        paths.push_back(plain_image_path(scene.cameras[i].name, json.string() + ": frames[" + std::to_string(i) + "]"));
+        const std::string where = json.string() + ": frames[" + std::to_string(i) + "]";
+        if (!scene.posed[i]) throw FileError(where + ": \"transform_matrix\": missing: a dataset needs each frame's pose");
+        paths.push_back(plain_image_path(scene.cameras[i].name, where));
     }
     return paths;
 }
@@ -86,9 +93,6 @@ fs::path nerf_dataset_images_folder(const fs::path& json) {
 
 DatasetModel read_nerf_dataset(const fs::path& json) {
     const NerfScene scene = read_scene(json);
-    if (scene.cameras.size() == 1 && scene.cameras[0].name.empty()) {
-        throw FileError(json.string() + ": \"frames\": missing: a dataset needs frames, each with its image and pose");
-    }
     const std::vector<fs::path> paths = image_paths(scene, json);
     const bool under_images = all_under_images(paths);
     DatasetModel model;
@@ -98,8 +102,9 @@ DatasetModel read_nerf_dataset(const fs::path& json) {
         const Camera& camera = scene.cameras[i].file.camera;
         Camera intrinsics = camera;
         intrinsics.pose = Pose{};
-        const auto same = std::find_if(model.cameras.begin(), model.cameras.end(),
-                                       [&](const ColmapCameraRecord& record) { return same_intrinsics(record.camera, intrinsics); });
+        const auto same = std::find_if(model.cameras.begin(), model.cameras.end(), [&](const ColmapCameraRecord& record) {
+            return same_intrinsics(record.camera, intrinsics);
+        });
         std::uint64_t camera_id = model.cameras.size() + 1;
         if (same == model.cameras.end()) {
             model.cameras.push_back({camera_id, intrinsics, lens_info(camera.lens.type).name});
@@ -119,7 +124,9 @@ void write_nerf_dataset(const fs::path& output, const std::vector<ColmapCameraRe
     for (const ColmapImage& image : images) {
         const auto record = std::find_if(cameras.begin(), cameras.end(),
                                          [&](const ColmapCameraRecord& c) { return c.id == image.camera_id; });
-        if (record == cameras.end()) throw FileError(image.where + ": CAMERA_ID " + std::to_string(image.camera_id) + " has no camera");
+        if (record == cameras.end()) {
+            throw FileError(image.where + ": CAMERA_ID " + std::to_string(image.camera_id) + " has no camera");
+        }
         Camera camera = record->camera;
         camera.pose = image.pose;
         frames.push_back({(fs::path(kImagesFolder) / image.name).generic_string(), {camera, std::nullopt}});

@@ -285,3 +285,25 @@ TEST_CASE("dataset: a real per-frame transforms.json, colmap-nerf-multicam-sangm
     // file_path ./images/robot/... : named under the images folder.
     CHECK(model.cameras[0].name == "robot/000000-color.png");
 }
+
+TEST_CASE("dataset: a transforms.json without poses or with an image outside its folder is refused naming the frame", "[dataset]") {
+    TempDir dir;
+    const auto error_of = [&](const std::string& json) {
+        libcam::test::write_whole_file(dir / "t.json", json);
+        const libcam::test::CliResult result =
+            run_libcam({"dataset", (dir / "t.json").string(), "-o", (dir / "out").string(), "--no-images"});
+        CHECK(result.exit_code == 1);
+        return result.err;
+    };
+    const std::string camera = R"("fl_x": 50, "w": 64, "h": 48)";
+    const std::string pose = R"("transform_matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])";
+    CHECK(error_of("{" + camera + ", \"frames\": [{\"file_path\": \"images/a.png\"}]}") ==
+          "libcam: error: " + (dir / "t.json").string() +
+              ": frames[0]: \"transform_matrix\": missing: a dataset needs each frame's pose\n");
+    CHECK(error_of("{" + camera + ", \"frames\": [{\"file_path\": \"../a.png\", " + pose + "}]}") ==
+          "libcam: error: " + (dir / "t.json").string() +
+              ": frames[0]: \"file_path\": '../a.png' is outside the json's folder; libcam dataset keeps each image "
+              "under its path there\n");
+    CHECK(error_of("{" + camera + "}") == "libcam: error: " + (dir / "t.json").string() +
+                                             ": \"frames\": missing: a dataset needs frames, each with its image and pose\n");
+}

@@ -149,15 +149,17 @@ std::map<std::string, double> perspective_coefficients(const Keys& keys) {
     return coefficients;
 }
 
-// The key that says k4 (for a message), or distortion_params where it came from there.
-Field k4_field(const Keys& keys) {
-    if (std::optional<Field> k4 = keys.find("k4")) return *k4;
-    return *keys.find("distortion_params");
+// The key a coefficient came from (for a message): distortion_params where given, else its own.
+Field coefficient_field(const Keys& keys, std::string_view name) {
+    if (std::optional<Field> params = keys.find("distortion_params")) return *params;
+    return *keys.find(name);
 }
 
 Lens perspective_lens(const Keys& keys) {
     const std::map<std::string, double> c = perspective_coefficients(keys);
-    if (c.at("k4") != 0.0) k4_field(keys).fail("nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
+    if (c.at("k4") != 0.0) {
+        coefficient_field(keys, "k4").fail("nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
+    }
     const std::vector<double> opencv5 = {c.at("k1"), c.at("k2"), c.at("p1"), c.at("p2"), c.at("k3")};
     if (std::all_of(opencv5.begin(), opencv5.end(), [](double v) { return v == 0.0; })) return {LensType::Pinhole, {}};
     if (opencv5[4] == 0.0) return {LensType::OpenCv4, {opencv5.begin(), opencv5.begin() + 4}};
@@ -167,9 +169,7 @@ Lens perspective_lens(const Keys& keys) {
 Lens fisheye_lens(const Keys& keys) {
     const std::map<std::string, double> c = perspective_coefficients(keys);
     for (const char* tangential : {"p1", "p2"}) {
-        if (c.at(tangential) == 0.0) continue;
-        const std::optional<Field> p = keys.find(tangential);
-        (p ? *p : *keys.find("distortion_params")).fail("OPENCV_FISHEYE has no tangential coefficients");
+        if (c.at(tangential) != 0.0) coefficient_field(keys, tangential).fail("OPENCV_FISHEYE has no tangential coefficients");
     }
     return {LensType::Fisheye, {c.at("k1"), c.at("k2"), c.at("k3"), c.at("k4")}};
 }
@@ -189,8 +189,10 @@ Lens fisheye624_lens(const Keys& keys) {
 // instant-ngp's lenses that no libcam model is: refused by the key that selects them.
 void refuse_instant_ngp_lenses(const Keys& keys) {
     const std::pair<const char*, const char*> refused[] = {
-        {"ftheta_p0", "instant-ngp's f-theta lens (the angle as a polynomial of the pixel radius) is not a lens model libcam has"},
-        {"equirectangular", "instant-ngp's equirectangular lens (the height linear in sin(latitude)) is not a lens model libcam has"},
+        {"ftheta_p0",
+         "instant-ngp's f-theta lens (the angle as a polynomial of the pixel radius) is not a lens model libcam has"},
+        {"equirectangular",
+         "instant-ngp's equirectangular lens (the height linear in sin(latitude)) is not a lens model libcam has"},
         {"orthographic", "instant-ngp's orthographic camera is not a lens model libcam has"},
     };
     for (const auto& [key, why] : refused) {
@@ -368,9 +370,9 @@ NerfScene read_nerf_scene(std::string_view text, const ReadContext& context) {
         const Keys keys{frame, top};
         Camera camera = read_intrinsics(keys, read_size(keys, first_frame, context), context);
         std::string name;
-        if (const std::optional<Field> matrix = frame.find({"transform_matrix"})) {
-            camera.pose = nerf_pose_to_source(read_pose(*matrix), scene.world);
-        }
+        const std::optional<Field> matrix = frame.find({"transform_matrix"});
+        if (matrix) camera.pose = nerf_pose_to_source(read_pose(*matrix), scene.world);
+        scene.posed.push_back(matrix.has_value());
         if (const std::optional<Field> file_path = frame.find({"file_path"})) name = file_path->text();
         try {
             camera.validate();

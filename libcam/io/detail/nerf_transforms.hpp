@@ -93,6 +93,7 @@ Pose nerf_pose_to_frames(const Pose& source_pose, const NerfWorld& world);
 // world they were moved from.
 struct NerfScene {
     std::vector<NamedCamera> cameras;
+    std::vector<bool> posed;  // whether each frame has a transform_matrix (else its pose is the identity)
     NerfWorld world;
 };
 NerfScene read_nerf_scene(std::string_view text, const ReadContext& context);
