@@ -214,7 +214,7 @@ TEST_CASE("transforms.json: FISHEYE624 is RAD_TAN_THIN_PRISM_FISHEYE, as nerfstu
           "t.json: \"distortion_params\": FISHEYE624 needs 12 numbers (k0..k5 p0 p1 s0..s3), got 2");
 }
 
-TEST_CASE("transforms.json: instant-ngp's is_fisheye, latlong and f-theta") {
+TEST_CASE("transforms.json: instant-ngp's is_fisheye, latlong and f-theta, as its ray code computes them") {
     const std::string size = R"("fl_x": 300, "cx": 320, "cy": 240, "w": 640, "h": 480)";
     // is_fisheye: k1..k4 are OpenCV's fisheye coefficients.
     const Camera fisheye = only_camera("{\"is_fisheye\": true, \"k1\": 0.1, \"k2\": 0.01, \"k3\": 0.001, \"k4\": 0.0001, " +
@@ -245,9 +245,29 @@ TEST_CASE("transforms.json: instant-ngp's is_fisheye, latlong and f-theta") {
         CHECK((ray.direction - expected).norm() < 1e-12);
     }
 
+    // f-theta: instant-ngp's f_theta_undistortion, transcribed: d = the pixel's offset from
+    // (cx, cy) with its centre at + 0.5, alpha = p0 + p1 |d| + ... + p4 |d|^4, the ray
+    // (sin(alpha) d / |d|, cos(alpha)). fl_x is not used.
+    const double p[] = {0, 2.5e-3, 1.5e-7, -2e-9, 1e-12};
+    const Camera ftheta = only_camera(R"({"ftheta_p0": 0, "ftheta_p1": 2.5e-3, "ftheta_p2": 1.5e-7, "ftheta_p3": -2e-9,
+        "ftheta_p4": 1e-12, "fl_x": 900, "cx": 330, "cy": 236, "w": 640, "h": 480})");
+    CHECK(ftheta.lens.type == LensType::LensPolynomial);
+    CHECK(ftheta.lens.coefficients == std::vector<double>{0, -2.5e-3, -1.5e-7, 2e-9, -1e-12});
+    const PreparedCamera ftheta_prepared(ftheta);
+    for (const Vec2& pixel : {Vec2(10, 20), Vec2(600.25, 400.5), Vec2(329.5, 100), Vec2(320, 240)}) {
+        const Vec2 d = pixel + Vec2(0.5, 0.5) - Vec2(330, 236);
+        const double r = d.norm();
+        const double alpha = p[0] + r * (p[1] + r * (p[2] + r * (p[3] + r * p[4])));
+        const Vec3 expected(std::sin(alpha) * d.x() / r, std::sin(alpha) * d.y() / r, std::cos(alpha));
+        const Ray ray = ftheta_prepared.ray(pixel);
+        REQUIRE(ray.valid);
+        CHECK((ray.direction - expected).norm() < 1e-12);
+        const Projection back = ftheta_prepared.project(expected);
+        REQUIRE(back.valid);
+        CHECK((back.pixel - pixel).norm() < 1e-9);
+    }
     CHECK(error_of("{\"ftheta_p0\": 0, \"ftheta_p1\": 0.002, " + size + "}") ==
-          "t.json: \"ftheta_p0\": instant-ngp's f-theta lens (the angle as a polynomial of the pixel radius) is not a "
-          "lens model libcam has");
+          "t.json: \"ftheta_p2\": missing: instant-ngp's f-theta lens needs ftheta_p0..ftheta_p4");
     CHECK(error_of("{\"equirectangular\": true, " + size + "}") ==
           "t.json: \"equirectangular\": instant-ngp's equirectangular lens (the height linear in sin(latitude)) is not "
           "a lens model libcam has");

@@ -160,8 +160,8 @@ constexpr FormatRow kRows[] = {
      .content = static_cast<unsigned>(C::Json), .claims = claims_nerf_transforms, .read = read_nerf_transforms,
      .write = one_file<write_nerf_transforms>, .lenses = kNerf,
      .lens_names = "OPENCV, PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV_FISHEYE, EQUIRECTANGULAR, "
-                   "FISHEYE624; instant-ngp's is_fisheye and latlong",
-     .refuses = "skew; k4 (r^8); instant-ngp's f-theta, equirectangular and orthographic lenses"},
+                   "FISHEYE624; instant-ngp's is_fisheye, latlong and f-theta (read as FISHEYE_LENS_POLYNOMIAL)",
+     .refuses = "skew; k4 (r^8); instant-ngp's equirectangular and orthographic lenses"},
     {.format = CameraFormat::Cahvor, .name = "cahvor", .title = "JPL .cahvor",
      .description = "JPL's .cahvor and .cahvore text, as mrcal writes it", .extensions = {".cahvor", ".cahvore"},
      .content = static_cast<unsigned>(C::KeyValue), .read = with_source<parse_cahvor>, .read_only = true, .lenses = kCahvor, .lens_names = "CAHV, CAHVOR, CAHVORE"},

@@ -189,8 +189,6 @@ Lens fisheye624_lens(const Keys& keys) {
 // instant-ngp's lenses that no libcam model is: refused by the key that selects them.
 void refuse_instant_ngp_lenses(const Keys& keys) {
     const std::pair<const char*, const char*> refused[] = {
-        {"ftheta_p0",
-         "instant-ngp's f-theta lens (the angle as a polynomial of the pixel radius) is not a lens model libcam has"},
         {"equirectangular",
          "instant-ngp's equirectangular lens (the height linear in sin(latitude)) is not a lens model libcam has"},
         {"orthographic", "instant-ngp's orthographic camera is not a lens model libcam has"},
@@ -200,10 +198,23 @@ void refuse_instant_ngp_lenses(const Keys& keys) {
     }
 }
 
+// instant-ngp's f-theta lens (its f_theta_undistortion): the angle from the axis
+// alpha = p0 + p1 r + ... + p4 r^4 of the distance r in pixels from the principal point,
+// the ray (sin(alpha) d / r, cos(alpha)) along that offset d. That is Blender's
+// FISHEYE_LENS_POLYNOMIAL (theta = -(k0 + k1 r + ...)) with k = -p on m = d, so fx = fy = 1.
+Lens ftheta_lens(const Keys& keys) {
+    std::vector<double> coefficients;
+    for (const char* name : {"ftheta_p0", "ftheta_p1", "ftheta_p2", "ftheta_p3", "ftheta_p4"}) {
+        const std::optional<Field> p = keys.find(name);
+        if (!p) keys.top.fail_at(name, "missing: instant-ngp's f-theta lens needs ftheta_p0..ftheta_p4");
+        coefficients.push_back(-p->number() + 0.0);
+    }
+    return {LensType::LensPolynomial, std::move(coefficients)};
+}
+
 Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& context) {
     const std::optional<Field> model_field = keys.find("camera_model");
     const std::string model = model_field ? model_field->text() : "OPENCV";
-    refuse_instant_ngp_lenses(keys);
     Camera camera;
     camera.size = size;
     // instant-ngp's latlong: the whole sphere over the image, whatever the focal lengths say.
@@ -214,10 +225,7 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
         camera.lens = {LensType::Lonlat, {}};
         return camera;
     }
-    const std::optional<double> fx = focal_length(keys, "fl_x", "camera_angle_x", size.width);
-    const std::optional<double> fy_given = focal_length(keys, "fl_y", "camera_angle_y", size.height);
-    if (!fx && !fy_given) keys.top.fail_at("fl_x", "missing (and no camera_angle_x)");
-    const double fy = fy_given.value_or(*fx);
+    refuse_instant_ngp_lenses(keys);
     // Without cx, cy: the image centre, or NeRF's W / 2 on request.
     const double unstated_shift =
         context.options.nerf_principal_point == NerfPrincipalPoint::HalfSize ? 0.0 : kPixelCentre;
@@ -225,6 +233,16 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
         const std::optional<Field> given = keys.find(key);
         return given ? given->number() - kPixelCentre : static_cast<double>(side) / 2.0 - unstated_shift;
     };
+    // instant-ngp's f-theta: in pixels, whatever the focal lengths say.
+    if (keys.find("ftheta_p0")) {
+        camera.intrinsics = {1.0, 1.0, centre("cx", size.width), centre("cy", size.height), 0.0};
+        camera.lens = ftheta_lens(keys);
+        return camera;
+    }
+    const std::optional<double> fx = focal_length(keys, "fl_x", "camera_angle_x", size.width);
+    const std::optional<double> fy_given = focal_length(keys, "fl_y", "camera_angle_y", size.height);
+    if (!fx && !fy_given) keys.top.fail_at("fl_x", "missing (and no camera_angle_x)");
+    const double fy = fy_given.value_or(*fx);
     camera.intrinsics = {fx.value_or(fy), fy, centre("cx", size.width), centre("cy", size.height), 0.0};
     const std::optional<Field> is_fisheye = keys.find("is_fisheye");
     const bool instant_ngp_fisheye = is_fisheye && is_fisheye->boolean() == std::optional<bool>(true);

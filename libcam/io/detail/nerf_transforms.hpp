@@ -29,8 +29,15 @@
 //                        only whether the key is there): longitude spans the width's 2 pi
 //                        and latitude the height's pi about the image centre, whatever the
 //                        focal lengths say: LONLAT with fx = w / (2 pi), fy = h / pi.
-//   ftheta_p0..p4, equirectangular, orthographic: instant-ngp's f-theta, cylindrical and
-//                        orthographic lenses, which libcam has no model for: refused.
+//   ftheta_p0..p4        instant-ngp's f-theta lens: the angle from the axis
+//                        alpha = p0 + p1 r + ... + p4 r^4 of the distance r in pixels from
+//                        (cx, cy), whatever the focal lengths say: FISHEYE_LENS_POLYNOMIAL
+//                        (Blender's theta = -(k0 + k1 r + ...)) with k = -p and fx = fy = 1.
+//                        Read only (written, such a lens is refused).
+//   equirectangular, orthographic: instant-ngp's other lenses (the height linear in
+//                        sin(latitude); parallel rays), which libcam has no model for: refused.
+//                        instant-ngp's order holds: latlong, then these, then f-theta, then
+//                        the OpenCV models.
 //
 // Poses: each frame's transform_matrix is camera-to-world with OpenGL's camera axes (x
 // right, y up, z backwards); libcam's pose is its inverse with OpenCV's axes. Rotations
