@@ -1,6 +1,7 @@
 #include "libcam/interop/dataset_sources.hpp"
 
 #include <algorithm>
+#include <map>
 #include <sstream>
 
 #include "libcam/error.hpp"
@@ -51,12 +52,19 @@ NerfScene read_scene(const fs::path& json) {
     return scene;
 }
 
+// Each frame's image, plain; refused for a frame without a pose and for an image two
+// frames name (the output keeps one image per name).
 std::vector<fs::path> image_paths(const NerfScene& scene, const fs::path& json) {
     std::vector<fs::path> paths;
+    std::map<fs::path, std::size_t> frame_of;
     for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
         const std::string where = json.string() + ": frames[" + std::to_string(i) + "]";
         if (!scene.posed[i]) throw FileError(where + ": \"transform_matrix\": missing: a dataset needs each frame's pose");
         paths.push_back(plain_image_path(scene.cameras[i].name, where));
+        if (const auto [at, added] = frame_of.emplace(paths.back(), i); !added) {
+            throw FileError(where + ": \"file_path\": '" + scene.cameras[i].name + "' is frames[" +
+                            std::to_string(at->second) + "]'s image too");
+        }
     }
     return paths;
 }

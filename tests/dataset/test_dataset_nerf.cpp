@@ -304,6 +304,9 @@ TEST_CASE("dataset: a transforms.json without poses or with an image outside its
           "libcam: error: " + (dir / "t.json").string() +
               ": frames[0]: \"file_path\": '../a.png' is outside the json's folder; libcam dataset keeps each image "
               "under its path there\n");
+    CHECK(error_of("{" + camera + ", \"frames\": [{\"file_path\": \"a.png\", " + pose +
+                   "}, {\"file_path\": \"./a.png\", " + pose + "}]}") ==
+          "libcam: error: " + (dir / "t.json").string() + ": frames[1]: \"file_path\": './a.png' is frames[0]'s image too\n");
     CHECK(error_of("{" + camera + "}") == "libcam: error: " + (dir / "t.json").string() +
                                              ": \"frames\": missing: a dataset needs frames, each with its image and pose\n");
 }
