@@ -15,6 +15,7 @@
 #include "libcam/convert/colmap_models.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/dataset_views.hpp"
+#include "libcam/interop/dataset_sources.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
 #include "libcam/lens/lens_model.hpp"
@@ -27,11 +28,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ColmapModelRead {
-    std::vector<ColmapCameraRecord> cameras;
-    std::vector<ColmapImage> images;
-    ColmapPoints3D points;
-};
+// A COLMAP model, or another source taken in as one (dataset_sources.hpp).
+using ColmapModelRead = DatasetModel;
 
 ColmapModelRead read_model(const fs::path& folder) {
     const fs::path cameras_file = colmap_cameras_file_in(folder);
@@ -472,7 +470,8 @@ void write_images(const DatasetOptions& options, const std::vector<ColmapImage>&
 
 DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
     const int threads = worker_count(options.threads);
-    ColmapModelRead model = read_model(options.model);
+    ColmapModelRead model =
+        is_nerf_dataset_source(options.model) ? read_nerf_dataset(options.model) : read_model(options.model);
     const std::string source = options.model.string();
     const auto camera_index = index_by_id(model.cameras, [](const ColmapCameraRecord& c) { return c.id; }, source + ": camera");
     auto image_index = index_by_id(model.images, [](const ColmapImage& i) { return i.id; }, source + ": image");
@@ -524,8 +523,13 @@ DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
     count_kept(model.images, kept_index, source_of, camera_of, summary);
     summary.model_images_out = model.images.size();
 
-    summary.model_out = options.output / "sparse" / "0";
-    write_model(summary.model_out, write_colmap_files(new_records, model.images, points, !options.text), !options.text);
+    if (options.to == DatasetFormat::Nerf) {
+        summary.model_out = options.output / "transforms.json";
+        write_nerf_dataset(options.output, new_records, model.images, points, model.world);
+    } else {
+        summary.model_out = options.output / "sparse" / "0";
+        write_model(summary.model_out, write_colmap_files(new_records, model.images, points, !options.text), !options.text);
+    }
     if (!options.images.empty()) {
         DatasetOptions resolved = options;
         resolved.threads = threads;

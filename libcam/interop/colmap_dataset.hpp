@@ -41,10 +41,20 @@
 
 namespace libcam {
 
+// What the output's cameras and poses are written as.
+enum class DatasetFormat {
+    Colmap,  // OUT/sparse/0/{cameras,images,points3D}
+    Nerf,    // OUT/transforms.json (and sparse_pc.ply): dataset_sources.hpp
+};
+
 struct DatasetOptions {
-    std::filesystem::path model;   // a COLMAP model folder (cameras, images, points3D; .bin or .txt)
+    // A COLMAP model folder (cameras, images, points3D; .bin or .txt), or NeRF's
+    // transforms.json (a .json file: its frames' cameras and poses, no points;
+    // dataset_sources.hpp).
+    std::filesystem::path model;
     std::filesystem::path images;  // the source images; empty: write the model alone
-    std::filesystem::path output;  // gets sparse/0/ and images/
+    std::filesystem::path output;  // gets sparse/0/ (or transforms.json) and images/
+    DatasetFormat to = DatasetFormat::Colmap;
     // The new camera of each source camera: `keep` or `fov_deg` on `fov_axis`, and `size`
     // (default each source's); model and rotation are not used (always a pinhole, no turn).
     NewCameraRequest camera;
@@ -94,7 +104,7 @@ struct DatasetSummary {
     std::size_t images_written = 0;
     std::size_t images_kept = 0;        // already in the output from an earlier run
     std::size_t images_failed = 0;
-    std::filesystem::path model_out;    // the folder the model was written to
+    std::filesystem::path model_out;    // the folder the model was written to (or the transforms.json)
 };
 
 // The name of the file in the output folder that says which cameras and interpolation

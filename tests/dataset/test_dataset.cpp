@@ -5,6 +5,7 @@
 // and checked against a pinhole projection worked out here, the blobs' centroids, and
 // COLMAP's own model_analyzer.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "cli_runner.hpp"
 #include "libcam/check/reproject.hpp"
 #include "libcam/interop/dataset_views.hpp"
+#include "libcam/io/camera_file.hpp"
 #include "libcam/io/observations.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
@@ -524,6 +526,24 @@ TEST_CASE("dataset: --camera views splits the T265 fisheye and keeps its observa
     CHECK(set.observations.size() >= kept);  // an observation in two views is in both
     const double worst = worst_pinhole_distance(set);
     CHECK(worst < 1e-6);
+
+    // The same views in NeRF's layout: a frame per view image, with its view's camera and
+    // turned pose, as the COLMAP output has them.
+    run_json({"dataset", (dir / "in").string(), "-o", (dir / "nerf").string(), "--no-images", "--json", "--camera", "views",
+              "--to", "nerf"});
+    const libcam::CameraSet nerf = libcam::read_camera_set(dir / "nerf" / "transforms.json");
+    REQUIRE(nerf.cameras.size() == set.views.size());
+    for (const libcam::ObservedView& view : set.views) {
+        const auto frame = std::find_if(nerf.cameras.begin(), nerf.cameras.end(),
+                                        [&](const libcam::NamedCamera& c) { return c.name == "images/" + view.name; });
+        REQUIRE(frame != nerf.cameras.end());
+        const libcam::Camera& camera = set.cameras[static_cast<std::size_t>(view.camera)].camera;
+        CHECK(std::abs(frame->file.camera.intrinsics.fx - camera.intrinsics.fx) < 1e-9);
+        CHECK(std::abs(frame->file.camera.intrinsics.cx - camera.intrinsics.cx) < 1e-9);
+        CHECK(frame->file.camera.size == camera.size);
+        CHECK((frame->file.camera.pose.R - view.pose.R).cwiseAbs().maxCoeff() < 1e-12);
+        CHECK((frame->file.camera.pose.t - view.pose.t).cwiseAbs().maxCoeff() < 1e-9);
+    }
 
     // COLMAP's own undistortion of the same model, which keeps one pinhole per camera.
     const std::string colmap = COLMAP_PROGRAM;

@@ -353,8 +353,8 @@ TEST_CASE("transforms.json: instant-ngp's and nerfstudio's intrinsics, per frame
     CHECK(error_of(R"({"fl_x": 500, "w": 640.5, "h": 480})") ==
           "t.json: \"w\": expected a whole number in [1, 1000000], got 640.5");
     CHECK(error_of(R"({"fl_x": 500, "w": 640, "h": 480, "camera_model": "VR180"})") ==
-          "t.json: \"camera_model\": must be OPENCV, PINHOLE, SIMPLE_PINHOLE, OPENCV_FISHEYE or EQUIRECTANGULAR, got "
-          "'VR180'");
+          "t.json: \"camera_model\": must be OPENCV, PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV_FISHEYE, "
+          "EQUIRECTANGULAR or FISHEYE624, got 'VR180'");
     CHECK(error_of(R"({"fl_x": 500, "w": 640, "h": 480, "frames": [{"transform_matrix": [[2, 0, 0, 0], [0, 2, 0, 0], [0, 0, 2, 0], [0, 0, 0, 1]]}]})")
               .starts_with("t.json: \"frames[0].transform_matrix\": "));
     ReadOptions other_size;
@@ -421,7 +421,8 @@ TEST_CASE("transforms.json is written with COLMAP's pixel corner, OpenGL's camer
     Camera mei = camera;
     mei.lens = {LensType::Mei, {1.2, 0, 0, 0, 0}};
     CHECK_THROWS_WITH(format_camera(mei, CameraFormat::Nerf),
-                      "transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE and LONLAT)");
+                      "transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE, LONLAT and "
+                      "RAD_TAN_THIN_PRISM_FISHEYE)");
     Camera rational = camera;
     rational.lens = {LensType::OpenCv8, {0, 0, 0, 0, 0, 0.1, 0, 0}};
     CHECK_THROWS_WITH(format_camera(rational, CameraFormat::Nerf),

@@ -10,6 +10,7 @@
 #include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/colmap_dataset.hpp"
+#include "libcam/interop/dataset_sources.hpp"
 #include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 
@@ -32,6 +33,7 @@ struct DatasetFlags {
     bool no_images = false;
     bool json = false;
     bool masks = false;
+    std::string to = "colmap";
 };
 
 // --camera: valid, all, or fov:DEG (horizontal, edge to edge).
@@ -56,8 +58,10 @@ NewCameraRequest camera_request(const DatasetFlags& flags) {
     return request;
 }
 
-// The images beside the model: X/images for the model X/sparse/0.
+// The images beside the model: X/images for the model X/sparse/0; a transforms.json's
+// where its frames are (dataset_sources.hpp).
 fs::path default_images(const fs::path& model) {
+    if (is_nerf_dataset_source(model)) return nerf_dataset_images_folder(model);
     const fs::path folder = fs::absolute(model).lexically_normal();
     const fs::path trimmed = folder.has_filename() ? folder : folder.parent_path();
     return trimmed.parent_path().parent_path() / "images";
@@ -153,6 +157,12 @@ int run_dataset(const DatasetFlags& flags) {
     options.views = flags.camera == "views";
     options.masks = flags.masks;
     if (flags.masks && flags.no_images) throw UsageError("--masks: not with --no-images");
+    if (flags.to == "nerf") {
+        options.to = DatasetFormat::Nerf;
+        if (flags.text) throw UsageError("--text: not with --to nerf (transforms.json is text)");
+    } else if (flags.to != "colmap") {
+        throw UsageError("--to: expected colmap or nerf, got '" + flags.to + "'");
+    }
     try {
         options.interpolation = interpolation_from_string(flags.interpolation);
     } catch (const InvalidArgument& error) {
@@ -175,12 +185,21 @@ int run_dataset(const DatasetFlags& flags) {
 Runner add_dataset(CLI::App& app) {
     CLI::App* command = add_command(app, "dataset");
     auto flags = std::make_shared<DatasetFlags>();
-    command->add_option("SRC", flags->source, "A COLMAP model folder (cameras, images, points3D; .bin or .txt)")
+    command->add_option("SRC", flags->source,
+                        "A COLMAP model folder (cameras, images, points3D; .bin or .txt), or NeRF's transforms.json "
+                        "(its frames' cameras and poses; no points)")
         ->required();
-    command->add_option("-o,--output", flags->output, "The folder to write: sparse/0/ (the model) and images/")
+    command->add_option("-o,--output", flags->output,
+                        "The folder to write: sparse/0/ (the model; --to nerf: transforms.json) and images/")
         ->required();
+    command->add_option("--to", flags->to,
+                        "colmap: OUT/sparse/0 (a transforms.json's cameras deduplicated, an empty points3D); nerf: "
+                        "OUT/transforms.json (nerfstudio's and instant-ngp's layout, file_path images/<name>, the "
+                        "source's applied_transform kept) and, from a COLMAP model with points, OUT/sparse_pc.ply")
+        ->capture_default_str();
     command->add_option("--images", flags->images,
-                        "The source images (default: images beside the model's grandparent: X/images for X/sparse/0)");
+                        "The source images (default: images beside the model's grandparent: X/images for X/sparse/0; "
+                        "for a transforms.json its folder, or its images/ when every file_path is under it)");
     command->add_option("--camera", flags->camera,
                         "Each new pinhole: valid (every pixel has a source: no black borders), all (keeps every "
                         "source pixel), fov:DEG (this horizontal field of view) or views (a lens wider than one "

@@ -24,7 +24,8 @@ constexpr std::array<CommandInfo, 15> kCommands = {{
      "the lens, or (--inverse) distort renders to the real lens",
      false},
     {"dataset",
-     "A whole COLMAP reconstruction into pinhole cameras: images undistorted, observations moved to the new pixels",
+     "A whole COLMAP reconstruction (or NeRF's transforms.json) into pinhole cameras: images undistorted, "
+     "observations moved to the new pixels; written as COLMAP or NeRF",
      false},
     {"derive", "The camera of a resized, cropped, padded, binned or quarter-turned image (one operation a call)", true},
     {"render-plan",

@@ -90,7 +90,7 @@ constexpr L kBasalt[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fish
 constexpr L kCamodocal[] = {L::OpenCv4, L::Mei, L::Fisheye};
 constexpr L kColmap[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye, L::Fov,
                          L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm};
-constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat, L::RadTanThinPrismFisheye};
 constexpr L kCahvor[] = {L::Pinhole, L::Cahvor, L::Cahvore, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12};
 constexpr L kRos[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye};
 constexpr L kEuroc[] = {L::OpenCv4, L::Fisheye};
@@ -158,7 +158,10 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Nerf, .name = "nerf", .title = "NeRF transforms.json",
      .description = "NeRF's transforms.json (instant-ngp, nerfstudio)", .extensions = {".json"},
      .content = static_cast<unsigned>(C::Json), .claims = claims_nerf_transforms, .read = read_nerf_transforms,
-     .write = one_file<write_nerf_transforms>, .lenses = kNerf, .refuses = "skew"},
+     .write = one_file<write_nerf_transforms>, .lenses = kNerf,
+     .lens_names = "OPENCV, PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV_FISHEYE, EQUIRECTANGULAR, "
+                   "FISHEYE624; instant-ngp's is_fisheye, latlong and f-theta (read as FISHEYE_LENS_POLYNOMIAL)",
+     .refuses = "skew; k4 (r^8); instant-ngp's equirectangular and orthographic lenses"},
     {.format = CameraFormat::Cahvor, .name = "cahvor", .title = "JPL .cahvor",
      .description = "JPL's .cahvor and .cahvore text, as mrcal writes it", .extensions = {".cahvor", ".cahvore"},
      .content = static_cast<unsigned>(C::KeyValue), .read = with_source<parse_cahvor>, .read_only = true, .lenses = kCahvor, .lens_names = "CAHV, CAHVOR, CAHVORE"},

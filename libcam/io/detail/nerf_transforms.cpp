@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
+#include <Eigen/LU>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
 
 #include "libcam/error.hpp"
+#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
@@ -123,17 +126,106 @@ std::optional<double> focal_length(const Keys& keys, std::string_view focal_key,
     return std::nullopt;
 }
 
-Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& context) {
-    const std::string model = keys.find("camera_model") ? keys.find("camera_model")->text() : "OPENCV";
-    for (const char* unsupported : {"is_fisheye", "ftheta_p0", "latlong", "equirectangular"}) {
-        if (const std::optional<Field> key = keys.find(unsupported); key && key->boolean() != std::optional<bool>(false)) {
-            key->fail("instant-ngp's special lenses are not read by libcam");
+// nerfstudio's perspective camera under COLMAP's names: all read with one set of keys.
+bool is_perspective_name(std::string_view model) {
+    return model == "OPENCV" || model == "PINHOLE" || model == "SIMPLE_PINHOLE" || model == "SIMPLE_RADIAL" ||
+           model == "RADIAL";
+}
+
+// The coefficients nerfstudio keeps in its order [k1, k2, k3, k4, p1, p2]: its
+// distortion_params when given, else the keys.
+std::map<std::string, double> perspective_coefficients(const Keys& keys) {
+    static const char* const kOrder[] = {"k1", "k2", "k3", "k4", "p1", "p2"};
+    std::map<std::string, double> coefficients;
+    if (const std::optional<Field> params = keys.find("distortion_params")) {
+        const std::vector<double> values = params->numbers(6);
+        if (values.size() != 6) {
+            params->fail("expected 6 numbers (k1, k2, k3, k4, p1, p2), got " + std::to_string(values.size()));
         }
+        for (std::size_t i = 0; i < 6; ++i) coefficients[kOrder[i]] = values[i];
+        return coefficients;
     }
-    const std::optional<double> fx = focal_length(keys, "fl_x", "camera_angle_x", size.width);
-    const std::optional<double> fy_given = focal_length(keys, "fl_y", "camera_angle_y", size.height);
-    if (!fx && !fy_given) keys.top.fail_at("fl_x", "missing (and no camera_angle_x)");
-    const double fy = fy_given.value_or(*fx);
+    for (const char* name : kOrder) coefficients[name] = keys.number_or(name, 0.0);
+    return coefficients;
+}
+
+// The key a coefficient came from (for a message): distortion_params where given, else its own.
+Field coefficient_field(const Keys& keys, std::string_view name) {
+    if (std::optional<Field> params = keys.find("distortion_params")) return *params;
+    return *keys.find(name);
+}
+
+Lens perspective_lens(const Keys& keys) {
+    const std::map<std::string, double> c = perspective_coefficients(keys);
+    if (c.at("k4") != 0.0) {
+        coefficient_field(keys, "k4").fail("nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
+    }
+    const std::vector<double> opencv5 = {c.at("k1"), c.at("k2"), c.at("p1"), c.at("p2"), c.at("k3")};
+    if (std::all_of(opencv5.begin(), opencv5.end(), [](double v) { return v == 0.0; })) return {LensType::Pinhole, {}};
+    if (opencv5[4] == 0.0) return {LensType::OpenCv4, {opencv5.begin(), opencv5.begin() + 4}};
+    return {LensType::OpenCv5, opencv5};
+}
+
+Lens fisheye_lens(const Keys& keys) {
+    const std::map<std::string, double> c = perspective_coefficients(keys);
+    for (const char* tangential : {"p1", "p2"}) {
+        if (c.at(tangential) != 0.0) coefficient_field(keys, tangential).fail("OPENCV_FISHEYE has no tangential coefficients");
+    }
+    return {LensType::Fisheye, {c.at("k1"), c.at("k2"), c.at("k3"), c.at("k4")}};
+}
+
+// FISHEYE624's distortion_params are k0..k5 p0 p1 s0..s3, RAD_TAN_THIN_PRISM_FISHEYE's
+// coefficients in its own order (the header says why).
+Lens fisheye624_lens(const Keys& keys) {
+    const std::optional<Field> params = keys.find("distortion_params");
+    if (!params) keys.top.fail_at("distortion_params", "missing: FISHEYE624 needs its 12 coefficients k0..k5 p0 p1 s0..s3");
+    std::vector<double> values = params->numbers(12);
+    if (values.size() != 12) {
+        params->fail("FISHEYE624 needs 12 numbers (k0..k5 p0 p1 s0..s3), got " + std::to_string(values.size()));
+    }
+    return {LensType::RadTanThinPrismFisheye, std::move(values)};
+}
+
+// instant-ngp's lenses that no libcam model is: refused by the key that selects them.
+void refuse_instant_ngp_lenses(const Keys& keys) {
+    const std::pair<const char*, const char*> refused[] = {
+        {"equirectangular",
+         "instant-ngp's equirectangular lens (the height linear in sin(latitude)) is not a lens model libcam has"},
+        {"orthographic", "instant-ngp's orthographic camera is not a lens model libcam has"},
+    };
+    for (const auto& [key, why] : refused) {
+        if (const std::optional<Field> field = keys.find(key)) field->fail(why);
+    }
+}
+
+// instant-ngp's f-theta lens (its f_theta_undistortion): the angle from the axis
+// alpha = p0 + p1 r + ... + p4 r^4 of the distance r in pixels from the principal point,
+// the ray (sin(alpha) d / r, cos(alpha)) along that offset d. That is Blender's
+// FISHEYE_LENS_POLYNOMIAL (theta = -(k0 + k1 r + ...)) with k = -p on m = d, so fx = fy = 1.
+Lens ftheta_lens(const Keys& keys) {
+    std::vector<double> coefficients;
+    for (const char* name : {"ftheta_p0", "ftheta_p1", "ftheta_p2", "ftheta_p3", "ftheta_p4"}) {
+        const std::optional<Field> p = keys.find(name);
+        if (!p) keys.top.fail_at(name, "missing: instant-ngp's f-theta lens needs ftheta_p0..ftheta_p4");
+        coefficients.push_back(-p->number() + 0.0);
+    }
+    return {LensType::LensPolynomial, std::move(coefficients)};
+}
+
+Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& context) {
+    const std::optional<Field> model_field = keys.find("camera_model");
+    const std::string model = model_field ? model_field->text() : "OPENCV";
+    Camera camera;
+    camera.size = size;
+    // instant-ngp's latlong: the whole sphere over the image, whatever the focal lengths say.
+    if (keys.find("latlong")) {
+        const double w = static_cast<double>(size.width), h = static_cast<double>(size.height);
+        camera.intrinsics = {w / (2.0 * std::numbers::pi), h / std::numbers::pi, w / 2.0 - kPixelCentre,
+                             h / 2.0 - kPixelCentre, 0.0};
+        camera.lens = {LensType::Lonlat, {}};
+        return camera;
+    }
+    refuse_instant_ngp_lenses(keys);
     // Without cx, cy: the image centre, or NeRF's W / 2 on request.
     const double unstated_shift =
         context.options.nerf_principal_point == NerfPrincipalPoint::HalfSize ? 0.0 : kPixelCentre;
@@ -141,38 +233,37 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
         const std::optional<Field> given = keys.find(key);
         return given ? given->number() - kPixelCentre : static_cast<double>(side) / 2.0 - unstated_shift;
     };
-    Camera camera;
-    camera.size = size;
+    // instant-ngp's f-theta: in pixels, whatever the focal lengths say.
+    if (keys.find("ftheta_p0")) {
+        camera.intrinsics = {1.0, 1.0, centre("cx", size.width), centre("cy", size.height), 0.0};
+        camera.lens = ftheta_lens(keys);
+        return camera;
+    }
+    const std::optional<double> fx = focal_length(keys, "fl_x", "camera_angle_x", size.width);
+    const std::optional<double> fy_given = focal_length(keys, "fl_y", "camera_angle_y", size.height);
+    if (!fx && !fy_given) keys.top.fail_at("fl_x", "missing (and no camera_angle_x)");
+    const double fy = fy_given.value_or(*fx);
     camera.intrinsics = {fx.value_or(fy), fy, centre("cx", size.width), centre("cy", size.height), 0.0};
-    const auto coefficient = [&](std::string_view key) { return keys.number_or(key, 0.0); };
-    if (model == "OPENCV" || model == "PINHOLE" || model == "SIMPLE_PINHOLE") {
-        if (const std::optional<Field> k4 = keys.find("k4"); k4 && k4->number() != 0.0) {
-            k4->fail("nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
-        }
-        const std::vector<double> opencv5 = {coefficient("k1"), coefficient("k2"), coefficient("p1"), coefficient("p2"),
-                                             coefficient("k3")};
-        if (std::all_of(opencv5.begin(), opencv5.end(), [](double c) { return c == 0.0; })) {
-            camera.lens = {LensType::Pinhole, {}};
-        } else if (opencv5[4] == 0.0) {
-            camera.lens = {LensType::OpenCv4, {opencv5.begin(), opencv5.begin() + 4}};
-        } else {
-            camera.lens = {LensType::OpenCv5, opencv5};
-        }
-    } else if (model == "OPENCV_FISHEYE") {
-        for (const char* tangential : {"p1", "p2"}) {
-            if (const std::optional<Field> p = keys.find(tangential); p && p->number() != 0.0) {
-                p->fail("OPENCV_FISHEYE has no tangential coefficients");
-            }
-        }
-        camera.lens = {LensType::Fisheye, {coefficient("k1"), coefficient("k2"), coefficient("k3"), coefficient("k4")}};
+    const std::optional<Field> is_fisheye = keys.find("is_fisheye");
+    const bool instant_ngp_fisheye = is_fisheye && is_fisheye->boolean() == std::optional<bool>(true);
+    if (is_fisheye && !is_fisheye->boolean()) is_fisheye->fail("expected true or false, got " + is_fisheye->shown());
+    if (instant_ngp_fisheye && model_field && model != "OPENCV_FISHEYE" && model != "OPENCV") {
+        is_fisheye->fail("true, but camera_model is '" + model + "'");
+    }
+    if (instant_ngp_fisheye || model == "OPENCV_FISHEYE") {
+        camera.lens = fisheye_lens(keys);
+    } else if (is_perspective_name(model)) {
+        camera.lens = perspective_lens(keys);
     } else if (model == "EQUIRECTANGULAR") {
         // nerfstudio's longitude is pi (x - cx) / fl_x and its latitude pi (y - cy) / fl_y.
         camera.intrinsics.fx /= std::numbers::pi;
         camera.intrinsics.fy /= std::numbers::pi;
         camera.lens = {LensType::Lonlat, {}};
+    } else if (model == "FISHEYE624") {
+        camera.lens = fisheye624_lens(keys);
     } else {
-        keys.find("camera_model")->fail("must be OPENCV, PINHOLE, SIMPLE_PINHOLE, OPENCV_FISHEYE or EQUIRECTANGULAR, got '" +
-                                        model + "'");
+        model_field->fail("must be OPENCV, PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV_FISHEYE, "
+                          "EQUIRECTANGULAR or FISHEYE624, got '" + model + "'");
     }
     return camera;
 }
@@ -197,39 +288,124 @@ Pose read_pose(const Field& matrix) {
     return pose;
 }
 
+// ---- the world the frames were moved to ---------------------------------------------------
+
+// A 3x4 [A | b] whose A is a rotation (float32-printed ones to the nearest rotation).
+Eigen::Matrix<double, 3, 4> read_world_transform(const Field& matrix) {
+    if (matrix.size() != 3 && matrix.size() != 4) matrix.fail("expected 3 rows of 4 numbers");
+    Eigen::Matrix<double, 3, 4> m;
+    for (std::size_t r = 0; r < 3; ++r) {
+        const Field row = matrix.item(r);
+        if (row.size() != 4) row.fail("expected 4 numbers");
+        for (std::size_t c = 0; c < 4; ++c) m(static_cast<long>(r), static_cast<long>(c)) = row.item(c).number();
+    }
+    if (matrix.size() == 4) {
+        const Field last = matrix.item(3);
+        if (last.size() != 4 || last.item(0).number() != 0 || last.item(1).number() != 0 || last.item(2).number() != 0 ||
+            last.item(3).number() != 1) {
+            last.fail("the last row must be 0 0 0 1");
+        }
+    }
+    const Mat3 rotation = nearest_rotation_if_rounded(m.leftCols<3>());
+    if (!((rotation.transpose() * rotation - Mat3::Identity()).cwiseAbs().maxCoeff() < kRoundedRotationTolerance) ||
+        !(rotation.determinant() > 0)) {
+        matrix.fail("its 3x3 part is not a rotation (libcam moves rigid poses only; scale goes in the scale)");
+    }
+    m.leftCols<3>() = rotation;
+    return m;
+}
+
+double read_world_scale(const Field& scale) {
+    const double value = scale.number();
+    if (!(value > 0)) scale.fail("must be positive, got " + scale.node().text);
+    return value;
+}
+
+NerfWorld read_world(const Field& top, const ReadContext& context) {
+    NerfWorld world;
+    if (const std::optional<Field> transform = top.find({"applied_transform"})) {
+        world.transform = read_world_transform(*transform);
+        world.has_transform = true;
+    }
+    if (const std::optional<Field> scale = top.find({"applied_scale"})) {
+        world.scale = read_world_scale(*scale);
+        world.has_scale = true;
+    }
+    if (world.has_transform || world.has_scale) world.source = NerfWorld::Source::AppliedTransform;
+    if (context.folder.empty()) return world;
+    const std::filesystem::path beside = context.folder / kDataparserTransformsName;
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(beside, error)) return world;
+    if (world.source != NerfWorld::Source::None) {
+        top.fail_at("applied_transform", std::string("given, and ") + kDataparserTransformsName +
+                                             " is beside the file: which move the frames are in is not clear; "
+                                             "move one of them away");
+    }
+    const std::string source = beside.string();
+    const DocumentNode root = parse_json_tree(read_text_file(beside), source);
+    const Field dataparser(root, "", source);
+    world.transform = read_world_transform(dataparser.at({"transform"}));
+    world.scale = read_world_scale(dataparser.at({"scale"}));
+    world.has_transform = world.has_scale = true;
+    world.source = NerfWorld::Source::DataparserTransforms;
+    return world;
+}
+
 }  // namespace
+
+Pose nerf_pose_to_source(const Pose& frames_pose, const NerfWorld& world) {
+    const Mat3 a = world.transform.leftCols<3>();
+    const Vec3 b = world.transform.col(3);
+    const Vec3 centre = a.transpose() * (frames_pose.centre() / world.scale - b);
+    // camera-to-world A^T R_c2w: world-to-camera R A.
+    return Pose::from_centre(frames_pose.R * a, centre);
+}
+
+Pose nerf_pose_to_frames(const Pose& source_pose, const NerfWorld& world) {
+    const Mat3 a = world.transform.leftCols<3>();
+    const Vec3 b = world.transform.col(3);
+    const Vec3 centre = world.scale * (a * source_pose.centre() + b);
+    return Pose::from_centre(source_pose.R * a.transpose(), centre);
+}
 
 bool claims_nerf_transforms(const DocumentNode& root) {
     if (root.find("K") != nullptr) return false;
     return root.find("frames") != nullptr || root.find("camera_angle_x") != nullptr || root.find("fl_x") != nullptr;
 }
 
-std::vector<NamedCamera> read_nerf_transforms(std::string_view text, const ReadContext& context) {
+NerfScene read_nerf_scene(std::string_view text, const ReadContext& context) {
     const DocumentNode root = parse_json_tree(text, context.source);
     const Field top(root, "", context.source);
+    NerfScene scene;
+    scene.world = read_world(top, context);
     const std::optional<Field> frames = top.find({"frames"});
     const std::size_t count = frames ? frames->size() : 0;
     // A file without frames is one camera, read as a frame with no keys of its own.
     DocumentNode no_keys;
     no_keys.kind = DocumentNode::Kind::Map;
     const Field first_frame = count > 0 ? frames->item(0) : Field(no_keys, "frames[0]", context.source);
-    std::vector<NamedCamera> cameras;
     const auto read_camera = [&](const Field& frame) {
         const Keys keys{frame, top};
         Camera camera = read_intrinsics(keys, read_size(keys, first_frame, context), context);
         std::string name;
-        if (const std::optional<Field> matrix = frame.find({"transform_matrix"})) camera.pose = read_pose(*matrix);
+        const std::optional<Field> matrix = frame.find({"transform_matrix"});
+        if (matrix) camera.pose = nerf_pose_to_source(read_pose(*matrix), scene.world);
+        scene.posed.push_back(matrix.has_value());
         if (const std::optional<Field> file_path = frame.find({"file_path"})) name = file_path->text();
         try {
             camera.validate();
         } catch (const InvalidArgument& error) {
             frame.fail(error.what());
         }
-        cameras.push_back({std::move(name), {std::move(camera), std::nullopt}});
+        scene.cameras.push_back({std::move(name), {std::move(camera), std::nullopt}});
     };
     if (count == 0) read_camera(first_frame);
     for (std::size_t i = 0; i < count; ++i) read_camera(frames->item(i));
-    return cameras;
+    return scene;
+}
+
+std::vector<NamedCamera> read_nerf_transforms(std::string_view text, const ReadContext& context) {
+    return read_nerf_scene(text, context).cameras;
 }
 
 namespace {
@@ -246,9 +422,8 @@ void require_zero_after(const Lens& lens, std::size_t kept, std::string_view hol
     }
 }
 
-}  // namespace
-
-std::string write_nerf_transforms(const Camera& camera, const WriteOptions& options) {
+// The camera's intrinsics as transforms.json's keys, in the order NeRF's tools write them.
+nlohmann::ordered_json intrinsics_json(const Camera& camera) {
     if (camera.intrinsics.skew != 0.0) {
         throw NotRepresentable("transforms.json has no skew; this camera's is " + format_number(camera.intrinsics.skew));
     }
@@ -258,6 +433,7 @@ std::string write_nerf_transforms(const Camera& camera, const WriteOptions& opti
     double fl_y = camera.intrinsics.fy;
     std::string model = "OPENCV";
     std::vector<std::pair<std::string, double>> coefficients;
+    std::vector<double> distortion_params;
     switch (lens.type) {
         case LensType::Pinhole:
             break;
@@ -282,9 +458,14 @@ std::string write_nerf_transforms(const Camera& camera, const WriteOptions& opti
             fl_x *= std::numbers::pi;
             fl_y *= std::numbers::pi;
             break;
+        case LensType::RadTanThinPrismFisheye:
+            model = "FISHEYE624";
+            distortion_params = lens.coefficients;
+            break;
         default:
             throw NotRepresentable("transforms.json has no model for a " + std::string(lens_info(lens.type).name) +
-                                   " lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE and LONLAT)");
+                                   " lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE, LONLAT and "
+                                   "RAD_TAN_THIN_PRISM_FISHEYE)");
     }
     out["camera_model"] = model;
     out["w"] = camera.size.width;
@@ -299,23 +480,78 @@ std::string write_nerf_transforms(const Camera& camera, const WriteOptions& opti
         out["camera_angle_y"] = 2.0 * std::atan(static_cast<double>(camera.size.height) / (2.0 * camera.intrinsics.fy));
     }
     for (const auto& [name, value] : coefficients) out[name] = value + 0.0;
-    // The camera-to-world matrix with OpenGL's camera axes.
-    const Mat3 camera_to_world = camera.pose.R.transpose() * kGlToCv;
-    const Vec3 centre = camera.pose.centre();
-    nlohmann::ordered_json matrix = nlohmann::ordered_json::array();
-    for (int r = 0; r < 4; ++r) {
-        nlohmann::ordered_json row = nlohmann::ordered_json::array();
-        for (int c = 0; c < 4; ++c) {
-            const double value = r == 3 ? (c == 3 ? 1.0 : 0.0) : c == 3 ? centre(r) : camera_to_world(r, c);
-            row.push_back(value + 0.0);
-        }
-        matrix.push_back(row);
+    if (!distortion_params.empty()) {
+        nlohmann::ordered_json params = nlohmann::ordered_json::array();
+        for (double value : distortion_params) params.push_back(value + 0.0);
+        out["distortion_params"] = params;
     }
+    return out;
+}
+
+// A 3x4 or 4x4 matrix as rows of numbers.
+template <class Matrix>
+nlohmann::ordered_json matrix_json(const Matrix& m) {
+    nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+    for (long r = 0; r < m.rows(); ++r) {
+        nlohmann::ordered_json row = nlohmann::ordered_json::array();
+        for (long c = 0; c < m.cols(); ++c) row.push_back(m(r, c) + 0.0);
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+// The camera-to-world matrix with OpenGL's camera axes.
+nlohmann::ordered_json transform_matrix_json(const Pose& pose) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    m.topLeftCorner<3, 3>() = pose.R.transpose() * kGlToCv;
+    m.topRightCorner<3, 1>() = pose.centre();
+    return matrix_json(m);
+}
+
+}  // namespace
+
+std::string write_nerf_transforms(const Camera& camera, const WriteOptions& options) {
+    nlohmann::ordered_json out = intrinsics_json(camera);
     nlohmann::ordered_json frame;
     frame["file_path"] = options.image_name;
-    frame["transform_matrix"] = matrix;
+    frame["transform_matrix"] = transform_matrix_json(camera.pose);
     out["frames"] = nlohmann::ordered_json::array({frame});
     return out.dump(2) + "\n";
+}
+
+std::vector<CameraFileText> write_nerf_scene(const std::vector<NamedCamera>& cameras, const NerfWorld& world,
+                                             const std::string& ply_file_path) {
+    nlohmann::ordered_json out;
+    if (world.source == NerfWorld::Source::AppliedTransform) {
+        if (world.has_transform) out["applied_transform"] = matrix_json(world.transform);
+        if (world.has_scale) out["applied_scale"] = world.scale;
+    }
+    if (!ply_file_path.empty()) out["ply_file_path"] = ply_file_path;
+    nlohmann::ordered_json frames = nlohmann::ordered_json::array();
+    for (const NamedCamera& named : cameras) {
+        nlohmann::ordered_json frame;
+        frame["file_path"] = named.name;
+        frame.update(intrinsics_json(named.file.camera));
+        frame["transform_matrix"] = transform_matrix_json(nerf_pose_to_frames(named.file.camera.pose, world));
+        frames.push_back(std::move(frame));
+    }
+    // nerfstudio reads camera_model at the top level only: there, when the frames share it.
+    const bool one_model = std::all_of(frames.begin(), frames.end(), [&](const nlohmann::ordered_json& frame) {
+        return frame["camera_model"] == frames.front()["camera_model"];
+    });
+    if (!frames.empty() && one_model) {
+        out["camera_model"] = frames.front()["camera_model"];
+        for (nlohmann::ordered_json& frame : frames) frame.erase("camera_model");
+    }
+    out["frames"] = std::move(frames);
+    std::vector<CameraFileText> files = {{"transforms.json", out.dump(2) + "\n"}};
+    if (world.source == NerfWorld::Source::DataparserTransforms) {
+        nlohmann::ordered_json dataparser;
+        dataparser["transform"] = matrix_json(world.transform);
+        dataparser["scale"] = world.scale;
+        files.push_back({kDataparserTransformsName, dataparser.dump(4) + "\n"});
+    }
+    return files;
 }
 
 }  // namespace libcam
