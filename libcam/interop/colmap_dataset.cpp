@@ -525,7 +525,8 @@ DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
 
     if (options.to == DatasetFormat::Nerf) {
         summary.model_out = options.output / "transforms.json";
-        write_nerf_dataset(options.output, new_records, model.images, points, model.world);
+        write_nerf_dataset(options.output, new_records, model.images, points, model.world,
+                           options.masks && !options.images.empty());
     } else {
         summary.model_out = options.output / "sparse" / "0";
         write_model(summary.model_out, write_colmap_files(new_records, model.images, points, !options.text), !options.text);

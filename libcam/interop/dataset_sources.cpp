@@ -127,8 +127,10 @@ DatasetModel read_nerf_dataset(const fs::path& json) {
 }
 
 void write_nerf_dataset(const fs::path& output, const std::vector<ColmapCameraRecord>& cameras,
-                        const std::vector<ColmapImage>& images, const ColmapPoints3D& points, const NerfWorld& world) {
+                        const std::vector<ColmapImage>& images, const ColmapPoints3D& points, const NerfWorld& world,
+                        bool masks) {
     std::vector<NamedCamera> frames;
+    std::vector<std::string> mask_paths;
     for (const ColmapImage& image : images) {
         const auto record = std::find_if(cameras.begin(), cameras.end(),
                                          [&](const ColmapCameraRecord& c) { return c.id == image.camera_id; });
@@ -138,10 +140,11 @@ void write_nerf_dataset(const fs::path& output, const std::vector<ColmapCameraRe
         Camera camera = record->camera;
         camera.pose = image.pose;
         frames.push_back({(fs::path(kImagesFolder) / image.name).generic_string(), {camera, std::nullopt}});
+        if (masks) mask_paths.push_back((fs::path("masks") / (image.name + ".png")).generic_string());
     }
     fs::create_directories(output);
     const std::string ply_file_path = points.ids.empty() ? std::string() : kNerfPointsName;
-    const std::vector<CameraFileText> files = write_nerf_scene(frames, world, ply_file_path);
+    const std::vector<CameraFileText> files = write_nerf_scene(frames, world, ply_file_path, mask_paths);
     if (!ply_file_path.empty()) write_file_atomically(output / ply_file_path, ply_text(points, world));
     for (const CameraFileText& file : files) write_file_atomically(output / file.name, file.text);
 }

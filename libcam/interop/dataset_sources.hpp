@@ -53,9 +53,11 @@ DatasetModel read_nerf_dataset(const std::filesystem::path& json);
 std::filesystem::path nerf_dataset_images_folder(const std::filesystem::path& json);
 
 // OUT/transforms.json (and what else write_nerf_scene gives), and OUT/sparse_pc.ply when
-// `points` has any: the images' new cameras, named "images/<name>".
+// `points` has any: the images' new cameras, named "images/<name>", each frame with
+// mask_path "masks/<name>.png" when `masks` (the masks the dataset writes).
 void write_nerf_dataset(const std::filesystem::path& output, const std::vector<ColmapCameraRecord>& cameras,
-                        const std::vector<ColmapImage>& images, const ColmapPoints3D& points, const NerfWorld& world);
+                        const std::vector<ColmapImage>& images, const ColmapPoints3D& points, const NerfWorld& world,
+                        bool masks = false);
 
 // The name of the points file write_nerf_dataset writes.
 inline constexpr const char* kNerfPointsName = "sparse_pc.ply";

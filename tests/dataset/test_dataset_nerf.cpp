@@ -148,12 +148,12 @@ double max_difference(const Json& a, const Eigen::Matrix4d& b) {
 
 }  // namespace
 
-TEST_CASE("dataset: a transforms.json of per-frame OPENCV cameras into NeRF's layout, poses and move kept", "[dataset]") {
+TEST_CASE("dataset: a transforms.json of per-frame OPENCV cameras into NeRF's layout, poses, move and masks kept", "[dataset]") {
     TempDir dir;
     write_source(dir / "src");
     const fs::path out = dir / "out";
     const Json summary = run_json({"dataset", (dir / "src" / "transforms.json").string(), "-o", out.string(), "--to",
-                                   "nerf", "--json", "--camera", "all"});
+                                   "nerf", "--json", "--camera", "all", "--masks"});
     CHECK(summary["observations_in"] == 0);
     CHECK(summary["images_out"] == 3);
     CHECK(summary["cameras"].size() == 2);
@@ -169,6 +169,13 @@ TEST_CASE("dataset: a transforms.json of per-frame OPENCV cameras into NeRF's la
         const Json& frame = written["frames"][i];
         INFO(frames[i].name);
         CHECK(frame["file_path"] == "images/" + frames[i].name);
+        // nerfstudio's mask_path (0: ignore the pixel), the mask --masks wrote: `all`
+        // leaves corners without a source, black in the image and 0 in the mask.
+        REQUIRE(frame["mask_path"] == "masks/" + frames[i].name + ".png");
+        const cv::Mat mask = cv::imread((out / frame["mask_path"].get<std::string>()).string(), cv::IMREAD_UNCHANGED);
+        REQUIRE(mask.type() == CV_8U);
+        CHECK(mask.at<unsigned char>(0, 0) == 0);
+        CHECK(mask.at<unsigned char>(mask.rows / 2, mask.cols / 2) == 255);
         CHECK(max_difference(frame["transform_matrix"], frames[i].transform) < 1e-12);
         // A pinhole: no coefficients, square pixels.
         for (const char* k : {"k1", "k2", "p1", "p2", "k3", "k4", "distortion_params"}) CHECK(!frame.contains(k));

@@ -520,7 +520,7 @@ std::string write_nerf_transforms(const Camera& camera, const WriteOptions& opti
 }
 
 std::vector<CameraFileText> write_nerf_scene(const std::vector<NamedCamera>& cameras, const NerfWorld& world,
-                                             const std::string& ply_file_path) {
+                                             const std::string& ply_file_path, const std::vector<std::string>& mask_paths) {
     nlohmann::ordered_json out;
     if (world.source == NerfWorld::Source::AppliedTransform) {
         if (world.has_transform) out["applied_transform"] = matrix_json(world.transform);
@@ -528,9 +528,11 @@ std::vector<CameraFileText> write_nerf_scene(const std::vector<NamedCamera>& cam
     }
     if (!ply_file_path.empty()) out["ply_file_path"] = ply_file_path;
     nlohmann::ordered_json frames = nlohmann::ordered_json::array();
-    for (const NamedCamera& named : cameras) {
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+        const NamedCamera& named = cameras[i];
         nlohmann::ordered_json frame;
         frame["file_path"] = named.name;
+        if (!mask_paths.empty()) frame["mask_path"] = mask_paths.at(i);
         frame.update(intrinsics_json(named.file.camera));
         frame["transform_matrix"] = transform_matrix_json(nerf_pose_to_frames(named.file.camera.pose, world));
         frames.push_back(std::move(frame));

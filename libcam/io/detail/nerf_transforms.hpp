@@ -110,9 +110,12 @@ NerfScene read_nerf_scene(std::string_view text, const ReadContext& context);
 // way it was read: applied_transform / applied_scale, or (Source::DataparserTransforms) a
 // second file, dataparser_transforms.json, to write beside it. Throws NotRepresentable for
 // a lens transforms.json cannot hold (as write_nerf_transforms). A ply_file_path that is not
-// empty is written as nerfstudio's key of that name (the frames' world's points).
+// empty is written as nerfstudio's key of that name (the frames' world's points). Each
+// frame's mask_path (nerfstudio's: 0 where a pixel is ignored) is mask_paths' entry of
+// the same index, when mask_paths is not empty.
 std::vector<CameraFileText> write_nerf_scene(const std::vector<NamedCamera>& cameras, const NerfWorld& world,
-                                             const std::string& ply_file_path = {});
+                                             const std::string& ply_file_path = {},
+                                             const std::vector<std::string>& mask_paths = {});
 
 // Whether a parsed JSON file is a transforms.json: an object with "frames", "camera_angle_x" or
 // "fl_x" and without libcam's "K".
