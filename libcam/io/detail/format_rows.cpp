@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "libcam/error.hpp"
+#include "libcam/io/detail/alicevision_format.hpp"
 #include "libcam/io/detail/blender_format.hpp"
 #include "libcam/io/detail/cahvor_format.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
@@ -99,6 +100,8 @@ constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+// ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
+constexpr L kAliceVision[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Fov};
 
 using C = Content;
 
@@ -227,6 +230,16 @@ constexpr FormatRow kRows[] = {
      .read = read_metashape, .read_only = true, .lenses = kMetashape,
      .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical",
      .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors"},
+    // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
+    {.format = CameraFormat::AliceVision, .name = "alicevision", .title = "AliceVision SfMData",
+     .description = "AliceVision's (Meshroom's) SfMData JSON, cameras.sfm: views, intrinsics, poses and the "
+                    "structure's observations; written as one view",
+     .extensions = {".sfm", ".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_alicevision,
+     .read = read_alicevision, .write = one_file<format_alicevision>,
+     .read_observations = read_alicevision_observations, .lenses = kAliceVision,
+     .lens_names = "pinhole, radial1, radial3, brown, fisheye4, fisheye1 (and radialk3pt; equidistant and "
+                   "equidistant_r3 read as FISHEYE)",
+     .refuses = "skew; the 3DE models and undistortion maps"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
