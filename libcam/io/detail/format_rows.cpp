@@ -99,7 +99,8 @@ constexpr L kOpenicc[] = {L::Pinhole, L::Fisheye, L::DoubleSphere, L::Eucm};
 constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat};
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
-constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+// Metashape's spherical sensor is LONLAT with fx = fy only: not every LONLAT camera.
+constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye};
 // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
 constexpr L kAliceVision[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Fov};
 
@@ -227,8 +228,9 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Metashape, .name = "metashape", .title = "Agisoft Metashape XML",
      .description = "Agisoft Metashape's (PhotoScan's) cameras.xml from Export Cameras, and its Export Calibration "
                     "XML", .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_metashape,
-     .read = read_metashape, .read_only = true, .lenses = kMetashape,
-     .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical",
+     .read = read_metashape, .write = one_file<format_metashape>, .lenses = kMetashape,
+     .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical "
+                   "(LONLAT with fx = fy); written as cameras.xml, or with --no-pose as Export Calibration's file",
      .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors"},
     // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
     {.format = CameraFormat::AliceVision, .name = "alicevision", .title = "AliceVision SfMData",
