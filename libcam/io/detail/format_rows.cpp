@@ -15,6 +15,7 @@
 #include "libcam/io/detail/json_format.hpp"
 #include "libcam/io/detail/llff_format.hpp"
 #include "libcam/io/detail/metashape_format.hpp"
+#include "libcam/io/detail/nvm_bundler_formats.hpp"
 #include "libcam/io/detail/mrcal_observations.hpp"
 #include "libcam/io/detail/nerf_transforms.hpp"
 #include "libcam/io/detail/open3d_format.hpp"
@@ -103,6 +104,7 @@ constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lon
 constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye};
 // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
 constexpr L kAliceVision[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Fov};
+constexpr L kBundler[] = {L::Pinhole, L::OpenCv4};
 
 using C = Content;
 
@@ -242,6 +244,19 @@ constexpr FormatRow kRows[] = {
      .lens_names = "pinhole, radial1, radial3, brown, fisheye4, fisheye1 (and radialk3pt; equidistant and "
                    "equidistant_r3 read as FISHEYE)",
      .refuses = "skew; the 3DE models and undistortion maps"},
+    {.format = CameraFormat::Nvm, .name = "nvm", .title = "VisualSfM NVM",
+     .description = "VisualSfM's .nvm (NVM_V3): cameras, points and their measurements; the image size is given "
+                    "(--image-size), the file has none",
+     .extensions = {".nvm"}, .content = static_cast<unsigned>(C::Table), .read = read_nvm, .read_only = true,
+     .read_observations = read_nvm_observations, .lenses = kPinhole,
+     .lens_names = "a pinhole per image, its principal point at the image centre",
+     .refuses = "a camera with VisualSfM's measurement distortion (its observations are read undistorted), FixedK"},
+    {.format = CameraFormat::Bundler, .name = "bundler", .title = "Bundler bundle.out",
+     .description = "Bundler's bundle.out (v0.3): f k1 k2, R, t per image, points and their views; names from "
+                    "list.txt beside it; the image size is given (--image-size), the file has none",
+     .extensions = {".out"}, .content = static_cast<unsigned>(C::Table), .read = read_bundler, .read_only = true,
+     .read_observations = read_bundler_observations, .lenses = kBundler,
+     .lens_names = "f, k1, k2: OPENCV4 with p1 = p2 = 0, its principal point at the image centre"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
