@@ -123,7 +123,7 @@ struct ObservationReadOptions {
     std::filesystem::path camera_file;
     // The image size, for the formats that store none (VisualSfM's .nvm, Bundler's
     // bundle.out); every image of the file has it. Unused by the other formats.
-    std::optional<ImageSize> size;
+    std::optional<ImageSize> size = std::nullopt;
 };
 
 // Reads the observations a file or folder holds: OpenCV's calibration output (YAML or XML),

@@ -90,7 +90,8 @@ NvmFile parse_nvm(std::string_view text, const std::string& source, const ImageS
         for (std::size_t j = 0; j < measurements; ++j) {
             const auto image = words.integer(where + " image index", 0, static_cast<long long>(cameras) - 1);
             words.integer(where + " feature index", -1, 1LL << 40);
-            const Vec2 m(words.number(where + " x"), words.number(where + " y"));
+            const double x = words.number(where + " x");
+            const Vec2 m(x, words.number(where + " y"));
             const ObservedCamera& camera = out.set.cameras[static_cast<std::size_t>(image)];
             const double f = camera.camera.intrinsics.fx;
             // VisualSfM's measurement distortion, undone: (1 + r |m / f|^2) m.
