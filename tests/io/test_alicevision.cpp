@@ -303,3 +303,43 @@ TEST_CASE("AliceVision: written as Meshroom's cameras.sfm, read back the same", 
     CHECK_THROWS_AS(write_camera_file(dir.path() / "skewed.sfm", camera, CameraFormat::AliceVision), NotRepresentable);
     CHECK_FALSE(std::filesystem::exists(dir.path() / "skewed.sfm"));
 }
+
+TEST_CASE("AliceVision: a rig's view is its sub-pose after the rig's pose, and older and newer keys", "[alicevision]") {
+    test::TempDir dir;
+    // The rig (pose 5) at the identity rotation, centre (0, 0, -5): t = (0, 0, 5). The
+    // sub-pose at the identity, centre (1, 0, 0): t = (-1, 0, 0). Pose3's product
+    // sub * rig: R = I, t = (0, 0, 5) + (-1, 0, 0), so the camera's centre is (1, 0, -5).
+    const std::string identity = R"(["1", "0", "0", "0", "1", "0", "0", "0", "1"])";
+    const std::string text =
+        R"({"version": ["1", "2", "6"], "views": [{"viewId": "1", "poseId": "5", "intrinsicId": "1", "rigId": "3", )"
+        R"("subPoseId": "0", "isPoseIndependant": "false", "path": "rig.jpg"}], "intrinsics": [{"intrinsicId": "1", )"
+        R"("width": "640", "height": "480", "type": "pinhole", "focalLength": "18", "principalPoint": ["0", "0"]}], )"
+        R"("poses": [{"poseId": "5", "pose": {"transform": {"rotation": )" + identity +
+        R"(, "center": ["0", "0", "-5"]}}}], "rigs": [{"rigId": "3", "subPoses": [{"status": "constant", "pose": )"
+        R"({"rotation": )" + identity + R"(, "center": ["1", "0", "0"]}}]}]})";
+    const Camera camera = read_camera_set(write_file(dir, "rig.sfm", text)).cameras.at(0).file.camera;
+    CHECK(camera.pose.R == Mat3::Identity());
+    CHECK(camera.pose.t == Vec3(-1, 0, 5));
+    CHECK(camera.intrinsics.fx == 18 * 640 / 36.0);  // sensorWidth's default, 36 mm
+
+    // Before 1.2.0: one pxFocalLength and the principal point itself.
+    const std::string v100 =
+        R"({"version": ["1", "0", "0"], "intrinsics": [{"intrinsicId": "2", "width": "640", "height": "480", )"
+        R"("type": "radial1", "pxFocalLength": "700", "principalPoint": ["330", "250"], "distortionParams": ["-0.1"]}]})";
+    const Camera old = read_camera_set(write_file(dir, "v100.sfm", v100)).cameras.at(0).file.camera;
+    CHECK(old.intrinsics.fx == 700);
+    CHECK(old.intrinsics.fy == 700);
+    CHECK(old.intrinsics.cx == 330);
+    CHECK(old.intrinsics.cy == 250);
+    CHECK(old.lens == Lens{LensType::OpenCv4, {-0.1, 0.0, 0.0, 0.0}});
+
+    // 1.2.8 on: an undistortion map (the 3DE models' place) has no libcam lens.
+    const std::string undistorted =
+        R"({"version": ["1", "2", "9"], "intrinsics": [{"intrinsicId": "2", "width": "640", "height": "480", )"
+        R"("type": "pinhole", "focalLength": "18", "principalPoint": ["0", "0"], "distortionType": "none", )"
+        R"("undistortionType": "3declassicld"}]})";
+    const auto path = write_file(dir, "undistorted.sfm", undistorted);
+    CHECK(file_error_of([&] { read_camera_set(path); }) ==
+          path.string() + ": \"intrinsics[0].undistortionType\": '3declassicld' has no libcam lens (an undistortion "
+                          "map: libcam reads intrinsics whose undistortionType is none)");
+}
