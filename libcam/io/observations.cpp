@@ -17,6 +17,9 @@ std::string_view to_string(ObservationTool tool) {
         case ObservationTool::Colmap: return "COLMAP";
         case ObservationTool::OpenSfm: return "OpenSfM";
         case ObservationTool::OpenMvg: return "OpenMVG";
+        case ObservationTool::AliceVision: return "AliceVision";
+        case ObservationTool::VisualSfm: return "VisualSfM";
+        case ObservationTool::Bundler: return "Bundler";
         case ObservationTool::Table: return "a table of observations";
     }
     return "?";
@@ -132,7 +135,8 @@ ObservationSet read_observations(const std::filesystem::path& path, const Observ
         throw FileError(path.string() + ": a " + std::string(row.title) +
                         " file, which holds no observations (files that do: OpenCV's calibration output, "
                         "a .cameramodel with optimization_inputs, a COLMAP model, OpenSfM's reconstruction.json, "
-                        "OpenMVG's sfm_data.json, or a table with a camera file)");
+                        "OpenMVG's sfm_data.json, AliceVision's cameras.sfm with its structure, VisualSfM's .nvm, "
+                        "Bundler's bundle.out, or a table with a camera file)");
     }
     ObservationSet set = row.read_observations(located.file, located.text, options);
     if (set.source.empty()) set.source = path.string();

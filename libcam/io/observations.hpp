@@ -31,6 +31,9 @@ enum class ObservationTool {
     Colmap,             // a COLMAP model's images and points3D
     OpenSfm,            // OpenSfM's reconstruction.json with tracks.csv
     OpenMvg,            // OpenMVG's sfm_data.json with its structure
+    AliceVision,        // AliceVision's (Meshroom's) SfMData JSON with its structure
+    VisualSfm,          // VisualSfM's .nvm
+    Bundler,            // Bundler's bundle.out
     Table,              // a CSV or JSON table of observations, with a camera file
 };
 
@@ -91,7 +94,9 @@ struct ObservationSet {
     ObservationTool tool = ObservationTool::Table;
     std::string source;  // the file or folder read, for messages
     // The file's pixels minus OpenCV's: (0.5, 0.5) for COLMAP and OpenSfM, whose top-left
-    // pixel's centre is (0.5, 0.5); zero for OpenCV, mrcal and OpenMVG.
+    // pixel's centre is (0.5, 0.5); zero for OpenCV, mrcal, OpenMVG and AliceVision. NVM
+    // and Bundler measure from the image centre, Bundler with y up: their readers give
+    // OpenCV's pixels, and this is zero.
     Vec2 pixel_offset = Vec2::Zero();
     std::vector<ObservedCamera> cameras;
     std::vector<ObservedView> views;
@@ -116,12 +121,17 @@ struct ObservationReadOptions {
     // For a table of observations (CSV or JSON): the camera file whose cameras (by name or
     // position) the table's first column names. Unused by the other formats.
     std::filesystem::path camera_file;
+    // The image size, for the formats that store none (VisualSfM's .nvm, Bundler's
+    // bundle.out); every image of the file has it. Unused by the other formats.
+    std::optional<ImageSize> size = std::nullopt;
 };
 
 // Reads the observations a file or folder holds: OpenCV's calibration output (YAML or XML),
 // a .cameramodel with mrcal's optimization_inputs, a COLMAP model folder (text, binary,
 // COLMAP 3.12's rigs and frames), OpenSfM's reconstruction.json (tracks.csv beside it),
-// OpenMVG's sfm_data.json, or a table (.csv or .json) with options.camera_file.
+// OpenMVG's sfm_data.json, AliceVision's SfMData JSON (cameras.sfm) with its structure,
+// VisualSfM's .nvm, Bundler's bundle.out (with the image sizes in list.txt beside it), or
+// a table (.csv or .json) with options.camera_file.
 // Throws FileError naming the file, the field and the value for a malformed file, and for
 // a camera file that holds no observations.
 ObservationSet read_observations(const std::filesystem::path& path, const ObservationReadOptions& options = {});

@@ -173,8 +173,9 @@ class Observations:
     def reported(self) -> dict[str, float]: ...
     def __len__(self) -> int: ...
 
-def read_observations(path: str, camera_file: str = "") -> Observations:
-    """The observations of OpenCV's calibration output, mrcal's optimization_inputs, a COLMAP model, OpenSfM, OpenMVG, or a table."""
+def read_observations(path: str, camera_file: str = "", size: tuple[int, int] | None = None) -> Observations:
+    """The observations of OpenCV's calibration output, mrcal's optimization_inputs, a COLMAP model, OpenSfM, OpenMVG,
+    AliceVision, VisualSfM or Bundler (size: their image size, which those two files lack), or a table."""
 
 def reproject(observations: Observations, threads: int = 0) -> dict[str, Any]:
     """Every residual (projected - observed) as arrays, the statistics, and the file's own numbers recomputed."""

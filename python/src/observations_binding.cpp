@@ -115,9 +115,11 @@ py::dict reprojection_dict(const ObservationSet& set, const Reprojection& r) {
     return out;
 }
 
-ObservationSet read(const std::string& path, const std::string& camera_file) {
+ObservationSet read(const std::string& path, const std::string& camera_file, const py::object& size) {
+    ObservationReadOptions options{.camera_file = camera_file};
+    if (!size.is_none()) options.size = size_from(size);
     py::gil_scoped_release release;
-    return read_observations(path, {.camera_file = camera_file});
+    return read_observations(path, options);
 }
 
 py::dict reproject_set(const ObservationSet& set, int threads) {
@@ -198,10 +200,12 @@ pixels (pixel_offset says how they sit against OpenCV's: (0.5, 0.5) for COLMAP).
                    std::to_string(s.observations.size()) + " observations>";
         });
 
-    m.def("read_observations", &read, py::arg("path"), py::arg("camera_file") = "", R"doc(
+    m.def("read_observations", &read, py::arg("path"), py::arg("camera_file") = "", py::arg("size") = py::none(), R"doc(
 The observations a file or folder holds: OpenCV's calibration output, a .cameramodel with
 mrcal's optimization_inputs, a COLMAP model folder, OpenSfM's reconstruction.json,
-OpenMVG's sfm_data.json, or a .csv/.json table with camera_file. Returns libcam.Observations.)doc");
+OpenMVG's sfm_data.json, AliceVision's cameras.sfm, VisualSfM's .nvm or Bundler's
+bundle.out (size=(width, height): their files store none), or a .csv/.json table with
+camera_file. Returns libcam.Observations.)doc");
     m.def("reproject", &reproject_set, py::arg("observations"), py::arg("threads") = 0, R"doc(
 Every observation reprojected through libcam's projection of its camera and pose (as the
 libcam program's reproject command): {'observed', 'projected', 'residual' (n, 2) in the

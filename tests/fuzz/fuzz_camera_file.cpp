@@ -64,7 +64,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const CameraFormat format = kFormat;
     CameraSet set;
     try {
-        set = parse_camera_set(text, format, "fuzz input");
+        // VisualSfM's and Bundler's files store no image size: the reader is given one.
+        ReadOptions options;
+        if (format == CameraFormat::Nvm || format == CameraFormat::Bundler) options.size = ImageSize{640, 480};
+        set = parse_camera_set(text, format, "fuzz input", options);
     } catch (const Error&) {
         return 0;  // refused with a message: the expected outcome for most inputs
     }

@@ -52,17 +52,20 @@ std::vector<Case> cases() {
     return {
         {"pinhole", camera_with({LensType::Pinhole, {}}),
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Gl, F::Colmap, F::Nerf, F::Kalibr, F::Open3d,
-          F::Basalt, F::BlenderJson}},
+          F::Basalt, F::BlenderJson, F::Metashape, F::AliceVision}},
         {"skewed pinhole", camera_with({LensType::Pinhole, {}}, 3.5),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Gl, F::Open3d}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Gl, F::Open3d, F::Metashape}},
         {"OPENCV4", camera_with({LensType::OpenCv4, {-0.2, 0.05, 1e-3, -2e-3}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf, F::Kalibr, F::Basalt}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf, F::Kalibr, F::Basalt,
+          F::Metashape, F::AliceVision}},
         {"OPENCV5", camera_with({LensType::OpenCv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf, F::Basalt}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Nerf, F::Basalt, F::Metashape,
+          F::AliceVision}},
         {"OPENCV8", camera_with({LensType::OpenCv8, {0.4, 0.05, 1e-3, -2e-3, 0.01, 0.7, 0.1, 0.02}}),
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Cameramodel, F::Colmap, F::Basalt}},
         {"FISHEYE", camera_with({LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}}),
-         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf, F::Kalibr, F::Basalt}},
+         {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf, F::Kalibr, F::Basalt, F::Metashape,
+          F::AliceVision}},
         {"LONLAT", camera_with({LensType::Lonlat, {}}), {F::Json, F::Cameramodel, F::Nerf, F::BlenderJson}},
         {"RAD_TAN_THIN_PRISM_FISHEYE",
          camera_with({LensType::RadTanThinPrismFisheye,
@@ -72,7 +75,7 @@ std::vector<Case> cases() {
         {"MEI", camera_with({LensType::Mei, {1.1, -0.1, 0.01, 1e-3, -1e-3}}), {F::Json, F::Kalibr}},
         {"DOUBLE_SPHERE", camera_with({LensType::DoubleSphere, {-0.24, 0.57}}), {F::Json, F::Kalibr, F::Basalt}},
         {"EUCM", camera_with({LensType::Eucm, {0.59, 1.1}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
-        {"FOV", camera_with({LensType::Fov, {0.92}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
+        {"FOV", camera_with({LensType::Fov, {0.92}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt, F::AliceVision}},
     };
 }
 
@@ -110,7 +113,7 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
     test::TempDir dir;
     int trips = 0;
     const std::vector<CameraFormat> written = written_formats();
-    CHECK(written.size() == 11);
+    CHECK(written.size() == 13);
     for (const Case& c : cases()) {
         for (const CameraFormat first : written) {
             CAPTURE(c.what, to_string(first));
@@ -136,7 +139,7 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
             }
         }
     }
-    CHECK(trips == 11 * 11 + 5 * 5 + 8 * 8 + 7 * 7 + 6 * 6 + 7 * 7 + 4 * 4 + 3 * 3 + 1 * 1 + 2 * 2 + 3 * 3 + 4 * 4 + 4 * 4);
+    CHECK(trips == 13 * 13 + 6 * 6 + 10 * 10 + 9 * 9 + 6 * 6 + 9 * 9 + 4 * 4 + 3 * 3 + 1 * 1 + 2 * 2 + 3 * 3 + 4 * 4 + 5 * 5);
 }
 
 TEST_CASE("Each format's row declares the lens models the round trips show it holds", "[files]") {

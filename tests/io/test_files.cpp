@@ -864,6 +864,34 @@ TEST_CASE("fisheye_model and distortion_model say whose coefficients a file hold
     }
 }
 
+TEST_CASE("Metashape's XML written by libcam projects as cv::projectPoints and cv::fisheye do with the OpenCV lens",
+          "[files][opencv][metashape]") {
+    // Metashape's P1/P2 are OpenCV's p2/p1, its b1 is fx - fy and its cx, cy offsets from
+    // the centre of pixels whose corner is (0, 0): the camera read back from the written
+    // file must project every point where OpenCV's function does with the original lens.
+    test::TempDir dir;
+    const std::vector<Vec3> points{{0.1, 0.2, 1.0}, {-0.3, 0.25, 1.0}, {0.35, -0.3, 1.5}, {0.0, 0.0, 2.0}};
+    for (const Lens& lens : {Lens{LensType::OpenCv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}},
+                             Lens{LensType::OpenCv4, {0.1, -0.02, -4e-3, 3e-3}},
+                             Lens{LensType::Fisheye, {0.01, -0.002, 3e-4, -4e-5}}}) {
+        CAPTURE(lens_info(lens.type).name);
+        Camera camera;
+        camera.size = {1280, 720};
+        camera.intrinsics = {1001.125, 987.5, 700.25, 300.125, 0.0};
+        camera.lens = lens;
+        const fs::path path = dir.path() / "cameras.xml";
+        write_camera_file(path, camera, CameraFormat::Metashape);
+        const Camera back = read_camera_file(path).camera;
+        const std::vector<Vec2> by_opencv = opencv_project_points(camera, points);
+        const PreparedCamera prepared(back);
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const Projection got = prepared.project_camera_point(points[i]);
+            REQUIRE(got.valid);
+            CHECK((got.pixel - by_opencv[i]).norm() < 1e-9);
+        }
+    }
+}
+
 TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][errors]") {
     TempDir dir;
     const YamlDoc base;

@@ -11,6 +11,7 @@
 #include "libcam/camera/camera.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "cli_runner.hpp"
 #include "error_message.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
@@ -322,4 +323,115 @@ TEST_CASE("metashape: OpenCV's XML stays OpenCV's, and PhotoScan's pre-1.0 colle
     if (test::real_data_present(old)) {
         CHECK_THROWS_WITH(read_camera_set(old, CameraFormat::Metashape), Catch::Contains("<collection>"));
     }
+}
+
+// ---- the writer -----------------------------------------------------------------------
+
+namespace {
+
+// A term of a written file: the number in <name>...</name> within `text`, 0 where absent
+// (Metashape leaves zeros out).
+double written_term(const std::string& text, const std::string& name) {
+    const std::string open = "<" + name + ">";
+    const std::size_t at = text.find(open);
+    if (at == std::string::npos) return 0.0;
+    return std::stod(text.substr(at + open.size(), text.find('<', at + open.size()) - at - open.size()));
+}
+
+Terms written_terms(const std::string& text, double w, double h) {
+    return {w, h, written_term(text, "f"), written_term(text, "cx"), written_term(text, "cy"),
+            written_term(text, "b1"), written_term(text, "b2"), written_term(text, "k1"), written_term(text, "k2"),
+            written_term(text, "k3"), written_term(text, "k4"), written_term(text, "p1"), written_term(text, "p2")};
+}
+
+// OpenCV's projection of a camera-frame point with distortion k1 k2 p1 p2 k3 (calib3d's
+// documented formula, as cv::projectPoints computes it), worked out term by term.
+Vec2 opencv_pixel(const Camera& camera, const Vec3& point) {
+    const double x = point.x() / point.z(), y = point.y() / point.z();
+    const std::vector<double>& d = camera.lens.coefficients;
+    const double r2 = x * x + y * y;
+    const double radial = 1 + d[0] * r2 + d[1] * r2 * r2 + d[4] * r2 * r2 * r2;
+    const double xd = x * radial + 2 * d[2] * x * y + d[3] * (r2 + 2 * x * x);
+    const double yd = y * radial + d[2] * (r2 + 2 * y * y) + 2 * d[3] * x * y;
+    const Intrinsics& K = camera.intrinsics;
+    return {K.fx * xd + K.skew * yd + K.cx, K.fy * yd + K.cy};
+}
+
+Camera opencv5_camera() {
+    Camera camera;
+    camera.size = {1280, 720};
+    camera.intrinsics = {1001.125, 987.5, 700.25, 300.125, 2.5};
+    camera.lens = {LensType::OpenCv5, {-0.2, 0.05, 1e-3, -2e-3, 0.01}};
+    camera.pose = Pose::from_rvec(Vec3(0.3, -2.1, 0.7), Vec3(-12.5, 0.001, 4.0));
+    return camera;
+}
+
+}  // namespace
+
+TEST_CASE("metashape: written cameras.xml reads back the same camera, its terms in Metashape's conventions") {
+    const test::TempDir dir;
+    const Camera camera = opencv5_camera();
+    WriteOptions options;
+    options.image_name = "IMG_0042.JPG";
+    options.camera_name = "lens B";
+    const std::filesystem::path path = dir.path() / "cameras.xml";
+    write_camera_file(path, camera, CameraFormat::Metashape, options);
+    const CameraSet set = read_camera_set(path);
+    CHECK(set.format == CameraFormat::Metashape);
+    REQUIRE(set.cameras.size() == 1);
+    CHECK(set.cameras[0].name == "IMG_0042");
+    CHECK(set.cameras[0].intrinsics_name == "lens B");
+    const Camera& back = set.cameras[0].file.camera;
+    CHECK(back.size == camera.size);
+    CHECK((back.intrinsics.K() - camera.intrinsics.K()).cwiseAbs().maxCoeff() < 1e-12);
+    CHECK(back.lens == camera.lens);
+    CHECK((back.pose.R - camera.pose.R).cwiseAbs().maxCoeff() < 1e-15);
+    CHECK((back.pose.t - camera.pose.t).cwiseAbs().maxCoeff() < 1e-14);
+
+    // The written terms, put through Metashape's own formula (its +0.5 pixels), give the
+    // pixels OpenCV's formula gives with the OpenCV lens: f = fy, b1 = fx - fy, b2 = skew,
+    // P1 = OpenCV's p2.
+    const std::string text = test::read_whole_file(path);
+    const Terms terms = written_terms(text, 1280, 720);
+    CHECK(terms.f == 987.5);
+    CHECK(terms.b1 == 1001.125 - 987.5);
+    CHECK(terms.b2 == 2.5);
+    CHECK(terms.cx == 700.25 - 639.5);
+    CHECK(terms.cy == 300.125 - 359.5);
+    CHECK(terms.p1 == -2e-3);
+    CHECK(terms.p2 == 1e-3);
+    for (const Vec3& point : {Vec3(0.1, 0.2, 1), Vec3(-0.3, 0.25, 1), Vec3(0.35, -0.3, 1.5)}) {
+        const Vec2 expected = opencv_pixel(camera, point);
+        const Vec2 got = metashape_pixel(terms, point, false) - Vec2(0.5, 0.5);
+        CHECK((got - expected).norm() < 1e-9);
+    }
+}
+
+TEST_CASE("metashape: --no-pose writes Export Calibration's file, and what Metashape cannot hold is refused") {
+    const test::TempDir dir;
+    Camera camera = opencv5_camera();
+    WriteOptions options;
+    options.drop_pose = true;
+    const std::filesystem::path path = dir.path() / "lens.xml";
+    write_camera_file(path, camera, CameraFormat::Metashape, options);
+    const std::string text = test::read_whole_file(path);
+    CHECK(text.find("<calibration>") != std::string::npos);
+    CHECK(text.find("<projection>frame</projection>") != std::string::npos);
+    CHECK(text.find("<width>1280</width>") != std::string::npos);
+    const Camera back = read_camera_file(path).camera;
+    CHECK((back.intrinsics.K() - camera.intrinsics.K()).cwiseAbs().maxCoeff() < 1e-12);
+    CHECK(back.lens == camera.lens);
+    CHECK(back.pose.R == Mat3::Identity());
+
+    camera.lens = {LensType::OpenCv8, {0.4, 0.05, 1e-3, -2e-3, 0.01, 0.7, 0.1, 0.02}};
+    CHECK_THROWS_WITH(write_camera_file(dir.path() / "rational.xml", camera, CameraFormat::Metashape),
+                      "Metashape's XML holds frame (PINHOLE, OPENCV4, OPENCV5), fisheye (FISHEYE) and spherical "
+                      "(LONLAT) sensors; this camera's lens is OPENCV8");
+    CHECK_FALSE(std::filesystem::exists(dir.path() / "rational.xml"));
+    camera.lens = {LensType::Lonlat, {}};
+    CHECK_THROWS_AS(write_camera_file(dir.path() / "sphere.xml", camera, CameraFormat::Metashape), NotRepresentable);
+    camera.intrinsics = {636.5, 636.5, 1999.5, 999.5, 0.0};
+    camera.size = {4000, 2000};
+    write_camera_file(dir.path() / "sphere.xml", camera, CameraFormat::Metashape);
+    CHECK(read_camera_file(dir.path() / "sphere.xml").camera.lens.type == LensType::Lonlat);
 }

@@ -71,3 +71,16 @@ def test_colmap_model_in_its_own_pixels_and_the_half_pixel_check(tmp_path):
 def test_a_camera_file_without_observations_is_refused():
     with pytest.raises(libcam.FileError, match="holds no observations"):
         libcam.read_observations(str(SOURCE_DIR / "tests" / "fuzz" / "corpus" / "json" / "opencv8.json"))
+
+
+def test_a_bundle_file_needs_its_image_size_and_reads_with_it():
+    # Bundler's bundle.out stores no image size; the seed of its fuzz target: camera 0 at
+    # R = I, t = (0, 0, -5), f 800, k1 -0.1, k2 0.02 sees (0.5, 0.25, 0) at (79.90025,
+    # 39.950125) from the centre, y up (tests/observations/test_nvm_bundler.cpp works it out).
+    bundle = SOURCE_DIR / "tests" / "fuzz" / "corpus" / "bundler" / "bundle.out"
+    with pytest.raises(libcam.FileError, match="stores no image size"):
+        libcam.read_observations(str(bundle))
+    observations = libcam.read_observations(str(bundle), size=(640, 480))
+    result = libcam.reproject(observations)
+    assert result["observed"][0] == pytest.approx((319.5 + 79.90025, 239.5 - 39.950125), abs=1e-9)
+    assert result["error_px"][0] == pytest.approx(0.0, abs=1e-9)

@@ -28,6 +28,7 @@ struct Flags {
     std::string source;
     std::string camera;
     std::string camera_file;
+    std::string image_size;
     bool json = false;
     std::string observations_out;
     std::string heatmap;
@@ -281,11 +282,15 @@ Runner add_reproject(CLI::App& app) {
         ->add_option("SRC", flags->source,
                      "A file or folder of observations: OpenCV's calibration output (out_camera_data.yml or .xml), "
                      "a .cameramodel with mrcal's optimization_inputs, a COLMAP model folder, OpenSfM's "
-                     "reconstruction.json, OpenMVG's sfm_data.json, or a .csv/.json table with --camera-file")
+                     "reconstruction.json, OpenMVG's sfm_data.json, AliceVision's cameras.sfm, VisualSfM's .nvm, Bundler's "
+                     "bundle.out (with --image-size), or a .csv/.json table with --camera-file")
         ->required();
     command->add_option("--camera", flags->camera, "Only the views of this camera (its name in the file, or its position from 0)");
     command->add_option("--camera-file", flags->camera_file,
                         "For a table of observations: the camera file whose cameras its `camera` column names");
+    command->add_option("--image-size", flags->image_size,
+                        "The image size WIDTHxHEIGHT, for a file that stores none (VisualSfM's .nvm, Bundler's "
+                        "bundle.out): every image of the file has it");
     command->add_flag("--json", flags->json,
                       "Print {\"count\", \"rms_px\", \"mean_px\", \"median_px\", \"p99_px\", \"max_px\", \"per_view\", "
                       "\"reported\", \"recomputed\", \"convention_check\", ...}");
@@ -303,7 +308,9 @@ Runner add_reproject(CLI::App& app) {
         ->check(CLI::Range(0, 1024));
 
     return [flags] {
-        ObservationSet set = read_observations(flags->source, {.camera_file = flags->camera_file});
+        ObservationReadOptions options{.camera_file = flags->camera_file};
+        if (!flags->image_size.empty()) options.size = parse_size("--image-size", flags->image_size);
+        ObservationSet set = read_observations(flags->source, options);
         if (!flags->camera.empty()) set = only_camera(std::move(set), camera_index(set, flags->camera));
         const Reprojection reprojection = reproject(set, flags->threads);
         const auto worst = static_cast<std::size_t>(flags->worst);

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "libcam/error.hpp"
+#include "libcam/io/detail/alicevision_format.hpp"
 #include "libcam/io/detail/blender_format.hpp"
 #include "libcam/io/detail/cahvor_format.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
@@ -14,6 +15,7 @@
 #include "libcam/io/detail/json_format.hpp"
 #include "libcam/io/detail/llff_format.hpp"
 #include "libcam/io/detail/metashape_format.hpp"
+#include "libcam/io/detail/nvm_bundler_formats.hpp"
 #include "libcam/io/detail/mrcal_observations.hpp"
 #include "libcam/io/detail/nerf_transforms.hpp"
 #include "libcam/io/detail/open3d_format.hpp"
@@ -98,7 +100,11 @@ constexpr L kOpenicc[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Ope
 constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat};
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
-constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+// Metashape's spherical sensor is LONLAT with fx = fy only: not every LONLAT camera.
+constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye};
+// ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
+constexpr L kAliceVision[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Fov};
+constexpr L kBundler[] = {L::Pinhole, L::OpenCv4};
 
 using C = Content;
 
@@ -227,9 +233,33 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Metashape, .name = "metashape", .title = "Agisoft Metashape XML",
      .description = "Agisoft Metashape's (PhotoScan's) cameras.xml from Export Cameras, and its Export Calibration "
                     "XML", .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_metashape,
-     .read = read_metashape, .read_only = true, .lenses = kMetashape,
-     .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical",
+     .read = read_metashape, .write = one_file<format_metashape>, .lenses = kMetashape,
+     .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical "
+                   "(LONLAT with fx = fy); written as cameras.xml, or with --no-pose as Export Calibration's file",
      .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors"},
+    // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
+    {.format = CameraFormat::AliceVision, .name = "alicevision", .title = "AliceVision SfMData",
+     .description = "AliceVision's (Meshroom's) SfMData JSON, cameras.sfm: views, intrinsics, poses and the "
+                    "structure's observations; written as one view",
+     .extensions = {".sfm", ".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_alicevision,
+     .read = read_alicevision, .write = one_file<format_alicevision>,
+     .read_observations = read_alicevision_observations, .lenses = kAliceVision,
+     .lens_names = "pinhole, radial1, radial3, brown, fisheye4, fisheye1 (and radialk3pt; equidistant and "
+                   "equidistant_r3 read as FISHEYE)",
+     .refuses = "skew; the 3DE models and undistortion maps"},
+    {.format = CameraFormat::Nvm, .name = "nvm", .title = "VisualSfM NVM",
+     .description = "VisualSfM's .nvm (NVM_V3): cameras, points and their measurements; the image size is given "
+                    "(--image-size), the file has none",
+     .extensions = {".nvm"}, .content = static_cast<unsigned>(C::Table), .read = read_nvm, .read_only = true,
+     .read_observations = read_nvm_observations, .lenses = kPinhole,
+     .lens_names = "a pinhole per image, its principal point at the image centre",
+     .refuses = "a camera with VisualSfM's measurement distortion (its observations are read undistorted), FixedK"},
+    {.format = CameraFormat::Bundler, .name = "bundler", .title = "Bundler bundle.out",
+     .description = "Bundler's bundle.out (v0.3): f k1 k2, R, t per image, points and their views; names from "
+                    "list.txt beside it; the image size is given (--image-size), the file has none",
+     .extensions = {".out"}, .content = static_cast<unsigned>(C::Table), .read = read_bundler, .read_only = true,
+     .read_observations = read_bundler_observations, .lenses = kBundler,
+     .lens_names = "f, k1, k2: OPENCV4 with p1 = p2 = 0, its principal point at the image centre"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <charconv>
 #include <map>
+#include <filesystem>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "libcam/error.hpp"
@@ -322,6 +324,139 @@ bool claims_metashape(const DocumentNode& outline) {
     if (const DocumentNode* document = outline.find("document")) return document->find("chunk") != nullptr;
     if (const DocumentNode* calibration = outline.find("calibration")) return calibration->find("projection") != nullptr;
     return false;
+}
+
+}  // namespace libcam
+
+// ---- writing ---------------------------------------------------------------------------
+
+namespace libcam {
+
+namespace {
+
+// A camera's terms in Metashape's names (the inverse of camera_from).
+Calibration metashape_terms(const Camera& camera) {
+    Calibration c;
+    c.size = camera.size;
+    const Intrinsics& K = camera.intrinsics;
+    c.f = K.fy;
+    c.b1 = K.fx - K.fy;
+    c.b2 = K.skew;
+    c.cx = K.cx - (0.5 * static_cast<double>(camera.size.width) - 0.5);
+    c.cy = K.cy - (0.5 * static_cast<double>(camera.size.height) - 0.5);
+    const std::vector<double>& k = camera.lens.coefficients;
+    switch (camera.lens.type) {
+        case LensType::Pinhole: return c;
+        case LensType::OpenCv4:
+        case LensType::OpenCv5:
+            c.k1 = k[0];
+            c.k2 = k[1];
+            c.p2 = k[2];  // OpenCV's p1 is Metashape's P2
+            c.p1 = k[3];
+            c.k3 = camera.lens.type == LensType::OpenCv5 ? k[4] : 0.0;
+            return c;
+        case LensType::Fisheye:
+            c.type = "fisheye";
+            c.k1 = k[0];
+            c.k2 = k[1];
+            c.k3 = k[2];
+            c.k4 = k[3];
+            return c;
+        case LensType::Lonlat:
+            if (c.b1 != 0.0 || c.b2 != 0.0) {
+                throw NotRepresentable("a Metashape spherical sensor has one focal length and no skew; this camera's "
+                                       "fx = " + format_number(K.fx) + ", fy = " + format_number(K.fy) +
+                                       ", skew = " + format_number(K.skew));
+            }
+            c.type = "spherical";
+            return c;
+        default: break;
+    }
+    throw NotRepresentable("Metashape's XML holds frame (PINHOLE, OPENCV4, OPENCV5), fisheye (FISHEYE) and spherical "
+                           "(LONLAT) sensors; this camera's lens is " + std::string(lens_info(camera.lens.type).name));
+}
+
+void add_number(pugi::xml_node parent, const char* name, double value) {
+    parent.append_child(name).text().set(format_number(value).c_str());
+}
+
+// The terms of a calibration, in the order Metashape writes them; zeros left out, as it does.
+void add_terms(pugi::xml_node node, const Calibration& c) {
+    add_number(node, "f", c.f);
+    const std::pair<const char*, double> terms[] = {{"cx", c.cx}, {"cy", c.cy}, {"b1", c.b1}, {"b2", c.b2},
+                                                    {"k1", c.k1}, {"k2", c.k2}, {"k3", c.k3}, {"k4", c.k4},
+                                                    {"p1", c.p1}, {"p2", c.p2}};
+    for (const auto& [name, value] : terms) {
+        if (value != 0.0) add_number(node, name, value);
+    }
+}
+
+void add_resolution(pugi::xml_node parent, const ImageSize& size) {
+    pugi::xml_node resolution = parent.append_child("resolution");
+    resolution.append_attribute("width") = static_cast<long long>(size.width);
+    resolution.append_attribute("height") = static_cast<long long>(size.height);
+}
+
+std::string text_of(const pugi::xml_document& document) {
+    std::ostringstream out;
+    document.save(out, "  ", pugi::format_default, pugi::encoding_utf8);
+    return out.str();
+}
+
+std::string calibration_file(const Calibration& c) {
+    pugi::xml_document document;
+    pugi::xml_node root = document.append_child("calibration");
+    root.append_child("projection").text().set(c.type.c_str());
+    root.append_child("width").text().set(static_cast<long long>(c.size.width));
+    root.append_child("height").text().set(static_cast<long long>(c.size.height));
+    add_terms(root, c);
+    return text_of(document);
+}
+
+std::string cameras_file(const Camera& camera, const Calibration& c, const WriteOptions& options) {
+    pugi::xml_document document;
+    pugi::xml_node root = document.append_child("document");
+    root.append_attribute("version") = "1.5.0";
+    pugi::xml_node chunk = root.append_child("chunk");
+    chunk.append_attribute("label") = "Chunk 1";
+    chunk.append_attribute("enabled") = "true";
+    pugi::xml_node sensors = chunk.append_child("sensors");
+    sensors.append_attribute("next_id") = 1;
+    pugi::xml_node sensor = sensors.append_child("sensor");
+    sensor.append_attribute("id") = 0;
+    sensor.append_attribute("label") = options.camera_name.c_str();
+    sensor.append_attribute("type") = c.type.c_str();
+    add_resolution(sensor, c.size);
+    pugi::xml_node calibration = sensor.append_child("calibration");
+    calibration.append_attribute("type") = c.type.c_str();
+    calibration.append_attribute("class") = "adjusted";
+    add_resolution(calibration, c.size);
+    add_terms(calibration, c);
+    pugi::xml_node cameras = chunk.append_child("cameras");
+    cameras.append_attribute("next_id") = 1;
+    cameras.append_attribute("next_group_id") = 0;
+    pugi::xml_node node = cameras.append_child("camera");
+    node.append_attribute("id") = 0;
+    node.append_attribute("sensor_id") = 0;
+    node.append_attribute("label") = std::filesystem::path(options.image_name).stem().string().c_str();
+    // Camera to world, row by row: [R^T | C; 0 0 0 1].
+    const Mat3 Rt = camera.pose.R.transpose();
+    const Vec3 centre = camera.pose.centre();
+    std::string matrix;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) matrix += format_number(Rt(i, j)) + " ";
+        matrix += format_number(centre(i)) + " ";
+    }
+    matrix += "0 0 0 1";
+    node.append_child("transform").text().set(matrix.c_str());
+    return text_of(document);
+}
+
+}  // namespace
+
+std::string format_metashape(const Camera& camera, const WriteOptions& options) {
+    const Calibration terms = metashape_terms(camera);
+    return options.drop_pose ? calibration_file(terms) : cameras_file(camera, terms, options);
 }
 
 }  // namespace libcam

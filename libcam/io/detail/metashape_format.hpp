@@ -28,7 +28,15 @@
 // Cameras that are not aligned in a document where others are, are not read (they have no
 // pose). Sensors with no calibration (Metashape then guesses from EXIF) give no camera.
 // A calibration file gives one camera without a pose and without a name.
+//
+// Written (format_metashape) the same way back: cameras.xml, a <document version="1.5.0">
+// with one chunk, one sensor and its adjusted calibration (f = fy, b1 = fx - fy, b2 = skew,
+// cx and cy from the centre as above, p1 and p2 swapped back) and one camera whose
+// <transform> is camera to world; with WriteOptions::drop_pose, Export Calibration's
+// <calibration> file instead. OPENCV4, OPENCV5 and PINHOLE are frame sensors, FISHEYE a
+// fisheye one, LONLAT with fx = fy and no skew a spherical one; any other lens is refused.
 
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -38,6 +46,8 @@
 namespace libcam {
 
 std::vector<NamedCamera> read_metashape(std::string_view text, const ReadContext& context);
+
+std::string format_metashape(const Camera& camera, const WriteOptions& options);
 
 // Whether an XML file's outline (parse_xml_outline) is Metashape's: <document> holding a
 // <chunk>, or <calibration> holding a <projection>.
