@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <exception>
 #include <nlohmann/json.hpp>
@@ -29,9 +30,12 @@ std::string camera_object(const Camera& camera) {
     return format_json_camera_object(bare);
 }
 
+// Each entry to the last bit, -0 as -0.0: JSON readers take "-0" for the integer 0.
 std::string turn_array(const Mat3& turn) {
     std::string out = "[";
-    for (const double entry : turn.reshaped<Eigen::RowMajor>()) out += (out.size() > 1 ? ", " : "") + format_number(entry);
+    for (const double entry : turn.reshaped<Eigen::RowMajor>()) {
+        out += (out.size() > 1 ? ", " : "") + (entry == 0.0 && std::signbit(entry) ? "-0.0" : format_number(entry));
+    }
     return out + "]";
 }
 

@@ -37,7 +37,10 @@ libcam::ImageTask example_task() {
     task.camera = task.source;
     task.camera.lens = {};
     task.camera.intrinsics = {40.0 / 7.0 * 7.3, 40.0 / 7.0 * 7.3, 23.5, 17.5, 0.0};
-    task.turn = Eigen::AngleAxisd(0.3 / 7.0, libcam::Vec3(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+    // A view's turn: a yaw, its zeros signed as the view's formula leaves them (-0 kept, not
+    // read back as the integer 0).
+    task.turn = Eigen::AngleAxisd(0.3 / 7.0, libcam::Vec3::UnitY()).toRotationMatrix();
+    task.turn(0, 1) = -0.0;
     task.interpolation = libcam::Interpolation::Lanczos;
     task.jpeg_quality = 77;
     task.source_path = "/data/photos/a b/caf\xc3\xa9 \"1\".jpg";
@@ -109,6 +112,7 @@ TEST_CASE("dataset tasks: a task's JSON holds every field to the last bit", "[da
     CHECK(back.camera.lens == task.camera.lens);
     CHECK(back.camera.intrinsics.K() == task.camera.intrinsics.K());
     CHECK(back.turn == task.turn);
+    CHECK(std::signbit(back.turn(0, 1)));
     CHECK(back.copy == task.copy);
     CHECK(back.interpolation == task.interpolation);
     CHECK(back.jpeg_quality == 77);
