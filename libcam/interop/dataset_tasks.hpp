@@ -48,10 +48,10 @@ std::string image_task_json(const ImageTask& task);
 // The task back; FileError naming `source` and the field for text that is not one.
 ImageTask image_task_from_json(std::string_view text, const std::string& source = "image task");
 
-// The maps of the cameras a process has used last, at most `capacity` of them (each is
-// 8 bytes per output pixel: 25 MB for a 12-megapixel image), keyed by what makes the map
-// (both cameras, the turn, the interpolation), so tasks of different plans with the same
-// cameras share one. Safe to use from several threads: a map is built once however many
+// The maps of the cameras a process has used last, at most `capacity` of them (each 6
+// bytes per output pixel in OpenCV's fixed point: 72 MB for a 12-megapixel image), keyed
+// by what makes the map (both cameras, the turn, the interpolation), so tasks of different
+// plans with the same cameras share one. Safe to use from several threads: a map is built once however many
 // ask for it at the same time; a map still in use when it is dropped stays alive for its
 // users.
 class MapCache {

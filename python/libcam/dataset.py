@@ -88,6 +88,6 @@ def run_task(task: ImageTask) -> str:
 def map_cache(capacity: Optional[int] = None, threads: Optional[int] = None) -> dict[str, int]:
     """This process's cache of maps, which every task.run() uses: {"capacity", "threads",
     "maps", "builds"} (maps held now, maps built so far). Given capacity (maps kept, default
-    4: each is 8 bytes per output pixel) or threads (threads each map is built with, default
+    4: each is 6 bytes per output pixel) or threads (threads each map is built with, default
     1; 0: one per core), starts a new, empty cache with those."""
     return dataset_map_cache(capacity, threads)
