@@ -24,6 +24,7 @@ packages=(
   colmap                 # reference: COLMAP's own program reads the models libcam writes
   python3-numpy python3-opencv   # reference: the remap tests against mrcal's and COLMAP's maps; the Python module
   pybind11-dev python3-pytest    # the Python module (import libcam) and its tests
+  python3-distributed    # Dask: the Python test and example that spread libcam dataset's image tasks over worker processes
   blender                # reference: Cycles renders through the cameras libcam writes for Blender
 )
 

@@ -1,15 +1,11 @@
 #include "libcam/interop/colmap_dataset.hpp"
 
 #include <algorithm>
-#include <atomic>
+#include <charconv>
 #include <cmath>
 #include <map>
-#include <memory>
-#include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
-#include <opencv2/core/utility.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <thread>
 
 #include "libcam/camera/parallel.hpp"
 #include "libcam/convert/colmap_models.hpp"
@@ -262,9 +258,8 @@ void write_model(const fs::path& folder, const ColmapModelBytes& bytes, bool bin
 
 std::string stamp_of(const std::vector<ColmapCameraRecord>& cameras, const std::vector<DatasetCamera>& chosen,
                      Interpolation interpolation, int jpeg_quality) {
-    const char* const kNames[] = {"nearest", "linear", "cubic", "lanczos"};
     std::string stamp = std::string("libcam dataset: the images here were made with these cameras\ninterpolation ") +
-                        kNames[static_cast<int>(interpolation)] + "\njpeg quality " + std::to_string(jpeg_quality) + "\n" +
+                        std::string(to_string(interpolation)) + "\njpeg quality " + std::to_string(jpeg_quality) + "\n" +
                         write_colmap_files(cameras, {}, {}, false).cameras;
     for (const DatasetCamera& camera : chosen) {
         if (camera.turn == Mat3::Identity()) continue;  // a run without views writes no turns
@@ -286,153 +281,11 @@ bool stamp_matches(const fs::path& file, const std::string& stamp) {
 }
 
 
-struct ImageJob {
-    std::size_t camera;
-    fs::path source, target;
-    int jpeg_quality = kDefaultJpegQuality;
-    fs::path mask;  // empty: no mask
-};
-
-// One camera's map, built by the first worker that needs it and released when its last
-// image is done: jobs run in camera order, so at most one map per worker is in memory.
-class CameraMaps {
-public:
-    CameraMaps(const std::vector<DatasetCamera>& cameras, const std::vector<ImageJob>& jobs, Interpolation interpolation,
-               int threads)
-        : cameras_(cameras), slots_(cameras.size()), interpolation_(interpolation), threads_(threads) {
-        for (const ImageJob& job : jobs) ++slots_[job.camera].remaining;
-    }
-
-    // The camera's map; nullptr for a camera kept as it was (its images are copied).
-    std::shared_ptr<const PreparedRemap> take(std::size_t camera) {
-        if (cameras_[camera].kept) return nullptr;
-        Slot& slot = slots_[camera];
-        const std::lock_guard<std::mutex> lock(slot.lock);
-        if (!slot.map) {
-            RemapOptions options;
-            options.threads = threads_;
-            options.rotation = cameras_[camera].turn;
-            slot.map = std::make_shared<const PreparedRemap>(prepare_remap(
-                build_remap_map(PreparedCamera(cameras_[camera].camera), PreparedCamera(cameras_[camera].source), options),
-                interpolation_));
-        }
-        return slot.map;
-    }
-
-    void done(std::size_t camera) {
-        Slot& slot = slots_[camera];
-        const std::lock_guard<std::mutex> lock(slot.lock);
-        if (--slot.remaining == 0) slot.map.reset();
-    }
-
-private:
-    struct Slot {
-        std::mutex lock;
-        std::shared_ptr<const PreparedRemap> map;
-        std::size_t remaining = 0;
-    };
-    const std::vector<DatasetCamera>& cameras_;
-    std::vector<Slot> slots_;
-    Interpolation interpolation_;
-    int threads_;
-};
-
-// 255 where the map gives the target pixel a source pixel, 0 where remap_image leaves it
-// black: the fixed-point map's whole pixel is kNoSourceCoordinate there (exactly, and no
-// source pixel is that far off the image).
-cv::Mat source_mask(const PreparedRemap& map) {
-    constexpr short kNoSource = static_cast<short>(kNoSourceCoordinate);
-    cv::Mat mask(map.xy.rows, map.xy.cols, CV_8U);
-    for (int y = 0; y < mask.rows; ++y) {
-        const cv::Vec2s* coordinates = map.xy.ptr<cv::Vec2s>(y);
-        std::uint8_t* row = mask.ptr<std::uint8_t>(y);
-        for (int x = 0; x < mask.cols; ++x) row[x] = coordinates[x][0] == kNoSource ? 0 : 255;
-    }
-    return mask;
-}
-
-void write_mask(const fs::path& path, const cv::Mat& mask) {
-    fs::create_directories(path.parent_path());
-    write_image(path, mask);
-}
-
-void run_job(const ImageJob& job, const PreparedRemap* map) {
-    std::error_code error;
-    if (!fs::is_regular_file(job.source, error)) throw FileError(job.source.string() + ": no such image file");
-    fs::create_directories(job.target.parent_path());
-    if (map == nullptr) {
-        write_file_atomically(job.target, read_text_file(job.source));
-        if (!job.mask.empty()) {
-            const cv::Mat image = read_image(job.source);
-            write_mask(job.mask, cv::Mat(image.rows, image.cols, CV_8U, cv::Scalar(255)));
-        }
-        return;
-    }
-    const cv::Mat image = read_image(job.source);
-    cv::Mat result;
-    try {
-        result = remap_image(image, *map);
-    } catch (const InvalidArgument& wrong_size) {
-        throw FileError(job.source.string() + ": " + wrong_size.what());
-    }
-    write_image(job.target, result, job.jpeg_quality);
-    if (!job.mask.empty()) write_mask(job.mask, source_mask(*map));
-}
-
-// Runs the jobs on `threads` workers, each holding one image at a time; returns how many
-// failed (reported through `report`, one line each).
-std::size_t run_jobs(const std::vector<ImageJob>& jobs, CameraMaps& maps, int threads,
-                     const std::function<void(const std::string&)>& report) {
-    std::atomic<std::size_t> next{0}, failed{0};
-    std::mutex report_lock;
-    std::exception_ptr fatal;  // a map that cannot be built stops every worker
-    const auto work = [&] {
-        for (std::size_t i = next++; i < jobs.size(); i = next++) {
-            const ImageJob& job = jobs[i];
-            try {
-                const std::shared_ptr<const PreparedRemap> map = maps.take(job.camera);
-                try {
-                    run_job(job, map.get());
-                } catch (const std::exception& error) {
-                    ++failed;
-                    const std::lock_guard<std::mutex> lock(report_lock);
-                    if (report) report(error.what());
-                }
-            } catch (...) {
-                const std::lock_guard<std::mutex> lock(report_lock);
-                if (!fatal) fatal = std::current_exception();
-                next = jobs.size();
-            }
-            maps.done(job.camera);
-        }
-    };
-    const std::size_t workers = std::clamp<std::size_t>(static_cast<std::size_t>(threads), 1, std::max<std::size_t>(jobs.size(), 1));
-    std::vector<std::thread> pool;
-    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work);
-    work();
-    for (std::thread& thread : pool) thread.join();
-    if (fatal) std::rethrow_exception(fatal);
-    return failed;
-}
-
-// OpenCV's own threads off while the workers run: each image is one worker's.
-class OpenCvThreads {
-public:
-    explicit OpenCvThreads(int threads) : before_(cv::getNumThreads()) {
-        if (threads > 1) cv::setNumThreads(1);
-    }
-    ~OpenCvThreads() { cv::setNumThreads(before_); }
-    OpenCvThreads(const OpenCvThreads&) = delete;
-    OpenCvThreads& operator=(const OpenCvThreads&) = delete;
-
-private:
-    int before_;
-};
-
-// `source_names[i]`: the source image of output image i (its own name but with views).
-void write_images(const DatasetOptions& options, const std::vector<ColmapImage>& images,
-                  const std::vector<std::string>& source_names, const std::vector<std::size_t>& camera_of,
-                  const std::vector<ColmapCameraRecord>& new_records, DatasetSummary& summary) {
+// The tasks of the output images not already there. `source_names[i]`: the source image
+// of output image i (its own name but with views).
+std::vector<ImageTask> plan_images(const DatasetOptions& options, const std::vector<ColmapImage>& images,
+                                   const std::vector<std::string>& source_names, const std::vector<std::size_t>& camera_of,
+                                   const std::vector<ColmapCameraRecord>& new_records, DatasetSummary& summary) {
     const fs::path folder = options.output / "images";
     fs::create_directories(folder);
     std::error_code same_error;
@@ -443,32 +296,39 @@ void write_images(const DatasetOptions& options, const std::vector<ColmapImage>&
     const std::string stamp = stamp_of(new_records, summary.cameras, options.interpolation, options.jpeg_quality);
     const bool earlier_run_matches = stamp_matches(stamp_file, stamp);
     write_file_atomically(stamp_file, stamp);
-    // In camera order, so that each camera's map is built once and soon released.
+    // In camera order, so that a worker given a run of tasks builds each camera's map once.
     std::vector<std::size_t> order(images.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return camera_of[a] < camera_of[b]; });
-    std::vector<ImageJob> jobs;
+    std::vector<ImageTask> tasks;
     for (const std::size_t i : order) {
-        ImageJob job{camera_of[i], options.images / source_names[i], folder / images[i].name, options.jpeg_quality, {}};
-        if (options.masks) job.mask = options.output / "masks" / (images[i].name + ".png");
+        const DatasetCamera& camera = summary.cameras[camera_of[i]];
+        ImageTask task;
+        task.source_path = options.images / source_names[i];
+        task.target_path = folder / images[i].name;
+        if (options.masks) task.mask_path = options.output / "masks" / (images[i].name + ".png");
         std::error_code error;
-        if (earlier_run_matches && fs::is_regular_file(job.target, error) &&
-            (job.mask.empty() || fs::is_regular_file(job.mask, error))) {
+        if (earlier_run_matches && fs::is_regular_file(task.target_path, error) &&
+            (task.mask_path.empty() || fs::is_regular_file(task.mask_path, error))) {
             ++summary.images_kept;
             continue;
         }
-        jobs.push_back(std::move(job));
+        task.source = camera.source;
+        task.source.pose = Pose{};
+        task.camera = camera.camera;
+        task.camera.pose = Pose{};
+        task.turn = camera.turn;
+        task.copy = camera.kept;
+        task.interpolation = options.interpolation;
+        task.jpeg_quality = options.jpeg_quality;
+        tasks.push_back(std::move(task));
     }
-    const OpenCvThreads opencv_threads(options.threads);
-    // Each map built with a share of the threads: the other workers are busy with images.
-    CameraMaps maps(summary.cameras, jobs, options.interpolation, std::max(1, options.threads / 2));
-    summary.images_failed = run_jobs(jobs, maps, options.threads, options.on_image_error);
-    summary.images_written = jobs.size() - summary.images_failed;
+    return tasks;
 }
 
 }  // namespace
 
-DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
+DatasetPlan plan_dataset(const DatasetOptions& options) {
     const int threads = worker_count(options.threads);
     ColmapModelRead model =
         is_nerf_dataset_source(options.model) ? read_nerf_dataset(options.model) : read_model(options.model);
@@ -531,12 +391,97 @@ DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
         summary.model_out = options.output / "sparse" / "0";
         write_model(summary.model_out, write_colmap_files(new_records, model.images, points, !options.text), !options.text);
     }
-    if (!options.images.empty()) {
-        DatasetOptions resolved = options;
-        resolved.threads = threads;
-        write_images(resolved, model.images, source_names, camera_of, new_records, summary);
+    std::vector<ImageTask> tasks;
+    if (!options.images.empty()) tasks = plan_images(options, model.images, source_names, camera_of, new_records, summary);
+    return {std::move(summary), std::move(tasks)};
+}
+
+DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
+    DatasetPlan plan = plan_dataset(options);
+    plan.summary.images_failed = run_image_tasks(plan.tasks, worker_count(options.threads), options.on_image_error);
+    plan.summary.images_written = plan.tasks.size() - plan.summary.images_failed;
+    return plan.summary;
+}
+
+void set_dataset_camera(DatasetOptions& options, const std::string& camera, std::optional<ImageSize> size) {
+    NewCameraRequest request;
+    request.size = size;
+    options.views = camera == "views";
+    if (camera == "valid") {
+        request.keep = Keep::Valid;
+    } else if (camera == "all") {
+        request.keep = Keep::All;
+    } else if (camera == "views") {
+        if (size) throw InvalidArgument("size: not with camera views (each view's size is its own)");
+    } else if (camera.starts_with("fov:")) {
+        const std::string_view degrees = std::string_view(camera).substr(4);
+        double fov_deg = 0.0;
+        const auto [stop, error] = std::from_chars(degrees.data(), degrees.data() + degrees.size(), fov_deg);
+        if (degrees.empty() || error != std::errc() || stop != degrees.data() + degrees.size() || !std::isfinite(fov_deg)) {
+            throw InvalidArgument("camera: fov:DEG takes a number of degrees, got '" + camera + "'");
+        }
+        request.keep.reset();
+        request.fov_deg = fov_deg;
+        request.fov_axis = FovAxis::Horizontal;
+    } else {
+        throw InvalidArgument("camera: expected valid (no pixel without a source), all (every source pixel kept), "
+                              "fov:DEG (the horizontal field of view) or views (a wide lens split into several pinholes), "
+                              "got '" + camera + "'");
     }
-    return summary;
+    options.camera = request;
+}
+
+fs::path default_dataset_images(const fs::path& model) {
+    if (is_nerf_dataset_source(model)) return nerf_dataset_images_folder(model);
+    const fs::path folder = fs::absolute(model).lexically_normal();
+    const fs::path trimmed = folder.has_filename() ? folder : folder.parent_path();
+    return trimmed.parent_path().parent_path() / "images";
+}
+
+namespace {
+
+nlohmann::ordered_json camera_json(const DatasetCamera& camera) {
+    const Intrinsics& k = camera.camera.intrinsics;
+    return nlohmann::ordered_json{{"id", camera.id},
+                                  {"source_model", camera.source_model},
+                                  {"model", "PINHOLE"},
+                                  {"fx", k.fx},
+                                  {"fy", k.fy},
+                                  {"cx", k.cx},
+                                  {"cy", k.cy},
+                                  {"width", camera.camera.size.width},
+                                  {"height", camera.camera.size.height},
+                                  {"images", camera.images},
+                                  {"observations", camera.observations},
+                                  {"source_id", camera.source_id},
+                                  {"view", camera.view},
+                                  {"views", camera.views},
+                                  {"yaw_deg", camera.yaw_deg},
+                                  {"pitch_deg", camera.pitch_deg},
+                                  {"why", camera.why}};
+}
+
+}  // namespace
+
+std::string dataset_summary_json(const DatasetSummary& s, std::optional<double> seconds) {
+    nlohmann::ordered_json out;
+    out["model"] = s.model_out.string();
+    out["observations_in"] = s.observations_in;
+    out["observations_kept"] = s.observations_kept;
+    out["points2d_in"] = s.points2d_in;
+    out["points2d_kept"] = s.points2d_kept;
+    out["points_in"] = s.points_in;
+    out["points_kept"] = s.points_kept;
+    out["images_in"] = s.images_in;
+    out["model_images_out"] = s.model_images_out;
+    out["images_out"] = s.images_written + s.images_kept;
+    out["images_written"] = s.images_written;
+    out["images_kept"] = s.images_kept;
+    out["images_failed"] = s.images_failed;
+    out["cameras"] = nlohmann::ordered_json::array();
+    for (const DatasetCamera& camera : s.cameras) out["cameras"].push_back(camera_json(camera));
+    if (seconds) out["time_s"] = *seconds;
+    return out.dump(2) + "\n";
 }
 
 }  // namespace libcam

@@ -28,14 +28,21 @@
 // interpolation (the stamp file kStampName in the output folder says) is kept, so a
 // stopped run started again finishes the rest. A source camera that is already a
 // pinhole, given no --size or field of view, is kept as it is and its images copied.
+//
+// The same in two steps, for images spread over several processes or machines
+// (dataset_tasks.hpp): plan_dataset does everything but the images and returns one task
+// per image still to write; each task runs anywhere the source and output folders are
+// (run_image_task). make_pinhole_dataset is plan_dataset and then every task here.
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "libcam/interop/dataset_tasks.hpp"
 #include "libcam/interop/image_remap.hpp"
 #include "libcam/remap/new_camera.hpp"
 
@@ -115,5 +122,28 @@ inline constexpr const char* kStampName = ".libcam-dataset";
 // InvalidArgument when no pinhole can be chosen for a camera (naming it); an image that
 // cannot be read or written is reported through on_image_error and counted instead.
 DatasetSummary make_pinhole_dataset(const DatasetOptions& options);
+
+// Everything but the images: the cameras chosen, the observations moved, the model
+// written, and (with `images`) the stamp written and one task per output image not
+// already there from an earlier run with the same cameras (counted in images_kept), in
+// camera order. images_written and images_failed are left 0 for the caller to count.
+struct DatasetPlan {
+    DatasetSummary summary;
+    std::vector<ImageTask> tasks;
+};
+DatasetPlan plan_dataset(const DatasetOptions& options);
+
+// The new cameras a --camera word asks for, set in `options`: "valid" (every pixel has a
+// source), "all" (every source pixel kept), "fov:DEG" (this horizontal field of view) or
+// "views" (a wide lens split into several pinholes, setting `views`); `size` (none: each
+// source's) is refused with views. Throws InvalidArgument "camera: ..." or "size: ...".
+void set_dataset_camera(DatasetOptions& options, const std::string& camera, std::optional<ImageSize> size);
+
+// The source images beside a model: X/images for the COLMAP model X/sparse/0; for a
+// transforms.json where its frames are (dataset_sources.hpp).
+std::filesystem::path default_dataset_images(const std::filesystem::path& model);
+
+// The summary as `libcam dataset --json` prints it (with "time_s" when `seconds` is given).
+std::string dataset_summary_json(const DatasetSummary& summary, std::optional<double> seconds = std::nullopt);
 
 }  // namespace libcam

@@ -119,6 +119,16 @@ Interpolation interpolation_from_string(std::string_view name) {
     throw InvalidArgument("interpolation: must be nearest, linear, cubic or lanczos, got '" + std::string(name) + "'");
 }
 
+std::string_view to_string(Interpolation interpolation) {
+    switch (interpolation) {
+        case Interpolation::Nearest: return "nearest";
+        case Interpolation::Linear: return "linear";
+        case Interpolation::Cubic: return "cubic";
+        case Interpolation::Lanczos: return "lanczos";
+    }
+    return "cubic";
+}
+
 cv::Mat opencv_map(const RemapMap& map) { return float_map(map, kNoSourceCoordinate, false); }
 
 std::pair<cv::Mat, cv::Mat> opencv_fixed_point_map(const RemapMap& map) {

@@ -18,6 +18,7 @@ namespace libcam {
 enum class Interpolation { Nearest, Linear, Cubic, Lanczos };
 // "nearest", "linear", "cubic", "lanczos"; throws InvalidArgument naming the others.
 Interpolation interpolation_from_string(std::string_view name);
+std::string_view to_string(Interpolation interpolation);
 
 // Where a target pixel without a source points in the maps for cv::remap: far outside any
 // image, so that every interpolation reads only the border (BORDER_CONSTANT).

@@ -35,6 +35,7 @@ from ._libcam import (
     supported_simd_targets,
     verify,
 )
+from . import dataset  # libcam.dataset: `libcam dataset` in-process, or as tasks for other processes
 
 __all__ = [
     "Camera",

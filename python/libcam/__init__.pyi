@@ -5,6 +5,8 @@ from typing import Any, Literal, Sequence, TypedDict
 import numpy as np
 import numpy.typing as npt
 
+from . import dataset as dataset
+
 __version__: str
 
 ArrayLike = npt.ArrayLike

@@ -6,6 +6,7 @@
 
 #include "arrays.hpp"
 #include "camera_binding.hpp"
+#include "dataset_binding.hpp"
 #include "libcam/camera/simd.hpp"
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
@@ -153,6 +154,7 @@ PYBIND11_MODULE(_libcam, m) {
     bind_camera(m);
     bind_tools(m);
     bind_observations(m);
+    bind_dataset(m);
 
     m.def(
         "simd_target", [] { return std::string(simd_target_name(simd_target())); },

@@ -6,11 +6,9 @@
 #include <iostream>
 
 #include "commands.hpp"
-#include "json_output.hpp"
 #include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/colmap_dataset.hpp"
-#include "libcam/interop/dataset_sources.hpp"
 #include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 
@@ -35,79 +33,6 @@ struct DatasetFlags {
     bool masks = false;
     std::string to = "colmap";
 };
-
-// --camera: valid, all, or fov:DEG (horizontal, edge to edge).
-NewCameraRequest camera_request(const DatasetFlags& flags) {
-    NewCameraRequest request;
-    if (!flags.size.empty()) request.size = parse_size("--size", flags.size);
-    if (flags.camera == "valid") {
-        request.keep = Keep::Valid;
-    } else if (flags.camera == "all") {
-        request.keep = Keep::All;
-    } else if (flags.camera == "views") {
-        if (!flags.size.empty()) throw UsageError("--size: not with --camera views (each view's size is its own)");
-    } else if (flags.camera.starts_with("fov:")) {
-        request.keep.reset();
-        request.fov_deg = parse_number("--camera", flags.camera.substr(4));
-        request.fov_axis = FovAxis::Horizontal;
-    } else {
-        throw UsageError("--camera: expected valid (no pixel without a source), all (every source pixel kept), "
-                         "fov:DEG (the horizontal field of view) or views (a wide lens split into several pinholes), "
-                         "got '" + flags.camera + "'");
-    }
-    return request;
-}
-
-// The images beside the model: X/images for the model X/sparse/0; a transforms.json's
-// where its frames are (dataset_sources.hpp).
-fs::path default_images(const fs::path& model) {
-    if (is_nerf_dataset_source(model)) return nerf_dataset_images_folder(model);
-    const fs::path folder = fs::absolute(model).lexically_normal();
-    const fs::path trimmed = folder.has_filename() ? folder : folder.parent_path();
-    return trimmed.parent_path().parent_path() / "images";
-}
-
-Json camera_json(const DatasetCamera& camera) {
-    const Intrinsics& k = camera.camera.intrinsics;
-    return Json{{"id", camera.id},
-                {"source_model", camera.source_model},
-                {"model", "PINHOLE"},
-                {"fx", k.fx},
-                {"fy", k.fy},
-                {"cx", k.cx},
-                {"cy", k.cy},
-                {"width", camera.camera.size.width},
-                {"height", camera.camera.size.height},
-                {"images", camera.images},
-                {"observations", camera.observations},
-                {"source_id", camera.source_id},
-                {"view", camera.view},
-                {"views", camera.views},
-                {"yaw_deg", camera.yaw_deg},
-                {"pitch_deg", camera.pitch_deg},
-                {"why", camera.why}};
-}
-
-std::string summary_json(const DatasetSummary& s, double seconds) {
-    Json out;
-    out["model"] = s.model_out.string();
-    out["observations_in"] = s.observations_in;
-    out["observations_kept"] = s.observations_kept;
-    out["points2d_in"] = s.points2d_in;
-    out["points2d_kept"] = s.points2d_kept;
-    out["points_in"] = s.points_in;
-    out["points_kept"] = s.points_kept;
-    out["images_in"] = s.images_in;
-    out["model_images_out"] = s.model_images_out;
-    out["images_out"] = s.images_written + s.images_kept;
-    out["images_written"] = s.images_written;
-    out["images_kept"] = s.images_kept;
-    out["images_failed"] = s.images_failed;
-    out["cameras"] = Json::array();
-    for (const DatasetCamera& camera : s.cameras) out["cameras"].push_back(camera_json(camera));
-    out["time_s"] = seconds;
-    return out.dump(2) + "\n";
-}
 
 std::string summary_text(const DatasetSummary& s, double seconds, bool with_images) {
     std::string out = "model: " + s.model_out.string() + "\n";
@@ -147,14 +72,18 @@ int run_dataset(const DatasetFlags& flags) {
     DatasetOptions options;
     options.model = flags.source;
     options.output = flags.output;
-    options.camera = camera_request(flags);
+    try {
+        set_dataset_camera(options, flags.camera,
+                           flags.size.empty() ? std::nullopt : std::optional<ImageSize>(parse_size("--size", flags.size)));
+    } catch (const InvalidArgument& error) {
+        throw UsageError(std::string("--") + error.what());
+    }
     options.threads = worker_count(flags.threads);
     options.text = flags.text;
     if (flags.jpeg_quality < 1 || flags.jpeg_quality > 100) {
         throw UsageError("--jpeg-quality: expected 1 to 100, got " + std::to_string(flags.jpeg_quality));
     }
     options.jpeg_quality = flags.jpeg_quality;
-    options.views = flags.camera == "views";
     options.masks = flags.masks;
     if (flags.masks && flags.no_images) throw UsageError("--masks: not with --no-images");
     if (flags.to == "nerf") {
@@ -168,7 +97,7 @@ int run_dataset(const DatasetFlags& flags) {
     } catch (const InvalidArgument& error) {
         throw UsageError(std::string("--") + error.what());
     }
-    if (!flags.no_images) options.images = flags.images.empty() ? default_images(flags.source) : fs::path(flags.images);
+    if (!flags.no_images) options.images = flags.images.empty() ? default_dataset_images(flags.source) : fs::path(flags.images);
     if (!options.images.empty() && !fs::is_directory(options.images)) {
         throw FileError(options.images.string() + ": no such images folder (give --images, or --no-images)");
     }
@@ -176,7 +105,7 @@ int run_dataset(const DatasetFlags& flags) {
     const auto start = std::chrono::steady_clock::now();
     const DatasetSummary summary = make_pinhole_dataset(options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    emit(flags.json ? summary_json(summary, seconds) : summary_text(summary, seconds, !flags.no_images), "");
+    emit(flags.json ? dataset_summary_json(summary, seconds) : summary_text(summary, seconds, !flags.no_images), "");
     return summary.images_failed == 0 ? 0 : 1;
 }
 

@@ -303,6 +303,24 @@ std::string format_gl_json(const GlCamera& gl, const ImageSize& size) {
     return layout(out);
 }
 
+std::string format_json_camera_object(const Camera& camera) {
+    ordered out;
+    out["model"] = lens_info(camera.lens.type).name;
+    out["image_size"] = {camera.size.width, camera.size.height};
+    out["K"] = matrix_json(camera.intrinsics.K());
+    out["dist"] = camera.lens.coefficients;
+    out["R"] = matrix_json(camera.pose.R);
+    out["t"] = vector_json(camera.pose.t);
+    return out.dump();
+}
+
+Camera read_json_camera_object(const Field& object) {
+    if (object.node().kind != DocumentNode::Kind::Map) {
+        object.fail("expected a camera (\"model\", \"image_size\", \"K\", ...), got " + object.shown());
+    }
+    return read_calibrated(Reader(object), object.source());
+}
+
 CameraFile parse_json_camera(std::string_view text, const std::string& source) {
     const DocumentNode root = parse_json_tree(text, source);
     if (root.kind != DocumentNode::Kind::Map) throw FileError(source + ": expected a JSON object at the top level");

@@ -39,4 +39,12 @@ std::string format_gl_json(const GlCamera& gl, const ImageSize& size);
 // Parses libcam JSON or gl JSON (chosen by the presence of "projection").
 CameraFile parse_json_camera(std::string_view text, const std::string& source);
 
+class Field;
+// A camera inside another JSON document: its own keys alone ("model", "image_size", "K",
+// "dist", "R", "t"; no derived key), on one line, every number to the last bit; and the
+// camera read back from such an object (as parse_json_camera reads the same keys, the
+// messages naming the object's field).
+std::string format_json_camera_object(const Camera& camera);
+Camera read_json_camera_object(const Field& object);
+
 }  // namespace libcam
