@@ -296,6 +296,9 @@ std::vector<ImageTask> plan_images(const DatasetOptions& options, const std::vec
     const std::string stamp = stamp_of(new_records, summary.cameras, options.interpolation, options.jpeg_quality);
     const bool earlier_run_matches = stamp_matches(stamp_file, stamp);
     write_file_atomically(stamp_file, stamp);
+    // A run stopped midway (killed) leaves the temporary file of each image it was writing.
+    remove_stopped_writes(folder);
+    remove_stopped_writes(options.output / "masks");
     // In camera order, so that a worker given a run of tasks builds each camera's map once.
     std::vector<std::size_t> order(images.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;

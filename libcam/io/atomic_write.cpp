@@ -35,11 +35,13 @@ bool write_all(int fd, std::string_view contents) {
 
 // Creates a new temporary file beside `path`, mode 0666 less the umask (as any new
 // file); returns its descriptor and fills `temporary`.
+constexpr std::string_view kTemporaryMark = ".tmp-";
+
 int create_temporary(const std::filesystem::path& path, std::string& temporary) {
     const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
     static thread_local std::mt19937_64 random{std::random_device{}()};
     for (int attempt = 0; attempt < 100; ++attempt) {
-        temporary = (folder / ("." + path.filename().string() + ".tmp-" + std::to_string(random()))).string();
+        temporary = (folder / ("." + path.filename().string() + std::string(kTemporaryMark) + std::to_string(random()))).string();
         const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0 || errno != EEXIST) return fd;
     }
@@ -100,6 +102,35 @@ std::string read_text_file(const std::filesystem::path& path) {
     stream << in.rdbuf();
     if (in.bad()) throw FileError(path.string() + ": read failed");
     return stream.str();
+}
+
+namespace {
+
+// ".<name>.tmp-<digits>", as create_temporary names them.
+bool is_temporary_name(const std::string& name) {
+    const std::size_t mark = name.rfind(kTemporaryMark);
+    if (name.size() < 2 || name[0] != '.' || mark == std::string::npos || mark < 2) return false;
+    const std::string_view number = std::string_view(name).substr(mark + kTemporaryMark.size());
+    return !number.empty() && number.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
+}  // namespace
+
+std::size_t remove_stopped_writes(const std::filesystem::path& folder) {
+    std::error_code error;
+    if (!std::filesystem::is_directory(folder, error)) return 0;
+    std::vector<std::filesystem::path> stopped;
+    for (auto it = std::filesystem::recursive_directory_iterator(folder, error);
+         !error && it != std::filesystem::recursive_directory_iterator(); it.increment(error)) {
+        if (it->is_regular_file(error) && is_temporary_name(it->path().filename().string())) stopped.push_back(it->path());
+    }
+    if (error) throw FileError(folder.string() + ": cannot list it: " + error.message());
+    for (const std::filesystem::path& file : stopped) {
+        if (!std::filesystem::remove(file, error) && error) {
+            throw FileError(file.string() + ": cannot remove this file a stopped run left: " + error.message());
+        }
+    }
+    return stopped.size();
 }
 
 }  // namespace libcam

@@ -1,9 +1,18 @@
 // `libcam dataset`'s images in the formats people have: a JPEG's quality asked for and
 // kept across a resumed run, and a float EXR image remapped as floats.
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <thread>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -37,6 +46,47 @@ cv::Mat texture(int type) {
     cv::Mat converted;
     image.convertTo(converted, type, type == CV_8UC3 ? 255.0 : 1.0);
     return converted;
+}
+
+std::map<std::string, std::string> files_under(const fs::path& folder) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+        if (entry.is_regular_file()) files[fs::relative(entry.path(), folder).string()] = libcam::test::read_whole_file(entry.path());
+    }
+    return files;
+}
+
+std::size_t files_in(const fs::path& folder) {
+    std::error_code error;
+    std::size_t count = 0;
+    for (auto it = fs::directory_iterator(folder, error); !error && it != fs::directory_iterator(); it.increment(error)) ++count;
+    return count;
+}
+
+// Starts `libcam args...` and kills it (SIGKILL) once `folder` holds `files` entries;
+// false when the run ended first.
+bool kill_midway(const std::vector<std::string>& args, const fs::path& folder, std::size_t files) {
+    std::vector<std::string> words = {LIBCAM_EXE};
+    words.insert(words.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& word : words) argv.push_back(word.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    pid_t child = 0;
+    const int spawned = posix_spawn(&child, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    REQUIRE(spawned == 0);
+    int status = 0;
+    while (files_in(folder) < files) {
+        if (waitpid(child, &status, WNOHANG) == child) return false;
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    kill(child, SIGKILL);
+    waitpid(child, &status, 0);
+    return WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
 }
 
 Json run_json(const std::vector<std::string>& args) {
@@ -103,4 +153,40 @@ TEST_CASE("dataset: a float EXR image is remapped as floats, its values kept in 
         }
     }
     CHECK(fractional > static_cast<std::size_t>(result.total() / 2));
+}
+
+TEST_CASE("dataset: a run killed midway and started again gives the files of a run never stopped", "[dataset]") {
+    TempDir dir;
+    const int count = 40;
+    fs::create_directories(dir / "model");
+    fs::create_directories(dir / "images");
+    std::string images;
+    const cv::Mat picture = texture(CV_8UC3);
+    cv::Mat large;
+    cv::resize(picture, large, cv::Size(640, 480), 0, 0, cv::INTER_LINEAR);
+    for (int i = 0; i < count; ++i) {
+        const std::string name = "p" + std::to_string(100 + i) + ".png";
+        images += std::to_string(i + 1) + " 1 0 0 0 " + std::to_string(0.1 * i) + " 0 0 1 " + name + "\n\n";
+        REQUIRE(cv::imwrite((dir / "images" / name).string(), large + cv::Scalar::all(i)));
+    }
+    libcam::test::write_whole_file(dir / "model" / "cameras.txt", "1 OPENCV 640 480 600 590 320.5 240.2 -0.2 0.04 0 0\n");
+    libcam::test::write_whole_file(dir / "model" / "images.txt", images);
+    libcam::test::write_whole_file(dir / "model" / "points3D.txt", "");
+    const auto args = [&](const std::string& out) {
+        return std::vector<std::string>{"dataset", (dir / "model").string(), "--images", (dir / "images").string(),
+                                        "-o", (dir / out).string(), "--threads", "2", "--masks", "--json"};
+    };
+    run_json(args("whole"));
+    fs::create_directories(dir / "stopped" / "images");
+    const bool killed = kill_midway(args("stopped"), dir / "stopped" / "images", 8);
+    if (!killed) WARN("the run ended before it could be killed: the second run below has nothing to finish");
+    const std::size_t before = files_in(dir / "stopped" / "images");
+    const Json again = run_json(args("stopped"));
+    CHECK(again["images_kept"].get<std::size_t>() + again["images_written"].get<std::size_t>() == count);
+    if (killed) CHECK(again["images_written"].get<std::size_t>() > 0);
+    // The same files, byte for byte: every image and mask, the model, the stamp; none of
+    // the killed run's temporary files left.
+    CHECK(files_under(dir / "stopped") == files_under(dir / "whole"));
+    WARN("killed with " << before << " entries in images/; the second run wrote " << again["images_written"]
+                        << " and kept " << again["images_kept"]);
 }
