@@ -12,6 +12,7 @@
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/gs_cameras.hpp"
 #include "libcam/io/detail/json_format.hpp"
+#include "libcam/io/detail/lensfun_format.hpp"
 #include "libcam/io/detail/llff_format.hpp"
 #include "libcam/io/detail/metashape_format.hpp"
 #include "libcam/io/detail/mrcal_observations.hpp"
@@ -99,6 +100,9 @@ constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+// Lens databases (lensdb's additions).
+constexpr L kLensfun[] = {L::Pinhole,       L::OpenCv4, L::Fisheye,    L::Equisolid,
+                          L::Stereographic, L::Lonlat,  L::Cylindrical};
 
 using C = Content;
 
@@ -227,6 +231,16 @@ constexpr FormatRow kRows[] = {
      .read = read_metashape, .read_only = true, .lenses = kMetashape,
      .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical",
      .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors"},
+    // Lens databases (lensdb's additions).
+    {.format = CameraFormat::Lensfun, .name = "lensfun", .title = "lensfun database XML",
+     .description = "lensfun's lens database (data/db/*.xml): one lens at one focal length, crop factor and image "
+                    "size (--lens, --focal, --crop-factor, --image-size)",
+     .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_lensfun,
+     .read = read_lensfun, .read_only = true, .lenses = kLensfun,
+     .lens_names = "poly3 and poly5 (OpenCV's k1 k2 once rescaled), ptlens with a = c = 0; rectilinear, fisheye, "
+                   "and without distortion equisolid, stereographic, equirectangular, panoramic",
+     .refuses = "ptlens's odd terms a and c, acm, orthographic and fisheye_thoby lenses, distortion on the other "
+                "fisheye types"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
