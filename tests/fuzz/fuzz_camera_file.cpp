@@ -64,7 +64,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const CameraFormat format = kFormat;
     CameraSet set;
     try {
-        set = parse_camera_set(text, format, "fuzz input");
+        ReadOptions options;
+#ifdef LIBCAM_FUZZ_LENS_DATABASE
+        // A lens database describes no image: the reader needs a size and a focal length.
+        options.size = ImageSize{1500, 1000};
+        options.focal_mm = 30.0;
+#endif
+        set = parse_camera_set(text, format, "fuzz input", options);
     } catch (const Error&) {
         return 0;  // refused with a message: the expected outcome for most inputs
     }

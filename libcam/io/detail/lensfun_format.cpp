@@ -174,7 +174,26 @@ LensEntry read_lens(const Source& source, const pugi::xml_node& node) {
 
 // The lens `wanted` names: one whose model name it is (any case), else the one lens whose
 // names contain it; the file's one lens when `wanted` is empty.
-const LensEntry& select_lens(const Source& source, const std::vector<LensEntry>& lenses, const std::string& wanted) {
+// One lens of several of one name, calibrated on different sensors: the one whose
+// calibration covers `crop` most closely (lensfun's rule, GetClosestCalibrationSet).
+const LensEntry& select_by_crop(const Source& source, const std::vector<const LensEntry*>& found,
+                                std::optional<double> crop) {
+    std::string crops;
+    for (const LensEntry* lens : found) crops += (crops.empty() ? "" : ", ") + format_number(lens->crop_factor);
+    const std::string what = source.name() + ": '" + found.front()->names.front() + "' names " +
+                             std::to_string(found.size()) + " lenses, calibrated on crop factors " + crops;
+    if (!crop) throw InvalidArgument(what + ": give the crop factor (--crop-factor)");
+    const LensEntry* best = nullptr;
+    for (const LensEntry* lens : found) {
+        const double ratio = *crop / lens->crop_factor;
+        if (ratio >= 0.96 && (!best || ratio < *crop / best->crop_factor)) best = lens;
+    }
+    if (!best) throw NotRepresentable(what + ", none of which covers crop factor " + format_number(*crop));
+    return *best;
+}
+
+const LensEntry& select_lens(const Source& source, const std::vector<LensEntry>& lenses, const std::string& wanted,
+                             std::optional<double> crop) {
     if (lenses.empty()) throw FileError(source.name() + ": holds no <lens>");
     if (wanted.empty()) {
         if (lenses.size() == 1) return lenses.front();
@@ -195,6 +214,10 @@ const LensEntry& select_lens(const Source& source, const std::vector<LensEntry>&
     }
     const std::vector<const LensEntry*>& found = exact.empty() ? partial : exact;
     if (found.size() == 1) return *found.front();
+    const bool one_name = std::all_of(found.begin(), found.end(), [&](const LensEntry* lens) {
+        return lens->names.front() == found.front()->names.front();
+    });
+    if (one_name && !found.empty()) return select_by_crop(source, found, crop);
     if (found.empty()) throw InvalidArgument(source.name() + ": no lens is named '" + wanted + "'");
     std::string names;
     for (std::size_t i = 0; i < found.size() && i < 4; ++i) names += (i ? "', '" : "'") + found[i]->names.front();
@@ -357,7 +380,7 @@ std::vector<NamedCamera> read_lensfun(std::string_view text, const ReadContext& 
     if (!root) throw FileError(context.source + ": has no <lensdatabase>");
     std::vector<LensEntry> lenses;
     for (const pugi::xml_node node : root.children("lens")) lenses.push_back(read_lens(source, node));
-    return {lens_camera(source, select_lens(source, lenses, context.options.lens), context.options)};
+    return {lens_camera(source, select_lens(source, lenses, context.options.lens, context.options.crop_factor), context.options)};
 }
 
 bool claims_lensfun(const DocumentNode& outline) { return outline.find("lensdatabase") != nullptr; }

@@ -39,6 +39,10 @@
 //   CYLINDRICAL, which libcam has without distortion only: such a lens is read with
 //   lens_projection_only, or refused; orthographic and fisheye_thoby are refused.
 //
+// A lens is chosen by one of its model names (any case), else by a part of a name that
+// names no other lens; several lenses of one name (calibrated on different sensors) are
+// told apart by the crop factor, as lensfun's rule below does.
+//
 // The crop factor picks the calibration as lensfun does (GetClosestCalibrationSet): the
 // image's crop factor over the calibration's must be at least 0.96 (a sensor no more than
 // 4% bigger than the one calibrated), else lensfun corrects nothing and libcam refuses.
