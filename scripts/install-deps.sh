@@ -25,6 +25,7 @@ packages=(
   python3-numpy python3-opencv   # reference: the remap tests against mrcal's and COLMAP's maps; the Python module
   pybind11-dev python3-pytest    # the Python module (import libcam) and its tests
   blender                # reference: Cycles renders through the cameras libcam writes for Blender
+  hugin-tools            # reference: Hugin's pano_trafo maps pixels through a .pto's a b c d e (lens databases)
 )
 
 missing=()

@@ -214,6 +214,15 @@ inline std::vector<LensCase> lens_cases() {
         // up and down; and a 120 x 64 degree panorama of a 1920x1080 render.
         {"CYLINDRICAL 360", lens_camera(LensType::Cylindrical, {}, {2000, 1000}, 318, 318)},
         {"CYLINDRICAL 120", real_camera(LensType::Cylindrical, {}, {1920, 1080}, {916.7, 916.7, 959.5, 539.5})},
+        // PTLENS (lensdb's addition): lensfun's calibrations rescaled as lensfun does
+        // (rescale_polynomial_coefficients): the Pentax-F 28-80mm of slr-pentax.xml at
+        // 30.89 mm on a crop-1.534 1500x1000 image (lensfun's regression test), and the
+        // EF 24-70mm f/2.8L II at 24 mm (a = 0.02964, b = -0.07853, c = 0.02943, real
+        // focal 24.46704, lensfun's test_modifier_coord_distortion) on a 6000x4000 full frame.
+        {"PTLENS mild", real_camera(LensType::Ptlens, {-0.2533388789718433, 0.2053082153302514, -0.1273322761814234},
+                                    {1500, 1000}, {2005.78304744325, 2005.78304744325, 749.5, 499.5})},
+        {"PTLENS strong", real_camera(LensType::Ptlens, {0.23259372609028295, -0.3081239087359973, 0.0577364487081396},
+                                      {6000, 4000}, {4077.84, 4077.84, 2999.5, 1999.5})},
     };
     return cases;
 }

@@ -44,7 +44,7 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
     // (docs/file-formats.md's history): each must be listed, with what it does.
     const std::set<std::string> read_only = {"camodocal", "cahvor",     "euroc", "openicc", "opensfm",
                                              "openmvg",   "gs-cameras", "llff",  "metashape",
-                                             "lensfun" /* lens databases (lensdb) */};
+                                             "lensfun",   "hugin",      "gyroflow" /* lens databases (lensdb) */};
     const std::set<std::string> written = {"json",   "opencv-yaml", "opencv-xml", "cameramodel", "gl",
                                            "kalibr", "basalt",      "colmap",     "nerf",        "ros",
                                            "open3d", "blender",     "blender-json"};

@@ -86,9 +86,9 @@ const nlohmann::json* vector_case(const nlohmann::json& vectors, const std::stri
 
 }  // namespace
 
-TEST_CASE("lensfun's regression vectors through the reader: poly3 and poly5 to 1e-3 px", "[io][lensfun]") {
+TEST_CASE("lensfun's regression vectors through the reader: poly3, poly5 and ptlens to 1e-3 px", "[io][lensfun]") {
     const nlohmann::json vectors = lensfun_vectors();
-    for (const char* name : {"verify_dist_poly3", "verify_dist_poly5"}) {
+    for (const char* name : {"verify_dist_poly3", "verify_dist_poly5", "verify_dist_ptlens"}) {
         if (const nlohmann::json* c = vector_case(vectors, name)) check_case(*c, 1e-3);
     }
 }

@@ -11,6 +11,8 @@
 #include "libcam/io/detail/colmap_observations.hpp"
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/gs_cameras.hpp"
+#include "libcam/io/detail/gyroflow_format.hpp"
+#include "libcam/io/detail/hugin_format.hpp"
 #include "libcam/io/detail/json_format.hpp"
 #include "libcam/io/detail/lensfun_format.hpp"
 #include "libcam/io/detail/llff_format.hpp"
@@ -101,8 +103,11 @@ constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lon
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 // Lens databases (lensdb's additions).
-constexpr L kLensfun[] = {L::Pinhole,       L::OpenCv4, L::Fisheye,    L::Equisolid,
-                          L::Stereographic, L::Lonlat,  L::Cylindrical};
+constexpr L kLensfun[] = {L::Pinhole,       L::OpenCv4, L::Ptlens,      L::Fisheye,
+                          L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
+constexpr L kGyroflow[] = {L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::Fisheye, L::Ptlens};
+constexpr L kHuginPto[] = {L::Pinhole,   L::OpenCv4,       L::Ptlens, L::Fisheye,
+                           L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
 
 using C = Content;
 
@@ -237,10 +242,24 @@ constexpr FormatRow kRows[] = {
                     "size (--lens, --focal, --crop-factor, --image-size)",
      .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_lensfun,
      .read = read_lensfun, .read_only = true, .lenses = kLensfun,
-     .lens_names = "poly3 and poly5 (OpenCV's k1 k2 once rescaled), ptlens with a = c = 0; rectilinear, fisheye, "
+     .lens_names = "poly3 and poly5 (OpenCV's k1 k2 once rescaled), ptlens (PTLENS); rectilinear, fisheye, "
                    "and without distortion equisolid, stereographic, equirectangular, panoramic",
-     .refuses = "ptlens's odd terms a and c, acm, orthographic and fisheye_thoby lenses, distortion on the other "
+     .refuses = "acm, orthographic and fisheye_thoby lenses, ptlens on a fisheye, distortion on the other "
                 "fisheye types"},
+    {.format = CameraFormat::HuginPto, .name = "hugin", .title = "Hugin project",
+     .description = "Hugin's (PanoTools') .pto project: one camera per image line (w h f v a b c d e)",
+     .extensions = {".pto"}, .content = static_cast<unsigned>(C::Table), .read = read_hugin_pto, .read_only = true,
+     .lenses = kHuginPto,
+     .lens_names = "f0 with a b c (PTLENS; OPENCV4 when a = c = 0), f2/f3 fisheye with b (FISHEYE), f1, f4, f10, "
+                   "f21 without distortion",
+     .refuses = "shear (g t), other projections, a b c on the undistorted ones; the image's orientation in the "
+                "panorama is not read"},
+    {.format = CameraFormat::Gyroflow, .name = "gyroflow", .title = "Gyroflow lens profile",
+     .description = "Gyroflow's lens profile JSON (calib_dimension, fisheye_params, distortion_model)",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_gyroflow,
+     .read = read_gyroflow, .read_only = true, .lenses = kGyroflow,
+     .lens_names = "opencv_fisheye (FISHEYE), opencv_standard (OpenCV's 12), poly3, poly5 (OPENCV4), ptlens (PTLENS)",
+     .refuses = "anamorphic stretch, GoPro, Insta360, Sony and Gyroflow's other models"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without

@@ -299,25 +299,35 @@ Selection selection(const Source& source, const LensEntry& lens, const ReadOptio
     return out;
 }
 
-// The lens model of a lensfun lens type with the distortion `coefficients` (k1 k2 on the
-// model's radius), or a refusal saying why.
-Lens lens_of_type(const std::string& where, const std::string& type, double k1, double k2, bool projection_only) {
-    if (projection_only) k1 = k2 = 0.0;
-    if (type == "rectilinear") return simplest_equal_lens({LensType::OpenCv4, {k1, k2, 0.0, 0.0}});
-    if (type == "fisheye") return {LensType::Fisheye, {k1, k2, 0.0, 0.0}};
+// The radial polynomial in units of the real focal length: r (1 + c r + k1 r^2 + a r^3
+// + k2 r^4), ptlens's odd terms a and c, poly3's and poly5's even k1 and k2.
+struct Radial {
+    double a = 0.0, c = 0.0, k1 = 0.0, k2 = 0.0;
+};
+
+// The lens model of a lensfun lens type with that distortion, or a refusal saying why.
+Lens lens_of_type(const std::string& where, const std::string& type, Radial radial, bool projection_only) {
+    if (projection_only) radial = {};
+    const bool odd = radial.a != 0.0 || radial.c != 0.0;
+    if (type == "rectilinear") {
+        if (odd) return {LensType::Ptlens, {radial.a, radial.k1, radial.c}};
+        return simplest_equal_lens({LensType::OpenCv4, {radial.k1, radial.k2, 0.0, 0.0}});
+    }
+    if (type == "fisheye" && !odd) return {LensType::Fisheye, {radial.k1, radial.k2, 0.0, 0.0}};
     static const std::map<std::string, LensType> kUndistorted = {{"equisolid", LensType::Equisolid},
                                                                   {"stereographic", LensType::Stereographic},
                                                                   {"equirectangular", LensType::Lonlat},
                                                                   {"panoramic", LensType::Cylindrical}};
     const auto found = kUndistorted.find(type);
-    if (found == kUndistorted.end()) {
+    if (type != "fisheye" && found == kUndistorted.end()) {
         throw NotRepresentable(where + ": lens type '" + type + "' has no libcam model (libcam reads rectilinear, "
                                "fisheye, equisolid, stereographic, equirectangular and panoramic lenses)");
     }
-    if (k1 != 0.0 || k2 != 0.0) {
-        throw NotRepresentable(where + ": a " + type + " lens with distortion (k1 = " + format_number(k1) +
-                               ") has no libcam model (" + std::string(lens_info(found->second).name) +
-                               " has no coefficients); read its projection alone (--projection-only) or not at all");
+    if (odd || radial.k1 != 0.0 || radial.k2 != 0.0) {
+        throw NotRepresentable(where + ": a " + type + " lens with this distortion has no libcam model (" +
+                               (type == "fisheye" ? std::string("FISHEYE's polynomial has no odd powers")
+                                                  : std::string(lens_info(found->second).name) + " has no coefficients") +
+                               "); read its projection alone (--projection-only) or not at all");
     }
     return {found->second, {}};
 }
@@ -343,19 +353,17 @@ NamedCamera lens_camera(const Source& source, const LensEntry& lens, const ReadO
     const double focal_pixels = d.real_focal * std::hypot(width, height) * chosen.crop_factor / std::hypot(36.0, 24.0);
     const double half_short_side_mm = std::hypot(36.0, 24.0) / lens.crop_factor / std::hypot(lens.aspect_ratio, 1.0) / 2.0;
     const double s = d.real_focal / half_short_side_mm;
-    double k1 = 0.0, k2 = 0.0;
+    Radial radial;
     if (d.model == "poly3") {
-        k1 = d.terms[0] * s * s / std::pow(1.0 - d.terms[0], 3);
+        radial.k1 = d.terms[0] * s * s / std::pow(1.0 - d.terms[0], 3);
     } else if (d.model == "poly5") {
-        k1 = d.terms[0] * s * s;
-        k2 = d.terms[1] * std::pow(s, 4);
+        radial.k1 = d.terms[0] * s * s;
+        radial.k2 = d.terms[1] * std::pow(s, 4);
     } else if (d.model == "ptlens") {
-        const double dd = 1.0 - d.terms[0] - d.terms[1] - d.terms[2];
-        if ((d.terms[0] != 0.0 || d.terms[2] != 0.0) && !options.lens_projection_only) {
-            throw NotRepresentable(where + ": ptlens a = " + format_number(d.terms[0]) + ", c = " + format_number(d.terms[2]) +
-                                   ": the odd powers of r have no libcam model (OpenCV's radial terms are even)");
-        }
-        k1 = d.terms[1] * s * s / std::pow(dd, 3);
+        const double scale = 1.0 - d.terms[0] - d.terms[1] - d.terms[2];
+        radial.a = d.terms[0] * std::pow(s, 3) / std::pow(scale, 4);
+        radial.k1 = d.terms[1] * s * s / std::pow(scale, 3);
+        radial.c = d.terms[2] * s / std::pow(scale, 2);
     } else if (d.model != "none") {
         throw NotRepresentable(where + ": distortion model '" + d.model + "' is refused: libcam reads poly3, poly5 "
                                "and ptlens (acm, Adobe's, measures r in another unit)");
@@ -365,7 +373,7 @@ NamedCamera lens_camera(const Source& source, const LensEntry& lens, const ReadO
     const double short_side = std::min(width - 1.0, height - 1.0);
     camera.intrinsics = {focal_pixels, focal_pixels, (width - 1.0) / 2.0 + short_side / 2.0 * lens.centre_x,
                          (height - 1.0) / 2.0 + short_side / 2.0 * lens.centre_y, 0.0};
-    camera.lens = lens_of_type(where, lens.type, k1, k2, options.lens_projection_only);
+    camera.lens = lens_of_type(where, lens.type, radial, options.lens_projection_only);
     return {lens.names.front() + " at " + format_number(chosen.focal) + " mm", {validated_camera(camera, where), std::nullopt}};
 }
 

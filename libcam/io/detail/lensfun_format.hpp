@@ -32,9 +32,10 @@
 //   normalised coordinates, r_distorted = r_ideal (1 + a' r^3 + b' r^2 + c' r) (poly3:
 //   1 + k1' r^2; poly5: 1 + k1' r^2 + k2' r^4). poly3 and poly5 are OpenCV's k1, k2
 //   exactly (OPENCV4, no tangential terms); ptlens has odd powers of r, which no OpenCV
-//   model has: it is refused unless a and c are 0 (then it is poly3's polynomial).
+//   model has: it is PTLENS (a' b' c'; OPENCV4 when a and c are 0).
 // - The lens type: rectilinear distorts the pinhole point (OpenCV's models); fisheye
-//   (equidistant) distorts theta, which is Kannala-Brandt (FISHEYE, k1 k2); equisolid,
+//   (equidistant) distorts theta, which is Kannala-Brandt (FISHEYE, k1 k2; ptlens's odd
+//   terms are refused there); equisolid,
 //   stereographic, equirectangular and panoramic are EQUISOLID, STEREOGRAPHIC, LONLAT and
 //   CYLINDRICAL, which libcam has without distortion only: such a lens is read with
 //   lens_projection_only, or refused; orthographic and fisheye_thoby are refused.
