@@ -126,11 +126,11 @@ TEST_CASE("Hugin: image lines' models, links and refusals", "[io][hugin]") {
     CHECK_THROWS_AS(read_camera_set(sheared), NotRepresentable);
     const auto orthographic = write_file(dir, "ortho.pto", project_file("i w10 h10 f8 v50"));
     CHECK_THROWS_AS(read_camera_set(orthographic), NotRepresentable);
-    const auto bad = write_file(dir, "bad.pto", project_file("i w10 h10 f0 vwide"));
+    const auto bad = write_file(dir, "bad.pto", project_file("i w10 h10 f0 v7x"));
     try {
         read_camera_set(bad);
         FAIL("no error");
     } catch (const FileError& error) {
-        CHECK(std::string(error.what()) == bad.string() + ": line 4: v: must be a finite number, got 'wide'");
+        CHECK(std::string(error.what()) == bad.string() + ": line 4: v: must be a finite number, got '7x'");
     }
 }

@@ -14,6 +14,7 @@
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/detail/lensfun_format.hpp"
+#include "libcam/lens/lens_models.hpp"
 #include "error_message.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
@@ -197,4 +198,29 @@ TEST_CASE("lensfun: the reader says which lens, focal length and size it needs, 
     CHECK(prime.lens.coefficients[0] == Approx(-0.01 * s * s / std::pow(1.01, 3)).epsilon(1e-14));
     options.crop_factor = 0.9;  // a sensor bigger than the one calibrated
     CHECK_THROWS_AS(read_camera_file(path, {}, std::nullopt, options), NotRepresentable);
+}
+
+TEST_CASE("PTLENS: its formula and its Jacobian on the axis, worked by hand", "[io][lensfun]") {
+    // m = u (1 + c r + b r^2 + a r^3): at u = (0.3, 0.4), r = 0.5.
+    const Lens lens{LensType::Ptlens, {0.2, -0.1, 0.05}};
+    Camera camera;
+    camera.size = {100, 100};
+    camera.intrinsics = {1.0, 1.0, 0.0, 0.0, 0.0};
+    camera.lens = lens;
+    const PreparedCamera prepared(camera);
+    const double factor = 1.0 + 0.05 * 0.5 - 0.1 * 0.25 + 0.2 * 0.125;
+    const Projection p = prepared.project_camera_point(Vec3(0.3, 0.4, 1.0));
+    REQUIRE(p.valid);
+    CHECK(p.pixel.x() == Approx(0.3 * factor).epsilon(1e-15));
+    CHECK(p.pixel.y() == Approx(0.4 * factor).epsilon(1e-15));
+    // On the axis d m / d u is the identity: c |u| u has derivative 0 there.
+    Eigen::Matrix<double, 2, 3> jacobian;
+    Vec2 m;
+    const auto parameters = PtlensLens<double>::parameters(lens.coefficients);
+    REQUIRE(PtlensLens<double>::project(parameters, Vec3(0.0, 0.0, 2.0), m, &jacobian));
+    CHECK(m.norm() == 0.0);
+    CHECK(jacobian(0, 0) == 0.5);
+    CHECK(jacobian(1, 1) == 0.5);
+    CHECK(jacobian(0, 1) == 0.0);
+    CHECK(jacobian(0, 2) == 0.0);
 }
