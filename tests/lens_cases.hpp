@@ -375,6 +375,23 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
         }
         return pixels;
     }
+    if (camera.lens.type == LensType::Ptlens) {
+        // PanoTools' polynomial (lensdb), the formula in long double: m = u (1 + c r + b r^2
+        // + a r^3), u = (x/z, y/z), r = |u|; nothing behind the camera or past the fold.
+        const PreparedCamera prepared(camera);
+        const long double a = camera.lens.coefficients[0], b = camera.lens.coefficients[1],
+                          c = camera.lens.coefficients[2];
+        std::vector<Vec2> pixels;
+        for (const Vec3& ray : rays) {
+            const long double x = static_cast<long double>(ray.x()) / ray.z(), y = static_cast<long double>(ray.y()) / ray.z();
+            const long double r = std::hypot(x, y), factor = 1 + r * (c + r * (b + r * a));
+            const bool inside = ray.z() > 0 && r < prepared.valid_radius();
+            pixels.push_back(inside ? Vec2(static_cast<double>(camera.intrinsics.fx * x * factor + camera.intrinsics.cx),
+                                           static_cast<double>(camera.intrinsics.fy * y * factor + camera.intrinsics.cy))
+                                    : Vec2::Constant(kInfinity));
+        }
+        return pixels;
+    }
     if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
     // cv::omnidir evaluates its formula on every point: those past the valid angle get
     // infinity. cv::projectPoints and cv::fisheye take points in front of the camera.

@@ -184,7 +184,8 @@ TEST_CASE("lensfun: the reader says which lens, focal length and size it needs, 
           path.string() + ": 'zoom' names 2 lenses ('Zoom 10-20mm', 'Zoom 10-20mm Mark II'): give more of the name");
     options.lens = "Zoom 10-20mm";
     CHECK(error_message_of<InvalidArgument>([&] { read_camera_file(path, {}, std::nullopt, options); }) ==
-          path.string() + ": lens 'Zoom 10-20mm': zooms from 0 to 0 mm: give the focal length (--focal MM)");
+          path.string() + ": lens 'Zoom 10-20mm': is calibrated at several focal lengths: give the focal length "
+                          "(--focal MM)");
     options.lens = "mark ii";  // a prime: its own focal length
     options.size.reset();
     CHECK(error_message_of<InvalidArgument>([&] { read_camera_file(path, {}, std::nullopt, options); }) ==

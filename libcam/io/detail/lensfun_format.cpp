@@ -288,9 +288,15 @@ Selection selection(const Source& source, const LensEntry& lens, const ReadOptio
         }
     } else if (lens.min_focal > 0.0 && lens.min_focal == lens.max_focal) {
         out.focal = lens.min_focal;
-    } else {
+    } else if (lens.min_focal == 0.0 && lens.max_focal == 0.0 && !lens.distortion.empty() &&
+               std::all_of(lens.distortion.begin(), lens.distortion.end(),
+                           [&](const Distortion& d) { return d.focal == lens.distortion.front().focal; })) {
+        out.focal = lens.distortion.front().focal;  // no <focal>: a prime calibrated at one focal length
+    } else if (lens.max_focal > 0.0) {
         throw InvalidArgument(where + ": zooms from " + format_number(lens.min_focal) + " to " +
                               format_number(lens.max_focal) + " mm: give the focal length (--focal MM)");
+    } else {
+        throw InvalidArgument(where + ": is calibrated at several focal lengths: give the focal length (--focal MM)");
     }
     out.crop_factor = options.crop_factor.value_or(lens.crop_factor);
     if (!(out.crop_factor > 0.0) || !std::isfinite(out.crop_factor)) {
@@ -324,7 +330,7 @@ Lens lens_of_type(const std::string& where, const std::string& type, Radial radi
                                "fisheye, equisolid, stereographic, equirectangular and panoramic lenses)");
     }
     if (odd || radial.k1 != 0.0 || radial.k2 != 0.0) {
-        throw NotRepresentable(where + ": a " + type + " lens with this distortion has no libcam model (" +
+        throw NotRepresentable(where + ": a lens of type " + type + " with this distortion has no libcam model (" +
                                (type == "fisheye" ? std::string("FISHEYE's polynomial has no odd powers")
                                                   : std::string(lens_info(found->second).name) + " has no coefficients") +
                                "); read its projection alone (--projection-only) or not at all");
