@@ -65,6 +65,9 @@ std::vector<Case> cases() {
          {F::Json, F::OpenCvYaml, F::OpenCvXml, F::Colmap, F::Nerf, F::Kalibr, F::Basalt}},
         {"LONLAT", camera_with({LensType::Lonlat, {}}), {F::Json, F::Cameramodel, F::Nerf, F::BlenderJson}},
         {"CYLINDRICAL", camera_with({LensType::Cylindrical, {}}), {F::Json}},
+        // PanoTools' a b c (lensdb): libcam's JSON alone writes it (lensfun, Hugin and
+        // Gyroflow are read only).
+        {"PTLENS", camera_with({LensType::Ptlens, {-0.25, 0.2, -0.13}}), {F::Json}},
         {"MEI", camera_with({LensType::Mei, {1.1, -0.1, 0.01, 1e-3, -1e-3}}), {F::Json, F::Kalibr}},
         {"DOUBLE_SPHERE", camera_with({LensType::DoubleSphere, {-0.24, 0.57}}), {F::Json, F::Kalibr, F::Basalt}},
         {"EUCM", camera_with({LensType::Eucm, {0.59, 1.1}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
