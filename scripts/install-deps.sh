@@ -26,6 +26,7 @@ packages=(
   pybind11-dev python3-pytest    # the Python module (import libcam) and its tests
   python3-distributed    # Dask: the Python test and example that spread libcam dataset's image tasks over worker processes
   blender                # reference: Cycles renders through the cameras libcam writes for Blender
+  hugin-tools            # reference: Hugin's pano_trafo maps pixels through a .pto's a b c d e (lens databases)
 )
 
 missing=()

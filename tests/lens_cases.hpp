@@ -214,6 +214,15 @@ inline std::vector<LensCase> lens_cases() {
         // up and down; and a 120 x 64 degree panorama of a 1920x1080 render.
         {"CYLINDRICAL 360", lens_camera(LensType::Cylindrical, {}, {2000, 1000}, 318, 318)},
         {"CYLINDRICAL 120", real_camera(LensType::Cylindrical, {}, {1920, 1080}, {916.7, 916.7, 959.5, 539.5})},
+        // PTLENS: lensfun's calibrations rescaled as lensfun does
+        // (rescale_polynomial_coefficients): the Pentax-F 28-80mm of slr-pentax.xml at
+        // 30.89 mm on a crop-1.534 1500x1000 image (lensfun's regression test), and the
+        // EF 24-70mm f/2.8L II at 24 mm (a = 0.02964, b = -0.07853, c = 0.02943, real
+        // focal 24.46704, lensfun's test_modifier_coord_distortion) on a 6000x4000 full frame.
+        {"PTLENS mild", real_camera(LensType::Ptlens, {-0.2533388789718433, 0.2053082153302514, -0.1273322761814234},
+                                    {1500, 1000}, {2005.78304744325, 2005.78304744325, 749.5, 499.5})},
+        {"PTLENS strong", real_camera(LensType::Ptlens, {0.23259372609028295, -0.3081239087359973, 0.0577364487081396},
+                                      {6000, 4000}, {4077.84, 4077.84, 2999.5, 1999.5})},
     };
     return cases;
 }
@@ -363,6 +372,23 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
         std::vector<Vec2> pixels;
         for (const Vec3& ray : rays) {
             pixels.push_back(paper_pixel(camera, ray).value_or(Vec2::Constant(std::numeric_limits<double>::infinity())));
+        }
+        return pixels;
+    }
+    if (camera.lens.type == LensType::Ptlens) {
+        // PanoTools' polynomial, the formula in long double: m = u (1 + c r + b r^2
+        // + a r^3), u = (x/z, y/z), r = |u|; nothing behind the camera or past the fold.
+        const PreparedCamera prepared(camera);
+        const long double a = camera.lens.coefficients[0], b = camera.lens.coefficients[1],
+                          c = camera.lens.coefficients[2];
+        std::vector<Vec2> pixels;
+        for (const Vec3& ray : rays) {
+            const long double x = static_cast<long double>(ray.x()) / ray.z(), y = static_cast<long double>(ray.y()) / ray.z();
+            const long double r = std::hypot(x, y), factor = 1 + r * (c + r * (b + r * a));
+            const bool inside = ray.z() > 0 && r < prepared.valid_radius();
+            pixels.push_back(inside ? Vec2(static_cast<double>(camera.intrinsics.fx * x * factor + camera.intrinsics.cx),
+                                           static_cast<double>(camera.intrinsics.fy * y * factor + camera.intrinsics.cy))
+                                    : Vec2::Constant(kInfinity));
         }
         return pixels;
     }

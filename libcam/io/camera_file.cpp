@@ -339,7 +339,7 @@ Content sniff_content(std::string_view text, const std::string& source) {
     }
     if (body.starts_with("%YAML") || body.starts_with("---")) return Content::Yaml;
     if (body.starts_with("<?xml") || body.starts_with("<opencv_storage>") || body.starts_with("<document") ||
-        body.starts_with("<calibration>")) {
+        body.starts_with("<calibration>") || body.starts_with("<lensdatabase") || body.starts_with("<!DOCTYPE lensdatabase")) {
         return Content::Xml;
     }
     if (body.starts_with("{")) {

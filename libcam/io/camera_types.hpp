@@ -17,10 +17,12 @@ enum class CameraFormat {
     Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor, Ros, Open3d, Euroc,
     Openicc, Blender, BlenderJson, OpenSfm, OpenMvg, GsCameras, Llff, Metashape,
     // Photogrammetry files: AliceVision's cameras.sfm, VisualSfM's .nvm, Bundler's .out.
-    AliceVision, Nvm, Bundler
+    AliceVision, Nvm, Bundler,
+    // Lens databases: lensfun's XML, Hugin's .pto, Gyroflow's lens profiles.
+    Lensfun, HuginPto, Gyroflow
 };
 // How many formats there are (the table of formats checks that each has its row).
-inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::Bundler) + 1;
+inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::Gyroflow) + 1;
 
 // What a file holds: the calibrated camera, and the FOV camera it was made from when
 // the file says so (libcam JSON records the fov axis).
@@ -72,6 +74,17 @@ struct ReadOptions {
     // a size the file records must agree with it.
     std::optional<ImageSize> size;
     NerfPrincipalPoint nerf_principal_point = NerfPrincipalPoint::ImageCentre;
+
+    // Lens databases (lensfun's XML), which describe lenses, not images: which lens (one
+    // of its model names, or a part of one that names no other lens), at which focal
+    // length in millimetres (a prime lens's own by default), on a sensor of which crop
+    // factor (the calibration's by default); the image size above is required.
+    std::string lens;
+    std::optional<double> focal_mm;
+    std::optional<double> crop_factor;
+    // The lens's projection alone, its distortion left out (what lensfun's projection
+    // transform without distortion correction maps).
+    bool lens_projection_only = false;
 };
 
 // One file of a format's output: its name in the output folder (COLMAP's "cameras.txt"),

@@ -41,7 +41,8 @@
     _(Cahvore, CahvoreLens) \
     _(LensPolynomial, LensPolynomialLens) \
     _(SplinedStereographic, SplinedStereographicLens) \
-    _(Cylindrical, CylindricalLens)
+    _(Cylindrical, CylindricalLens) \
+    _(Ptlens, PtlensLens)
 
 namespace libcam {
 
@@ -92,6 +93,7 @@ enum class LensFamily {
     LensPolynomial,
     Splined,
     Cylindrical,
+    Ptlens,  // lens databases
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -266,6 +268,13 @@ inline constexpr LensInfo kLensTable[] = {
      .colmap = "", .kalibr = "", .basalt = "",
      .also_named = "OpenCV's stitching cv::detail::CylindricalWarper; Hugin's and PTGui's cylindrical",
      .family = LensFamily::Cylindrical, .family_rank = 0, .fit = FitCandidate::No},
+    // PanoTools' a b c in units of the focal length: lensfun's ptlens
+    // and Hugin's a b c, rescaled (lens/ptlens.hpp).
+    {.type = LensType::Ptlens, .name = "PTLENS", .coefficients = {"a", "b", "c"}, .num_coefficients = 3,
+     .sees_behind_camera = false, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "PanoTools' and Hugin's a b c, lensfun's ptlens (rescaled to the focal length, d = 1)",
+     .family = LensFamily::Ptlens, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

@@ -61,6 +61,7 @@
 #include "libcam/lens/mei.hpp"
 #include "libcam/lens/opencv.hpp"
 #include "libcam/lens/pinhole.hpp"
+#include "libcam/lens/ptlens.hpp"
 #include "libcam/lens/rad_tan_thin_prism_fisheye.hpp"
 #include "libcam/lens/splined_stereographic.hpp"
 #include "libcam/lens/stereographic.hpp"

@@ -45,7 +45,9 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
     const std::set<std::string> read_only = {"camodocal", "cahvor",     "euroc", "openicc", "opensfm",
                                              "openmvg",   "gs-cameras", "llff",
                                              // photogrammetry files
-                                             "nvm", "bundler"};
+                                             "nvm", "bundler",
+                                             // lens databases
+                                             "lensfun", "hugin", "gyroflow"};
     const std::set<std::string> written = {"json",   "opencv-yaml", "opencv-xml", "cameramodel", "gl",
                                            "kalibr", "basalt",      "colmap",     "nerf",        "ros",
                                            "open3d", "blender",     "blender-json",

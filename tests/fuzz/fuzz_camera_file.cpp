@@ -67,6 +67,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         // VisualSfM's and Bundler's files store no image size: the reader is given one.
         ReadOptions options;
         if (format == CameraFormat::Nvm || format == CameraFormat::Bundler) options.size = ImageSize{640, 480};
+#ifdef LIBCAM_FUZZ_LENS_DATABASE
+        // A lens database describes no image: the reader needs a size and a focal length.
+        options.size = ImageSize{1500, 1000};
+        options.focal_mm = 30.0;
+#endif
         set = parse_camera_set(text, format, "fuzz input", options);
     } catch (const Error&) {
         return 0;  // refused with a message: the expected outcome for most inputs

@@ -20,11 +20,24 @@ void FileSelection::add_to(CLI::App& command) {
                        "where Blender rendered NeRF's synthetic scenes and COLMAP put LLFF's) or half-size (W/2, "
                        "H/2 with pixel centres at integers, where NeRF's own ray code puts it, half a pixel off)")
         ->capture_default_str();
+    command.add_option("--lens", lens,
+                       "A lens database's lens (lensfun's XML): one of its model names, or a part of one that names "
+                       "no other lens");
+    command.add_option("--focal", focal, "A lens database's focal length in millimetres (default: a prime lens's own)");
+    command.add_option("--crop-factor", crop_factor,
+                       "A lens database's sensor crop factor (default: the one the lens was calibrated on)");
+    command.add_flag("--projection-only", projection_only,
+                     "A lens database's lens without its distortion: its projection alone (lensfun's projection "
+                     "transform without distortion correction)");
 }
 
 ReadOptions FileSelection::read_options() const {
     ReadOptions options;
     if (!image_size.empty()) options.size = parse_size("--image-size", image_size);
+    options.lens = lens;
+    if (!focal.empty()) options.focal_mm = parse_number("--focal", focal);
+    if (!crop_factor.empty()) options.crop_factor = parse_number("--crop-factor", crop_factor);
+    options.lens_projection_only = projection_only;
     if (nerf_principal_point == "half-size") {
         options.nerf_principal_point = NerfPrincipalPoint::HalfSize;
     } else if (nerf_principal_point != "centre") {

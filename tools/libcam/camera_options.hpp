@@ -17,6 +17,11 @@ struct FileSelection {
     std::string format;
     std::string image_size;
     std::string nerf_principal_point = "centre";
+    // Lens databases (lensfun's XML): which lens, at which focal length and crop factor.
+    std::string lens;
+    std::string focal;
+    std::string crop_factor;
+    bool projection_only = false;
 
     void add_to(CLI::App& command);
     std::optional<CameraFormat> chosen_format() const;  // throws UsageError for an unknown name

@@ -12,7 +12,10 @@
 #include "libcam/io/detail/colmap_observations.hpp"
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/gs_cameras.hpp"
+#include "libcam/io/detail/gyroflow_format.hpp"
+#include "libcam/io/detail/hugin_format.hpp"
 #include "libcam/io/detail/json_format.hpp"
+#include "libcam/io/detail/lensfun_format.hpp"
 #include "libcam/io/detail/llff_format.hpp"
 #include "libcam/io/detail/metashape_format.hpp"
 #include "libcam/io/detail/nvm_bundler_formats.hpp"
@@ -105,6 +108,12 @@ constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye};
 // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
 constexpr L kAliceVision[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Fov};
 constexpr L kBundler[] = {L::Pinhole, L::OpenCv4};
+// Lens databases.
+constexpr L kLensfun[] = {L::Pinhole,       L::OpenCv4, L::Ptlens,      L::Fisheye,
+                          L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
+constexpr L kGyroflow[] = {L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::Fisheye, L::Ptlens};
+constexpr L kHuginPto[] = {L::Pinhole,   L::OpenCv4,       L::Ptlens, L::Fisheye,
+                           L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
 
 using C = Content;
 
@@ -260,6 +269,30 @@ constexpr FormatRow kRows[] = {
      .extensions = {".out"}, .content = static_cast<unsigned>(C::Table), .read = read_bundler, .read_only = true,
      .read_observations = read_bundler_observations, .lenses = kBundler,
      .lens_names = "f, k1, k2: OPENCV4 with p1 = p2 = 0, its principal point at the image centre"},
+    // Lens databases.
+    {.format = CameraFormat::Lensfun, .name = "lensfun", .title = "lensfun database XML",
+     .description = "lensfun's lens database (data/db/*.xml): one lens at one focal length, crop factor and image "
+                    "size (--lens, --focal, --crop-factor, --image-size)",
+     .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_lensfun,
+     .read = read_lensfun, .read_only = true, .lenses = kLensfun,
+     .lens_names = "poly3 and poly5 (OpenCV's k1 k2 once rescaled), ptlens (PTLENS); rectilinear, fisheye, "
+                   "and without distortion equisolid, stereographic, equirectangular, panoramic",
+     .refuses = "acm, orthographic and fisheye_thoby lenses, ptlens on a fisheye, distortion on the other "
+                "fisheye types"},
+    {.format = CameraFormat::HuginPto, .name = "hugin", .title = "Hugin project",
+     .description = "Hugin's (PanoTools') .pto project: one camera per image line (w h f v a b c d e)",
+     .extensions = {".pto"}, .content = static_cast<unsigned>(C::Table), .read = read_hugin_pto, .read_only = true,
+     .lenses = kHuginPto,
+     .lens_names = "f0 with a b c (PTLENS; OPENCV4 when a = c = 0), f2/f3 fisheye with b (FISHEYE), f1, f4, f10, "
+                   "f21 without distortion",
+     .refuses = "shear (g t), other projections, a b c on the undistorted ones; the image's orientation in the "
+                "panorama is not read"},
+    {.format = CameraFormat::Gyroflow, .name = "gyroflow", .title = "Gyroflow lens profile",
+     .description = "Gyroflow's lens profile JSON (calib_dimension, fisheye_params, distortion_model)",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_gyroflow,
+     .read = read_gyroflow, .read_only = true, .lenses = kGyroflow,
+     .lens_names = "opencv_fisheye (FISHEYE), opencv_standard (OpenCV's 12), poly3, poly5 (OPENCV4), ptlens (PTLENS)",
+     .refuses = "anamorphic stretch, GoPro, Insta360, Sony and Gyroflow's other models"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without

@@ -1,0 +1,227 @@
+// lensfun's lens database: lensfun's own regression vectors (its test
+// tests/test_modifier_regression.cpp, the expected pixels stored in
+// real-data/vectors/lensfun-test-modifier-regression.json, SOURCES.md sections 8 and 9)
+// reproduced through the reader and libcam's lens models, and small databases written
+// here for the reader's choices and refusals.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "libcam/camera/camera.hpp"
+#include "libcam/error.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "libcam/io/detail/lensfun_format.hpp"
+#include "libcam/lens/lens_models.hpp"
+#include "error_message.hpp"
+#include "real_cameras.hpp"
+#include "temp_dir.hpp"
+
+using namespace libcam;
+
+namespace {
+
+// The message of the error of type E a call must throw.
+template <class E, class Read>
+std::string error_message_of(Read&& read) {
+    try {
+        read();
+    } catch (const E& error) {
+        return error.what();
+    }
+    FAIL("no error of the expected type");
+    return {};
+}
+
+std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
+    const std::filesystem::path path = dir.path() / name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+// lensfun's ApplyGeometryDistortion gives, for a pixel (x, y) of the corrected
+// (rectilinear) image, the pixel of the source image it comes from: the camera's
+// projection of the ray through (x, y) of a pinhole camera of the same K.
+Vec2 source_pixel(const PreparedCamera& camera, double x, double y) {
+    const Intrinsics& k = camera.camera().intrinsics;
+    const Vec3 point((x - k.cx) / k.fx, (y - k.cy) / k.fy, 1.0);
+    const std::vector<Projection> projected = camera.project(std::vector<Vec3>{point});
+    REQUIRE(projected[0].valid);
+    return projected[0].pixel;
+}
+
+void check_case(const nlohmann::json& c, double tolerance) {
+    const std::filesystem::path db = test::real_data_path("lensfun/data/db") / c["db_file"].get<std::string>();
+    if (!test::real_data_present(db)) return;
+    ReadOptions options;
+    options.lens = c["lens_model"].get<std::string>();
+    options.focal_mm = c["focal_mm"].get<double>();
+    options.crop_factor = c["camera_crop"].get<double>();
+    options.size = ImageSize{c["width"].get<long>(), c["height"].get<long>()};
+    options.lens_projection_only = c["operation"].get<std::string>().starts_with("EnableProjectionTransform");
+    const PreparedCamera camera(read_camera_file(db, {}, std::nullopt, options).camera);
+    for (std::size_t i = 0; i < c["x"].size(); ++i) {
+        const Vec2 pixel = source_pixel(camera, c["x"][i].get<double>(), c["y"][i].get<double>());
+        INFO(c["name"].get<std::string>() << " point " << i << ": libcam " << pixel.transpose());
+        CHECK(std::abs(pixel.x() - c["expected_x"][i].get<double>()) < tolerance);
+        CHECK(std::abs(pixel.y() - c["expected_y"][i].get<double>()) < tolerance);
+    }
+}
+
+nlohmann::json lensfun_vectors() {
+    const std::filesystem::path path = test::real_data_path("vectors/lensfun-test-modifier-regression.json");
+    if (!test::real_data_present(path)) return {};
+    return nlohmann::json::parse(std::ifstream(path));
+}
+
+const nlohmann::json* vector_case(const nlohmann::json& vectors, const std::string& name) {
+    if (vectors.is_null()) return nullptr;
+    for (const nlohmann::json& c : vectors["cases"]) {
+        if (c["name"].get<std::string>().starts_with(name)) return &c;
+    }
+    FAIL("no case " << name);
+    return nullptr;
+}
+
+}  // namespace
+
+TEST_CASE("lensfun's regression vectors through the reader: poly3, poly5 and ptlens to 1e-3 px", "[io][lensfun]") {
+    const nlohmann::json vectors = lensfun_vectors();
+    for (const char* name : {"verify_dist_poly3", "verify_dist_poly5", "verify_dist_ptlens"}) {
+        if (const nlohmann::json* c = vector_case(vectors, name)) check_case(*c, 1e-3);
+    }
+}
+
+TEST_CASE("lensfun's regression vectors through the reader: the equisolid fisheye seen rectilinear, to 0.1 px",
+          "[io][lensfun]") {
+    const nlohmann::json vectors = lensfun_vectors();
+    if (const nlohmann::json* c = vector_case(vectors, "verify_geom_fisheye_rectlinear")) check_case(*c, 0.1);
+}
+
+TEST_CASE("lensfun's spline between calibrated focal lengths is its cubic Hermite, worked by hand", "[io][lensfun]") {
+    // Four values on a line stay on it; the ends use the one-sided difference.
+    CHECK(detail::lensfun_interpolate(1.0, 2.0, 3.0, 4.0, 0.25) == Approx(2.25).epsilon(1e-15));
+    // y = t^2 sampled at -1, 0, 1, 2: tangents (1 - 1) / 2 = 0 and (4 - 0) / 2 = 2, so at
+    // t = 0.5: (0.5) 0 + (0.125) 0 + (0.5) 1 + (-0.125) 2 = 0.25.
+    CHECK(detail::lensfun_interpolate(1.0, 0.0, 1.0, 4.0, 0.5) == Approx(0.25).epsilon(1e-15));
+    // Without neighbours: tangents y3 - y2 = 1, so the line 2 + t.
+    CHECK(detail::lensfun_interpolate(std::nullopt, 2.0, 3.0, std::nullopt, 0.3) == Approx(2.3).epsilon(1e-15));
+}
+
+namespace {
+
+constexpr const char* kSmallDatabase = R"(<!DOCTYPE lensdatabase SYSTEM "lensfun-database.dtd">
+<lensdatabase version="2">
+    <lens>
+        <maker>Maker</maker>
+        <model>Zoom 10-20mm</model>
+        <mount>M</mount>
+        <cropfactor>2</cropfactor>
+        <aspect-ratio>4:3</aspect-ratio>
+        <calibration>
+            <distortion model="poly5" focal="10" k1="0.01" k2="-0.002"/>
+            <distortion model="poly5" focal="20" k1="0.02" k2="0.001"/>
+        </calibration>
+    </lens>
+    <lens>
+        <maker>Maker</maker>
+        <model>Zoom 10-20mm Mark II</model>
+        <mount>M</mount>
+        <focal value="12"/>
+        <calibration>
+            <distortion model="poly3" focal="12" k1="-0.01"/>
+        </calibration>
+    </lens>
+    <lens>
+        <maker>Maker</maker>
+        <model>Odd 24mm</model>
+        <mount>M</mount>
+        <focal value="24"/>
+        <calibration>
+            <distortion model="ptlens" focal="24" a="0.01" b="-0.02" c="0.003"/>
+        </calibration>
+    </lens>
+</lensdatabase>
+)";
+
+}  // namespace
+
+TEST_CASE("lensfun: a poly5 lens at a calibrated focal length is OpenCV's k1 k2 by lensfun's rescaling, by hand",
+          "[io][lensfun]") {
+    const test::TempDir dir;
+    const auto path = write_file(dir, "db.xml", kSmallDatabase);
+    ReadOptions options;
+    options.lens = "zoom 10-20mm";  // any case; exact, though "Mark II" also contains it
+    options.focal_mm = 20.0;
+    options.size = ImageSize{400, 300};
+    const CameraSet set = read_camera_set(path, std::nullopt, options);
+    REQUIRE(set.format == CameraFormat::Lensfun);
+    REQUIRE(set.cameras.size() == 1);
+    const Camera& camera = set.cameras[0].file.camera;
+    // f_r = 20 mm (poly5), pixels: 20 hypot(400, 300) 2 / hypot(36, 24) = 20000 / hypot(36, 24).
+    const double f = 20.0 * 500.0 * 2.0 / std::hypot(36.0, 24.0);
+    CHECK(camera.intrinsics.fx == Approx(f).epsilon(1e-14));
+    CHECK(camera.intrinsics.cx == 199.5);
+    CHECK(camera.intrinsics.cy == 149.5);
+    // Half the shorter side of a crop-2 4:3 sensor: hypot(36, 24) / 2 / (5 / 3) / 2 mm.
+    const double s = 20.0 / (std::hypot(36.0, 24.0) / 2.0 / (5.0 / 3.0) / 2.0);
+    REQUIRE(camera.lens.type == LensType::OpenCv4);
+    CHECK(camera.lens.coefficients[0] == Approx(0.02 * s * s).epsilon(1e-14));
+    CHECK(camera.lens.coefficients[1] == Approx(0.001 * s * s * s * s).epsilon(1e-14));
+}
+
+TEST_CASE("lensfun: the reader says which lens, focal length and size it needs, in one line", "[io][lensfun]") {
+    const test::TempDir dir;
+    const auto path = write_file(dir, "db.xml", kSmallDatabase);
+    ReadOptions options;
+    options.size = ImageSize{400, 300};
+    CHECK(error_message_of<InvalidArgument>([&] { read_camera_file(path, {}, std::nullopt, options); }) ==
+          path.string() + ": holds 3 lenses: name one (--lens \"MODEL\"), e.g. 'Zoom 10-20mm'");
+    options.lens = "zoom";
+    CHECK(error_message_of<InvalidArgument>([&] { read_camera_file(path, {}, std::nullopt, options); }) ==
+          path.string() + ": 'zoom' names 2 lenses ('Zoom 10-20mm', 'Zoom 10-20mm Mark II'): give more of the name");
+    options.lens = "Zoom 10-20mm";
+    CHECK(error_message_of<InvalidArgument>([&] { read_camera_file(path, {}, std::nullopt, options); }) ==
+          path.string() + ": lens 'Zoom 10-20mm': is calibrated at several focal lengths: give the focal length "
+                          "(--focal MM)");
+    options.lens = "mark ii";  // a prime: its own focal length
+    options.size.reset();
+    CHECK(error_message_of<InvalidArgument>([&] { read_camera_file(path, {}, std::nullopt, options); }) ==
+          path.string() + ": lens 'Zoom 10-20mm Mark II': a lens database records no image size; give the size "
+                          "(--image-size WxH)");
+    options.size = ImageSize{400, 300};
+    const Camera prime = read_camera_file(path, {}, std::nullopt, options).camera;
+    // poly3 f_r = 12 (1 - k1) = 12.12 mm on a crop-1 3:2 sensor (lensfun's defaults).
+    CHECK(prime.intrinsics.fx == Approx(12.12 * 500.0 / std::hypot(36.0, 24.0)).epsilon(1e-14));
+    const double s = 12.12 / 12.0;
+    CHECK(prime.lens.coefficients[0] == Approx(-0.01 * s * s / std::pow(1.01, 3)).epsilon(1e-14));
+    options.crop_factor = 0.9;  // a sensor bigger than the one calibrated
+    CHECK_THROWS_AS(read_camera_file(path, {}, std::nullopt, options), NotRepresentable);
+}
+
+TEST_CASE("PTLENS: its formula and its Jacobian on the axis, worked by hand", "[io][lensfun]") {
+    // m = u (1 + c r + b r^2 + a r^3): at u = (0.3, 0.4), r = 0.5.
+    const Lens lens{LensType::Ptlens, {0.2, -0.1, 0.05}};
+    Camera camera;
+    camera.size = {100, 100};
+    camera.intrinsics = {1.0, 1.0, 0.0, 0.0, 0.0};
+    camera.lens = lens;
+    const PreparedCamera prepared(camera);
+    const double factor = 1.0 + 0.05 * 0.5 - 0.1 * 0.25 + 0.2 * 0.125;
+    const Projection p = prepared.project_camera_point(Vec3(0.3, 0.4, 1.0));
+    REQUIRE(p.valid);
+    CHECK(p.pixel.x() == Approx(0.3 * factor).epsilon(1e-15));
+    CHECK(p.pixel.y() == Approx(0.4 * factor).epsilon(1e-15));
+    // On the axis d m / d u is the identity: c |u| u has derivative 0 there.
+    Eigen::Matrix<double, 2, 3> jacobian;
+    Vec2 m;
+    const auto parameters = PtlensLens<double>::parameters(lens.coefficients);
+    REQUIRE(PtlensLens<double>::project(parameters, Vec3(0.0, 0.0, 2.0), m, &jacobian));
+    CHECK(m.norm() == 0.0);
+    CHECK(jacobian(0, 0) == 0.5);
+    CHECK(jacobian(1, 1) == 0.5);
+    CHECK(jacobian(0, 1) == 0.0);
+    CHECK(jacobian(0, 2) == 0.0);
+}
