@@ -41,7 +41,8 @@
     _(Cahvore, CahvoreLens) \
     _(LensPolynomial, LensPolynomialLens) \
     _(SplinedStereographic, SplinedStereographicLens) \
-    _(Cylindrical, CylindricalLens)
+    _(Cylindrical, CylindricalLens) \
+    _(OcamCalib, OcamCalibLens)
 
 namespace libcam {
 
@@ -92,6 +93,7 @@ enum class LensFamily {
     LensPolynomial,
     Splined,
     Cylindrical,
+    OcamCalib,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -266,6 +268,15 @@ inline constexpr LensInfo kLensTable[] = {
      .colmap = "", .kalibr = "", .basalt = "",
      .also_named = "OpenCV's stitching cv::detail::CylindricalWarper; Hugin's and PTGui's cylindrical",
      .family = LensFamily::Cylindrical, .family_rank = 0, .fit = FitCandidate::No},
+    // Scaramuzza's OCamCalib (ocamcalib.hpp): the ray's forward part a polynomial of the
+    // radius in the sensor plane, behind an affine [1 e; d c]; the toolbox's files
+    // (calib_results.txt), py-OCamCalib's JSON and camodocal's SCARAMUZZA hold it.
+    {.type = LensType::OcamCalib, .name = "OCAMCALIB",
+     .coefficients = {"c", "d", "e", "k1", "k2", "k3", "k4", "k5"}, .num_coefficients = 8,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "Scaramuzza's omnidirectional model; camodocal's SCARAMUZZA; py-OCamCalib's",
+     .family = LensFamily::OcamCalib, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {
