@@ -94,7 +94,7 @@ void check_toolbox_file(const std::string& name) {
                              << " px over the image (at " << miss.worst_pixel.transpose() << "); the grid's: " << within
                              << ", " << whole);
     CHECK(miss.within_half_side >= within * (1 - 1e-6));
-    CHECK(miss.within_half_side <= 1.6 * within);
+    CHECK(miss.within_half_side <= 2 * within);
     CHECK(miss.whole_image >= whole * (1 - 1e-6));
     CHECK(miss.whole_image <= 2.5 * whole);
 }
