@@ -324,3 +324,40 @@ TEST_CASE("ocamcalib: camodocal's SCARAMUZZA against its spaceToPlane and liftPr
         CHECK((back.direction.normalized() - ray.normalized()).norm() < 1e-12);
     }
 }
+
+TEST_CASE("ocamcalib: real calibrations written and read back, and a pinhole written as one", "[ocamcalib]") {
+    const test::TempDir dir;
+    for (const std::string name : {"ches00-360-SL-Metasurface/calib_results.txt",
+                                   "premnirmal-Homing-in-Scale-Space/calib_results.txt"}) {
+        const std::filesystem::path path = test::real_data_path("ocamcalib/" + name);
+        if (!test::real_data_present(path)) {
+            WARN("real data absent: " << path);
+            continue;
+        }
+        INFO(name);
+        const Camera camera = read_camera_file(path).camera;
+        const std::filesystem::path written = dir.path() / "written.txt";
+        write_camera_file(written, camera, CameraFormat::OcamCalib);
+        const Camera back = read_camera_file(written).camera;
+        CHECK(back.intrinsics.fx == camera.intrinsics.fx);
+        for (std::size_t i = 0; i < camera.lens.coefficients.size(); ++i) {
+            CHECK(back.lens.coefficients[i] == Approx(camera.lens.coefficients[i]).epsilon(1e-14).margin(1e-300));
+        }
+        // The toolbox's aim, 0.01 px; where the file's own invpol misses by far more (the
+        // catadioptric camera near its fold), at least much closer than it.
+        const InverseMiss miss = ocamcalib_inverse_miss(back, read_ocamcalib_inverse(written).value());
+        const InverseMiss own = ocamcalib_inverse_miss(camera, read_ocamcalib_inverse(path).value());
+        INFO("the fitted invpol misses by " << miss.whole_image << " px over the image, the file's by " << own.whole_image);
+        CHECK(miss.whole_image < std::max(0.01, own.whole_image / 4));
+    }
+    Camera pinhole;
+    pinhole.size = {64, 48};
+    pinhole.intrinsics = {50, 50, 31.5, 23.5, 0};
+    const std::filesystem::path written = dir.path() / "pinhole.txt";
+    write_camera_file(written, pinhole, CameraFormat::OcamCalib);
+    const Camera back = read_camera_file(written).camera;
+    CHECK(back.lens.type == LensType::OcamCalib);
+    const Projection pixel = PreparedCamera(back).project_camera_point(Vec3(0.3, -0.2, 1.0));
+    REQUIRE(pixel.valid);
+    CHECK((pixel.pixel - Vec2(31.5 + 15, 23.5 - 10)).norm() < 1e-12);
+}

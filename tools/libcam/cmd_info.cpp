@@ -72,7 +72,7 @@ std::optional<InverseMiss> inverse_miss(const std::string& file, const CameraSet
 }
 
 std::string inverse_text(const InverseMiss& miss) {
-    return "  invpol    the file's fitted inverse (what the toolbox's C world2cam evaluates) lands up to " +
+    return "  invpol    the file's fitted inverse polynomial (what OCamCalib's C world2cam evaluates) lands up to " +
            format_short(miss.within_half_side, 3) + " px from the exact projection within min(width, height) / 2 of "
            "the centre, " + format_short(miss.whole_image, 3) + " px over the image (at pixel " +
            format_number(miss.worst_pixel.x()) + ", " + format_number(miss.worst_pixel.y()) + ")\n";

@@ -101,6 +101,7 @@ constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lon
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOcamCalib[] = {L::OcamCalib};
+constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
 
 using C = Content;
 
@@ -233,8 +234,9 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::OcamCalib, .name = "ocamcalib", .title = "OCamCalib calib_results.txt",
      .description = "the OCamCalib MATLAB toolbox's calib_results.txt (export_data): pol, invpol, centre, affine, "
                     "size", .content = static_cast<unsigned>(C::OcamText), .read = read_ocamcalib,
-     .write = one_file<write_ocamcalib>, .lenses = kOcamCalib,
-     .lens_names = "Scaramuzza's polynomial up to degree 5 (the toolbox's default is 4), with its affine",
+     .write = one_file<write_ocamcalib>, .lenses = kOcamCalibWritten,
+     .lens_names = "Scaramuzza's polynomial up to degree 5 (the toolbox's default is 4), with its affine; a "
+                   "pinhole written as one (read back as OCAMCALIB)",
      .refuses = "skew, a pose (--no-pose writes the intrinsics alone); invpol is written fitted as the toolbox fits it"},
     {.format = CameraFormat::PyOcamCalib, .name = "py-ocamcalib", .title = "py-OCamCalib JSON",
      .description = "py-OCamCalib's calibration JSON (taylor_coefficient, distortion_center, stretch_matrix); it "

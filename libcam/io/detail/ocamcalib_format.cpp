@@ -113,7 +113,7 @@ Camera ocamcalib_camera(std::span<const double> forward, std::array<double, 3> c
     camera.lens = {LensType::OcamCalib, {cde[0], cde[1], cde[2]}};
     double power = 1.0;
     for (std::size_t i = 1; i < static_cast<std::size_t>(kPolynomialTerms); ++i) {
-        camera.lens.coefficients.push_back(i < forward.size() ? forward[i] * power : 0.0);
+        camera.lens.coefficients.push_back(i < forward.size() ? forward[i] * power + 0.0 : 0.0);  // + 0: no -0
         power *= f;
     }
     return validated_camera(std::move(camera), where);
@@ -198,14 +198,29 @@ std::vector<double> fitted_inverse(const Camera& camera, double units_per_radius
         }
     }
     const double reach = std::min(largest, 0.999 * OcamCalibLens<double>::valid_radius(k));
-    constexpr int kSamples = 400;
-    Eigen::VectorXd theta(kSamples), rho(kSamples);
-    for (int i = 0; i < kSamples; ++i) {
-        const double r = reach * i / (kSamples - 1);
+    // Radii spaced evenly, and as many at angles spaced evenly (denser where the radius
+    // grows fastest with the angle, towards the fold), each radius's exact angle.
+    const std::span<const double> polynomial = std::span<const double>(k).subspan(3);
+    const auto angle_at = [&](double r) {
         double slope = 0.0;
-        const double g = OcamCalibLens<double>::forward(std::span<const double>(k).subspan(3), r, slope);
-        theta(i) = std::atan2(-g, r);  // atan(z / rho) with z = -g
-        rho(i) = units_per_radius * r;
+        return std::atan2(r, OcamCalibLens<double>::forward(polynomial, r, slope));
+    };
+    std::vector<double> at_angles = {1, 0, 0};
+    at_angles.insert(at_angles.end(), polynomial.begin(), polynomial.end());
+    const auto radial = OcamCalibLens<double>::parameters(at_angles);
+    constexpr int kHalf = 300, kSamples = 2 * kHalf;
+    Eigen::VectorXd theta(kSamples), rho(kSamples);
+    for (int i = 0; i < kHalf; ++i) {
+        const double even = reach * i / (kHalf - 1);
+        Vec2 m = Vec2::Zero();
+        const double angle = angle_at(reach) * i / (kHalf - 1);
+        OcamCalibLens<double>::project(radial, Vec3(std::sin(angle), 0.0, std::cos(angle)), m);
+        const double solved = std::min(std::abs(m.x()), reach);
+        int j = 2 * i;
+        for (const double r : {even, solved}) {
+            theta(j) = angle_at(r) - std::numbers::pi / 2;  // the toolbox's atan(z / rho), z backwards
+            rho(j++) = units_per_radius * r;
+        }
     }
     std::vector<double> best;
     double best_miss = std::numeric_limits<double>::infinity();
@@ -262,10 +277,13 @@ std::vector<NamedCamera> read_ocamcalib(std::string_view text, const ReadContext
     return {{std::string(), {std::move(file.camera), std::nullopt}}};
 }
 
-std::string write_ocamcalib(const Camera& camera, const WriteOptions& options) {
-    camera.validate();
+std::string write_ocamcalib(const Camera& given, const WriteOptions& options) {
+    given.validate();
+    Camera camera = given;
+    // A pinhole is OCAMCALIB with g(r) = 1 and the identity affine.
+    if (camera.lens.type == LensType::Pinhole) camera.lens = {LensType::OcamCalib, {1, 0, 0, 0, 0, 0, 0, 0}};
     if (camera.lens.type != LensType::OcamCalib) {
-        throw NotRepresentable("calib_results.txt holds OCamCalib's model alone (OCAMCALIB), not " +
+        throw NotRepresentable("calib_results.txt holds OCamCalib's model (OCAMCALIB, or PINHOLE as one), not " +
                                std::string(lens_info(camera.lens.type).name));
     }
     if (camera.intrinsics.skew != 0.0) {
@@ -283,7 +301,7 @@ std::string write_ocamcalib(const Camera& camera, const WriteOptions& options) {
     std::vector<double> pol = {-K.fx};
     double power = 1.0;
     for (std::size_t i = 3; i < k.size(); ++i) {
-        pol.push_back(-k[i] / power);
+        pol.push_back(-k[i] / power + 0.0);
         power *= K.fx;
     }
     // As many terms as the toolbox's default degree 4 writes, more only when used.
