@@ -106,17 +106,25 @@ struct OcamCalibLens {
         const Scalar rho = sqrt(rho2);
         const Scalar norm2 = rho2 + point.z() * point.z();
         const Scalar target = angle_from_axis(rho, point.z());
+        // Behind the camera the angle is solved as its distance from the backward axis,
+        // which keeps its digits near 180 degrees (where r grows without bound).
+        const bool behind = point.z() < zero;
+        const Scalar solved_target = behind ? Scalar(-angle_from_axis(rho, Scalar(-point.z()))) : target;
         Scalar r(0);
-        detail::solve_radial<OcamCalibLens>(lens, target, r);
+        if (behind) {
+            detail::solve_radial<FromBackwardAxis>(lens, solved_target, r);
+        } else {
+            detail::solve_radial<OcamCalibLens>(lens, solved_target, r);
+        }
         Scalar slope(0);
-        const Scalar reached = radial_distortion(lens, r, slope);
+        const Scalar reached = behind ? FromBackwardAxis::radial_distortion(lens, r, slope) : radial_distortion(lens, r, slope);
         // On the axis r / rho tends to 1 / (theta'(0) z) = 1 / z.
         const bool on_axis = !(rho > zero);
         const Scalar scale = on_axis ? Scalar(1) / (slope * point.z()) : r / rho;
         const Vec2T n(scale * point.x(), scale * point.y());
         m = affine(k, n);
-        const Scalar tolerance = unprojection_tolerance(target);
-        const bool in_domain = (r < lens.valid_radius) & (norm2 > zero) & (abs_of(reached - target) <= tolerance) &
+        const Scalar tolerance = unprojection_tolerance(abs_of(solved_target));
+        const bool in_domain = (r < lens.valid_radius) & (norm2 > zero) & (abs_of(reached - solved_target) <= tolerance) &
                                all_finite(m);
         if constexpr (is_requested<PointJacobianPtr> || is_requested<CoefficientJacobianPtr>) {
             const Scalar d_r_d_target = Scalar(1) / slope;
@@ -183,6 +191,17 @@ struct OcamCalibLens {
         slope = T(k[0]) + r * (T(2) * T(k[1]) + r * (T(3) * T(k[2]) + r * (T(4) * T(k[3]) + r * T(5) * T(k[4]))));
         return T(1) + r * (T(k[0]) + r * (T(k[1]) + r * (T(k[2]) + r * (T(k[3]) + r * T(k[4])))));
     }
+
+    // theta(r) - pi = -atan2(r, -g(r)) and its slope theta'(r): the solver's d(r) for a
+    // point behind the camera.
+    struct FromBackwardAxis {
+        static Scalar radial_distortion(const Parameters& lens, const Scalar& r, Scalar& slope) {
+            Scalar g_slope(0);
+            const Scalar g = forward(lens.coefficients.template tail<5>(), r, g_slope);
+            slope = (g - r * g_slope) / (r * r + g * g);
+            return -angle_from_axis(r, Scalar(-g));
+        }
+    };
 
 private:
     // theta(r) = atan2(r, g(r)) and theta'(r) = h(r) / (r^2 + g^2), h = g - r g'.
