@@ -49,6 +49,18 @@ inline Camera real_camera(LensType type, std::vector<double> coefficients, Image
     return camera;
 }
 
+// An OCAMCALIB camera from the numbers of a calib_results.txt the OCamCalib toolbox
+// wrote: pol a0..a4 (pixels, a0 < 0), the centre (row, column), the affine c d e and the
+// image's height and width. The model's K is f = -a0 at the centre (column, row), its
+// k_i = -a_i f^(i - 1) (libcam/lens/ocamcalib.hpp).
+inline Camera ocamcalib_camera(std::array<double, 5> pol, double row, double column, std::array<double, 3> cde,
+                               int height, int width) {
+    const double f = -pol[0];
+    std::vector<double> coefficients = {cde[0], cde[1], cde[2]};
+    for (int i = 1; i <= 5; ++i) coefficients.push_back(i < 5 ? -pol[static_cast<std::size_t>(i)] * std::pow(f, i - 1) : 0.0);
+    return real_camera(LensType::OcamCalib, coefficients, {width, height}, {f, f, column, row});
+}
+
 // The real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767 (the library's
 // example camera "wide", one copy for the command line, the benchmarks and the tests).
 inline Camera wide_reference_camera() { return example_camera("wide"); }
@@ -223,6 +235,13 @@ inline std::vector<LensCase> lens_cases() {
                                     {1500, 1000}, {2005.78304744325, 2005.78304744325, 749.5, 499.5})},
         {"PTLENS strong", real_camera(LensType::Ptlens, {0.23259372609028295, -0.3081239087359973, 0.0577364487081396},
                                       {6000, 4000}, {4077.84, 4077.84, 2999.5, 1999.5})},
+        // OCamCalib's calibrations: a 640x400 fisheye (ches00/360-SL-Metasurface, 64
+        // degrees off the axis at 200 px) and a catadioptric omnicam seeing 113 degrees off
+        // the axis at 384 px (premnirmal/Homing-in-Scale-Space), with their affines.
+        {"OCAMCALIB fisheye", ocamcalib_camera({-1.890172e+02, 0.0, 2.564080e-03, -5.912461e-06, 2.369445e-08},
+                                               199.772421, 320.450876, {1.000124, -0.000228, -0.000155}, 400, 640)},
+        {"OCAMCALIB omnicam", ocamcalib_camera({-1.534670e+02, 0.0, 1.034692e-03, 5.138226e-06, -5.694855e-09},
+                                               382.828814, 456.345673, {1.000651, -0.000625, 0.000431}, 768, 1024)},
     };
     return cases;
 }

@@ -10,6 +10,7 @@
 #include "libcam/io/camera_formats.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/detail/format_row.hpp"
+#include "libcam/io/detail/ocamcalib_format.hpp"
 #include "libcam/io/format_table.hpp"
 #include "libcam/lens/lens_model.hpp"
 
@@ -337,6 +338,8 @@ Content sniff_content(std::string_view text, const std::string& source) {
         if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) throw FileError(source + ": file is empty");
         return Content::PythonDict;  // only comments: mrcal's parser says what is missing
     }
+    // Before COLMAP's table: the toolbox's numbers follow its own comment.
+    if (looks_like_ocamcalib(text)) return Content::OcamText;
     if (body.starts_with("%YAML") || body.starts_with("---")) return Content::Yaml;
     if (body.starts_with("<?xml") || body.starts_with("<opencv_storage>") || body.starts_with("<document") ||
         body.starts_with("<calibration>") || body.starts_with("<lensdatabase") || body.starts_with("<!DOCTYPE lensdatabase")) {

@@ -42,7 +42,8 @@
     _(LensPolynomial, LensPolynomialLens) \
     _(SplinedStereographic, SplinedStereographicLens) \
     _(Cylindrical, CylindricalLens) \
-    _(Ptlens, PtlensLens)
+    _(Ptlens, PtlensLens) \
+    _(OcamCalib, OcamCalibLens)
 
 namespace libcam {
 
@@ -94,6 +95,7 @@ enum class LensFamily {
     Splined,
     Cylindrical,
     Ptlens,  // lens databases
+    OcamCalib,
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -275,6 +277,15 @@ inline constexpr LensInfo kLensTable[] = {
      .colmap = "", .kalibr = "", .basalt = "",
      .also_named = "PanoTools' and Hugin's a b c, lensfun's ptlens (rescaled to the focal length, d = 1)",
      .family = LensFamily::Ptlens, .family_rank = 0, .fit = FitCandidate::No},
+    // Scaramuzza's OCamCalib (ocamcalib.hpp): the ray's forward part a polynomial of the
+    // radius in the sensor plane, behind an affine [1 e; d c]; the toolbox's files
+    // (calib_results.txt), py-OCamCalib's JSON and camodocal's SCARAMUZZA hold it.
+    {.type = LensType::OcamCalib, .name = "OCAMCALIB",
+     .coefficients = {"c", "d", "e", "k1", "k2", "k3", "k4", "k5"}, .num_coefficients = 8,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "Scaramuzza's omnidirectional model; camodocal's SCARAMUZZA; py-OCamCalib's",
+     .family = LensFamily::OcamCalib, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

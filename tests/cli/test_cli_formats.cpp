@@ -47,12 +47,16 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
                                              // photogrammetry files
                                              "nvm", "bundler",
                                              // lens databases
-                                             "lensfun", "hugin", "gyroflow"};
+                                             "lensfun", "hugin", "gyroflow",
+                                             // OCamCalib
+                                             "py-ocamcalib"};
     const std::set<std::string> written = {"json",   "opencv-yaml", "opencv-xml", "cameramodel", "gl",
                                            "kalibr", "basalt",      "colmap",     "nerf",        "ros",
                                            "open3d", "blender",     "blender-json",
                                            // photogrammetry files
-                                           "metashape", "alicevision"};
+                                           "metashape", "alicevision",
+                                           // OCamCalib
+                                           "ocamcalib"};
     std::set<std::string> listed;
     for (const auto& format : list) {
         const std::string name = format["name"];

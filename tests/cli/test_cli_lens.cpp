@@ -175,7 +175,7 @@ TEST_CASE("models --json: every model, with the names and coefficients their own
         "LONLAT", "LATLON", "DOUBLE_SPHERE", "UCM", "EUCM", "MEI", "FOV", "THIN_PRISM_FISHEYE",
         "RAD_TAN_THIN_PRISM_FISHEYE", "EQUISOLID", "CAHVOR", "CAHVORE", "FISHEYE_LENS_POLYNOMIAL",
         "SPLINED_STEREOGRAPHIC", "CYLINDRICAL",
-        "PTLENS"};
+        "PTLENS", "OCAMCALIB"};
     REQUIRE(models.size() == 24);
     for (std::size_t i = 0; i < expected.size(); ++i) CHECK(models[i].at("name") == expected[i]);
 
@@ -258,7 +258,7 @@ TEST_CASE("models: a table with a row per model, --markdown a table of twelve co
         rows.push_back(cells(line));
         CHECK(rows.back().size() == 12);  // a '|' inside a cell would split it
     }
-    REQUIRE(rows.size() == 2 + 24);  // titles, rule, a row per model (PTLENS: lens databases)
+    REQUIRE(rows.size() == 2 + 25);  // titles, rule, a row per model
     CHECK(rows[0][0] == "model");
     // CAHVORE, the 20th model: mrcal's name with "..." for its linearity (mrcal.h's
     // mrcal_lensmodel_name_unconfigured), its column after OpenCV's.

@@ -21,11 +21,14 @@ namespace {
 
 // Every format libcam writes and reads back, from the table of formats, but ROS's
 // camera_info, which holds no pose (its round trips are in test_io_formats.cpp), and the
-// Blender script, which is Python (its JSON twin is here).
+// Blender script, which is Python (its JSON twin is here), and OCamCalib's
+// calib_results.txt, which holds no pose and keeps the polynomial in the file's pixels (its
+// round trips are in test_ocamcalib.cpp).
 std::vector<CameraFormat> written_formats() {
     std::vector<CameraFormat> formats;
     for (const CameraFormatInfo& format : camera_formats()) {
-        if (format.writes && format.format != CameraFormat::Ros && format.format != CameraFormat::Blender) {
+        if (format.writes && format.format != CameraFormat::Ros && format.format != CameraFormat::Blender &&
+            format.format != CameraFormat::OcamCalib) {
             formats.push_back(format.format);
         }
     }
@@ -79,6 +82,8 @@ std::vector<Case> cases() {
         {"DOUBLE_SPHERE", camera_with({LensType::DoubleSphere, {-0.24, 0.57}}), {F::Json, F::Kalibr, F::Basalt}},
         {"EUCM", camera_with({LensType::Eucm, {0.59, 1.1}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
         {"FOV", camera_with({LensType::Fov, {0.92}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt, F::AliceVision}},
+        {"OCAMCALIB", camera_with({LensType::OcamCalib, {1.001, 0.002, -0.003, 0.0, -0.45, 0.02, -0.003, 0.0}}),
+         {F::Json}},
     };
 }
 
@@ -143,7 +148,7 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
         }
     }
     CHECK(trips == 13 * 13 + 6 * 6 + 10 * 10 + 9 * 9 + 6 * 6 + 9 * 9 + 4 * 4 + 3 * 3 + 1 * 1 + 2 * 2 + 3 * 3 + 4 * 4 + 5 * 5 +
-                   1 * 1 /* PTLENS, held by libcam's JSON alone */);
+                   1 * 1 /* PTLENS, held by libcam's JSON alone */ + 1 * 1 /* OCAMCALIB, likewise */);
 }
 
 TEST_CASE("Each format's row declares the lens models the round trips show it holds", "[files]") {

@@ -235,7 +235,9 @@ TEST_CASE("io alone: rig files that are wrong are refused, naming the file, line
                Catch::Contains("not a rotation matrix"));
     CHECK_THAT(error("model_type: SCARAMUZZA\nimage_width: 10\nimage_height: 10\nprojection_parameters:\n  a: 1\n",
                      CameraFormat::Camodocal),
-               Catch::Contains("must be PINHOLE, MEI or KANNALA_BRANDT (libcam has no model for 'SCARAMUZZA')"));
+               Catch::Contains("\"poly_parameters\": missing"));
+    CHECK_THAT(error("model_type: SPHERE\nimage_width: 10\nimage_height: 10\n", CameraFormat::Camodocal),
+               Catch::Contains("must be PINHOLE, MEI, KANNALA_BRANDT or SCARAMUZZA (libcam has no model for 'SPHERE')"));
     CHECK_THAT(error(R"({"value0": {"intrinsics": [{"camera_type": "kb4", "intrinsics": {"fx": 1}}], "resolution": [[4, 4]]}})",
                      CameraFormat::Basalt),
                Catch::Contains("\"value0.intrinsics[0].intrinsics.fy\": missing"));

@@ -208,6 +208,33 @@ TEST_CASE("Closed forms: CYLINDRICAL against its formula, worked by hand") {
     CHECK(std::abs(behind.pixel.x() - (cylinder.intrinsics.cx - 300 * 3 * std::numbers::pi / 4)) < 1e-12);
 }
 
+TEST_CASE("OCAMCALIB: its fold radius, its widest angle and a point behind the camera, worked by hand") {
+    // g(r) = 1 + k2 r^2 with k2 = 0.25: theta stops growing where h = 1 - k2 r^2 = 0, at
+    // r = 2, the ray (2, 0, 2) there: 45 degrees. With k2 = -0.25 it never stops, and theta
+    // tends to 180 degrees. The affine identity, f = 100 px.
+    const Camera folding = lens_camera(LensType::OcamCalib, {1, 0, 0, 0, 0.25, 0, 0, 0}, {800, 600}, 100, 100);
+    const PreparedCamera fold(folding);
+    CHECK(fold.valid_radius() == Approx(2.0).epsilon(1e-14));
+    CHECK(fold.valid_angle() == Approx(std::numbers::pi / 4).epsilon(1e-14));
+    const Camera wide = lens_camera(LensType::OcamCalib, {1, 0, 0, 0, -0.25, 0, 0, 0}, {800, 600}, 100, 100);
+    const PreparedCamera open(wide);
+    CHECK(std::isinf(open.valid_radius()));
+    CHECK(open.valid_angle() == std::numbers::pi);
+    // The point (1, 0, -1), 135 degrees from the axis: g(r) = -r, 0.25 r^2 - r - 1 = 0,
+    // r = 2 + 2 sqrt(2).
+    const Projection behind = open.project_camera_point(Vec3(1, 0, -1));
+    REQUIRE(behind.valid);
+    CHECK(behind.pixel.x() == Approx(wide.intrinsics.cx + 100 * (2 + 2 * std::sqrt(2.0))).epsilon(1e-14));
+    CHECK(behind.pixel.y() == Approx(wide.intrinsics.cy).margin(1e-12));
+    // An affine [1 e; d c]: the pixel of the sensor point n is K (n_x + e n_y, d n_x + c n_y).
+    const Camera affine = lens_camera(LensType::OcamCalib, {1.01, 0.02, -0.03, 0, -0.25, 0, 0, 0}, {800, 600}, 100, 100);
+    const Projection skewed = PreparedCamera(affine).project_camera_point(Vec3(1, 0, -1));
+    REQUIRE(skewed.valid);
+    const double r = 2 + 2 * std::sqrt(2.0);
+    CHECK(skewed.pixel.x() == Approx(affine.intrinsics.cx + 100 * r).epsilon(1e-14));
+    CHECK(skewed.pixel.y() == Approx(affine.intrinsics.cy + 100 * 0.02 * r).epsilon(1e-14));
+}
+
 TEST_CASE("The one solver runs in float and long double too") {
     const Camera camera = wide_reference_camera();
     const auto check = [&]<class Scalar>(Scalar tolerance) {

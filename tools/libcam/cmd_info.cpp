@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "libcam/camera/field_of_view.hpp"
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/io/ocamcalib.hpp"
 #include "libcam/text/number_format.hpp"
 
 namespace libcam::cli {
@@ -61,6 +62,22 @@ std::string camera_text(std::size_t index, const NamedCamera& named) {
     return out.str();
 }
 
+// OCamCalib's files carry invpol, a polynomial fitted to the projection, which the toolbox's C
+// world2cam evaluates; libcam projects exactly. How far invpol lands from each pixel.
+std::optional<InverseMiss> inverse_miss(const std::string& file, const CameraSet& set, const NamedCamera& named) {
+    if (set.format != CameraFormat::OcamCalib && set.format != CameraFormat::PyOcamCalib) return std::nullopt;
+    const std::optional<OcamCalibInverse> inverse = read_ocamcalib_inverse(file);
+    if (!inverse) return std::nullopt;
+    return ocamcalib_inverse_miss(named.file.camera, *inverse);
+}
+
+std::string inverse_text(const InverseMiss& miss) {
+    return "  invpol    the file's fitted inverse polynomial (what OCamCalib's C world2cam evaluates) lands up to " +
+           format_short(miss.within_half_side, 3) + " px from the exact projection within min(width, height) / 2 of "
+           "the centre, " + format_short(miss.whole_image, 3) + " px over the image (at pixel " +
+           format_number(miss.worst_pixel.x()) + ", " + format_number(miss.worst_pixel.y()) + ")\n";
+}
+
 Json camera_json(std::size_t index, const NamedCamera& named) {
     const Camera& camera = named.file.camera;
     const FieldOfView fov = field_of_view(PreparedCamera(camera));
@@ -108,14 +125,25 @@ Runner add_info(CLI::App& app) {
         }
         if (flags->json) {
             Json out = {{"file", flags->file}, {"format", to_string(set.format)}, {"cameras", Json::array()}};
-            for (std::size_t i = 0; i < set.cameras.size(); ++i) out["cameras"].push_back(camera_json(first + i, set.cameras[i]));
+            for (std::size_t i = 0; i < set.cameras.size(); ++i) {
+                Json camera = camera_json(first + i, set.cameras[i]);
+                if (const auto miss = inverse_miss(flags->file, set, set.cameras[i])) {
+                    camera["invpol_miss_px"] = {{"within_half_side", miss->within_half_side},
+                                                {"whole_image", miss->whole_image},
+                                                {"worst_pixel", {miss->worst_pixel.x(), miss->worst_pixel.y()}}};
+                }
+                out["cameras"].push_back(camera);
+            }
             emit(out.dump(2) + "\n", "");
             return 0;
         }
         std::ostringstream out;
         out << flags->file << ": " << to_string(set.format) << ", " << set.cameras.size()
             << (set.cameras.size() == 1 ? " camera" : " cameras") << "\n";
-        for (std::size_t i = 0; i < set.cameras.size(); ++i) out << "\n" << camera_text(first + i, set.cameras[i]);
+        for (std::size_t i = 0; i < set.cameras.size(); ++i) {
+            out << "\n" << camera_text(first + i, set.cameras[i]);
+            if (const auto miss = inverse_miss(flags->file, set, set.cameras[i])) out << inverse_text(*miss);
+        }
         emit(out.str(), "");
         return 0;
     };

@@ -32,6 +32,7 @@ enum class Content : unsigned {
     Table = 1u << 5,       // lines of numbers and words (COLMAP's cameras.txt)
     Binary = 1u << 6,      // bytes that are not text (COLMAP's cameras.bin)
     Python = 1u << 7,      // a Python script (written only)
+    OcamText = 1u << 8,    // OCamCalib's calib_results.txt: its comment on the DIRECT mapping first
 };
 
 constexpr unsigned operator|(Content a, Content b) { return static_cast<unsigned>(a) | static_cast<unsigned>(b); }

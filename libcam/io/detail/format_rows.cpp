@@ -19,6 +19,7 @@
 #include "libcam/io/detail/llff_format.hpp"
 #include "libcam/io/detail/metashape_format.hpp"
 #include "libcam/io/detail/nvm_bundler_formats.hpp"
+#include "libcam/io/detail/ocamcalib_format.hpp"
 #include "libcam/io/detail/mrcal_observations.hpp"
 #include "libcam/io/detail/nerf_transforms.hpp"
 #include "libcam/io/detail/open3d_format.hpp"
@@ -92,7 +93,7 @@ constexpr L kCameramodel[] = {L::Pinhole,       L::OpenCv4, L::OpenCv5, L::OpenC
 constexpr L kKalibr[] = {L::Pinhole, L::OpenCv4, L::Fisheye, L::Fov, L::Ucm, L::Mei, L::DoubleSphere, L::Eucm};
 constexpr L kBasalt[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye,
                          L::DoubleSphere, L::Eucm, L::Ucm, L::Fov};
-constexpr L kCamodocal[] = {L::OpenCv4, L::Mei, L::Fisheye};
+constexpr L kCamodocal[] = {L::OpenCv4, L::Mei, L::Fisheye, L::OcamCalib};
 constexpr L kColmap[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye, L::Fov,
                          L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm};
 constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat, L::RadTanThinPrismFisheye};
@@ -114,6 +115,8 @@ constexpr L kLensfun[] = {L::Pinhole,       L::OpenCv4, L::Ptlens,      L::Fishe
 constexpr L kGyroflow[] = {L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::Fisheye, L::Ptlens};
 constexpr L kHuginPto[] = {L::Pinhole,   L::OpenCv4,       L::Ptlens, L::Fisheye,
                            L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
+constexpr L kOcamCalib[] = {L::OcamCalib};
+constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
 
 using C = Content;
 
@@ -159,7 +162,7 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Camodocal, .name = "camodocal", .title = "camodocal YAML",
      .description = "camodocal's YAML, as VINS-Mono and VINS-Fusion ship it", .extensions = {".yaml", ".yml"},
      .content = static_cast<unsigned>(C::Yaml), .claims = claims_camodocal, .read = with_source<parse_camodocal>,
-     .read_only = true, .lenses = kCamodocal, .lens_names = "PINHOLE, MEI, KANNALA_BRANDT"},
+     .read_only = true, .lenses = kCamodocal, .lens_names = "PINHOLE, MEI, KANNALA_BRANDT, SCARAMUZZA"},
     {.format = CameraFormat::Colmap, .name = "colmap", .title = "COLMAP model",
      .description = "COLMAP's sparse model: cameras.txt or .bin with images.txt or .bin beside it; written as "
                     "cameras.txt, images.txt and points3D.txt into a folder",
@@ -293,6 +296,19 @@ constexpr FormatRow kRows[] = {
      .read = read_gyroflow, .read_only = true, .lenses = kGyroflow,
      .lens_names = "opencv_fisheye (FISHEYE), opencv_standard (OpenCV's 12), poly3, poly5 (OPENCV4), ptlens (PTLENS)",
      .refuses = "anamorphic stretch, GoPro, Insta360, Sony and Gyroflow's other models"},
+    // ---- OCamCalib (Scaramuzza's omnidirectional model) ----
+    {.format = CameraFormat::OcamCalib, .name = "ocamcalib", .title = "OCamCalib calib_results.txt",
+     .description = "the OCamCalib MATLAB toolbox's calib_results.txt (export_data): pol, invpol, centre, affine, "
+                    "size", .content = static_cast<unsigned>(C::OcamText), .read = read_ocamcalib,
+     .write = one_file<write_ocamcalib>, .lenses = kOcamCalibWritten,
+     .lens_names = "Scaramuzza's polynomial up to degree 5 (the toolbox's default is 4), with its affine; a "
+                   "pinhole written as one (read back as OCAMCALIB)",
+     .refuses = "skew, a pose (--no-pose writes the intrinsics alone); invpol is written fitted as the toolbox fits it"},
+    {.format = CameraFormat::PyOcamCalib, .name = "py-ocamcalib", .title = "py-OCamCalib JSON",
+     .description = "py-OCamCalib's calibration JSON (taylor_coefficient, distortion_center, stretch_matrix); it "
+                    "stores no image size: give --image-size", .extensions = {".json"},
+     .content = static_cast<unsigned>(C::Json), .claims = claims_py_ocamcalib, .read = read_py_ocamcalib,
+     .read_only = true, .lenses = kOcamCalib, .lens_names = "Scaramuzza's polynomial up to degree 5"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without

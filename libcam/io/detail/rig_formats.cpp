@@ -9,6 +9,7 @@
 #include "libcam/error.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
+#include "libcam/io/detail/ocamcalib_format.hpp"
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
@@ -169,14 +170,30 @@ static_assert([] {
     return true;
 }());
 
+// camodocal's OCAMCamera (SCARAMUZZA, written "scaramuzza" in VINS's files): Scaramuzza's
+// model on (x, y) = (column, row), as its spaceToPlane has it: poly_parameters p0..p4
+// with z = -poly (p0 < 0), affine_parameters ac ad ae acting on (x, y) about (cx, cy).
+// Its inv_poly_parameters approximate the projection; libcam projects exactly.
+Camera camodocal_scaramuzza(const Field& file) {
+    const Field poly = file.at({"poly_parameters"});
+    std::vector<double> forward;
+    for (int i = 0; i < 5; ++i) forward.push_back(-poly.at({"p" + std::to_string(i)}).number());
+    const Field affine = file.at({"affine_parameters"});
+    const auto value = [&](std::string_view key) { return affine.at({key}).number(); };
+    return ocamcalib_camera_on_xy(forward, value("ac"), value("ad"), value("ae"), Vec2(value("cx"), value("cy")),
+                                  size_of(file.at({"image_width"}), file.at({"image_height"})),
+                                  poly.source() + ": \"" + poly.name() + "\"");
+}
+
 NamedCamera read_camodocal(const Field& file, const std::string& source) {
     const Field model_type = file.at({"model_type"});
     const std::string model_name = model_type.text();
     const std::string name = file.find({"camera_name"}) ? file.at({"camera_name"}).text() : std::string();
+    if (model_name == "SCARAMUZZA" || model_name == "scaramuzza") return checked(name, camodocal_scaramuzza(file), source);
     const auto found = std::find_if(std::begin(kCamodocalModels), std::end(kCamodocalModels),
                                     [&](const CamodocalModel& model) { return model.model_type == model_name; });
     if (found == std::end(kCamodocalModels)) {
-        model_type.fail("must be PINHOLE, MEI or KANNALA_BRANDT (libcam has no model for '" + model_name + "')");
+        model_type.fail("must be PINHOLE, MEI, KANNALA_BRANDT or SCARAMUZZA (libcam has no model for '" + model_name + "')");
     }
     Camera camera;
     camera.size = size_of(file.at({"image_width"}), file.at({"image_height"}));
