@@ -41,7 +41,9 @@
     _(Cahvore, CahvoreLens) \
     _(LensPolynomial, LensPolynomialLens) \
     _(SplinedStereographic, SplinedStereographicLens) \
-    _(Cylindrical, CylindricalLens)
+    _(Cylindrical, CylindricalLens) \
+    /* division model (Fitzgibbon; COLMAP's DIVISION) */ \
+    _(Division, DivisionLens)
 
 namespace libcam {
 
@@ -92,6 +94,7 @@ enum class LensFamily {
     LensPolynomial,
     Splined,
     Cylindrical,
+    Division,  // Fitzgibbon's one-parameter division model
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -266,6 +269,14 @@ inline constexpr LensInfo kLensTable[] = {
      .colmap = "", .kalibr = "", .basalt = "",
      .also_named = "OpenCV's stitching cv::detail::CylindricalWarper; Hugin's and PTGui's cylindrical",
      .family = LensFamily::Cylindrical, .family_rank = 0, .fit = FitCandidate::No},
+    // Fitzgibbon's one-parameter division model: u = m / (1 + k |m|^2). COLMAP's
+    // SIMPLE_DIVISION is it with fx = fy (convert/colmap_models.cpp).
+    {.type = LensType::Division, .name = "DIVISION", .coefficients = {"k"}, .num_coefficients = 1,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "DIVISION", .kalibr = "", .basalt = "",
+     .also_named = "Fitzgibbon's division model; COLMAP's SIMPLE_DIVISION; OpenImuCameraCalibrator's and Theia's "
+                   "DIVISION_UNDISTORTION; RealityCapture's division",
+     .family = LensFamily::Division, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {
