@@ -43,7 +43,8 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
     // The formats libcam has read and written since before this listing existed, by name
     // (docs/file-formats.md's history): each must be listed, with what it does.
     const std::set<std::string> read_only = {"camodocal", "cahvor",     "euroc", "openicc", "opensfm",
-                                             "openmvg",   "gs-cameras", "llff",  "metashape"};
+                                             "openmvg",   "gs-cameras", "llff",  "metashape",
+                                             "realitycapture"};  // RealityCapture XMP
     const std::set<std::string> written = {"json",   "opencv-yaml", "opencv-xml", "cameramodel", "gl",
                                            "kalibr", "basalt",      "colmap",     "nerf",        "ros",
                                            "open3d", "blender",     "blender-json"};

@@ -55,6 +55,13 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 namespace {
 
 const libcam::CameraFormat kFormat = libcam::camera_format_from_string(LIBCAM_FUZZ_FORMAT);
+// The image size, for a format whose files do not hold it (RealityCapture's XMP): set by
+// the target's section of CMakeLists.txt.
+#ifdef LIBCAM_FUZZ_IMAGE_WIDTH
+const libcam::ReadOptions kOptions{.size = libcam::ImageSize{LIBCAM_FUZZ_IMAGE_WIDTH, LIBCAM_FUZZ_IMAGE_HEIGHT}};
+#else
+const libcam::ReadOptions kOptions{};
+#endif
 
 }  // namespace
 
@@ -64,7 +71,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const CameraFormat format = kFormat;
     CameraSet set;
     try {
-        set = parse_camera_set(text, format, "fuzz input");
+        set = parse_camera_set(text, format, "fuzz input", kOptions);
     } catch (const Error&) {
         return 0;  // refused with a message: the expected outcome for most inputs
     }

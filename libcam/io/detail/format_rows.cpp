@@ -22,6 +22,7 @@
 #include "libcam/io/detail/openmvg_format.hpp"
 #include "libcam/io/detail/opensfm_format.hpp"
 #include "libcam/io/detail/openicc_format.hpp"
+#include "libcam/io/detail/realitycapture_format.hpp"
 #include "libcam/io/detail/rig_formats.hpp"
 
 namespace libcam::detail {
@@ -99,6 +100,7 @@ constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5};  // RealityCapture's XMP
 
 using C = Content;
 
@@ -230,6 +232,14 @@ constexpr FormatRow kRows[] = {
      .read = read_metashape, .read_only = true, .lenses = kMetashape,
      .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical",
      .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors"},
+    // RealityCapture's XMP sidecars.
+    {.format = CameraFormat::RealityCapture, .name = "realitycapture", .title = "RealityCapture XMP",
+     .description = "RealityCapture's (RealityScan's) XMP sidecar of an image: its pose and calibration (the image "
+                    "size given with --image-size)",
+     .extensions = {".xmp"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_realitycapture_xmp,
+     .read = read_realitycapture_xmp, .read_only = true, .lenses = kRealityCapture,
+     .lens_names = "perspective, brown3, brown4 and brown3t2, brown4t2 (t1 t2 swapped against OpenCV's p1 p2)",
+     .refuses = "k4, skew, division with a coefficient other than 0"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
