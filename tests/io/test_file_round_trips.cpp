@@ -73,6 +73,8 @@ std::vector<Case> cases() {
         {"DOUBLE_SPHERE", camera_with({LensType::DoubleSphere, {-0.24, 0.57}}), {F::Json, F::Kalibr, F::Basalt}},
         {"EUCM", camera_with({LensType::Eucm, {0.59, 1.1}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
         {"FOV", camera_with({LensType::Fov, {0.92}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
+        // COLMAP's DIVISION (and SIMPLE_DIVISION, read).
+        {"DIVISION", camera_with({LensType::Division, {-0.08}}), {F::Json, F::Colmap}},
     };
 }
 

@@ -90,12 +90,14 @@ constexpr L kBasalt[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fish
                          L::DoubleSphere, L::Eucm, L::Ucm, L::Fov};
 constexpr L kCamodocal[] = {L::OpenCv4, L::Mei, L::Fisheye};
 constexpr L kColmap[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye, L::Fov,
-                         L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm};
+                         L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm,
+                         L::Division};  // SIMPLE_DIVISION, DIVISION
 constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat, L::RadTanThinPrismFisheye};
 constexpr L kCahvor[] = {L::Pinhole, L::Cahvor, L::Cahvore, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12};
 constexpr L kRos[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye};
 constexpr L kEuroc[] = {L::OpenCv4, L::Fisheye};
-constexpr L kOpenicc[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::OpenCv14, L::Fisheye, L::DoubleSphere, L::Eucm};
+constexpr L kOpenicc[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::OpenCv14, L::Fisheye, L::DoubleSphere, L::Eucm,
+                          L::Division};  // DIVISION_UNDISTORTION
 constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat};
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
@@ -155,7 +157,7 @@ constexpr FormatRow kRows[] = {
      .read_observations = read_colmap_observations, .lenses = kColmap,
      .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
                    "SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, SIMPLE_FISHEYE, FISHEYE, FOV, THIN_PRISM_FISHEYE, "
-                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM",
+                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM, SIMPLE_DIVISION, DIVISION",
      .refuses = "skew; OPENCV12 and OPENCV14 unless their coefficients past the eighth are 0"},
     {.format = CameraFormat::Nerf, .name = "nerf", .title = "NeRF transforms.json",
      .description = "NeRF's transforms.json (instant-ngp, nerfstudio)", .extensions = {".json"},
@@ -187,7 +189,7 @@ constexpr FormatRow kRows[] = {
      .description = "OpenImuCameraCalibrator's JSON, as UMI ships its GoPro calibrations", .extensions = {".json"},
      .content = static_cast<unsigned>(C::Json), .claims = claims_openicc_camera,
      .read = with_source<parse_openicc_camera>, .read_only = true, .lenses = kOpenicc,
-     .lens_names = "FISHEYE, DOUBLE_SPHERE, EUCM, PINHOLE"},
+     .lens_names = "FISHEYE, DOUBLE_SPHERE, EUCM, PINHOLE, DIVISION_UNDISTORTION (with fx = fy, as DIVISION)"},
     {.format = CameraFormat::Blender, .name = "blender", .title = "Blender camera script",
      .description = "a Python script that sets a Blender scene's camera: blender -b scene.blend -P camera.py",
      .extensions = {".py"}, .content = static_cast<unsigned>(C::Python), .read = read_blender_script,
