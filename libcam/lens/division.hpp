@@ -25,8 +25,9 @@
 // from the axis below atan(1 / (2 sqrt(k))) and |m| < 1 / sqrt(k). For k < 0 the ray's
 // z, 1 + k |m|^2, crosses 0 at |m| = 1 / sqrt(-k) and the angle of the ray keeps rising
 // (its derivative is proportional to 1 - k |m|^2 > 0) towards pi as |m| grows: every
-// direction but the backward axis is imaged, once. k = 0 is the pinhole, z > 0. So
-// valid_radius() is that angle: atan2(1, 2 sqrt(k)), pi / 2 or pi.
+// direction but the backward axis is imaged, once (a point behind the camera so close to
+// that axis that X^2 + Y^2 is no longer a normal number is flagged). k = 0 is the pinhole,
+// z > 0. So valid_radius() is that angle: atan2(1, 2 sqrt(k)), pi / 2 or pi.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -87,7 +88,10 @@ struct DivisionLens {
             ratio_coefficient_jacobian(m, inverse, Eigen::Matrix<Scalar, 1, 1>(-rho2 * inverse_root),
                                        d_m_d_coefficients);  // dD/dk
         }
-        const bool in_domain = before_fold & ((z > Scalar(0)) | (k < Scalar(0)));
+        // Behind the camera near the backward axis, rho^2 below the normal range loses its
+        // digits (m ~ Z / (k rho^2)): flagged, as FISHEYE flags it.
+        const bool in_domain =
+            before_fold & ((z > Scalar(0)) | ((k < Scalar(0)) & (rho2 >= smallest_normal<Scalar>())));
         return in_domain & (denominator > Scalar(0)) & all_finite(m);
     }
 
