@@ -106,7 +106,7 @@ TEST_CASE("realitycapture: the file from its name, with the image size given") {
 TEST_CASE("realitycapture: what libcam cannot hold, and malformed files, are refused in one line") {
     CHECK(file_error_of([&] { (void)read(kBrown3t2, {}); }) ==
           "IMG_0001.xmp: RealityCapture's XMP does not hold the image size, which its focal length and principal point "
-          "are relative to: give it (--image-size W H)");
+          "are relative to: give it (--image-size WxH)");
     const auto refusal = [](const std::string& text) {
         try {
             (void)read(text, sized(640, 480));

@@ -188,7 +188,7 @@ std::vector<NamedCamera> read_realitycapture_xmp(std::string_view text, const Re
     }
     if (!context.options.size) {
         throw FileError(context.source + ": RealityCapture's XMP does not hold the image size, which its focal length "
-                                         "and principal point are relative to: give it (--image-size W H)");
+                                         "and principal point are relative to: give it (--image-size WxH)");
     }
     Camera camera;
     camera.size = *context.options.size;

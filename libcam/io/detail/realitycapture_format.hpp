@@ -27,7 +27,7 @@
 // (as Metashape's P1 P2); k4 (r^8) has no OpenCV model and is refused unless 0.
 //
 // The image size is not in the file: the reader takes it from ReadOptions::size (the
-// command line's --image-size W H) and refuses the file without it. A skew other than 0
+// command line's --image-size WxH) and refuses the file without it. A skew other than 0
 // (its unit is not documented) and RealityCapture's division model with a coefficient
 // other than 0 (the sources above do not say in which units its k is) are refused rather
 // than guessed. Read only.
