@@ -152,6 +152,12 @@ inline std::vector<LensCase> lens_cases() {
         {"FOV basalt", real_camera(LensType::Fov, {0.9259487501905697}, {752, 480}, {379.045, 379.008, 505.512, 509.969})},
         {"FOV mild", lens_camera(LensType::Fov, {0.3}, {1600, 1200}, 900, 910)},
         {"FOV wide", lens_camera(LensType::Fov, {2.5}, {1600, 1200}, 250, 250)},
+        // DIVISION: a mild barrel lens (k of RealityCapture's size, made up), a strong one
+        // whose ray turns past 90 degrees at |m| = 1 / sqrt(0.5) inside the image, and a
+        // pincushion lens that folds at 1 / (2 sqrt(0.2)) = 1.118 (48.2 degrees off the axis).
+        {"DIVISION mild", lens_camera(LensType::Division, {-0.05}, {1600, 1200}, 900, 905)},
+        {"DIVISION barrel", lens_camera(LensType::Division, {-0.5}, {1600, 1200}, 400, 400)},
+        {"DIVISION pincushion", lens_camera(LensType::Division, {0.2}, {1600, 1200}, 900, 900)},
         // COLMAP's model tests' parameters (models_test.cc: fx fy cx cy 651.123 655.123
         // 386.123 511.123 in COLMAP's pixels, whose centres are at +0.5, on the 800x800
         // grid those tests sweep); and the FIORD fisheye's KB4 coefficients (COLMAP

@@ -31,6 +31,9 @@ constexpr ColmapModel kColmapModels[] = {
     // COLMAP's plain equidistant fisheyes (added after 3.8): KB4 with no distortion.
     {"SIMPLE_FISHEYE", 14, "f, cx, cy", LensType::Fisheye, true, {}, 0},
     {"FISHEYE", 15, "fx, fy, cx, cy", LensType::Fisheye, false, {}, 0},
+    // Fitzgibbon's division model (COLMAP 3.12).
+    {"SIMPLE_DIVISION", 12, "f, cx, cy, k", LensType::Division, true, {0}, 1},
+    {"DIVISION", 13, "fx, fy, cx, cy, k", LensType::Division, false, {0}, 1},
     {"EUCM", 16, "fx, fy, cx, cy, alpha, beta", LensType::Eucm, false, {0, 1}, 2},
 };
 
@@ -56,7 +59,7 @@ const ColmapModel& require_model(std::string_view name) {
     const ColmapModel* model = colmap_model(name);
     if (model == nullptr) {
         throw InvalidArgument("COLMAP model \"" + std::string(name) + "\": libcam knows " + colmap_model_names() +
-                              " (COLMAP's division and equirectangular models have no libcam equivalent)");
+                              " (COLMAP's equirectangular model has no libcam equivalent)");
     }
     return *model;
 }

@@ -43,7 +43,9 @@
     _(SplinedStereographic, SplinedStereographicLens) \
     _(Cylindrical, CylindricalLens) \
     _(Ptlens, PtlensLens) \
-    _(OcamCalib, OcamCalibLens)
+    _(OcamCalib, OcamCalibLens) \
+    /* division model (Fitzgibbon; COLMAP's DIVISION) */ \
+    _(Division, DivisionLens)
 
 namespace libcam {
 
@@ -96,6 +98,7 @@ enum class LensFamily {
     Cylindrical,
     Ptlens,  // lens databases
     OcamCalib,
+    Division,  // Fitzgibbon's one-parameter division model
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -286,6 +289,14 @@ inline constexpr LensInfo kLensTable[] = {
      .colmap = "", .kalibr = "", .basalt = "",
      .also_named = "Scaramuzza's omnidirectional model; camodocal's SCARAMUZZA; py-OCamCalib's",
      .family = LensFamily::OcamCalib, .family_rank = 0, .fit = FitCandidate::No},
+    // Fitzgibbon's one-parameter division model: u = m / (1 + k |m|^2). COLMAP's
+    // SIMPLE_DIVISION is it with fx = fy (convert/colmap_models.cpp).
+    {.type = LensType::Division, .name = "DIVISION", .coefficients = {"k"}, .num_coefficients = 1,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "DIVISION", .kalibr = "", .basalt = "",
+     .also_named = "Fitzgibbon's division model; COLMAP's SIMPLE_DIVISION; OpenImuCameraCalibrator's and Theia's "
+                   "DIVISION_UNDISTORTION",
+     .family = LensFamily::Division, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

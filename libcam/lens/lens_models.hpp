@@ -49,6 +49,7 @@
 #include "libcam/lens/cahvore.hpp"
 #include "libcam/lens/cylindrical.hpp"
 #include "libcam/lens/ocamcalib.hpp"
+#include "libcam/lens/division.hpp"
 #include "libcam/lens/double_sphere.hpp"
 #include "libcam/lens/equisolid.hpp"
 #include "libcam/lens/eucm.hpp"

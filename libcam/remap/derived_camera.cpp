@@ -69,6 +69,7 @@ Lens lens_turned(const Lens& lens) {
         case LensType::Ucm:
         case LensType::Eucm:
         case LensType::Fov:
+        case LensType::Division:  // radial only
         case LensType::Equisolid:
         case LensType::LensPolynomial:
         case LensType::Ptlens: return out;

@@ -49,7 +49,9 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
                                              // lens databases
                                              "lensfun", "hugin", "gyroflow",
                                              // OCamCalib
-                                             "py-ocamcalib"};
+                                             "py-ocamcalib",
+                                             // RealityCapture XMP
+                                             "realitycapture"};
     const std::set<std::string> written = {"json",   "opencv-yaml", "opencv-xml", "cameramodel", "gl",
                                            "kalibr", "basalt",      "colmap",     "nerf",        "ros",
                                            "open3d", "blender",     "blender-json",

@@ -72,6 +72,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         options.size = ImageSize{1500, 1000};
         options.focal_mm = 30.0;
 #endif
+#ifdef LIBCAM_FUZZ_IMAGE_WIDTH
+        // A format that stores no image size, read as --image-size reads it.
+        options.size = ImageSize{LIBCAM_FUZZ_IMAGE_WIDTH, LIBCAM_FUZZ_IMAGE_HEIGHT};
+#endif
         set = parse_camera_set(text, format, "fuzz input", options);
     } catch (const Error&) {
         return 0;  // refused with a message: the expected outcome for most inputs

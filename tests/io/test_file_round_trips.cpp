@@ -84,6 +84,8 @@ std::vector<Case> cases() {
         {"FOV", camera_with({LensType::Fov, {0.92}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt, F::AliceVision}},
         {"OCAMCALIB", camera_with({LensType::OcamCalib, {1.001, 0.002, -0.003, 0.0, -0.45, 0.02, -0.003, 0.0}}),
          {F::Json}},
+        // COLMAP's DIVISION (and SIMPLE_DIVISION, read).
+        {"DIVISION", camera_with({LensType::Division, {-0.08}}), {F::Json, F::Colmap}},
     };
 }
 
@@ -148,7 +150,8 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
         }
     }
     CHECK(trips == 13 * 13 + 6 * 6 + 10 * 10 + 9 * 9 + 6 * 6 + 9 * 9 + 4 * 4 + 3 * 3 + 1 * 1 + 2 * 2 + 3 * 3 + 4 * 4 + 5 * 5 +
-                   1 * 1 /* PTLENS, held by libcam's JSON alone */ + 1 * 1 /* OCAMCALIB, likewise */);
+                   1 * 1 /* PTLENS, held by libcam's JSON alone */ + 1 * 1 /* OCAMCALIB, likewise */ +
+                   2 * 2 /* DIVISION: JSON, COLMAP */);
 }
 
 TEST_CASE("Each format's row declares the lens models the round trips show it holds", "[files]") {

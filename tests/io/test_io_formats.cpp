@@ -218,7 +218,8 @@ TEST_CASE("COLMAP's SIMPLE_FISHEYE, FISHEYE and EUCM read from cameras.txt and c
     Camera eucm = parse_camera_set(text, CameraFormat::Colmap, "cameras.txt").cameras[2].file.camera;
     CHECK_THAT(format_camera_files(eucm, CameraFormat::Colmap)[0].text,
                Catch::EndsWith("\n1 EUCM 1024 768 400 401 512.5 384.5 0.6 1.1\n"));
-    // An id COLMAP has but libcam cannot hold (12: SIMPLE_DIVISION) names the ids it reads.
+    // COLMAP's id 12, SIMPLE_DIVISION (f, cx, cy, k): DIVISION with fx = fy, the
+    // principal point moved by COLMAP's half pixel.
     std::string division;
     put(division, std::uint64_t{1});
     put(division, std::uint32_t{1});
@@ -226,8 +227,11 @@ TEST_CASE("COLMAP's SIMPLE_FISHEYE, FISHEYE and EUCM read from cameras.txt and c
     put(division, std::uint64_t{640});
     put(division, std::uint64_t{480});
     for (const double p : {300.0, 320.0, 240.0, 0.1}) put(division, p);
-    CHECK_THAT(file_error_of([&] { (void)parse_camera_set(division, CameraFormat::Colmap, "cameras.bin"); }),
-               Catch::EndsWith("model id 12 is not one of COLMAP's models that libcam holds (0 to 11, 14 to 16)"));
+    const Camera simple_division = parse_camera_set(division, CameraFormat::Colmap, "cameras.bin").cameras[0].file.camera;
+    CHECK(simple_division.lens == Lens{LensType::Division, {0.1}});
+    check_intrinsics(simple_division, 300, 300, 319.5, 239.5);
+    CHECK_THAT(format_camera_files(simple_division, CameraFormat::Colmap)[0].text,
+               Catch::EndsWith("\n1 DIVISION 640 480 300 300 320 240 0.1\n"));
 }
 
 TEST_CASE("COLMAP files that are wrong are refused, naming the file, line and field") {
@@ -802,13 +806,25 @@ TEST_CASE("OpenImuCameraCalibrator's JSON, as UMI ships its GoPro calibration: f
                                      "eucm.json").camera;
     CHECK(eucm.lens == Lens{LensType::Eucm, {0.6, 1.1}});
     CHECK(parse_camera(with("PINHOLE", ""), CameraFormat::Openicc, "p.json").camera.lens.type == LensType::Pinhole);
-    CHECK(file_error_of([&] {
-              (void)parse_camera(with("DIVISION_UNDISTORTION", R"(, "div_undist_distortion": -3.588e-07)"),
-                                 CameraFormat::Openicc, "d.json");
-          }) == "d.json: \"intrinsic_type\": libcam has no model for the division undistortion lens (FISHEYE, "
-                "DOUBLE_SPHERE, EXTENDED_UNIFIED and PINHOLE are read)");
+    // DIVISION_UNDISTORTION: Theia's k is per squared pixel; libcam's DIVISION takes it per
+    // squared focal length, k f^2 = -3.588e-07 * 400^2 = -0.057408 (worked by hand).
+    const Camera division = parse_camera(R"({"image_width": 960, "image_height": 540,
+        "intrinsic_type": "DIVISION_UNDISTORTION", "intrinsics": {"focal_length": 400.0, "aspect_ratio": 1.0,
+        "principal_pt_x": 480.5, "principal_pt_y": 270.25, "div_undist_distortion": -3.588e-07}})",
+                                         CameraFormat::Openicc, "d.json").camera;
+    check_intrinsics(division, 400.0, 400.0, 480.5, 270.25);
+    REQUIRE(division.lens.type == LensType::Division);
+    CHECK(division.lens.coefficients[0] == Approx(-0.057408).epsilon(1e-14));
+    // With fx != fy Theia's division (in pixels) is not radial in m: refused, saying so.
+    CHECK_THAT(file_error_of([&] {
+                   (void)parse_camera(with("DIVISION_UNDISTORTION", R"(, "div_undist_distortion": -3.588e-07)"),
+                                      CameraFormat::Openicc, "d.json");
+               }),
+               Catch::StartsWith("d.json: \"intrinsics.aspect_ratio\": the division undistortion lens is read with "
+                                 "an aspect ratio of 1 only"));
     CHECK_THAT(file_error_of([&] { (void)parse_camera(with("FOV", ""), CameraFormat::Openicc, "f.json"); }),
-               Catch::Contains("\"intrinsic_type\": must be FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED or PINHOLE"));
+               Catch::Contains("\"intrinsic_type\": must be FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED, "
+                               "DIVISION_UNDISTORTION or PINHOLE"));
     CHECK_THAT(file_error_of([&] { (void)parse_camera(with("DOUBLE_SPHERE", R"(, "xi": 0.1)"), CameraFormat::Openicc, "x.json"); }),
                Catch::Contains("x.json: \"intrinsics.alpha\": missing"));
     CHECK_THROWS_AS(format_camera(camera, CameraFormat::Openicc), NotRepresentable);

@@ -235,6 +235,35 @@ TEST_CASE("OCAMCALIB: its fold radius, its widest angle and a point behind the c
     CHECK(skewed.pixel.y() == Approx(affine.intrinsics.cy + 100 * 0.02 * r).epsilon(1e-14));
 }
 
+TEST_CASE("Closed forms: DIVISION against COLMAP's formula, worked by hand") {
+    // u = m / (1 + k |m|^2), the ray (m, 1 + k |m|^2). k = -0.2, m = (0.3, 0.4): |m|^2 =
+    // 0.25, the ray (0.3, 0.4, 0.95).
+    const auto camera_with = [](double k) { return lens_camera(LensType::Division, {k}, {1000, 1000}, 100, 100); };
+    const PreparedCamera barrel(camera_with(-0.2));
+    const Vec2 centre(barrel.camera().intrinsics.cx, barrel.camera().intrinsics.cy);
+    const Unprojection ray = barrel.unproject(centre + Vec2(30, 40));
+    REQUIRE(ray.valid);
+    CHECK((ray.direction.normalized() - Vec3(0.3, 0.4, 0.95).normalized()).norm() < 1e-15);
+    // COLMAP's ImgFromCam for (1, 0, 2), k = 0.1: D = (2 + sqrt(4 - 0.4)) / 2, m = 1 / D =
+    // 0.51316701949486200 (1 / 1.9486832980505138; and 0.51316... / (1 + 0.1 * 0.51316...^2)
+    // = 0.5 = X / Z).
+    const PreparedCamera pincushion(camera_with(0.1));
+    const Projection front = pincushion.project_camera_point(Vec3(1, 0, 2));
+    REQUIRE(front.valid);
+    CHECK(std::abs(front.pixel.x() - (centre.x() + 100 * 0.51316701949486200)) < 1e-11);
+    // Past the fold: 1 / (2 sqrt(0.1)) = 1.5811 is the largest X / Z it images.
+    CHECK_FALSE(pincushion.project_camera_point(Vec3(1.6, 0, 1)).valid);
+    CHECK(pincushion.project_camera_point(Vec3(1.58, 0, 1)).valid);
+    CHECK_FALSE(pincushion.unproject(centre + Vec2(100 / std::sqrt(0.1) + 1e-6, 0)).valid);
+    // k = -0.5 sees behind the camera: (1, 0, -1) is m = 1 + sqrt(3) (the ray (m, 1 - m^2 / 2)
+    // = (2.732, -2.732)), and the backward axis has no image.
+    const PreparedCamera wide(camera_with(-0.5));
+    const Projection behind = wide.project_camera_point(Vec3(1, 0, -1));
+    REQUIRE(behind.valid);
+    CHECK(std::abs(behind.pixel.x() - (centre.x() + 100 * (1 + std::sqrt(3.0)))) < 1e-11);
+    CHECK_FALSE(wide.project_camera_point(Vec3(0, 0, -1)).valid);
+}
+
 TEST_CASE("The one solver runs in float and long double too") {
     const Camera camera = wide_reference_camera();
     const auto check = [&]<class Scalar>(Scalar tolerance) {

@@ -28,6 +28,7 @@
 #include "libcam/io/detail/openmvg_format.hpp"
 #include "libcam/io/detail/opensfm_format.hpp"
 #include "libcam/io/detail/openicc_format.hpp"
+#include "libcam/io/detail/realitycapture_format.hpp"
 #include "libcam/io/detail/rig_formats.hpp"
 
 namespace libcam::detail {
@@ -95,12 +96,14 @@ constexpr L kBasalt[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fish
                          L::DoubleSphere, L::Eucm, L::Ucm, L::Fov};
 constexpr L kCamodocal[] = {L::OpenCv4, L::Mei, L::Fisheye, L::OcamCalib};
 constexpr L kColmap[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye, L::Fov,
-                         L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm};
+                         L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm,
+                         L::Division};  // SIMPLE_DIVISION, DIVISION
 constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat, L::RadTanThinPrismFisheye};
 constexpr L kCahvor[] = {L::Pinhole, L::Cahvor, L::Cahvore, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12};
 constexpr L kRos[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye};
 constexpr L kEuroc[] = {L::OpenCv4, L::Fisheye};
-constexpr L kOpenicc[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::OpenCv14, L::Fisheye, L::DoubleSphere, L::Eucm};
+constexpr L kOpenicc[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::OpenCv14, L::Fisheye, L::DoubleSphere, L::Eucm,
+                          L::Division};  // DIVISION_UNDISTORTION
 constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat};
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
@@ -117,6 +120,7 @@ constexpr L kHuginPto[] = {L::Pinhole,   L::OpenCv4,       L::Ptlens, L::Fisheye
                            L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
 constexpr L kOcamCalib[] = {L::OcamCalib};
 constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
+constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5};  // RealityCapture's XMP
 
 using C = Content;
 
@@ -171,7 +175,7 @@ constexpr FormatRow kRows[] = {
      .read_observations = read_colmap_observations, .lenses = kColmap,
      .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
                    "SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, SIMPLE_FISHEYE, FISHEYE, FOV, THIN_PRISM_FISHEYE, "
-                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM",
+                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM, SIMPLE_DIVISION, DIVISION",
      .refuses = "skew; OPENCV12 and OPENCV14 unless their coefficients past the eighth are 0"},
     {.format = CameraFormat::Nerf, .name = "nerf", .title = "NeRF transforms.json",
      .description = "NeRF's transforms.json (instant-ngp, nerfstudio)", .extensions = {".json"},
@@ -203,7 +207,7 @@ constexpr FormatRow kRows[] = {
      .description = "OpenImuCameraCalibrator's JSON, as UMI ships its GoPro calibrations", .extensions = {".json"},
      .content = static_cast<unsigned>(C::Json), .claims = claims_openicc_camera,
      .read = with_source<parse_openicc_camera>, .read_only = true, .lenses = kOpenicc,
-     .lens_names = "FISHEYE, DOUBLE_SPHERE, EUCM, PINHOLE"},
+     .lens_names = "FISHEYE, DOUBLE_SPHERE, EUCM, PINHOLE, DIVISION_UNDISTORTION (with fx = fy, as DIVISION)"},
     {.format = CameraFormat::Blender, .name = "blender", .title = "Blender camera script",
      .description = "a Python script that sets a Blender scene's camera: blender -b scene.blend -P camera.py",
      .extensions = {".py"}, .content = static_cast<unsigned>(C::Python), .read = read_blender_script,
@@ -309,6 +313,14 @@ constexpr FormatRow kRows[] = {
                     "stores no image size: give --image-size", .extensions = {".json"},
      .content = static_cast<unsigned>(C::Json), .claims = claims_py_ocamcalib, .read = read_py_ocamcalib,
      .read_only = true, .lenses = kOcamCalib, .lens_names = "Scaramuzza's polynomial up to degree 5"},
+    // RealityCapture's XMP sidecars.
+    {.format = CameraFormat::RealityCapture, .name = "realitycapture", .title = "RealityCapture XMP",
+     .description = "RealityCapture's (RealityScan's) XMP sidecar of an image: its pose and calibration (the image "
+                    "size given with --image-size)",
+     .extensions = {".xmp"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_realitycapture_xmp,
+     .read = read_realitycapture_xmp, .read_only = true, .lenses = kRealityCapture,
+     .lens_names = "perspective, brown3, brown4 and brown3t2, brown4t2 (t1 t2 swapped against OpenCV's p1 p2)",
+     .refuses = "k4, skew, division with a coefficient other than 0"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without

@@ -53,6 +53,24 @@ std::pair<double, double> focal_lengths(const Field& k, ImageSize size) {
     return {focal, aspect->number() * focal};
 }
 
+// Theia's DivisionUndistortionCameraModel (the calibrator's DIVISION_UNDISTORTION) divides
+// the pixel's offset from the principal point, in pixels, by 1 + k r_d^2 with r_d in
+// pixels, after the focal length and aspect ratio: with fx = fy = f that is libcam's
+// DIVISION with k f^2 (m = offset / f). With fx != fy the division is not radial in m, and
+// Theia's model has no skew: both refused rather than changed.
+Lens division_lens(const Field& k, const Intrinsics& intrinsics) {
+    const Field distortion = k.at({"div_undist_distortion"});
+    if (intrinsics.fx != intrinsics.fy) {
+        const std::optional<Field> aspect = k.find({"aspect_ratio"});
+        (aspect ? *aspect : k).fail("the division undistortion lens is read with an aspect ratio of 1 only (its "
+                                    "division is in pixels, not radial in normalised coordinates otherwise), got " +
+                                    format_number(intrinsics.fy / intrinsics.fx));
+    }
+    if (intrinsics.skew != 0.0) k.at({"skew"}).fail("the division undistortion lens has no skew, got " +
+                                                     format_number(intrinsics.skew));
+    return {LensType::Division, {distortion.number() * intrinsics.fx * intrinsics.fx}};
+}
+
 }  // namespace
 
 std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::string& source) {
@@ -73,12 +91,9 @@ std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::
         lens = {LensType::Eucm, {value("alpha"), value("beta")}};
     } else if (type.text() == "PINHOLE") {
         lens = pinhole_distortion(k);
-    } else if (type.text() == "DIVISION_UNDISTORTION") {
-        type.fail("libcam has no model for the division undistortion lens (FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED "
-                  "and PINHOLE are read)");
-    } else {
-        type.fail("must be FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED or PINHOLE (the types the calibrator writes with "
-                  "their parameters), got '" + type.text() + "'");
+    } else if (type.text() != "DIVISION_UNDISTORTION") {
+        type.fail("must be FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED, DIVISION_UNDISTORTION or PINHOLE (the types the "
+                  "calibrator writes with their parameters), got '" + type.text() + "'");
     }
     Camera camera;
     camera.size = {static_cast<long>(top.at({"image_width"}).whole_number(1, kMaxImageSide)),
@@ -86,6 +101,7 @@ std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::
     const auto [fx, fy] = focal_lengths(k, camera.size);
     camera.intrinsics = {fx, fy, value("principal_pt_x"), value("principal_pt_y"),
                          k.find({"skew"}) ? value("skew") : 0.0};
+    if (type.text() == "DIVISION_UNDISTORTION") lens = division_lens(k, camera.intrinsics);
     camera.lens = std::move(lens);
     try {
         camera.validate();

@@ -11,9 +11,11 @@
 // for both, which differs from the calibration by the aspect ratio); pixel centres are at
 // integers. The types: FISHEYE is cv::fisheye's model (FISHEYE, "radial_distortion_1".."_4"),
 // DOUBLE_SPHERE is DOUBLE_SPHERE ("xi", "alpha"), EXTENDED_UNIFIED is EUCM ("alpha",
-// "beta"), PINHOLE has no distortion (the calibrator writes none for it). The rest
-// (DIVISION_UNDISTORTION, and the types the calibrator writes without their parameters)
-// are refused naming the type. Read only.
+// "beta"), PINHOLE has no distortion (the calibrator writes none for it), and
+// DIVISION_UNDISTORTION ("div_undist_distortion": Theia's k, per squared pixel) is DIVISION
+// with k f^2, read only with an aspect ratio of 1 and no skew (Theia divides the offset in
+// pixels, which is radial in the normalised point only then). The rest (the types the
+// calibrator writes without their parameters) are refused naming the type. Read only.
 
 #include <string>
 #include <string_view>
