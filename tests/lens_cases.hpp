@@ -214,6 +214,13 @@ inline std::vector<LensCase> lens_cases() {
         // up and down; and a 120 x 64 degree panorama of a 1920x1080 render.
         {"CYLINDRICAL 360", lens_camera(LensType::Cylindrical, {}, {2000, 1000}, 318, 318)},
         {"CYLINDRICAL 120", real_camera(LensType::Cylindrical, {}, {1920, 1080}, {916.7, 916.7, 959.5, 539.5})},
+        // ---- THETA_POLYNOMIAL: WoodScape's published front camera (its
+        // scripts/calibration/front.json: coefficients in pixels, fx = 1, cx = 640 + 3.942 -
+        // 0.5, cy = 483 - 3.093 - 0.5), and a lens that folds at theta = 1.25 rad inside its
+        // image (rho' = 1 + 0.2 theta - 0.9 theta^2 + 0.08 theta^3 = 0 there, by hand).
+        {"THETA_POLYNOMIAL woodscape", real_camera(LensType::ThetaPolynomial, {339.749, -31.988, 48.275, -7.201},
+                                                   {1280, 966}, {1.0, 1.0, 643.442, 479.407})},
+        {"THETA_POLYNOMIAL folding", lens_camera(LensType::ThetaPolynomial, {1.0, 0.1, -0.3, 0.02}, {1600, 1200}, 300, 300)},
     };
     return cases;
 }

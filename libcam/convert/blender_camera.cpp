@@ -177,7 +177,8 @@ BlenderCamera blender_from_camera(const Camera& camera) {
         case LensType::Cahvor:
         case LensType::Cahvore:
         case LensType::SplinedStereographic:
-        case LensType::Cylindrical: break;
+        case LensType::Cylindrical:
+        case LensType::ThetaPolynomial: break;
     }
     throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
                           " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "

@@ -15,10 +15,11 @@ namespace libcam {
 
 enum class CameraFormat {
     Json, OpenCvYaml, OpenCvXml, Cameramodel, Gl, Kalibr, Basalt, Camodocal, Colmap, Nerf, Cahvor, Ros, Open3d, Euroc,
-    Openicc, Blender, BlenderJson, OpenSfm, OpenMvg, GsCameras, Llff, Metashape
+    Openicc, Blender, BlenderJson, OpenSfm, OpenMvg, GsCameras, Llff, Metashape,
+    Woodscape  // Valeo's WoodScape calibration JSON
 };
 // How many formats there are (the table of formats checks that each has its row).
-inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::Metashape) + 1;
+inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::Woodscape) + 1;
 
 // What a file holds: the calibrated camera, and the FOV camera it was made from when
 // the file says so (libcam JSON records the fov axis).

@@ -41,7 +41,9 @@
     _(Cahvore, CahvoreLens) \
     _(LensPolynomial, LensPolynomialLens) \
     _(SplinedStereographic, SplinedStereographicLens) \
-    _(Cylindrical, CylindricalLens)
+    _(Cylindrical, CylindricalLens) \
+    /* WoodScape's fisheye (added with the woodscape format) */ \
+    _(ThetaPolynomial, ThetaPolynomialLens)
 
 namespace libcam {
 
@@ -92,6 +94,7 @@ enum class LensFamily {
     LensPolynomial,
     Splined,
     Cylindrical,
+    ThetaPolynomial,  // WoodScape's: not FISHEYE's, whose powers of theta are odd
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -188,7 +191,8 @@ inline constexpr LensInfo kLensTable[] = {
      .mrcal = "LENSMODEL_STEREOGRAPHIC", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Stereographic,
      .family_rank = 0, .fit = FitCandidate::WideScenes},
     {.type = LensType::Lonlat, .name = "LONLAT", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
-     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LONLAT", .colmap = "",
+     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LONLAT",
+     .colmap = "EQUIRECTANGULAR",  // COLMAP's holds only the whole sphere (colmap_models.hpp)
      .kalibr = "", .basalt = "", .also_named = "equirectangular; Blender's EQUIRECTANGULAR",
      .family = LensFamily::Lonlat, .family_rank = 0, .fit = FitCandidate::No},
     {.type = LensType::Latlon, .name = "LATLON", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
@@ -266,6 +270,13 @@ inline constexpr LensInfo kLensTable[] = {
      .colmap = "", .kalibr = "", .basalt = "",
      .also_named = "OpenCV's stitching cv::detail::CylindricalWarper; Hugin's and PTGui's cylindrical",
      .family = LensFamily::Cylindrical, .family_rank = 0, .fit = FitCandidate::No},
+    // ---- WoodScape's fisheye: the radius as a polynomial of every power of the angle
+    // (its calibrations give the coefficients in pixels, with fx = 1: theta_polynomial.hpp).
+    {.type = LensType::ThetaPolynomial, .name = "THETA_POLYNOMIAL", .coefficients = {"k1", "k2", "k3", "k4"},
+     .num_coefficients = 4, .sees_behind_camera = true, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "Valeo's WoodScape radial_poly (rho = k1 theta + k2 theta^2 + k3 theta^3 + k4 theta^4)",
+     .family = LensFamily::ThetaPolynomial, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

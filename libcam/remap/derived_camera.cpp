@@ -70,7 +70,8 @@ Lens lens_turned(const Lens& lens) {
         case LensType::Eucm:
         case LensType::Fov:
         case LensType::Equisolid:
-        case LensType::LensPolynomial: return out;
+        case LensType::LensPolynomial:
+        case LensType::ThetaPolynomial: return out;
         case LensType::OpenCv4:
         case LensType::OpenCv5:
         case LensType::OpenCv8: tangential(2, 3); return out;

@@ -46,7 +46,8 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
                                              "openmvg",   "gs-cameras", "llff",  "metashape"};
     const std::set<std::string> written = {"json",   "opencv-yaml", "opencv-xml", "cameramodel", "gl",
                                            "kalibr", "basalt",      "colmap",     "nerf",        "ros",
-                                           "open3d", "blender",     "blender-json"};
+                                           "open3d", "blender",     "blender-json",
+                                           "woodscape"};  // WoodScape's calibration JSON
     std::set<std::string> listed;
     for (const auto& format : list) {
         const std::string name = format["name"];

@@ -47,6 +47,14 @@ Camera camera_with(const Lens& lens, double skew = 0.0) {
     return camera;
 }
 
+// WoodScape's fisheye as its files hold it: fx = 1, fy = the aspect ratio.
+Camera woodscape_camera() {
+    Camera camera = camera_with({LensType::ThetaPolynomial, {339.749, -31.988, 48.275, -7.201}});
+    camera.intrinsics.fx = 1.0;
+    camera.intrinsics.fy = 1.0625;
+    return camera;
+}
+
 std::vector<Case> cases() {
     using F = CameraFormat;
     return {
@@ -73,6 +81,9 @@ std::vector<Case> cases() {
         {"DOUBLE_SPHERE", camera_with({LensType::DoubleSphere, {-0.24, 0.57}}), {F::Json, F::Kalibr, F::Basalt}},
         {"EUCM", camera_with({LensType::Eucm, {0.59, 1.1}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
         {"FOV", camera_with({LensType::Fov, {0.92}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
+        // WoodScape's coefficients are in pixels: its files hold fx = 1 (the writer scales
+        // them by fx, so another fx comes back as 1 with the coefficients scaled).
+        {"THETA_POLYNOMIAL", woodscape_camera(), {F::Json, F::Woodscape}},
     };
 }
 

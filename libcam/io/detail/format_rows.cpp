@@ -23,6 +23,7 @@
 #include "libcam/io/detail/opensfm_format.hpp"
 #include "libcam/io/detail/openicc_format.hpp"
 #include "libcam/io/detail/rig_formats.hpp"
+#include "libcam/io/detail/woodscape_format.hpp"
 
 namespace libcam::detail {
 
@@ -99,6 +100,7 @@ constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
+constexpr L kWoodscape[] = {L::ThetaPolynomial};  // WoodScape's calibration JSON
 
 using C = Content;
 
@@ -153,8 +155,11 @@ constexpr FormatRow kRows[] = {
      .read_observations = read_colmap_observations, .lenses = kColmap,
      .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
                    "SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, SIMPLE_FISHEYE, FISHEYE, FOV, THIN_PRISM_FISHEYE, "
-                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM",
-     .refuses = "skew; OPENCV12 and OPENCV14 unless their coefficients past the eighth are 0"},
+                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM, "
+                   "EQUIRECTANGULAR",  // LONLAT over the whole sphere
+     .refuses = "skew; OPENCV12 and OPENCV14 unless their coefficients past the eighth are 0; "
+                "LONLAT unless it spans the whole sphere (EQUIRECTANGULAR: fx = w / (2 pi), fy = h / pi, "
+                "cx = w / 2 - 0.5, cy = h / 2 - 0.5)"},
     {.format = CameraFormat::Nerf, .name = "nerf", .title = "NeRF transforms.json",
      .description = "NeRF's transforms.json (instant-ngp, nerfstudio)", .extensions = {".json"},
      .content = static_cast<unsigned>(C::Json), .claims = claims_nerf_transforms, .read = read_nerf_transforms,
@@ -230,6 +235,12 @@ constexpr FormatRow kRows[] = {
      .read = read_metashape, .read_only = true, .lenses = kMetashape,
      .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical",
      .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors"},
+    // ---- WoodScape's calibration JSON
+    {.format = CameraFormat::Woodscape, .name = "woodscape", .title = "WoodScape calibration JSON",
+     .description = "Valeo's WoodScape dataset's calibration JSON (radial_poly fisheye, camera-to-vehicle extrinsic)",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_woodscape_camera,
+     .read = with_source<parse_woodscape_camera>, .write = one_file<format_woodscape_camera>, .lenses = kWoodscape,
+     .lens_names = "radial_poly", .refuses = "skew"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
