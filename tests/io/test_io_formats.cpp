@@ -227,7 +227,7 @@ TEST_CASE("COLMAP's SIMPLE_FISHEYE, FISHEYE and EUCM read from cameras.txt and c
     put(division, std::uint64_t{480});
     for (const double p : {300.0, 320.0, 240.0, 0.1}) put(division, p);
     CHECK_THAT(file_error_of([&] { (void)parse_camera_set(division, CameraFormat::Colmap, "cameras.bin"); }),
-               Catch::EndsWith("model id 12 is not one of COLMAP's models that libcam holds (0 to 11, 14 to 16)"));
+               Catch::EndsWith("model id 12 is not one of COLMAP's models that libcam holds (0 to 11, 14 to 17)"));
 }
 
 TEST_CASE("COLMAP files that are wrong are refused, naming the file, line and field") {
