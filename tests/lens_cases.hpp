@@ -296,6 +296,12 @@ inline double valid_angle_of(const Lens& lens) {
 // axis): twice that angle, and at least 1e-3 rad, beyond the reach of the central
 // differences in k0. 0 for every other model.
 inline double axis_margin_of(const Lens& lens) {
+    // THETA_POLYNOMIAL's theta^2 term is m = k2 |u| u about the axis: differentiable there
+    // (the Jacobian is k1 / z) but not twice, so central differences across the axis are
+    // off by about k2 h. Its samples stay 1e-3 rad off the axis, as the blind models' do.
+    if (lens.type == LensType::ThetaPolynomial && lens.coefficients.size() > 1 && lens.coefficients[1] != 0.0) {
+        return 1e-3;
+    }
     return visit_lens_model<double>(lens.type, [&]<class Model>() {
         if constexpr (requires { Model::blind_angle(std::span<const double>(lens.coefficients)); }) {
             return std::max(2 * blind_angle<Model>(lens.coefficients), 1e-3);
