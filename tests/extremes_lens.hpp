@@ -24,7 +24,8 @@ namespace libcam::test {
 // The models built on FISHEYE's equidistant point u = theta (X, Y) / |(X, Y)|: theta is
 // their undistorted radius, and they share its handling of both axes.
 inline bool on_equidistant_point(LensType type) {
-    return type == LensType::Fisheye || type == LensType::ThinPrismFisheye || type == LensType::RadTanThinPrismFisheye;
+    return type == LensType::Fisheye || type == LensType::ThinPrismFisheye || type == LensType::RadTanThinPrismFisheye ||
+           type == LensType::ThetaPolynomial;  // WoodScape's, built on the same point
 }
 
 

@@ -248,6 +248,13 @@ inline std::vector<LensCase> lens_cases() {
                                                199.772421, 320.450876, {1.000124, -0.000228, -0.000155}, 400, 640)},
         {"OCAMCALIB omnicam", ocamcalib_camera({-1.534670e+02, 0.0, 1.034692e-03, 5.138226e-06, -5.694855e-09},
                                                382.828814, 456.345673, {1.000651, -0.000625, 0.000431}, 768, 1024)},
+        // ---- THETA_POLYNOMIAL: WoodScape's published front camera (its
+        // scripts/calibration/front.json: coefficients in pixels, fx = 1, cx = 640 + 3.942 -
+        // 0.5, cy = 483 - 3.093 - 0.5), and a lens that folds at theta = 1.25 rad inside its
+        // image (rho' = 1 + 0.2 theta - 0.9 theta^2 + 0.08 theta^3 = 0 there, by hand).
+        {"THETA_POLYNOMIAL woodscape", real_camera(LensType::ThetaPolynomial, {339.749, -31.988, 48.275, -7.201},
+                                                   {1280, 966}, {1.0, 1.0, 643.442, 479.407})},
+        {"THETA_POLYNOMIAL folding", lens_camera(LensType::ThetaPolynomial, {1.0, 0.1, -0.3, 0.02}, {1600, 1200}, 300, 300)},
     };
     return cases;
 }
@@ -323,6 +330,12 @@ inline double valid_angle_of(const Lens& lens) {
 // axis): twice that angle, and at least 1e-3 rad, beyond the reach of the central
 // differences in k0. 0 for every other model.
 inline double axis_margin_of(const Lens& lens) {
+    // THETA_POLYNOMIAL's theta^2 term is m = k2 |u| u about the axis: differentiable there
+    // (the Jacobian is k1 / z) but not twice, so central differences across the axis are
+    // off by about k2 h. Its samples stay 1e-3 rad off the axis, as the blind models' do.
+    if (lens.type == LensType::ThetaPolynomial && lens.coefficients.size() > 1 && lens.coefficients[1] != 0.0) {
+        return 1e-3;
+    }
     return visit_lens_model<double>(lens.type, [&]<class Model>() {
         if constexpr (requires { Model::blind_angle(std::span<const double>(lens.coefficients)); }) {
             return std::max(2 * blind_angle<Model>(lens.coefficients), 1e-3);

@@ -229,6 +229,64 @@ inline std::optional<Vec2> lens_polynomial_paper_pixel(const Camera& camera, con
     return pixel_of(camera, sigma * x * r, sigma * y * r, rho);
 }
 
+// ---- THETA_POLYNOMIAL: WoodScape's calibration_readme.txt (rho = k1 theta + ... + k4
+// theta^4, the point at rho (X, Y) / |(X, Y)|); its inverse as its projection.py does it,
+// the smallest positive root of rho(theta) = r below pi, found here by bisection over the
+// angles where rho still grows (checked on a fine grid).
+inline Long theta_polynomial_rho(const Camera& camera, Long theta) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return theta * (Long(k[0]) + theta * (Long(k[1]) + theta * (Long(k[2]) + theta * Long(k[3]))));
+}
+
+inline Long theta_polynomial_slope(const Camera& camera, Long theta) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return Long(k[0]) + theta * (2 * Long(k[1]) + theta * (3 * Long(k[2]) + theta * 4 * Long(k[3])));
+}
+
+// The end of rho's growing range, at most pi: the first sign change of rho' on a grid,
+// then bisected.
+inline Long theta_polynomial_growing_end(const Camera& camera) {
+    constexpr int kSteps = 20000;
+    const Long pi = std::numbers::pi_v<Long>;
+    for (int i = 1; i <= kSteps; ++i) {
+        Long low = pi * (i - 1) / kSteps, high = pi * i / kSteps;
+        if (theta_polynomial_slope(camera, high) > 0) continue;
+        for (int j = 0; j < 100; ++j) {
+            const Long middle = (low + high) / 2;
+            (theta_polynomial_slope(camera, middle) > 0 ? low : high) = middle;
+        }
+        return low;
+    }
+    return pi;
+}
+
+inline std::optional<Vec2> theta_polynomial_paper_pixel(const Camera& camera, const Vec3& point) {
+    const Long x = point.x(), y = point.y(), z = point.z(), chi = std::hypot(x, y);
+    if (chi == 0) {
+        if (!(z > 0)) return std::nullopt;
+        return pixel_of(camera, 0, 0, 1);
+    }
+    const Long theta = std::atan2(chi, z);
+    if (!(theta < theta_polynomial_growing_end(camera))) return std::nullopt;
+    return pixel_of(camera, theta_polynomial_rho(camera, theta) * x, theta_polynomial_rho(camera, theta) * y, chi);
+}
+
+inline std::optional<Vec3> theta_polynomial_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const Intrinsics& k = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - k.cx) / k.fx, my = (Long(pixel.y()) - k.cy) / k.fy;
+    const Long r = std::hypot(mx, my);
+    if (r == 0) return Vec3(0, 0, 1);
+    Long low = 0, high = theta_polynomial_growing_end(camera);
+    if (!(theta_polynomial_rho(camera, high) > r)) return std::nullopt;
+    for (int i = 0; i < 200; ++i) {
+        const Long middle = (low + high) / 2;
+        (theta_polynomial_rho(camera, middle) < r ? low : high) = middle;
+    }
+    const Long theta = (low + high) / 2;
+    return Vec3(static_cast<double>(std::sin(theta) * mx / r), static_cast<double>(std::sin(theta) * my / r),
+                static_cast<double>(std::cos(theta)));
+}
+
 // The papers' formulas for any model of the family; nullopt for a model outside it
 // (the outer optional), nothing for a point or pixel outside the domain (the inner).
 // CYLINDRICAL: the longitude and the height on the unit cylinder about the Y axis;
@@ -253,7 +311,8 @@ inline std::optional<Vec3> cylindrical_paper_ray(const Camera& camera, const Vec
 
 inline bool has_paper_formulas(LensType type) {
     return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov ||
-           type == LensType::Equisolid || type == LensType::LensPolynomial || type == LensType::Cylindrical;
+           type == LensType::Equisolid || type == LensType::LensPolynomial || type == LensType::Cylindrical ||
+           type == LensType::ThetaPolynomial;
 }
 
 inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
@@ -265,6 +324,7 @@ inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) 
         case LensType::Equisolid: return equisolid_paper_pixel(camera, point);
         case LensType::LensPolynomial: return lens_polynomial_paper_pixel(camera, point);
         case LensType::Cylindrical: return cylindrical_paper_pixel(camera, point);
+        case LensType::ThetaPolynomial: return theta_polynomial_paper_pixel(camera, point);
         default: throw std::logic_error("paper_pixel: not a model with a paper's formulas here");
     }
 }
@@ -278,6 +338,7 @@ inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
         case LensType::Equisolid: return equisolid_paper_ray(camera, pixel);
         case LensType::LensPolynomial: return lens_polynomial_paper_ray(camera, pixel);
         case LensType::Cylindrical: return cylindrical_paper_ray(camera, pixel);
+        case LensType::ThetaPolynomial: return theta_polynomial_paper_ray(camera, pixel);
         default: throw std::logic_error("paper_ray: not a model with a paper's formulas here");
     }
 }

@@ -181,6 +181,7 @@ BlenderCamera blender_from_camera(const Camera& camera) {
         case LensType::Ptlens: break;
         case LensType::OcamCalib: break;
         case LensType::Division: break;
+        case LensType::ThetaPolynomial: break;
     }
     throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
                           " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "

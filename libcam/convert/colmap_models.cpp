@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 
 #include "libcam/error.hpp"
 
@@ -28,13 +29,15 @@ constexpr ColmapModel kColmapModels[] = {
      {0, 1, 2, 3, 4, 5, 6, 7}, 8},
     {"RAD_TAN_THIN_PRISM_FISHEYE", 11, "fx, fy, cx, cy, k0, k1, k2, k3, k4, k5, p0, p1, s0, s1, s2, s3",
      LensType::RadTanThinPrismFisheye, false, {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}, 12},
-    // COLMAP's plain equidistant fisheyes (added after 3.8): KB4 with no distortion.
-    {"SIMPLE_FISHEYE", 14, "f, cx, cy", LensType::Fisheye, true, {}, 0},
-    {"FISHEYE", 15, "fx, fy, cx, cy", LensType::Fisheye, false, {}, 0},
     // Fitzgibbon's division model (COLMAP 3.12).
     {"SIMPLE_DIVISION", 12, "f, cx, cy, k", LensType::Division, true, {0}, 1},
     {"DIVISION", 13, "fx, fy, cx, cy, k", LensType::Division, false, {0}, 1},
+    // COLMAP's plain equidistant fisheyes (added after 3.8): KB4 with no distortion.
+    {"SIMPLE_FISHEYE", 14, "f, cx, cy", LensType::Fisheye, true, {}, 0},
+    {"FISHEYE", 15, "fx, fy, cx, cy", LensType::Fisheye, false, {}, 0},
     {"EUCM", 16, "fx, fy, cx, cy, alpha, beta", LensType::Eucm, false, {0, 1}, 2},
+    // COLMAP's equirectangular camera (added in 4.1): LONLAT over the whole sphere.
+    {"EQUIRECTANGULAR", 17, "w, h", LensType::Lonlat, false, {}, 0, true},
 };
 
 // Every libcam model the lens table names a COLMAP model for is that row, with all its
@@ -58,8 +61,7 @@ static_assert(tables_agree(), "the lens table's colmap names and the COLMAP tabl
 const ColmapModel& require_model(std::string_view name) {
     const ColmapModel* model = colmap_model(name);
     if (model == nullptr) {
-        throw InvalidArgument("COLMAP model \"" + std::string(name) + "\": libcam knows " + colmap_model_names() +
-                              " (COLMAP's equirectangular model has no libcam equivalent)");
+        throw InvalidArgument("COLMAP model \"" + std::string(name) + "\": libcam knows " + colmap_model_names());
     }
     return *model;
 }
@@ -72,6 +74,53 @@ const ColmapModel* default_model(LensType lens) {
         if (!model.one_focal && lens_contains(model.lens, lens)) return &model;
     }
     return nullptr;
+}
+
+// EQUIRECTANGULAR's K from its parameters, the image's width and height.
+Intrinsics equirectangular_intrinsics(double width, double height) {
+    const double pi = std::numbers::pi;
+    return {width / (2 * pi), height / pi, width / 2 - kColmapPixelShift, height / 2 - kColmapPixelShift, 0.0};
+}
+
+Camera camera_from_equirectangular(const ColmapModel& model, std::span<const double> params, const ImageSize& size) {
+    for (std::size_t i = 0; i < params.size(); ++i) {
+        if (!(params[i] > 0.0) || !std::isfinite(params[i])) {
+            throw InvalidArgument("COLMAP " + std::string(model.name) + " parameter " + std::to_string(i + 1) +
+                                  " (of " + std::string(model.parameters) + "): must be a positive size, got " +
+                                  format_number(params[i]));
+        }
+    }
+    Camera camera;
+    camera.size = size;
+    camera.intrinsics = equirectangular_intrinsics(params[0], params[1]);
+    camera.lens = {LensType::Lonlat, {}};
+    camera.validate();
+    return camera;
+}
+
+// w and h from the principal point (exact: halving and doubling), then fx and fy checked
+// against them to within rounding (a camera read from EQUIRECTANGULAR has them to the bit;
+// one written by another tool may differ in the last digits).
+ColmapCamera equirectangular_from_camera(const ColmapModel& model, const Camera& camera) {
+    const std::string target = "COLMAP " + std::string(model.name);
+    if (camera.lens.type != LensType::Lonlat) {
+        throw NotRepresentable(target + " cannot express the camera's " + std::string(lens_info(camera.lens.type).name) +
+                               " lens (it is LONLAT over the whole sphere)");
+    }
+    const Intrinsics& k = camera.intrinsics;
+    if (k.skew != 0.0) throw NotRepresentable(target + ": COLMAP has no skew, the camera's is " + format_number(k.skew));
+    const double width = 2 * (k.cx + kColmapPixelShift), height = 2 * (k.cy + kColmapPixelShift);
+    const Intrinsics expected = equirectangular_intrinsics(width, height);
+    constexpr double kRelativeTolerance = 1e-12;
+    const auto near = [](double a, double b) { return std::abs(a - b) <= kRelativeTolerance * std::abs(b); };
+    if (!(width > 0.0) || !(height > 0.0) || !near(k.fx, expected.fx) || !near(k.fy, expected.fy)) {
+        throw NotRepresentable(target + " spans the whole sphere: fx = w / (2 pi) and fy = h / pi for the w, h its "
+                               "principal point gives (" + format_number(width) + ", " + format_number(height) +
+                               "), which would be fx " + format_number(expected.fx) + " and fy " +
+                               format_number(expected.fy) + "; the camera's are " + format_number(k.fx) + " and " +
+                               format_number(k.fy));
+    }
+    return {model.name, {width, height}};
 }
 
 bool all_zero_from(const std::vector<double>& values, std::size_t first) {
@@ -137,6 +186,7 @@ Camera camera_from_colmap(std::string_view name, std::span<const double> params,
                               " parameters (" + std::string(model.parameters) + "), got " +
                               std::to_string(params.size()));
     }
+    if (model.size_parameters) return camera_from_equirectangular(model, params, size);
     for (std::size_t i = 0; i < params.size(); ++i) {
         if (!std::isfinite(params[i])) {
             throw InvalidArgument("COLMAP " + std::string(model.name) + " parameter " + std::to_string(i + 1) +
@@ -162,6 +212,7 @@ Camera camera_from_colmap(std::string_view name, std::span<const double> params,
 ColmapCamera colmap_from_camera(const Camera& camera, std::optional<std::string_view> name) {
     camera.validate();
     const ColmapModel& model = name ? require_model(*name) : colmap_model_for(camera.lens);
+    if (model.size_parameters) return equirectangular_from_camera(model, camera);
     const std::string target = "COLMAP " + std::string(model.name);
     const std::string lens_name(lens_info(camera.lens.type).name);
     // A richer model of the same family fits when its further coefficients are all 0

@@ -11,9 +11,17 @@
 // OpenCV) at (0, 0). So libcam's cx, cy are COLMAP's minus 0.5, and a COLMAP pixel is
 // libcam's plus 0.5. Skew: COLMAP has none.
 //
+// COLMAP's equirectangular camera (EQUIRECTANGULAR, id 17) takes the image size, w and h,
+// as its parameters: it is libcam's LONLAT lens over the whole sphere, with
+//   fx = w / (2 pi), fy = h / pi, cx = w / 2 - 0.5, cy = h / 2 - 0.5
+// (COLMAP: x = (lon / (2 pi) + 0.5) w, y = (0.5 - elevation / pi) h, its elevation
+// measured up, against OpenCV's y; libcam's latitude is measured down, so y = h / 2 +
+// lat h / pi; the -0.5 is the pixel-centre shift). A LONLAT camera with any other K
+// has no COLMAP model.
+//
 // COLMAP's models that libcam cannot express exactly (the division models
-// SIMPLE_DIVISION and DIVISION, and its equirectangular camera, which takes the image
-// size as its parameters) are not in the table: converting one is an error that says so.
+// SIMPLE_DIVISION and DIVISION) are not in the table: converting one is an error that
+// says so.
 
 #include <array>
 #include <optional>
@@ -40,8 +48,10 @@ struct ColmapModel {
     // in COLMAP's order; the lens's other coefficients are zero.
     std::array<int, kMaxLensCoefficients> coefficient{};
     int coefficient_count = 0;
+    // EQUIRECTANGULAR: the parameters are the image's width and height, K follows from them.
+    bool size_parameters = false;
 
-    int num_params() const { return (one_focal ? 1 : 2) + 2 + coefficient_count; }
+    int num_params() const { return size_parameters ? 2 : (one_focal ? 1 : 2) + 2 + coefficient_count; }
 };
 
 // COLMAP's models (3.8's, and those COLMAP added later that libcam expresses exactly),

@@ -23,9 +23,10 @@ enum class CameraFormat {
     // OCamCalib: the MATLAB toolbox's calib_results.txt, py-OCamCalib's JSON
     OcamCalib, PyOcamCalib,
     RealityCapture,  // RealityCapture's XMP sidecars
+    Woodscape,       // Valeo's WoodScape calibration JSON
 };
 // How many formats there are (the table of formats checks that each has its row).
-inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::RealityCapture) + 1;
+inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::Woodscape) + 1;
 
 // What a file holds: the calibrated camera, and the FOV camera it was made from when
 // the file says so (libcam JSON records the fov axis).

@@ -45,7 +45,9 @@
     _(Ptlens, PtlensLens) \
     _(OcamCalib, OcamCalibLens) \
     /* division model (Fitzgibbon; COLMAP's DIVISION) */ \
-    _(Division, DivisionLens)
+    _(Division, DivisionLens) \
+    /* WoodScape's fisheye */ \
+    _(ThetaPolynomial, ThetaPolynomialLens)
 
 namespace libcam {
 
@@ -99,6 +101,7 @@ enum class LensFamily {
     Ptlens,  // lens databases
     OcamCalib,
     Division,  // Fitzgibbon's one-parameter division model
+    ThetaPolynomial,  // WoodScape's: not FISHEYE's, whose powers of theta are odd
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -195,7 +198,8 @@ inline constexpr LensInfo kLensTable[] = {
      .mrcal = "LENSMODEL_STEREOGRAPHIC", .colmap = "", .kalibr = "", .basalt = "", .family = LensFamily::Stereographic,
      .family_rank = 0, .fit = FitCandidate::WideScenes},
     {.type = LensType::Lonlat, .name = "LONLAT", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
-     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LONLAT", .colmap = "",
+     .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "LENSMODEL_LONLAT",
+     .colmap = "EQUIRECTANGULAR",  // COLMAP's holds only the whole sphere (colmap_models.hpp)
      .kalibr = "", .basalt = "", .also_named = "equirectangular; Blender's EQUIRECTANGULAR",
      .family = LensFamily::Lonlat, .family_rank = 0, .fit = FitCandidate::No},
     {.type = LensType::Latlon, .name = "LATLON", .coefficients = {}, .num_coefficients = 0, .sees_behind_camera = true,
@@ -297,6 +301,13 @@ inline constexpr LensInfo kLensTable[] = {
      .also_named = "Fitzgibbon's division model; COLMAP's SIMPLE_DIVISION; OpenImuCameraCalibrator's and Theia's "
                    "DIVISION_UNDISTORTION",
      .family = LensFamily::Division, .family_rank = 0, .fit = FitCandidate::No},
+    // ---- WoodScape's fisheye: the radius as a polynomial of every power of the angle
+    // (its calibrations give the coefficients in pixels, with fx = 1: theta_polynomial.hpp).
+    {.type = LensType::ThetaPolynomial, .name = "THETA_POLYNOMIAL", .coefficients = {"k1", "k2", "k3", "k4"},
+     .num_coefficients = 4, .sees_behind_camera = true, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "Valeo's WoodScape radial_poly (rho = k1 theta + k2 theta^2 + k3 theta^3 + k4 theta^4)",
+     .family = LensFamily::ThetaPolynomial, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

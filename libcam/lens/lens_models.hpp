@@ -68,6 +68,7 @@
 #include "libcam/lens/splined_stereographic.hpp"
 #include "libcam/lens/stereographic.hpp"
 #include "libcam/lens/thin_prism_fisheye.hpp"
+#include "libcam/lens/theta_polynomial.hpp"  // WoodScape's fisheye
 #include "libcam/lens/ucm.hpp"
 
 namespace libcam {

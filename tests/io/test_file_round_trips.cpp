@@ -50,6 +50,14 @@ Camera camera_with(const Lens& lens, double skew = 0.0) {
     return camera;
 }
 
+// WoodScape's fisheye as its files hold it: fx = 1, fy = the aspect ratio.
+Camera woodscape_camera() {
+    Camera camera = camera_with({LensType::ThetaPolynomial, {339.749, -31.988, 48.275, -7.201}});
+    camera.intrinsics.fx = 1.0;
+    camera.intrinsics.fy = 1.0625;
+    return camera;
+}
+
 std::vector<Case> cases() {
     using F = CameraFormat;
     return {
@@ -86,6 +94,9 @@ std::vector<Case> cases() {
          {F::Json}},
         // COLMAP's DIVISION (and SIMPLE_DIVISION, read).
         {"DIVISION", camera_with({LensType::Division, {-0.08}}), {F::Json, F::Colmap}},
+        // WoodScape's coefficients are in pixels: its files hold fx = 1 (the writer scales
+        // them by fx, so another fx comes back as 1 with the coefficients scaled).
+        {"THETA_POLYNOMIAL", woodscape_camera(), {F::Json, F::Woodscape}},
     };
 }
 
@@ -123,7 +134,7 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
     test::TempDir dir;
     int trips = 0;
     const std::vector<CameraFormat> written = written_formats();
-    CHECK(written.size() == 13);
+    CHECK(written.size() == 16);
     for (const Case& c : cases()) {
         for (const CameraFormat first : written) {
             CAPTURE(c.what, to_string(first));
@@ -151,7 +162,7 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
     }
     CHECK(trips == 13 * 13 + 6 * 6 + 10 * 10 + 9 * 9 + 6 * 6 + 9 * 9 + 4 * 4 + 3 * 3 + 1 * 1 + 2 * 2 + 3 * 3 + 4 * 4 + 5 * 5 +
                    1 * 1 /* PTLENS, held by libcam's JSON alone */ + 1 * 1 /* OCAMCALIB, likewise */ +
-                   2 * 2 /* DIVISION: JSON, COLMAP */);
+                   2 * 2 /* DIVISION: JSON, COLMAP */ + 2 * 2 /* THETA_POLYNOMIAL: JSON, woodscape */);
 }
 
 TEST_CASE("Each format's row declares the lens models the round trips show it holds", "[files]") {

@@ -979,3 +979,40 @@ TEST_CASE("Blender's camera JSON: bpy's settings to K and the pose, worked by ha
     // ... and the refusal says what to do instead.
     CHECK_THROWS_WITH(format_camera(distorted, CameraFormat::Blender), Catch::Contains("libcam render-plan plans a render"));
 }
+
+// ---- COLMAP's EQUIRECTANGULAR (COLMAP 4.1, id 17, parameters "w, h")
+TEST_CASE("COLMAP's EQUIRECTANGULAR read from cameras.txt and cameras.bin as LONLAT over the whole sphere",
+          "[colmap][equirectangular]") {
+    const std::string text = "1 EQUIRECTANGULAR 4000 2000 4000 2000\n";
+    std::string bytes;
+    const auto put = [](std::string& out, const auto& value) {
+        out.append(reinterpret_cast<const char*>(&value), sizeof(value));
+    };
+    put(bytes, std::uint64_t{1});
+    put(bytes, std::uint32_t{1});
+    put(bytes, std::int32_t{17});
+    put(bytes, std::uint64_t{4000});
+    put(bytes, std::uint64_t{2000});
+    put(bytes, 4000.0);
+    put(bytes, 2000.0);
+    for (const auto& [file, source] : {std::pair{text, "cameras.txt"}, std::pair{bytes, "cameras.bin"}}) {
+        INFO(source);
+        const CameraSet set = parse_camera_set(file, CameraFormat::Colmap, source);
+        REQUIRE(set.cameras.size() == 1);
+        const Camera& camera = set.cameras[0].file.camera;
+        CHECK(camera.lens.type == LensType::Lonlat);
+        CHECK(camera.size == ImageSize{4000, 2000});
+        // fx = w / (2 pi), fy = h / pi: 2000 / pi both; the centre at (w / 2, h / 2) - 0.5.
+        CHECK(camera.intrinsics.fx == Approx(2000 / std::numbers::pi).epsilon(1e-15));
+        CHECK(camera.intrinsics.fy == Approx(2000 / std::numbers::pi).epsilon(1e-15));
+        CHECK(camera.intrinsics.cx == 1999.5);
+        CHECK(camera.intrinsics.cy == 999.5);
+    }
+    const Camera camera = parse_camera_set(text, CameraFormat::Colmap, "cameras.txt").cameras[0].file.camera;
+    CHECK_THAT(format_camera_files(camera, CameraFormat::Colmap)[0].text,
+               Catch::EndsWith("\n1 EQUIRECTANGULAR 4000 2000 4000 2000\n"));
+    CHECK_THAT(file_error_of([] {
+                   (void)parse_camera_set("1 EQUIRECTANGULAR 4000 2000 4000\n", CameraFormat::Colmap, "cameras.txt");
+               }),
+               Catch::Contains("cameras.txt"));
+}

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <optional>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -192,4 +193,80 @@ TEST_CASE("COLMAP: every model of the table names a libcam model whose coefficie
         CHECK(commas + 1 == model.num_params());
         CHECK(model.coefficient_count <= lens_info(model.lens).num_coefficients);
     }
+}
+
+// ---- COLMAP's EQUIRECTANGULAR (COLMAP 4.1, models.h): w, h; x = (lon / (2 pi) + 0.5) w,
+// y = (0.5 - elevation / pi) h with the elevation measured up (-Y), pixel corners at 0.
+// The pixels and rays below are worked by hand for a 2000 x 1000 panorama.
+
+TEST_CASE("COLMAP EQUIRECTANGULAR: a panorama's pixels and rays, worked by hand, with COLMAP's half pixel",
+          "[colmap][equirectangular]") {
+    const double w = 2000, h = 1000;
+    const Camera camera = camera_from_colmap("EQUIRECTANGULAR", std::vector<double>{w, h}, {2000, 1000});
+    CHECK(camera.lens.type == LensType::Lonlat);
+    CHECK(camera.intrinsics.cx == 999.5);
+    CHECK(camera.intrinsics.cy == 499.5);
+    CHECK(camera.intrinsics.fx == Approx(318.30988618379067).epsilon(1e-15));  // 2000 / (2 pi)
+    CHECK(camera.intrinsics.fy == Approx(318.30988618379067).epsilon(1e-15));  // 1000 / pi
+    const PreparedCamera prepared(camera);
+    struct Case {
+        Vec3 point;
+        Vec2 colmap_pixel;  // COLMAP's, top-left corner at (0, 0)
+    };
+    const double s = std::sqrt(0.5);
+    const Case cases[] = {
+        {{0, 0, 1}, {1000, 500}},     // forward: the centre
+        {{1, 0, 0}, {1500, 500}},     // right (+X): longitude pi/2, three quarters across
+        {{-1, 0, 0}, {500, 500}},     // left: a quarter across
+        {{0, 1, 1}, {1000, 750}},     // 45 degrees below the horizon (+Y is down)
+        {{1, -1, 0}, {1500, 250}},    // right and 45 degrees up
+        {{0, -1, 0.001}, {1000, 1000 * std::atan(0.001) / std::numbers::pi}},  // nearly straight up: the top row
+    };
+    for (const Case& c : cases) {
+        INFO(c.point.transpose());
+        const Projection projection = prepared.project_camera_point(c.point);
+        REQUIRE(projection.valid);
+        CHECK(projection.pixel.x() + kColmapPixelShift == Approx(c.colmap_pixel.x()).margin(1e-9));
+        CHECK(projection.pixel.y() + kColmapPixelShift == Approx(c.colmap_pixel.y()).margin(1e-9));
+    }
+    // COLMAP's pixel (1500, 250) is the ray (cos 45 sin 90, -sin 45, cos 45 cos 90).
+    const Unprojection ray = prepared.unproject(Vec2(1500 - kColmapPixelShift, 250 - kColmapPixelShift));
+    REQUIRE(ray.valid);
+    const Vec3 unit = ray.direction.normalized();
+    CHECK(unit.x() == Approx(s).margin(1e-14));
+    CHECK(unit.y() == Approx(-s).margin(1e-14));
+    CHECK(unit.z() == Approx(0).margin(1e-14));
+    // Straight behind: longitude pi (atan2(0, -1)), COLMAP's right edge x = w.
+    const Projection behind = prepared.project_camera_point(Vec3(0, 0, -1));
+    REQUIRE(behind.valid);
+    CHECK(behind.pixel.x() + kColmapPixelShift == Approx(w).margin(1e-9));
+    CHECK(behind.pixel.y() + kColmapPixelShift == Approx(h / 2).margin(1e-9));
+}
+
+TEST_CASE("COLMAP EQUIRECTANGULAR: written back as w and h, exactly, and a LONLAT that is not the whole sphere "
+          "refused, saying why",
+          "[colmap][equirectangular]") {
+    const std::vector<double> size{5376, 2688};
+    const Camera camera = camera_from_colmap("EQUIRECTANGULAR", size, {5376, 2688});
+    const ColmapCamera back = colmap_from_camera(camera);
+    CHECK(back.model == "EQUIRECTANGULAR");
+    CHECK(back.params == size);
+    CHECK(colmap_model_by_id(17)->name == "EQUIRECTANGULAR");
+    Camera cropped = camera;
+    cropped.intrinsics.fy *= 1.5;  // a panorama covering 120 degrees of latitude
+    CHECK_THAT(test::error_of([&] { colmap_from_camera(cropped); }),
+               Catch::Contains("COLMAP EQUIRECTANGULAR spans the whole sphere") &&
+                   Catch::Contains("fx = w / (2 pi) and fy = h / pi"));
+    Camera pinhole = camera;
+    pinhole.lens = {LensType::Pinhole, {}};
+    CHECK_THAT(test::error_of([&] { colmap_from_camera(pinhole, "EQUIRECTANGULAR"); }),
+               Catch::Contains("COLMAP EQUIRECTANGULAR cannot express the camera's PINHOLE lens"));
+    CHECK_THAT(test::error_of([&] {
+                   camera_from_colmap("EQUIRECTANGULAR", std::vector<double>{0, 1000}, {2000, 1000});
+               }),
+               Catch::Contains("COLMAP EQUIRECTANGULAR parameter 1 (of w, h): must be a positive size, got 0"));
+    CHECK_THAT(test::error_of([&] {
+                   camera_from_colmap("EQUIRECTANGULAR", std::vector<double>{2000, 1000, 3}, {2000, 1000});
+               }),
+               Catch::Contains("COLMAP EQUIRECTANGULAR takes 2 parameters (w, h), got 3"));
 }

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -296,8 +297,11 @@ static_assert(std::endian::native == std::endian::little, "COLMAP's .bin files a
 
 std::vector<ColmapCameraRecord> read_cameras_binary(std::string_view bytes, const std::string& source) {
     BinaryReader in(bytes, source);
-    constexpr std::size_t kSmallestRecord = 4 + 4 + 8 + 8 + 3 * 8;
-    const std::uint64_t count = in.count("the number of cameras", kSmallestRecord);
+    // The fewest parameters a model takes (EQUIRECTANGULAR's two: w, h).
+    int fewest_params = std::numeric_limits<int>::max();
+    for (const ColmapModel& model : colmap_models()) fewest_params = std::min(fewest_params, model.num_params());
+    const std::size_t smallest_record = 4 + 4 + 8 + 8 + 8 * static_cast<std::size_t>(fewest_params);
+    const std::uint64_t count = in.count("the number of cameras", smallest_record);
     std::vector<ColmapCameraRecord> cameras;
     for (std::uint64_t i = 0; i < count; ++i) {
         const std::string what = "camera " + std::to_string(i);

@@ -30,6 +30,7 @@
 #include "libcam/io/detail/openicc_format.hpp"
 #include "libcam/io/detail/realitycapture_format.hpp"
 #include "libcam/io/detail/rig_formats.hpp"
+#include "libcam/io/detail/woodscape_format.hpp"
 
 namespace libcam::detail {
 
@@ -121,6 +122,7 @@ constexpr L kHuginPto[] = {L::Pinhole,   L::OpenCv4,       L::Ptlens, L::Fisheye
 constexpr L kOcamCalib[] = {L::OcamCalib};
 constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
 constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5};  // RealityCapture's XMP
+constexpr L kWoodscape[] = {L::ThetaPolynomial};  // WoodScape's calibration JSON
 
 using C = Content;
 
@@ -175,8 +177,11 @@ constexpr FormatRow kRows[] = {
      .read_observations = read_colmap_observations, .lenses = kColmap,
      .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
                    "SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, SIMPLE_FISHEYE, FISHEYE, FOV, THIN_PRISM_FISHEYE, "
-                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM, SIMPLE_DIVISION, DIVISION",
-     .refuses = "skew; OPENCV12 and OPENCV14 unless their coefficients past the eighth are 0"},
+                   "RAD_TAN_THIN_PRISM_FISHEYE, EUCM, SIMPLE_DIVISION, DIVISION, "
+                   "EQUIRECTANGULAR",  // LONLAT over the whole sphere
+     .refuses = "skew; OPENCV12 and OPENCV14 unless their coefficients past the eighth are 0; "
+                "LONLAT unless it spans the whole sphere (EQUIRECTANGULAR: fx = w / (2 pi), fy = h / pi, "
+                "cx = w / 2 - 0.5, cy = h / 2 - 0.5)"},
     {.format = CameraFormat::Nerf, .name = "nerf", .title = "NeRF transforms.json",
      .description = "NeRF's transforms.json (instant-ngp, nerfstudio)", .extensions = {".json"},
      .content = static_cast<unsigned>(C::Json), .claims = claims_nerf_transforms, .read = read_nerf_transforms,
@@ -321,6 +326,12 @@ constexpr FormatRow kRows[] = {
      .read = read_realitycapture_xmp, .read_only = true, .lenses = kRealityCapture,
      .lens_names = "perspective, brown3, brown4 and brown3t2, brown4t2 (t1 t2 swapped against OpenCV's p1 p2)",
      .refuses = "k4, skew, division with a coefficient other than 0"},
+    // ---- WoodScape's calibration JSON
+    {.format = CameraFormat::Woodscape, .name = "woodscape", .title = "WoodScape calibration JSON",
+     .description = "Valeo's WoodScape dataset's calibration JSON (radial_poly fisheye, camera-to-vehicle extrinsic)",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_woodscape_camera,
+     .read = with_source<parse_woodscape_camera>, .write = one_file<format_woodscape_camera>, .lenses = kWoodscape,
+     .lens_names = "radial_poly", .refuses = "skew"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
