@@ -175,8 +175,8 @@ TEST_CASE("COLMAP: a camera a model cannot express exactly is refused, saying wh
     stereographic.lens = {LensType::Stereographic, {}};
     CHECK_THAT(test::error_of([&] { colmap_from_camera(stereographic); }),
                Catch::Contains("COLMAP has no model for a STEREOGRAPHIC lens"));
-    CHECK_THAT(test::error_of([&] { camera_from_colmap("DIVISION", std::vector<double>{1, 2, 3, 4, 5}, {640, 480}); }),
-               Catch::Contains("COLMAP model \"DIVISION\": libcam knows SIMPLE_PINHOLE"));
+    CHECK_THAT(test::error_of([&] { camera_from_colmap("SPHERICAL", std::vector<double>{1, 2, 3, 4, 5}, {640, 480}); }),
+               Catch::Contains("COLMAP model \"SPHERICAL\": libcam knows SIMPLE_PINHOLE"));
     CHECK_THAT(test::error_of([&] { camera_from_colmap("OPENCV", std::vector<double>{500, 320, 240}, {640, 480}); }),
                Catch::Contains("COLMAP OPENCV takes 8 parameters (fx, fy, cx, cy, k1, k2, p1, p2), got 3"));
     CHECK_THAT(test::error_of([&] {
