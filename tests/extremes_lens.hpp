@@ -306,7 +306,9 @@ enum class Expect { Valid, Flagged, Either };
 template <class Scalar>
 std::optional<Expect> backward_axis_band(const Lens& lens, const Vec3Q& point) {
     const LensType type = lens.type;
-    const bool behind_only = type == LensType::Stereographic || type == LensType::Equisolid;
+    // DIVISION forms m = (x, y) / D with D = 2 k rho^2 / (z - root) behind the camera.
+    const bool behind_only =
+        type == LensType::Stereographic || type == LensType::Equisolid || type == LensType::Division;
     if (!behind_only && !on_equidistant_point(type) && type != LensType::Fov) return std::nullopt;
     Quad rho2 = point.x() * point.x() + point.y() * point.y();
     if (type == LensType::Fov) {

@@ -401,7 +401,8 @@ DatasetPlan plan_dataset(const DatasetOptions& options) {
 
 DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
     DatasetPlan plan = plan_dataset(options);
-    plan.summary.images_failed = run_image_tasks(plan.tasks, worker_count(options.threads), options.on_image_error);
+    plan.summary.images_failed = run_image_tasks(plan.tasks, worker_count(options.threads), options.on_image_error,
+                                                  options.on_progress);
     plan.summary.images_written = plan.tasks.size() - plan.summary.images_failed;
     return plan.summary;
 }

@@ -78,6 +78,8 @@ struct DatasetOptions {
     // Called, one call at a time, with one line for each image that could not be read or
     // written; the others go on.
     std::function<void(const std::string&)> on_image_error;
+    // Called, one call at a time, after each image with how many of this run's are done.
+    std::function<void(std::size_t done, std::size_t total)> on_progress;
 };
 
 struct DatasetCamera {

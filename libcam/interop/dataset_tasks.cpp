@@ -205,14 +205,15 @@ void run_image_task(const ImageTask& task, MapCache& maps) {
 }
 
 std::size_t run_image_tasks(const std::vector<ImageTask>& tasks, int threads,
-                            const std::function<void(const std::string&)>& report) {
+                            const std::function<void(const std::string&)>& report,
+                            const std::function<void(std::size_t done, std::size_t total)>& progress) {
     const std::size_t workers =
         std::clamp<std::size_t>(static_cast<std::size_t>(worker_count(threads)), 1, std::max<std::size_t>(tasks.size(), 1));
     const OpenCvThreads opencv_threads(static_cast<int>(workers));
     // Tasks come in camera order, so the workers share at most one camera each at a time;
     // each map is built with a share of the threads (the other workers are busy with images).
     MapCache maps(workers, std::max(1, static_cast<int>(workers) / 2));
-    std::atomic<std::size_t> next{0}, failed{0};
+    std::atomic<std::size_t> next{0}, failed{0}, done{0};
     std::mutex report_lock;
     std::exception_ptr fatal;  // a map that cannot be built stops every worker
     const auto work = [&] {
@@ -232,6 +233,11 @@ std::size_t run_image_tasks(const std::vector<ImageTask>& tasks, int threads,
                 ++failed;
                 const std::lock_guard<std::mutex> lock(report_lock);
                 if (report) report(error.what());
+            }
+            const std::size_t finished = ++done;
+            if (progress) {
+                const std::lock_guard<std::mutex> lock(report_lock);
+                progress(finished, tasks.size());
             }
         }
     };

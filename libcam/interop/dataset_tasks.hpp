@@ -92,7 +92,10 @@ void run_image_task(const ImageTask& task, MapCache& maps);
 // Runs the tasks on `threads` workers sharing one MapCache, each worker holding one image
 // at a time; returns how many failed, each reported through `report` (one line, one call at
 // a time). A map that cannot be built stops every worker and is thrown.
+// `progress`, when given, is called after each task with how many are done, one call at
+// a time (from the worker that finished it).
 std::size_t run_image_tasks(const std::vector<ImageTask>& tasks, int threads,
-                            const std::function<void(const std::string&)>& report);
+                            const std::function<void(const std::string&)>& report,
+                            const std::function<void(std::size_t done, std::size_t total)>& progress = {});
 
 }  // namespace libcam

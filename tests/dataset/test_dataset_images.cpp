@@ -190,3 +190,30 @@ TEST_CASE("dataset: a run killed midway and started again gives the files of a r
     WARN("killed with " << before << " entries in images/; the second run wrote " << again["images_written"]
                         << " and kept " << again["images_kept"]);
 }
+
+TEST_CASE("dataset: a progress line on a terminal, none in a log", "[dataset]") {
+    TempDir dir;
+    write_model(dir / "model", "photo.png");
+    fs::create_directories(dir / "images");
+    REQUIRE(cv::imwrite((dir / "images" / "photo.png").string(), texture(CV_8UC3)));
+    const std::string command = std::string(LIBCAM_EXE) + " dataset " + (dir / "model").string() + " --images " +
+                                (dir / "images").string() + " -o ";
+    // Not a terminal: stderr stays empty.
+    const libcam::test::CliResult logged = run_libcam({"dataset", (dir / "model").string(), "--images",
+                                                       (dir / "images").string(), "-o", (dir / "logged").string()});
+    CHECK(logged.exit_code == 0);
+    CHECK(logged.err.empty());
+    // On a terminal (util-linux's script gives the program one): images done, rate, time left.
+    const std::string script = "/usr/bin/script";
+    if (!fs::exists(script)) {
+        WARN("skipped the terminal half: no " << script);
+        return;
+    }
+    const libcam::test::CliResult shown =
+        libcam::test::run_program(script, {"-qec", command + (dir / "shown").string(), "/dev/null"});
+    INFO(shown.describe());
+    CHECK(shown.exit_code == 0);
+    CHECK(shown.out.find("images 1 of 1, ") != std::string::npos);
+    CHECK(shown.out.find(" images/s, ") != std::string::npos);
+    CHECK(shown.out.find(" s left") != std::string::npos);
+}

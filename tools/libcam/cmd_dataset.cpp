@@ -1,9 +1,14 @@
 // libcam dataset: a whole COLMAP reconstruction into pinhole cameras, its images
 // undistorted and its observations moved (libcam/interop/colmap_dataset.hpp).
 
+#include <unistd.h>
+
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <string>
 
 #include "commands.hpp"
 #include "libcam/camera/parallel.hpp"
@@ -17,6 +22,44 @@ namespace libcam::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// One line on a terminal's stderr, redrawn at most five times a second: images done, the
+// rate and the time left. Nothing when stderr is not a terminal (a log, a pipe).
+class ProgressLine {
+public:
+    ProgressLine() : shown_(isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
+    ~ProgressLine() { finish(); }
+    ProgressLine(const ProgressLine&) = delete;
+    ProgressLine& operator=(const ProgressLine&) = delete;
+
+    void update(std::size_t done, std::size_t total) {
+        if (!shown_) return;
+        const auto now = std::chrono::steady_clock::now();
+        if (done < total && now - last_ < std::chrono::milliseconds(200)) return;
+        last_ = now;
+        const double seconds = std::chrono::duration<double>(now - start_).count();
+        const double rate = seconds > 0 ? static_cast<double>(done) / seconds : 0.0;
+        const double left = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
+        std::fprintf(stderr, "\r\x1b[Kimages %zu of %zu, %.1f images/s, %.0f s left", done, total, rate, left);
+        std::fflush(stderr);
+        drawn_ = true;
+    }
+    // Ends the line, before the summary is printed.
+    void finish() {
+        if (drawn_) std::fputs("\n", stderr);
+        drawn_ = false;
+    }
+    // A line of its own above the progress line.
+    void say(const std::string& line) {
+        if (drawn_) std::fputs("\r\x1b[K", stderr);
+        std::cerr << line << "\n";
+    }
+
+private:
+    bool shown_;
+    bool drawn_ = false;
+    std::chrono::steady_clock::time_point start_, last_{};
+};
 
 struct DatasetFlags {
     std::string source;
@@ -101,9 +144,12 @@ int run_dataset(const DatasetFlags& flags) {
     if (!options.images.empty() && !fs::is_directory(options.images)) {
         throw FileError(options.images.string() + ": no such images folder (give --images, or --no-images)");
     }
-    options.on_image_error = [](const std::string& line) { std::cerr << "libcam: error: " << line << "\n"; };
+    auto progress = std::make_shared<ProgressLine>();
+    options.on_image_error = [progress](const std::string& line) { progress->say("libcam: error: " + line); };
+    options.on_progress = [progress](std::size_t done, std::size_t total) { progress->update(done, total); };
     const auto start = std::chrono::steady_clock::now();
     const DatasetSummary summary = make_pinhole_dataset(options);
+    progress->finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     emit(flags.json ? dataset_summary_json(summary, seconds) : summary_text(summary, seconds, !flags.no_images), "");
     return summary.images_failed == 0 ? 0 : 1;
