@@ -133,6 +133,14 @@ inline std::optional<Eigen::Vector2d> colmap_img_from_cam(std::string_view model
         y = v / w + dv;
     } else if (model == "FOV") {
         fov_distortion(extra[0], u / w, v / w, x, y);
+    } else if (model == "SIMPLE_DIVISION" || model == "DIVISION") {
+        // The distorted point m with m / (1 + k |m|^2) = (u, v) / w: m = (u, v) / D,
+        // D = (w + sqrt(w^2 - 4 k (u^2 + v^2))) / 2; none past the fold.
+        const Real k = extra[0], discriminant = w * w - 4 * k * (u * u + v * v);
+        if (!(discriminant > 0)) return std::nullopt;
+        const Real d = (w + std::sqrt(discriminant)) / 2;
+        x = u / d;
+        y = v / d;
     } else if (model == "EUCM") {
         const Real alpha = extra[0], beta = extra[1];
         const Real rho = std::sqrt(beta * (u * u + v * v) + w * w);

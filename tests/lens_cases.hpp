@@ -430,6 +430,47 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
         }
         return pixels;
     }
+    if (camera.lens.type == LensType::OcamCalib) {
+        // Scaramuzza's world2cam without its invpol, as his MATLAB world2cam solves it: the
+        // sensor radius r whose ray (r (X, Y) / rho, g(r)) meets the point is the first
+        // positive root of rho g(r) - Z r, g(r) = 1 + k1 r + ... + k5 r^5, found by a scan
+        // and bisection in long double; then the affine [1 e; d c] and K.
+        const PreparedCamera prepared(camera);
+        const std::vector<double>& k = camera.lens.coefficients;
+        const long double radius_limit = std::isfinite(prepared.valid_radius()) ? prepared.valid_radius() : 1e9L;
+        std::vector<Vec2> pixels;
+        for (const Vec3& ray : rays) {
+            const long double X = ray.x(), Y = ray.y(), Z = ray.z(), rho = std::hypot(X, Y);
+            const auto f = [&](long double r) {
+                long double g = k[7];
+                for (int i = 6; i >= 3; --i) g = g * r + k[static_cast<std::size_t>(i)];
+                return rho * (1 + r * g) - Z * r;
+            };
+            if (!(rho > 0)) {
+                pixels.push_back(Z > 0 ? Vec2(camera.intrinsics.cx, camera.intrinsics.cy) : Vec2::Constant(kInfinity));
+                continue;
+            }
+            long double low = 0, high = -1;
+            for (int i = 0; i <= 2000 && high < 0; ++i) {
+                const long double r = radius_limit * std::pow(1e-15L, 1 - i / 2000.0L);
+                if (f(r) <= 0) high = r;
+                else low = r;
+            }
+            if (high < 0 || high >= radius_limit) {
+                pixels.push_back(Vec2::Constant(kInfinity));
+                continue;
+            }
+            for (int i = 0; i < 200; ++i) {
+                const long double middle = (low + high) / 2;
+                (f(middle) > 0 ? low : high) = middle;
+            }
+            const long double r = (low + high) / 2, nx = r * X / rho, ny = r * Y / rho;
+            const long double mx = nx + k[2] * ny, my = k[1] * nx + k[0] * ny;
+            pixels.push_back(Vec2(static_cast<double>(camera.intrinsics.fx * mx + camera.intrinsics.cx),
+                                  static_cast<double>(camera.intrinsics.fy * my + camera.intrinsics.cy)));
+        }
+        return pixels;
+    }
     if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
     // cv::omnidir evaluates its formula on every point: those past the valid angle get
     // infinity. cv::projectPoints and cv::fisheye take points in front of the camera.

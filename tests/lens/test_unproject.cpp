@@ -100,6 +100,10 @@ TEST_CASE("Unprojection agrees with mrcal_unproject and cv::undistortPoints wher
         // Nor has PTLENS an independent inverse: test_unprojector reprojects its
         // rays through PanoTools' formula (lens_cases.hpp, reference_project).
         if (c.camera.lens.type == LensType::Ptlens) continue;
+        // OCAMCALIB's unprojection is its own formula (checked against Scaramuzza's cam2world
+        // on every OCamCalib file in test_io); test_unprojector reprojects its rays through
+        // the root of its polynomial, as his MATLAB world2cam finds it.
+        if (c.camera.lens.type == LensType::OcamCalib) continue;
         INFO(c.name);
         const GridResult grid = unproject_grid(c.camera, 121, 91);
         CHECK(grid.worst <= kPixelTolerance);
