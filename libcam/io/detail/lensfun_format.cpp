@@ -12,6 +12,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -49,13 +50,9 @@ struct LensEntry {
     pugi::xml_node node;
 };
 
-class Source {
+class Source : public XmlSource {
 public:
-    Source(std::string_view text, const std::string& name) : text_(text), name_(name) {}
-
-    [[noreturn]] void fail(const pugi::xml_node& node, const std::string& what) const {
-        throw FileError(name_ + ": line " + std::to_string(line_of(node)) + ": " + what);
-    }
+    using XmlSource::XmlSource;
 
     double number(const pugi::xml_node& node, std::string_view text, const std::string& field) const {
         while (!text.empty() && std::string_view(" \t\r\n").find(text.front()) != std::string_view::npos) text.remove_prefix(1);
@@ -67,19 +64,6 @@ public:
         }
         return value;
     }
-
-    const std::string& name() const { return name_; }
-
-private:
-    int line_of(const pugi::xml_node& node) const {
-        const std::ptrdiff_t offset = node.offset_debug();
-        if (offset < 0) return 0;
-        const std::string_view before = text_.substr(0, std::min<std::size_t>(static_cast<std::size_t>(offset), text_.size()));
-        return static_cast<int>(std::count(before.begin(), before.end(), '\n')) + 1;
-    }
-
-    std::string_view text_;
-    const std::string& name_;
 };
 
 std::string lower(std::string text) {

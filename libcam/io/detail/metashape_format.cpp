@@ -12,20 +12,17 @@
 
 #include "libcam/error.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
 
 namespace {
 
-// The file, for messages that name the line of an element: "<source>: line L: <what>".
-class Source {
+// The file's fields, read with messages that name the line of their element.
+class Source : public XmlSource {
 public:
-    Source(std::string_view text, const std::string& name) : text_(text), name_(name) {}
-
-    [[noreturn]] void fail(const pugi::xml_node& node, const std::string& what) const {
-        throw FileError(name_ + ": line " + std::to_string(line_of(node)) + ": " + what);
-    }
+    using XmlSource::XmlSource;
 
     // The numbers of an element's text, exactly `count` of them ("<where> <element>").
     std::vector<double> numbers(const pugi::xml_node& element, std::size_t count, const std::string& where) const {
@@ -70,19 +67,6 @@ public:
         }
         return value;
     }
-
-    const std::string& name() const { return name_; }
-
-private:
-    int line_of(const pugi::xml_node& node) const {
-        const std::ptrdiff_t offset = node.offset_debug();
-        if (offset < 0) return 0;
-        const std::string_view before = text_.substr(0, std::min<std::size_t>(static_cast<std::size_t>(offset), text_.size()));
-        return static_cast<int>(std::count(before.begin(), before.end(), '\n')) + 1;
-    }
-
-    std::string_view text_;
-    const std::string& name_;
 };
 
 // A calibration's numbers as Metashape writes them (absent ones are 0).
