@@ -255,10 +255,9 @@ LookAtCamera read_fov_camera(const Reader& in, const Camera& camera, const std::
     return fov;
 }
 
-}  // namespace
-
-std::string format_json(const Camera& camera, const std::optional<LookAtCamera>& fov_camera) {
-    const FovDescription fov = describe_fov(camera);
+// The keys every libcam JSON camera has, and all the reader needs: model, image_size, K,
+// dist, R, t.
+ordered camera_keys(const Camera& camera) {
     ordered out;
     out["model"] = lens_info(camera.lens.type).name;
     out["image_size"] = {camera.size.width, camera.size.height};
@@ -266,6 +265,14 @@ std::string format_json(const Camera& camera, const std::optional<LookAtCamera>&
     out["dist"] = camera.lens.coefficients;
     out["R"] = matrix_json(camera.pose.R);
     out["t"] = vector_json(camera.pose.t);
+    return out;
+}
+
+}  // namespace
+
+std::string format_json(const Camera& camera, const std::optional<LookAtCamera>& fov_camera) {
+    const FovDescription fov = describe_fov(camera);
+    ordered out = camera_keys(camera);
     out["rvec"] = vector_json(camera.pose.rvec());
     out["P"] = matrix_json(camera.P());
     out["camera_center"] = vector_json(fov.eye);
@@ -303,16 +310,7 @@ std::string format_gl_json(const GlCamera& gl, const ImageSize& size) {
     return layout(out);
 }
 
-std::string format_json_camera_object(const Camera& camera) {
-    ordered out;
-    out["model"] = lens_info(camera.lens.type).name;
-    out["image_size"] = {camera.size.width, camera.size.height};
-    out["K"] = matrix_json(camera.intrinsics.K());
-    out["dist"] = camera.lens.coefficients;
-    out["R"] = matrix_json(camera.pose.R);
-    out["t"] = vector_json(camera.pose.t);
-    return out.dump();
-}
+std::string format_json_camera_object(const Camera& camera) { return camera_keys(camera).dump(); }
 
 Camera read_json_camera_object(const Field& object) {
     if (object.node().kind != DocumentNode::Kind::Map) {
