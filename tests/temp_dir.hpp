@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 
@@ -36,5 +37,14 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+// The file `name` in the folder holding `text`, its bytes as given; its path. Throws when
+// it cannot be written, so a test never reads a file that is not there.
+inline std::filesystem::path write_file(const TempDir& dir, const std::string& name, const std::string& text) {
+    const std::filesystem::path path = dir / name;
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    if (!(out << text) || !out.flush()) throw std::runtime_error("cannot write " + path.string());
+    return path;
+}
 
 }  // namespace libcam::test

@@ -28,12 +28,6 @@ using libcam::test::file_error_of;
 
 namespace {
 
-std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir.path() / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-}
-
 // The sample scene's pose 0 as AliceVision writes it: rotation column by column.
 const std::string kSamplePose =
     R"("poses": [{"poseId": "0", "pose": {"transform": {"rotation": ["0.22629564095020641", "-0.18300791965761709",)"

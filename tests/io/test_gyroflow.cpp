@@ -16,12 +16,6 @@ using namespace libcam;
 
 namespace {
 
-std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir.path() / name;
-    std::ofstream(path) << text;
-    return path;
-}
-
 std::string profile(const std::string& model_line, const std::string& coefficients, bool asymmetrical = false) {
     return R"({
     "name": "GoPro_HERO8 Black_Wide_4by3",

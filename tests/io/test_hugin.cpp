@@ -22,12 +22,6 @@ using namespace libcam;
 
 namespace {
 
-std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir.path() / name;
-    std::ofstream(path) << text;
-    return path;
-}
-
 std::string run(const std::string& command) {
     std::FILE* pipe = popen(command.c_str(), "r");
     REQUIRE(pipe != nullptr);

@@ -35,12 +35,6 @@ std::string error_message_of(Read&& read) {
     return {};
 }
 
-std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir.path() / name;
-    std::ofstream(path) << text;
-    return path;
-}
-
 // lensfun's ApplyGeometryDistortion gives, for a pixel (x, y) of the corrected
 // (rectilinear) image, the pixel of the source image it comes from: the camera's
 // projection of the ray through (x, y) of a pinhole camera of the same K.

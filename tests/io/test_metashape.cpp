@@ -21,12 +21,6 @@ using libcam::test::file_error_of;
 
 namespace {
 
-std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir.path() / name;
-    std::ofstream(path) << text;
-    return path;
-}
-
 // Metashape's terms of a frame or fisheye sensor.
 struct Terms {
     double w, h, f, cx, cy, b1, b2, k1, k2, k3, k4, p1, p2;

@@ -24,12 +24,6 @@ using libcam::test::file_error_of;
 
 namespace {
 
-std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir.path() / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-}
-
 // The toolbox's axes (x down the rows, y along the columns, z backwards) from libcam's.
 Vec3 toolbox_axes(const Vec3& v) { return Vec3(v.y(), v.x(), -v.z()); }
 Vec3 libcam_axes(const Vec3& v) { return Vec3(v.y(), v.x(), -v.z()); }

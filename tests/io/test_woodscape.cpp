@@ -51,12 +51,6 @@ Vec2 woodscape_pixel(long double x, long double y, long double z) {
     return {static_cast<double>(u), static_cast<double>(v)};
 }
 
-std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir.path() / name;
-    std::ofstream(path) << text;
-    return path;
-}
-
 }  // namespace
 
 TEST_CASE("WoodScape: a calibration's pixels are its readme's formula, in front, aside and behind the camera",

@@ -19,12 +19,6 @@ using libcam::test::file_error_of;
 
 namespace {
 
-std::filesystem::path write_file(const test::TempDir& dir, const std::string& name, const std::string& text) {
-    const std::filesystem::path path = dir.path() / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-}
-
 constexpr ImageSize kSize{640, 480};  // OpenCV's centre (319.5, 239.5)
 
 // Bundler: camera 0 at R = I, t = (0, 0, -5), f 800, k1 -0.1, k2 0.02; camera 1 not
