@@ -4,7 +4,7 @@
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer in
 #      build-asan/ (any report fails the test that hit it), but for the numerical
 #      extremes and the long sweeps named below;
-#   3. every libFuzzer target for a bounded time (LIBCAM_FUZZ_SECONDS each, default 12)
+#   3. every libFuzzer target for a bounded time (LIBCAM_FUZZ_SECONDS each, default 6)
 #      in build-fuzz/, built with clang.
 # LIBCAM_QUICK=1 runs step 1 only.
 set -euo pipefail
@@ -60,6 +60,6 @@ asan_skipped="install_consumer|The new camera for real lenses|The new camera whe
 
 echo "== 3/3: fuzzing every reader and the number parser"
 CXX=clang++ LIBCAM_BUILD_TARGET=fuzzers bash "$root/scripts/build.sh" "$root/build-fuzz" "${line_tables[@]}" -DLIBCAM_FUZZ=ON -DLIBCAM_BUILD_TESTS=OFF \
-  -DLIBCAM_BUILD_TOOLS=OFF -DLIBCAM_BUILD_BENCHMARKS=OFF -DLIBCAM_FUZZ_SECONDS="${LIBCAM_FUZZ_SECONDS:-12}"
+  -DLIBCAM_BUILD_TOOLS=OFF -DLIBCAM_BUILD_BENCHMARKS=OFF -DLIBCAM_FUZZ_SECONDS="${LIBCAM_FUZZ_SECONDS:-6}"
 # Two at a time: each fuzzer is one process on one core.
 (cd "$root/build-fuzz" && ctest --output-on-failure -L fuzz --parallel "$jobs" --timeout 600)
