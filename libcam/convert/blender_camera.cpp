@@ -16,11 +16,12 @@ namespace {
 // Blender's default sensor width, given to the cameras whose sensor size is free.
 constexpr double kDefaultSensorWidthMm = 36.0;
 // The ranges bpy clamps these settings to (silently: a value outside would be drawn as
-// the nearest end): render.pixel_aspect_x and _y from 1 to 200, sensor_width from 1 mm,
+// the nearest end): render.pixel_aspect_x and _y from 1 to 200, sensor_width and lens from 1 mm,
 // the fisheye's fisheye_fov from 10 degrees (0.1745 rad, as Blender 3.4 states it) and its
 // fisheye_lens up to 100 mm.
 constexpr double kMaxPixelAspect = 200.0;
 constexpr double kMinSensorMm = 1.0;
+constexpr double kMinLensMm = 1.0;
 constexpr double kMinFisheyeFov = 0.1745;
 constexpr double kMaxFisheyeLensMm = 100.0;
 
@@ -136,8 +137,8 @@ void set_equisolid_lens(BlenderCamera& blender, double lens_per_sensor) {
 // FISHEYE_LENS_POLYNOMIAL's sensor, W / fx mm wide so that its radius in mm is libcam's m;
 // narrower than Blender's 1 mm minimum, the sensor is 1 mm and the polynomial takes the
 // radius in those larger millimetres: m = (W / fx) r, so k_i becomes k_i (W / fx)^i.
-void set_polynomial_sensor(BlenderCamera& blender, const std::vector<double>& k, double pixels_per_mm_over_width) {
-    blender.sensor_width_mm = 1 / pixels_per_mm_over_width;
+void set_polynomial_sensor(BlenderCamera& blender, const std::vector<double>& k, double fx_over_width) {
+    blender.sensor_width_mm = 1 / fx_over_width;
     double unit = 1;  // libcam's m per Blender's mm of the radius
     if (blender.sensor_width_mm < kMinSensorMm) {
         unit = blender.sensor_width_mm / kMinSensorMm;
@@ -162,6 +163,8 @@ BlenderCamera blender_from_camera(const Camera& camera) {
         case LensType::Pinhole:
             require_no_skew(camera, "perspective camera");
             blender.type = BlenderCameraType::Perspective;
+            // Past 173 degrees across (fx < W / 36), a wider sensor keeps the lens at 1 mm.
+            blender.sensor_width_mm = std::max(kDefaultSensorWidthMm, kMinLensMm * width / k.fx);
             blender.lens_mm = k.fx * blender.sensor_width_mm / width;
             set_pixel_aspect(blender, k, "the perspective camera");
             // A perspective shift is in units of the fitted side (the width), each axis in

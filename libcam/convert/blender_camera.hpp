@@ -88,7 +88,8 @@ Camera camera_from_blender(const BlenderCamera& blender);
 // The Blender camera that draws `camera`'s intrinsics and lens (its pose is not a
 // setting of Blender's camera data): the inverse of camera_from_blender, with the sensor
 // fitted horizontally and, for fx != fy, the pixel aspect (the larger of the two 1).
-// Perspective: PINHOLE without skew, a 36 mm sensor.
+// Perspective: PINHOLE without skew, a 36 mm sensor (wider where the lens would be under
+// Blender's 1 mm: past 173 degrees across).
 // FISHEYE_EQUIDISTANT: FISHEYE with zero coefficients and W / fx = H / fy.
 // FISHEYE_EQUISOLID: EQUISOLID, a 36 mm sensor (or the width that keeps the lens within
 // Blender's 0.01 to 100 mm) and the field of view of its whole domain (2 pi).

@@ -376,6 +376,8 @@ TEST_CASE("Blender cameras: libcam's camera to Blender's and back is the same ca
          libcam_camera({800, 600}, {800 / (1.8 * pi), 600 / (1.8 * pi), 390.2, 310.7, 0}, {LensType::Fisheye, {0, 0, 0, 0}})},
         {"LONLAT, a band", libcam_camera({640, 360}, {130, 150, 320.7, 170.2, 0}, {LensType::Lonlat, {}})},
         {"PINHOLE, fx != fy", libcam_camera({640, 480}, {500, 560, 330.1, 228.4, 0}, {LensType::Pinhole, {}})},
+        // fx < W / 36: a 1 mm lens (Blender's least) on a 64 mm sensor.
+        {"PINHOLE, 176 degrees across", libcam_camera({640, 480}, {10, 10, 319.5, 239.5, 0}, {LensType::Pinhole, {}})},
     };
     for (const auto& [name, camera] : cameras) {
         INFO(name);
@@ -394,6 +396,7 @@ TEST_CASE("Blender cameras: libcam's camera to Blender's and back is the same ca
         CHECK(blender.pixel_aspect_y >= 1);
         CHECK(blender.sensor_width_mm >= 1);
         if (blender.type == BlenderCameraType::FisheyeEquisolid) CHECK(blender.fisheye_lens_mm <= 100);
+        if (blender.type == BlenderCameraType::Perspective) CHECK(blender.lens_mm >= 1);
     }
 }
 
