@@ -58,6 +58,9 @@ inline std::optional<Eigen::Vector3d> blender_ray(const BlenderCamera& camera, d
         const Real y = (bottom + yr / H * (top - bottom)) * tan_half_fov;
         return Eigen::Vector3d(static_cast<double>(x), static_cast<double>(-y), 1.0);
     }
+    // The panoramic viewplane: (U, V) in [0, 1] over the image, moved by the shift. The
+    // equisolid and polynomial fisheyes' sensor (blender_camera_sync): S along the fitted
+    // side, the other side's in proportion to the pixels times their aspect.
     const Real U = xr / W + Real(camera.shift_x), V = yr / H + Real(camera.shift_y);
     switch (camera.type) {
         case BlenderCameraType::FisheyeEquidistant: {
@@ -66,14 +69,14 @@ inline std::optional<Eigen::Vector3d> blender_ray(const BlenderCamera& camera, d
             return from_panorama_frame(fisheye_direction(r * Real(camera.fisheye_fov) / 2, x, y));
         }
         case BlenderCameraType::FisheyeEquisolid: {
-            const Real sw = horizontal ? S : S * W / H, sh = horizontal ? S * H / W : S;
+            const Real sw = horizontal ? S : S * xratio / yratio, sh = horizontal ? S * yratio / xratio : S;
             const Real x = (U - Real(0.5)) * sw, y = (V - Real(0.5)) * sh, r = std::sqrt(x * x + y * y);
             const Real lens = camera.fisheye_lens_mm;
             if (r > 2 * lens * std::sin(Real(camera.fisheye_fov) / 4)) return std::nullopt;
             return from_panorama_frame(fisheye_direction(2 * std::asin(r / (2 * lens)), x, y));
         }
         case BlenderCameraType::FisheyeLensPolynomial: {
-            const Real sw = horizontal ? S : S * W / H, sh = horizontal ? S * H / W : S;
+            const Real sw = horizontal ? S : S * xratio / yratio, sh = horizontal ? S * yratio / xratio : S;
             const Real x = (U - Real(0.5)) * sw, y = (V - Real(0.5)) * sh, r = std::sqrt(x * x + y * y);
             const auto& k = camera.fisheye_polynomial;
             const Real r2 = r * r;

@@ -13,6 +13,18 @@ namespace libcam {
 
 namespace {
 
+// Blender's default sensor width, given to the cameras whose sensor size is free.
+constexpr double kDefaultSensorWidthMm = 36.0;
+// The ranges bpy clamps these settings to (silently: a value outside would be drawn as
+// the nearest end): render.pixel_aspect_x and _y from 1 to 200, sensor_width and lens from 1 mm,
+// the fisheye's fisheye_fov from 10 degrees (0.1745 rad, as Blender 3.4 states it) and its
+// fisheye_lens up to 100 mm.
+constexpr double kMaxPixelAspect = 200.0;
+constexpr double kMinSensorMm = 1.0;
+constexpr double kMinLensMm = 1.0;
+constexpr double kMinFisheyeFov = 0.1745;
+constexpr double kMaxFisheyeLensMm = 100.0;
+
 void require_positive(const char* field, double value) {
     require_finite(field, value);
     if (!(value > 0)) throw InvalidArgument(std::string(field) + ": must be > 0, got " + format_number(value));
@@ -56,31 +68,49 @@ Intrinsics panoramic_intrinsics(const BlenderCamera& blender, double fx, double 
 
 void require_field_of_view(double fov) {
     require_finite("fisheye_fov", fov);
-    if (!(fov > 0 && fov <= 2 * std::numbers::pi)) {
-        throw InvalidArgument("fisheye_fov: must be in (0, 2 pi] radians, got " + format_number(fov));
+    if (!(fov >= kMinFisheyeFov && fov <= 2 * std::numbers::pi)) {
+        throw InvalidArgument("fisheye_fov: must be in [0.1745, 2 pi] radians (Blender takes 10 degrees or more), got " +
+                              format_number(fov));
     }
 }
-
-// Blender's default sensor width, given to the cameras whose sensor size is free.
-constexpr double kDefaultSensorWidthMm = 36.0;
 
 void require_pixel_aspect(const BlenderCamera& blender) {
     for (const auto& [field, value] : {std::pair{"pixel_aspect_x", blender.pixel_aspect_x},
                                        std::pair{"pixel_aspect_y", blender.pixel_aspect_y}}) {
         require_finite(field, value);
-        if (!(value >= 1)) throw InvalidArgument(std::string(field) + ": Blender takes 1 or more, got " + format_number(value));
-    }
-    if (blender.type != BlenderCameraType::Perspective && blender.pixel_aspect_x != blender.pixel_aspect_y) {
-        throw InvalidArgument("pixel_aspect_x: libcam reads Blender's panoramic cameras with square pixels, got " +
-                              format_number(blender.pixel_aspect_x) + " : " + format_number(blender.pixel_aspect_y));
+        if (!(value >= 1 && value <= kMaxPixelAspect)) {
+            throw InvalidArgument(std::string(field) + ": Blender takes 1 to 200, got " + format_number(value));
+        }
     }
 }
 
-void require_square_pixels(const Camera& camera, const char* model) {
-    const Intrinsics& k = camera.intrinsics;
-    if (!(std::abs(k.fx - k.fy) <= 1e-9 * std::abs(k.fx)) || k.skew != 0.0) {
-        throw InvalidArgument(std::string("intrinsics: Blender draws ") + model + " with square pixels and no skew, got fx " +
-                              format_number(k.fx) + ", fy " + format_number(k.fy) + ", skew " + format_number(k.skew));
+// The focal lengths in pixels of a lens of `focal_mm` on Blender's fitted sensor: the fitted
+// side's lens side / S, the other side's by the pixel aspect (fy / fx = pixel_aspect_x /
+// pixel_aspect_y). Blender's perspective camera, and Cycles' FISHEYE_EQUISOLID and
+// FISHEYE_LENS_POLYNOMIAL, whose sensor blender/camera.cpp makes S by S (H pixel_aspect_y) /
+// (W pixel_aspect_x) for a horizontal fit (S (W pixel_aspect_x) / (H pixel_aspect_y) by S
+// for a vertical one): their sensor_height counts only as the S of a vertical fit.
+std::pair<double, double> fitted_focal_lengths(const BlenderCamera& blender, double focal_mm) {
+    const double fitted = focal_mm * pixels_per_mm(blender);
+    const double aspect = blender.pixel_aspect_x / blender.pixel_aspect_y;  // fy / fx
+    return fit_of(blender).horizontal ? std::pair{fitted, fitted * aspect} : std::pair{fitted / aspect, fitted};
+}
+
+// The pixel aspect that gives fy / fx (the smaller of the two 1), for a camera whose
+// sensor is fitted horizontally.
+void set_pixel_aspect(BlenderCamera& blender, const Intrinsics& k, const char* camera) {
+    blender.pixel_aspect_x = std::max(k.fy / k.fx, 1.0);
+    blender.pixel_aspect_y = std::max(k.fx / k.fy, 1.0);
+    if (blender.pixel_aspect_x > kMaxPixelAspect || blender.pixel_aspect_y > kMaxPixelAspect) {
+        throw InvalidArgument(std::string("intrinsics: Blender draws ") + camera + " with fy / fx from 1/200 to 200 " +
+                              "(its pixel aspect), got fx " + format_number(k.fx) + ", fy " + format_number(k.fy));
+    }
+}
+
+void require_no_skew(const Camera& camera, const char* model) {
+    if (camera.intrinsics.skew != 0.0) {
+        throw InvalidArgument(std::string("intrinsics: Blender's ") + model + " has no skew, got " +
+                              format_number(camera.intrinsics.skew));
     }
 }
 
@@ -90,6 +120,32 @@ void set_panoramic_shift(BlenderCamera& blender, const Intrinsics& k, double axi
     const auto width = static_cast<double>(blender.size.width), height = static_cast<double>(blender.size.height);
     blender.shift_x = (width * axis_u - 0.5 - k.cx) / width;
     blender.shift_y = (k.cy - height * (1 - axis_v) + 0.5) / height;
+}
+
+// FISHEYE_EQUISOLID's lens and sensor for fx / W = lens / sensor width: the 36 mm sensor,
+// or the nearest width that keeps the lens within Blender's 0.01 to 100 mm.
+void set_equisolid_lens(BlenderCamera& blender, double lens_per_sensor) {
+    blender.sensor_width_mm =
+        std::clamp(kDefaultSensorWidthMm, 0.01 / lens_per_sensor, kMaxFisheyeLensMm / lens_per_sensor);
+    if (blender.sensor_width_mm < kMinSensorMm) {
+        throw InvalidArgument("intrinsics: Blender's FISHEYE_EQUISOLID draws fx / W up to 100 (a 100 mm lens on its "
+                              "narrowest, 1 mm sensor), got " + format_number(lens_per_sensor));
+    }
+    blender.fisheye_lens_mm = lens_per_sensor * blender.sensor_width_mm;
+}
+
+// FISHEYE_LENS_POLYNOMIAL's sensor, W / fx mm wide so that its radius in mm is libcam's m;
+// narrower than Blender's 1 mm minimum, the sensor is 1 mm and the polynomial takes the
+// radius in those larger millimetres: m = (W / fx) r, so k_i becomes k_i (W / fx)^i.
+void set_polynomial_sensor(BlenderCamera& blender, const std::vector<double>& k, double fx_over_width) {
+    blender.sensor_width_mm = 1 / fx_over_width;
+    double unit = 1;  // libcam's m per Blender's mm of the radius
+    if (blender.sensor_width_mm < kMinSensorMm) {
+        unit = blender.sensor_width_mm / kMinSensorMm;
+        blender.sensor_width_mm = kMinSensorMm;
+    }
+    double power = 1;
+    for (std::size_t i = 0; i < k.size(); ++i, power *= unit) blender.fisheye_polynomial[i] = k[i] * power;
 }
 
 }  // namespace
@@ -105,24 +161,30 @@ BlenderCamera blender_from_camera(const Camera& camera) {
     const std::vector<double>& c = camera.lens.coefficients;
     switch (camera.lens.type) {
         case LensType::Pinhole:
-            if (k.skew != 0.0) {
-                throw InvalidArgument("intrinsics: Blender's perspective camera has no skew, got " + format_number(k.skew));
-            }
+            require_no_skew(camera, "perspective camera");
             blender.type = BlenderCameraType::Perspective;
+            // Past 173 degrees across (fx < W / 36), a wider sensor keeps the lens at 1 mm.
+            blender.sensor_width_mm = std::max(kDefaultSensorWidthMm, kMinLensMm * width / k.fx);
             blender.lens_mm = k.fx * blender.sensor_width_mm / width;
-            // fy / fx = pixel_aspect_x / pixel_aspect_y, the smaller 1.
-            blender.pixel_aspect_x = std::max(k.fy / k.fx, 1.0);
-            blender.pixel_aspect_y = std::max(k.fx / k.fy, 1.0);
+            set_pixel_aspect(blender, k, "the perspective camera");
             // A perspective shift is in units of the fitted side (the width), each axis in
             // its own pixels: W across, W fy / fx down.
             blender.shift_x = (width / 2 - 0.5 - k.cx) / width;
             blender.shift_y = (k.cy - height / 2 + 0.5) / (width * k.fy / k.fx);
             return blender;
         case LensType::Fisheye:
-            if (std::any_of(c.begin(), c.end(), [](double value) { return value != 0.0; }) ||
-                !(std::abs(width / k.fx - height / k.fy) <= 1e-9 * width / k.fx) || k.skew != 0.0) {
-                throw InvalidArgument("lens: Blender's FISHEYE_EQUIDISTANT is FISHEYE with zero coefficients and "
-                                      "W / fx = H / fy, no skew");
+            if (std::any_of(c.begin(), c.end(), [](double value) { return value != 0.0; })) {
+                std::string given;
+                for (const double value : c) given += (given.empty() ? "" : " ") + format_number(value);
+                throw InvalidArgument("lens: Blender's FISHEYE_EQUIDISTANT is FISHEYE with zero coefficients, got " + given);
+            }
+            require_no_skew(camera, "FISHEYE_EQUIDISTANT");
+            // fisheye_to_direction spans fisheye_fov over the width and over the height alike,
+            // whatever the pixel aspect: fx = W / fov and fy = H / fov, nothing else.
+            if (!(std::abs(width / k.fx - height / k.fy) <= 1e-9 * width / k.fx)) {
+                throw InvalidArgument("intrinsics: Blender's FISHEYE_EQUIDISTANT spans one field of view over the width "
+                                      "and over the height (W / fx = H / fy), got W / fx " +
+                                      format_number(width / k.fx) + ", H / fy " + format_number(height / k.fy));
             }
             blender.type = BlenderCameraType::FisheyeEquidistant;
             blender.fisheye_fov = width / k.fx;
@@ -130,24 +192,25 @@ BlenderCamera blender_from_camera(const Camera& camera) {
             set_panoramic_shift(blender, k);
             return blender;
         case LensType::Equisolid:
-            require_square_pixels(camera, "FISHEYE_EQUISOLID");
+            require_no_skew(camera, "FISHEYE_EQUISOLID");
             blender.type = BlenderCameraType::FisheyeEquisolid;
-            blender.fisheye_lens_mm = k.fx * blender.sensor_width_mm / width;
+            set_pixel_aspect(blender, k, "FISHEYE_EQUISOLID");
+            set_equisolid_lens(blender, k.fx / width);
             blender.fisheye_fov = 2 * std::numbers::pi;
             set_panoramic_shift(blender, k);
             return blender;
         case LensType::LensPolynomial: {
-            require_square_pixels(camera, "FISHEYE_LENS_POLYNOMIAL");
+            require_no_skew(camera, "FISHEYE_LENS_POLYNOMIAL");
             blender.type = BlenderCameraType::FisheyeLensPolynomial;
-            blender.sensor_width_mm = width / k.fx;
-            std::copy(c.begin(), c.end(), blender.fisheye_polynomial.begin());
+            set_pixel_aspect(blender, k, "FISHEYE_LENS_POLYNOMIAL");
+            set_polynomial_sensor(blender, c, k.fx / width);
             const double radius = LensPolynomialLens<double>::valid_radius(c);
             blender.fisheye_fov = 2 * LensPolynomialLens<double>::valid_angle(c, radius);
             set_panoramic_shift(blender, k);
             return blender;
         }
         case LensType::Lonlat: {
-            if (k.skew != 0.0) throw InvalidArgument("intrinsics: Blender's EQUIRECTANGULAR has no skew");
+            require_no_skew(camera, "EQUIRECTANGULAR");
             blender.type = BlenderCameraType::Equirectangular;
             const double lon_range = width / k.fx, lat_range = height / k.fy;
             // Inverse of camera_from_blender's: cx = W axis_u - 0.5, axis_u = -lon_min / range;
@@ -199,13 +262,9 @@ Camera camera_from_blender(const BlenderCamera& blender) {
     switch (blender.type) {
         case BlenderCameraType::Perspective: {
             require_positive("lens", blender.lens_mm);
-            const Fit fit = fit_of(blender);
-            // The fitted side's focal length, the other's by the pixel aspect.
-            const double fitted = blender.lens_mm * pixels_per_mm(blender);
-            const double aspect = blender.pixel_aspect_x / blender.pixel_aspect_y;  // fy / fx
-            const double fx = fit.horizontal ? fitted : fitted / aspect, fy = fit.horizontal ? fitted * aspect : fitted;
+            const auto [fx, fy] = fitted_focal_lengths(blender, blender.lens_mm);
             // The shift's unit: the fitted sensor's size in each axis's own pixels.
-            const double sensor_over_lens = fit.sensor_mm / blender.lens_mm;
+            const double sensor_over_lens = fit_of(blender).sensor_mm / blender.lens_mm;
             camera.intrinsics = {fx, fy, width / 2 - 0.5 - blender.shift_x * fx * sensor_over_lens,
                                  height / 2 - 0.5 + blender.shift_y * fy * sensor_over_lens, 0.0};
             camera.lens = {LensType::Pinhole, {}};
@@ -213,6 +272,7 @@ Camera camera_from_blender(const BlenderCamera& blender) {
         }
         case BlenderCameraType::FisheyeEquidistant:
             // theta = r fov / 2 with r = 1 at the image's edges: the ellipse inscribed in it.
+            // Neither the sensor nor the pixel aspect plays a part.
             require_field_of_view(blender.fisheye_fov);
             camera.intrinsics = panoramic_intrinsics(blender, width / blender.fisheye_fov, height / blender.fisheye_fov);
             camera.lens = {LensType::Fisheye, {0.0, 0.0, 0.0, 0.0}};
@@ -220,8 +280,8 @@ Camera camera_from_blender(const BlenderCamera& blender) {
         case BlenderCameraType::FisheyeEquisolid: {
             require_field_of_view(blender.fisheye_fov);
             require_positive("fisheye_lens", blender.fisheye_lens_mm);
-            const double f = blender.fisheye_lens_mm * pixels_per_mm(blender);
-            camera.intrinsics = panoramic_intrinsics(blender, f, f);
+            const auto [fx, fy] = fitted_focal_lengths(blender, blender.fisheye_lens_mm);
+            camera.intrinsics = panoramic_intrinsics(blender, fx, fy);
             camera.lens = {LensType::Equisolid, {}};
             break;
         }
@@ -233,8 +293,9 @@ Camera camera_from_blender(const BlenderCamera& blender) {
             if (k[1] == 0) {
                 throw InvalidArgument("fisheye_polynomial_k1: must not be 0 (the angle must grow with the radius), got 0");
             }
-            const double f = pixels_per_mm(blender);
-            camera.intrinsics = panoramic_intrinsics(blender, f, f);
+            // Pixels per millimetre of the sensor: the radius in mm is libcam's m.
+            const auto [fx, fy] = fitted_focal_lengths(blender, 1.0);
+            camera.intrinsics = panoramic_intrinsics(blender, fx, fy);
             camera.lens = {LensType::LensPolynomial, k};
             break;
         }

@@ -948,6 +948,24 @@ TEST_CASE("Blender's camera JSON: bpy's settings to K and the pose, worked by ha
     CHECK(back.pose.R.isApprox(camera.pose.R, 1e-14));
     CHECK(back.pose.t.isApprox(camera.pose.t, 1e-14));
 
+    // A panoramic equisolid fisheye with wide pixels: Cycles' sensor is 36 mm across and
+    // 36 x (480 x 1) / (640 x 2) = 13.5 mm down (its sensor_height, 24, is not used):
+    // fx = 9 x 640 / 36 = 160, fy = 9 x 480 / 13.5 = 320. The shift moves the axis by
+    // shift x W and shift x H: cx = 319.5 - 0.05 x 640 = 287.5, cy = 239.5 + 0.1 x 480 = 287.5.
+    const std::string fisheye = R"({"format": "libcam Blender cameras", "cameras": [
+      {"resolution_x": 640, "resolution_y": 480, "pixel_aspect_x": 2, "type": "PANO",
+       "panorama_type": "FISHEYE_EQUISOLID", "fisheye_lens": 9, "fisheye_fov": 3.14, "sensor_fit": "HORIZONTAL",
+       "sensor_width": 36, "sensor_height": 24, "shift_x": 0.05, "shift_y": 0.1}]})";
+    const Camera solid = parse_camera_set(fisheye, CameraFormat::BlenderJson, "f.json").cameras.at(0).file.camera;
+    CHECK(solid.lens.type == LensType::Equisolid);
+    CHECK(solid.intrinsics.fx == Approx(160).epsilon(1e-15));
+    CHECK(solid.intrinsics.fy == Approx(320).epsilon(1e-15));
+    CHECK(solid.intrinsics.cx == Approx(287.5).epsilon(1e-15));
+    CHECK(solid.intrinsics.cy == Approx(287.5).epsilon(1e-15));
+    const Camera solid_back =
+        parse_camera(format_camera(solid, CameraFormat::BlenderJson), CameraFormat::BlenderJson, "g.json").camera;
+    CHECK(solid_back.intrinsics.K().isApprox(solid.intrinsics.K(), 1e-14));
+
     const auto refused = [](const std::string& camera_json) {
         return file_error_of([&] {
             (void)parse_camera_set(R"({"format": "libcam Blender cameras", "cameras": [)" + camera_json + "]}",
@@ -960,7 +978,7 @@ TEST_CASE("Blender's camera JSON: bpy's settings to K and the pose, worked by ha
                Catch::Contains("\"cameras[0].panorama_type\": libcam reads FISHEYE_EQUIDISTANT") &&
                    Catch::Contains("got 'MIRRORBALL'"));
     CHECK_THAT(refused(R"({"type": "PERSP", "lens": 50, "resolution_x": 10, "resolution_y": 10, "pixel_aspect_x": 0.5})"),
-               Catch::Contains("pixel_aspect_x: Blender takes 1 or more, got 0.5"));
+               Catch::Contains("pixel_aspect_x: Blender takes 1 to 200, got 0.5"));
     CHECK_THAT(refused(R"({"type": "PERSP", "lens": 50, "resolution_x": 10, "resolution_y": 10, "sensor_fit": "WIDE"})"),
                Catch::Contains("\"cameras[0].sensor_fit\": expected AUTO, HORIZONTAL or VERTICAL, got 'WIDE'"));
     CHECK_THAT(refused(R"({"type": "PERSP", "lens": 50, "resolution_x": 10, "resolution_y": 10,

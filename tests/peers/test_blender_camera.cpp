@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 #include <vector>
+#include <utility>
 
 #include "blender_reference.hpp"
 #include "libcam/camera/camera.hpp"
@@ -90,6 +91,39 @@ std::vector<BlenderCase> blender_cases() {
     turned.fisheye_polynomial = {0.0, 0.1, 0.0, 1e-5, 0.0};
     turned.fisheye_fov = pi;
     cases.push_back({"FISHEYE_LENS_POLYNOMIAL with negative angles", turned});
+    // Pixel aspect on the panoramic cameras: the equisolid and polynomial fisheyes' sensor is
+    // S along the fitted side and in proportion to the pixels times their aspect along the
+    // other (sensor_height then unused); the equidistant fisheye and the equirectangular
+    // camera divide by W and H alone.
+    BlenderCamera wide_solid = with(BlenderCameraType::FisheyeEquisolid, {640, 480});
+    wide_solid.sensor_fit = SensorFit::Horizontal;
+    wide_solid.sensor_height_mm = 5;  // not Cycles' sensor height for a horizontal fit
+    wide_solid.pixel_aspect_x = 1.5;
+    wide_solid.fisheye_lens_mm = 7;
+    wide_solid.fisheye_fov = 1.7 * pi;
+    wide_solid.shift_x = 0.06;
+    wide_solid.shift_y = -0.04;
+    cases.push_back({"FISHEYE_EQUISOLID, pixel aspect 1.5 : 1, shifted", wide_solid});
+    BlenderCamera tall_solid = with(BlenderCameraType::FisheyeEquisolid, {1000, 800});
+    tall_solid.pixel_aspect_y = 1.6;  // AUTO: 1000 x 1 < 800 x 1.6, the height fitted
+    tall_solid.sensor_width_mm = 30;  // AUTO measures with the width's setting
+    tall_solid.shift_y = 0.1;
+    cases.push_back({"FISHEYE_EQUISOLID, pixel aspect 1 : 1.6, AUTO fits the height", tall_solid});
+    BlenderCamera vertical_solid = with(BlenderCameraType::FisheyeEquisolid, {900, 700});
+    vertical_solid.sensor_fit = SensorFit::Vertical;
+    vertical_solid.sensor_height_mm = 20;
+    vertical_solid.pixel_aspect_x = 1.25;
+    vertical_solid.shift_x = -0.08;
+    cases.push_back({"FISHEYE_EQUISOLID, pixel aspect 1.25 : 1, vertical fit", vertical_solid});
+    BlenderCamera wide_polynomial = polynomial;
+    wide_polynomial.pixel_aspect_y = 1.3;
+    wide_polynomial.shift_y = -0.05;
+    cases.push_back({"FISHEYE_LENS_POLYNOMIAL, pixel aspect 1 : 1.3, vertical fit, shifted", wide_polynomial});
+    BlenderCamera aspect_equidistant = equidistant;
+    aspect_equidistant.size = {1200, 900};
+    aspect_equidistant.pixel_aspect_x = 2;
+    aspect_equidistant.shift_y = 0.07;
+    cases.push_back({"FISHEYE_EQUIDISTANT, pixel aspect 2 : 1 (no part), shifted", aspect_equidistant});
     cases.push_back({"EQUIRECTANGULAR, the whole sphere", with(BlenderCameraType::Equirectangular, {2048, 1024})});
     BlenderCamera band = with(BlenderCameraType::Equirectangular, {1920, 1080});
     band.longitude_min = -pi / 2;
@@ -98,6 +132,8 @@ std::vector<BlenderCase> blender_cases() {
     band.latitude_max = pi / 6;
     band.shift_x = 0.02;
     cases.push_back({"EQUIRECTANGULAR, a band, shifted", band});
+    band.pixel_aspect_y = 3;
+    cases.push_back({"EQUIRECTANGULAR, a band, pixel aspect 1 : 3 (no part)", band});
     return cases;
 }
 
@@ -183,7 +219,14 @@ TEST_CASE("Blender cameras: a setting out of range is refused, naming it") {
     bad.type = BlenderCameraType::FisheyeEquidistant;
     bad.fisheye_fov = 7;
     CHECK_THAT(test::error_of([&] { camera_from_blender(bad); }),
-               Catch::Contains("fisheye_fov: must be in (0, 2 pi] radians, got 7"));
+               Catch::Contains("fisheye_fov: must be in [0.1745, 2 pi] radians (Blender takes 10 degrees or more), got 7"));
+    bad.fisheye_fov = 0.17;  // Blender would draw its 10 degrees
+    CHECK_THAT(test::error_of([&] { camera_from_blender(bad); }), Catch::Contains("got 0.17"));
+    bad = BlenderCamera{};
+    bad.type = BlenderCameraType::FisheyeEquisolid;
+    bad.pixel_aspect_x = 250;
+    CHECK_THAT(test::error_of([&] { camera_from_blender(bad); }),
+               Catch::Contains("pixel_aspect_x: Blender takes 1 to 200, got 250"));
     bad = BlenderCamera{};
     bad.type = BlenderCameraType::Equirectangular;
     bad.longitude_max = bad.longitude_min;
@@ -262,4 +305,141 @@ TEST_CASE("Blender cameras back from libcam's: the settings worked by hand, and 
     camera.lens = {LensType::Fisheye, {0.01, 0.0, 0.0, 0.0}};
     CHECK_THAT(test::error_of([&] { blender_from_camera(camera); }),
                Catch::Contains("FISHEYE_EQUIDISTANT is FISHEYE with zero coefficients"));
+}
+
+TEST_CASE("Blender cameras: the panoramic fisheyes' fx != fy worked by hand from Cycles' sensor") {
+    // 640x480, sensor fitted across at 36 mm, pixels 1.5 times wider than tall: Cycles'
+    // sensor is 36 x 36 (480 x 1) / (640 x 1.5) = 18 mm high, whatever sensor_height says.
+    // A 7 mm equisolid lens: fx = 7 x 640 / 36, fy = 7 x 480 / 18 = 1.5 fx. The shift moves
+    // the axis by 0.06 x 640 px left and 0.04 x 480 px down: (319.5 - 38.4, 239.5 - 19.2).
+    BlenderCamera wide;
+    wide.type = BlenderCameraType::FisheyeEquisolid;
+    wide.size = {640, 480};
+    wide.sensor_fit = SensorFit::Horizontal;
+    wide.sensor_height_mm = 5;
+    wide.pixel_aspect_x = 1.5;
+    wide.fisheye_lens_mm = 7;
+    wide.shift_x = 0.06;
+    wide.shift_y = -0.04;
+    const Camera solid = camera_from_blender(wide);
+    CHECK(solid.intrinsics.fx == Approx(7.0 * 640 / 36).epsilon(1e-15));
+    CHECK(solid.intrinsics.fy == Approx(7.0 * 480 / 18).epsilon(1e-15));
+    CHECK(solid.intrinsics.cx == Approx(281.1).epsilon(1e-15));
+    CHECK(solid.intrinsics.cy == Approx(220.3).epsilon(1e-15));
+    // 1000x800 with pixels 1.6 times taller than wide: AUTO fits the height (1000 < 1280)
+    // and measures it with sensor_width, 30 mm; the sensor is 30 x 1000 / 1280 = 23.4375 mm
+    // wide. A 10.5 mm lens: fy = 10.5 x 800 / 30 = 280, fx = 10.5 x 1000 / 23.4375 = 448.
+    BlenderCamera tall;
+    tall.type = BlenderCameraType::FisheyeEquisolid;
+    tall.size = {1000, 800};
+    tall.pixel_aspect_y = 1.6;
+    tall.sensor_width_mm = 30;
+    const Camera tall_solid = camera_from_blender(tall);
+    CHECK(tall_solid.intrinsics.fx == Approx(448).epsilon(1e-15));
+    CHECK(tall_solid.intrinsics.fy == Approx(280).epsilon(1e-15));
+    // The polynomial fisheye on that sensor: pixels per mm, 1000 / 23.4375 and 800 / 30.
+    tall.type = BlenderCameraType::FisheyeLensPolynomial;
+    const Camera tall_polynomial = camera_from_blender(tall);
+    CHECK(tall_polynomial.intrinsics.fx == Approx(1000 / 23.4375).epsilon(1e-15));
+    CHECK(tall_polynomial.intrinsics.fy == Approx(800 / 30.0).epsilon(1e-15));
+    // The equidistant fisheye takes no notice of the pixel aspect: fx = W / fov, fy = H / fov.
+    tall.type = BlenderCameraType::FisheyeEquidistant;
+    const Camera tall_equidistant = camera_from_blender(tall);
+    CHECK(tall_equidistant.intrinsics.fx == Approx(1000 / std::numbers::pi).epsilon(1e-15));
+    CHECK(tall_equidistant.intrinsics.fy == Approx(800 / std::numbers::pi).epsilon(1e-15));
+}
+
+namespace {
+
+Camera libcam_camera(ImageSize size, Intrinsics k, Lens lens) {
+    Camera camera;
+    camera.size = size;
+    camera.intrinsics = k;
+    camera.lens = std::move(lens);
+    return camera;
+}
+
+}  // namespace
+
+TEST_CASE("Blender cameras: libcam's camera to Blender's and back is the same camera, fx != fy and the principal "
+          "point off centre") {
+    constexpr double pi = std::numbers::pi;
+    const std::vector<std::pair<std::string, Camera>> cameras = {
+        {"EQUISOLID, fy > fx", libcam_camera({320, 240}, {150, 210, 171.3, 108.8, 0}, {LensType::Equisolid, {}})},
+        {"EQUISOLID, fy < fx", libcam_camera({320, 240}, {210, 150, 140.2, 131.9, 0}, {LensType::Equisolid, {}})},
+        // fx / W = 4: a 144 mm lens on the 36 mm sensor, past Blender's 100 mm; a 25 mm sensor.
+        {"EQUISOLID, narrow", libcam_camera({300, 200}, {1200, 1300, 160.5, 90.25, 0}, {LensType::Equisolid, {}})},
+        {"FISHEYE_LENS_POLYNOMIAL, fy > fx",
+         libcam_camera({640, 480}, {640 / 36.0, 1.2 * 640 / 36.0, 301.7, 250.1, 0},
+                       {LensType::LensPolynomial, {0.0, -0.06, 1e-4, -3e-5, 2e-7}})},
+        {"FISHEYE, W / fx = H / fy = 0.9 x 2 pi, off centre",
+         libcam_camera({800, 600}, {800 / (1.8 * pi), 600 / (1.8 * pi), 390.2, 310.7, 0}, {LensType::Fisheye, {0, 0, 0, 0}})},
+        {"LONLAT, a band", libcam_camera({640, 360}, {130, 150, 320.7, 170.2, 0}, {LensType::Lonlat, {}})},
+        {"PINHOLE, fx != fy", libcam_camera({640, 480}, {500, 560, 330.1, 228.4, 0}, {LensType::Pinhole, {}})},
+        // fx < W / 36: a 1 mm lens (Blender's least) on a 64 mm sensor.
+        {"PINHOLE, 176 degrees across", libcam_camera({640, 480}, {10, 10, 319.5, 239.5, 0}, {LensType::Pinhole, {}})},
+    };
+    for (const auto& [name, camera] : cameras) {
+        INFO(name);
+        const BlenderCamera blender = blender_from_camera(camera);
+        const Camera back = camera_from_blender(blender);
+        CHECK(back.size == camera.size);
+        CHECK(back.lens.type == camera.lens.type);
+        CHECK(back.intrinsics.fx == Approx(camera.intrinsics.fx).epsilon(1e-13));
+        CHECK(back.intrinsics.fy == Approx(camera.intrinsics.fy).epsilon(1e-13));
+        CHECK(back.intrinsics.cx == Approx(camera.intrinsics.cx).margin(1e-10));
+        CHECK(back.intrinsics.cy == Approx(camera.intrinsics.cy).margin(1e-10));
+        CHECK(back.intrinsics.skew == 0.0);
+        CHECK(back.lens.coefficients == camera.lens.coefficients);
+        // Within Blender's ranges, so that bpy keeps what it is given.
+        CHECK(blender.pixel_aspect_x >= 1);
+        CHECK(blender.pixel_aspect_y >= 1);
+        CHECK(blender.sensor_width_mm >= 1);
+        if (blender.type == BlenderCameraType::FisheyeEquisolid) CHECK(blender.fisheye_lens_mm <= 100);
+        if (blender.type == BlenderCameraType::Perspective) CHECK(blender.lens_mm >= 1);
+    }
+}
+
+TEST_CASE("Blender cameras: a polynomial fisheye narrower than Blender's 1 mm sensor takes rescaled coefficients") {
+    // fx = 2 W: the sensor would be 0.5 mm wide. On a 1 mm sensor the radius in Blender's mm
+    // is half libcam's m: k_i becomes k_i / 2^i, and Cycles traces the same rays.
+    const Camera camera = libcam_camera({400, 300}, {800, 880, 210.3, 140.6, 0},
+                                        {LensType::LensPolynomial, {0.0, -1.0, 0.0, -0.05, 0.0}});
+    const BlenderCamera blender = blender_from_camera(camera);
+    CHECK(blender.sensor_width_mm == 1.0);
+    CHECK(blender.fisheye_polynomial[1] == -0.5);
+    CHECK(blender.fisheye_polynomial[3] == Approx(-0.05 / 8).epsilon(1e-15));
+    const PreparedCamera ours(camera);
+    double worst = 0;
+    for (const Vec2& pixel : PixelGrid{41, 31}.pixels(camera.size)) {
+        const std::optional<Eigen::Vector3d> theirs = test::blender_ray(blender, pixel.x(), pixel.y());
+        REQUIRE(theirs);
+        const Projection back = ours.project_camera_point(*theirs);
+        REQUIRE(back.valid);
+        worst = std::max(worst, (back.pixel - pixel).norm());
+    }
+    CHECK(worst <= 1e-9);
+}
+
+TEST_CASE("Blender cameras: what Cycles' panoramic cameras cannot draw is refused, saying what does not fit") {
+    // The equidistant fisheye spans its field of view over the width and the height alike.
+    Camera fisheye = libcam_camera({800, 600}, {400, 250, 399.5, 299.5, 0}, {LensType::Fisheye, {0, 0, 0, 0}});
+    CHECK_THAT(test::error_of([&] { blender_from_camera(fisheye); }),
+               Catch::Contains("FISHEYE_EQUIDISTANT spans one field of view over the width and over the height "
+                               "(W / fx = H / fy), got W / fx 2, H / fy 2.4"));
+    // Past 360 degrees, and under Blender's 10.
+    fisheye.intrinsics = {100, 75, 399.5, 299.5, 0};
+    CHECK_THAT(test::error_of([&] { blender_from_camera(fisheye); }), Catch::Contains("fisheye_fov: must be in"));
+    fisheye.intrinsics = {8000, 6000, 399.5, 299.5, 0};
+    CHECK_THAT(test::error_of([&] { blender_from_camera(fisheye); }), Catch::Contains("got 0.1"));
+    // fy / fx beyond the pixel aspect's 200, and skew.
+    Camera solid = libcam_camera({800, 600}, {100, 30000, 399.5, 299.5, 0}, {LensType::Equisolid, {}});
+    CHECK_THAT(test::error_of([&] { blender_from_camera(solid); }),
+               Catch::Contains("Blender draws FISHEYE_EQUISOLID with fy / fx from 1/200 to 200"));
+    solid.intrinsics = {300, 300, 399.5, 299.5, 0.5};
+    CHECK_THAT(test::error_of([&] { blender_from_camera(solid); }),
+               Catch::Contains("Blender's FISHEYE_EQUISOLID has no skew, got 0.5"));
+    // An equisolid lens narrower than a 100 mm lens on a 1 mm sensor.
+    solid.intrinsics = {90000, 90000, 399.5, 299.5, 0};
+    CHECK_THAT(test::error_of([&] { blender_from_camera(solid); }), Catch::Contains("fx / W up to 100"));
 }

@@ -111,6 +111,15 @@ std::vector<RenderCase> render_cases() {
                                             {LensType::LensPolynomial, {0.0, -0.06, 1e-4, -3e-5, 2e-7}}),
          0.1},
         {"equisolid", centred({640, 480}, 180, 180, {LensType::Equisolid, {}}), 0.1},
+        // fx != fy through the pixel aspect (Cycles' equisolid and polynomial sensor follows
+        // it), the axis off centre through the shift; small images, few samples (about half
+        // a second each).
+        {"equisolid, fx != fy, principal point off centre",
+         posed({320, 240}, {150, 210, 171.3, 108.8, 0}, {LensType::Equisolid, {}}), 0.1, 16},
+        {"FISHEYE_LENS_POLYNOMIAL, fx != fy, principal point off centre",
+         posed({320, 240}, {320 / 36.0, 0.8 * 320 / 36.0, 150.3, 128.6, 0},
+               {LensType::LensPolynomial, {0.0, -0.06, 1e-4, -3e-5, 2e-7}}),
+         0.1, 16},
         {"equirectangular, the whole sphere", centred({720, 360}, 720 / (2 * pi), 360 / pi, {LensType::Lonlat, {}}), 0.1},
         {"equirectangular, a band", posed({640, 360}, {640 / (pi / 2 + pi / 3), 360 / (pi / 4 + pi / 6), 640 * 0.6 - 0.5,
                                                        360 * (1 - 0.6) - 0.5, 0},

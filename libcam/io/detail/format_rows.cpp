@@ -217,14 +217,14 @@ constexpr FormatRow kRows[] = {
      .description = "a Python script that sets a Blender scene's camera: blender -b scene.blend -P camera.py",
      .extensions = {".py"}, .content = static_cast<unsigned>(C::Python), .read = read_blender_script,
      .write = one_file<format_blender_script>, .write_only = true, .lenses = kBlender,
-     .lens_names = "PERSP (fx != fy as the pixel aspect), and the panoramic FISHEYE_EQUIDISTANT (FISHEYE with "
-                   "its coefficients 0), FISHEYE_EQUISOLID, FISHEYE_LENS_POLYNOMIAL, EQUIRECTANGULAR",
-     .refuses = "skew"},
+     .lens_names = "PERSP, and the panoramic FISHEYE_EQUISOLID, FISHEYE_LENS_POLYNOMIAL (fx != fy as the pixel "
+                   "aspect for these three), EQUIRECTANGULAR, FISHEYE_EQUIDISTANT (FISHEYE with its coefficients 0)",
+     .refuses = "skew, an equidistant fisheye with W / fx != H / fy"},
     {.format = CameraFormat::BlenderJson, .name = "blender-json", .title = "Blender camera JSON",
      .description = "the same settings as JSON, in bpy's names (also what tools/blender/export_cameras.py writes)",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_blender_cameras,
      .read = with_source<parse_blender_cameras>, .write = one_file<format_blender_json>, .lenses = kBlender,
-     .lens_names = "as for blender", .refuses = "skew"},
+     .lens_names = "as for blender", .refuses = "skew, an equidistant fisheye with W / fx != H / fy"},
     {.format = CameraFormat::OpenSfm, .name = "opensfm", .title = "OpenSfM reconstruction.json",
      .description = "OpenSfM's reconstruction.json (tracks.csv beside it holds the observations), and the camera "
                     "dictionaries of camera_models.json and OpenDroneMap's cameras.json",
