@@ -293,13 +293,13 @@ constexpr FormatRow kRows[] = {
      .refuses = "acm, orthographic and fisheye_thoby lenses, ptlens on a fisheye, distortion on the other "
                 "fisheye types"},
     {.format = CameraFormat::HuginPto, .name = "hugin", .title = "Hugin project",
-     .description = "Hugin's (PanoTools') .pto project: one camera per image line (w h f v a b c d e)",
+     .description = "Hugin's (PanoTools') .pto project: one camera per image line (w h f v a b c d e), posed in the "
+                    "panorama by its y p r and TrX TrY TrZ",
      .extensions = {".pto"}, .content = static_cast<unsigned>(C::Table), .read = read_hugin_pto, .read_only = true,
      .lenses = kHuginPto,
      .lens_names = "f0 with a b c (PTLENS; OPENCV4 when a = c = 0), f2/f3 fisheye with b (FISHEYE), f1, f4, f10, "
                    "f21 without distortion",
-     .refuses = "shear (g t), other projections, a b c on the undistorted ones; the image's orientation in the "
-                "panorama is not read"},
+     .refuses = "shear (g t), other projections, a b c on the undistorted ones"},
     {.format = CameraFormat::Gyroflow, .name = "gyroflow", .title = "Gyroflow lens profile",
      .description = "Gyroflow's lens profile JSON (calib_dimension, fisheye_params, distortion_model)",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_gyroflow,
