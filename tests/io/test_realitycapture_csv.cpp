@@ -102,6 +102,14 @@ TEST_CASE("realitycapture-csv: a file of cameras, worked by hand", "[io][reality
     CHECK(first.lens == Lens{LensType::OpenCv5, {-0.1, 0.02, -0.0005, 0.0004, -0.003}});
     CHECK((first.pose.centre() - Vec3(10.5, -20.25, 3)).norm() < 1e-12);
     CHECK((first.pose.R - euler_rotation(35, 80, -10)).cwiseAbs().maxCoeff() < 1e-15);
+    // nerfstudio's conversion of the same row (realitycapture_utils.py's
+    // _get_rotation_matrix(-heading, pitch, roll), its OpenGL camera-to-world turned into
+    // OpenCV's world-to-camera, (c2w diag(1, -1, -1))^T), worked in plain Python doubles.
+    const Mat3 nerfstudio = (Mat3() << 0.7086199366270932, -0.7049457712602412, 0.030153689607045817,  //
+                             -0.09960050292505125, -0.1422442597229241, -0.984807753012208,            //
+                             0.6985252502463251, 0.6948510848794733, -0.1710100716628344)
+                                .finished();
+    CHECK((first.pose.R - nerfstudio).cwiseAbs().maxCoeff() < 1e-15);
     const Camera& second = set.cameras[1].file.camera;
     CHECK(second.lens.type == LensType::Pinhole);
     CHECK(second.intrinsics.fx == 6000.0);  // 36 mm on a 36 mm side: the longer side in pixels
