@@ -21,7 +21,8 @@ namespace libcam {
 
 namespace {
 
-// One image line's values by their one-letter names, as written: a number, or "=N".
+// One image line's values by their names (one letter, or TrX TrY TrZ), as written: a
+// number, or "=N".
 struct ImageLine {
     int line = 0;
     std::map<std::string, std::string, std::less<>> values;

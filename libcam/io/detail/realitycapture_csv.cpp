@@ -39,7 +39,8 @@ std::vector<std::string_view> fields_of(std::string_view line) {
     std::size_t at = 0;
     while (true) {
         const auto comma = line.find(',', at);
-        fields.push_back(trimmed(line.substr(at, comma == std::string_view::npos ? std::string_view::npos : comma - at)));
+        const std::size_t length = comma == std::string_view::npos ? std::string_view::npos : comma - at;
+        fields.push_back(trimmed(line.substr(at, length)));
         if (comma == std::string_view::npos) return fields;
         at = comma + 1;
     }
@@ -63,7 +64,9 @@ Header parse_header(std::string_view line, const std::string& where) {
             throw FileError(where + ": column '" + std::string(fields[i]) +
                             "' is not one libcam reads (name, x, y, alt, heading, pitch, roll, f, px, py, k1..k4, t1, t2)");
         }
-        if (!header.index.emplace(*known, i).second) throw FileError(where + ": column '" + std::string(fields[i]) + "' twice");
+        if (!header.index.emplace(*known, i).second) {
+            throw FileError(where + ": column '" + std::string(fields[i]) + "' twice");
+        }
     }
     for (std::size_t i = 0; i < kRequired; ++i) {
         if (!header.index.contains(kColumns[i])) {
@@ -103,7 +106,8 @@ Row parse_row(std::string_view line, int number, const Header& header, const std
         double value = 0.0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-            throw FileError(where + ": " + std::string(column) + ": must be a finite number, got '" + std::string(text) + "'");
+            throw FileError(where + ": " + std::string(column) + ": must be a finite number, got '" + std::string(text) +
+                            "'");
         }
         row.values[column] = value;
     }
@@ -124,7 +128,8 @@ void refuse_geographic(const std::vector<Row>& rows, const std::string& source) 
     const double spread = std::max(x_high - x_low, y_high - y_low);
     if (spread < 0.01 && alt_most > 100.0 * spread) {
         char within[32];
-        std::snprintf(within, sizeof within, "%.3g", spread);  // a difference of coordinates: its noise digits say nothing
+        // A difference of coordinates: its digits past the third are noise.
+        std::snprintf(within, sizeof within, "%.3g", spread);
         throw NotRepresentable(source + ": x, y: the cameras lie within " + std::string(within) +
                                " of each other in x and y while alt reaches " + format_number(alt_most) +
                                ": longitude and latitude in degrees (an export in a geographic coordinate system), "
@@ -197,7 +202,9 @@ std::vector<NamedCamera> read_realitycapture_csv(std::string_view text, const Re
     refuse_geographic(rows, context.source);
     std::vector<NamedCamera> cameras;
     cameras.reserve(rows.size());
-    for (const Row& row : rows) cameras.push_back({row.name, {camera_of(row, *context.options.size, context.source), std::nullopt}});
+    for (const Row& row : rows) {
+        cameras.push_back({row.name, {camera_of(row, *context.options.size, context.source), std::nullopt}});
+    }
     return cameras;
 }
 
