@@ -159,6 +159,9 @@ TEST_CASE("realitycapture-csv: what libcam cannot hold, and malformed files, are
           "cameras.csv: x, y: the cameras lie within 0.0004 of each other in x and y while alt reaches 312: longitude "
           "and latitude in degrees (an export in a geographic coordinate system), which libcam cannot place in a "
           "metric world; export in a projected or local one");
+    // A vertical rig, every camera at one x and y, is read.
+    CHECK(read(kHeader + "a.jpg,0.1,0.2,0.5,0,90,0,24,0,0,0,0,0,0,0,0\nb.jpg,0.1,0.2,1.5,0,90,0,24,0,0,0,0,0,0,0,0\n")
+              .cameras.size() == 2);
     // A local world a few metres across is read.
     CHECK(read(kHeader + "a.jpg,0.348,-0.457,1.875,0,0,0,24,0,0,0,0,0,0,0,0\nb.jpg,0.366,-0.475,1.770,0,0,0,24,0,0,0,0,"
                          "0,0,0,0\n")

@@ -126,7 +126,8 @@ void refuse_geographic(const std::vector<Row>& rows, const std::string& source) 
         alt_most = std::max(alt_most, std::abs(row["alt"]));
     }
     const double spread = std::max(x_high - x_low, y_high - y_low);
-    if (spread < 0.01 && alt_most > 100.0 * spread) {
+    // Cameras at one x and y (a vertical rig) are not a sign of degrees.
+    if (spread > 0.0 && spread < 0.01 && alt_most > 1000.0 * spread) {
         char within[32];
         // A difference of coordinates: its digits past the third are noise.
         std::snprintf(within, sizeof within, "%.3g", spread);

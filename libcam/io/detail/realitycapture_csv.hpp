@@ -36,8 +36,8 @@
 //
 // A geographic export (x and y longitude and latitude in degrees) cannot be placed in a
 // metric world: a file of several cameras whose x and y are in those ranges and lie within
-// 0.01 of each other while alt is 100 times larger is refused as one. A file of one such
-// camera cannot be told from a local one and is read as metric.
+// 0.01 (but not 0) of each other while |alt| reaches 1000 times that is refused as one. A
+// file of one such camera cannot be told from a local one and is read as metric.
 //
 // The image size is not in the file: the reader takes it from ReadOptions::size
 // (--image-size WxH), the same for every image, and refuses the file without it. Read only.
