@@ -81,6 +81,9 @@ TEST_CASE("realitycapture-csv: the orientation is RealityCapture's EulerRotation
     const Mat3 down = rotation_of("0,0,0");
     CHECK((down.transpose() * Vec3::UnitZ() - Vec3(0, 0, -1)).norm() < 1e-15);
     CHECK((down.transpose() * -Vec3::UnitY() - Vec3(0, 1, 0)).norm() < 1e-15);
+    // Pitch 90 looks level, north at heading 0 and east (+x) at heading 90: a compass's.
+    CHECK((rotation_of("0,90,0").transpose() * Vec3::UnitZ() - Vec3(0, 1, 0)).norm() < 1e-15);
+    CHECK((rotation_of("90,90,0").transpose() * Vec3::UnitZ() - Vec3(1, 0, 0)).norm() < 1e-15);
 }
 
 TEST_CASE("realitycapture-csv: a file of cameras, worked by hand", "[io][realitycapture-csv]") {
