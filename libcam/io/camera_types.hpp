@@ -22,7 +22,8 @@ enum class CameraFormat {
     Lensfun, HuginPto, Gyroflow,
     // OCamCalib: the MATLAB toolbox's calib_results.txt, py-OCamCalib's JSON
     OcamCalib, PyOcamCalib,
-    RealityCapture,  // RealityCapture's XMP sidecars
+    RealityCapture,     // RealityCapture's XMP sidecars
+    RealityCaptureCsv,  // RealityCapture's CSV of internal/external camera parameters
     Woodscape,       // Valeo's WoodScape calibration JSON
 };
 // How many formats there are (the table of formats checks that each has its row).

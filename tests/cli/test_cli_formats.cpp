@@ -50,8 +50,8 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
                                              "lensfun", "hugin", "gyroflow",
                                              // OCamCalib
                                              "py-ocamcalib",
-                                             // RealityCapture XMP
-                                             "realitycapture"};
+                                             // RealityCapture XMP and CSV
+                                             "realitycapture", "realitycapture-csv"};
     const std::set<std::string> written = {"json",   "opencv-yaml", "opencv-xml", "cameramodel", "gl",
                                            "kalibr", "basalt",      "colmap",     "nerf",        "ros",
                                            "open3d", "blender",     "blender-json",

@@ -5,6 +5,7 @@
 // Skipped, with a warning, where pano_trafo is absent.
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "libcam/camera/camera.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "error_message.hpp"
 #include "temp_dir.hpp"
 
 using namespace libcam;
@@ -127,4 +129,98 @@ TEST_CASE("Hugin: image lines' models, links and refusals", "[io][hugin]") {
     } catch (const FileError& error) {
         CHECK(std::string(error.what()) == bad.string() + ": line 4: v: must be a finite number, got '7x'");
     }
+}
+
+namespace {
+
+// An equirectangular panorama of 360 x 180 degrees (p f2 v360): pano_trafo maps an image's
+// pixel to the panorama's pixel of its direction, longitude (x - (W - 1) / 2) / F to the
+// right and latitude (y - (H - 1) / 2) / F downwards, F = W / (2 pi).
+constexpr double kSphereWidth = 3600, kSphereHeight = 1800;
+
+Vec3 sphere_direction(const Vec2& pixel) {
+    const double focal = kSphereWidth / (2.0 * std::numbers::pi);
+    const double longitude = (pixel.x() - (kSphereWidth - 1) / 2.0) / focal;
+    const double latitude = (pixel.y() - (kSphereHeight - 1) / 2.0) / focal;
+    return {std::cos(latitude) * std::sin(longitude), std::sin(latitude), std::cos(latitude) * std::cos(longitude)};
+}
+
+// The panorama's direction of what a camera's ray sees: the ray itself from the panorama's
+// centre; from a translated camera (Hugin's mosaic mode), the point where it meets the
+// mosaic plane, here z = 1 (Tpy = Tpp = 0).
+Vec3 seen_direction(const Ray& ray) {
+    if (ray.origin.isZero()) return ray.direction;
+    const double along = (1.0 - ray.origin.z()) / ray.direction.z();
+    return (ray.origin + along * ray.direction).normalized();
+}
+
+}  // namespace
+
+// Each image's pixels through pano_trafo (image to panorama) against libcam's ray of the
+// same pixel, turned by the pose into the panorama's world: the direction pano_trafo's
+// panorama pixel has. pano_trafo prints six decimals, 2e-9 rad on this panorama; an image
+// with a b c is mapped through Hugin's approximate inverse of its polynomial (pano_trafo
+// and pano_trafo -r disagree by 2e-4 px on turned.jpg's corner), 2e-7 rad here.
+TEST_CASE("Hugin: each image's y p r and TrX TrY TrZ against pano_trafo on an equirectangular panorama",
+          "[io][hugin]") {
+    if (!pano_trafo_present()) return;
+    const std::vector<std::string> images = {
+        "i w1000 h800 f0 v60 a0.01 b-0.02 c0.005 d12 e-7 g0 t0 r25 p20 y30 n\"turned.jpg\"",
+        "i w1200 h1200 f3 v150 a0 b0.02 c0 d3 e-4 g0 t0 r-40 p-60 y-150 n\"fisheye.jpg\"",
+        "i w900 h600 f0 v50 a0 b-0.01 c0 d0 e0 g0 t0 r10 p85 y170 n\"zenith.jpg\"",
+        "i w1000 h800 f0 v60 a0 b0 c0 d0 e0 g0 t0 r5 p-8 y20 TrX0.1 TrY-0.05 TrZ0.2 Tpy0 Tpp0 n\"moved.jpg\"",
+    };
+    std::string project = "# hugin project file\np f2 w3600 h1800 v360 n\"TIFF_m\"\nm i0\n";
+    for (const std::string& line : images) project += line + "\n";
+    const test::TempDir dir;
+    const auto path = write_file(dir, "sphere.pto", project);
+    const CameraSet set = read_camera_set(path);
+    REQUIRE(set.cameras.size() == images.size());
+    std::ostringstream worst;  // each image's largest angle, for the log
+    for (std::size_t index = 0; index < images.size(); ++index) {
+        double largest = 0.0;
+        const Camera& camera = set.cameras[index].file.camera;
+        const double w = static_cast<double>(camera.size.width), h = static_cast<double>(camera.size.height);
+        const std::vector<Vec2> pixels = {{(w - 1) / 2, (h - 1) / 2}, {10, 20}, {w - 30, h - 12}, {0.3 * w, 0.8 * h},
+                                          {0.9 * w, 0.1 * h}};
+        std::string input;
+        for (const Vec2& p : pixels) input += std::to_string(p.x()) + " " + std::to_string(p.y()) + "\n";
+        const auto points = write_file(dir, "points.txt", input);
+        std::istringstream output(
+            run("pano_trafo '" + path.string() + "' " + std::to_string(index) + " < '" + points.string() + "'"));
+        const PreparedCamera prepared(camera);
+        for (const Vec2& pixel : pixels) {
+            Vec2 panorama;
+            REQUIRE(output >> panorama.x() >> panorama.y());
+            const Ray ray = prepared.ray(pixel);
+            REQUIRE(ray.valid);
+            const double angle = angle_between(seen_direction(ray), sphere_direction(panorama));
+            INFO(images[index] << "\npixel " << pixel.transpose() << ": panorama " << panorama.transpose());
+            CHECK(angle < 1e-6);
+            largest = std::max(largest, angle);
+        }
+        worst << " " << set.cameras[index].name << " " << largest;
+    }
+    WARN("largest angle between libcam's direction and pano_trafo's, rad:" << worst.str());
+}
+
+TEST_CASE("Hugin: the pose's axes, worked by hand", "[io][hugin]") {
+    const test::TempDir dir;
+    const auto path = write_file(dir, "pose.pto",
+                                 project_file("i w100 h100 f0 v90 y90 p0 r0 n\"right.jpg\"\n"
+                                              "i w100 h100 f0 v90 y0 p90 r0 n\"up.jpg\"\n"
+                                              "i w100 h100 f0 v90 y0 p0 r90 n\"rolled.jpg\"\n"
+                                              "i w100 h100 f0 v90 TrX1 TrY2 TrZ3 n\"moved.jpg\""));
+    const CameraSet set = read_camera_set(path);
+    const auto forward = [&](std::size_t i) { return set.cameras[i].file.camera.pose.R.transpose() * Vec3::UnitZ(); };
+    const auto right = [&](std::size_t i) { return set.cameras[i].file.camera.pose.R.transpose() * Vec3::UnitX(); };
+    // World axes: x right (yaw 90), y down, z the panorama's centre (yaw 0, pitch 0).
+    CHECK((forward(0) - Vec3(1, 0, 0)).norm() < 1e-15);  // yaw 90 looks right
+    CHECK((forward(1) - Vec3(0, -1, 0)).norm() < 1e-15);  // pitch 90 looks up
+    CHECK((right(2) - Vec3(0, 1, 0)).norm() < 1e-15);     // roll 90 turns the image's x down
+    // TrX TrY TrZ: centre (TrX, TrY, -TrZ), the image unturned.
+    CHECK((set.cameras[3].file.camera.pose.centre() - Vec3(1, 2, -3)).norm() < 1e-15);
+    CHECK(set.cameras[3].file.camera.pose.R == Mat3::Identity());
+    const auto bad = write_file(dir, "bad.pto", project_file("i w10 h10 f0 v50 y1e999"));
+    CHECK_THAT(test::file_error_of([&] { (void)read_camera_set(bad); }), Catch::EndsWith("y: must be a finite number, got '1e999'"));
 }

@@ -14,7 +14,7 @@ void FileSelection::add_to(CLI::App& command) {
     command.add_option("--from-format", format,
                        "The file's format, when its extension and contents do not say: " + camera_format_names());
     command.add_option("--image-size", image_size,
-                       "The image size WIDTHxHEIGHT, for a file that does not record it (NeRF's synthetic scenes, RealityCapture's XMP)");
+                       "The image size WIDTHxHEIGHT, for a file that does not record it (NeRF's synthetic scenes, RealityCapture's XMP and CSV)");
     command.add_option("--nerf-principal-point", nerf_principal_point,
                        "transforms.json without cx, cy, and LLFF's poses_bounds.npy: centre (the image's centre, "
                        "where Blender rendered NeRF's synthetic scenes and COLMAP put LLFF's) or half-size (W/2, "

@@ -28,6 +28,7 @@
 #include "libcam/io/detail/openmvg_format.hpp"
 #include "libcam/io/detail/opensfm_format.hpp"
 #include "libcam/io/detail/openicc_format.hpp"
+#include "libcam/io/detail/realitycapture_csv.hpp"
 #include "libcam/io/detail/realitycapture_format.hpp"
 #include "libcam/io/detail/rig_formats.hpp"
 #include "libcam/io/detail/woodscape_format.hpp"
@@ -121,7 +122,7 @@ constexpr L kHuginPto[] = {L::Pinhole,   L::OpenCv4,       L::Ptlens, L::Fisheye
                            L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
 constexpr L kOcamCalib[] = {L::OcamCalib};
 constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
-constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5};  // RealityCapture's XMP
+constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5};  // RealityCapture's XMP and CSV
 constexpr L kWoodscape[] = {L::ThetaPolynomial};  // WoodScape's calibration JSON
 
 using C = Content;
@@ -292,13 +293,13 @@ constexpr FormatRow kRows[] = {
      .refuses = "acm, orthographic and fisheye_thoby lenses, ptlens on a fisheye, distortion on the other "
                 "fisheye types"},
     {.format = CameraFormat::HuginPto, .name = "hugin", .title = "Hugin project",
-     .description = "Hugin's (PanoTools') .pto project: one camera per image line (w h f v a b c d e)",
+     .description = "Hugin's (PanoTools') .pto project: one camera per image line (w h f v a b c d e), posed in the "
+                    "panorama by its y p r and TrX TrY TrZ",
      .extensions = {".pto"}, .content = static_cast<unsigned>(C::Table), .read = read_hugin_pto, .read_only = true,
      .lenses = kHuginPto,
      .lens_names = "f0 with a b c (PTLENS; OPENCV4 when a = c = 0), f2/f3 fisheye with b (FISHEYE), f1, f4, f10, "
                    "f21 without distortion",
-     .refuses = "shear (g t), other projections, a b c on the undistorted ones; the image's orientation in the "
-                "panorama is not read"},
+     .refuses = "shear (g t), other projections, a b c on the undistorted ones"},
     {.format = CameraFormat::Gyroflow, .name = "gyroflow", .title = "Gyroflow lens profile",
      .description = "Gyroflow's lens profile JSON (calib_dimension, fisheye_params, distortion_model)",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_gyroflow,
@@ -326,6 +327,13 @@ constexpr FormatRow kRows[] = {
      .read = read_realitycapture_xmp, .read_only = true, .lenses = kRealityCapture,
      .lens_names = "perspective, brown3, brown4 and brown3t2, brown4t2 (t1 t2 swapped against OpenCV's p1 p2)",
      .refuses = "k4, skew, division with a coefficient other than 0"},
+    {.format = CameraFormat::RealityCaptureCsv, .name = "realitycapture-csv", .title = "RealityCapture CSV",
+     .description = "RealityCapture's (RealityScan's) CSV of internal/external camera parameters: per image x, y, "
+                    "alt, heading, pitch, roll, f, px, py, k1..k4, t1, t2 (the image size given with --image-size)",
+     .extensions = {".csv"}, .content = static_cast<unsigned>(C::Table), .read = read_realitycapture_csv,
+     .read_only = true, .lenses = kRealityCapture,
+     .lens_names = "Brown's k1 k2 k3 t1 t2 (t1 t2 swapped against OpenCV's p1 p2), as the XMP's",
+     .refuses = "k4; py other than 0 (its sign is not documented); longitude and latitude (a geographic export)"},
     // ---- WoodScape's calibration JSON
     {.format = CameraFormat::Woodscape, .name = "woodscape", .title = "WoodScape calibration JSON",
      .description = "Valeo's WoodScape dataset's calibration JSON (radial_poly fisheye, camera-to-vehicle extrinsic)",

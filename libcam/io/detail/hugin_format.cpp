@@ -1,6 +1,9 @@
 #include "libcam/io/detail/hugin_format.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -18,16 +21,20 @@ namespace libcam {
 
 namespace {
 
-// One image line's values by their one-letter names, as written: a number, or "=N".
+// One image line's values by their names (one letter, or TrX TrY TrZ), as written: a
+// number, or "=N".
 struct ImageLine {
     int line = 0;
-    std::map<char, std::string> values;
+    std::map<std::string, std::string, std::less<>> values;
     std::string name;
 };
 
 // The lens variables an image may take from another ("v=0").
 constexpr std::string_view kLinkable = "vabcdegt";
-constexpr std::string_view kRead = "whfvabcdegt";
+// The one-letter variables libcam reads: the lens's, and the orientation's y p r.
+constexpr std::string_view kRead = "whfvabcdegtrpy";
+// The camera's translation (Hugin's mosaic mode).
+constexpr std::array<std::string_view, 3> kTranslation = {"TrX", "TrY", "TrZ"};
 
 std::string where_of(const std::string& source, int line) { return source + ": line " + std::to_string(line); }
 
@@ -49,54 +56,60 @@ ImageLine parse_image_line(std::string_view text, int line, const std::string& s
         if (end == std::string_view::npos) end = text.size();
         const std::string_view token = text.substr(at, end - at);
         at = end;
-        // One letter then its value: a variable libcam reads. Longer names (Ra, Eev, Vm,
-        // TrX, ...) are photometric or translation variables.
+        // One letter then its value: a variable libcam reads; or the translation's TrX
+        // TrY TrZ. The other longer names (Ra, Eev, Vm, Tpy, ...) are photometric
+        // variables or the mosaic plane's, not the camera's.
         if (token.size() >= 2 && kRead.find(token[0]) != std::string_view::npos &&
             !std::isalpha(static_cast<unsigned char>(token[1]))) {
-            out.values[token[0]] = std::string(token.substr(1));
+            out.values[std::string(1, token[0])] = std::string(token.substr(1));
+        }
+        for (const std::string_view name : kTranslation) {
+            if (token.size() > name.size() && token.starts_with(name)) {
+                out.values[std::string(name)] = std::string(token.substr(name.size()));
+            }
         }
     }
     return out;
 }
 
-double number(const std::string& text, const std::string& where, char key) {
+double number(const std::string& text, const std::string& where, std::string_view key) {
     double value = 0.0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-        throw FileError(where + ": " + std::string(1, key) + ": must be a finite number, got '" + text + "'");
+        throw FileError(where + ": " + std::string(key) + ": must be a finite number, got '" + text + "'");
     }
     return value;
 }
 
 // The value of `key` for image `index`, following "=N" to the image it names (once: Hugin
 // writes links to the image that holds the value).
-double value_of(const std::vector<ImageLine>& images, std::size_t index, char key, std::optional<double> fallback,
+double value_of(const std::vector<ImageLine>& images, std::size_t index, std::string_view key, std::optional<double> fallback,
                 const std::string& source) {
     const ImageLine& image = images[index];
     const std::string where = where_of(source, image.line);
     const auto found = image.values.find(key);
     if (found == image.values.end()) {
         if (fallback) return *fallback;
-        throw FileError(where + ": the image line has no " + std::string(1, key));
+        throw FileError(where + ": the image line has no " + std::string(key));
     }
     const std::string& text = found->second;
     if (!text.empty() && text.front() == '=') {
-        if (kLinkable.find(key) == std::string_view::npos) {
-            throw FileError(where + ": " + std::string(1, key) + ": cannot be linked, got '" + text + "'");
+        if (key.size() != 1 || kLinkable.find(key[0]) == std::string_view::npos) {
+            throw FileError(where + ": " + std::string(key) + ": cannot be linked, got '" + text + "'");
         }
         const double target = number(text.substr(1), where, key);
         if (!(target >= 0.0 && target < static_cast<double>(images.size())) || target != std::floor(target) ||
             static_cast<std::size_t>(target) == index) {
-            throw FileError(where + ": " + std::string(1, key) + ": links to no other image, got '" + text + "'");
+            throw FileError(where + ": " + std::string(key) + ": links to no other image, got '" + text + "'");
         }
         const ImageLine& linked = images[static_cast<std::size_t>(target)];
         const auto value = linked.values.find(key);
         if (value == linked.values.end()) {
             if (fallback) return *fallback;
-            throw FileError(where_of(source, linked.line) + ": the image line has no " + std::string(1, key));
+            throw FileError(where_of(source, linked.line) + ": the image line has no " + std::string(key));
         }
         if (!value->second.empty() && value->second.front() == '=') {
-            throw FileError(where + ": " + std::string(1, key) + ": links to image " + text.substr(1) +
+            throw FileError(where + ": " + std::string(key) + ": links to image " + text.substr(1) +
                             ", which links on again");
         }
         return number(value->second, where_of(source, linked.line), key);
@@ -143,20 +156,31 @@ Projection projection(int f, double width, double v_deg, const std::string& wher
     }
 }
 
+// The image's pose in the panorama's world (the header's axes): camera to world
+// Ry(yaw) Rx(pitch) Rz(roll), its centre Hugin's translation with TrZ towards -z.
+Pose pose_of(double yaw_deg, double pitch_deg, double roll_deg, const Vec3& translation) {
+    constexpr double kDegree = std::numbers::pi / 180.0;
+    const Mat3 camera_to_world = (Eigen::AngleAxisd(yaw_deg * kDegree, Vec3::UnitY()) *
+                                  Eigen::AngleAxisd(pitch_deg * kDegree, Vec3::UnitX()) *
+                                  Eigen::AngleAxisd(roll_deg * kDegree, Vec3::UnitZ()))
+                                     .toRotationMatrix();
+    return Pose::from_centre(camera_to_world.transpose(), Vec3(translation.x(), translation.y(), -translation.z()));
+}
+
 NamedCamera image_camera(const std::vector<ImageLine>& images, std::size_t index, const std::string& source) {
     const std::string where = where_of(source, images[index].line);
-    const auto get = [&](char key, std::optional<double> fallback = std::nullopt) {
+    const auto get = [&](std::string_view key, std::optional<double> fallback = std::nullopt) {
         return value_of(images, index, key, fallback, source);
     };
     Camera camera;
-    camera.size = {side(get('w'), where, 'w'), side(get('h'), where, 'h')};
-    const double f = get('f');
+    camera.size = {side(get("w"), where, 'w'), side(get("h"), where, 'h')};
+    const double f = get("f");
     if (f != std::floor(f) || !(f >= 0.0 && f < 100.0)) throw FileError(where + ": f: must be a projection number, got " + format_number(f));
-    const Projection chosen = projection(static_cast<int>(f), static_cast<double>(camera.size.width), get('v'), where);
-    const double a = get('a', 0.0), b = get('b', 0.0), c = get('c', 0.0);
-    if (get('g', 0.0) != 0.0 || get('t', 0.0) != 0.0) {
-        throw NotRepresentable(where + ": g and t (shear) have no libcam model, got g" + format_number(get('g', 0.0)) +
-                               " t" + format_number(get('t', 0.0)));
+    const Projection chosen = projection(static_cast<int>(f), static_cast<double>(camera.size.width), get("v"), where);
+    const double a = get("a", 0.0), b = get("b", 0.0), c = get("c", 0.0);
+    if (get("g", 0.0) != 0.0 || get("t", 0.0) != 0.0) {
+        throw NotRepresentable(where + ": g and t (shear) have no libcam model, got g" + format_number(get("g", 0.0)) +
+                               " t" + format_number(get("t", 0.0)));
     }
     const double scale = 1.0 - a - b - c;
     if (!(scale > 0.0)) throw FileError(where + ": 1 - a - b - c must be > 0, got " + format_number(scale));
@@ -180,8 +204,10 @@ NamedCamera image_camera(const std::vector<ImageLine>& images, std::size_t index
         camera.lens = {chosen.type, {}};
     }
     const double focal = chosen.focal * scale;
-    camera.intrinsics = {focal, focal, (camera.size.width - 1.0) / 2.0 + get('d', 0.0),
-                         (camera.size.height - 1.0) / 2.0 + get('e', 0.0), 0.0};
+    camera.intrinsics = {focal, focal, (camera.size.width - 1.0) / 2.0 + get("d", 0.0),
+                         (camera.size.height - 1.0) / 2.0 + get("e", 0.0), 0.0};
+    camera.pose = pose_of(get("y", 0.0), get("p", 0.0), get("r", 0.0),
+                          Vec3(get("TrX", 0.0), get("TrY", 0.0), get("TrZ", 0.0)));
     return {images[index].name, {validated_camera(camera, where), std::nullopt}};
 }
 

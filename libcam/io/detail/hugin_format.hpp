@@ -2,7 +2,7 @@
 // Hugin's project file (.pto, PanoTools' script format as Hugin writes it): one camera
 // per image line
 //
-//   i w1500 h1000 f0 v60 a0.01 b-0.02 c0.005 d0 e0 g0 t0 r0 p0 y0 ... n"image.jpg"
+//   i w1500 h1000 f0 v60 a0.01 b-0.02 c0.005 d0 e0 g0 t0 r0 p0 y0 TrX0 TrY0 TrZ0 ... n"image.jpg"
 //
 // w h the image size, f the projection, v the horizontal field of view in degrees, a b c
 // PanoTools' radial polynomial, d e the centre's shift in pixels (g t, shear, must be 0);
@@ -25,8 +25,13 @@
 // when a = c = 0, FISHEYE (k1 = b') for a fisheye when a = c = 0. The other projections
 // have no coefficients in libcam: they are read when a = b = c = 0, else refused.
 //
-// The image's orientation in the panorama (y p r) and its translation (TrX...) are not
-// read: the camera is the lens alone, its pose the identity.
+// The image's pose in the panorama. The world is the panorama's: origin its centre, z
+// towards yaw 0 pitch 0, x towards yaw 90 (the right), y towards the nadir (the axes of an
+// image with y = p = r = 0). y p r (degrees) give the camera-to-world rotation Ry(y) Rx(p)
+// Rz(r), right-handed about those axes: yaw turns the image right, pitch up, roll its x
+// axis down. TrX TrY TrZ (Hugin's mosaic translation, in units of the distance to the
+// mosaic plane) put the camera's centre at (TrX, TrY, -TrZ). Measured with pano_trafo on
+// an equirectangular panorama (tests/io/test_hugin.cpp).
 
 #include <string_view>
 #include <vector>

@@ -149,17 +149,14 @@ Lens lens_of(const Description& file) {
         unused(4, "t1");
         unused(5, "t2");
     }
-    return simplest_equal_lens({LensType::OpenCv5, {k1, k2, t2, t1, k3}});
+    return realitycapture_brown_lens(k1, k2, k3, t1, t2);
 }
 
 Intrinsics intrinsics_of(const Description& file, ImageSize size) {
-    const double longer = static_cast<double>(std::max(size.width, size.height));
-    const double fx = file.number("FocalLength35mm") * longer / 36.0;
-    const double aspect = file.number_or("AspectRatio", 1.0);
     const double skew = file.number_or("Skew", 0.0);
     if (skew != 0.0) file.refuse("Skew", "a skew of " + format_number(skew) + " is not read (its unit is not documented)");
-    return {fx, aspect * fx, 0.5 * static_cast<double>(size.width) - 0.5 + file.number_or("PrincipalPointU", 0.0) * longer,
-            0.5 * static_cast<double>(size.height) - 0.5 + file.number_or("PrincipalPointV", 0.0) * longer, 0.0};
+    return realitycapture_intrinsics(file.number("FocalLength35mm"), file.number_or("AspectRatio", 1.0),
+                                     file.number_or("PrincipalPointU", 0.0), file.number_or("PrincipalPointV", 0.0), size);
 }
 
 Pose pose_of(const Description& file) {
@@ -172,6 +169,17 @@ Pose pose_of(const Description& file) {
 }
 
 }  // namespace
+
+Intrinsics realitycapture_intrinsics(double focal_35mm, double aspect, double u, double v, ImageSize size) {
+    const double longer = static_cast<double>(std::max(size.width, size.height));
+    const double fx = focal_35mm * longer / 36.0;
+    return {fx, aspect * fx, 0.5 * static_cast<double>(size.width) - 0.5 + u * longer,
+            0.5 * static_cast<double>(size.height) - 0.5 + v * longer, 0.0};
+}
+
+Lens realitycapture_brown_lens(double k1, double k2, double k3, double t1, double t2) {
+    return simplest_equal_lens({LensType::OpenCv5, {k1, k2, t2, t1, k3}});
+}
 
 bool claims_realitycapture_xmp(const DocumentNode& outline) {
     return outline.find("x:xmpmeta") != nullptr || outline.find("rdf:RDF") != nullptr;

@@ -42,6 +42,13 @@ namespace libcam {
 
 std::vector<NamedCamera> read_realitycapture_xmp(std::string_view text, const ReadContext& context);
 
+// What RealityCapture's XMP and its CSV (realitycapture_csv.hpp) share, as the header above
+// says: the intrinsics from the 35 mm focal length, the aspect ratio (fy / fx) and the
+// principal point's offset (u, v) over the longer side; Brown's k1 k2 k3 and t1 t2 as
+// OpenCV's lens (p1 = t2, p2 = t1). k4 has no libcam model: the callers refuse it.
+Intrinsics realitycapture_intrinsics(double focal_35mm, double aspect, double u, double v, ImageSize size);
+Lens realitycapture_brown_lens(double k1, double k2, double k3, double t1, double t2);
+
 // Whether an XML file's outline (parse_xml_outline) is an XMP packet: <x:xmpmeta> or
 // <rdf:RDF> at the root.
 bool claims_realitycapture_xmp(const DocumentNode& outline);
