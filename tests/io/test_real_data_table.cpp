@@ -65,6 +65,10 @@ struct RealFile {
     const char* note = "";     // what the stored number is, where it is not the file's own
     const char* lens = "";     // lensfun: the regression vectors' case; or the lens, read on its own
     ImageSize given_size = {0, 0};  // for a file that records none
+    // SOURCES.md's focal length in pixels, for a file that stores it in other units
+    // (OpenSfM's fraction of the image, AliceVision's millimetres), and to how many pixels.
+    double fx = kNone;
+    double fx_tolerance = kNone;
 };
 
 // COLMAP's text models store 6 significant digits: a point's mean moves by up to 0.0055 px
@@ -135,7 +139,8 @@ const RealFile kFiles[] = {
      kNone, kNone, "with tracks.csv"},
     {"kapture-samples/berlin/opensfm/camera_models.json", "PINHOLE", 1, 0, 0, Proof::Library},
     {"opensfm-fuenwang-PBA/reconstruction.json", "OPENCV4", 3, 3, 0, Proof::Library},
-    {"opensfm-odm-JNotelddim/cameras.json", "OPENCV5", 1, 0, 0, Proof::Library},
+    {"opensfm-odm-JNotelddim/cameras.json", "OPENCV5", 1, 0, 0, Proof::Library, kNone, kNone, kNone, kNone, "", "", {0, 0},
+     4090.88, 0.005},
     // ---- OpenMVG.
     {"kapture-samples/maupertuis_openMVG/ChateauMaupertuisTest/reconstruction_global/sfm_data.json", "OPENCV5", 4, 4,
      1228, Proof::RecomputedMean, 0.470, 0.0005},
@@ -143,7 +148,8 @@ const RealFile kFiles[] = {
      Proof::Library},
     {"kapture-samples/t265/Everest_undistorted/sfm_data_small.json", "FISHEYE", 5, 5, 0, Proof::Library},
     // ---- AliceVision (Meshroom).
-    {"alicevision-meshroom-LoD2to3/data/meshroom/cameras.sfm", "OPENCV5", 34, 34, 0, Proof::Library},
+    {"alicevision-meshroom-LoD2to3/data/meshroom/cameras.sfm", "OPENCV5", 34, 34, 0, Proof::Library, kNone, kNone, kNone,
+     kNone, "", "", {0, 0}, 2795.0, 0.05},
     // ---- Metashape.
     {"metashape/hwiyoung-MappingLocalization/calibration/calib_lcam.xml", "OPENCV5", 1, 0, 0, Proof::Library},
     {"metashape/hwiyoung-MappingLocalization/calibration/calib_lcam2.xml", "OPENCV5", 1, 0, 0, Proof::Library},
@@ -441,6 +447,11 @@ Row row_of(const RealFile& file) {
         case Proof::GsRasterizer: row = gs_rasterizer(file, cameras); break;
         case Proof::NerfAngles: row = nerf_angles(file, cameras); break;
         case Proof::DsoCalibration: row = dso_calibration(file, cameras); break;
+    }
+    if (!std::isnan(file.fx)) {
+        const double fx = cameras.cameras.at(0).file.camera.intrinsics.fx;
+        row.holds = row.holds && near(fx, file.fx, file.fx_tolerance);
+        row.agreement += "; fx " + number(fx) + " px, SOURCES.md's " + number(file.fx);
     }
     row.name = file.path;
     if (file.proof == Proof::LensfunVectors) row.name += " (" + cameras.cameras.at(0).name + ")";
