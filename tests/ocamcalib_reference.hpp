@@ -22,7 +22,7 @@ namespace libcam::test {
 inline Vec3 toolbox_axes(const Vec3& v) { return Vec3(v.y(), v.x(), -v.z()); }
 inline Vec3 libcam_axes(const Vec3& v) { return Vec3(v.y(), v.x(), -v.z()); }
 // A (row, column) pair as an OpenCV pixel (x, y).
-inline Vec2 pixel_of(const nlohmann::json& row_column) {
+inline Vec2 toolbox_pixel(const nlohmann::json& row_column) {
     return Vec2(row_column[1].get<double>(), row_column[0].get<double>());
 }
 inline Vec3 vec3_of(const nlohmann::json& xyz) {
@@ -49,14 +49,14 @@ inline OcamcalibVectorsMiss ocamcalib_vectors_miss(const Camera& camera, const O
     };
     // world2cam of the C example's point, by invpol as the C code does; the ray through
     // that pixel is cam2world's.
-    const Vec2 c_world2cam = pixel_of(expected["world2cam_100_200_m300"]);
+    const Vec2 c_world2cam = toolbox_pixel(expected["world2cam_100_200_m300"]);
     worse(miss.world2cam_px, (ocamcalib_inverse_pixel(camera, inverse, libcam_axes(Vec3(100, 200, -300))) - c_world2cam).norm());
     const Unprojection back = prepared.unproject(c_world2cam);
     worse(miss.cam2world, back.valid ? (toolbox_axes(back.direction.normalized()) - vec3_of(expected["cam2world_of_that"])).norm()
                                      : kInfinity);
     ++miss.pixels;
     for (const auto& sample : expected["samples"]) {
-        const Vec2 pixel = pixel_of(sample["pixel_row_col"]);
+        const Vec2 pixel = toolbox_pixel(sample["pixel_row_col"]);
         const Unprojection ray = prepared.unproject(pixel);
         ++miss.pixels;
         if (!ray.valid) {
@@ -64,7 +64,7 @@ inline OcamcalibVectorsMiss ocamcalib_vectors_miss(const Camera& camera, const O
             continue;
         }
         worse(miss.cam2world, (toolbox_axes(ray.direction.normalized()) - vec3_of(sample["cam2world"])).norm());
-        worse(miss.world2cam_px, (ocamcalib_inverse_pixel(camera, inverse, ray.direction) - pixel_of(sample["world2cam_of_that"])).norm());
+        worse(miss.world2cam_px, (ocamcalib_inverse_pixel(camera, inverse, ray.direction) - toolbox_pixel(sample["world2cam_of_that"])).norm());
         const Projection exact = prepared.project_camera_point(ray.direction);
         worse(miss.exact_px, exact.valid ? (exact.pixel - pixel).norm() : kInfinity);
     }
