@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <opencv2/calib3d.hpp>
 #include <string>
@@ -474,20 +475,72 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
     if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
     // cv::omnidir evaluates its formula on every point: those past the valid angle get
     // infinity. cv::projectPoints and cv::fisheye take points in front of the camera.
+    // OpenCV's projections read fx, fy, cx and cy from K and leave out its skew (K(0, 1)):
+    // a skewed camera is projected without it, and the skew added as K adds it, times the
+    // distorted y.
     const bool omnidir = lens_info(camera.lens.type).opencv == OpenCvFunction::Omnidir;
     const double limit = std::cos(valid_angle_of(camera.lens));
-    const PreparedCamera prepared(camera);
-    std::vector<Vec2> pixels = opencv_project_points(camera, rays);
+    Camera unskewed = camera;
+    unskewed.intrinsics.skew = 0.0;
+    std::vector<Vec2> pixels = opencv_project_points(unskewed, rays);
+    const Intrinsics& k = camera.intrinsics;
+    if (k.skew != 0.0) {
+        for (Vec2& pixel : pixels) pixel.x() += k.skew * (pixel.y() - k.cy) / k.fy;
+    }
+    std::optional<PreparedCamera> prepared;  // behind the camera only: preparing a camera takes time
     for (std::size_t i = 0; i < rays.size(); ++i) {
         if (omnidir) {
             if (!(rays[i].z() > limit * rays[i].norm())) pixels[i] = Vec2::Constant(std::numeric_limits<double>::infinity());
         } else if (rays[i].z() <= 0) {
-            const Projection p = prepared.project_camera_point(rays[i]);
+            if (!prepared) prepared.emplace(camera);
+            const Projection p = prepared->project_camera_point(rays[i]);
             pixels[i] = p.valid ? p.pixel : Vec2::Constant(std::numeric_limits<double>::infinity());
         }
     }
     return pixels;
 }
 
+// The name of what reference_project projects a model's rays with, in the same order of
+// choice, for the tables that print it.
+inline std::string reference_library(LensType type) {
+    if (colmap_only(type)) return "COLMAP's formulas";
+    if (has_paper_formulas(type)) return "its paper's formulas";
+    if (type == LensType::Ptlens) return "PanoTools' polynomial";
+    if (type == LensType::OcamCalib) return "Scaramuzza's world2cam";
+    if (!in_opencv(type)) return "mrcal_project";
+    switch (lens_info(type).opencv) {
+        case OpenCvFunction::Fisheye: return "cv::fisheye::projectPoints";
+        case OpenCvFunction::Omnidir: return "cv::omnidir::projectPoints";
+        default: return "cv::projectPoints";
+    }
+}
+
+// A camera against the library that defines its model: the rays libcam unprojects through
+// a grid of the image, projected back by reference_project; the farthest any lands from
+// its pixel, over the pixels whose ray libcam gives (`rays` of `pixels`).
+struct ReferenceAgreement {
+    double worst_px = 0.0;
+    std::size_t rays = 0;
+    std::size_t pixels = 0;
+};
+
+inline ReferenceAgreement against_reference(const Camera& camera, int nx = 41, int ny = 31) {
+    const std::vector<Vec2> pixels = pixel_grid(camera.size, nx, ny);
+    const std::vector<Unprojection> rays = PreparedCamera(camera).unproject(pixels);
+    std::vector<Vec3> directions;
+    std::vector<Vec2> expected;
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+        if (!rays[i].valid) continue;
+        directions.push_back(rays[i].direction);
+        expected.push_back(pixels[i]);
+    }
+    ReferenceAgreement agreement{0.0, directions.size(), pixels.size()};
+    const std::vector<Vec2> back = reference_project(camera, directions);
+    for (std::size_t i = 0; i < back.size(); ++i) {
+        const double miss = (back[i] - expected[i]).norm();
+        agreement.worst_px = std::max(agreement.worst_px, std::isnan(miss) ? std::numeric_limits<double>::infinity() : miss);
+    }
+    return agreement;
+}
 
 }  // namespace libcam::test

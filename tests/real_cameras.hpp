@@ -4,7 +4,11 @@
 // reads them skips, saying so, when the folder is absent.
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <filesystem>
+#include <vector>
+
+#include "libcam/io/camera_types.hpp"
 
 namespace libcam::test {
 
@@ -32,6 +36,21 @@ inline bool real_data_present(const std::filesystem::path& path) {
     if (std::filesystem::exists(path, error)) return true;
     WARN("skipped: no real data at " << path.string());
     return false;
+}
+
+// The cameras of a set that differ in size, K or lens, in the file's order: the views of
+// one camera (COLMAP's images, NeRF's frames) once.
+inline std::vector<const NamedCamera*> distinct_cameras(const CameraSet& set) {
+    std::vector<const NamedCamera*> distinct;
+    for (const NamedCamera& named : set.cameras) {
+        const Camera& camera = named.file.camera;
+        const bool seen = std::any_of(distinct.begin(), distinct.end(), [&](const NamedCamera* other) {
+            const Camera& o = other->file.camera;
+            return o.size == camera.size && o.intrinsics.K() == camera.intrinsics.K() && o.lens == camera.lens;
+        });
+        if (!seen) distinct.push_back(&named);
+    }
+    return distinct;
 }
 
 }  // namespace libcam::test

@@ -16,6 +16,7 @@
 #include "libcam/io/detail/lensfun_format.hpp"
 #include "libcam/lens/lens_models.hpp"
 #include "error_message.hpp"
+#include "lensfun_reference.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
 
@@ -35,63 +36,29 @@ std::string error_message_of(Read&& read) {
     return {};
 }
 
-// lensfun's ApplyGeometryDistortion gives, for a pixel (x, y) of the corrected
-// (rectilinear) image, the pixel of the source image it comes from: the camera's
-// projection of the ray through (x, y) of a pinhole camera of the same K.
-Vec2 source_pixel(const PreparedCamera& camera, double x, double y) {
-    const Intrinsics& k = camera.camera().intrinsics;
-    const Vec3 point((x - k.cx) / k.fx, (y - k.cy) / k.fy, 1.0);
-    const std::vector<Projection> projected = camera.project(std::vector<Vec3>{point});
-    REQUIRE(projected[0].valid);
-    return projected[0].pixel;
-}
-
-void check_case(const nlohmann::json& c, double tolerance) {
-    const std::filesystem::path db = test::real_data_path("lensfun/data/db") / c["db_file"].get<std::string>();
-    if (!test::real_data_present(db)) return;
-    ReadOptions options;
-    options.lens = c["lens_model"].get<std::string>();
-    options.focal_mm = c["focal_mm"].get<double>();
-    options.crop_factor = c["camera_crop"].get<double>();
-    options.size = ImageSize{c["width"].get<long>(), c["height"].get<long>()};
-    options.lens_projection_only = c["operation"].get<std::string>().starts_with("EnableProjectionTransform");
-    const PreparedCamera camera(read_camera_file(db, {}, std::nullopt, options).camera);
-    for (std::size_t i = 0; i < c["x"].size(); ++i) {
-        const Vec2 pixel = source_pixel(camera, c["x"][i].get<double>(), c["y"][i].get<double>());
-        INFO(c["name"].get<std::string>() << " point " << i << ": libcam " << pixel.transpose());
-        CHECK(std::abs(pixel.x() - c["expected_x"][i].get<double>()) < tolerance);
-        CHECK(std::abs(pixel.y() - c["expected_y"][i].get<double>()) < tolerance);
-    }
-}
-
-nlohmann::json lensfun_vectors() {
-    const std::filesystem::path path = test::real_data_path("vectors/lensfun-test-modifier-regression.json");
-    if (!test::real_data_present(path)) return {};
-    return nlohmann::json::parse(std::ifstream(path));
-}
-
-const nlohmann::json* vector_case(const nlohmann::json& vectors, const std::string& name) {
-    if (vectors.is_null()) return nullptr;
-    for (const nlohmann::json& c : vectors["cases"]) {
-        if (c["name"].get<std::string>().starts_with(name)) return &c;
-    }
-    FAIL("no case " << name);
-    return nullptr;
+// One case of lensfun's vectors through the reader (lensfun_reference.hpp), each point
+// to `tolerance` on either axis.
+void check_case(const nlohmann::json& vectors, const std::string& name, double tolerance) {
+    if (vectors.is_null()) return;
+    const nlohmann::json* c = test::lensfun_vector_case(vectors, name);
+    REQUIRE(c != nullptr);
+    if (!test::real_data_present(test::lensfun_case_database(*c))) return;
+    const test::LensfunCaseMiss miss = test::lensfun_case_miss(*c);
+    INFO(name << ": libcam's pixels " << miss.worst_px << " px from lensfun's");
+    CHECK(miss.points == (*c)["x"].size());
+    CHECK(miss.worst_px < tolerance);
 }
 
 }  // namespace
 
 TEST_CASE("lensfun's regression vectors through the reader: poly3, poly5 and ptlens to 1e-3 px", "[io][lensfun]") {
-    const nlohmann::json vectors = lensfun_vectors();
-    for (const char* name : {"verify_dist_poly3", "verify_dist_poly5", "verify_dist_ptlens"}) {
-        if (const nlohmann::json* c = vector_case(vectors, name)) check_case(*c, 1e-3);
-    }
+    const nlohmann::json vectors = test::lensfun_vectors();
+    for (const char* name : {"verify_dist_poly3", "verify_dist_poly5", "verify_dist_ptlens"}) check_case(vectors, name, 1e-3);
 }
 
 TEST_CASE("lensfun's regression vectors through the reader: the equisolid fisheye seen rectilinear, to 0.1 px",
           "[io][lensfun]") {
-    const nlohmann::json vectors = lensfun_vectors();
-    if (const nlohmann::json* c = vector_case(vectors, "verify_geom_fisheye_rectlinear")) check_case(*c, 0.1);
+    check_case(test::lensfun_vectors(), "verify_geom_fisheye_rectlinear", 0.1);
 }
 
 TEST_CASE("lensfun's spline between calibrated focal lengths is its cubic Hermite, worked by hand", "[io][lensfun]") {

@@ -16,6 +16,7 @@
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/ocamcalib.hpp"
+#include "ocamcalib_reference.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
 
@@ -24,11 +25,7 @@ using libcam::test::file_error_of;
 
 namespace {
 
-// The toolbox's axes (x down the rows, y along the columns, z backwards) from libcam's.
-Vec3 toolbox_axes(const Vec3& v) { return Vec3(v.y(), v.x(), -v.z()); }
-Vec3 libcam_axes(const Vec3& v) { return Vec3(v.y(), v.x(), -v.z()); }
-// A (row, column) pair as an OpenCV pixel (x, y).
-Vec2 pixel_of(const nlohmann::json& row_column) { return Vec2(row_column[1].get<double>(), row_column[0].get<double>()); }
+using test::toolbox_axes;
 
 // One real file against its computed values.
 void check_toolbox_file(const std::string& name) {
@@ -48,35 +45,14 @@ void check_toolbox_file(const std::string& name) {
     CHECK(camera.lens.type == LensType::OcamCalib);
     const OcamCalibInverse inverse = read_ocamcalib_inverse(path).value();
     CHECK(inverse.coefficients.size() == expected["len_invpol"].get<std::size_t>());
-    const PreparedCamera prepared(camera);
 
-    // world2cam of the C example's point, by invpol as the C code does; and the exact
-    // projection of the ray through that pixel lands back on it.
-    const Vec3 point = libcam_axes(Vec3(100, 200, -300));
-    const Vec2 by_invpol = ocamcalib_inverse_pixel(camera, inverse, point);
-    const Vec2 c_world2cam = pixel_of(expected["world2cam_100_200_m300"]);
-    CHECK((by_invpol - c_world2cam).norm() < 1e-9);
-    const Unprojection back = prepared.unproject(c_world2cam);
-    REQUIRE(back.valid);
-    const Vec3 c_cam2world(expected["cam2world_of_that"][0].get<double>(), expected["cam2world_of_that"][1].get<double>(),
-                           expected["cam2world_of_that"][2].get<double>());
-    CHECK((toolbox_axes(back.direction.normalized()) - c_cam2world).norm() < 1e-12);
-
-    for (const auto& sample : expected["samples"]) {
-        const Vec2 pixel = pixel_of(sample["pixel_row_col"]);
-        INFO("pixel " << pixel.transpose());
-        const Unprojection ray = prepared.unproject(pixel);
-        REQUIRE(ray.valid);
-        const Vec3 c_ray(sample["cam2world"][0].get<double>(), sample["cam2world"][1].get<double>(),
-                         sample["cam2world"][2].get<double>());
-        CHECK((toolbox_axes(ray.direction.normalized()) - c_ray).norm() < 1e-12);
-        // invpol's pixel is the C code's; the exact projection is the pixel itself.
-        CHECK((ocamcalib_inverse_pixel(camera, inverse, ray.direction) - pixel_of(sample["world2cam_of_that"])).norm() <
-              1e-9);
-        const Projection exact = prepared.project_camera_point(ray.direction);
-        REQUIRE(exact.valid);
-        CHECK((exact.pixel - pixel).norm() < 1e-9);
-    }
+    // world2cam by invpol as the C code does, cam2world's rays, and the exact projection
+    // of each ray landing back on its pixel (ocamcalib_reference.hpp).
+    const test::OcamcalibVectorsMiss vectors = test::ocamcalib_vectors_miss(camera, inverse, expected);
+    CHECK(vectors.pixels == expected["samples"].size() + 1);
+    CHECK(vectors.world2cam_px < 1e-9);
+    CHECK(vectors.cam2world < 1e-12);
+    CHECK(vectors.exact_px < 1e-9);
 
     // How far invpol lands from each pixel: over every pixel, at least what the computed
     // values' coarser grid found, and of its size.
@@ -153,20 +129,10 @@ TEST_CASE("ocamcalib: py-OCamCalib's JSON against its cam2world, and its size gi
     CHECK(set.cameras.at(0).name == "fisheye_1");
     const Camera& camera = set.cameras.at(0).file.camera;
     const PreparedCamera prepared(camera);
-    // py-OCamCalib's Camera.cam2world: (x, y) = (column, row) minus distortion_center, times
-    // the stretch matrix's inverse; z = taylor(rho); OpenCV's axes.
+    // py-OCamCalib's Camera.cam2world, worked out in ocamcalib_reference.hpp.
     const nlohmann::json file = nlohmann::json::parse(std::ifstream(path));
-    const double c = file["stretch_matrix"][0][0], d = file["stretch_matrix"][0][1], e = file["stretch_matrix"][1][0];
-    const double determinant = c - d * e;
-    for (const Vec2& pixel : {Vec2(0, 0), Vec2(543.9861511428039, 377.64882547339226), Vec2(900, 100), Vec2(200, 700)}) {
-        const double x = pixel.x() - file["distortion_center"][0].get<double>();
-        const double y = pixel.y() - file["distortion_center"][1].get<double>();
-        const double u = (x - d * y) / determinant, v = (-e * x + c * y) / determinant;
-        const double rho = std::hypot(u, v);
-        double z = 0.0;
-        const auto& taylor = file["taylor_coefficient"];
-        for (std::size_t i = taylor.size(); i-- > 0;) z = z * rho + taylor[i].get<double>();
-        const Vec3 expected = Vec3(u, v, z).normalized();
+    for (const Vec2& pixel : test::py_ocamcalib_pixels()) {
+        const Vec3 expected = test::py_ocamcalib_ray(file, pixel);
         const Unprojection ray = prepared.unproject(pixel);
         INFO("pixel " << pixel.transpose());
         REQUIRE(ray.valid);

@@ -186,34 +186,17 @@ TEST_CASE("Every camera of every real file libcam reads projects as the library 
         if (std::find(done.begin(), done.end(), e.path) != done.end()) continue;
         done.emplace_back(e.path);
         const CameraSet set = read_camera_set(kFolder / e.path, std::nullopt, options_for(e));
-        std::vector<const Camera*> checked;  // views of one camera (NeRF's frames) are checked once
-        for (const NamedCamera& named : set.cameras) {
-            const Camera& camera = named.file.camera;
-            const bool seen = std::any_of(checked.begin(), checked.end(), [&](const Camera* other) {
-                return other->size == camera.size && other->intrinsics.K() == camera.intrinsics.K() &&
-                       other->lens.type == camera.lens.type && other->lens.coefficients == camera.lens.coefficients;
-            });
-            if (seen) continue;
-            checked.push_back(&camera);
-            CAPTURE(e.path, named.name);
+        for (const NamedCamera* named : test::distinct_cameras(set)) {
+            const Camera& camera = named->file.camera;
+            CAPTURE(e.path, named->name);
             // Rays through a grid of the image, projected back by the model's own library
             // (OpenCV, cv::fisheye, cv::omnidir, mrcal) or its paper's formula.
-            const std::vector<Vec2> pixels = test::pixel_grid(camera.size, 41, 31);
-            const std::vector<Unprojection> rays = PreparedCamera(camera).unproject(pixels);
-            std::vector<Vec3> directions;
-            std::vector<Vec2> expected;
-            for (std::size_t i = 0; i < pixels.size(); ++i) {
-                if (!rays[i].valid) continue;
-                directions.push_back(rays[i].direction);
-                expected.push_back(pixels[i]);
-            }
-            REQUIRE(directions.size() > pixels.size() / 2);
-            const std::vector<Vec2> back = test::reference_project(camera, directions);
-            double worst = 0.0;
-            for (std::size_t i = 0; i < back.size(); ++i) worst = std::max(worst, (back[i] - expected[i]).norm());
-            WARN(e.path << " | " << to_string(set.format) << " | " << (named.name.empty() ? "-" : named.name) << " | "
+            const test::ReferenceAgreement agreement = test::against_reference(camera);
+            REQUIRE(agreement.rays > agreement.pixels / 2);
+            const double worst = agreement.worst_px;
+            WARN(e.path << " | " << to_string(set.format) << " | " << (named->name.empty() ? "-" : named->name) << " | "
                         << lens_info(camera.lens.type).name << " | " << camera.size.width << "x" << camera.size.height
-                        << " | " << worst << " px over " << directions.size() << " pixels");
+                        << " | " << worst << " px over " << agreement.rays << " pixels");
             CHECK(worst <= 1e-9);
         }
     }

@@ -17,6 +17,7 @@
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "error_message.hpp"
+#include "gs_reference.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
 
@@ -62,26 +63,6 @@ std::string gs_with(const std::string& from, const std::string& to) {
     const std::size_t at = text.find(from);
     REQUIRE(at != std::string::npos);
     return text.replace(at, from.size(), to);
-}
-
-// 3DGS's own projection of a world point: the view matrix [R | T] (R = rotation^T, T =
-// -R position), the symmetric frustum of getProjectionMatrix (ndc = x / (z tan(fov / 2)),
-// fov = focal2fov(fx, W) = 2 atan(W / (2 fx))), then ndc2Pix(v, S) = ((v + 1) S - 1) / 2.
-Vec2 gs_rasterizer_pixel(const nlohmann::json& item, const Vec3& world) {
-    Mat3 rotation;
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) rotation(r, c) = item["rotation"][r][c].get<double>();
-    }
-    const Vec3 position(item["position"][0].get<double>(), item["position"][1].get<double>(),
-                        item["position"][2].get<double>());
-    const Vec3 view = rotation.transpose() * (world - position);
-    const double width = item["width"].get<double>();
-    const double height = item["height"].get<double>();
-    const double fov_x = 2.0 * std::atan(width / (2.0 * item["fx"].get<double>()));
-    const double fov_y = 2.0 * std::atan(height / (2.0 * item["fy"].get<double>()));
-    const double ndc_x = view.x() / (view.z() * std::tan(fov_x / 2.0));
-    const double ndc_y = view.y() / (view.z() * std::tan(fov_y / 2.0));
-    return {((ndc_x + 1.0) * width - 1.0) * 0.5, ((ndc_y + 1.0) * height - 1.0) * 0.5};
 }
 
 }  // namespace
@@ -165,7 +146,7 @@ TEST_CASE("gs-cameras: the real cameras.json of a 3DGS run on Mip-NeRF 360's bic
         }
         // A point in front of the camera lands where 3DGS's rasterizer draws it.
         const Vec3 world = centre + camera.pose.R.transpose() * Vec3(0.4, -0.3, 2.0);
-        const Vec2 expected = gs_rasterizer_pixel(item, world);
+        const Vec2 expected = test::gs_rasterizer_pixel(item, world);
         const Vec2 projected = camera.intrinsics.K().topLeftCorner<2, 3>() * (camera.pose.R * world + camera.pose.t) /
                                (camera.pose.R * world + camera.pose.t).z();
         CHECK((projected - expected).norm() < 1e-9);
