@@ -425,6 +425,18 @@ LocatedFile locate_camera_file(const std::filesystem::path& path, std::optional<
         if (file == path) {
             throw FileError(source + ": a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)");
         }
+    } else {
+        // Another file of such a model (COLMAP's images.bin): the model, from the file its
+        // format reads, rather than that file misread as the cameras.
+        for (const FormatRow& row : format_rows()) {
+            if (row.file_for_part == nullptr || (format && *format != row.format)) continue;
+            const std::filesystem::path model_file = row.file_for_part(path);
+            if (!model_file.empty()) {
+                file = model_file;
+                format = row.format;
+                break;
+            }
+        }
     }
     LocatedFile located{file, format.value_or(CameraFormat::Json), read_text_file(file)};
     const std::string file_source = file.string();

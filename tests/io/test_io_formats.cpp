@@ -118,8 +118,21 @@ TEST_CASE("COLMAP model folder: each image with its camera's intrinsics and its 
     CHECK(select_camera(set, "right.png", "m").file.camera.pose.t == Vec3(-1, 0, 0.5));
     CHECK(select_camera(set, "id:1", "m").name == "right.png");
     CHECK(select_camera(set, "2", "m").name == "id:3");
-    // The cameras file named directly reads the images beside it too.
+    // The cameras file named directly reads the images beside it too; so does another file
+    // of the model named instead (not read as if it were the cameras).
     CHECK(read_camera_set(dir.path() / "cameras.txt").cameras.size() == 3);
+    write_file_atomically(dir.path() / "points3D.txt", "# 3D point list\n");
+    for (const char* part : {"images.txt", "points3D.txt"}) {
+        INFO(part);
+        const CameraSet from_part = read_camera_set(dir.path() / part);
+        CHECK(from_part.format == CameraFormat::Colmap);
+        REQUIRE(from_part.cameras.size() == 3);
+        CHECK(from_part.cameras[1].file.camera.pose.centre() == Vec3(1, 0, -0.5));
+    }
+    // Without a cameras file beside it, images.txt is read as the file it is, and refused.
+    test::TempDir lone;
+    write_file_atomically(lone.path() / "images.txt", "9 1 0 0 0 -1 0 0.5 1 right.png\n\n");
+    CHECK_THROWS_AS(read_camera_set(lone.path() / "images.txt"), FileError);
 }
 
 TEST_CASE("COLMAP cameras.bin and images.bin, as COLMAP lays out the bytes") {

@@ -523,6 +523,19 @@ std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder
     return {};
 }
 
+std::filesystem::path colmap_cameras_file_for(const std::filesystem::path& part) {
+    const std::string extension = part.extension().string();
+    const std::string stem = part.stem().string();
+    const bool model_part = (extension == ".txt" || extension == ".bin") &&
+                            (stem == "images" || stem == "points3D" || stem == "frames" || stem == "rigs");
+    if (!model_part) return {};
+    std::error_code error;
+    const std::filesystem::path folder = part.parent_path().empty() ? "." : part.parent_path();
+    const std::filesystem::path same_form = folder / ("cameras" + extension);
+    if (std::filesystem::is_regular_file(same_form, error)) return same_form;
+    return colmap_cameras_file_in(folder);
+}
+
 std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadContext& context) {
     const bool binary = text.find('\0') != std::string_view::npos;
     const std::vector<ColmapCameraRecord> cameras = read_colmap_cameras(text, context.source, binary);

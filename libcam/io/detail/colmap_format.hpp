@@ -113,4 +113,8 @@ ColmapModelBytes write_colmap_files(const std::vector<ColmapCameraRecord>& camer
 // The cameras file of a COLMAP model folder (cameras.bin, else cameras.txt), or empty.
 std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder);
 
+// For another file of a COLMAP model (images, points3D, frames or rigs, .txt or .bin):
+// the cameras file beside it (the same form first), or empty.
+std::filesystem::path colmap_cameras_file_for(const std::filesystem::path& part);
+
 }  // namespace libcam

@@ -61,6 +61,9 @@ struct FormatRow {
     bool binary = false;         // has a binary form: its reader checks the text itself
     // The file of this format in a folder given as the path (COLMAP's sparse/0), or empty.
     std::filesystem::path (*file_in_folder)(const std::filesystem::path& folder) = nullptr;
+    // The file this format reads for another file of the same model given as the path
+    // (COLMAP's images.bin: the cameras.bin beside it), or empty when the path is not one.
+    std::filesystem::path (*file_for_part)(const std::filesystem::path& part) = nullptr;
     // The observations its files hold (io/observations.hpp), from the file detection chose
     // (COLMAP: its cameras file, beside the rest of the model) and the text detection read
     // of it, not read again; nullptr: it holds none.

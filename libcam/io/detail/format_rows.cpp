@@ -175,6 +175,7 @@ constexpr FormatRow kRows[] = {
                     "cameras.txt, images.txt and points3D.txt into a folder",
      .extensions = {".bin"}, .content = C::Table | C::Binary, .read = read_colmap_model,
      .write = write_colmap_model, .writes_folder = true, .binary = true, .file_in_folder = colmap_cameras_file_in,
+     .file_for_part = colmap_cameras_file_for,
      .read_observations = read_colmap_observations, .lenses = kColmap,
      .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
                    "SIMPLE_RADIAL_FISHEYE, RADIAL_FISHEYE, SIMPLE_FISHEYE, FISHEYE, FOV, THIN_PRISM_FISHEYE, "
