@@ -39,18 +39,22 @@ struct RealModel {
 
 // Text models store 6 significant digits: SOURCES.md gives the largest per-point
 // difference that rounding makes (0.0055 px); binary ones agree to 1e-12 px.
+// The text models' recomputed means: SOURCES.md's recomputation takes the six-digit
+// quaternions as written (0.953720, 0.973085, 0.342627); COLMAP normalises them on
+// reading, as libcam does, and the same plain-Python recomputation with them normalised
+// gives 0.953725, 0.973082 and 0.342625 (the values below).
 constexpr double kText = 0.006;
 constexpr double kBinary = 1e-6;
 
 const RealModel kModels[] = {
-    {"colmap-jasminekhalil-ar", 7, 2707, 9896, 0.953712, 0.953720, 2e-6, kText},
-    {"colmap-vijayvamsi7-table/final_try_1_workspace", 10, 2167, 10461, 0.973087, 0.973085, 2e-6, kText},
+    {"colmap-jasminekhalil-ar", 7, 2707, 9896, 0.953712, 0.953725, 2e-6, kText},
+    {"colmap-vijayvamsi7-table/final_try_1_workspace", 10, 2167, 10461, 0.973087, 0.973082, 2e-6, kText},
     {"colmap-vijayvamsi7-table/final_try_1_workspace/sparse/0", 10, 2167, 10461, 0.973087, 0.973087, 1e-6, kBinary},
     {"colmap-bartoszek-test_colmap/sparse/0", 23, 1443, 5931, 0.848027, 0.848027, 1e-6, kBinary},
     {"colmap-halogenname-south-building/sparse/0", 5, 2013, 6760, 0.399172, 0.399172, 1e-6, kBinary},
     {"colmap-myhan1023-mouse/sparse/0", 56, 4443, 25656, 0.632516, 0.632516, 1e-6, kBinary},
     {"colmap-consideringname-ggbond-3dgs/distorted/sparse/0", 24, 1038, 4426, 0.434863, 0.434863, 1e-6, kBinary},
-    {"kapture-samples/maupertuis/colmap/reconstruction", 4, 1039, 3355, 0.342600, 0.342627, 2e-6, kText},
+    {"kapture-samples/maupertuis/colmap/reconstruction", 4, 1039, 3355, 0.342600, 0.342625, 2e-6, kText},
 };
 
 }  // namespace
@@ -73,7 +77,7 @@ TEST_CASE("COLMAP observations: every real model reads, and reprojects to the ER
         const Reprojection r = reproject(set);
         CHECK(r.summary.all.stats.count == model.observations);
         REQUIRE(r.summary.reported.size() == 1);
-        CHECK(r.summary.reported[0].recomputed == Approx(model.recomputed_mean).margin(model.mean_tolerance));
+        CHECK(r.summary.reported[0].recomputed == Approx(model.recomputed_mean).epsilon(0).margin(model.mean_tolerance));
         REQUIRE(r.summary.per_point_reported);
         CHECK(r.summary.per_point_reported->compared == model.points);
         CHECK(r.summary.per_point_reported->max_abs_difference <= model.per_point_tolerance);
@@ -91,7 +95,7 @@ TEST_CASE("COLMAP observations: the models whose ERROR column is not theirs, as 
         REQUIRE(set.reported.size() == 1);
         CHECK(set.reported[0].value == Approx(0.848027).margin(5e-7));
         const Reprojection r = reproject(set);
-        CHECK(r.summary.reported[0].recomputed == Approx(0.279490).margin(2e-6));
+        CHECK(r.summary.reported[0].recomputed == Approx(0.279490).epsilon(0).margin(2e-6));
     }
     SECTION("ggbond sparse/0: undistorted to 299 px wide, ERROR copied from distorted/") {
         const auto folder = real_data_path("colmap-consideringname-ggbond-3dgs/sparse/0");
@@ -102,7 +106,7 @@ TEST_CASE("COLMAP observations: the models whose ERROR column is not theirs, as 
         CHECK(set.cameras[0].camera.size.width == 299);
         CHECK(set.reported[0].value == Approx(0.434863).margin(5e-7));
         const Reprojection r = reproject(set);
-        CHECK(r.summary.reported[0].recomputed == Approx(0.437770).margin(2e-6));
+        CHECK(r.summary.reported[0].recomputed == Approx(0.437770).epsilon(0).margin(2e-6));
         REQUIRE(r.summary.per_point_reported);
         CHECK(r.summary.per_point_reported->max_abs_difference == Approx(0.037).margin(5e-4));
     }
@@ -115,7 +119,7 @@ TEST_CASE("COLMAP observations: the models whose ERROR column is not theirs, as 
         CHECK(set.observations.size() == 55090);
         CHECK(set.reported[0].value == Approx(1.239572).margin(5e-7));
         const Reprojection r = reproject(set);
-        CHECK(r.summary.reported[0].recomputed == Approx(1.239325).margin(2e-6));
+        CHECK(r.summary.reported[0].recomputed == Approx(1.239325).epsilon(0).margin(2e-6));
         REQUIRE(r.summary.per_point_reported);
         CHECK(r.summary.per_point_reported->max_abs_difference == Approx(0.46).margin(0.005));
     }
