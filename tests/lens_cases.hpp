@@ -61,6 +61,19 @@ inline Camera ocamcalib_camera(std::array<double, 5> pol, double row, double col
     return real_camera(LensType::OcamCalib, coefficients, {width, height}, {f, f, column, row});
 }
 
+// An FTHETA camera from the numbers of a DriveWorks rig or NCore: the backward polynomial
+// b0..b5 in pixels (b0 = 0), the principal point, the affine c d e, max_angle and the image
+// size. The model's K is f = 1 / b1 at the principal point, its k_i = b_i f^i
+// (libcam/lens/ftheta.hpp).
+inline Camera ftheta_camera(std::array<double, 6> b, double cx, double cy, std::array<double, 3> cde, double max_angle,
+                            int width, int height) {
+    const double f = 1 / b[1];
+    std::vector<double> coefficients = {cde[0], cde[1], cde[2]};
+    for (int i = 1; i <= 5; ++i) coefficients.push_back(b[static_cast<std::size_t>(i)] * std::pow(f, i));
+    coefficients.push_back(max_angle);
+    return real_camera(LensType::FTheta, coefficients, {width, height}, {f, f, cx, cy});
+}
+
 // The real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767 (the library's
 // example camera "wide", one copy for the command line, the benchmarks and the tests).
 inline Camera wide_reference_camera() { return example_camera("wide"); }
@@ -255,6 +268,16 @@ inline std::vector<LensCase> lens_cases() {
         {"THETA_POLYNOMIAL woodscape", real_camera(LensType::ThetaPolynomial, {339.749, -31.988, 48.275, -7.201},
                                                    {1280, 966}, {1.0, 1.0, 643.442, 479.407})},
         {"THETA_POLYNOMIAL folding", lens_camera(LensType::ThetaPolynomial, {1.0, 0.1, -0.3, 0.02}, {1600, 1200}, 300, 300)},
+        // ---- FTHETA: the front camera of the DriveWorks rig NVIDIA's Cosmos world-scenario
+        // documentation prints (3848x2168, cx 1919.420, cy 1078.106, polynomial "0 0.000538
+        // 2.356e-09 1.907e-12 1.204e-16", pixeldistance-to-angle; its corners 70 degrees off
+        // the axis), bounded at 80 degrees; and a made-up lens that sees 109 degrees off the
+        // axis (max_angle 1.9) with a skewed affine, theta = r - 0.02 r^3 (folding at
+        // r = 1 / sqrt(0.06) = 4.08, past max_angle at r = 2.075).
+        {"FTHETA driveworks", ftheta_camera({0.0, 0.000538, 2.356e-09, 1.907e-12, 1.204e-16, 0.0}, 1919.420, 1078.106,
+                                            {1.0, 0.0, 0.0}, 80 * std::numbers::pi / 180, 3848, 2168)},
+        {"FTHETA wide", lens_camera(LensType::FTheta, {1.002, 0.001, -0.002, 1.0, 0.0, -0.02, 0.0, 0.0, 1.9}, {1600, 1200},
+                                    300, 300)},
     };
     return cases;
 }
@@ -336,6 +359,8 @@ inline double axis_margin_of(const Lens& lens) {
     if (lens.type == LensType::ThetaPolynomial && lens.coefficients.size() > 1 && lens.coefficients[1] != 0.0) {
         return 1e-3;
     }
+    // FTHETA's r^2 term likewise (theta = k1 r + k2 r^2 + ...).
+    if (lens.type == LensType::FTheta && lens.coefficients.size() > 4 && lens.coefficients[4] != 0.0) return 1e-3;
     return visit_lens_model<double>(lens.type, [&]<class Model>() {
         if constexpr (requires { Model::blind_angle(std::span<const double>(lens.coefficients)); }) {
             return std::max(2 * blind_angle<Model>(lens.coefficients), 1e-3);
@@ -466,6 +491,49 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
             }
             const long double r = (low + high) / 2, nx = r * X / rho, ny = r * Y / rho;
             const long double mx = nx + k[2] * ny, my = k[1] * nx + k[0] * ny;
+            pixels.push_back(Vec2(static_cast<double>(camera.intrinsics.fx * mx + camera.intrinsics.cx),
+                                  static_cast<double>(camera.intrinsics.fy * my + camera.intrinsics.cy)));
+        }
+        return pixels;
+    }
+    if (camera.lens.type == LensType::FTheta) {
+        // NVIDIA's F-theta projection solved in long double: theta = atan2(rho, Z); the
+        // first sensor radius r where theta(r) = k1 r + ... + k5 r^5 reaches it, by a scan in
+        // steps of 1e-3 that stops where theta(r) stops increasing, then bisection; nothing at
+        // or past max_angle. Then n = r (X, Y) / rho, the affine [c d; e 1] and K.
+        const std::vector<double>& k = camera.lens.coefficients;
+        const auto theta_of = [&](long double r) {
+            long double sum = k[7];
+            for (int i = 6; i >= 3; --i) sum = sum * r + k[static_cast<std::size_t>(i)];
+            return sum * r;
+        };
+        std::vector<Vec2> pixels;
+        for (const Vec3& ray : rays) {
+            const long double X = ray.x(), Y = ray.y(), Z = ray.z(), rho = std::hypot(X, Y);
+            const long double theta = std::atan2(rho, Z);
+            if (!(theta < k[8]) || !(rho > 0 || Z > 0)) {
+                pixels.push_back(Vec2::Constant(kInfinity));
+                continue;
+            }
+            long double low = 0, high = -1;
+            constexpr long double kStep = 1e-3L;
+            for (int i = 1; i <= 100000 && high < 0; ++i) {
+                const long double r = i * kStep;
+                if (theta_of(r) <= theta_of(low)) break;  // the fold
+                if (theta_of(r) >= theta) high = r;
+                else low = r;
+            }
+            if (high < 0) {
+                pixels.push_back(Vec2::Constant(kInfinity));
+                continue;
+            }
+            for (int i = 0; i < 200; ++i) {
+                const long double middle = (low + high) / 2;
+                (theta_of(middle) < theta ? low : high) = middle;
+            }
+            const long double r = (low + high) / 2;
+            const long double nx = rho > 0 ? r * X / rho : 0, ny = rho > 0 ? r * Y / rho : 0;
+            const long double mx = k[0] * nx + k[1] * ny, my = k[2] * nx + ny;
             pixels.push_back(Vec2(static_cast<double>(camera.intrinsics.fx * mx + camera.intrinsics.cx),
                                   static_cast<double>(camera.intrinsics.fy * my + camera.intrinsics.cy)));
         }

@@ -60,7 +60,9 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
                                            // OCamCalib
                                            "ocamcalib",
                                            // WoodScape
-                                           "woodscape"};
+                                           "woodscape",
+                                           // DriveWorks
+                                           "driveworks-rig"};
     std::set<std::string> listed;
     for (const auto& format : list) {
         const std::string name = format["name"];
