@@ -496,49 +496,6 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
         }
         return pixels;
     }
-    if (camera.lens.type == LensType::FTheta) {
-        // NVIDIA's F-theta projection solved in long double: theta = atan2(rho, Z); the
-        // first sensor radius r where theta(r) = k1 r + ... + k5 r^5 reaches it, by a scan in
-        // steps of 1e-3 that stops where theta(r) stops increasing, then bisection; nothing at
-        // or past max_angle. Then n = r (X, Y) / rho, the affine [c d; e 1] and K.
-        const std::vector<double>& k = camera.lens.coefficients;
-        const auto theta_of = [&](long double r) {
-            long double sum = k[7];
-            for (int i = 6; i >= 3; --i) sum = sum * r + k[static_cast<std::size_t>(i)];
-            return sum * r;
-        };
-        std::vector<Vec2> pixels;
-        for (const Vec3& ray : rays) {
-            const long double X = ray.x(), Y = ray.y(), Z = ray.z(), rho = std::hypot(X, Y);
-            const long double theta = std::atan2(rho, Z);
-            if (!(theta < k[8]) || !(rho > 0 || Z > 0)) {
-                pixels.push_back(Vec2::Constant(kInfinity));
-                continue;
-            }
-            long double low = 0, high = -1;
-            constexpr long double kStep = 1e-3L;
-            for (int i = 1; i <= 100000 && high < 0; ++i) {
-                const long double r = i * kStep;
-                if (theta_of(r) <= theta_of(low)) break;  // the fold
-                if (theta_of(r) >= theta) high = r;
-                else low = r;
-            }
-            if (high < 0) {
-                pixels.push_back(Vec2::Constant(kInfinity));
-                continue;
-            }
-            for (int i = 0; i < 200; ++i) {
-                const long double middle = (low + high) / 2;
-                (theta_of(middle) < theta ? low : high) = middle;
-            }
-            const long double r = (low + high) / 2;
-            const long double nx = rho > 0 ? r * X / rho : 0, ny = rho > 0 ? r * Y / rho : 0;
-            const long double mx = k[0] * nx + k[1] * ny, my = k[2] * nx + ny;
-            pixels.push_back(Vec2(static_cast<double>(camera.intrinsics.fx * mx + camera.intrinsics.cx),
-                                  static_cast<double>(camera.intrinsics.fy * my + camera.intrinsics.cy)));
-        }
-        return pixels;
-    }
     if (!in_opencv(camera.lens.type)) return mrcal_project_points(camera, rays);
     // cv::omnidir evaluates its formula on every point: those past the valid angle get
     // infinity. cv::projectPoints and cv::fisheye take points in front of the camera.

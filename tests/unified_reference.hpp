@@ -11,7 +11,11 @@
 //   basalt's form that goes on behind the camera; its inverse through the undistorted angle.
 // - CYLINDRICAL: as OpenCV's stitching module writes it (cv::detail::CylindricalProjector:
 //   u = atan2(x, z), v = y / sqrt(x^2 + z^2); back: (sin u, v, cos u)).
+// - FTHETA: NVIDIA's F-theta as NCore's FThetaCameraModelParameters, gsplat's and 3DGUT's
+//   FThetaCameraModel define it (the backward polynomial the reference; its projection
+//   solved by bisection here).
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -287,6 +291,71 @@ inline std::optional<Vec3> theta_polynomial_paper_ray(const Camera& camera, cons
                 static_cast<double>(std::cos(theta)));
 }
 
+// ---- FTHETA: NVIDIA's F-theta as NCore, gsplat and 3DGUT publish it (the sensor point
+// n = A^-1 m, A = [c d; e 1]; the angle theta(r) = k1 r + ... + k5 r^5 at r = |n|; the ray
+// (sin(theta) n / r, cos(theta))), with its domain: the radii below the first where theta
+// stops growing or reaches max_angle (or pi), found by a scan and bisection; the pixel of
+// a point by bisection over that range, in long double.
+inline Long ftheta_theta(const Camera& camera, Long r) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return r * (Long(k[3]) + r * (Long(k[4]) + r * (Long(k[5]) + r * (Long(k[6]) + r * Long(k[7])))));
+}
+
+inline Long ftheta_slope(const Camera& camera, Long r) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return Long(k[3]) + r * (2 * Long(k[4]) + r * (3 * Long(k[5]) + r * (4 * Long(k[6]) + r * 5 * Long(k[7]))));
+}
+
+// Where the domain ends: the first r where theta' <= 0 or theta >= min(max_angle, pi).
+inline Long ftheta_domain_end(const Camera& camera) {
+    const Long limit = std::min(Long(camera.lens.coefficients[8]), std::numbers::pi_v<Long>);
+    const auto outside = [&](Long r) { return ftheta_slope(camera, r) <= 0 || ftheta_theta(camera, r) >= limit; };
+    constexpr int kSteps = 4000;
+    const Long step = limit / Long(camera.lens.coefficients[3]) / 1000;
+    for (int i = 1; i <= kSteps; ++i) {
+        Long low = step * (i - 1), high = step * i;
+        if (!outside(high)) continue;
+        for (int j = 0; j < 100; ++j) {
+            const Long middle = (low + high) / 2;
+            (outside(middle) ? high : low) = middle;
+        }
+        return low;
+    }
+    return step * kSteps;
+}
+
+inline std::optional<Vec2> ftheta_paper_pixel(const Camera& camera, const Vec3& point) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Long x = point.x(), y = point.y(), z = point.z(), rho = std::hypot(x, y);
+    if (rho == 0) {
+        if (!(z > 0)) return std::nullopt;
+        return pixel_of(camera, 0, 0, 1);
+    }
+    const Long target = std::atan2(rho, z);
+    Long low = 0, high = ftheta_domain_end(camera);
+    if (!(target < ftheta_theta(camera, high))) return std::nullopt;
+    for (int i = 0; i < 200; ++i) {
+        const Long middle = (low + high) / 2;
+        (ftheta_theta(camera, middle) < target ? low : high) = middle;
+    }
+    const Long r = (low + high) / 2, nx = r * x / rho, ny = r * y / rho;
+    return pixel_of(camera, Long(k[0]) * nx + Long(k[1]) * ny, Long(k[2]) * nx + ny, 1);
+}
+
+inline std::optional<Vec3> ftheta_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Intrinsics& K = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - K.cx) / K.fx, my = (Long(pixel.y()) - K.cy) / K.fy;
+    const Long determinant = Long(k[0]) - Long(k[1]) * Long(k[2]);
+    const Long nx = (mx - Long(k[1]) * my) / determinant, ny = (Long(k[0]) * my - Long(k[2]) * mx) / determinant;
+    const Long r = std::hypot(nx, ny);
+    if (r == 0) return Vec3(0, 0, 1);
+    if (!(r < ftheta_domain_end(camera))) return std::nullopt;
+    const Long theta = ftheta_theta(camera, r);
+    return Vec3(static_cast<double>(std::sin(theta) * nx / r), static_cast<double>(std::sin(theta) * ny / r),
+                static_cast<double>(std::cos(theta)));
+}
+
 // The papers' formulas for any model of the family; nullopt for a model outside it
 // (the outer optional), nothing for a point or pixel outside the domain (the inner).
 // CYLINDRICAL: the longitude and the height on the unit cylinder about the Y axis;
@@ -312,7 +381,7 @@ inline std::optional<Vec3> cylindrical_paper_ray(const Camera& camera, const Vec
 inline bool has_paper_formulas(LensType type) {
     return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov ||
            type == LensType::Equisolid || type == LensType::LensPolynomial || type == LensType::Cylindrical ||
-           type == LensType::ThetaPolynomial;
+           type == LensType::ThetaPolynomial || type == LensType::FTheta;
 }
 
 inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
@@ -325,6 +394,7 @@ inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) 
         case LensType::LensPolynomial: return lens_polynomial_paper_pixel(camera, point);
         case LensType::Cylindrical: return cylindrical_paper_pixel(camera, point);
         case LensType::ThetaPolynomial: return theta_polynomial_paper_pixel(camera, point);
+        case LensType::FTheta: return ftheta_paper_pixel(camera, point);
         default: throw std::logic_error("paper_pixel: not a model with a paper's formulas here");
     }
 }
@@ -339,6 +409,7 @@ inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
         case LensType::LensPolynomial: return lens_polynomial_paper_ray(camera, pixel);
         case LensType::Cylindrical: return cylindrical_paper_ray(camera, pixel);
         case LensType::ThetaPolynomial: return theta_polynomial_paper_ray(camera, pixel);
+        case LensType::FTheta: return ftheta_paper_ray(camera, pixel);
         default: throw std::logic_error("paper_ray: not a model with a paper's formulas here");
     }
 }
