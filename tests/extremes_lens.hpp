@@ -25,7 +25,8 @@ namespace libcam::test {
 // their undistorted radius, and they share its handling of both axes.
 inline bool on_equidistant_point(LensType type) {
     return type == LensType::Fisheye || type == LensType::ThinPrismFisheye || type == LensType::RadTanThinPrismFisheye ||
-           type == LensType::ThetaPolynomial;  // WoodScape's, built on the same point
+           type == LensType::ThetaPolynomial ||  // WoodScape's, built on the same point
+           type == LensType::FThetaForward;      // NVIDIA's F-theta with its forward polynomial
 }
 
 

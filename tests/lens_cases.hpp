@@ -278,6 +278,15 @@ inline std::vector<LensCase> lens_cases() {
                                             {1.0, 0.0, 0.0}, 80 * std::numbers::pi / 180, 3848, 2168)},
         {"FTHETA wide", lens_camera(LensType::FTheta, {1.002, 0.001, -0.002, 1.0, 0.0, -0.02, 0.0, 0.0, 1.9}, {1600, 1200},
                                     300, 300)},
+        // ---- FTHETA_FORWARD, made up: a forward polynomial in pixels 1200 t - 15 t^2 - 40 t^3
+        // + 6 t^4 (f = 1200, k = a / f) on a 3840x2160 sensor with a skewed affine, bounded at
+        // 1.4 rad (its corners lie past it, 2.1 rad out); and a lens that sees 126 degrees
+        // off the axis (max_angle 2.2; rho = t - 0.03 t^3 grows until t = 3.33).
+        {"FTHETA_FORWARD ncore", real_camera(LensType::FThetaForward,
+                                             {1.0002, 0.0001, -0.0003, 1.0, -15.0 / 1200, -40.0 / 1200, 6.0 / 1200, 0.0, 1.4},
+                                             {3840, 2160}, {1200, 1200, 1919.5, 1079.5})},
+        {"FTHETA_FORWARD wide", lens_camera(LensType::FThetaForward, {0.999, -0.002, 0.001, 1.0, 0.0, -0.03, 0.0, 0.0, 2.2},
+                                            {1600, 1200}, 300, 300)},
     };
     return cases;
 }
@@ -360,7 +369,10 @@ inline double axis_margin_of(const Lens& lens) {
         return 1e-3;
     }
     // FTHETA's r^2 term likewise (theta = k1 r + k2 r^2 + ...).
-    if (lens.type == LensType::FTheta && lens.coefficients.size() > 4 && lens.coefficients[4] != 0.0) return 1e-3;
+    if ((lens.type == LensType::FTheta || lens.type == LensType::FThetaForward) && lens.coefficients.size() > 4 &&
+        lens.coefficients[4] != 0.0) {
+        return 1e-3;
+    }
     return visit_lens_model<double>(lens.type, [&]<class Model>() {
         if constexpr (requires { Model::blind_angle(std::span<const double>(lens.coefficients)); }) {
             return std::max(2 * blind_angle<Model>(lens.coefficients), 1e-3);

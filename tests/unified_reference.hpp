@@ -13,7 +13,7 @@
 //   u = atan2(x, z), v = y / sqrt(x^2 + z^2); back: (sin u, v, cos u)).
 // - FTHETA: NVIDIA's F-theta as NCore's FThetaCameraModelParameters, gsplat's and 3DGUT's
 //   FThetaCameraModel define it (the backward polynomial the reference; its projection
-//   solved by bisection here).
+//   solved by bisection here); FTHETA_FORWARD, its forward polynomial the reference.
 
 #include <algorithm>
 #include <cmath>
@@ -356,6 +356,65 @@ inline std::optional<Vec3> ftheta_paper_ray(const Camera& camera, const Vec2& pi
                 static_cast<double>(std::cos(theta)));
 }
 
+// ---- FTHETA_FORWARD: the same with the forward polynomial the reference (rho(theta) =
+// k1 theta + ... + k5 theta^5, the sensor point q = rho (X, Y) / |(X, Y)|, m = A q); its
+// inverse by bisection over the angles where rho still grows, below max_angle and pi.
+inline Long ftheta_forward_rho(const Camera& camera, Long theta) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return theta * (Long(k[3]) + theta * (Long(k[4]) + theta * (Long(k[5]) + theta * (Long(k[6]) + theta * Long(k[7])))));
+}
+
+inline Long ftheta_forward_domain_end(const Camera& camera) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Long limit = std::min(Long(k[8]), std::numbers::pi_v<Long>);
+    const auto slope = [&](Long t) {
+        return Long(k[3]) + t * (2 * Long(k[4]) + t * (3 * Long(k[5]) + t * (4 * Long(k[6]) + t * 5 * Long(k[7]))));
+    };
+    constexpr int kSteps = 4000;
+    for (int i = 1; i <= kSteps; ++i) {
+        Long low = limit * (i - 1) / kSteps, high = limit * i / kSteps;
+        if (slope(high) > 0) continue;
+        for (int j = 0; j < 100; ++j) {
+            const Long middle = (low + high) / 2;
+            (slope(middle) > 0 ? low : high) = middle;
+        }
+        return low;
+    }
+    return limit;
+}
+
+inline std::optional<Vec2> ftheta_forward_paper_pixel(const Camera& camera, const Vec3& point) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Long x = point.x(), y = point.y(), z = point.z(), chi = std::hypot(x, y);
+    if (chi == 0) {
+        if (!(z > 0)) return std::nullopt;
+        return pixel_of(camera, 0, 0, 1);
+    }
+    const Long theta = std::atan2(chi, z);
+    if (!(theta < ftheta_forward_domain_end(camera))) return std::nullopt;
+    const Long rho = ftheta_forward_rho(camera, theta), qx = rho * x / chi, qy = rho * y / chi;
+    return pixel_of(camera, Long(k[0]) * qx + Long(k[1]) * qy, Long(k[2]) * qx + qy, 1);
+}
+
+inline std::optional<Vec3> ftheta_forward_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Intrinsics& K = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - K.cx) / K.fx, my = (Long(pixel.y()) - K.cy) / K.fy;
+    const Long determinant = Long(k[0]) - Long(k[1]) * Long(k[2]);
+    const Long qx = (mx - Long(k[1]) * my) / determinant, qy = (Long(k[0]) * my - Long(k[2]) * mx) / determinant;
+    const Long r = std::hypot(qx, qy);
+    if (r == 0) return Vec3(0, 0, 1);
+    Long low = 0, high = ftheta_forward_domain_end(camera);
+    if (!(ftheta_forward_rho(camera, high) > r)) return std::nullopt;
+    for (int i = 0; i < 200; ++i) {
+        const Long middle = (low + high) / 2;
+        (ftheta_forward_rho(camera, middle) < r ? low : high) = middle;
+    }
+    const Long theta = (low + high) / 2;
+    return Vec3(static_cast<double>(std::sin(theta) * qx / r), static_cast<double>(std::sin(theta) * qy / r),
+                static_cast<double>(std::cos(theta)));
+}
+
 // The papers' formulas for any model of the family; nullopt for a model outside it
 // (the outer optional), nothing for a point or pixel outside the domain (the inner).
 // CYLINDRICAL: the longitude and the height on the unit cylinder about the Y axis;
@@ -381,7 +440,8 @@ inline std::optional<Vec3> cylindrical_paper_ray(const Camera& camera, const Vec
 inline bool has_paper_formulas(LensType type) {
     return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov ||
            type == LensType::Equisolid || type == LensType::LensPolynomial || type == LensType::Cylindrical ||
-           type == LensType::ThetaPolynomial || type == LensType::FTheta;
+           type == LensType::ThetaPolynomial || type == LensType::FTheta ||
+           type == LensType::FThetaForward;
 }
 
 inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
@@ -395,6 +455,7 @@ inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) 
         case LensType::Cylindrical: return cylindrical_paper_pixel(camera, point);
         case LensType::ThetaPolynomial: return theta_polynomial_paper_pixel(camera, point);
         case LensType::FTheta: return ftheta_paper_pixel(camera, point);
+        case LensType::FThetaForward: return ftheta_forward_paper_pixel(camera, point);
         default: throw std::logic_error("paper_pixel: not a model with a paper's formulas here");
     }
 }
@@ -410,6 +471,7 @@ inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
         case LensType::Cylindrical: return cylindrical_paper_ray(camera, pixel);
         case LensType::ThetaPolynomial: return theta_polynomial_paper_ray(camera, pixel);
         case LensType::FTheta: return ftheta_paper_ray(camera, pixel);
+        case LensType::FThetaForward: return ftheta_forward_paper_ray(camera, pixel);
         default: throw std::logic_error("paper_ray: not a model with a paper's formulas here");
     }
 }

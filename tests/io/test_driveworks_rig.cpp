@@ -92,6 +92,39 @@ TEST_CASE("DriveWorks rig: an ftheta camera's rays and pixels are NVIDIA's formu
     CHECK(centre.pixel.y() == 603.25);
 }
 
+TEST_CASE("DriveWorks rig: a forward polynomial (angle-to-pixeldistance) is FTHETA_FORWARD, its pixels NVIDIA's formula",
+          "[io][driveworks]") {
+    // A 3840x2160 camera whose calibrated polynomial is the forward one: 1200 t - 15 t^2 -
+    // 40 t^3 + 6 t^4 pixels at the angle t; pixels and the ray worked out beforehand in 40
+    // digits (the ray's angle solved from the polynomial).
+    const std::string text = R"({"rig": {"sensors": [{"name": "camera:front:tele", "protocol": "camera.gmsl",
+  "properties": {"Model": "ftheta", "cx": "1919.5", "cy": "1079.5", "width": "3840", "height": "2160",
+                 "polynomial": "0 1200 -15 -40 6", "polynomial-type": "angle-to-pixeldistance",
+                 "linear-c": "1.0002", "linear-d": "0.0001", "linear-e": "-0.0003"},
+  "nominalSensor2Rig_FLU": {"roll-pitch-yaw": [0, 0, 0], "t": [2, 0, 1.5]}}]}})";
+    const Camera camera = parse_camera(text, CameraFormat::DriveworksRig, "rig.json").camera;
+    CHECK(camera.lens.type == LensType::FThetaForward);
+    CHECK(camera.intrinsics.fx == 1200.0);
+    const PreparedCamera prepared(camera);
+    const std::pair<Vec3, Vec2> cases[] = {
+        {{1, -0.5, 2}, {2458.8285911512300023, 809.71437369098598195}},
+        {{3, 1, -0.5}, {3699.228678250189517, 1672.0707076481368835}},  // 99 degrees off the axis
+    };
+    for (const auto& [point, pixel] : cases) {
+        INFO(point.transpose());
+        const Projection projection = prepared.project_camera_point(point);
+        REQUIRE(projection.valid);
+        CHECK((projection.pixel - pixel).norm() < 1e-9);
+    }
+    const Unprojection ray = prepared.unproject(Vec2(3000, 400));  // 64 degrees off the axis
+    REQUIRE(ray.valid);
+    CHECK((ray.direction.normalized() - Vec3(0.76120832996296991774, -0.47854256897192122903, 0.43767440875237419749))
+              .norm() < 1e-13);
+    // Written back as the forward polynomial, the same numbers.
+    const std::string written = format_camera(camera, CameraFormat::DriveworksRig);
+    CHECK_THAT(written, Catch::Contains("\"angle-to-pixeldistance\"") && Catch::Contains("\"0 1200 -15 -40 6 0\""));
+}
+
 TEST_CASE("DriveWorks rig: a sensor's place is in the rig's FLU frame, roll-pitch-yaw in degrees, with corrections",
           "[io][driveworks]") {
     const CameraSet set = parse_camera_set(rig(), CameraFormat::DriveworksRig, "rig.json");
@@ -157,9 +190,8 @@ TEST_CASE("DriveWorks rig: a malformed rig names the file, the field and the val
     const auto error = [](const std::string& text) {
         return file_error_of([&] { parse_camera_set(text, CameraFormat::DriveworksRig, "rig.json"); });
     };
-    CHECK_THAT(error(rig("", R"("polynomial": "0 0.0017 1.2e-08", "polynomial-type": "angle-to-pixeldistance",)")),
-               Catch::Contains("rig.json") && Catch::Contains("polynomial-type") &&
-                   Catch::Contains("'angle-to-pixeldistance'"));
+    CHECK_THAT(error(rig("", R"("polynomial": "0 0.0017 1.2e-08", "polynomial-type": "pixel-to-angle",)")),
+               Catch::Contains("rig.json") && Catch::Contains("polynomial-type") && Catch::Contains("'pixel-to-angle'"));
     CHECK_THAT(error(rig("", R"("polynomial": "0.01 0.0017", "polynomial-type": "pixeldistance-to-angle",)")),
                Catch::Contains("properties.polynomial") && Catch::Contains("b0") && Catch::Contains("0.01"));
     CHECK_THAT(error(rig("", R"("polynomial": "0 0.0017 x", "polynomial-type": "pixeldistance-to-angle",)")),

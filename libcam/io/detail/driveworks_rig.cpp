@@ -61,26 +61,30 @@ std::vector<double> polynomial_of(const Field& field) {
     const std::vector<double> b = Field(list, field.name(), field.source()).numbers(kMaxPolynomialCoefficients);
     if (b.size() < 2) field.fail("expected at least 2 coefficients (b0 b1), got " + std::to_string(b.size()));
     if (b[0] != 0.0) {
-        field.fail("b0 (the angle at the principal point) must be 0, got " + format_number(b[0]) +
+        field.fail("b0 (the polynomial at the principal point) must be 0, got " + format_number(b[0]) +
                    ": the principal point is the optical axis");
     }
-    if (!(b[1] > 0.0)) field.fail("b1 must be positive (the angle grows from the centre), got " + format_number(b[1]));
+    if (!(b[1] > 0.0)) field.fail("b1 must be positive (it must grow from the centre), got " + format_number(b[1]));
     return b;
 }
 
-// The backward polynomial: "polynomial" with its "polynomial-type", or an older rig's "bw-poly".
-std::vector<double> backward_polynomial(const Field& properties) {
+// The calibrated polynomial and which way it maps.
+struct Polynomial {
+    std::vector<double> coefficients;
+    bool forward = false;  // angle to pixel distance (FTHETA_FORWARD), else the backward one (FTHETA)
+};
+
+// "polynomial" with its "polynomial-type", or an older rig's "bw-poly" (backward).
+Polynomial calibrated_polynomial(const Field& properties) {
     if (const std::optional<Field> polynomial = properties.find({"polynomial"})) {
         const Field type = properties.at({"polynomial-type"});
         const std::string kind = type.text();
-        if (kind == kForward) {
-            type.fail("libcam reads the backward polynomial (" + std::string(kBackward) + ", FTHETA), got '" + kind +
-                      "': a forward polynomial is not read");
+        if (kind != kBackward && kind != kForward) {
+            type.fail("must be " + std::string(kBackward) + " or " + std::string(kForward) + ", got '" + kind + "'");
         }
-        if (kind != kBackward) type.fail("must be " + std::string(kBackward) + " or " + std::string(kForward) + ", got '" + kind + "'");
-        return polynomial_of(*polynomial);
+        return {polynomial_of(*polynomial), kind == kForward};
     }
-    return polynomial_of(properties.at({"bw-poly"}));
+    return {polynomial_of(properties.at({"bw-poly"})), false};
 }
 
 double property_or(const Field& properties, std::string_view key, double fallback) {
@@ -91,17 +95,21 @@ double property_or(const Field& properties, std::string_view key, double fallbac
 Camera read_intrinsics(const Field& properties) {
     const Field model = properties.at({"Model"});
     if (model.text() != "ftheta") model.fail("libcam reads DriveWorks' ftheta cameras, got '" + model.text() + "'");
-    const std::vector<double> b = backward_polynomial(properties);
-    const double f = 1.0 / b[1];
+    const Polynomial polynomial = calibrated_polynomial(properties);
+    const std::vector<double>& b = polynomial.coefficients;
+    // Pixels per unit of m: the focal length at the centre, so that k1 = 1.
+    const double f = polynomial.forward ? b[1] : 1.0 / b[1];
     Camera camera;
     camera.size = {static_cast<long>(property_integer(properties.at({"width"}), kMaxImageSide)),
                    static_cast<long>(property_integer(properties.at({"height"}), kMaxImageSide))};
     camera.intrinsics = {f, f, property_number(properties.at({"cx"})), property_number(properties.at({"cy"})), 0.0};
-    camera.lens.type = LensType::FTheta;
+    camera.lens.type = polynomial.forward ? LensType::FThetaForward : LensType::FTheta;
     camera.lens.coefficients = {property_or(properties, "linear-c", 1.0), property_or(properties, "linear-d", 0.0),
                                 property_or(properties, "linear-e", 0.0)};
+    // Backward: theta = b_i p^i = b_i f^i r^i. Forward: p = a_i theta^i, r = p / f.
     for (std::size_t i = 1; i <= 5; ++i) {
-        camera.lens.coefficients.push_back(i < b.size() ? b[i] * std::pow(f, static_cast<double>(i)) : 0.0);
+        const double scale = polynomial.forward ? 1.0 / f : std::pow(f, static_cast<double>(i));
+        camera.lens.coefficients.push_back(i < b.size() ? b[i] * scale : 0.0);
     }
     camera.lens.coefficients.push_back(std::numbers::pi);
     return camera;
@@ -174,8 +182,9 @@ std::vector<NamedCamera> parse_driveworks_rig(std::string_view text, const std::
 
 std::string format_driveworks_rig(const Camera& camera, const WriteOptions&) {
     camera.validate();
-    if (camera.lens.type != LensType::FTheta) {
-        throw NotRepresentable("a DriveWorks rig holds an FTHETA lens (ftheta, pixeldistance-to-angle) only; this camera's is " +
+    const bool forward = camera.lens.type == LensType::FThetaForward;
+    if (camera.lens.type != LensType::FTheta && !forward) {
+        throw NotRepresentable("a DriveWorks rig holds an FTHETA or FTHETA_FORWARD lens (ftheta) only; this camera's is " +
                                std::string(lens_info(camera.lens.type).name));
     }
     const Intrinsics& k = camera.intrinsics;
@@ -186,7 +195,10 @@ std::string format_driveworks_rig(const Camera& camera, const WriteOptions&) {
     }
     const double f = k.fy, ratio = k.fx / k.fy;
     std::string polynomial = "0";
-    for (std::size_t i = 1; i <= 5; ++i) polynomial += " " + format_number(lens[2 + i] / std::pow(f, static_cast<double>(i)));
+    for (std::size_t i = 1; i <= 5; ++i) {
+        const double scale = forward ? f : 1.0 / std::pow(f, static_cast<double>(i));
+        polynomial += " " + format_number(lens[2 + i] * scale);
+    }
     nlohmann::ordered_json properties;
     properties["Model"] = "ftheta";
     properties["cx"] = format_number(k.cx);
@@ -194,7 +206,7 @@ std::string format_driveworks_rig(const Camera& camera, const WriteOptions&) {
     properties["width"] = std::to_string(camera.size.width);
     properties["height"] = std::to_string(camera.size.height);
     properties["polynomial"] = polynomial;
-    properties["polynomial-type"] = kBackward;
+    properties["polynomial-type"] = forward ? kForward : kBackward;
     properties["linear-c"] = format_number(lens[0] * ratio);
     properties["linear-d"] = format_number(lens[1] * ratio);
     properties["linear-e"] = format_number(lens[2]);

@@ -17,8 +17,9 @@
 // b0 + b1 p + ... + b5 p^5 giving the angle (radians) at p pixels from (cx, cy) on the
 // sensor, after the affine [c d; e 1] that takes the sensor offset to the pixel offset;
 // b0 must be 0; max_angle is pi (a rig holds none: the polynomial's own reach bounds the
-// domain). Only the backward polynomial ("pixeldistance-to-angle") is read; a forward
-// one ("angle-to-pixeldistance") is refused, saying so. Pixel centres: the first pixel's
+// domain). A forward polynomial ("angle-to-pixeldistance": a0 + a1 t + ... + a5 t^5 pixels
+// at the angle t) is FTHETA_FORWARD (lens/ftheta_forward.hpp) with f = a1 and k_i = a_i / f.
+// Pixel centres: the first pixel's
 // centre is (0, 0), as OpenCV's (NCore's FThetaCameraModelParameters say so of the
 // principal point DriveWorks calibrates).
 //
@@ -37,9 +38,10 @@
 // properties); other sensors (lidar, radar, IMU, CAN) are skipped. A camera whose Model
 // is not ftheta is refused, naming it. Names: each sensor's "name".
 //
-// Written as one camera sensor ("camera:libcam", protocol camera.virtual) from an FTHETA
-// camera without skew and with max_angle = pi: f = fy, c and d times fx / fy (the affine
-// absorbs fx != fy, as NCore's transform does), the polynomial b_i = k_i / f^i.
+// Written as one camera sensor ("camera:libcam", protocol camera.virtual) from an FTHETA or
+// FTHETA_FORWARD camera without skew and with max_angle = pi: f = fy, c and d times fx / fy
+// (the affine absorbs fx != fy, as NCore's transform does), the polynomial b_i = k_i / f^i
+// (backward) or a_i = k_i f (forward).
 
 #include <string>
 #include <string_view>

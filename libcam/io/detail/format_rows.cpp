@@ -124,7 +124,7 @@ constexpr L kOcamCalib[] = {L::OcamCalib};
 constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
 constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5};  // RealityCapture's XMP
 constexpr L kWoodscape[] = {L::ThetaPolynomial};  // WoodScape's calibration JSON
-constexpr L kDriveworksRig[] = {L::FTheta};      // DriveWorks' ftheta cameras
+constexpr L kDriveworksRig[] = {L::FTheta, L::FThetaForward};  // DriveWorks' ftheta cameras
 
 using C = Content;
 
@@ -339,8 +339,8 @@ constexpr FormatRow kRows[] = {
      .description = "NVIDIA DriveWorks' rig.json: its F-theta camera sensors, each placed in the rig's FLU frame",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_driveworks_rig,
      .read = with_source<parse_driveworks_rig>, .write = one_file<format_driveworks_rig>, .lenses = kDriveworksRig,
-     .lens_names = "ftheta (pixeldistance-to-angle polynomial, linear-c d e)",
-     .refuses = "skew, max_angle other than pi, a forward (angle-to-pixeldistance) polynomial"},
+     .lens_names = "ftheta (pixeldistance-to-angle or angle-to-pixeldistance polynomial, linear-c d e)",
+     .refuses = "skew, max_angle other than pi"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
