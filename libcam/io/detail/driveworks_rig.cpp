@@ -1,6 +1,7 @@
 #include "libcam/io/detail/driveworks_rig.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -206,7 +207,7 @@ std::string format_driveworks_rig(const Camera& camera, const WriteOptions&) {
     properties["width"] = std::to_string(camera.size.width);
     properties["height"] = std::to_string(camera.size.height);
     properties["polynomial"] = polynomial;
-    properties["polynomial-type"] = forward ? kForward : kBackward;
+    properties["polynomial-type"] = std::string(forward ? kForward : kBackward);
     properties["linear-c"] = format_number(lens[0] * ratio);
     properties["linear-d"] = format_number(lens[1] * ratio);
     properties["linear-e"] = format_number(lens[2]);
