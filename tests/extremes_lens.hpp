@@ -356,8 +356,9 @@ Expect expected(const Projected<Quad>& reference, const Lens& lens, const Vec3Q&
     if (at_domain_edge<Scalar>(lens, point)) return Expect::Either;
     // FISHEYE_LENS_POLYNOMIAL measures its valid radius on the image: its edge is the
     // angle valid_angle (pi for Blender's default, the backward axis's neighbourhood),
-    // which within a few ulps of Scalar may land on either side.
-    if (lens.type == LensType::LensPolynomial) {
+    // which within a few ulps of Scalar may land on either side. FTHETA's likewise (the
+    // angle where its polynomial reaches max_angle or folds).
+    if (lens.type == LensType::LensPolynomial || lens.type == LensType::FTheta) {
         const Quad angle = atan2(hypot(point.x(), point.y()), point.z());
         const Quad edge(valid_angle_of(lens));
         if (abs(angle - edge) <= 8 * ulp_of<Scalar>(edge)) return Expect::Either;
