@@ -306,8 +306,21 @@ inline Long ftheta_slope(const Camera& camera, Long r) {
     return Long(k[3]) + r * (2 * Long(k[4]) + r * (3 * Long(k[5]) + r * (4 * Long(k[6]) + r * 5 * Long(k[7]))));
 }
 
+// A value worked out once per lens (a domain's end, by a scan of thousands of steps), kept
+// for the next call with the same coefficients: the tests ask for it once per point.
+template <class Compute>
+Long once_per_lens(const Camera& camera, Compute&& compute) {
+    thread_local std::vector<double> last_coefficients;
+    thread_local Long last_value = 0;
+    if (camera.lens.coefficients != last_coefficients) {
+        last_value = compute();
+        last_coefficients = camera.lens.coefficients;
+    }
+    return last_value;
+}
+
 // Where the domain ends: the first r where theta' <= 0 or theta >= min(max_angle, pi).
-inline Long ftheta_domain_end(const Camera& camera) {
+inline Long ftheta_domain_end_scanned(const Camera& camera) {
     const Long limit = std::min(Long(camera.lens.coefficients[8]), std::numbers::pi_v<Long>);
     const auto outside = [&](Long r) { return ftheta_slope(camera, r) <= 0 || ftheta_theta(camera, r) >= limit; };
     constexpr int kSteps = 4000;
@@ -322,6 +335,10 @@ inline Long ftheta_domain_end(const Camera& camera) {
         return low;
     }
     return step * kSteps;
+}
+
+inline Long ftheta_domain_end(const Camera& camera) {
+    return once_per_lens(camera, [&] { return ftheta_domain_end_scanned(camera); });
 }
 
 inline std::optional<Vec2> ftheta_paper_pixel(const Camera& camera, const Vec3& point) {
@@ -364,7 +381,7 @@ inline Long ftheta_forward_rho(const Camera& camera, Long theta) {
     return theta * (Long(k[3]) + theta * (Long(k[4]) + theta * (Long(k[5]) + theta * (Long(k[6]) + theta * Long(k[7])))));
 }
 
-inline Long ftheta_forward_domain_end(const Camera& camera) {
+inline Long ftheta_forward_domain_end_scanned(const Camera& camera) {
     const std::vector<double>& k = camera.lens.coefficients;
     const Long limit = std::min(Long(k[8]), std::numbers::pi_v<Long>);
     const auto slope = [&](Long t) {
@@ -381,6 +398,10 @@ inline Long ftheta_forward_domain_end(const Camera& camera) {
         return low;
     }
     return limit;
+}
+
+inline Long ftheta_forward_domain_end(const Camera& camera) {
+    return once_per_lens(camera, [&] { return ftheta_forward_domain_end_scanned(camera); });
 }
 
 inline std::optional<Vec2> ftheta_forward_paper_pixel(const Camera& camera, const Vec3& point) {
