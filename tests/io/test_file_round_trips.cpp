@@ -171,7 +171,8 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
     }
     CHECK(trips == 13 * 13 + 6 * 6 + 10 * 10 + 9 * 9 + 6 * 6 + 9 * 9 + 4 * 4 + 3 * 3 + 1 * 1 + 2 * 2 + 3 * 3 + 4 * 4 + 5 * 5 +
                    1 * 1 /* PTLENS, held by libcam's JSON alone */ + 1 * 1 /* OCAMCALIB, likewise */ +
-                   2 * 2 /* DIVISION: JSON, COLMAP */ + 2 * 2 /* THETA_POLYNOMIAL: JSON, woodscape */);
+                   2 * 2 /* DIVISION: JSON, COLMAP */ + 2 * 2 /* THETA_POLYNOMIAL: JSON, woodscape */ +
+                   1 * 1 /* FTHETA: JSON (the rig's round trips are its own) */ + 1 * 1 /* FTHETA_FORWARD, likewise */);
 }
 
 TEST_CASE("Each format's row declares the lens models the round trips show it holds", "[files]") {
