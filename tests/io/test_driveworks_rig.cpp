@@ -153,6 +153,7 @@ TEST_CASE("DriveWorks rig: written back, the same camera, and what a rig cannot 
     const Camera front = parse_camera_set(rig(), CameraFormat::DriveworksRig, "rig.json").cameras[0].file.camera;
     const std::string text = format_camera(front, CameraFormat::DriveworksRig);
     CHECK_THAT(text, Catch::Contains("\"Model\": \"ftheta\"") && Catch::Contains("\"pixeldistance-to-angle\"") &&
+                         Catch::Contains("\"protocol\": \"camera.virtual\"") &&
                          Catch::Contains("\"cx\": \"959.5\"") && Catch::Contains("\"linear-c\": \"1.0004\""));
     const Camera back = parse_camera(text, CameraFormat::DriveworksRig, "back.json").camera;
     CHECK(back.intrinsics.fx == Approx(front.intrinsics.fx).epsilon(1e-15));

@@ -181,7 +181,7 @@ std::vector<NamedCamera> parse_driveworks_rig(std::string_view text, const std::
     return cameras;
 }
 
-std::string format_driveworks_rig(const Camera& camera, const WriteOptions&) {
+std::string format_driveworks_rig(const Camera& camera, const WriteOptions& options) {
     camera.validate();
     const bool forward = camera.lens.type == LensType::FThetaForward;
     if (camera.lens.type != LensType::FTheta && !forward) {
@@ -219,7 +219,7 @@ std::string format_driveworks_rig(const Camera& camera, const WriteOptions&) {
     const double roll = std::atan2(sensor_to_rig(2, 1), sensor_to_rig(2, 2));
     const double yaw = std::atan2(sensor_to_rig(1, 0), sensor_to_rig(0, 0));
     nlohmann::ordered_json sensor;
-    sensor["name"] = "camera:libcam";
+    sensor["name"] = options.camera_name;
     sensor["protocol"] = "camera.virtual";
     sensor["properties"] = properties;
     sensor["nominalSensor2Rig_FLU"] = {{"roll-pitch-yaw", {roll * degrees + 0.0, pitch * degrees + 0.0, yaw * degrees + 0.0}},

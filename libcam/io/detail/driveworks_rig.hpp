@@ -38,10 +38,10 @@
 // properties); other sensors (lidar, radar, IMU, CAN) are skipped. A camera whose Model
 // is not ftheta is refused, naming it. Names: each sensor's "name".
 //
-// Written as one camera sensor ("camera:libcam", protocol camera.virtual) from an FTHETA or
-// FTHETA_FORWARD camera without skew and with max_angle = pi: f = fy, c and d times fx / fy
-// (the affine absorbs fx != fy, as NCore's transform does), the polynomial b_i = k_i / f^i
-// (backward) or a_i = k_i f (forward).
+// Written as one camera sensor (WriteOptions::camera_name, protocol camera.virtual) from an
+// FTHETA or FTHETA_FORWARD camera without skew and with max_angle = pi: f = fy, c and d
+// times fx / fy (the affine absorbs fx != fy, as NCore's transform does), the polynomial
+// b_i = k_i / f^i (backward) or a_i = k_i f (forward).
 
 #include <string>
 #include <string_view>
