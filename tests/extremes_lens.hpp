@@ -25,7 +25,8 @@ namespace libcam::test {
 // their undistorted radius, and they share its handling of both axes.
 inline bool on_equidistant_point(LensType type) {
     return type == LensType::Fisheye || type == LensType::ThinPrismFisheye || type == LensType::RadTanThinPrismFisheye ||
-           type == LensType::ThetaPolynomial;  // WoodScape's, built on the same point
+           type == LensType::ThetaPolynomial ||  // WoodScape's, built on the same point
+           type == LensType::FThetaForward;      // NVIDIA's F-theta with its forward polynomial
 }
 
 
@@ -355,8 +356,9 @@ Expect expected(const Projected<Quad>& reference, const Lens& lens, const Vec3Q&
     if (at_domain_edge<Scalar>(lens, point)) return Expect::Either;
     // FISHEYE_LENS_POLYNOMIAL measures its valid radius on the image: its edge is the
     // angle valid_angle (pi for Blender's default, the backward axis's neighbourhood),
-    // which within a few ulps of Scalar may land on either side.
-    if (lens.type == LensType::LensPolynomial) {
+    // which within a few ulps of Scalar may land on either side. FTHETA's likewise (the
+    // angle where its polynomial reaches max_angle or folds).
+    if (lens.type == LensType::LensPolynomial || lens.type == LensType::FTheta) {
         const Quad angle = atan2(hypot(point.x(), point.y()), point.z());
         const Quad edge(valid_angle_of(lens));
         if (abs(angle - edge) <= 8 * ulp_of<Scalar>(edge)) return Expect::Either;

@@ -62,6 +62,19 @@ inline Camera ocamcalib_camera(std::array<double, 5> pol, double row, double col
     return real_camera(LensType::OcamCalib, coefficients, {width, height}, {f, f, column, row});
 }
 
+// An FTHETA camera from the numbers of a DriveWorks rig or NCore: the backward polynomial
+// b0..b5 in pixels (b0 = 0), the principal point, the affine c d e, max_angle and the image
+// size. The model's K is f = 1 / b1 at the principal point, its k_i = b_i f^i
+// (libcam/lens/ftheta.hpp).
+inline Camera ftheta_camera(std::array<double, 6> b, double cx, double cy, std::array<double, 3> cde, double max_angle,
+                            int width, int height) {
+    const double f = 1 / b[1];
+    std::vector<double> coefficients = {cde[0], cde[1], cde[2]};
+    for (int i = 1; i <= 5; ++i) coefficients.push_back(b[static_cast<std::size_t>(i)] * std::pow(f, i));
+    coefficients.push_back(max_angle);
+    return real_camera(LensType::FTheta, coefficients, {width, height}, {f, f, cx, cy});
+}
+
 // The real wide lens: 6016x4016, OPENCV8, fx 2074, k1 0.479, k4 0.767 (the library's
 // example camera "wide", one copy for the command line, the benchmarks and the tests).
 inline Camera wide_reference_camera() { return example_camera("wide"); }
@@ -256,6 +269,25 @@ inline std::vector<LensCase> lens_cases() {
         {"THETA_POLYNOMIAL woodscape", real_camera(LensType::ThetaPolynomial, {339.749, -31.988, 48.275, -7.201},
                                                    {1280, 966}, {1.0, 1.0, 643.442, 479.407})},
         {"THETA_POLYNOMIAL folding", lens_camera(LensType::ThetaPolynomial, {1.0, 0.1, -0.3, 0.02}, {1600, 1200}, 300, 300)},
+        // ---- FTHETA: the front camera of the DriveWorks rig NVIDIA's Cosmos world-scenario
+        // documentation prints (3848x2168, cx 1919.420, cy 1078.106, polynomial "0 0.000538
+        // 2.356e-09 1.907e-12 1.204e-16", pixeldistance-to-angle; its corners 70 degrees off
+        // the axis), bounded at 80 degrees; and a made-up lens that sees 109 degrees off the
+        // axis (max_angle 1.9) with a skewed affine, theta = r - 0.02 r^3 (folding at
+        // r = 1 / sqrt(0.06) = 4.08, past max_angle at r = 2.075).
+        {"FTHETA driveworks", ftheta_camera({0.0, 0.000538, 2.356e-09, 1.907e-12, 1.204e-16, 0.0}, 1919.420, 1078.106,
+                                            {1.0, 0.0, 0.0}, 80 * std::numbers::pi / 180, 3848, 2168)},
+        {"FTHETA wide", lens_camera(LensType::FTheta, {1.002, 0.001, -0.002, 1.0, 0.0, -0.02, 0.0, 0.0, 1.9}, {1600, 1200},
+                                    300, 300)},
+        // ---- FTHETA_FORWARD, made up: a forward polynomial in pixels 1200 t - 15 t^2 - 40 t^3
+        // + 6 t^4 (f = 1200, k = a / f) on a 3840x2160 sensor with a skewed affine, bounded at
+        // 1.4 rad (its corners lie past it, 2.1 rad out); and a lens that sees 126 degrees
+        // off the axis (max_angle 2.2; rho = t - 0.03 t^3 grows until t = 3.33).
+        {"FTHETA_FORWARD ncore", real_camera(LensType::FThetaForward,
+                                             {1.0002, 0.0001, -0.0003, 1.0, -15.0 / 1200, -40.0 / 1200, 6.0 / 1200, 0.0, 1.4},
+                                             {3840, 2160}, {1200, 1200, 1919.5, 1079.5})},
+        {"FTHETA_FORWARD wide", lens_camera(LensType::FThetaForward, {0.999, -0.002, 0.001, 1.0, 0.0, -0.03, 0.0, 0.0, 2.2},
+                                            {1600, 1200}, 300, 300)},
     };
     return cases;
 }
@@ -335,6 +367,11 @@ inline double axis_margin_of(const Lens& lens) {
     // (the Jacobian is k1 / z) but not twice, so central differences across the axis are
     // off by about k2 h. Its samples stay 1e-3 rad off the axis, as the blind models' do.
     if (lens.type == LensType::ThetaPolynomial && lens.coefficients.size() > 1 && lens.coefficients[1] != 0.0) {
+        return 1e-3;
+    }
+    // FTHETA's r^2 term likewise (theta = k1 r + k2 r^2 + ...).
+    if ((lens.type == LensType::FTheta || lens.type == LensType::FThetaForward) && lens.coefficients.size() > 4 &&
+        lens.coefficients[4] != 0.0) {
         return 1e-3;
     }
     return visit_lens_model<double>(lens.type, [&]<class Model>() {

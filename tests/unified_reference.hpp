@@ -11,7 +11,11 @@
 //   basalt's form that goes on behind the camera; its inverse through the undistorted angle.
 // - CYLINDRICAL: as OpenCV's stitching module writes it (cv::detail::CylindricalProjector:
 //   u = atan2(x, z), v = y / sqrt(x^2 + z^2); back: (sin u, v, cos u)).
+// - FTHETA: NVIDIA's F-theta as NCore's FThetaCameraModelParameters, gsplat's and 3DGUT's
+//   FThetaCameraModel define it (the backward polynomial the reference; its projection
+//   solved by bisection here); FTHETA_FORWARD, its forward polynomial the reference.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -287,6 +291,151 @@ inline std::optional<Vec3> theta_polynomial_paper_ray(const Camera& camera, cons
                 static_cast<double>(std::cos(theta)));
 }
 
+// ---- FTHETA: NVIDIA's F-theta as NCore, gsplat and 3DGUT publish it (the sensor point
+// n = A^-1 m, A = [c d; e 1]; the angle theta(r) = k1 r + ... + k5 r^5 at r = |n|; the ray
+// (sin(theta) n / r, cos(theta))), with its domain: the radii below the first where theta
+// stops growing or reaches max_angle (or pi), found by a scan and bisection; the pixel of
+// a point by bisection over that range, in long double.
+inline Long ftheta_theta(const Camera& camera, Long r) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return r * (Long(k[3]) + r * (Long(k[4]) + r * (Long(k[5]) + r * (Long(k[6]) + r * Long(k[7])))));
+}
+
+inline Long ftheta_slope(const Camera& camera, Long r) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return Long(k[3]) + r * (2 * Long(k[4]) + r * (3 * Long(k[5]) + r * (4 * Long(k[6]) + r * 5 * Long(k[7]))));
+}
+
+// A value worked out once per lens (a domain's end, by a scan of thousands of steps), kept
+// for the next call with the same coefficients: the tests ask for it once per point.
+template <class Compute>
+Long once_per_lens(const Camera& camera, Compute&& compute) {
+    thread_local std::vector<double> last_coefficients;
+    thread_local Long last_value = 0;
+    if (camera.lens.coefficients != last_coefficients) {
+        last_value = compute();
+        last_coefficients = camera.lens.coefficients;
+    }
+    return last_value;
+}
+
+// Where the domain ends: the first r where theta' <= 0 or theta >= min(max_angle, pi).
+inline Long ftheta_domain_end_scanned(const Camera& camera) {
+    const Long limit = std::min(Long(camera.lens.coefficients[8]), std::numbers::pi_v<Long>);
+    const auto outside = [&](Long r) { return ftheta_slope(camera, r) <= 0 || ftheta_theta(camera, r) >= limit; };
+    constexpr int kSteps = 4000;
+    const Long step = limit / Long(camera.lens.coefficients[3]) / 1000;
+    for (int i = 1; i <= kSteps; ++i) {
+        Long low = step * (i - 1), high = step * i;
+        if (!outside(high)) continue;
+        for (int j = 0; j < 100; ++j) {
+            const Long middle = (low + high) / 2;
+            (outside(middle) ? high : low) = middle;
+        }
+        return low;
+    }
+    return step * kSteps;
+}
+
+inline Long ftheta_domain_end(const Camera& camera) {
+    return once_per_lens(camera, [&] { return ftheta_domain_end_scanned(camera); });
+}
+
+inline std::optional<Vec2> ftheta_paper_pixel(const Camera& camera, const Vec3& point) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Long x = point.x(), y = point.y(), z = point.z(), rho = std::hypot(x, y);
+    if (rho == 0) {
+        if (!(z > 0)) return std::nullopt;
+        return pixel_of(camera, 0, 0, 1);
+    }
+    const Long target = std::atan2(rho, z);
+    Long low = 0, high = ftheta_domain_end(camera);
+    if (!(target < ftheta_theta(camera, high))) return std::nullopt;
+    for (int i = 0; i < 200; ++i) {
+        const Long middle = (low + high) / 2;
+        (ftheta_theta(camera, middle) < target ? low : high) = middle;
+    }
+    const Long r = (low + high) / 2, nx = r * x / rho, ny = r * y / rho;
+    return pixel_of(camera, Long(k[0]) * nx + Long(k[1]) * ny, Long(k[2]) * nx + ny, 1);
+}
+
+inline std::optional<Vec3> ftheta_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Intrinsics& K = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - K.cx) / K.fx, my = (Long(pixel.y()) - K.cy) / K.fy;
+    const Long determinant = Long(k[0]) - Long(k[1]) * Long(k[2]);
+    const Long nx = (mx - Long(k[1]) * my) / determinant, ny = (Long(k[0]) * my - Long(k[2]) * mx) / determinant;
+    const Long r = std::hypot(nx, ny);
+    if (r == 0) return Vec3(0, 0, 1);
+    if (!(r < ftheta_domain_end(camera))) return std::nullopt;
+    const Long theta = ftheta_theta(camera, r);
+    return Vec3(static_cast<double>(std::sin(theta) * nx / r), static_cast<double>(std::sin(theta) * ny / r),
+                static_cast<double>(std::cos(theta)));
+}
+
+// ---- FTHETA_FORWARD: the same with the forward polynomial the reference (rho(theta) =
+// k1 theta + ... + k5 theta^5, the sensor point q = rho (X, Y) / |(X, Y)|, m = A q); its
+// inverse by bisection over the angles where rho still grows, below max_angle and pi.
+inline Long ftheta_forward_rho(const Camera& camera, Long theta) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    return theta * (Long(k[3]) + theta * (Long(k[4]) + theta * (Long(k[5]) + theta * (Long(k[6]) + theta * Long(k[7])))));
+}
+
+inline Long ftheta_forward_domain_end_scanned(const Camera& camera) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Long limit = std::min(Long(k[8]), std::numbers::pi_v<Long>);
+    const auto slope = [&](Long t) {
+        return Long(k[3]) + t * (2 * Long(k[4]) + t * (3 * Long(k[5]) + t * (4 * Long(k[6]) + t * 5 * Long(k[7]))));
+    };
+    constexpr int kSteps = 4000;
+    for (int i = 1; i <= kSteps; ++i) {
+        Long low = limit * (i - 1) / kSteps, high = limit * i / kSteps;
+        if (slope(high) > 0) continue;
+        for (int j = 0; j < 100; ++j) {
+            const Long middle = (low + high) / 2;
+            (slope(middle) > 0 ? low : high) = middle;
+        }
+        return low;
+    }
+    return limit;
+}
+
+inline Long ftheta_forward_domain_end(const Camera& camera) {
+    return once_per_lens(camera, [&] { return ftheta_forward_domain_end_scanned(camera); });
+}
+
+inline std::optional<Vec2> ftheta_forward_paper_pixel(const Camera& camera, const Vec3& point) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Long x = point.x(), y = point.y(), z = point.z(), chi = std::hypot(x, y);
+    if (chi == 0) {
+        if (!(z > 0)) return std::nullopt;
+        return pixel_of(camera, 0, 0, 1);
+    }
+    const Long theta = std::atan2(chi, z);
+    if (!(theta < ftheta_forward_domain_end(camera))) return std::nullopt;
+    const Long rho = ftheta_forward_rho(camera, theta), qx = rho * x / chi, qy = rho * y / chi;
+    return pixel_of(camera, Long(k[0]) * qx + Long(k[1]) * qy, Long(k[2]) * qx + qy, 1);
+}
+
+inline std::optional<Vec3> ftheta_forward_paper_ray(const Camera& camera, const Vec2& pixel) {
+    const std::vector<double>& k = camera.lens.coefficients;
+    const Intrinsics& K = camera.intrinsics;
+    const Long mx = (Long(pixel.x()) - K.cx) / K.fx, my = (Long(pixel.y()) - K.cy) / K.fy;
+    const Long determinant = Long(k[0]) - Long(k[1]) * Long(k[2]);
+    const Long qx = (mx - Long(k[1]) * my) / determinant, qy = (Long(k[0]) * my - Long(k[2]) * mx) / determinant;
+    const Long r = std::hypot(qx, qy);
+    if (r == 0) return Vec3(0, 0, 1);
+    Long low = 0, high = ftheta_forward_domain_end(camera);
+    if (!(ftheta_forward_rho(camera, high) > r)) return std::nullopt;
+    for (int i = 0; i < 200; ++i) {
+        const Long middle = (low + high) / 2;
+        (ftheta_forward_rho(camera, middle) < r ? low : high) = middle;
+    }
+    const Long theta = (low + high) / 2;
+    return Vec3(static_cast<double>(std::sin(theta) * qx / r), static_cast<double>(std::sin(theta) * qy / r),
+                static_cast<double>(std::cos(theta)));
+}
+
 // The papers' formulas for any model of the family; nullopt for a model outside it
 // (the outer optional), nothing for a point or pixel outside the domain (the inner).
 // CYLINDRICAL: the longitude and the height on the unit cylinder about the Y axis;
@@ -312,7 +461,8 @@ inline std::optional<Vec3> cylindrical_paper_ray(const Camera& camera, const Vec
 inline bool has_paper_formulas(LensType type) {
     return type == LensType::DoubleSphere || type == LensType::Ucm || type == LensType::Eucm || type == LensType::Fov ||
            type == LensType::Equisolid || type == LensType::LensPolynomial || type == LensType::Cylindrical ||
-           type == LensType::ThetaPolynomial;
+           type == LensType::ThetaPolynomial || type == LensType::FTheta ||
+           type == LensType::FThetaForward;
 }
 
 inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) {
@@ -325,6 +475,8 @@ inline std::optional<Vec2> paper_pixel(const Camera& camera, const Vec3& point) 
         case LensType::LensPolynomial: return lens_polynomial_paper_pixel(camera, point);
         case LensType::Cylindrical: return cylindrical_paper_pixel(camera, point);
         case LensType::ThetaPolynomial: return theta_polynomial_paper_pixel(camera, point);
+        case LensType::FTheta: return ftheta_paper_pixel(camera, point);
+        case LensType::FThetaForward: return ftheta_forward_paper_pixel(camera, point);
         default: throw std::logic_error("paper_pixel: not a model with a paper's formulas here");
     }
 }
@@ -339,6 +491,8 @@ inline std::optional<Vec3> paper_ray(const Camera& camera, const Vec2& pixel) {
         case LensType::LensPolynomial: return lens_polynomial_paper_ray(camera, pixel);
         case LensType::Cylindrical: return cylindrical_paper_ray(camera, pixel);
         case LensType::ThetaPolynomial: return theta_polynomial_paper_ray(camera, pixel);
+        case LensType::FTheta: return ftheta_paper_ray(camera, pixel);
+        case LensType::FThetaForward: return ftheta_forward_paper_ray(camera, pixel);
         default: throw std::logic_error("paper_ray: not a model with a paper's formulas here");
     }
 }

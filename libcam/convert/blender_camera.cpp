@@ -245,6 +245,8 @@ BlenderCamera blender_from_camera(const Camera& camera) {
         case LensType::OcamCalib: break;
         case LensType::Division: break;
         case LensType::ThetaPolynomial: break;
+        case LensType::FTheta: break;
+        case LensType::FThetaForward: break;
     }
     throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
                           " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "

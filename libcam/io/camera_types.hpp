@@ -25,9 +25,10 @@ enum class CameraFormat {
     RealityCapture,     // RealityCapture's XMP sidecars
     RealityCaptureCsv,  // RealityCapture's CSV of internal/external camera parameters
     Woodscape,       // Valeo's WoodScape calibration JSON
+    DriveworksRig,   // NVIDIA DriveWorks' rig.json (F-theta cameras)
 };
 // How many formats there are (the table of formats checks that each has its row).
-inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::Woodscape) + 1;
+inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::DriveworksRig) + 1;
 
 // What a file holds: the calibrated camera, and the FOV camera it was made from when
 // the file says so (libcam JSON records the fov axis).

@@ -47,7 +47,10 @@
     /* division model (Fitzgibbon; COLMAP's DIVISION) */ \
     _(Division, DivisionLens) \
     /* WoodScape's fisheye */ \
-    _(ThetaPolynomial, ThetaPolynomialLens)
+    _(ThetaPolynomial, ThetaPolynomialLens) \
+    /* NVIDIA's F-theta */ \
+    _(FTheta, FThetaLens) \
+    _(FThetaForward, FThetaForwardLens)
 
 namespace libcam {
 
@@ -102,6 +105,8 @@ enum class LensFamily {
     OcamCalib,
     Division,  // Fitzgibbon's one-parameter division model
     ThetaPolynomial,  // WoodScape's: not FISHEYE's, whose powers of theta are odd
+    FTheta,  // NVIDIA's: not FISHEYE_LENS_POLYNOMIAL's, whose angle has the other sign and no affine
+    FThetaForward,  // NVIDIA's with the forward polynomial the reference: not THETA_POLYNOMIAL's (no affine, degree 4)
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -308,6 +313,25 @@ inline constexpr LensInfo kLensTable[] = {
      .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
      .also_named = "Valeo's WoodScape radial_poly (rho = k1 theta + k2 theta^2 + k3 theta^3 + k4 theta^4)",
      .family = LensFamily::ThetaPolynomial, .family_rank = 0, .fit = FitCandidate::No},
+    // NVIDIA's F-theta (ftheta.hpp): the angle a polynomial of the sensor radius, behind an
+    // affine [c d; e 1], bounded by max_angle; DriveWorks' rig files, NCore, 3DGUT and
+    // gsplat hold it (their backward polynomial the reference).
+    {.type = LensType::FTheta, .name = "FTHETA",
+     .coefficients = {"c", "d", "e", "k1", "k2", "k3", "k4", "k5", "max_angle"}, .num_coefficients = 9,
+     .sees_behind_camera = true, .inverse = Inverse::ClosedForm, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "NVIDIA's F-theta (DriveWorks' ftheta, NCore's, 3DGUT's and gsplat's FThetaCameraModel, "
+                   "pixeldistance-to-angle)",
+     .family = LensFamily::FTheta, .family_rank = 0, .fit = FitCandidate::No},
+    // The same with its forward polynomial the reference (ftheta_forward.hpp): the sensor
+    // radius a polynomial of the angle, the ray solved.
+    {.type = LensType::FThetaForward, .name = "FTHETA_FORWARD",
+     .coefficients = {"c", "d", "e", "k1", "k2", "k3", "k4", "k5", "max_angle"}, .num_coefficients = 9,
+     .sees_behind_camera = true, .inverse = Inverse::Solved, .opencv = OpenCvFunction::None, .mrcal = "",
+     .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "NVIDIA's F-theta with its forward polynomial the reference (angle-to-pixeldistance, "
+                   "NCore's ANGLE_TO_PIXELDIST)",
+     .family = LensFamily::FThetaForward, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {

@@ -69,6 +69,8 @@
 #include "libcam/lens/stereographic.hpp"
 #include "libcam/lens/thin_prism_fisheye.hpp"
 #include "libcam/lens/theta_polynomial.hpp"  // WoodScape's fisheye
+#include "libcam/lens/ftheta.hpp"  // NVIDIA's F-theta
+#include "libcam/lens/ftheta_forward.hpp"
 #include "libcam/lens/ucm.hpp"
 
 namespace libcam {

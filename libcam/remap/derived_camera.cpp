@@ -77,6 +77,10 @@ Lens lens_turned(const Lens& lens) {
             if (c[0] == 1.0 && c[1] == 0.0 && c[2] == 0.0) return out;
             break;  // the affine turned puts its 1 on the other diagonal: another scale, not yet turned
         case LensType::ThetaPolynomial: return out;
+        case LensType::FTheta:  // radial about the axis when its affine is the identity
+        case LensType::FThetaForward:
+            if (c[0] == 1.0 && c[1] == 0.0 && c[2] == 0.0) return out;
+            break;  // the affine turned is not of the form [c d; e 1] with the same polynomial
         case LensType::OpenCv4:
         case LensType::OpenCv5:
         case LensType::OpenCv8: tangential(2, 3); return out;

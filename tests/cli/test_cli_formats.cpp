@@ -60,7 +60,9 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
                                            // OCamCalib
                                            "ocamcalib",
                                            // WoodScape
-                                           "woodscape"};
+                                           "woodscape",
+                                           // DriveWorks
+                                           "driveworks-rig"};
     std::set<std::string> listed;
     for (const auto& format : list) {
         const std::string name = format["name"];
@@ -85,7 +87,7 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
 
     // Every format it writes is in convert's help and accepted by convert --to, here with
     // a pinhole camera at the origin, which each of them holds but WoodScape's (whose one
-    // lens model is THETA_POLYNOMIAL: it gets such a camera).
+    // lens model is THETA_POLYNOMIAL: it gets such a camera) and DriveWorks' rig (FTHETA).
     const auto help = run_program(LIBCAM_EXE, {"convert", "--help"});
     REQUIRE(help.exit_code == 0);
     TempDir dir;
@@ -96,14 +98,22 @@ TEST_CASE("libcam formats lists every format, and convert --to takes every one i
     libcam::test::write_whole_file(theta_polynomial, R"({"model": "THETA_POLYNOMIAL", "image_size": [64, 48],
         "K": [[1, 0, 31.5], [0, 1, 23.5], [0, 0, 1]], "dist": [50, -1, 2, -0.5],
         "R": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "t": [0, 0, 0]})");
+    const std::string ftheta = (dir / "ftheta.json").string();
+    libcam::test::write_whole_file(ftheta, R"({"model": "FTHETA", "image_size": [64, 48],
+        "K": [[50, 0, 31.5], [0, 50, 23.5], [0, 0, 1]], "dist": [1, 0, 0, 1, 0, -0.02, 0, 0, 3.141592653589793],
+        "R": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "t": [0, 0, 0]})");
+    const auto holds = [](const auto& models, const char* model) {
+        return std::find(models.begin(), models.end(), model) != models.end();
+    };
     for (const auto& format : list) {
         if (!format["writes"].get<bool>()) continue;
         const std::string name = format["name"];
         INFO(name);
         CHECK(help.out.find(name + " (") != std::string::npos);
         const auto& models = format["lens_models"];
-        const bool holds_pinhole = std::find(models.begin(), models.end(), "PINHOLE") != models.end();
-        const std::string camera = holds_pinhole ? pinhole : theta_polynomial;
+        const std::string camera = holds(models, "PINHOLE")            ? pinhole
+                                   : holds(models, "THETA_POLYNOMIAL") ? theta_polynomial
+                                                                       : ftheta;
         const std::string output = (dir / ("out-" + name)).string();
         const auto converted =
             run_program(LIBCAM_EXE, {"convert", "--from", camera, "--to", name, "-o", output});

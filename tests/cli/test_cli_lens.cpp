@@ -176,7 +176,8 @@ TEST_CASE("models --json: every model, with the names and coefficients their own
         "LONLAT", "LATLON", "DOUBLE_SPHERE", "UCM", "EUCM", "MEI", "FOV", "THIN_PRISM_FISHEYE",
         "RAD_TAN_THIN_PRISM_FISHEYE", "EQUISOLID", "CAHVOR", "CAHVORE", "FISHEYE_LENS_POLYNOMIAL",
         "SPLINED_STEREOGRAPHIC", "CYLINDRICAL",
-        "PTLENS", "OCAMCALIB", "DIVISION", "THETA_POLYNOMIAL"};
+        "PTLENS", "OCAMCALIB", "DIVISION", "THETA_POLYNOMIAL", "FTHETA",
+        "FTHETA_FORWARD"};
     REQUIRE(models.size() == expected.size());
     for (std::size_t i = 0; i < expected.size(); ++i) CHECK(models[i].at("name") == expected[i]);
 

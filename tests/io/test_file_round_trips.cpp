@@ -23,12 +23,14 @@ namespace {
 // camera_info, which holds no pose (its round trips are in test_io_formats.cpp), and the
 // Blender script, which is Python (its JSON twin is here), and OCamCalib's
 // calib_results.txt, which holds no pose and keeps the polynomial in the file's pixels (its
-// round trips are in test_ocamcalib.cpp).
+// round trips are in test_ocamcalib.cpp), and DriveWorks' rig.json, which likewise keeps
+// the F-theta polynomial in pixels and the pose as roll-pitch-yaw in degrees (its round
+// trips are in test_driveworks_rig.cpp).
 std::vector<CameraFormat> written_formats() {
     std::vector<CameraFormat> formats;
     for (const CameraFormatInfo& format : camera_formats()) {
         if (format.writes && format.format != CameraFormat::Ros && format.format != CameraFormat::Blender &&
-            format.format != CameraFormat::OcamCalib) {
+            format.format != CameraFormat::OcamCalib && format.format != CameraFormat::DriveworksRig) {
             formats.push_back(format.format);
         }
     }
@@ -97,6 +99,13 @@ std::vector<Case> cases() {
         // WoodScape's coefficients are in pixels: its files hold fx = 1 (the writer scales
         // them by fx, so another fx comes back as 1 with the coefficients scaled).
         {"THETA_POLYNOMIAL", woodscape_camera(), {F::Json, F::Woodscape}},
+        // NVIDIA's F-theta, either polynomial the reference (DriveWorks' rig.json, which
+        // holds both, is read back in test_driveworks_rig.cpp).
+        {"FTHETA", camera_with({LensType::FTheta, {1.0004, 0.0002, -0.0001, 1.0, 8e-3, 0.012, 1.4e-3, 0.0, 1.4}}),
+         {F::Json}},
+        {"FTHETA_FORWARD",
+         camera_with({LensType::FThetaForward, {1.0002, 0.0001, -0.0003, 1.0, -0.0125, -0.033, 0.005, 0.0, 1.4}}),
+         {F::Json}},
     };
 }
 
@@ -162,7 +171,8 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
     }
     CHECK(trips == 13 * 13 + 6 * 6 + 10 * 10 + 9 * 9 + 6 * 6 + 9 * 9 + 4 * 4 + 3 * 3 + 1 * 1 + 2 * 2 + 3 * 3 + 4 * 4 + 5 * 5 +
                    1 * 1 /* PTLENS, held by libcam's JSON alone */ + 1 * 1 /* OCAMCALIB, likewise */ +
-                   2 * 2 /* DIVISION: JSON, COLMAP */ + 2 * 2 /* THETA_POLYNOMIAL: JSON, woodscape */);
+                   2 * 2 /* DIVISION: JSON, COLMAP */ + 2 * 2 /* THETA_POLYNOMIAL: JSON, woodscape */ +
+                   1 * 1 /* FTHETA: JSON (the rig's round trips are its own) */ + 1 * 1 /* FTHETA_FORWARD, likewise */);
 }
 
 TEST_CASE("Each format's row declares the lens models the round trips show it holds", "[files]") {

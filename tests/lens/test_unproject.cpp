@@ -239,6 +239,45 @@ TEST_CASE("OCAMCALIB: its fold radius, its widest angle and a point behind the c
     CHECK(skewed.pixel.y() == Approx(affine.intrinsics.cy + 100 * 0.02 * r).epsilon(1e-14));
 }
 
+TEST_CASE("FTHETA and FTHETA_FORWARD: their fold, max_angle and points behind the camera, worked by hand") {
+    // FTHETA theta(r) = r - r^3 / 12 stops growing at r = 2 (theta' = 1 - r^2 / 4), where
+    // theta = 4/3 rad; bounded at max_angle = pi that fold is the edge.
+    const Camera folding = lens_camera(LensType::FTheta, {1, 0, 0, 1, 0, -1.0 / 12, 0, 0, std::numbers::pi}, {800, 600}, 100, 100);
+    const PreparedCamera fold(folding);
+    CHECK(fold.valid_radius() == Approx(2.0).epsilon(1e-14));
+    CHECK(fold.valid_angle() == Approx(4.0 / 3).epsilon(1e-14));
+    // The equidistant theta = r bounded at max_angle = 2 rad (115 degrees): the point
+    // (0, 1, -0.2), 100.3 degrees off the axis, lands at r = pi - atan(5) along +y; the
+    // affine [c d; e 1] puts n = (0, r) at m = (d r, r). (1, 0, -1), 135 degrees off, is past it.
+    const Camera bounded = lens_camera(LensType::FTheta, {1.01, 0.02, -0.03, 1, 0, 0, 0, 0, 2.0}, {800, 600}, 100, 100);
+    const PreparedCamera equidistant(bounded);
+    CHECK(equidistant.valid_angle() == Approx(2.0).epsilon(1e-14));
+    const double r = std::numbers::pi - std::atan(5.0);
+    const Projection behind = equidistant.project_camera_point(Vec3(0, 1, -0.2));
+    REQUIRE(behind.valid);
+    CHECK(behind.pixel.x() == Approx(bounded.intrinsics.cx + 100 * 0.02 * r).epsilon(1e-14));
+    CHECK(behind.pixel.y() == Approx(bounded.intrinsics.cy + 100 * r).epsilon(1e-14));
+    CHECK_FALSE(equidistant.project_camera_point(Vec3(1, 0, -1)).valid);
+    const Unprojection back = equidistant.unproject(behind.pixel);
+    REQUIRE(back.valid);
+    CHECK((back.direction.normalized() - Vec3(0, 1, -0.2).normalized()).norm() < 1e-14);
+    // FTHETA_FORWARD rho(theta) = theta - theta^3 / 12, the same fold at theta = 2 (rho =
+    // 4/3): (0, 1, -0.2) lands at rho(pi - atan(5)) along +y, and its pixel's ray is the point's.
+    const Camera forward = lens_camera(LensType::FThetaForward, {1.01, 0.02, -0.03, 1, 0, -1.0 / 12, 0, 0, std::numbers::pi},
+                                       {800, 600}, 100, 100);
+    const PreparedCamera forward_lens(forward);
+    CHECK(forward_lens.valid_radius() == Approx(2.0).epsilon(1e-14));
+    const double rho = r - r * r * r / 12;
+    const Projection forward_behind = forward_lens.project_camera_point(Vec3(0, 1, -0.2));
+    REQUIRE(forward_behind.valid);
+    CHECK(forward_behind.pixel.x() == Approx(forward.intrinsics.cx + 100 * 0.02 * rho).epsilon(1e-14));
+    CHECK(forward_behind.pixel.y() == Approx(forward.intrinsics.cy + 100 * rho).epsilon(1e-14));
+    const Unprojection forward_back = forward_lens.unproject(forward_behind.pixel);
+    REQUIRE(forward_back.valid);
+    CHECK((forward_back.direction.normalized() - Vec3(0, 1, -0.2).normalized()).norm() < 1e-13);
+    CHECK_FALSE(forward_lens.project_camera_point(Vec3(1, 0, -1)).valid);  // 135 degrees: past the fold
+}
+
 TEST_CASE("Closed forms: DIVISION against COLMAP's formula, worked by hand") {
     // u = m / (1 + k |m|^2), the ray (m, 1 + k |m|^2). k = -0.2, m = (0.3, 0.4): |m|^2 =
     // 0.25, the ray (0.3, 0.4, 0.95).

@@ -32,6 +32,7 @@
 #include "libcam/io/detail/realitycapture_format.hpp"
 #include "libcam/io/detail/rig_formats.hpp"
 #include "libcam/io/detail/woodscape_format.hpp"
+#include "libcam/io/detail/driveworks_rig.hpp"
 
 namespace libcam::detail {
 
@@ -124,6 +125,7 @@ constexpr L kOcamCalib[] = {L::OcamCalib};
 constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
 constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5};  // RealityCapture's XMP and CSV
 constexpr L kWoodscape[] = {L::ThetaPolynomial};  // WoodScape's calibration JSON
+constexpr L kDriveworksRig[] = {L::FTheta, L::FThetaForward};  // DriveWorks' ftheta cameras
 
 using C = Content;
 
@@ -341,6 +343,13 @@ constexpr FormatRow kRows[] = {
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_woodscape_camera,
      .read = with_source<parse_woodscape_camera>, .write = one_file<format_woodscape_camera>, .lenses = kWoodscape,
      .lens_names = "radial_poly", .refuses = "skew"},
+    // ---- NVIDIA DriveWorks' rig.json
+    {.format = CameraFormat::DriveworksRig, .name = "driveworks-rig", .title = "DriveWorks rig JSON",
+     .description = "NVIDIA DriveWorks' rig.json: its F-theta camera sensors, each placed in the rig's FLU frame",
+     .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_driveworks_rig,
+     .read = with_source<parse_driveworks_rig>, .write = one_file<format_driveworks_rig>, .lenses = kDriveworksRig,
+     .lens_names = "ftheta (pixeldistance-to-angle or angle-to-pixeldistance polynomial, linear-c d e)",
+     .refuses = "skew, max_angle other than pi"},
 };
 
 // Every CameraFormat has its row, in the enum's order: a format added to the enum without
