@@ -5,6 +5,7 @@
 //   - every camera it returns is valid, and writing the first in the same format (where
 //     libcam writes it) and reading that back gives the same camera.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -38,8 +39,25 @@ bool same_reparametrised_ucm(const libcam::Lens& a, const libcam::Lens& b, libca
            std::abs(a.coefficients[0] - b.coefficients[0]) <= 1e-12 * std::abs(b.coefficients[0]);
 }
 
+// DriveWorks' rig holds the F-theta polynomial in pixels (b_i = k_i / f^i, and c, d
+// carrying fx != fy) and reading it multiplies back: each coefficient to 1e-12 of itself,
+// as K is compared.
+bool same_rescaled_polynomial(const libcam::Lens& a, const libcam::Lens& b, libcam::CameraFormat format) {
+    if (format != libcam::CameraFormat::DriveworksRig || a.type != b.type || a.coefficients.size() != b.coefficients.size()) {
+        return false;
+    }
+    for (std::size_t i = 0; i < a.coefficients.size(); ++i) {
+        const double x = a.coefficients[i], y = b.coefficients[i];
+        if (!(std::abs(x - y) <= 1e-12 * std::max(std::abs(x), std::abs(y)))) return false;
+    }
+    return true;
+}
+
 bool same_camera(const libcam::Camera& a, const libcam::Camera& b, libcam::CameraFormat format) {
-    return a.size == b.size && (same_lens(a.lens, b.lens) || same_reparametrised_ucm(a.lens, b.lens, format)) && a.intrinsics.K().isApprox(b.intrinsics.K(), 1e-12) &&
+    return a.size == b.size &&
+           (same_lens(a.lens, b.lens) || same_reparametrised_ucm(a.lens, b.lens, format) ||
+            same_rescaled_polynomial(a.lens, b.lens, format)) &&
+           a.intrinsics.K().isApprox(b.intrinsics.K(), 1e-12) &&
            a.pose.R.isApprox(b.pose.R, 1e-9) && (a.pose.t - b.pose.t).norm() <= 1e-9 * (1 + a.pose.t.norm());
 }
 
