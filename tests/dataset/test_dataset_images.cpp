@@ -177,17 +177,21 @@ TEST_CASE("dataset: a run killed midway and started again gives the files of a r
                                         "-o", (dir / out).string(), "--threads", "2", "--masks", "--json"};
     };
     run_json(args("whole"));
-    fs::create_directories(dir / "stopped" / "images");
-    const bool killed = kill_midway(args("stopped"), dir / "stopped" / "images", 8);
+    // The run's images go to its staging folder until every one is made.
+    const fs::path staged = dir / "stopped" / ".libcam-dataset-partial" / "images";
+    fs::create_directories(staged);
+    const bool killed = kill_midway(args("stopped"), staged, 8);
     if (!killed) WARN("the run ended before it could be killed: the second run below has nothing to finish");
-    const std::size_t before = files_in(dir / "stopped" / "images");
+    const std::size_t before = files_in(staged);
+    // Stopped in the image phase: nothing but the staging folder in the output.
+    if (killed) CHECK(files_in(dir / "stopped") == 1);
     const Json again = run_json(args("stopped"));
     CHECK(again["images_kept"].get<std::size_t>() + again["images_written"].get<std::size_t>() == count);
     if (killed) CHECK(again["images_written"].get<std::size_t>() > 0);
     // The same files, byte for byte: every image and mask, the model, the stamp; none of
     // the killed run's temporary files left.
     CHECK(files_under(dir / "stopped") == files_under(dir / "whole"));
-    WARN("killed with " << before << " entries in images/; the second run wrote " << again["images_written"]
+    WARN("killed with " << before << " entries in the staged images/; the second run wrote " << again["images_written"]
                         << " and kept " << again["images_kept"]);
 }
 

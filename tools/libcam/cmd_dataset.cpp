@@ -78,7 +78,7 @@ struct DatasetFlags {
 };
 
 std::string summary_text(const DatasetSummary& s, double seconds, bool with_images) {
-    std::string out = "model: " + s.model_out.string() + "\n";
+    std::string out = "model: " + s.model_out.string() + (s.finished ? "" : " (not written yet: the run is unfinished)") + "\n";
     for (const DatasetCamera& camera : s.cameras) {
         const Intrinsics& k = camera.camera.intrinsics;
         const std::string view = camera.views > 1 ? " view " + std::to_string(camera.view) + " of " +
@@ -152,7 +152,12 @@ int run_dataset(const DatasetFlags& flags) {
     progress->finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     emit(flags.json ? dataset_summary_json(summary, seconds) : summary_text(summary, seconds, !flags.no_images), "");
-    return summary.images_failed == 0 ? 0 : 1;
+    if (summary.finished) return 0;
+    progress->say("libcam: error: " + std::to_string(summary.images_failed) + " of " +
+                  std::to_string(summary.model_images_out) + " images failed: " + options.output.string() +
+                  " is as it was; this run's work is kept in " + staging_folder(options.output).string() +
+                  ", and running the same command again finishes it");
+    return 1;
 }
 
 }  // namespace
