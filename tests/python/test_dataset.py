@@ -92,7 +92,7 @@ def test_plan_tasks_pickled_and_run_here_give_the_programs_files_and_a_new_plan_
         assert back.to_json() == task.to_json()
         back.run()
     # Not every image there: finish moves nothing, and the output holds nothing but the staging folder.
-    with pytest.raises(libcam.FileError, match="1 of the run's .* image files are not written yet"):
+    with pytest.raises(libcam.FileError, match="2 of the run's .* image files are not written yet"):
         libcam.dataset.finish(plan)
     assert sorted(os.listdir(scene / "tasks")) == [".libcam-dataset-partial"]
     plan.tasks[-1].run()

@@ -100,8 +100,9 @@ std::string summary_text(const DatasetSummary& s, double seconds, bool with_imag
     out += "points: " + std::to_string(s.points_kept) + " of " + std::to_string(s.points_in) + " kept\n";
     if (with_images) {
         out += "images: " + std::to_string(s.images_written + s.images_kept) + " of " + std::to_string(s.model_images_out) +
-               " in the output (" + std::to_string(s.images_written) + " written, " + std::to_string(s.images_kept) +
-               " already there, " + std::to_string(s.images_failed) + " failed)\n";
+               (s.finished ? " in the output (" : " made, not yet in the output (") + std::to_string(s.images_written) +
+               " written, " + std::to_string(s.images_kept) + " already there, " + std::to_string(s.images_failed) +
+               " failed)\n";
         if (s.model_images_out != s.images_in) out += "images: " + std::to_string(s.model_images_out) +
                                                       " in the model, the views of " + std::to_string(s.images_in) + "\n";
     }
@@ -170,7 +171,9 @@ Runner add_dataset(CLI::App& app) {
                         "(its frames' cameras and poses; no points)")
         ->required();
     command->add_option("-o,--output", flags->output,
-                        "The folder to write: sparse/0/ (the model; --to nerf: transforms.json) and images/")
+                        "The folder to write: sparse/0/ (the model; --to nerf: transforms.json) and images/, made "
+                        "in OUT/.libcam-dataset-partial and moved in when every image is there (a failed run leaves "
+                        "OUT as it was; the same command again finishes it)")
         ->required();
     command->add_option("--to", flags->to,
                         "colmap: OUT/sparse/0 (a transforms.json's cameras deduplicated, an empty points3D); nerf: "
