@@ -2,6 +2,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <unordered_map>
 
@@ -46,11 +47,16 @@ std::string shown_name(std::string_view name) {
     } catch (const FileError&) {
         utf8 = false;
     }
+    // A name from a binary file may be as long as the file: its start, cut between characters.
+    constexpr std::size_t kShownBytes = 200;
+    std::size_t shown_bytes = std::min(name.size(), kShownBytes);
+    while (utf8 && shown_bytes < name.size() && (static_cast<unsigned char>(name[shown_bytes]) & 0xC0) == 0x80) --shown_bytes;
     std::string shown;
-    for (const char c : name) {
+    for (const char c : name.substr(0, shown_bytes)) {
         const auto byte = static_cast<unsigned char>(c);
         shown += is_control(byte) || (byte >= 0x80 && !utf8) ? hex_byte(byte) : std::string(1, c);
     }
+    if (shown_bytes < name.size()) shown += "... (" + std::to_string(name.size()) + " bytes)";
     return shown;
 }
 

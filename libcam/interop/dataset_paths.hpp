@@ -38,7 +38,7 @@ void check_folder_inside(const std::filesystem::path& root, const std::filesyste
                          const std::filesystem::path& avoid = {});
 
 // A name for a message: control characters and, in text that is not UTF-8, every byte past
-// ASCII shown as \xNN.
+// ASCII shown as \xNN; past 200 bytes, cut and its length said.
 std::string shown_name(std::string_view name);
 
 }  // namespace libcam

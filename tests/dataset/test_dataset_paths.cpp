@@ -131,6 +131,10 @@ TEST_CASE("dataset paths: images.bin's names are held to the same rule, control 
                                       "'a\\x0ab.png' holds a control character (\\x0a): not a file name libcam dataset writes\n");
     CHECK(error_of("") == "libcam: error: " + second + "missing or empty\n");
     CHECK(error_of("caf\xe9/") == "libcam: error: " + second + "'caf\\xe9/' names a folder, not an image file\n");
+    // A name as long as a hostile file makes it: its start shown.
+    CHECK(error_of("/" + std::string(5000, 'x')) == "libcam: error: " + second + "'/" + std::string(199, 'x') +
+                                                         "... (5001 bytes)' is an absolute path; libcam dataset reads "
+                                                         "and writes each image under its name, relative to the images folder\n");
 }
 
 TEST_CASE("dataset paths: names inside the images folder are kept, made plain, and two images of one name are refused",
