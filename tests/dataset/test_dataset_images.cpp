@@ -177,18 +177,58 @@ TEST_CASE("dataset: a run killed midway and started again gives the files of a r
                                         "-o", (dir / out).string(), "--threads", "2", "--masks", "--json"};
     };
     run_json(args("whole"));
-    fs::create_directories(dir / "stopped" / "images");
-    const bool killed = kill_midway(args("stopped"), dir / "stopped" / "images", 8);
+    // The run's images go to its staging folder until every one is made.
+    const fs::path staged = dir / "stopped" / ".libcam-dataset-partial" / "images";
+    fs::create_directories(staged);
+    const bool killed = kill_midway(args("stopped"), staged, 8);
     if (!killed) WARN("the run ended before it could be killed: the second run below has nothing to finish");
-    const std::size_t before = files_in(dir / "stopped" / "images");
+    const std::size_t before = files_in(staged);
+    // Stopped in the image phase: nothing but the staging folder in the output.
+    if (killed) CHECK(files_in(dir / "stopped") == 1);
     const Json again = run_json(args("stopped"));
     CHECK(again["images_kept"].get<std::size_t>() + again["images_written"].get<std::size_t>() == count);
     if (killed) CHECK(again["images_written"].get<std::size_t>() > 0);
     // The same files, byte for byte: every image and mask, the model, the stamp; none of
     // the killed run's temporary files left.
     CHECK(files_under(dir / "stopped") == files_under(dir / "whole"));
-    WARN("killed with " << before << " entries in images/; the second run wrote " << again["images_written"]
+    WARN("killed with " << before << " entries in the staged images/; the second run wrote " << again["images_written"]
                         << " and kept " << again["images_kept"]);
+}
+
+TEST_CASE("dataset: a run killed while moving its files into place and started again gives the files of a run never "
+          "stopped, and never shows a model without its images", "[dataset]") {
+    TempDir dir;
+    // Many small copied images (the camera is a pinhole, kept): a finish of hundreds of moves.
+    const int count = 160;
+    fs::create_directories(dir / "model");
+    fs::create_directories(dir / "images");
+    std::string images;
+    for (int i = 0; i < count; ++i) {
+        const std::string name = "p" + std::to_string(1000 + i) + ".png";
+        images += std::to_string(i + 1) + " 1 0 0 0 0 0 0 1 " + name + "\n\n";
+        REQUIRE(cv::imwrite((dir / "images" / name).string(), cv::Mat(6, 8, CV_8U, cv::Scalar(i % 256))));
+    }
+    libcam::test::write_whole_file(dir / "model" / "cameras.txt", "1 PINHOLE 8 6 7 7 4 3\n");
+    libcam::test::write_whole_file(dir / "model" / "images.txt", images);
+    libcam::test::write_whole_file(dir / "model" / "points3D.txt", "");
+    const auto args = [&](const std::string& out) {
+        return std::vector<std::string>{"dataset", (dir / "model").string(), "--images", (dir / "images").string(),
+                                        "-o", (dir / out).string(), "--threads", "2", "--json"};
+    };
+    run_json(args("whole"));
+    // Killed once 40 images are in place: the finish has begun.
+    const fs::path staging = dir / "stopped" / ".libcam-dataset-partial";
+    const bool killed = kill_midway(args("stopped"), dir / "stopped" / "images", 40);
+    if (!killed) WARN("the run ended before it could be killed while finishing");
+    const std::size_t moved = files_in(dir / "stopped" / "images");
+    if (fs::exists(dir / "stopped" / "sparse" / "0" / "images.bin")) CHECK(moved == count);
+    if (fs::exists(dir / "stopped" / ".libcam-dataset")) CHECK(fs::exists(dir / "stopped" / "sparse" / "0" / "images.bin"));
+    const Json again = run_json(args("stopped"));
+    CHECK(again["images_kept"].get<std::size_t>() + again["images_written"].get<std::size_t>() == count);
+    CHECK(files_under(dir / "stopped") == files_under(dir / "whole"));
+    CHECK_FALSE(fs::exists(staging));
+    WARN("killed with " << moved << " of " << count << " images moved into place; the second run wrote "
+                        << again["images_written"] << " and kept " << again["images_kept"]);
 }
 
 TEST_CASE("dataset: a progress line on a terminal, none in a log", "[dataset]") {

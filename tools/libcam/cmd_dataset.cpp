@@ -87,7 +87,7 @@ struct DatasetFlags {
 };
 
 std::string summary_text(const DatasetSummary& s, double seconds, bool with_images) {
-    std::string out = "model: " + s.model_out.string() + "\n";
+    std::string out = "model: " + s.model_out.string() + (s.finished ? "" : " (not written yet: the run is unfinished)") + "\n";
     for (const DatasetCamera& camera : s.cameras) {
         const Intrinsics& k = camera.camera.intrinsics;
         const std::string view = camera.views > 1 ? " view " + std::to_string(camera.view) + " of " +
@@ -109,8 +109,9 @@ std::string summary_text(const DatasetSummary& s, double seconds, bool with_imag
     out += "points: " + std::to_string(s.points_kept) + " of " + std::to_string(s.points_in) + " kept\n";
     if (with_images) {
         out += "images: " + std::to_string(s.images_written + s.images_kept) + " of " + std::to_string(s.model_images_out) +
-               " in the output (" + std::to_string(s.images_written) + " written, " + std::to_string(s.images_kept) +
-               " already there, " + std::to_string(s.images_failed) + " failed)\n";
+               (s.finished ? " in the output (" : " made, not yet in the output (") + std::to_string(s.images_written) +
+               " written, " + std::to_string(s.images_kept) + " already there, " + std::to_string(s.images_failed) +
+               " failed)\n";
         if (s.model_images_out != s.images_in) out += "images: " + std::to_string(s.model_images_out) +
                                                       " in the model, the views of " + std::to_string(s.images_in) + "\n";
     }
@@ -161,7 +162,12 @@ int run_dataset(const DatasetFlags& flags) {
     progress->finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     emit(flags.json ? dataset_summary_json(summary, seconds) : summary_text(summary, seconds, !flags.no_images), "");
-    return summary.images_failed == 0 ? 0 : 1;
+    if (summary.finished) return 0;
+    progress->say("libcam: error: " + std::to_string(summary.images_failed) + " of " +
+                  std::to_string(summary.model_images_out) + " images failed: " + options.output.string() +
+                  " is as it was; this run's work is kept in " + staging_folder(options.output).string() +
+                  ", and running the same command again finishes it");
+    return 1;
 }
 
 }  // namespace
@@ -174,7 +180,9 @@ Runner add_dataset(CLI::App& app) {
                         "(its frames' cameras and poses; no points)")
         ->required();
     command->add_option("-o,--output", flags->output,
-                        "The folder to write: sparse/0/ (the model; --to nerf: transforms.json) and images/")
+                        "The folder to write: sparse/0/ (the model; --to nerf: transforms.json) and images/, made "
+                        "in OUT/.libcam-dataset-partial and moved in when every image is there (a failed run leaves "
+                        "OUT as it was; the same command again finishes it)")
         ->required();
     command->add_option("--to", flags->to,
                         "colmap: OUT/sparse/0 (a transforms.json's cameras deduplicated, an empty points3D); nerf: "
