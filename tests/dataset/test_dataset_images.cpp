@@ -231,29 +231,51 @@ TEST_CASE("dataset: a run killed while moving its files into place and started a
                         << again["images_written"] << " and kept " << again["images_kept"]);
 }
 
-TEST_CASE("dataset: a progress line on a terminal, none in a log", "[dataset]") {
+TEST_CASE("dataset: a progress line on a terminal, none in a log, unless --progress or LIBCAM_PROGRESS says otherwise", "[dataset]") {
     TempDir dir;
     write_model(dir / "model", "photo.png");
     fs::create_directories(dir / "images");
     REQUIRE(cv::imwrite((dir / "images" / "photo.png").string(), texture(CV_8UC3)));
-    const std::string command = std::string(LIBCAM_EXE) + " dataset " + (dir / "model").string() + " --images " +
-                                (dir / "images").string() + " -o ";
-    // Not a terminal: stderr stays empty.
-    const libcam::test::CliResult logged = run_libcam({"dataset", (dir / "model").string(), "--images",
-                                                       (dir / "images").string(), "-o", (dir / "logged").string()});
-    CHECK(logged.exit_code == 0);
-    CHECK(logged.err.empty());
-    // On a terminal (util-linux's script gives the program one): images done, rate, time left.
+    const std::vector<std::string> run = {"dataset", (dir / "model").string(), "--images", (dir / "images").string()};
+    const auto in_a_log = [&](const std::string& out, const std::vector<std::string>& more) {
+        std::vector<std::string> args = run;
+        args.insert(args.end(), {"-o", (dir / out).string()});
+        args.insert(args.end(), more.begin(), more.end());
+        const libcam::test::CliResult result = run_libcam(args);
+        INFO(result.describe());
+        CHECK(result.exit_code == 0);
+        return result.err;
+    };
+    // Not a terminal: stderr stays empty, unless always is asked for: then plain lines, the
+    // last when the last image is done, and no terminal codes.
+    CHECK(in_a_log("logged", {}).empty());
+    const std::string always = in_a_log("always", {"--progress", "always"});
+    CHECK_THAT(always, Catch::Matches("(images [0-9]+ of 1, [0-9.]+ images/s, [0-9]+ s left\n)*"
+                                      "images 1 of 1, [0-9.]+ images/s, 0 s left\n"));
+    {
+        const libcam::test::ScopedEnvironment variable("LIBCAM_PROGRESS", "always");
+        CHECK_THAT(in_a_log("from-variable", {}), Catch::StartsWith("images 1 of 1, "));
+        CHECK(in_a_log("flag-wins", {"--progress", "never"}).empty());
+    }
+    // On a terminal (util-linux's script gives the program one): images done, rate, time left;
+    // nothing with never.
     const std::string script = "/usr/bin/script";
     if (!fs::exists(script)) {
         WARN("skipped the terminal half: no " << script);
         return;
     }
-    const libcam::test::CliResult shown =
-        libcam::test::run_program(script, {"-qec", command + (dir / "shown").string(), "/dev/null"});
-    INFO(shown.describe());
-    CHECK(shown.exit_code == 0);
-    CHECK(shown.out.find("images 1 of 1, ") != std::string::npos);
-    CHECK(shown.out.find(" images/s, ") != std::string::npos);
-    CHECK(shown.out.find(" s left") != std::string::npos);
+    const auto on_a_terminal = [&](const std::string& out, const std::string& more) {
+        std::string command = std::string(LIBCAM_EXE);
+        for (const std::string& word : run) command += " " + word;
+        const libcam::test::CliResult result =
+            libcam::test::run_program(script, {"-qec", command + " -o " + (dir / out).string() + more, "/dev/null"});
+        INFO(result.describe());
+        CHECK(result.exit_code == 0);
+        return result.out;
+    };
+    const std::string shown = on_a_terminal("shown", "");
+    CHECK(shown.find("images 1 of 1, ") != std::string::npos);
+    CHECK(shown.find(" images/s, ") != std::string::npos);
+    CHECK(shown.find(" s left") != std::string::npos);
+    CHECK(on_a_terminal("quiet", " --progress never").find("images 1 of 1") == std::string::npos);
 }
