@@ -334,15 +334,14 @@ NerfWorld read_world(const Field& top, const ReadContext& context) {
     if (world.has_transform || world.has_scale) world.source = NerfWorld::Source::AppliedTransform;
     if (context.folder.empty()) return world;
     const std::filesystem::path beside = context.folder / kDataparserTransformsName;
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(beside, error)) return world;
+    if (!regular_file_exists(beside)) return world;
     if (world.source != NerfWorld::Source::None) {
         top.fail_at("applied_transform", std::string("given, and ") + kDataparserTransformsName +
                                              " is beside the file: which move the frames are in is not clear; "
                                              "move one of them away");
     }
     const std::string source = beside.string();
-    const DocumentNode root = parse_json_tree(read_text_file(beside), source);
+    const DocumentNode root = parse_json_tree(read_text_file(beside, kCameraFileLimit), source);
     const Field dataparser(root, "", source);
     world.transform = read_world_transform(dataparser.at({"transform"}));
     world.scale = read_world_scale(dataparser.at({"scale"}));

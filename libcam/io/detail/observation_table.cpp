@@ -214,7 +214,7 @@ int used_camera(UsedCameras& used, const CameraSet& file_cameras, const std::str
 
 ObservationSet read_observation_table(const std::filesystem::path& table, const std::filesystem::path& camera_file) {
     const std::string source = table.string();
-    const std::string text = read_text_file(table);
+    const std::string text = read_text_file(table, kReconstructionLimit);
     const std::vector<Row> rows = is_json(table) ? json_rows(text, source) : csv_rows(text, source);
     if (rows.empty()) throw FileError(source + ": no observations in it");
     const CameraSet file_cameras = read_camera_set(camera_file);

@@ -259,12 +259,58 @@ Camera ocamcalib_camera_on_xy(std::span<const double> forward, double c, double 
     return validated_camera(std::move(camera), where);
 }
 
+namespace {
+
+// How many numbers a line holds, or -1 where a word is not a number.
+int numbers_in(std::string_view line) {
+    int count = 0;
+    while (true) {
+        const auto word = line.find_first_not_of(" \t\r");
+        if (word == std::string_view::npos) return count;
+        line.remove_prefix(word);
+        const std::string_view token = line.substr(0, line.find_first_of(" \t\r"));
+        double value = 0.0;
+        const auto [stop, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+        if (error != std::errc() || stop != token.data() + token.size()) return -1;
+        ++count;
+        line.remove_prefix(token.size());
+    }
+}
+
+// Whether a "count c0 c1 ..." line's count is the number of the numbers after it.
+bool counted_line(std::string_view line, int numbers) {
+    int count = 0;
+    const std::string_view first = line.substr(line.find_first_not_of(" \t\r"));
+    const auto [stop, error] = std::from_chars(first.data(), first.data() + first.size(), count);
+    return error == std::errc() && count >= 1 && count == numbers - 1;
+}
+
+}  // namespace
+
 bool looks_like_ocamcalib(std::string_view text) {
-    const auto start = text.find_first_not_of(" \t\r\n");
-    if (start == std::string_view::npos || text[start] != '#') return false;
-    const std::string_view first = text.substr(start, text.find('\n', start) - start);
-    return first.find("DIRECT mapping function") != std::string_view::npos ||
-           first.find("ocam_model.ss") != std::string_view::npos;
+    constexpr std::array<int, 5> kShape = {0, 0, 2, 3, 2};  // 0: a counted line
+    std::size_t at = 0;
+    std::size_t content = 0;
+    bool shaped = true;
+    while (at < text.size() && content <= kShape.size()) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::string_view line = text.substr(at, end - at);
+        at = end + 1;
+        const auto start = line.find_first_not_of(" \t\r");
+        if (start == std::string_view::npos) continue;
+        if (line[start] == '#') {
+            if (line.find("DIRECT mapping function") != std::string_view::npos || line.find("ocam_model") != std::string_view::npos) {
+                return true;
+            }
+            continue;
+        }
+        if (content < kShape.size()) {
+            const int numbers = numbers_in(line);
+            shaped = shaped && numbers > 0 && (kShape[content] == 0 ? counted_line(line, numbers) : numbers == kShape[content]);
+        }
+        ++content;
+    }
+    return shaped && content == kShape.size();
 }
 
 std::vector<NamedCamera> read_ocamcalib(std::string_view text, const ReadContext& context) {

@@ -274,11 +274,10 @@ ObservationSet read_opensfm_observations(const std::filesystem::path& file, std:
                                  "reconstruction.json with tracks.csv beside it)");
     }
     const std::filesystem::path tracks = file.parent_path() / "tracks.csv";
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(tracks, error)) {
+    if (!regular_file_exists(tracks)) {
         throw FileError(source + ": no tracks.csv beside it: OpenSfM keeps the observed pixels there");
     }
-    add_tracks(read_text_file(tracks), tracks.string(), read);
+    add_tracks(read_text_file(tracks, kReconstructionLimit), tracks.string(), read);
     if (read.set.observations.empty()) {
         throw FileError(tracks.string() + ": no row of a shot and a point of the reconstruction");
     }
