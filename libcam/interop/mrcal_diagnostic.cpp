@@ -63,9 +63,10 @@ std::string expected_count(const std::string& field, const std::string& count, s
     return "the " + count + " of its lensmodel " + shown_value(value_of(text, "lensmodel"));
 }
 
-// ", got 'x'": the value libmrcal stopped at, from its message or else from the file.
+// ", got 'x'": the value libmrcal stopped at, from its message or else from the file (it
+// quotes '' for a word that does not start as a number).
 std::string got(const std::ssub_match& given, const std::string& position, std::string_view text) {
-    if (given.matched) return ", got " + shown_value(given.str());
+    if (given.matched && given.length() > 0) return ", got " + shown_value(given.str());
     std::size_t at = std::min<std::size_t>(std::stoull(position), text.size());
     at = std::min(text.find_first_not_of(" \t\r\n", at), text.size());
     const std::size_t end = std::min(text.find_first_of(",])} \t\r\n", at), text.size());

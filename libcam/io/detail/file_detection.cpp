@@ -32,11 +32,11 @@ std::string_view first_content_line(std::string_view text) {
     return {};
 }
 
-// The first line of the text, as a message shows what a file starts with.
+// What a file starts with, as a message shows it: its first characters, printable.
 std::string shown_start(std::string_view text) {
     const std::size_t start = std::min(text.find_first_not_of(" \t\r\n"), text.size());
     const std::string_view rest = text.substr(start);
-    return shown_value(rest.substr(0, std::min(rest.find('\n'), std::size_t{24})));
+    return "'" + printable_text(rest.substr(0, rest.find('\n')), 24) + "'";
 }
 
 bool starts_with_word_then(std::string_view line, char separator) {
@@ -313,7 +313,7 @@ LocatedFile locate_camera_file(const std::filesystem::path& path, std::optional<
     Rows rows = format ? Rows{&row_of(*format)} : rows_with_extension(file.extension().string());
     const bool named = !rows.empty();
     if (rows.empty()) rows = all_rows();
-    const std::string kind = format ? std::string(row_of(*format).title)
+    const std::string kind = rows.size() == 1 ? std::string(rows.front()->title)
                              : named ? file.extension().string() + " camera" : std::string("camera");
     LocatedFile located{file, format.value_or(CameraFormat::Json), read_text_file(file, limit_of(rows, kind)), {}};
     std::string& text = located.text;
