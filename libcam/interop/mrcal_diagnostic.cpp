@@ -42,8 +42,8 @@ std::string too_many_intrinsics(std::string_view text) {
     const std::regex nx_ny("Nx=(\\d{1,9})_Ny=(\\d{1,9})");
     if (std::regex_search(lensmodel, grid, nx_ny)) {
         const unsigned long long count = 4 + 2 * std::stoull(grid[1].str()) * std::stoull(grid[2].str());
-        return "\"lensmodel\": its spline of Nx=" + grid[1].str() + " by Ny=" + grid[2].str() + " asks for 4 + 2 Nx Ny = " +
-               std::to_string(count) + " intrinsics, more than libmrcal could allocate";
+        return "\"lensmodel\": its spline of Nx=" + grid[1].str() + " by Ny=" + grid[2].str() +
+               " asks for 4 + 2 Nx Ny = " + std::to_string(count) + " intrinsics, more than libmrcal could allocate";
     }
     return "\"lensmodel\": " + shown_value(lensmodel) + ": libmrcal could not allocate its intrinsics";
 }
@@ -110,10 +110,13 @@ const std::array<Translation, 20>& translations() {
          }},
         {"Error parsing unsigned (?:integer|int) for (\\w+) at (\\d+)(?:\\. String: '(.*)')?",
          [](const Match& m, std::string_view text) {
-             return line_at(m[2], text) + ": \"" + m[1].str() + "\": expected whole numbers >= 0" + got(m[3], m[2], text);
+             return line_at(m[2], text) + ": \"" + m[1].str() + "\": expected whole numbers >= 0" +
+                    got(m[3], m[2], text);
          }},
         {"Didn't see leading '\\{'.*",
-         [](const Match&, std::string_view) { return std::string("expected '{' first: a .cameramodel is a Python dict"); }},
+         [](const Match&, std::string_view) {
+             return std::string("expected '{' first: a .cameramodel is a Python dict");
+         }},
         {"Didn't see trailing , at (\\d+)",
          [](const Match& m, std::string_view text) { return line_at(m[1], text) + ": expected ',' after the value"; }},
         {"Didn't see expected ':' at (\\d+).*",
@@ -142,7 +145,8 @@ const std::array<Translation, 20>& translations() {
         {"(Cubic|Quadratic) splines: absolute minimum Nx, Ny is (\\d+)\\. Got Nx=(\\d+) Ny=(\\d+).*",
          [](const Match& m, std::string_view) {
              return "\"lensmodel\": a " + std::string(m[1].str() == "Cubic" ? "cubic" : "quadratic") +
-                    " spline needs Nx and Ny of at least " + m[2].str() + ", got Nx=" + m[3].str() + " Ny=" + m[4].str();
+                    " spline needs Nx and Ny of at least " + m[2].str() + ", got Nx=" + m[3].str() +
+                    " Ny=" + m[4].str();
          }},
         {"I only support spline order.*",
          [](const Match&, std::string_view) { return std::string("\"lensmodel\": a spline's order must be 2 or 3"); }},

@@ -134,9 +134,12 @@ std::string read_text_file(const std::filesystem::path& path, const ReadLimit& l
         throw_larger_than(path, limit);
     }
     const int flags = ::fcntl(file.fd, F_GETFL);
-    if (flags < 0 || ::fcntl(file.fd, F_SETFL, flags & ~O_NONBLOCK) != 0) throw FileError(name + ": cannot read: " + reason());
+    if (flags < 0 || ::fcntl(file.fd, F_SETFL, flags & ~O_NONBLOCK) != 0) {
+        throw FileError(name + ": cannot read: " + reason());
+    }
     std::string text;
-    text.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(static_cast<std::uint64_t>(status.st_size), limit.max_bytes)));
+    const auto size = static_cast<std::uint64_t>(status.st_size);
+    text.reserve(static_cast<std::size_t>(std::min(size, limit.max_bytes)));
     constexpr std::size_t kChunk = 1 << 20;
     while (true) {
         const std::uint64_t room = limit.max_bytes + 1 - text.size();  // one byte past the limit tells it is larger

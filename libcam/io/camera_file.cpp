@@ -302,7 +302,9 @@ CameraSet read_camera_set(const std::filesystem::path& path, std::optional<Camer
     const std::filesystem::path& file = located.file;
     const ReadContext context{file.string(), file.parent_path().empty() ? "." : file.parent_path(), options};
     // The text was checked when it was located.
-    return detail::reading_as(located, [&] { return CameraSet{located.format, read_with(row_of(located.format), located.text, context)}; });
+    return detail::reading_as(located, [&] {
+        return CameraSet{located.format, read_with(row_of(located.format), located.text, context)};
+    });
 }
 
 CameraFile read_camera_file(const std::filesystem::path& path, std::string_view camera,

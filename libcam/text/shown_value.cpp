@@ -40,7 +40,8 @@ std::string printable(std::string_view bytes, std::size_t max_characters, bool& 
         const Utf8Character character = utf8_character_at(bytes, at);
         if (character.length == 0) {
             char buffer[8];
-            std::snprintf(buffer, sizeof buffer, "\\x%02X", static_cast<unsigned>(static_cast<unsigned char>(bytes[at])));
+            const auto byte = static_cast<unsigned char>(bytes[at]);
+            std::snprintf(buffer, sizeof buffer, "\\x%02X", static_cast<unsigned>(byte));
             out += buffer;
             ++at;
             continue;

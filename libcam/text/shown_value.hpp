@@ -11,6 +11,9 @@ namespace libcam {
 
 // The most characters of one value a message shows; a longer value is cut.
 constexpr std::size_t kShownValueLength = 60;
+// The most characters of a reader's message (a value that did not go through shown_value
+// is cut with it): the longest libcam writes, listing every format, is under 1000.
+constexpr std::size_t kShownMessageLength = 2000;
 
 // `bytes` as a message may print them: UTF-8 text is kept, but for control characters
 // (\t, \n, \r, \x01, \u0085) and the invisible ones that reorder or break a line

@@ -6,7 +6,11 @@ Utf8Character utf8_character_at(std::string_view text, std::size_t at) {
     const auto byte = static_cast<unsigned char>(text[at]);
     // The length of the sequence this byte starts, and its smallest code point (so
     // overlong encodings are refused too).
-    const std::size_t length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
+    const std::size_t length = byte < 0x80           ? 1
+                               : (byte >> 5) == 0x6  ? 2
+                               : (byte >> 4) == 0xE  ? 3
+                               : (byte >> 3) == 0x1E ? 4
+                                                     : 0;
     if (length == 0 || at + length > text.size()) return {};
     std::uint32_t code = length == 1 ? byte : byte & (0x7F >> length);
     for (std::size_t k = 1; k < length; ++k) {
@@ -45,7 +49,9 @@ bool units_pass(std::string_view bytes, std::size_t at, std::size_t width, bool 
     return count >= least;
 }
 
-bool printable_ascii(std::uint32_t unit) { return unit == '\t' || unit == '\n' || unit == '\r' || (unit >= 0x20 && unit < 0x7F); }
+bool printable_ascii(std::uint32_t unit) {
+    return unit == '\t' || unit == '\n' || unit == '\r' || (unit >= 0x20 && unit < 0x7F);
+}
 bool not_nul(std::uint32_t unit) { return unit != 0; }
 
 }  // namespace
@@ -57,7 +63,8 @@ std::string_view wide_text_encoding(std::string_view bytes) {
             // A byte-order mark followed by characters (none NUL: a count of 65279 in a
             // binary file starts with UTF-32's mark, then zeros), or by nothing.
             const bool marked = bytes.size() >= width && unit_at(bytes, 0, width, little_endian) == 0xFEFF;
-            if (marked && (bytes.size() == width || units_pass(bytes, width, width, little_endian, 1, not_nul))) return name;
+            const bool characters_after = units_pass(bytes, width, width, little_endian, 1, not_nul);
+            if (marked && (bytes.size() == width || characters_after)) return name;
             // Without a mark: ASCII text, each character widened with NUL bytes.
             if (units_pass(bytes, 0, width, little_endian, 2, printable_ascii)) return name;
         }

@@ -214,3 +214,16 @@ TEST_CASE("A symlink loop is reported as the system says it, not as a file that 
     CHECK(read_error(dir / "a.json") == (dir / "a.json").string() + ": cannot open: Too many levels of symbolic links");
     CHECK(read_error(dir / "absent.json") == (dir / "absent.json").string() + ": cannot open: No such file or directory");
 }
+
+TEST_CASE("A message that quotes a long key of a file is cut, still saying what the file was read as", "[messages]") {
+    const test::TempDir dir;
+    // OpenSfM's camera_models.json: cameras by name, each with its projection_type. A
+    // name of 5000 characters, and no width.
+    const std::string name(5000, 'n');
+    const auto cameras = write_file(dir, "camera_models.json", "{\"" + name + "\": {\"projection_type\": \"perspective\"}}");
+    const std::string error = read_error(cameras);
+    const std::string read_as = " (read as OpenSfM reconstruction.json, by its extension .json and its keys)";
+    CHECK(error.starts_with(cameras.string() + ": \".nnnnn"));
+    CHECK(error.ends_with("..." + read_as));
+    CHECK(error.size() == 2000 + 3 + read_as.size());
+}

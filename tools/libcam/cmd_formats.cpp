@@ -120,8 +120,8 @@ std::string plain(const std::vector<CameraFormatInfo>& formats) {
         if (!format.refuses.empty()) out << "  refuses   " << format.refuses << "\n";
         if (format.reads) {
             const std::string beside = files_beside_text(format);
-            out << "  reads at most " << byte_size_text(format.largest_file) << (beside.empty() ? "" : " (" + beside + ")")
-                << "\n";
+            out << "  reads at most " << byte_size_text(format.largest_file)
+                << (beside.empty() ? "" : " (" + beside + ")") << "\n";
         }
     }
     return out.str();
@@ -142,7 +142,8 @@ Runner add_formats(CLI::App& app) {
         "Print a JSON array, one object per format: name, title, description, extensions, reads, writes, "
         "writes_folder, observations, lens_models, lens_names, refuses, library, largest_file_bytes, files_beside, "
         "available");
-    CLI::Option* markdown_flag = command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md");
+    CLI::Option* markdown_flag =
+        command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md");
     markdown_flag->excludes(json);
     command->add_flag("--limits", flags->limits,
                       "Print the table of docs/reliability.md: the largest file libcam reads of each format")
@@ -155,7 +156,9 @@ Runner add_formats(CLI::App& app) {
             for (const CameraFormatInfo& format : formats) list.push_back(format_json(format));
             std::cout << list.dump(2) << "\n";
         } else {
-            std::cout << (flags->limits ? limits_markdown(formats) : flags->markdown ? markdown(formats) : plain(formats));
+            std::cout << (flags->limits     ? limits_markdown(formats)
+                          : flags->markdown ? markdown(formats)
+                                            : plain(formats));
         }
         return 0;
     };

@@ -259,7 +259,9 @@ public:
     // A count of records of at least `record_bytes` each, no more than the bytes left hold.
     std::uint64_t count(const std::string& what, std::size_t record_bytes) {
         const auto n = read<std::uint64_t>(what);
-        if (n > remaining() / record_bytes) fail(what + " is " + std::to_string(n) + ", " + more_than_left(record_bytes));
+        if (n > remaining() / record_bytes) {
+            fail(what + " is " + std::to_string(n) + ", " + more_than_left(record_bytes));
+        }
         return n;
     }
 
@@ -546,7 +548,8 @@ std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadCont
     if (!context.folder.empty()) {
         const std::filesystem::path images_file = context.folder / (binary ? "images.bin" : "images.txt");
         if (regular_file_exists(images_file)) {
-            images = read_colmap_images(read_text_file(images_file, kColmapModelPartLimit), images_file.string(), binary, false);
+            images = read_colmap_images(read_text_file(images_file, kColmapModelPartLimit), images_file.string(), binary,
+                                        false);
         }
     }
     return camera_set(cameras, images, context.source);

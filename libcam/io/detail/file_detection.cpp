@@ -93,7 +93,8 @@ Content sniff_content(std::string_view text, const std::string& source) {
 }
 
 bool has_extension(const FormatRow& row, std::string_view extension) {
-    return !extension.empty() && std::find(row.extensions.begin(), row.extensions.end(), extension) != row.extensions.end();
+    return !extension.empty() &&
+           std::find(row.extensions.begin(), row.extensions.end(), extension) != row.extensions.end();
 }
 
 Rows rows_with_extension(std::string_view extension) {
@@ -140,8 +141,8 @@ void require_content(const Rows& rows, std::string_view text, std::string_view e
     const bool xml = kinds == static_cast<unsigned>(Content::Xml);
     const bool json = kinds == static_cast<unsigned>(Content::Json);
     if ((xml && start != '<') || (json && start != '{' && start != '[')) {
-        throw FileError(source + ": not " + (xml ? "XML" : "JSON") + ": it starts with " + shown_start(text) + ", not " +
-                        (xml ? "'<'" : "'{' or '['") + " (" + read_as(rows, extension) + ")");
+        throw FileError(source + ": not " + (xml ? "XML" : "JSON") + ": it starts with " + shown_start(text) +
+                        ", not " + (xml ? "'<'" : "'{' or '['") + " (" + read_as(rows, extension) + ")");
     }
 }
 
@@ -224,7 +225,8 @@ Detection choose(const Rows& candidates, std::string_view text, const std::strin
         std::string keys;
         if (const FormatRow* told = told_by_keys(*root, candidates, keys)) return {told, "by " + by + " and " + keys};
     }
-    const auto fallback = std::find_if(candidates.begin(), candidates.end(), [](const FormatRow* row) { return row->claims == nullptr; });
+    const auto claims_nothing = [](const FormatRow* row) { return row->claims == nullptr; };
+    const auto fallback = std::find_if(candidates.begin(), candidates.end(), claims_nothing);
     const FormatRow* chosen = fallback != candidates.end() ? *fallback : candidates.front();
     Rows others;
     std::copy_if(candidates.begin(), candidates.end(), std::back_inserter(others),
@@ -302,7 +304,8 @@ std::filesystem::path file_named(const std::filesystem::path& path, std::optiona
 void refuse_wide_text(std::string_view text, const std::string& source) {
     const std::string_view encoding = wide_text_encoding(text);
     if (!encoding.empty()) {
-        throw FileError(source + ": " + std::string(encoding) + " text: libcam reads camera files as UTF-8; save it as UTF-8");
+        throw FileError(source + ": " + std::string(encoding) +
+                        " text: libcam reads camera files as UTF-8; save it as UTF-8");
     }
 }
 
@@ -319,7 +322,9 @@ LocatedFile locate_camera_file(const std::filesystem::path& path, std::optional<
     std::string& text = located.text;
     refuse_wide_text(text, source);
     // Some editors start UTF-8 text with a byte-order mark, which no parser here expects.
-    if (text.starts_with(kUtf8ByteOrderMark) && text.find('\0') == std::string::npos) text.erase(0, kUtf8ByteOrderMark.size());
+    if (text.starts_with(kUtf8ByteOrderMark) && text.find('\0') == std::string::npos) {
+        text.erase(0, kUtf8ByteOrderMark.size());
+    }
     if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw FileError(source + ": file is empty");
     bool checked = false;
     if (!format) {
@@ -338,7 +343,7 @@ void rethrow_read_as(const LocatedFile& located) {
     // What the file was read as: for errors about the file, not about the options given
     // with it (InvalidArgument: "name one lens with --lens").
     const auto message = [&](const Error& error, bool about_the_file) {
-        const std::string what = printable_text(error.what());
+        const std::string what = printable_text(error.what(), kShownMessageLength);
         if (located.how.empty() || !about_the_file) return what;
         return what + " (read as " + std::string(row_of(located.format).title) + ", " + located.how + ")";
     };

@@ -14,6 +14,7 @@
 #include "libcam/io/detail/document.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -248,7 +249,7 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
     const bool instant_ngp_fisheye = is_fisheye && is_fisheye->boolean() == std::optional<bool>(true);
     if (is_fisheye && !is_fisheye->boolean()) is_fisheye->fail("expected true or false, got " + is_fisheye->shown());
     if (instant_ngp_fisheye && model_field && model != "OPENCV_FISHEYE" && model != "OPENCV") {
-        is_fisheye->fail("true, but camera_model is '" + model + "'");
+        is_fisheye->fail("true, but camera_model is " + shown_value(model));
     }
     if (instant_ngp_fisheye || model == "OPENCV_FISHEYE") {
         camera.lens = fisheye_lens(keys);
@@ -263,7 +264,7 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
         camera.lens = fisheye624_lens(keys);
     } else {
         model_field->fail("must be OPENCV, PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV_FISHEYE, "
-                          "EQUIRECTANGULAR or FISHEYE624, got '" + model + "'");
+                          "EQUIRECTANGULAR or FISHEYE624, got " + shown_value(model));
     }
     return camera;
 }

@@ -192,8 +192,8 @@ std::vector<NamedCamera> read_nvm(std::string_view text, const ReadContext& cont
     const NvmFile file = parse_nvm(text, context.source, given_size(context.options.size, context.source, "an NVM file"));
     for (std::size_t i = 0; i < file.distortion.size(); ++i) {
         if (file.distortion[i] != 0.0) {
-            throw NotRepresentable(context.source + ": camera " + std::to_string(i) + " (" + shown_value(file.set.cameras[i].name) +
-                                   "): VisualSfM's measurement distortion r = " + format_number(file.distortion[i]) +
+            throw NotRepresentable(context.source + ": camera " + std::to_string(i) + " (" +
+                                   shown_value(file.set.cameras[i].name) + "): VisualSfM's measurement distortion r = " + format_number(file.distortion[i]) +
                                    " undistorts the measured pixel, which no libcam lens does (its observations read)");
         }
     }

@@ -13,6 +13,7 @@
 #include "libcam/io/ocamcalib.hpp"
 #include "libcam/lens/ocamcalib.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -51,7 +52,9 @@ std::vector<NumberLine> number_lines(std::string_view text, const std::string& s
         const auto start = line.find_first_not_of(" \t\r");
         if (start == std::string_view::npos || line[start] == '#') continue;
         const std::string_view section = lines.size() < kSections.size() ? kSections[lines.size()] : "after the image size";
-        if (lines.size() == kSections.size()) fail_at(source, number, section, "unexpected line '" + std::string(line.substr(start, 40)) + "'");
+        if (lines.size() == kSections.size()) {
+            fail_at(source, number, section, "unexpected line " + shown_value(line.substr(start)));
+        }
         NumberLine parsed{number, {}};
         std::string_view rest = line.substr(start);
         while (true) {
@@ -62,7 +65,7 @@ std::vector<NumberLine> number_lines(std::string_view text, const std::string& s
             double value = 0.0;
             const auto [stop, error] = std::from_chars(token.data(), token.data() + token.size(), value);
             if (error != std::errc() || stop != token.data() + token.size() || !std::isfinite(value)) {
-                fail_at(source, number, section, "expected a number, got '" + std::string(token.substr(0, 40)) + "'");
+                fail_at(source, number, section, "expected a number, got " + shown_value(token));
             }
             parsed.values.push_back(value);
             rest = rest.substr(token.size());
@@ -299,14 +302,15 @@ bool looks_like_ocamcalib(std::string_view text) {
         const auto start = line.find_first_not_of(" \t\r");
         if (start == std::string_view::npos) continue;
         if (line[start] == '#') {
-            if (line.find("DIRECT mapping function") != std::string_view::npos || line.find("ocam_model") != std::string_view::npos) {
-                return true;
-            }
+            const bool toolbox = line.find("DIRECT mapping function") != std::string_view::npos ||
+                                 line.find("ocam_model") != std::string_view::npos;
+            if (toolbox) return true;
             continue;
         }
         if (content < kShape.size()) {
             const int numbers = numbers_in(line);
-            shaped = shaped && numbers > 0 && (kShape[content] == 0 ? counted_line(line, numbers) : numbers == kShape[content]);
+            const bool fits = kShape[content] == 0 ? counted_line(line, numbers) : numbers == kShape[content];
+            shaped = shaped && numbers > 0 && fits;
         }
         ++content;
     }
