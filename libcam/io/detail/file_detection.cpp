@@ -206,15 +206,22 @@ struct Detection {
     bool text_checked = false;  // checked to be UTF-8 (check_text) on the way
 };
 
+// What named a file's candidate formats, for messages: "its extension .json" and ".json
+// files", or "its contents (JSON)" and "files of JSON".
+struct Named {
+    std::string by;
+    std::string what;
+    bool extension = false;
+};
+
 // The format of a file among `candidates` (the rows its extension or its contents name):
 // the only one; the first whose claims accept the file's keys; the one whose telling
 // keys it has most of; else the one that claims nothing (the default for that ending or
-// content), the message saying which others it could have been. `by` says what named
-// the candidates ("its extension .json"); a file whose extension names one format was
-// evidently read as that, and its messages need not say so.
-Detection choose(const Rows& candidates, std::string_view text, const std::string& by, const std::string& what,
-                 const std::string& source) {
-    if (candidates.size() == 1) return {candidates.front(), by.starts_with("its extension") ? "" : "by " + by};
+// content), the message saying which others it could have been. A file whose extension
+// names one format was evidently read as that, and its messages need not say so.
+Detection choose(const Rows& candidates, std::string_view text, const Named& named, const std::string& source) {
+    const std::string& by = named.by;
+    if (candidates.size() == 1) return {candidates.front(), named.extension ? "" : "by " + by};
     unsigned shared = ~0u;
     for (const FormatRow* row : candidates) shared &= row->content;
     const std::optional<DocumentNode> root = parsed_for_claims(text, shared, source);
@@ -231,7 +238,7 @@ Detection choose(const Rows& candidates, std::string_view text, const std::strin
     Rows others;
     std::copy_if(candidates.begin(), candidates.end(), std::back_inserter(others),
                  [](const FormatRow* row) { return row->claims != nullptr; });
-    const std::string how = "the default for " + what;
+    const std::string how = "the default for " + named.what;
     if (others.empty()) return {chosen, how + " (--from-format names another)"};
     if (!root && (shared & (Content::Json | Content::Yaml | Content::Xml)) != 0) {
         return {chosen, how + ": it does not parse, so its keys could not tell which format it is"};
@@ -239,22 +246,29 @@ Detection choose(const Rows& candidates, std::string_view text, const std::strin
     return {chosen, how + ": its keys are those of none of " + listed(others, name_of)};
 }
 
+// The format of a file by its extension, else its contents; the text checked to be UTF-8
+// first where every candidate is text, so that no parser sees bytes that are not.
 Detection detect_format(std::string_view text, const std::filesystem::path& path, const std::string& source) {
     const std::string extension = path.extension().string();
-    const Rows named = rows_with_extension(extension);
-    const bool all_text = std::none_of(named.begin(), named.end(), [](const FormatRow* row) { return row->binary; });
-    if (!named.empty() && all_text) {
-        require_content(named, text, extension, source);
-        require_text(named, text, extension, source);
+    Rows candidates = rows_with_extension(extension);
+    Named named{"its extension " + extension, extension + " files", true};
+    if (candidates.empty()) {
+        const Content content = sniff_content(text, source);
+        const std::string kind(content_name(content));
+        candidates = rows_of_content(content);
+        named = {"its contents (" + kind + ")", "files of " + kind, false};
     }
-    if (!named.empty()) {
-        Detection detection = choose(named, text, "its extension " + extension, extension + " files", source);
-        detection.text_checked = all_text;
-        return detection;
+    const auto binary = [](const FormatRow* row) { return row->binary; };
+    const bool all_text = std::none_of(candidates.begin(), candidates.end(), binary);
+    if (all_text && named.extension) {
+        require_content(candidates, text, extension, source);
+        require_text(candidates, text, extension, source);
+    } else if (all_text) {
+        check_text(text, source);
     }
-    const Content content = sniff_content(text, source);
-    const std::string kind(content_name(content));
-    return choose(rows_of_content(content), text, "its contents (" + kind + ")", "files of " + kind, source);
+    Detection detection = choose(candidates, text, named, source);
+    detection.text_checked = all_text;
+    return detection;
 }
 
 // The most `rows` read of a file, and the kind of file that is, for the message.
