@@ -138,15 +138,17 @@ std::string read_text_file(const std::filesystem::path& path, const ReadLimit& l
         throw FileError(name + ": cannot read: " + reason());
     }
     std::string text;
+    // Room for the file and the one byte more whose read says it ended (or that it is
+    // past the limit), so that a file read whole is never copied to grow the string.
     const auto size = static_cast<std::uint64_t>(status.st_size);
-    text.reserve(static_cast<std::size_t>(std::min(size, limit.max_bytes)));
+    text.reserve(static_cast<std::size_t>(std::min(size, limit.max_bytes) + 1));
     constexpr std::size_t kChunk = 1 << 20;
     while (true) {
-        const std::uint64_t room = limit.max_bytes + 1 - text.size();  // one byte past the limit tells it is larger
-        const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(kChunk, room));
         const std::size_t at = text.size();
-        text.resize(at + want);
-        const ssize_t got = ::read(file.fd, text.data() + at, want);
+        std::uint64_t want = std::min<std::uint64_t>(kChunk, limit.max_bytes + 1 - at);
+        if (text.capacity() > at) want = std::min<std::uint64_t>(want, text.capacity() - at);
+        text.resize(at + static_cast<std::size_t>(want));
+        const ssize_t got = ::read(file.fd, text.data() + at, static_cast<std::size_t>(want));
         if (got < 0 && errno == EINTR) {
             text.resize(at);
             continue;
