@@ -91,8 +91,7 @@ TEST_CASE("A .json no format claims says it fell back to libcam JSON, which form
     const auto cut = write_file(dir, "cut.json", R"({"img_name": "a", "fx": )");
     const std::string cut_error = read_error(cut);
     CHECK(cut_error.starts_with(cut.string() + ": \"fx\": not valid JSON: "));
-    CHECK(cut_error.ends_with(" (read as libcam JSON, the default for .json files: it does not parse, so its keys "
-                              "could not tell which format it is)"));
+    CHECK(cut_error.ends_with(" (its keys, which tell the formats of .json files apart, cannot be read)"));
     // reproject says the same of a camera file that holds no observations.
     const auto camera = write_file(dir, "camera.json", R"({"model": "PINHOLE", "image_size": [640, 480],)"
                                                        R"( "K": [[500, 0, 319.5], [0, 500, 239.5], [0, 0, 1]],)"
@@ -111,11 +110,15 @@ TEST_CASE("A file whose extension names only XML or JSON formats must be that", 
     const auto random = write_file(dir, "random.xml", "\x8B\xE2x\xB4\x01\x02 and more bytes than are shown"s);
     CHECK(read_error(random) == random.string() + ": not XML: it starts with '\\x8B\\xE2x\\xB4\\x01\\x02 and more bytes "
                                                   "th...', not '<' " + xml_formats);
-    // XML that does not parse: the default's message, saying it could not be told apart.
+    // XML that does not parse is broken whichever format it was meant to be.
     const auto broken = write_file(dir, "broken.xml", "<opencv_storage><a></b>");
-    CHECK(read_error(broken) == broken.string() + ": line 1: not valid XML: Start-end tags mismatch (read as OpenCV XML, "
-                                                  "the default for .xml files: it does not parse, so its keys could not "
-                                                  "tell which format it is)");
+    CHECK(read_error(broken) == broken.string() + ": line 1: not valid XML: Start-end tags mismatch (its keys, which tell "
+                                                  "the formats of .xml files apart, cannot be read)");
+    // YAML that does not parse is read by the default, OpenCV's, which also takes XML.
+    const auto yaml_cut = write_file(dir, "cut.yaml", "camera_matrix: [1, 2\n");
+    CHECK(read_error(yaml_cut) == yaml_cut.string() + ": line 2: not valid YAML: end of sequence flow not found (read as "
+                                                      "OpenCV YAML, the default for .yaml files: it does not parse, so its "
+                                                      "keys could not tell which format it is)");
     const auto yaml = write_file(dir, "camera.json", "image_width: 640\n");
     CHECK(read_error(yaml) == yaml.string() + ": not JSON: it starts with 'image_width: 640', not '{' or '[' (libcam "
                                               "reads .json files as libcam JSON, gl JSON, basalt calibration JSON, NeRF "

@@ -87,7 +87,7 @@ Content sniff_content(std::string_view text, const std::string& source) {
     if (starts_with_word_then(body, '=')) return Content::KeyValue;
     if (starts_with_word_then(body, ':')) return Content::Yaml;
     if (body.front() >= '0' && body.front() <= '9') return Content::Table;
-    throw FileError(source + ": unknown camera file format: it starts with " + shown_start(text) +
+    throw FileError(source + ": unknown camera file format: it starts with " + shown_start(body) +
                     " (not JSON, YAML, XML, mrcal's .cameramodel or .cahvor, or COLMAP's cameras.txt; --from-format "
                     "names it: " + camera_format_names() + ")");
 }
@@ -156,14 +156,16 @@ void require_text(const Rows& rows, std::string_view text, std::string_view exte
 }
 
 // The file parsed once as the structure its candidates share, for their claims; nullopt
-// when it does not parse (the chosen reader then says where it is broken) or is not
-// JSON, YAML or XML. The text is UTF-8: every row of these contents is text.
-std::optional<DocumentNode> parsed_for_claims(std::string_view text, unsigned content, const std::string& source) {
+// when it is not JSON, YAML or XML, or does not parse (`failure` then says where). The
+// text is UTF-8: every row of these contents is text.
+std::optional<DocumentNode> parsed_for_claims(std::string_view text, unsigned content, const std::string& source,
+                                              std::string& failure) {
     try {
         if (content & static_cast<unsigned>(Content::Json)) return parse_json_tree(text, source);
         if (content & static_cast<unsigned>(Content::Yaml)) return parse_yaml_document(text, source);
         if (content & static_cast<unsigned>(Content::Xml)) return parse_xml_outline(text, source);
-    } catch (const FileError&) {
+    } catch (const FileError& error) {
+        failure = error.what();
     }
     return std::nullopt;
 }
@@ -224,7 +226,8 @@ Detection choose(const Rows& candidates, std::string_view text, const Named& nam
     if (candidates.size() == 1) return {candidates.front(), named.extension ? "" : "by " + by};
     unsigned shared = ~0u;
     for (const FormatRow* row : candidates) shared &= row->content;
-    const std::optional<DocumentNode> root = parsed_for_claims(text, shared, source);
+    std::string failure;
+    const std::optional<DocumentNode> root = parsed_for_claims(text, shared, source, failure);
     if (root) {
         for (const FormatRow* row : candidates) {
             if (row->claims != nullptr && row->claims(*root)) return {row, "by " + by + " and its keys"};
@@ -240,9 +243,14 @@ Detection choose(const Rows& candidates, std::string_view text, const Named& nam
                  [](const FormatRow* row) { return row->claims != nullptr; });
     const std::string how = "the default for " + named.what;
     if (others.empty()) return {chosen, how + " (--from-format names another)"};
-    if (!root && (shared & (Content::Json | Content::Yaml | Content::Xml)) != 0) {
-        return {chosen, how + ": it does not parse, so its keys could not tell which format it is"};
+    // JSON or XML that does not parse is broken for every format it could be: the parser
+    // says where. (An OpenCV YAML reader also takes XML, which YAML's parser refuses.)
+    const bool json_or_xml =
+        shared == static_cast<unsigned>(Content::Json) || shared == static_cast<unsigned>(Content::Xml);
+    if (!failure.empty() && json_or_xml) {
+        throw FileError(failure + " (its keys, which tell the formats of " + named.what + " apart, cannot be read)");
     }
+    if (!failure.empty()) return {chosen, how + ": it does not parse, so its keys could not tell which format it is"};
     return {chosen, how + ": its keys are those of none of " + listed(others, name_of)};
 }
 

@@ -10,6 +10,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/shown_value.hpp"
 
@@ -188,8 +189,7 @@ bool claims_realitycapture_xmp(const DocumentNode& outline) {
 
 std::vector<NamedCamera> read_realitycapture_xmp(std::string_view text, const ReadContext& context) {
     pugi::xml_document document;
-    const pugi::xml_parse_result result = document.load_buffer(text.data(), text.size());
-    if (!result) throw FileError(context.source + ": not valid XML: " + result.description());
+    load_xml(document, text, context.source);
     const std::optional<Description> file = find_description(document, context.source);
     if (!file) {
         throw FileError(context.source + ": no rdf:Description in RealityCapture's namespace (" +
