@@ -175,8 +175,8 @@ TEST_CASE("OCamCalib's calib_results.txt is OCamCalib's wherever its comment is,
     const auto colmap = write_file(dir, "cameras.txt", "# Camera list\n1 PINHOLE 640 480 500 500 320 240\n");
     CHECK(read_camera_set(colmap).format == CameraFormat::Colmap);
     const auto wrong = write_file(dir, "wrong.txt", "1 PINHOL 640 480 500 500 320 240\n");
-    CHECK(read_error(wrong).ends_with(" got 'PINHOL' (read as COLMAP model, the default for files of lines of numbers "
-                                      "and words (--from-format names another))"));
+    CHECK(read_error(wrong).ends_with(" got 'PINHOL' (read as COLMAP model, the default for tables of numbers and words "
+                                      "(--from-format names another))"));
 }
 
 TEST_CASE("NVM and Bundler messages show a file's bytes escaped, and refuse bytes that are not UTF-8", "[messages]") {

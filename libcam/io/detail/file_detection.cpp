@@ -46,7 +46,7 @@ bool starts_with_word_then(std::string_view line, char separator) {
     return next != std::string_view::npos && line[next] == separator && (separator != ':' || next == end);
 }
 
-// What files of each kind of content are, in words.
+// What files of each kind of content are, in words: "by its contents (JSON)".
 std::string_view content_name(Content content) {
     switch (content) {
         case Content::Json: return "JSON";
@@ -60,6 +60,17 @@ std::string_view content_name(Content content) {
         case Content::OcamText: return "OCamCalib's text";
     }
     return "?";
+}
+
+// The files of each kind of content, in words: "the default for JSON files".
+std::string content_files(Content content) {
+    switch (content) {
+        case Content::Binary: return "binary files";
+        case Content::OcamText: return "OCamCalib's files";
+        case Content::PythonDict: return "mrcal's Python dicts";
+        case Content::Table: return "tables of numbers and words";
+        default: return std::string(content_name(content)) + " files";
+    }
 }
 
 // What a file without a known extension holds, by its first characters: JSON starts
@@ -264,7 +275,7 @@ Detection detect_format(std::string_view text, const std::filesystem::path& path
         const Content content = sniff_content(text, source);
         const std::string kind(content_name(content));
         candidates = rows_of_content(content);
-        named = {"its contents (" + kind + ")", "files of " + kind, false};
+        named = {"its contents (" + kind + ")", content_files(content), false};
     }
     const auto binary = [](const FormatRow* row) { return row->binary; };
     const bool all_text = std::none_of(candidates.begin(), candidates.end(), binary);

@@ -84,7 +84,9 @@ OpenCvMatrix read_opencv_matrix(const Field& field, long long max_elements, int 
         std::vector<double> values = field.numbers(static_cast<std::size_t>(max_elements));
         return column(values);
     }
-    if (!node.tag.empty() && node.tag != "opencv-matrix") field.fail("expected an opencv-matrix, got a " + node.tag);
+    if (!node.tag.empty() && node.tag != "opencv-matrix") {
+        field.fail("expected an opencv-matrix, got the type " + shown_value(node.tag));
+    }
     Matrix m;
     m.rows = field.at({"rows"}).integer(0, max_elements);
     m.cols = field.at({"cols"}).integer(0, max_elements);
