@@ -37,8 +37,9 @@ ColmapModelRead read_model(const fs::path& folder) {
     const fs::path images_file = folder / ("images" + extension);
     const fs::path points_file = folder / ("points3D" + extension);
     for (const fs::path& file : {images_file, points_file}) {
-        std::error_code error;
-        if (!fs::is_regular_file(file, error)) throw FileError(file.string() + ": missing (a COLMAP model has cameras, images and points3D)");
+        if (!regular_file_exists(file)) {
+            throw FileError(file.string() + ": missing (a COLMAP model has cameras, images and points3D)");
+        }
     }
     ColmapModelRead model;
     model.cameras = read_colmap_cameras(read_text_file(cameras_file), cameras_file.string(), binary);

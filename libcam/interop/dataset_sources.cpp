@@ -38,7 +38,7 @@ bool all_under_images(const std::vector<fs::path>& paths) {
 
 // The frames of a transforms.json; refused without frames (one camera, not a dataset).
 NerfScene read_scene(const fs::path& json) {
-    const std::string text = read_text_file(json);
+    const std::string text = read_text_file(json, {kCameraFileLimit.max_bytes, "NeRF transforms.json"});
     NerfScene scene = read_nerf_scene(text, {json.string(), json.parent_path(), {}});
     if (scene.cameras.size() == 1 && scene.cameras[0].name.empty() && !scene.posed[0]) {
         throw FileError(json.string() + ": \"frames\": missing: a dataset needs frames, each with its image and pose");

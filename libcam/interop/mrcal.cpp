@@ -11,6 +11,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/interop/mrcal_c.hpp"
+#include "libcam/interop/mrcal_diagnostic.hpp"
 
 namespace libcam {
 
@@ -146,12 +147,11 @@ CameramodelPtr parse_with_mrcal(std::string_view text, const std::string& source
     mrcal_cameramodel_t* raw = nullptr;
     const std::string diagnostic = capturing_stderr([&] { raw = mrcal_read_cameramodel_string(terminated.c_str(), 0); });
     if (raw == nullptr) {
-        std::string message = source + ": libmrcal could not parse this .cameramodel";
         if (text.find("'lens_model'") != std::string_view::npos || text.find("\"lens_model\"") != std::string_view::npos) {
-            message += " (it has the legacy key 'lens_model', which libmrcal's C parser rejects: rename it 'lensmodel')";
+            throw FileError(source + ": it has the legacy key 'lens_model', which libmrcal's C parser rejects: rename it "
+                                     "'lensmodel'");
         }
-        if (!diagnostic.empty()) message += ": " + diagnostic.substr(0, diagnostic.find('\n'));
-        throw FileError(message);
+        throw FileError(source + ": " + mrcal_parse_failure(diagnostic, text));
     }
     return CameramodelPtr(raw);
 }

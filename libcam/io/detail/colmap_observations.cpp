@@ -32,8 +32,7 @@ ModelFiles model_files(const std::filesystem::path& file) {
     ModelFiles files{folder / ("cameras" + extension), folder / ("images" + extension),
                      folder / ("points3D" + extension), binary};
     for (const std::filesystem::path* path : {&files.cameras, &files.images, &files.points3d}) {
-        std::error_code error;
-        if (!std::filesystem::is_regular_file(*path, error)) {
+        if (!regular_file_exists(*path)) {
             throw FileError(folder.string() + ": a COLMAP model's observations are in cameras" + extension + ", images" +
                             extension + " and points3D" + extension + "; " + path->filename().string() +
                             " is missing");
@@ -188,7 +187,7 @@ ObservationSet read_colmap_observations(const std::filesystem::path& file, std::
     const ModelFiles files = model_files(file);
     // The model's files, the one detection read (`file`) not read again.
     const auto text_of = [&](const std::filesystem::path& path) {
-        return path == file ? std::string(text) : read_text_file(path);
+        return path == file ? std::string(text) : read_text_file(path, kColmapModelPartLimit);
     };
     const std::vector<ColmapCameraRecord> cameras =
         read_colmap_cameras(text_of(files.cameras), files.cameras.string(), files.binary);

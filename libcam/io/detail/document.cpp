@@ -19,6 +19,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -567,9 +568,9 @@ namespace {
 // A scalar as a message quotes it: a JSON string in JSON's quotes, a JSON number or
 // boolean as it is, any other word in ''.
 std::string quoted(const DocumentNode& scalar) {
-    if (scalar.tag == "string") return nlohmann::json(scalar.text).dump();
-    if (scalar.tag == "number" || scalar.tag == "boolean") return scalar.text;
-    return "'" + std::string(trim(scalar.text)) + "'";
+    if (scalar.tag == "string") return shown_value(scalar.text, '"');
+    if (scalar.tag == "number" || scalar.tag == "boolean") return printable_text(scalar.text, kShownValueLength);
+    return shown_value(trim(scalar.text));
 }
 
 // What a value is, for a message that expected something else.
@@ -636,7 +637,7 @@ std::string Field::child_name(std::string_view key) const {
 
 std::string Field::text() const {
     if (node_->kind != DocumentNode::Kind::Scalar) fail("expected a single value, got " + show(*node_));
-    if (node_->tag == "number" || node_->tag == "boolean") fail("expected a string, got " + node_->text);
+    if (node_->tag == "number" || node_->tag == "boolean") fail("expected a string, got " + quoted(*node_));
     return node_->text;
 }
 
@@ -670,7 +671,7 @@ double Field::number_at(const DocumentNode& scalar, std::size_t index, bool inde
         fail("expected a number, got " + quoted(scalar));
     }
     if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
-        fail("must be finite, got " + std::string(written));
+        fail("must be finite, got " + printable_text(written, kShownValueLength));
     }
     return value;
 }
@@ -687,7 +688,8 @@ long long Field::integer(long long min, long long max) const {
     const bool digits_only = !word.empty() && end == word.data() + word.size();
     if (!digits_only || error == std::errc::invalid_argument) fail("expected an integer, got " + quoted(*node_));
     if (error == std::errc::result_out_of_range || value < min || value > max) {
-        fail("must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + written);
+        fail("must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
+             printable_text(written, kShownValueLength));
     }
     return value;
 }
@@ -695,7 +697,8 @@ long long Field::integer(long long min, long long max) const {
 long long Field::whole_number(long long min, long long max) const {
     const double value = number();
     if (value != std::floor(value) || value < static_cast<double>(min) || value > static_cast<double>(max)) {
-        fail("expected a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + node_->text);
+        fail("expected a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
+             printable_text(node_->text, kShownValueLength));
     }
     return static_cast<long long>(value);
 }
