@@ -7,7 +7,7 @@
 #include <unordered_map>
 
 #include "libcam/error.hpp"
-#include "libcam/io/format_table.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -40,31 +40,12 @@ bool same_filesystem(const fs::path& a, const fs::path& b) {
 
 }  // namespace
 
-std::string shown_name(std::string_view name) {
-    bool utf8 = true;
-    try {
-        check_text(name, "");
-    } catch (const FileError&) {
-        utf8 = false;
-    }
-    // A name from a binary file may be as long as the file: its start, cut between characters.
-    constexpr std::size_t kShownBytes = 200;
-    std::size_t shown_bytes = std::min(name.size(), kShownBytes);
-    while (utf8 && shown_bytes < name.size() && (static_cast<unsigned char>(name[shown_bytes]) & 0xC0) == 0x80) --shown_bytes;
-    std::string shown;
-    for (const char c : name.substr(0, shown_bytes)) {
-        const auto byte = static_cast<unsigned char>(c);
-        shown += is_control(byte) || (byte >= 0x80 && !utf8) ? hex_byte(byte) : std::string(1, c);
-    }
-    if (shown_bytes < name.size()) shown += "... (" + std::to_string(name.size()) + " bytes)";
-    return shown;
-}
 
 std::string plain_image_name(const std::string& name, const std::string& where, const std::string& field,
                              const std::string& folder) {
     const std::string prefix = where + ": " + field + ": ";
     if (name.empty()) throw FileError(prefix + "missing or empty");
-    const std::string shown = "'" + shown_name(name) + "'";
+    const std::string shown = shown_value(name);
     for (const char c : name) {
         if (is_control(static_cast<unsigned char>(c))) {
             throw FileError(prefix + shown + " holds a control character (" + hex_byte(static_cast<unsigned char>(c)) +
@@ -88,20 +69,20 @@ void check_distinct_names(const std::vector<ColmapImage>& images, const std::str
     std::unordered_map<std::string, std::size_t> files, folders;  // each name and folder, by the image giving it
     for (std::size_t i = 0; i < images.size(); ++i) {
         const std::string& name = images[i].name;
-        const std::string prefix = images[i].where + ": " + field + ": '" + shown_name(name) + "'";
+        const std::string prefix = images[i].where + ": " + field + ": " + shown_value(name);
         if (const auto found = files.find(name); found != files.end()) {
             throw FileError(prefix + " is also the name of " + images[found->second].where +
                             "; the output keeps one image per name");
         }
         if (const auto found = folders.find(name); found != folders.end()) {
-            throw FileError(prefix + " is a folder of " + images[found->second].where + "'s name '" +
-                            shown_name(images[found->second].name) + "'; an image cannot be a folder too");
+            throw FileError(prefix + " is a folder of " + images[found->second].where + "'s name " +
+                            shown_value(images[found->second].name) + "; an image cannot be a folder too");
         }
         files.emplace(name, i);
         for (fs::path folder = fs::path(name).parent_path(); !folder.empty(); folder = folder.parent_path()) {
             if (const auto found = files.find(folder.generic_string()); found != files.end()) {
-                throw FileError(prefix + " makes a folder of " + images[found->second].where + "'s name '" +
-                                shown_name(images[found->second].name) + "'; an image cannot be a folder too");
+                throw FileError(prefix + " makes a folder of " + images[found->second].where + "'s name " +
+                                shown_value(images[found->second].name) + "; an image cannot be a folder too");
             }
             folders.emplace(folder.generic_string(), i);
         }

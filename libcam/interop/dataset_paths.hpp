@@ -37,8 +37,4 @@ void check_distinct_names(const std::vector<ColmapImage>& images, const std::str
 void check_folder_inside(const std::filesystem::path& root, const std::filesystem::path& relative,
                          const std::filesystem::path& avoid = {});
 
-// A name for a message: control characters and, in text that is not UTF-8, every byte past
-// ASCII shown as \xNN; past 200 bytes, cut and its length said.
-std::string shown_name(std::string_view name);
-
 }  // namespace libcam

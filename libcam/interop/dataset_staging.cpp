@@ -20,14 +20,12 @@ constexpr const char* kFinishingHeader = "libcam dataset: moving these images in
 // The file's contents when it is a regular file of at most `limit` bytes (a stamp or list
 // libcam wrote); nothing otherwise, without reading more than `limit` + 1 bytes of it.
 std::optional<std::string> small_file(const fs::path& path, std::size_t limit) {
-    std::error_code error;
-    if (!fs::is_regular_file(path, error)) return std::nullopt;
-    std::ifstream in(path, std::ios::binary);
-    std::string text(limit + 1, '\0');
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    if (in.bad() || static_cast<std::size_t>(in.gcount()) > limit) return std::nullopt;
-    text.resize(static_cast<std::size_t>(in.gcount()));
-    return text;
+    try {
+        if (!regular_file_exists(path)) return std::nullopt;
+        return read_text_file(path, ReadLimit{limit, "libcam dataset's own"});
+    } catch (const FileError&) {
+        return std::nullopt;  // another file than the one libcam wrote: not a match
+    }
 }
 
 bool holds(const fs::path& file, const std::string& text) {
