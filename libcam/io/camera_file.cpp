@@ -4,6 +4,7 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <cstring>
 
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -233,6 +234,21 @@ Camera validated_camera(Camera camera, const std::string& where) {
     return camera;
 }
 
+namespace {
+
+// Where the run of ASCII bytes other than NUL from `i` ends, read eight bytes at a time.
+std::size_t ascii_run_end(std::string_view text, std::size_t i) {
+    constexpr std::uint64_t kHigh = 0x8080808080808080u, kOnes = 0x0101010101010101u;
+    for (std::uint64_t word = 0; i + 8 <= text.size(); i += 8) {
+        std::memcpy(&word, text.data() + i, 8);
+        if ((word & kHigh) != 0 || ((word - kOnes) & ~word & kHigh) != 0) break;  // a byte >= 0x80, or a 0
+    }
+    while (i < text.size() && text[i] != 0 && static_cast<unsigned char>(text[i]) < 0x80) ++i;
+    return i;
+}
+
+}  // namespace
+
 // Camera files are text: UTF-8 without NUL bytes. Checked before any parser sees the
 // bytes, because OpenCV's XML parser and libmrcal's parser crash on some binary input
 // (found by fuzzing).
@@ -240,21 +256,26 @@ void check_text(std::string_view text, const std::string& source) {
     std::size_t i = 0;
     while (i < text.size()) {
         const auto byte = static_cast<unsigned char>(text[i]);
-        const std::string where = source + ": byte " + std::to_string(i) + ": ";
-        if (byte == 0) throw FileError(where + "NUL byte: not a text file");
+        if (byte != 0 && byte < 0x80) {  // ASCII, most of any camera file: nothing to decode
+            i = ascii_run_end(text, i + 1);
+            continue;
+        }
+        // Built only for a refused byte: one built for every byte held reading to a few MB/s.
+        const auto where = [&] { return source + ": byte " + std::to_string(i) + ": "; };
+        if (byte == 0) throw FileError(where() + "NUL byte: not a text file");
         // The length of the UTF-8 sequence this byte starts, and its smallest code point
         // (so overlong encodings are refused too).
         const int length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
-        if (length == 0 || i + static_cast<std::size_t>(length) > text.size()) throw FileError(where + "not UTF-8");
+        if (length == 0 || i + static_cast<std::size_t>(length) > text.size()) throw FileError(where() + "not UTF-8");
         std::uint32_t code = length == 1 ? byte : byte & (0x7F >> length);
         for (int k = 1; k < length; ++k) {
             const auto next = static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]);
-            if ((next >> 6) != 0x2) throw FileError(where + "not UTF-8");
+            if ((next >> 6) != 0x2) throw FileError(where() + "not UTF-8");
             code = (code << 6) | (next & 0x3F);
         }
         constexpr std::uint32_t kSmallest[] = {0, 0, 0x80, 0x800, 0x10000};
         if (code < kSmallest[length] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) {
-            throw FileError(where + "not UTF-8");
+            throw FileError(where() + "not UTF-8");
         }
         i += static_cast<std::size_t>(length);
     }
@@ -374,6 +395,15 @@ std::optional<DocumentNode> parsed_for_claims(std::string_view text, unsigned co
     return std::nullopt;
 }
 
+// The tree parsed for the claims, handed to the reader's parse of the same text: one
+// parse, not two (a JSON or YAML reader parses as parsed_for_claims did).
+void keep_for_reader(std::string_view text, unsigned content, const std::string& source, DocumentNode root) {
+    const bool json = (content & static_cast<unsigned>(Content::Json)) != 0;
+    if (json || (content & static_cast<unsigned>(Content::Yaml)) != 0) {
+        keep_parsed_document(json ? DocumentSyntax::Json : DocumentSyntax::Yaml, text, source, std::move(root));
+    }
+}
+
 // The format of a file: the rows its extension names, else the rows of the content its
 // first characters show; among several, the first whose claims accept the file's keys,
 // else the one that claims nothing (the default for that ending or content).
@@ -392,11 +422,17 @@ CameraFormat detect_format(std::string_view text, const std::filesystem::path& p
     if (candidates.size() == 1) return candidates.front()->format;
     unsigned shared = ~0u;
     for (const FormatRow* row : candidates) shared &= row->content;
-    if (const std::optional<DocumentNode> root = parsed_for_claims(text, shared, source)) {
+    std::optional<CameraFormat> claimed;
+    if (std::optional<DocumentNode> root = parsed_for_claims(text, shared, source)) {
         for (const FormatRow* row : candidates) {
-            if (row->claims != nullptr && row->claims(*root)) return row->format;
+            if (row->claims != nullptr && row->claims(*root)) {
+                claimed = row->format;
+                break;
+            }
         }
+        keep_for_reader(text, shared, source, std::move(*root));
     }
+    if (claimed) return *claimed;
     for (const FormatRow* row : candidates) {
         if (row->claims == nullptr) return row->format;
     }

@@ -60,6 +60,28 @@ private:
     std::size_t nodes_ = 0;
 };
 
+// ---- the tree detection parsed, for the reader (keep_parsed_document) ----
+
+struct KeptDocument {
+    DocumentSyntax syntax;
+    std::string text;  // compared whole: a buffer freed and reused at the same address is another file
+    std::string source;
+    DocumentNode tree;
+};
+
+thread_local std::optional<KeptDocument> kept_document;
+
+// The kept tree when it is this text's, parsed the same way; the slot is emptied either way,
+// so that a tree no reader takes is not held on to.
+std::optional<DocumentNode> take_kept_document(DocumentSyntax syntax, std::string_view text,
+                                               const std::string& source) {
+    if (!kept_document) return std::nullopt;
+    KeptDocument kept = std::move(*kept_document);
+    kept_document.reset();
+    if (kept.syntax != syntax || kept.source != source || kept.text != text) return std::nullopt;
+    return std::move(kept.tree);
+}
+
 // ---- YAML (yaml-cpp) ----
 
 std::string yaml_tag(const std::string& tag) {
@@ -369,7 +391,13 @@ std::string yaml_number(double value) {
     return text;
 }
 
+void keep_parsed_document(DocumentSyntax syntax, std::string_view text, const std::string& source, DocumentNode tree) {
+    kept_document = KeptDocument{syntax, std::string(text), source, std::move(tree)};
+}
+
 DocumentNode parse_yaml_document(std::string_view text, const std::string& source) {
+    std::optional<DocumentNode> kept = take_kept_document(DocumentSyntax::Yaml, text, source);
+    if (kept) return std::move(*kept);
     const std::string yaml = without_yaml_header(text);
     check_one_yaml_document(yaml, source);
     TreeBudget budget(source);
@@ -555,6 +583,8 @@ private:
 }  // namespace
 
 DocumentNode parse_json_tree(std::string_view text, const std::string& source) {
+    std::optional<DocumentNode> kept = take_kept_document(DocumentSyntax::Json, text, source);
+    if (kept) return std::move(*kept);
     JsonTreeBuilder builder(source);
     if (!nlohmann::json::sax_parse(text.begin(), text.end(), &builder)) builder.refuse();
     return builder.take();
