@@ -369,6 +369,7 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
         out.text = std::move(words.front());
     } else if (words.size() > 1) {
         out.kind = DocumentNode::Kind::Sequence;
+        out.items.reserve(words.size());
         for (std::string& word : words) {
             budget.enter(depth + 1, out.line);
             DocumentNode item;
@@ -678,9 +679,10 @@ std::optional<bool> Field::boolean() const {
 }
 
 double Field::number_at(const DocumentNode& scalar, std::size_t index, bool indexed) const {
-    const Field where(scalar, name_, source_);
     const auto fail = [&](const std::string& what) {
-        if (!indexed) where.fail(what);
+        // The field is named only for a message: a copy of its name for every number was
+        // most of the time of reading a file of many numbers.
+        if (!indexed) Field(scalar, name_, source_).fail(what);
         const std::string line = scalar.line > 0 ? ": line " + std::to_string(scalar.line) : "";
         throw FileError(*source_ + line + ": \"" + name_ + "\"[" + std::to_string(index) + "]: " + what);
     };
