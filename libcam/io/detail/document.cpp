@@ -61,6 +61,28 @@ private:
     std::size_t nodes_ = 0;
 };
 
+// ---- the tree detection parsed, for the reader (keep_parsed_document) ----
+
+struct KeptDocument {
+    DocumentSyntax syntax;
+    std::string text;  // compared whole: a buffer freed and reused at the same address is another file
+    std::string source;
+    DocumentNode tree;
+};
+
+thread_local std::optional<KeptDocument> kept_document;
+
+// The kept tree when it is this text's, parsed the same way; the slot is emptied either way,
+// so that a tree no reader takes is not held on to.
+std::optional<DocumentNode> take_kept_document(DocumentSyntax syntax, std::string_view text,
+                                               const std::string& source) {
+    if (!kept_document) return std::nullopt;
+    KeptDocument kept = std::move(*kept_document);
+    kept_document.reset();
+    if (kept.syntax != syntax || kept.source != source || kept.text != text) return std::nullopt;
+    return std::move(kept.tree);
+}
+
 // ---- YAML (yaml-cpp) ----
 
 std::string yaml_tag(const std::string& tag) {
@@ -348,6 +370,7 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
         out.text = std::move(words.front());
     } else if (words.size() > 1) {
         out.kind = DocumentNode::Kind::Sequence;
+        out.items.reserve(words.size());
         for (std::string& word : words) {
             budget.enter(depth + 1, out.line);
             DocumentNode item;
@@ -370,7 +393,13 @@ std::string yaml_number(double value) {
     return text;
 }
 
+void keep_parsed_document(DocumentSyntax syntax, std::string_view text, const std::string& source, DocumentNode tree) {
+    kept_document = KeptDocument{syntax, std::string(text), source, std::move(tree)};
+}
+
 DocumentNode parse_yaml_document(std::string_view text, const std::string& source) {
+    std::optional<DocumentNode> kept = take_kept_document(DocumentSyntax::Yaml, text, source);
+    if (kept) return std::move(*kept);
     const std::string yaml = without_yaml_header(text);
     check_one_yaml_document(yaml, source);
     TreeBudget budget(source);
@@ -556,6 +585,8 @@ private:
 }  // namespace
 
 DocumentNode parse_json_tree(std::string_view text, const std::string& source) {
+    std::optional<DocumentNode> kept = take_kept_document(DocumentSyntax::Json, text, source);
+    if (kept) return std::move(*kept);
     JsonTreeBuilder builder(source);
     if (!nlohmann::json::sax_parse(text.begin(), text.end(), &builder)) builder.refuse();
     return builder.take();
@@ -649,9 +680,10 @@ std::optional<bool> Field::boolean() const {
 }
 
 double Field::number_at(const DocumentNode& scalar, std::size_t index, bool indexed) const {
-    const Field where(scalar, name_, source_);
     const auto fail = [&](const std::string& what) {
-        if (!indexed) where.fail(what);
+        // The field is named only for a message: a copy of its name for every number was
+        // most of the time of reading a file of many numbers.
+        if (!indexed) Field(scalar, name_, source_).fail(what);
         const std::string line = scalar.line > 0 ? ": line " + std::to_string(scalar.line) : "";
         throw FileError(*source_ + line + ": \"" + name_ + "\"[" + std::to_string(index) + "]: " + what);
     };

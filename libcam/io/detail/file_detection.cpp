@@ -181,6 +181,15 @@ std::optional<DocumentNode> parsed_for_claims(std::string_view text, unsigned co
     return std::nullopt;
 }
 
+// The tree parsed for the claims, handed to the reader's parse of the same text: one
+// parse, not two (a JSON or YAML reader parses as parsed_for_claims did).
+void keep_for_reader(std::string_view text, unsigned content, const std::string& source, DocumentNode root) {
+    const bool json = (content & static_cast<unsigned>(Content::Json)) != 0;
+    if (json || (content & static_cast<unsigned>(Content::Yaml)) != 0) {
+        keep_parsed_document(json ? DocumentSyntax::Json : DocumentSyntax::Yaml, text, source, std::move(root));
+    }
+}
+
 // The keys of a parsed file a row's telling_keys are looked for among: the top map's,
 // and those of the first entry of the top list or map.
 std::vector<std::string_view> file_keys(const DocumentNode& root) {
@@ -238,13 +247,20 @@ Detection choose(const Rows& candidates, std::string_view text, const Named& nam
     unsigned shared = ~0u;
     for (const FormatRow* row : candidates) shared &= row->content;
     std::string failure;
-    const std::optional<DocumentNode> root = parsed_for_claims(text, shared, source, failure);
-    if (root) {
+    if (std::optional<DocumentNode> root = parsed_for_claims(text, shared, source, failure)) {
+        std::optional<Detection> found;
         for (const FormatRow* row : candidates) {
-            if (row->claims != nullptr && row->claims(*root)) return {row, "by " + by + " and its keys"};
+            if (row->claims != nullptr && row->claims(*root)) {
+                found = Detection{row, "by " + by + " and its keys"};
+                break;
+            }
         }
         std::string keys;
-        if (const FormatRow* told = told_by_keys(*root, candidates, keys)) return {told, "by " + by + " and " + keys};
+        if (!found) {
+            if (const FormatRow* told = told_by_keys(*root, candidates, keys)) found = Detection{told, "by " + by + " and " + keys};
+        }
+        keep_for_reader(text, shared, source, std::move(*root));
+        if (found) return *found;
     }
     const auto claims_nothing = [](const FormatRow* row) { return row->claims == nullptr; };
     const auto fallback = std::find_if(candidates.begin(), candidates.end(), claims_nothing);
