@@ -1,19 +1,133 @@
 #include "libcam/camera/camera.hpp"
 
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "libcam/camera/batch_kernels.hpp"
 #include "libcam/camera/point_scale.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/lens/lens_models.hpp"
+#include "libcam/text/number_format.hpp"
 
 namespace libcam {
+
+namespace {
+
+// ---- what a camera must image --------------------------------------------------------------
+//
+// Finite, positive numbers are not enough: a focal length of 5e-324, or k1 = -1e30 (the
+// lens folds over 1e-12 pixels from the principal point), or k1 = 1e30 (the whole image
+// squeezed into 1e-8 degrees, from which a derived pinhole gets a focal length of 4e12
+// pixels) pass every such check. COLMAP flags odd cameras after a reconstruction
+// (Camera::HasBogusParams: a focal length outside 0.1 to 10 times the image's longer side,
+// an extra parameter above 1), bounds that refuse real lenses (OpenCV's rational
+// coefficients exceed 1) and telephoto or wide cameras. The rule here refuses only a
+// camera whose numbers contradict each other, whatever its model:
+//   - K (Intrinsics::validate): fx and fy are normal numbers (not subnormal), so that a
+//     pixel's offset from the principal point can be divided by them;
+//   - every corner of the image has finite normalised coordinates (K's inverse does not
+//     overflow over the image);
+//   - the principal point and the four pixels next to it along the image's axes have
+//     rays, and within that pixel the lens keeps its scale: the angle between the
+//     principal point's ray and the next pixel's is within a factor of 2 of 1024 times
+//     the angle to the point 1/1024 of a pixel off. The focal length is the lens's scale
+//     at its centre, which every model keeps to first order there; a real lens's
+//     distortion changes it by less than a millionth within the first pixel, and a lens
+//     that folds over, or whose domain ends, within a pixel of the principal point has no
+//     ray there at all. The message names the coefficient that does it (the one whose
+//     removal alone mends it), else the focal lengths (fx = 1e-300: the whole field of
+//     view within one pixel).
+// Any field of view from a millionth of a degree up stays a camera, and so does every
+// real lens.
+
+constexpr double kFinePixel = 1.0 / 1024.0;
+constexpr double kMostScaleChange = 2.0;
+
+// Whether the lens keeps its scale within a pixel of the principal point (above); the
+// reason when it does not.
+std::optional<std::string> scale_fault(const Intrinsics& k, const Lens& lens) {
+    return visit_lens_model<double>(lens.type, [&]<class Model>() -> std::optional<std::string> {
+        const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+        const auto ray_of = [&](const Vec2& offset, Vec3& ray) {
+            const Vec2 m = k.normalized_from_pixel(Vec2(Vec2(k.cx, k.cy) + offset));
+            return Model::unproject(parameters, m, ray) && ray.allFinite() && ray.norm() > 0.0;
+        };
+        const auto angle = [](const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); };
+        Vec3 centre;
+        if (!ray_of(Vec2::Zero(), centre)) return "the principal point has no ray";
+        for (const Vec2& step : {Vec2(1, 0), Vec2(-1, 0), Vec2(0, 1), Vec2(0, -1)}) {
+            const auto pixel = [&] {
+                return "the pixel (" + format_number(step.x()) + ", " + format_number(step.y()) +
+                       ") off the principal point";
+            };
+            Vec3 next, fine;
+            if (!ray_of(step, next) || !ray_of(kFinePixel * step, fine)) return pixel() + " has no ray";
+            const double whole = angle(centre, next), scaled = angle(centre, fine) / kFinePixel;
+            if (!(whole <= kMostScaleChange * scaled && scaled <= kMostScaleChange * whole)) {
+                const double factor = std::max(whole / scaled, scaled / whole);
+                return "the lens's scale changes by a factor of " + format_short(factor) + " within " + pixel() +
+                       " (by at most " + format_number(kMostScaleChange) +
+                       " in a camera: its focal length is the lens's scale there)";
+            }
+        }
+        return std::nullopt;
+    });
+}
+
+// The coefficient whose removal alone mends the lens, if any.
+std::optional<std::size_t> faulty_coefficient(const Intrinsics& k, const Lens& lens) {
+    for (std::size_t i = 0; i < lens.coefficients.size(); ++i) {
+        if (lens.coefficients[i] == 0.0) continue;
+        Lens without = lens;
+        without.coefficients[i] = 0.0;
+        try {
+            without.validate("dist");
+        } catch (const InvalidArgument&) {
+            continue;  // the model needs it non-zero
+        }
+        if (!scale_fault(k, without)) return i;
+    }
+    return std::nullopt;
+}
+
+void require_scale(const Intrinsics& k, const Lens& lens) {
+    const std::optional<std::string> fault = scale_fault(k, lens);
+    if (!fault) return;
+    if (const std::optional<std::size_t> i = faulty_coefficient(k, lens)) {
+        const std::span<const std::string_view> names = lens_info(lens.type).coefficients.view();
+        const std::string named = *i < names.size() ? " (" + std::string(names[*i]) + ")" : std::string();
+        throw InvalidArgument("dist[" + std::to_string(*i) + "]" + named + ": " + format_number(lens.coefficients[*i]) +
+                              ": " + *fault);
+    }
+    throw InvalidArgument("K: fx " + format_number(k.fx) + ", fy " + format_number(k.fy) + ": " + *fault);
+}
+
+// K's inverse over the image: finite at every corner.
+void require_finite_image(const ImageSize& size, const Intrinsics& k) {
+    const double right = static_cast<double>(size.width) - 0.5, bottom = static_cast<double>(size.height) - 0.5;
+    for (const Vec2& corner : {Vec2(-0.5, -0.5), Vec2(right, -0.5), Vec2(-0.5, bottom), Vec2(right, bottom)}) {
+        if (k.normalized_from_pixel(corner).allFinite()) continue;
+        throw InvalidArgument("K: the image's corner (" + format_number(corner.x()) + ", " + format_number(corner.y()) +
+                              ") has no finite direction (fx " + format_number(k.fx) + ", fy " + format_number(k.fy) +
+                              ", cx " + format_number(k.cx) + ", cy " + format_number(k.cy) + ", skew " +
+                              format_number(k.skew) + ")");
+    }
+}
+
+}  // namespace
 
 void Camera::validate() const {
     size.validate("image_size");
     intrinsics.validate("K");
     lens.validate("dist");
     pose.validate("R");
+    require_finite_image(size, intrinsics);
+    require_scale(intrinsics, lens);
 }
 
 namespace detail {

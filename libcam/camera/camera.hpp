@@ -37,7 +37,9 @@ struct Camera {
     Lens lens;
     Pose pose;
 
-    // Throws InvalidArgument naming the field for a bad size, K, lens or pose.
+    // Throws InvalidArgument naming the field for a bad size, K, lens or pose, and for a
+    // camera that images nothing: K not invertible over the image, or a lens whose image
+    // ends within a pixel of the principal point (camera.cpp says the rule).
     void validate() const;
 
     // P = K [R | t] (pinhole part only: distortion is not linear).
