@@ -48,11 +48,17 @@ namespace {
 constexpr double kFinePixel = 1.0 / 1024.0;
 constexpr double kMostScaleChange = 2.0;
 
+// The lens's valid radius (a root search: worked out once per camera).
+double valid_radius_of(const Lens& lens) {
+    return visit_lens_model<double>(
+        lens.type, [&]<class Model>() { return double(Model::parameters(lens.coefficients).valid_radius); });
+}
+
 // Whether the lens keeps its scale within a pixel of the principal point (above); the
-// reason when it does not.
-std::optional<std::string> scale_fault(const Intrinsics& k, const Lens& lens) {
+// reason when it does not. `valid_radius`: valid_radius_of(lens).
+std::optional<std::string> scale_fault(const Intrinsics& k, const Lens& lens, double valid_radius) {
     return visit_lens_model<double>(lens.type, [&]<class Model>() -> std::optional<std::string> {
-        const typename Model::Parameters parameters = Model::parameters(lens.coefficients);
+        const typename Model::Parameters parameters = batch::model_parameters<Model>(lens, valid_radius);
         const auto ray_of = [&](const Vec2& offset, Vec3& ray) {
             const Vec2 m = k.normalized_from_pixel(Vec2(Vec2(k.cx, k.cy) + offset));
             return Model::unproject(parameters, m, ray) && ray.allFinite() && ray.norm() > 0.0;
@@ -90,13 +96,13 @@ std::optional<std::size_t> faulty_coefficient(const Intrinsics& k, const Lens& l
         } catch (const InvalidArgument&) {
             continue;  // the model needs it non-zero
         }
-        if (!scale_fault(k, without)) return i;
+        if (!scale_fault(k, without, valid_radius_of(without))) return i;
     }
     return std::nullopt;
 }
 
-void require_scale(const Intrinsics& k, const Lens& lens) {
-    const std::optional<std::string> fault = scale_fault(k, lens);
+void require_scale(const Intrinsics& k, const Lens& lens, double valid_radius) {
+    const std::optional<std::string> fault = scale_fault(k, lens, valid_radius);
     if (!fault) return;
     if (const std::optional<std::size_t> i = faulty_coefficient(k, lens)) {
         const std::span<const std::string_view> names = lens_info(lens.type).coefficients.view();
@@ -119,15 +125,20 @@ void require_finite_image(const ImageSize& size, const Intrinsics& k) {
     }
 }
 
+// Every check of Camera::validate but the lens's scale, which needs its valid radius.
+void validate_values(const Camera& camera) {
+    camera.size.validate("image_size");
+    camera.intrinsics.validate("K");
+    camera.lens.validate("dist");
+    camera.pose.validate("R");
+    require_finite_image(camera.size, camera.intrinsics);
+}
+
 }  // namespace
 
 void Camera::validate() const {
-    size.validate("image_size");
-    intrinsics.validate("K");
-    lens.validate("dist");
-    pose.validate("R");
-    require_finite_image(size, intrinsics);
-    require_scale(intrinsics, lens);
+    validate_values(*this);
+    require_scale(intrinsics, lens, valid_radius_of(lens));
 }
 
 namespace detail {
@@ -153,10 +164,11 @@ typename Model::Parameters prepared_parameters(const PreparedState& state) {
 }  // namespace detail
 
 PreparedCamera::PreparedCamera(const Camera& camera) : state_(std::make_shared<detail::PreparedState>()) {
-    camera.validate();
+    // Camera::validate, with the valid radius worked out once.
+    validate_values(camera);
+    state_->valid_radius = valid_radius_of(camera.lens);
+    require_scale(camera.intrinsics, camera.lens, state_->valid_radius);
     state_->camera = camera;
-    state_->valid_radius = visit_lens_model<double>(
-        camera.lens.type, [&]<class Model>() { return double(Model::parameters(camera.lens.coefficients).valid_radius); });
     state_->valid_angle = visit_lens_model<double>(camera.lens.type, [&]<class Model>() {
         return libcam::valid_angle<Model>(camera.lens.coefficients, state_->valid_radius);
     });

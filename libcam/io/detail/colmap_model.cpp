@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <random>
 #include <string>
 
 #include "libcam/error.hpp"
@@ -95,6 +96,69 @@ void check_points2d_name_points(const ColmapModelRecords& model, const ColmapMod
     check_count(observations, paths.images, "observations");
 }
 
+// ---- the tracks against the POINTS2D -------------------------------------------------------
+//
+// Checked in two steps. First, in file order: the sum of a hash of every (POINT3D_ID,
+// IMAGE_ID, POINT2D_IDX) the tracks name against the same sum over every POINTS2D that
+// names a point. Equal sums (with equal counts) say that the two are the same set: every
+// track element names a 2-D point of its point, once, and every such 2-D point is in its
+// point's track. The hash is keyed afresh in each run, so that no file can be made to
+// collide. Else the exact check (check_tracks and check_points2d_in_tracks) goes through
+// the tracks and names the first element that is wrong, or links a 2-D point of no point
+// (the only difference a valid model can have). The exact check reads each track
+// element's 2-D point where it lies, a cache miss each: 0.4 s for 4 million observations,
+// which the sums take in a tenth of the time.
+
+// SplitMix64's finaliser: every bit of the result depends on every bit of x.
+std::uint64_t mix(std::uint64_t x) {
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+class TripleSum {
+public:
+    explicit TripleSum(std::uint64_t key) : key_(key) {}
+    void add(std::uint64_t point, std::uint64_t image, std::uint64_t index) {
+        sum_ += mix(mix(mix(point ^ key_) ^ image) ^ index);
+        ++count_;
+    }
+    bool operator==(const TripleSum& other) const { return sum_ == other.sum_ && count_ == other.count_; }
+
+private:
+    std::uint64_t key_;
+    std::uint64_t sum_ = 0;
+    std::uint64_t count_ = 0;
+};
+
+std::uint64_t run_key() {
+    static const std::uint64_t key = [] {
+        std::random_device device;
+        return (std::uint64_t{device()} << 32) ^ device();
+    }();
+    return key;
+}
+
+// Whether the tracks and the POINTS2D that name points hold the same triples (above).
+bool tracks_match_points2d(const ColmapModelRecords& model) {
+    TripleSum from_tracks(run_key()), from_points2d(run_key());
+    const ColmapPoints3D& points = model.points;
+    for (std::size_t p = 0; p < points.ids.size(); ++p) {
+        for (std::size_t k = points.track_begin[p]; k < points.track_begin[p + 1]; ++k) {
+            from_tracks.add(points.ids[p], points.track[k].image_id, points.track[k].point2d_index);
+        }
+    }
+    for (const ColmapImage& image : model.images) {
+        for (std::size_t k = 0; k < image.points.size(); ++k) {
+            const std::uint64_t id = image.points[k].point3d_id;
+            if (id != kColmapNoPoint3D) from_points2d.add(id, image.id, k);
+        }
+    }
+    return from_tracks == from_points2d;
+}
+
 // Each image's first place in one list of every image's POINTS2D.
 std::vector<std::size_t> first_points2d(const std::vector<ColmapImage>& images) {
     std::vector<std::size_t> first(images.size() + 1, 0);
@@ -120,19 +184,19 @@ void check_tracks(ColmapModelRecords& model, const ColmapModelPaths& paths, cons
                 throw FileError(where() + "IMAGE_ID " + std::to_string(image_id) + " is not in " + name_of(paths.images));
             }
             ColmapImage& image = model.images[static_cast<std::size_t>(position)];
-            const std::string seen = "image " + std::to_string(image_id) + " (" + image.name + ")";
+            const auto seen = [&] { return "image " + std::to_string(image_id) + " (" + image.name + ")"; };
             if (index >= image.points.size()) {
-                throw FileError(where() + "POINT2D_IDX " + std::to_string(index) + " is not one of " + seen + "'s " +
+                throw FileError(where() + "POINT2D_IDX " + std::to_string(index) + " is not one of " + seen() + "'s " +
                                 std::to_string(image.points.size()) + " POINTS2D");
             }
             std::uint64_t& named = image.points[index].point3d_id;
             const std::size_t place = first[static_cast<std::size_t>(position)] + index;
             if (named != id && named != kColmapNoPoint3D) {
-                throw FileError(where() + seen + "'s POINTS2D[" + std::to_string(index) + "] is POINT3D_ID " +
+                throw FileError(where() + seen() + "'s POINTS2D[" + std::to_string(index) + "] is POINT3D_ID " +
                                 std::to_string(named) + "'s");
             }
             if (claimed[place]) {
-                throw FileError(where() + seen + "'s POINTS2D[" + std::to_string(index) + "] is in the track twice");
+                throw FileError(where() + seen() + "'s POINTS2D[" + std::to_string(index) + "] is in the track twice");
             }
             named = id;
             claimed[place] = true;
@@ -163,6 +227,7 @@ void check_model(ColmapModelRecords& model, const ColmapModelPaths& paths) {
     check_image_cameras(model, paths);
     if (paths.points3d.empty()) return;
     check_points2d_name_points(model, paths);
+    if (tracks_match_points2d(model)) return;
     const std::vector<std::size_t> first = first_points2d(model.images);
     std::vector<bool> claimed(first.back(), false);
     check_tracks(model, paths, first, claimed);

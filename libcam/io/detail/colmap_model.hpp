@@ -22,9 +22,11 @@
 // point of another point fails THROW_CHECK_EQ); 3.8 checked nothing and failed at the
 // first use. Its writers never write a model that breaks it.
 //
-// Memory: the records as the files hold them, each image's POINTS2D included, and a byte
-// per POINTS2D while the tracks are checked; the ids are indexed by ColmapIdIndex, a table
-// where they are compact (as COLMAP numbers them) and a sorted list otherwise.
+// Memory and time: the records as the files hold them, each image's POINTS2D included;
+// the ids are indexed by ColmapIdIndex, a table where they are compact (as COLMAP numbers
+// them) and a sorted list otherwise. The tracks are checked against the POINTS2D by a sum
+// over each in file order (colmap_model.cpp), and only where the sums differ element by
+// element, with a bit per POINTS2D, to say where.
 
 #include <cstdint>
 #include <filesystem>
