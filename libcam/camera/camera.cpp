@@ -12,6 +12,7 @@
 #include "libcam/camera/point_scale.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/lens/lens_models.hpp"
+#include "libcam/lens/undistort.hpp"
 #include "libcam/text/number_format.hpp"
 
 namespace libcam {
@@ -32,20 +33,24 @@ namespace {
 //     pixel's offset from the principal point can be divided by them;
 //   - every corner of the image has finite normalised coordinates (K's inverse does not
 //     overflow over the image);
-//   - the principal point and the four pixels next to it along the image's axes have
-//     rays, and within that pixel the lens keeps its scale: the angle between the
-//     principal point's ray and the next pixel's is within a factor of 2 of 1024 times
-//     the angle to the point 1/1024 of a pixel off. The focal length is the lens's scale
-//     at its centre, which every model keeps to first order there; a real lens's
-//     distortion changes it by less than a millionth within the first pixel, and a lens
-//     that folds over, or whose domain ends, within a pixel of the principal point has no
-//     ray there at all. The message names the coefficient that does it (the one whose
-//     removal alone mends it), else the focal lengths (fx = 1e-300: the whole field of
-//     view within one pixel).
+//   - the four pixels next to the principal point along the image's axes have rays (a
+//     lens that folds over, or whose domain ends, within a pixel of the principal point
+//     has none there);
+//   - a lens with a distortion on top of its projection (the models libcam unprojects by
+//     solving it: OpenCV's, Kannala-Brandt's, ...) keeps its scale within that pixel: the
+//     undistorted point moves, per pixel, within a factor of 2 as far over the whole
+//     pixel as over its first 1/1024. A distortion starts at second order, so the focal
+//     length is the lens's scale at its centre; a real lens's changes it by less than a
+//     millionth within the first pixel. The scale is the undistorted coordinate's, not
+//     the ray's angle, so that a pinhole whose one pixel spans 89 degrees (a 179-degree
+//     field of view on a 3-pixel image) stays a camera.
+// The message names the coefficient that does it (the one whose removal alone mends it),
+// else the focal lengths.
 // Any field of view from a millionth of a degree up stays a camera, and so does every
 // real lens.
 
 constexpr double kFinePixel = 1.0 / 1024.0;
+constexpr double kNearPixel = 1.0 / (1024.0 * 1024.0);
 constexpr double kMostScaleChange = 2.0;
 
 // The lens's valid radius (a root search: worked out once per camera).
@@ -59,26 +64,35 @@ double valid_radius_of(const Lens& lens) {
 std::optional<std::string> scale_fault(const Intrinsics& k, const Lens& lens, double valid_radius) {
     return visit_lens_model<double>(lens.type, [&]<class Model>() -> std::optional<std::string> {
         const typename Model::Parameters parameters = batch::model_parameters<Model>(lens, valid_radius);
-        const auto ray_of = [&](const Vec2& offset, Vec3& ray) {
-            const Vec2 m = k.normalized_from_pixel(Vec2(Vec2(k.cx, k.cy) + offset));
-            return Model::unproject(parameters, m, ray) && ray.allFinite() && ray.norm() > 0.0;
-        };
-        const auto angle = [](const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); };
-        Vec3 centre;
-        if (!ray_of(Vec2::Zero(), centre)) return "the principal point has no ray";
+        const auto normalized = [&](const Vec2& offset) { return k.normalized_from_pixel(Vec2(Vec2(k.cx, k.cy) + offset)); };
         for (const Vec2& step : {Vec2(1, 0), Vec2(-1, 0), Vec2(0, 1), Vec2(0, -1)}) {
             const auto pixel = [&] {
                 return "the pixel (" + format_number(step.x()) + ", " + format_number(step.y()) +
                        ") off the principal point";
             };
-            Vec3 next, fine;
-            if (!ray_of(step, next) || !ray_of(kFinePixel * step, fine)) return pixel() + " has no ray";
-            const double whole = angle(centre, next), scaled = angle(centre, fine) / kFinePixel;
-            if (!(whole <= kMostScaleChange * scaled && scaled <= kMostScaleChange * whole)) {
-                const double factor = std::max(whole / scaled, scaled / whole);
-                return "the lens's scale changes by a factor of " + format_short(factor) + " within " + pixel() +
-                       " (by at most " + format_number(kMostScaleChange) +
-                       " in a camera: its focal length is the lens's scale there)";
+            Vec3 ray;
+            if (!Model::unproject(parameters, normalized(step), ray) || !ray.allFinite() || !(ray.norm() > 0.0)) {
+                return pixel() + " has no ray";
+            }
+            if constexpr (SolvedLensModel<Model>) {
+                // The undistorted point (the model's coordinate before its distortion) at
+                // the next pixel, against the point 1/1024 of a pixel off, both from a
+                // point 2^-20 of a pixel off (the principal point itself may have no ray:
+                // a blind centre).
+                Vec2 origin, fine, whole;
+                if (!solve_undistorted<Model>(parameters, normalized(kNearPixel * step), origin) ||
+                    !solve_undistorted<Model>(parameters, normalized(kFinePixel * step), fine) ||
+                    !solve_undistorted<Model>(parameters, normalized(step), whole)) {
+                    return pixel() + " has no ray";
+                }
+                const double across_whole = (whole - origin).norm() / (1.0 - kNearPixel);
+                const double across_fine = (fine - origin).norm() / (kFinePixel - kNearPixel);
+                if (!(across_whole <= kMostScaleChange * across_fine && across_fine <= kMostScaleChange * across_whole)) {
+                    const double factor = std::max(across_whole / across_fine, across_fine / across_whole);
+                    return "the lens's scale changes by a factor of " + format_short(factor) + " within " + pixel() +
+                           " (by at most " + format_number(kMostScaleChange) +
+                           " in a camera: its focal length is the lens's scale there)";
+                }
             }
         }
         return std::nullopt;

@@ -38,8 +38,9 @@ struct Camera {
     Pose pose;
 
     // Throws InvalidArgument naming the field for a bad size, K, lens or pose, and for a
-    // camera that images nothing: K not invertible over the image, or a lens whose image
-    // ends within a pixel of the principal point (camera.cpp says the rule).
+    // camera whose numbers contradict each other: K not invertible over the image, or a
+    // lens that has no ray, or changes its scale by more than 2, within the pixel next to
+    // the principal point (camera.cpp says the rule).
     void validate() const;
 
     // P = K [R | t] (pinhole part only: distortion is not linear).

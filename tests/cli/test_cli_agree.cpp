@@ -126,15 +126,15 @@ TEST_CASE("info, reproject and dataset all read a COLMAP model whose track links
 
 TEST_CASE("info and dataset refuse a transforms.json whose k1 leaves the lens no scale, in one line") {
     TempDir dir;
-    // k1 = 1e30: near the axis r = (m / k1)^(1/3), so the pixel next to the principal point
-    // is 1024^(2/3) = 101.6 times nearer the axis than the lens's scale at 1/1024 of a
-    // pixel says.
+    // k1 = 1e30: near the axis r = C t^(1/3) at t pixels off it. From 2^-20 of a pixel, r
+    // moves per pixel (2^(-10/3) - 2^(-20/3)) C / (2^-10 - 2^-20) over the first 1/1024 and
+    // (1 - 2^(-20/3)) C / (1 - 2^-20) over the whole pixel: 92.5 times less.
     const fs::path json = libcam::test::write_file(
         dir, "transforms.json",
         R"({"fl_x": 500, "fl_y": 500, "cx": 320, "cy": 240, "w": 640, "h": 480, "k1": 1e30,
             "frames": [{"file_path": "a.png", "transform_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]}]})");
     refused_alike({{"info", json.string()}, {"dataset", json.string(), "-o", (dir / "out").string(), "--no-images"}},
-                  json.string() + ": \"frames[0]\": dist[0] (k1): 1e+30: the lens's scale changes by a factor of 102 "
+                  json.string() + ": \"frames[0]\": dist[0] (k1): 1e+30: the lens's scale changes by a factor of 92.5 "
                                   "within the pixel (1, 0) off the principal point (by at most 2 in a camera: its "
                                   "focal length is the lens's scale there)");
 }

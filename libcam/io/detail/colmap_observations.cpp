@@ -1,17 +1,11 @@
 #include "libcam/io/detail/colmap_observations.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <limits>
-#include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "libcam/convert/colmap_models.hpp"
-#include "libcam/error.hpp"
-#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
 #include "libcam/io/detail/colmap_model.hpp"
 
