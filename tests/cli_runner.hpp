@@ -13,6 +13,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -87,6 +88,26 @@ inline CliResult run_program(const std::string& program, const std::vector<std::
     result.err = read_whole_file(err_path);
     return result;
 }
+
+// Sets an environment variable, which the programs run meanwhile inherit, and restores
+// it (or its absence) when it goes out of scope.
+class ScopedEnvironment {
+public:
+    ScopedEnvironment(const char* name, const char* value) : name_(name) {
+        if (const char* before = std::getenv(name)) before_ = before;
+        ::setenv(name, value, 1);
+    }
+    ~ScopedEnvironment() {
+        if (before_) ::setenv(name_.c_str(), before_->c_str(), 1);
+        else ::unsetenv(name_.c_str());
+    }
+    ScopedEnvironment(const ScopedEnvironment&) = delete;
+    ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+private:
+    std::string name_;
+    std::optional<std::string> before_;
+};
 
 #ifdef LIBCAM_EXE
 inline CliResult run_libcam(const std::vector<std::string>& args) { return run_program(LIBCAM_EXE, args); }

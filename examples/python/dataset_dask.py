@@ -4,18 +4,20 @@
     python3 dataset_dask.py SRC -o OUT [--images DIR] [--camera valid|all|fov:DEG|views]
                             [--masks] [--to colmap|nerf] [--scheduler tcp://HOST:8786 | --workers N]
 
-1. plans here: the new cameras chosen, the model and the stamp written to OUT, one task
-   per image still to write (a run stopped earlier leaves fewer);
+1. plans here: the new cameras chosen, the model and the stamp written to OUT's staging
+   folder (OUT/.libcam-dataset-partial), one task per image still to write (a run stopped
+   earlier leaves fewer);
 2. sends the tasks to the cluster's workers (a task is picklable: one line of JSON), each
    worker reading its image, remapping it through its camera's map (built once per worker
-   and camera) and writing it into OUT;
-3. prints how many images each worker wrote and how many maps it built.
+   and camera) and writing it into the staging folder;
+3. prints how many images each worker wrote and how many maps it built;
+4. when every image is there, finishes here: the images, masks and model moved into OUT.
 
 With --scheduler, the cluster is the one running there (`dask-scheduler` on one machine,
 `dask-worker tcp://HOST:8786` on each of the others); every worker must see SRC's images
 and OUT at the same paths (a shared filesystem). Without it, a cluster of --workers
-processes on this machine. Exits with 1 when an image fails (the others are written; run
-again to retry the rest).
+processes on this machine. Exits with 1 when an image fails: OUT is left as it was, the
+other images are kept in its staging folder, and running again makes the rest and finishes.
 """
 
 import argparse
@@ -51,9 +53,19 @@ def main():
                                masks=args.masks, interpolation=args.interpolation, jpeg_quality=args.jpeg_quality)
     print(f"model: {plan.summary['model']}")
     print(f"images: {len(plan.tasks)} to write, {plan.summary['images_kept']} already there")
-    if not plan.tasks:
-        return 0
+    if plan.tasks:
+        failed = run_on_cluster(args, plan.tasks)
+        if failed:
+            print(f"error: {failed} images failed: {args.output} is as it was; the other images are kept in its "
+                  "staging folder, and running this again makes the rest and finishes", file=sys.stderr)
+            return 1
+    summary = libcam.dataset.finish(plan)
+    print(f"finished: {summary['images_out']} images in {args.output}")
+    return 0
 
+
+def run_on_cluster(args, tasks):
+    """Every task on the cluster's workers; returns how many failed."""
     if args.scheduler:
         cluster = None
         client = Client(args.scheduler)
@@ -63,7 +75,7 @@ def main():
     try:
         written = collections.Counter()
         failed = 0
-        for future in as_completed(client.map(run_task, plan.tasks, pure=False)):
+        for future in as_completed(client.map(run_task, tasks, pure=False)):
             try:
                 worker, _ = future.result()
                 written[worker] += 1
@@ -74,7 +86,7 @@ def main():
         for worker in sorted(maps):
             print(f"worker {worker}: {written[worker]} images, {maps[worker]['builds']} maps built")
         print(f"images: {sum(written.values())} written, {failed} failed")
-        return 1 if failed else 0
+        return failed
     finally:
         client.close()
         if cluster is not None:

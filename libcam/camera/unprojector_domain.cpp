@@ -6,6 +6,11 @@
 
 namespace libcam::detail {
 
+const RingDirections& ring_directions() {
+    static const RingDirections directions;
+    return directions;
+}
+
 double largest_corner_radius(const Camera& camera) {
     const double right = static_cast<double>(camera.size.width) - 0.5;
     const double bottom = static_cast<double>(camera.size.height) - 0.5;

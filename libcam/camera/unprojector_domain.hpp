@@ -46,16 +46,34 @@ struct DiscImage {
     std::vector<Vec2> rim;  // the image of the circle itself, in the order of the angle
 };
 
-template <class Model>
-std::optional<DiscImage> image_of_disc(const typename Model::Parameters& lens, double radius) {
-    constexpr int kRings = 64, kAngles = 4096;
-    DiscImage image;
-    for (int ring = 1; ring <= kRings; ++ring) {
-        const double r = radius * ring / kRings;
+// The sampled directions' cosines and sines, worked out once for every ring and every
+// disc (a lens whose domain is not a whole disc is sampled on up to 64 discs).
+struct RingDirections {
+    static constexpr int kAngles = 4096;
+    std::vector<double> cosine, sine;
+    RingDirections() : cosine(kAngles), sine(kAngles) {
         for (int a = 0; a < kAngles; ++a) {
             const double angle = 2 * std::numbers::pi * a / kAngles;
+            cosine[static_cast<std::size_t>(a)] = std::cos(angle);
+            sine[static_cast<std::size_t>(a)] = std::sin(angle);
+        }
+    }
+};
+const RingDirections& ring_directions();
+
+template <class Model>
+std::optional<DiscImage> image_of_disc(const typename Model::Parameters& lens, double radius) {
+    constexpr int kRings = 64, kAngles = RingDirections::kAngles;
+    const RingDirections& directions = ring_directions();
+    DiscImage image;
+    image.rim.reserve(kAngles);
+    // The rim first: where distort is undefined on a disc it is most often undefined
+    // there, and the disc is given up after one ring instead of the whole disc.
+    for (int ring = kRings; ring >= 1; --ring) {
+        const double r = radius * ring / kRings;
+        for (std::size_t a = 0; a < static_cast<std::size_t>(kAngles); ++a) {
             Vec2 m;
-            if (!Model::distort(lens, Vec2(r * std::cos(angle), r * std::sin(angle)), m)) return std::nullopt;
+            if (!Model::distort(lens, Vec2(r * directions.cosine[a], r * directions.sine[a]), m)) return std::nullopt;
             if (ring == kRings) {
                 image.rim_inner = std::min(image.rim_inner, m.norm());
                 image.rim.push_back(m);

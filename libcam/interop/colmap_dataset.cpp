@@ -10,6 +10,8 @@
 #include "libcam/camera/parallel.hpp"
 #include "libcam/convert/colmap_models.hpp"
 #include "libcam/error.hpp"
+#include "libcam/interop/dataset_output.hpp"
+#include "libcam/interop/dataset_paths.hpp"
 #include "libcam/interop/dataset_views.hpp"
 #include "libcam/interop/dataset_sources.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -235,99 +237,19 @@ void split_model_into_views(ColmapModelRead& model, std::vector<std::size_t>& ca
     source_of = std::move(split.source_of);
 }
 
-void write_model(const fs::path& folder, const ColmapModelBytes& bytes, bool binary) {
-    fs::create_directories(folder);
-    const std::string extension = binary ? ".bin" : ".txt";
-    write_file_atomically(folder / ("cameras" + extension), bytes.cameras);
-    write_file_atomically(folder / ("images" + extension), bytes.images);
-    write_file_atomically(folder / ("points3D" + extension), bytes.points3d);
-    // A model of the other kind from an earlier run would be read instead of this one
-    // (COLMAP reads .bin first).
-    const std::string other = binary ? ".txt" : ".bin";
-    for (const char* name : {"cameras", "images", "points3D"}) fs::remove(folder / (name + other));
-}
-
-// ---- images ------------------------------------------------------------------------------
-
-std::string stamp_of(const std::vector<ColmapCameraRecord>& cameras, const std::vector<DatasetCamera>& chosen,
-                     Interpolation interpolation, int jpeg_quality) {
-    std::string stamp = std::string("libcam dataset: the images here were made with these cameras\ninterpolation ") +
-                        std::string(to_string(interpolation)) + "\njpeg quality " + std::to_string(jpeg_quality) + "\n" +
-                        write_colmap_files(cameras, {}, {}, false).cameras;
-    for (const DatasetCamera& camera : chosen) {
-        if (camera.turn == Mat3::Identity()) continue;  // a run without views writes no turns
-        stamp += "turn of camera " + std::to_string(camera.id);
-        for (const double entry : camera.turn.reshaped<Eigen::RowMajor>()) stamp += " " + format_number(entry);
-        stamp += "\n";
-    }
-    return stamp;
-}
-
-bool stamp_matches(const fs::path& file, const std::string& stamp) {
-    std::error_code error;
-    if (!fs::is_regular_file(file, error)) return false;
-    try {
-        return read_text_file(file) == stamp;
-    } catch (const FileError&) {
-        return false;
-    }
-}
-
-
-// The tasks of the output images not already there. `source_names[i]`: the source image
-// of output image i (its own name but with views).
-std::vector<ImageTask> plan_images(const DatasetOptions& options, const std::vector<ColmapImage>& images,
-                                   const std::vector<std::string>& source_names, const std::vector<std::size_t>& camera_of,
-                                   const std::vector<ColmapCameraRecord>& new_records, DatasetSummary& summary) {
-    const fs::path folder = options.output / "images";
-    fs::create_directories(folder);
-    std::error_code same_error;
-    if (fs::exists(options.images) && fs::equivalent(folder, options.images, same_error)) {
-        throw FileError(folder.string() + ": is the source images folder itself: give another output folder");
-    }
-    const fs::path stamp_file = options.output / kStampName;
-    const std::string stamp = stamp_of(new_records, summary.cameras, options.interpolation, options.jpeg_quality);
-    const bool earlier_run_matches = stamp_matches(stamp_file, stamp);
-    write_file_atomically(stamp_file, stamp);
-    // A run stopped midway (killed) leaves the temporary file of each image it was writing.
-    remove_stopped_writes(folder);
-    remove_stopped_writes(options.output / "masks");
-    // In camera order, so that a worker given a run of tasks builds each camera's map once.
-    std::vector<std::size_t> order(images.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return camera_of[a] < camera_of[b]; });
-    std::vector<ImageTask> tasks;
-    for (const std::size_t i : order) {
-        const DatasetCamera& camera = summary.cameras[camera_of[i]];
-        ImageTask task;
-        task.source_path = options.images / source_names[i];
-        task.target_path = folder / images[i].name;
-        if (options.masks) task.mask_path = options.output / "masks" / (images[i].name + ".png");
-        std::error_code error;
-        if (earlier_run_matches && fs::is_regular_file(task.target_path, error) &&
-            (task.mask_path.empty() || fs::is_regular_file(task.mask_path, error))) {
-            ++summary.images_kept;
-            continue;
-        }
-        task.source = camera.source;
-        task.source.pose = Pose{};
-        task.camera = camera.camera;
-        task.camera.pose = Pose{};
-        task.turn = camera.turn;
-        task.copy = camera.kept;
-        task.interpolation = options.interpolation;
-        task.jpeg_quality = options.jpeg_quality;
-        tasks.push_back(std::move(task));
-    }
-    return tasks;
+// Every image's name made plain, or the run refused (dataset_paths.hpp).
+void plain_names(std::vector<ColmapImage>& images, const std::string& field) {
+    for (ColmapImage& image : images) image.name = plain_image_name(image.name, image.where, field, "the images folder");
 }
 
 }  // namespace
 
 DatasetPlan plan_dataset(const DatasetOptions& options) {
     const int threads = worker_count(options.threads);
-    ColmapModelRead model =
-        is_nerf_dataset_source(options.model) ? read_nerf_dataset(options.model) : read_model(options.model);
+    const bool nerf_source = is_nerf_dataset_source(options.model);
+    ColmapModelRead model = nerf_source ? read_nerf_dataset(options.model) : read_model(options.model);
+    const std::string field = nerf_source ? "\"file_path\"" : "NAME";
+    plain_names(model.images, field);
     const std::string source = options.model.string();
     const auto camera_index = index_by_id(model.cameras, [](const ColmapCameraRecord& c) { return c.id; }, source + ": camera");
     auto image_index = index_by_id(model.images, [](const ColmapImage& i) { return i.id; }, source + ": image");
@@ -361,6 +283,7 @@ DatasetPlan plan_dataset(const DatasetOptions& options) {
             new_records.push_back({record.id, summary.cameras.back().camera, "PINHOLE"});
         }
     }
+    check_distinct_names(model.images, field);
     std::vector<PreparedCamera> sources, targets;
     std::vector<Mat3> turns;
     for (const DatasetCamera& camera : summary.cameras) {
@@ -378,26 +301,40 @@ DatasetPlan plan_dataset(const DatasetOptions& options) {
     summary.points_kept = points.ids.size();
     count_kept(model.images, kept_index, source_of, camera_of, summary);
     summary.model_images_out = model.images.size();
+    summary.model_out = options.to == DatasetFormat::Nerf ? options.output / "transforms.json" : options.output / "sparse" / "0";
 
-    if (options.to == DatasetFormat::Nerf) {
-        summary.model_out = options.output / "transforms.json";
-        write_nerf_dataset(options.output, new_records, model.images, points, model.world,
-                           options.masks && !options.images.empty());
-    } else {
-        summary.model_out = options.output / "sparse" / "0";
-        write_model(summary.model_out, write_colmap_files(new_records, model.images, points, !options.text), !options.text);
+    // Everything checked before the first file is written.
+    DatasetPlan plan;
+    plan.staging = dataset_staging(options, model.images, new_records, summary.cameras);
+    check_output_folders(options, plan.staging);
+    if (!options.images.empty()) {
+        plan.tasks = dataset_image_tasks(options, plan.staging, model.images, source_names, camera_of, summary);
     }
-    std::vector<ImageTask> tasks;
-    if (!options.images.empty()) tasks = plan_images(options, model.images, source_names, camera_of, new_records, summary);
-    return {std::move(summary), std::move(tasks)};
+    prepare_staging(plan.staging);
+    write_staged_model(options, plan.staging, new_records, model.images, points, model.world);
+    plan.summary = std::move(summary);
+    return plan;
+}
+
+DatasetSummary finish_dataset(const DatasetPlan& plan) {
+    finish_staging(plan.staging);
+    DatasetSummary summary = plan.summary;
+    // Every image not made by an earlier run was made by one of the plan's tasks.
+    if (!plan.staging.images.empty()) summary.images_written = summary.model_images_out - summary.images_kept;
+    summary.images_failed = 0;
+    summary.finished = true;
+    return summary;
 }
 
 DatasetSummary make_pinhole_dataset(const DatasetOptions& options) {
-    DatasetPlan plan = plan_dataset(options);
-    plan.summary.images_failed = run_image_tasks(plan.tasks, worker_count(options.threads), options.on_image_error,
-                                                  options.on_progress);
-    plan.summary.images_written = plan.tasks.size() - plan.summary.images_failed;
-    return plan.summary;
+    const DatasetPlan plan = plan_dataset(options);
+    const std::size_t failed =
+        run_image_tasks(plan.tasks, worker_count(options.threads), options.on_image_error, options.on_progress);
+    if (failed == 0) return finish_dataset(plan);
+    DatasetSummary summary = plan.summary;
+    summary.images_failed = failed;
+    summary.images_written = plan.tasks.size() - failed;
+    return summary;
 }
 
 void set_dataset_camera(DatasetOptions& options, const std::string& camera, std::optional<ImageSize> size) {
@@ -475,6 +412,7 @@ std::string dataset_summary_json(const DatasetSummary& s, std::optional<double> 
     out["images_written"] = s.images_written;
     out["images_kept"] = s.images_kept;
     out["images_failed"] = s.images_failed;
+    out["finished"] = s.finished;
     out["cameras"] = nlohmann::ordered_json::array();
     for (const DatasetCamera& camera : s.cameras) out["cameras"].push_back(camera_json(camera));
     if (seconds) out["time_s"] = *seconds;

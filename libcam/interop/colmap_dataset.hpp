@@ -24,15 +24,25 @@
 // Images: read whole (any depth, channels and format OpenCV reads), remapped with one map
 // per camera shared by its images, written in the same format under the same name, each
 // to a temporary file renamed into place; N workers, one image each in memory at a time.
-// An image already in the output from an earlier run with the same cameras and
-// interpolation (the stamp file kStampName in the output folder says) is kept, so a
-// stopped run started again finishes the rest. A source camera that is already a
-// pinhole, given no --size or field of view, is kept as it is and its images copied.
+// A source camera that is already a pinhole, given no --size or field of view, is kept as
+// it is and its images copied.
 //
-// The same in two steps, for images spread over several processes or machines
+// Paths (dataset_paths.hpp): each image's name is a plain relative path inside the images
+// folder, and the output's folders stay inside the output folder, or the run is refused
+// before it writes anything, as it is for a model it cannot read, a camera it cannot
+// choose or a source image that is not there.
+//
+// Nothing half made (dataset_staging.hpp): the run writes its model, images, masks and
+// stamp into OUT/.libcam-dataset-partial and moves them into OUT only when every image is
+// there. A run with an image that cannot be read or written leaves OUT as it was; started
+// again with the same cameras and interpolation (the stamp kStampName says) it keeps the
+// images already made, in the staging folder or in a finished OUT, and makes the rest.
+//
+// The same in three steps, for images spread over several processes or machines
 // (dataset_tasks.hpp): plan_dataset does everything but the images and returns one task
 // per image still to write; each task runs anywhere the source and output folders are
-// (run_image_task). make_pinhole_dataset is plan_dataset and then every task here.
+// (run_image_task); finish_dataset moves the whole into place. make_pinhole_dataset is
+// plan_dataset, every task here, and finish_dataset.
 
 #include <cstddef>
 #include <cstdint>
@@ -42,6 +52,7 @@
 #include <string>
 #include <vector>
 
+#include "libcam/interop/dataset_staging.hpp"
 #include "libcam/interop/dataset_tasks.hpp"
 #include "libcam/interop/image_remap.hpp"
 #include "libcam/remap/new_camera.hpp"
@@ -113,27 +124,36 @@ struct DatasetSummary {
     std::size_t images_written = 0;
     std::size_t images_kept = 0;        // already in the output from an earlier run
     std::size_t images_failed = 0;
-    std::filesystem::path model_out;    // the folder the model was written to (or the transforms.json)
+    std::filesystem::path model_out;    // the model's folder (or the transforms.json) in the output
+    // Whether the run's work is in place in the output; false: an image failed (or the plan
+    // is not finished yet), the output is as it was and the work waits in staging_folder.
+    bool finished = false;
 };
 
-// The name of the file in the output folder that says which cameras and interpolation
-// made the images there.
-inline constexpr const char* kStampName = ".libcam-dataset";
-
-// Throws FileError for a malformed model or an output that cannot be written,
-// InvalidArgument when no pinhole can be chosen for a camera (naming it); an image that
-// cannot be read or written is reported through on_image_error and counted instead.
+// Throws FileError for a malformed model, a name or folder leading out of its folder, a
+// missing source image or an output that cannot be written, InvalidArgument when no pinhole
+// can be chosen for a camera (naming it), each before anything is written. An image that
+// cannot be read or written is reported through on_image_error and counted instead, and
+// the run is then left unfinished (summary.finished false, the output as it was).
 DatasetSummary make_pinhole_dataset(const DatasetOptions& options);
 
-// Everything but the images: the cameras chosen, the observations moved, the model
-// written, and (with `images`) the stamp written and one task per output image not
-// already there from an earlier run with the same cameras (counted in images_kept), in
-// camera order. images_written and images_failed are left 0 for the caller to count.
+// Everything but the images: every check above, the cameras chosen, the observations moved,
+// the model and (with `images`) the stamp written to the staging folder, and one task per
+// output image not already made by an earlier run with the same cameras (counted in
+// images_kept), in camera order. images_written and images_failed are left 0 for the caller
+// to count. Nothing is in place in the output until finish_dataset.
 struct DatasetPlan {
     DatasetSummary summary;
     std::vector<ImageTask> tasks;
+    DatasetStaging staging;  // what finish_dataset moves into place
 };
 DatasetPlan plan_dataset(const DatasetOptions& options);
+
+// Once every task of the plan has written its image (wherever it ran): moves the staged
+// images, masks, model and stamp into the output (dataset_staging.hpp) and returns the
+// plan's summary, finished, images_written counting the images the tasks made. Throws
+// FileError, moving nothing, when an image is not there yet (naming the first and how many).
+DatasetSummary finish_dataset(const DatasetPlan& plan);
 
 // The new cameras a --camera word asks for, set in `options`: "valid" (every pixel has a
 // source), "all" (every source pixel kept), "fov:DEG" (this horizontal field of view) or

@@ -1,10 +1,10 @@
 #include "libcam/interop/dataset_sources.hpp"
 
 #include <algorithm>
-#include <map>
 #include <sstream>
 
 #include "libcam/error.hpp"
+#include "libcam/interop/dataset_paths.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/lens/lens_model.hpp"
 
@@ -25,13 +25,7 @@ bool same_intrinsics(const Camera& a, const Camera& b) {
 
 // A frame's file_path made plain, relative to the json's folder; refused outside it.
 fs::path plain_image_path(const std::string& file_path, const std::string& where) {
-    if (file_path.empty()) throw FileError(where + ": \"file_path\": missing or empty");
-    const fs::path plain = fs::path(file_path).lexically_normal();
-    if (plain.is_absolute() || plain.empty() || *plain.begin() == "..") {
-        throw FileError(where + ": \"file_path\": '" + file_path +
-                        "' is outside the json's folder; libcam dataset keeps each image under its path there");
-    }
-    return plain;
+    return plain_image_name(file_path, where, "\"file_path\"", "the json's folder");
 }
 
 // Whether every image is under images/ (then the names are relative to it).
@@ -44,7 +38,7 @@ bool all_under_images(const std::vector<fs::path>& paths) {
 
 // The frames of a transforms.json; refused without frames (one camera, not a dataset).
 NerfScene read_scene(const fs::path& json) {
-    const std::string text = read_text_file(json);
+    const std::string text = read_text_file(json, {kCameraFileLimit.max_bytes, "NeRF transforms.json"});
     NerfScene scene = read_nerf_scene(text, {json.string(), json.parent_path(), {}});
     if (scene.cameras.size() == 1 && scene.cameras[0].name.empty() && !scene.posed[0]) {
         throw FileError(json.string() + ": \"frames\": missing: a dataset needs frames, each with its image and pose");
@@ -52,19 +46,14 @@ NerfScene read_scene(const fs::path& json) {
     return scene;
 }
 
-// Each frame's image, plain; refused for a frame without a pose and for an image two
-// frames name (the output keeps one image per name).
+// Each frame's image, plain; refused for a frame without a pose. (An image two frames
+// name is refused with the names of every source: dataset_paths.hpp.)
 std::vector<fs::path> image_paths(const NerfScene& scene, const fs::path& json) {
     std::vector<fs::path> paths;
-    std::map<fs::path, std::size_t> frame_of;
     for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
         const std::string where = json.string() + ": frames[" + std::to_string(i) + "]";
         if (!scene.posed[i]) throw FileError(where + ": \"transform_matrix\": missing: a dataset needs each frame's pose");
         paths.push_back(plain_image_path(scene.cameras[i].name, where));
-        if (const auto [at, added] = frame_of.emplace(paths.back(), i); !added) {
-            throw FileError(where + ": \"file_path\": '" + scene.cameras[i].name + "' is frames[" +
-                            std::to_string(at->second) + "]'s image too");
-        }
     }
     return paths;
 }
@@ -126,7 +115,7 @@ DatasetModel read_nerf_dataset(const fs::path& json) {
     return model;
 }
 
-void write_nerf_dataset(const fs::path& output, const std::vector<ColmapCameraRecord>& cameras,
+std::vector<fs::path> write_nerf_dataset(const fs::path& output, const std::vector<ColmapCameraRecord>& cameras,
                         const std::vector<ColmapImage>& images, const ColmapPoints3D& points, const NerfWorld& world,
                         bool masks) {
     std::vector<NamedCamera> frames;
@@ -145,8 +134,17 @@ void write_nerf_dataset(const fs::path& output, const std::vector<ColmapCameraRe
     fs::create_directories(output);
     const std::string ply_file_path = points.ids.empty() ? std::string() : kNerfPointsName;
     const std::vector<CameraFileText> files = write_nerf_scene(frames, world, ply_file_path, mask_paths);
-    if (!ply_file_path.empty()) write_file_atomically(output / ply_file_path, ply_text(points, world));
-    for (const CameraFileText& file : files) write_file_atomically(output / file.name, file.text);
+    std::vector<fs::path> written;
+    if (!ply_file_path.empty()) {
+        write_file_atomically(output / ply_file_path, ply_text(points, world));
+        written.push_back(ply_file_path);
+    }
+    // transforms.json (the first) last.
+    for (auto file = files.rbegin(); file != files.rend(); ++file) {
+        write_file_atomically(output / file->name, file->text);
+        written.push_back(file->name);
+    }
+    return written;
 }
 
 }  // namespace libcam

@@ -11,8 +11,8 @@
 // ("./images/a.png" is "images/a.png"); when every frame's image is under images/ (as
 // nerfstudio's and instant-ngp's tools lay a dataset out) that folder is the images'
 // folder and the names are relative to it, so the output's images/ holds them as they
-// were. A file_path outside the json's folder (absolute, or through "..") is refused: the
-// output keeps each image under its name.
+// were. A file_path outside the json's folder (absolute, or through "..") is refused as
+// COLMAP's NAME is (dataset_paths.hpp): the output keeps each image under its name.
 //
 // A transforms.json output: one frame per image with the new pinhole's w, h, fl_x, fl_y,
 // cx, cy (per frame; camera_model at the top level, where nerfstudio reads it), file_path
@@ -54,8 +54,9 @@ std::filesystem::path nerf_dataset_images_folder(const std::filesystem::path& js
 
 // OUT/transforms.json (and what else write_nerf_scene gives), and OUT/sparse_pc.ply when
 // `points` has any: the images' new cameras, named "images/<name>", each frame with
-// mask_path "masks/<name>.png" when `masks` (the masks the dataset writes).
-void write_nerf_dataset(const std::filesystem::path& output, const std::vector<ColmapCameraRecord>& cameras,
+// mask_path "masks/<name>.png" when `masks` (the masks the dataset writes). Returns the
+// names of the files written, transforms.json (which names the images) last.
+std::vector<std::filesystem::path> write_nerf_dataset(const std::filesystem::path& output, const std::vector<ColmapCameraRecord>& cameras,
                         const std::vector<ColmapImage>& images, const ColmapPoints3D& points, const NerfWorld& world,
                         bool masks = false);
 

@@ -11,6 +11,8 @@
 
 #include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
+#include "libcam/interop/dataset_paths.hpp"
+#include "libcam/interop/dataset_staging.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/detail/json_format.hpp"
@@ -73,8 +75,46 @@ void write_mask(const fs::path& path, const cv::Mat& mask) {
     write_image(path, mask);
 }
 
+// The staging folder a task's target is in: its path up to the first folder of that name.
+fs::path staging_of(const fs::path& target) {
+    fs::path folder;
+    for (const fs::path& part : target) {
+        folder /= part;
+        if (part == kStagingName) return folder;
+    }
+    return {};
+}
+
+// A task writes only files of the plan's form (dataset_staging.hpp): its image at
+// <staging folder>/images/<plain name>, its mask at masks/<name>.png there, in a staging
+// folder a plan made (a folder, not a link, holding the plan's stamp), and through no
+// symbolic link leading out of it. So a task line made by hand cannot write anywhere else.
+void check_task_paths(const ImageTask& task) {
+    const std::string rule = ": a task writes only <output>/" + std::string(kStagingName) +
+                             "/images/<name> (and its mask) in a folder a plan made";
+    const fs::path staging = staging_of(task.target_path);
+    std::error_code error;
+    if (staging.empty() || !fs::is_directory(fs::symlink_status(staging, error)) ||
+        !fs::is_regular_file(staging / kStampName, error)) {
+        throw FileError(task.target_path.string() + ": target_path: not in a staging folder a plan made" + rule);
+    }
+    const fs::path relative = task.target_path.lexically_relative(staging);
+    const std::string name = relative.lexically_relative("images").generic_string();
+    if (relative.empty() || *relative.begin() != "images" ||
+        plain_image_name(name, task.target_path.string(), "target_path", "the staging folder's images/") != name) {
+        throw FileError(task.target_path.string() + ": target_path: not a plain name under images/" + rule);
+    }
+    check_folder_inside(staging, relative.parent_path());
+    if (task.mask_path.empty()) return;
+    if (task.mask_path != staging / mask_name(name)) {
+        throw FileError(task.mask_path.string() + ": mask_path: not " + (staging / mask_name(name)).string() + rule);
+    }
+    check_folder_inside(staging, mask_name(name).parent_path());
+}
+
 // The task's image (and mask) written through `map`; nullptr: copied.
 void write_task_image(const ImageTask& task, const PreparedRemap* map) {
+    check_task_paths(task);
     std::error_code error;
     if (!fs::is_regular_file(task.source_path, error)) throw FileError(task.source_path.string() + ": no such image file");
     fs::create_directories(task.target_path.parent_path());

@@ -4,11 +4,13 @@
 // interpolation, the paths), and travels as one line of JSON to another process or
 // machine, where run_image_task makes the same file the local run makes.
 //
-//   const DatasetPlan plan = plan_dataset(options);       // the model written, the stamp too
+//   const DatasetPlan plan = plan_dataset(options);       // the model and stamp staged
 //   for (const ImageTask& task : plan.tasks) send(image_task_json(task));
 //   ...
 //   MapCache maps;                                         // one per worker process
 //   run_image_task(image_task_from_json(received), maps);
+//   ...
+//   finish_dataset(plan);                                  // once every task is done
 //
 // A worker builds each camera's map once and keeps the few it used last (MapCache): tasks
 // come in camera order, so a worker given a run of one camera's images builds its map once.
@@ -87,6 +89,12 @@ private:
 // its mask, each to a temporary name renamed into place, creating their folders. Throws
 // FileError naming the image for one that cannot be read or written (or is of another
 // size than its camera), InvalidArgument when the map cannot be built.
+//
+// A task line is checked before anything is written: it writes only what a plan's task
+// writes, <output>/.libcam-dataset-partial/images/<name> and its mask masks/<name>.png
+// there (dataset_staging.hpp), in a staging folder a plan made (holding its stamp), with a
+// plain relative name and no symbolic link leading out of that folder; anything else is
+// refused (FileError naming target_path or mask_path). Its source may be any image file.
 void run_image_task(const ImageTask& task, MapCache& maps);
 
 // Runs the tasks on `threads` workers sharing one MapCache, each worker holding one image

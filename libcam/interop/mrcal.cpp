@@ -11,6 +11,8 @@
 
 #include "libcam/error.hpp"
 #include "libcam/interop/mrcal_c.hpp"
+#include "libcam/interop/mrcal_diagnostic.hpp"
+#include "libcam/io/detail/cameramodel_text.hpp"
 
 namespace libcam {
 
@@ -105,53 +107,19 @@ std::string capturing_stderr(F&& parse) {
     return captured;
 }
 
-// libmrcal 2.2's parser reads past the end of its buffer on an unterminated string
-// (found by fuzzing: it crashes, or reads whatever follows, even with a 0 terminator).
-// So libcam checks the lexical shape first: no NUL bytes, every string closed on its own
-// line, brackets balanced and shallow. What passes is safe to hand to libmrcal.
-void check_cameramodel_lexically(std::string_view text, const std::string& source) {
-    constexpr int kMaxDepth = 8;
-    constexpr std::size_t kMaxSize = 1 << 20;
-    if (text.size() > kMaxSize) throw FileError(source + ": larger than 1 MiB: not a .cameramodel");
-    int depth = 0;
-    int line = 1;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        const std::string where = source + ": line " + std::to_string(line) + ": ";
-        if (c == '\0') throw FileError(where + "contains a NUL byte");
-        if (c == '\n') ++line;
-        if (c == '#') {
-            while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
-        } else if (c == '\'' || c == '"') {
-            std::size_t end = i + 1;
-            while (end < text.size() && text[end] != c && text[end] != '\n' && text[end] != '\0') {
-                end += text[end] == '\\' ? 2 : 1;
-            }
-            if (end >= text.size() || text[end] != c) throw FileError(where + "unterminated string");
-            i = end;
-        } else if (c == '{' || c == '[' || c == '(') {
-            if (++depth > kMaxDepth) throw FileError(where + "nested more than " + std::to_string(kMaxDepth) + " deep");
-        } else if (c == '}' || c == ']' || c == ')') {
-            if (--depth < 0) throw FileError(where + "unbalanced '" + std::string(1, c) + "'");
-        }
-    }
-    if (depth != 0) throw FileError(source + ": unbalanced brackets (truncated file?)");
-}
-
 CameramodelPtr parse_with_mrcal(std::string_view text, const std::string& source) {
-    check_cameramodel_lexically(text, source);
+    detail::check_cameramodel_lexically(text, source);
     // libmrcal reads up to a 0 byte when given length 0; the newline ends a final
     // comment, which its lexer would otherwise scan past the end.
     const std::string terminated = std::string(text) + "\n";
     mrcal_cameramodel_t* raw = nullptr;
     const std::string diagnostic = capturing_stderr([&] { raw = mrcal_read_cameramodel_string(terminated.c_str(), 0); });
     if (raw == nullptr) {
-        std::string message = source + ": libmrcal could not parse this .cameramodel";
         if (text.find("'lens_model'") != std::string_view::npos || text.find("\"lens_model\"") != std::string_view::npos) {
-            message += " (it has the legacy key 'lens_model', which libmrcal's C parser rejects: rename it 'lensmodel')";
+            throw FileError(source + ": it has the legacy key 'lens_model', which libmrcal's C parser rejects: rename it "
+                                     "'lensmodel'");
         }
-        if (!diagnostic.empty()) message += ": " + diagnostic.substr(0, diagnostic.find('\n'));
-        throw FileError(message);
+        throw FileError(source + ": " + mrcal_parse_failure(diagnostic, text));
     }
     return CameramodelPtr(raw);
 }

@@ -4,11 +4,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <random>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -80,28 +79,85 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
     }
 }
 
-std::string read_text_file(const std::filesystem::path& path) {
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) throw FileError(path.string() + ": is a directory");
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw FileError(path.string() + ": cannot open: " + reason());
-    // One read of the size the file has (COLMAP's images.bin runs to hundreds of MB); a
-    // file of no size known (a pipe, /proc's files, which say 0) is read as a stream.
-    const std::streamoff size = in.tellg();
-    if (size > 0 && in.seekg(0)) {
-        std::string text(static_cast<std::size_t>(size), '\0');
-        in.read(text.data(), size);
-        if (in.bad()) throw FileError(path.string() + ": read failed");
-        text.resize(static_cast<std::size_t>(in.gcount()));  // shorter if it shrank meanwhile
-        return text;
+std::string byte_size_text(std::uint64_t bytes) {
+    if (bytes != 0 && bytes % kGiB == 0) return std::to_string(bytes / kGiB) + " GiB";
+    if (bytes != 0 && bytes % kMiB == 0) return std::to_string(bytes / kMiB) + " MiB";
+    if (bytes != 0 && bytes % 1024 == 0) return std::to_string(bytes / 1024) + " KiB";
+    return std::to_string(bytes) + (bytes == 1 ? " byte" : " bytes");
+}
+
+namespace {
+
+// Closes the descriptor it holds when it goes.
+struct OpenFile {
+    int fd = -1;
+    ~OpenFile() {
+        if (fd >= 0) ::close(fd);
     }
-    in.clear();
-    in.seekg(0);
-    in.clear();  // a pipe cannot seek, and is read from where it is
-    std::ostringstream stream;
-    stream << in.rdbuf();
-    if (in.bad()) throw FileError(path.string() + ": read failed");
-    return stream.str();
+};
+
+// What a path that is no regular file or FIFO is, in words, with where it leads.
+std::string not_a_file(const std::filesystem::path& path, const struct stat& status) {
+    const std::string kind = S_ISCHR(status.st_mode) || S_ISBLK(status.st_mode) ? "a device" : "a socket";
+    std::error_code error;
+    const std::filesystem::path target = std::filesystem::canonical(path, error);
+    const std::string where = !error && target != path ? " (" + target.string() + ")" : "";
+    return path.string() + ": " + kind + where + ", not a file: libcam reads camera files from files and pipes";
+}
+
+}  // namespace
+
+bool regular_file_exists(const std::filesystem::path& path) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) == 0) return S_ISREG(status.st_mode);
+    if (errno == ENOENT || errno == ENOTDIR) return false;
+    throw FileError(path.string() + ": " + reason());
+}
+
+void throw_larger_than(const std::filesystem::path& path, const ReadLimit& limit) {
+    throw FileError(path.string() + ": larger than " + byte_size_text(limit.max_bytes) +
+                    ", more than libcam reads of any " + std::string(limit.kind) + " file");
+}
+
+std::string read_text_file(const std::filesystem::path& path, const ReadLimit& limit) {
+    const std::string name = path.string();
+    // Not blocking on open: a FIFO no process writes to reads as empty, not as a hang.
+    OpenFile file{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
+    if (file.fd < 0) throw FileError(name + ": cannot open: " + reason());
+    struct stat status {};
+    if (::fstat(file.fd, &status) != 0) throw FileError(name + ": cannot read: " + reason());
+    if (S_ISDIR(status.st_mode)) throw FileError(name + ": is a directory");
+    if (!S_ISREG(status.st_mode) && !S_ISFIFO(status.st_mode)) throw FileError(not_a_file(path, status));
+    // A file's size refuses it before any read; /proc's files say 0 and a FIFO has
+    // none, so the reads stop one byte past the limit whatever the size said.
+    if (S_ISREG(status.st_mode) && static_cast<std::uint64_t>(status.st_size) > limit.max_bytes) {
+        throw_larger_than(path, limit);
+    }
+    const int flags = ::fcntl(file.fd, F_GETFL);
+    if (flags < 0 || ::fcntl(file.fd, F_SETFL, flags & ~O_NONBLOCK) != 0) {
+        throw FileError(name + ": cannot read: " + reason());
+    }
+    std::string text;
+    // Room for the file and the one byte more whose read says it ended (or that it is
+    // past the limit), so that a file read whole is never copied to grow the string.
+    const auto size = static_cast<std::uint64_t>(status.st_size);
+    text.reserve(static_cast<std::size_t>(std::min(size, limit.max_bytes) + 1));
+    constexpr std::size_t kChunk = 1 << 20;
+    while (true) {
+        const std::size_t at = text.size();
+        std::uint64_t want = std::min<std::uint64_t>(kChunk, limit.max_bytes + 1 - at);
+        if (text.capacity() > at) want = std::min<std::uint64_t>(want, text.capacity() - at);
+        text.resize(at + static_cast<std::size_t>(want));
+        const ssize_t got = ::read(file.fd, text.data() + at, static_cast<std::size_t>(want));
+        if (got < 0 && errno == EINTR) {
+            text.resize(at);
+            continue;
+        }
+        if (got < 0) throw FileError(name + ": read failed: " + reason());
+        text.resize(at + static_cast<std::size_t>(got));
+        if (got == 0) return text;
+        if (text.size() > limit.max_bytes) throw_larger_than(path, limit);
+    }
 }
 
 namespace {

@@ -4,21 +4,22 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <cstring>
 
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_formats.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/detail/format_row.hpp"
-#include "libcam/io/detail/ocamcalib_format.hpp"
 #include "libcam/io/format_table.hpp"
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/text/shown_value.hpp"
+#include "libcam/text/utf8.hpp"
 
 namespace libcam {
 
 namespace {
 
-using detail::Content;
 using detail::FormatRow;
 using detail::format_rows;
 
@@ -150,6 +151,8 @@ std::vector<CameraFormatInfo> camera_formats() {
         for (const std::string_view extension : row.extensions) {
             if (!extension.empty()) extensions.push_back(extension);
         }
+        std::vector<FilesBesideInfo> beside;
+        for (const detail::FileBeside& files : row.files_beside) beside.push_back({files.files, files.limit.max_bytes});
         CameraFormatInfo info{.format = row.format,
                               .name = row.name,
                               .title = row.title,
@@ -163,6 +166,8 @@ std::vector<CameraFormatInfo> camera_formats() {
                               .lens_names = row.lens_names,
                               .refuses = row.refuses,
                               .library = row.library,
+                              .largest_file = row.largest_file,
+                              .files_beside = std::move(beside),
                               // Without asking a loader, which may load a library; where one
                               // is set, it fills the row on first use.
                               .available = installed_now(row) ||
@@ -233,30 +238,39 @@ Camera validated_camera(Camera camera, const std::string& where) {
     return camera;
 }
 
+namespace {
+
+// Where the run of ASCII bytes other than NUL from `i` ends, read eight bytes at a time.
+std::size_t ascii_run_end(std::string_view text, std::size_t i) {
+    constexpr std::uint64_t kHigh = 0x8080808080808080u, kOnes = 0x0101010101010101u;
+    for (std::uint64_t word = 0; i + 8 <= text.size(); i += 8) {
+        std::memcpy(&word, text.data() + i, 8);
+        if ((word & kHigh) != 0 || ((word - kOnes) & ~word & kHigh) != 0) break;  // a byte >= 0x80, or a 0
+    }
+    while (i < text.size() && text[i] != 0 && static_cast<unsigned char>(text[i]) < 0x80) ++i;
+    return i;
+}
+
+}  // namespace
+
 // Camera files are text: UTF-8 without NUL bytes. Checked before any parser sees the
 // bytes, because OpenCV's XML parser and libmrcal's parser crash on some binary input
 // (found by fuzzing).
 void check_text(std::string_view text, const std::string& source) {
-    std::size_t i = 0;
-    while (i < text.size()) {
-        const auto byte = static_cast<unsigned char>(text[i]);
-        const std::string where = source + ": byte " + std::to_string(i) + ": ";
-        if (byte == 0) throw FileError(where + "NUL byte: not a text file");
-        // The length of the UTF-8 sequence this byte starts, and its smallest code point
-        // (so overlong encodings are refused too).
-        const int length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
-        if (length == 0 || i + static_cast<std::size_t>(length) > text.size()) throw FileError(where + "not UTF-8");
-        std::uint32_t code = length == 1 ? byte : byte & (0x7F >> length);
-        for (int k = 1; k < length; ++k) {
-            const auto next = static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]);
-            if ((next >> 6) != 0x2) throw FileError(where + "not UTF-8");
-            code = (code << 6) | (next & 0x3F);
+    detail::refuse_wide_text(text, source);
+    for (std::size_t i = 0; i < text.size();) {
+        if (text[i] != '\0' && static_cast<unsigned char>(text[i]) < 0x80) {  // ASCII, most of any camera file
+            i = ascii_run_end(text, i + 1);
+            continue;
         }
-        constexpr std::uint32_t kSmallest[] = {0, 0, 0x80, 0x800, 0x10000};
-        if (code < kSmallest[length] || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) {
-            throw FileError(where + "not UTF-8");
-        }
-        i += static_cast<std::size_t>(length);
+        // Built only for a refused byte: one built for every byte held reading to a few MB/s.
+        const auto fail = [&](const std::string& what) {
+            throw FileError(source + ": byte " + std::to_string(i) + ": " + what);
+        };
+        if (text[i] == '\0') fail("NUL byte: not a text file");
+        const Utf8Character character = utf8_character_at(text, i);
+        if (character.length == 0) fail("not UTF-8");
+        i += character.length;
     }
 }
 
@@ -303,156 +317,15 @@ const NamedCamera& select_camera(const CameraSet& set, std::string_view selector
                           names);
 }
 
-namespace {
-
-// The first line that is not blank and not a # comment (mrcal and COLMAP write comments
-// first), without its leading blanks.
-std::string_view first_content_line(std::string_view text) {
-    std::size_t at = 0;
-    while (at < text.size()) {
-        const std::size_t end = std::min(text.find('\n', at), text.size());
-        std::string_view line = text.substr(at, end - at);
-        const auto start = line.find_first_not_of(" \t\r");
-        if (start != std::string_view::npos && line[start] != '#') return line.substr(start);
-        at = end + 1;
-    }
-    return {};
-}
-
-bool starts_with_word_then(std::string_view line, char separator) {
-    const auto end = line.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.");
-    if (end == 0 || end == std::string_view::npos) return false;
-    const auto next = line.find_first_not_of(" \t", end);
-    return next != std::string_view::npos && line[next] == separator && (separator != ':' || next == end);
-}
-
-// What a file without a known extension holds, by its first characters: JSON starts
-// with '{' and quotes its keys, OpenCV's YAML starts with %YAML and its XML with <?xml;
-// mrcal's text is a Python dict, commented first; other YAML starts with a key and a
-// colon (Kalibr's camchains: "cam0:"); JPL's cahvor with "key = value"; COLMAP's
-// cameras.txt with a camera id and a model name, and its cameras.bin is binary.
-Content sniff_content(std::string_view text, const std::string& source) {
-    if (text.find('\0') != std::string_view::npos) return Content::Binary;
-    const std::string_view body = first_content_line(text);
-    if (body.empty()) {
-        if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) throw FileError(source + ": file is empty");
-        return Content::PythonDict;  // only comments: mrcal's parser says what is missing
-    }
-    // Before COLMAP's table: the toolbox's numbers follow its own comment.
-    if (looks_like_ocamcalib(text)) return Content::OcamText;
-    if (body.starts_with("%YAML") || body.starts_with("---")) return Content::Yaml;
-    if (body.starts_with("<?xml") || body.starts_with("<opencv_storage>") || body.starts_with("<document") ||
-        body.starts_with("<calibration>") || body.starts_with("<lensdatabase") || body.starts_with("<!DOCTYPE lensdatabase")) {
-        return Content::Xml;
-    }
-    if (body.starts_with("{")) {
-        // JSON has no comments and quotes its keys with '"'; mrcal writes comments and ''.
-        const bool commented = body.data() != text.data() + text.find_first_not_of(" \t\r\n");
-        const std::string_view rest = text.substr(static_cast<std::size_t>(body.data() - text.data()));
-        const auto quote = rest.find_first_of("\"'");
-        const bool double_quoted = quote != std::string_view::npos && rest[quote] == '"';
-        return !commented && double_quoted ? Content::Json : Content::PythonDict;
-    }
-    if (starts_with_word_then(body, '=')) return Content::KeyValue;
-    if (starts_with_word_then(body, ':')) return Content::Yaml;
-    if (body.front() >= '0' && body.front() <= '9') return Content::Table;
-    throw FileError(source + ": unknown camera file format (not JSON, YAML, XML, mrcal's .cameramodel or .cahvor, or "
-                    "COLMAP's cameras.txt; --from-format names it: " + camera_format_names() + ")");
-}
-
-// The file parsed once as the structure its candidates share, for their claims; nullopt
-// when it does not parse (the chosen reader then says where it is broken) or is not
-// JSON, YAML or XML.
-std::optional<DocumentNode> parsed_for_claims(std::string_view text, unsigned content, const std::string& source) {
-    try {
-        check_text(text, source);
-        if (content & static_cast<unsigned>(Content::Json)) return parse_json_tree(text, source);
-        if (content & static_cast<unsigned>(Content::Yaml)) return parse_yaml_document(text, source);
-        if (content & static_cast<unsigned>(Content::Xml)) return parse_xml_outline(text, source);
-    } catch (const FileError&) {
-    }
-    return std::nullopt;
-}
-
-// The format of a file: the rows its extension names, else the rows of the content its
-// first characters show; among several, the first whose claims accept the file's keys,
-// else the one that claims nothing (the default for that ending or content).
-CameraFormat detect_format(std::string_view text, const std::filesystem::path& path, const std::string& source) {
-    const std::string extension = path.extension().string();
-    std::vector<const FormatRow*> candidates;
-    for (const FormatRow& row : format_rows()) {
-        if (has_extension(row, extension)) candidates.push_back(&row);
-    }
-    if (candidates.empty()) {
-        const auto content = static_cast<unsigned>(sniff_content(text, source));
-        for (const FormatRow& row : format_rows()) {
-            if (row.content & content) candidates.push_back(&row);
-        }
-    }
-    if (candidates.size() == 1) return candidates.front()->format;
-    unsigned shared = ~0u;
-    for (const FormatRow* row : candidates) shared &= row->content;
-    if (const std::optional<DocumentNode> root = parsed_for_claims(text, shared, source)) {
-        for (const FormatRow* row : candidates) {
-            if (row->claims != nullptr && row->claims(*root)) return row->format;
-        }
-    }
-    for (const FormatRow* row : candidates) {
-        if (row->claims == nullptr) return row->format;
-    }
-    return candidates.front()->format;
-}
-
-}  // namespace
-
-namespace detail {
-
-LocatedFile locate_camera_file(const std::filesystem::path& path, std::optional<CameraFormat> format) {
-    const std::string source = path.string();
-    std::filesystem::path file = path;
-    std::error_code error;
-    if (std::filesystem::is_directory(path, error)) {
-        // A folder of a format whose files live in one (COLMAP's sparse/0): the file it reads.
-        for (const FormatRow& row : format_rows()) {
-            if (row.file_in_folder == nullptr || (format && *format != row.format)) continue;
-            const std::filesystem::path inside = row.file_in_folder(path);
-            if (!inside.empty()) {
-                file = inside;
-                format = row.format;
-                break;
-            }
-        }
-        if (file == path) {
-            throw FileError(source + ": a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)");
-        }
-    } else {
-        // Another file of such a model (COLMAP's images.bin): the model, from the file its
-        // format reads, rather than that file misread as the cameras.
-        for (const FormatRow& row : format_rows()) {
-            if (row.file_for_part == nullptr || (format && *format != row.format)) continue;
-            const std::filesystem::path model_file = row.file_for_part(path);
-            if (!model_file.empty()) {
-                file = model_file;
-                format = row.format;
-                break;
-            }
-        }
-    }
-    LocatedFile located{file, format.value_or(CameraFormat::Json), read_text_file(file)};
-    const std::string file_source = file.string();
-    if (located.text.find_first_not_of(" \t\r\n") == std::string::npos) throw FileError(file_source + ": file is empty");
-    if (!format) located.format = detect_format(located.text, file, file_source);
-    return located;
-}
-
-}  // namespace detail
-
 CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format,
                           const ReadOptions& options) {
     const detail::LocatedFile located = detail::locate_camera_file(path, format);
     const std::filesystem::path& file = located.file;
-    return parse_in_context(located.text, located.format,
-                            {file.string(), file.parent_path().empty() ? "." : file.parent_path(), options});
+    const ReadContext context{file.string(), file.parent_path().empty() ? "." : file.parent_path(), options};
+    // The text was checked when it was located.
+    return detail::reading_as(located, [&] {
+        return CameraSet{located.format, read_with(row_of(located.format), located.text, context)};
+    });
 }
 
 CameraFile read_camera_file(const std::filesystem::path& path, std::string_view camera,

@@ -2,6 +2,7 @@
 // What libcam knows about each camera-file format, for programs that list them (`libcam
 // formats`, the docs' table, a GUI's file dialog): read from the one table of formats.
 
+#include <cstdint>
 #include <string_view>
 #include <vector>
 
@@ -9,6 +10,12 @@
 #include "libcam/lens/lens_model.hpp"
 
 namespace libcam {
+
+// Files a format's reader reads beside the one given, and the most it reads of each.
+struct FilesBesideInfo {
+    std::string_view files;  // "tracks.csv"
+    std::uint64_t largest = 0;
+};
 
 struct CameraFormatInfo {
     CameraFormat format;
@@ -24,6 +31,8 @@ struct CameraFormatInfo {
     std::string_view lens_names;   // the format's own names for them, in words
     std::string_view refuses;      // what it cannot hold besides other lens models (skew, a pose)
     std::string_view library;      // the library that reads and writes it ("libcam::io")
+    std::uint64_t largest_file = 0;  // the most libcam reads of one of its files: larger ones are refused
+    std::vector<FilesBesideInfo> files_beside;
     bool available = true;         // its reader is in this program (see camera_file.hpp)
 };
 

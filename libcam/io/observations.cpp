@@ -134,17 +134,19 @@ ObservationSet read_observations(const std::filesystem::path& path, const Observ
     }
     const detail::LocatedFile located = detail::locate_camera_file(path, std::nullopt);
     const detail::FormatRow& row = detail::format_rows()[static_cast<std::size_t>(located.format)];
-    if (row.read_observations == nullptr) {
-        throw FileError(path.string() + ": a " + std::string(row.title) +
-                        " file, which holds no observations (files that do: OpenCV's calibration output, "
-                        "a .cameramodel with optimization_inputs, a COLMAP model, OpenSfM's reconstruction.json, "
-                        "OpenMVG's sfm_data.json, AliceVision's cameras.sfm with its structure, VisualSfM's .nvm, "
-                        "Bundler's bundle.out, or a table with a camera file)");
-    }
-    ObservationSet set = row.read_observations(located.file, located.text, options);
-    if (set.source.empty()) set.source = path.string();
-    check_observations(set);
-    return set;
+    return detail::reading_as(located, [&] {
+        if (row.read_observations == nullptr) {
+            throw FileError(located.file.string() + ": " + std::string(row.title) +
+                            " holds no observations (files that do: OpenCV's calibration output, a .cameramodel with "
+                            "optimization_inputs, a COLMAP model, OpenSfM's reconstruction.json, OpenMVG's "
+                            "sfm_data.json, AliceVision's cameras.sfm with its structure, VisualSfM's .nvm, Bundler's "
+                            "bundle.out, or a table with a camera file)");
+        }
+        ObservationSet set = row.read_observations(located.file, located.text, options);
+        if (set.source.empty()) set.source = path.string();
+        check_observations(set);
+        return set;
+    });
 }
 
 }  // namespace libcam

@@ -88,10 +88,12 @@ py::dict map_cache(const std::optional<std::size_t>& capacity, const std::option
     return out;
 }
 
-// A plan as Python holds it: the tasks made into Python objects once, not at every access.
+// A plan as Python holds it: the tasks made into Python objects once, not at every access,
+// and what finish_dataset needs (the plan without its tasks).
 struct PythonPlan {
     py::list tasks;
     py::dict summary;
+    DatasetPlan plan;
 };
 
 py::object optional_path(const fs::path& path) { return path.empty() ? py::object(py::none()) : py::str(path.string()); }
@@ -144,8 +146,9 @@ libcam.FileError naming the image for one that cannot be read or written.)doc")
 
     py::class_<PythonPlan>(m, "DatasetPlan", R"doc(
 What libcam.dataset.plan did and what is left: tasks (one libcam.dataset.ImageTask per
-output image not already there, in camera order) and summary (the dict `libcam dataset
---json` prints, images_kept counting the images already there, images_written 0).)doc")
+output image not already made, in camera order) and summary (the dict `libcam dataset
+--json` prints, images_kept counting the images already made, images_written 0, finished
+False). libcam.dataset.finish(plan) moves the whole into place once every task has run.)doc")
         .def_readonly("tasks", &PythonPlan::tasks)
         .def_readonly("summary", &PythonPlan::summary)
         .def("__repr__", [](const PythonPlan& plan) {
@@ -167,7 +170,9 @@ output image not already there, in camera order) and summary (the dict `libcam d
             }
             PythonPlan out;
             for (ImageTask& task : plan.tasks) out.tasks.append(py::cast(std::move(task)));
+            plan.tasks.clear();
             out.summary = summary_dict(plan.summary);
+            out.plan = std::move(plan);
             return out;
         },
         py::arg("src"), py::arg("output"), py::arg("images") = py::none(), py::arg("camera") = "valid",
@@ -197,6 +202,18 @@ output image not already there, in camera order) and summary (the dict `libcam d
         py::arg("size") = py::none(), py::arg("to") = "colmap", py::arg("masks") = false,
         py::arg("interpolation") = "cubic", py::arg("jpeg_quality") = kDefaultJpegQuality, py::arg("text") = false,
         py::arg("threads") = 0, "libcam.dataset.run (the docstring is there).");
+
+    m.def(
+        "dataset_finish",
+        [](const PythonPlan& plan) {
+            DatasetSummary summary;
+            {
+                py::gil_scoped_release release;
+                summary = finish_dataset(plan.plan);
+            }
+            return summary_dict(summary);
+        },
+        py::arg("plan"), "libcam.dataset.finish (the docstring is there).");
 
     m.def("dataset_map_cache", &map_cache, py::arg("capacity") = py::none(), py::arg("threads") = py::none(),
           "libcam.dataset.map_cache (the docstring is there).");

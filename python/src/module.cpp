@@ -12,6 +12,7 @@
 #include "libcam/error.hpp"
 #include "libcam/interop/formats.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/text/shown_value.hpp"
 #include "libcam/version.hpp"
 #include "observations_binding.hpp"
 #include "tools_binding.hpp"
@@ -126,7 +127,8 @@ PYBIND11_MODULE(_libcam, m) {
     // .cameramodel files go through libmrcal's own parser.
     register_interop_formats();
 
-    // libcam's errors: ValueError subclasses whose message names the field and the value.
+    // libcam's errors: ValueError subclasses whose message names the field and the value
+    // (made printable: a message that quotes a file's bytes is still a valid str).
     static py::exception<Error> error(m, "Error", PyExc_ValueError);
     static py::exception<FileError> file_error(m, "FileError", error.ptr());
     static py::exception<NotRepresentable> not_representable(m, "NotRepresentable", error.ptr());
@@ -134,11 +136,11 @@ PYBIND11_MODULE(_libcam, m) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const FileError& e) {
-            file_error(e.what());
+            file_error(printable_text(e.what()).c_str());
         } catch (const NotRepresentable& e) {
-            not_representable(e.what());
+            not_representable(printable_text(e.what()).c_str());
         } catch (const Error& e) {
-            error(e.what());
+            error(printable_text(e.what()).c_str());
         }
     });
 

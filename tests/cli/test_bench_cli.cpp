@@ -212,9 +212,8 @@ TEST_CASE("bench --simd all: libcam's one-thread batch rows once per instruction
 }
 
 TEST_CASE("LIBCAM_SIMD naming no instruction set: one line naming the variable and the value, exit 1") {
-    ::setenv("LIBCAM_SIMD", "avx9", 1);
+    const libcam::test::ScopedEnvironment simd("LIBCAM_SIMD", "avx9");
     const CliResult result = run_libcam({"bench", "--case", "mild", "--grid", "5x5"});
-    ::unsetenv("LIBCAM_SIMD");
     INFO(result.describe());
     CHECK(result.exit_code == 1);
     CHECK(result.out.empty());

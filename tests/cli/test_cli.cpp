@@ -767,6 +767,63 @@ cam1:
     CHECK_THAT(bad_format.err, Catch::Contains("--from-format"));
 }
 
+TEST_CASE("info gives each image of a model the field of view of its own calibration, shared or not") {
+    // Five images over three calibrations: two pinholes with the same K on different image
+    // widths, and a radial lens (COLMAP's SIMPLE_RADIAL, r (1 + k r^2)). info works each
+    // calibration out once; every image must still get its own.
+    TempDir dir;
+    const fs::path model = dir.path() / "sparse";
+    fs::create_directories(model);
+    write_whole_file(model / "cameras.txt",
+                     "1 PINHOLE 640 480 400 400 320 240\n"
+                     "2 PINHOLE 800 480 400 400 400 240\n"
+                     "3 SIMPLE_RADIAL 640 480 300 320 240 -0.05\n");
+    const std::vector<std::pair<std::string, int>> images = {
+        {"a.png", 1}, {"b.png", 3}, {"c.png", 1}, {"d.png", 2}, {"e.png", 3}};
+    std::string lines;
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        lines += std::to_string(i + 1) + " 1 0 0 0 " + std::to_string(i) + " 0 0 " + std::to_string(images[i].second) +
+                 " " + images[i].first + "\n\n";
+    }
+    write_whole_file(model / "images.txt", lines);
+    write_whole_file(model / "points3D.txt", "");
+    const CliResult info = run_libcam({"info", model.string(), "--json"});
+    INFO(info.describe());
+    REQUIRE(info.exit_code == 0);
+    const json cameras = json::parse(info.out).at("cameras");
+    REQUIRE(cameras.size() == images.size());
+    // The edge ray's angle, degrees, for an edge `pixels` from the centre (COLMAP's cx is
+    // the image's half width: the outer side of the edge pixel) and the radial lens's
+    // k: its undistorted radius solves r + k r^3 = pixels / f (bisection below the fold).
+    const auto edge_degrees = [](double pixels, double f, double k) {
+        double low = 0, high = k < 0 ? std::sqrt(-1 / (3 * k)) : pixels / f;
+        for (int i = 0; i < 200; ++i) {
+            const double r = (low + high) / 2;
+            (r + k * r * r * r < pixels / f ? low : high) = r;
+        }
+        return std::atan((low + high) / 2) * 180 / std::numbers::pi;
+    };
+    for (std::size_t i = 0; i < images.size(); ++i) {
+        const json& camera = cameras[i];
+        INFO(images[i].first);
+        CHECK(camera.at("name") == images[i].first);
+        CHECK(camera.at("intrinsics_name") == "id:" + std::to_string(images[i].second));
+        CHECK(camera.at("t")[0].get<double>() == static_cast<double>(i));
+        const int width = images[i].second == 2 ? 800 : 640;
+        const double f = images[i].second == 3 ? 300 : 400, k = images[i].second == 3 ? -0.05 : 0.0;
+        CHECK(camera.at("image_size")[0].get<int>() == width);
+        CHECK(camera.at("fov_deg").at("horizontal").get<double>() ==
+              Approx(2 * edge_degrees(width / 2.0, f, k)).epsilon(1e-9));
+        CHECK(camera.at("fov_deg").at("vertical").get<double>() == Approx(2 * edge_degrees(240, f, k)).epsilon(1e-9));
+        CHECK(camera.at("rayless_fraction").get<double>() == 0.0);
+    }
+    // The same in the text: each image its own block, with its size.
+    const CliResult text = run_libcam({"info", model.string()});
+    CHECK_THAT(text.out, Catch::Contains("sparse: colmap, 5 cameras"));
+    CHECK_THAT(text.out,
+               Catch::Contains("camera 3: d.png (intrinsics id:2)\n  model     PINHOLE\n  size      800x480"));
+}
+
 TEST_CASE("convert writes a COLMAP model into a folder, info lists its image, and NeRF's sizes come from flags") {
     TempDir dir;
     const std::string model = (dir.path() / "sparse").string();

@@ -38,6 +38,29 @@ TEST_CASE("docs/file-formats.md's table is what `libcam formats --markdown` prin
     CHECK(generated_block(doc, "libcam formats --markdown") == result.out);
 }
 
+TEST_CASE("docs/reliability.md's table of the largest files read is what `libcam formats --limits` prints") {
+    const auto result = run_program(LIBCAM_EXE, {"formats", "--limits"});
+    REQUIRE(result.exit_code == 0);
+    const std::string doc = libcam::test::read_whole_file(std::string(LIBCAM_DOCS_DIR) + "/reliability.md");
+    INFO("regenerate it: libcam formats --limits, between the markers of docs/reliability.md");
+    CHECK(generated_block(doc, "libcam formats --limits") == result.out);
+    // Every format it reads has a limit, in --json too.
+    for (const nlohmann::json& format : formats()) {
+        if (format["reads"]) CHECK(format["largest_file_bytes"].get<std::uint64_t>() >= 64u << 20);
+    }
+}
+
+TEST_CASE("A file's bytes in a message are printed printable, on one line") {
+    const TempDir dir;
+    // A NVM camera whose quaternion holds an escape sequence (ESC [31m turns a terminal red).
+    const std::string nvm = (dir.path() / "a.nvm").string();
+    libcam::test::write_whole_file(nvm, "NVM_V3\n\n1\nimg.jpg 500 1\x1b[31m 0 0 0 0 0 0 0 0\n");
+    const auto result = run_program(LIBCAM_EXE, {"info", nvm, "--image-size", "640x480"});
+    CHECK(result.exit_code == 1);
+    CHECK(result.err == "libcam: error: " + nvm + ": line 4: camera 0 quaternion: expected a number, got "
+                                                 "'1\\x1B[31m'\n");
+}
+
 TEST_CASE("libcam formats lists every format, and convert --to takes every one it writes") {
     const nlohmann::json list = formats();
     // The formats libcam has read and written since before this listing existed, by name

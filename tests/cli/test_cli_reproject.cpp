@@ -141,7 +141,7 @@ TEST_CASE("libcam reproject refuses what it cannot read, in one line") {
                                    R"({"image_size": [640, 480], "K": [[500, 0, 320], [0, 500, 240], [0, 0, 1]]})");
     const auto camera_only = run_libcam({"reproject", (dir / "cam.json").string()});
     CHECK(camera_only.exit_code == 1);
-    CHECK(camera_only.err.find("which holds no observations") != std::string::npos);
+    CHECK(camera_only.err.find("cam.json: libcam JSON holds no observations") != std::string::npos);
     CHECK(std::count(camera_only.err.begin(), camera_only.err.end(), '\n') == 1);
 }
 

@@ -177,43 +177,105 @@ TEST_CASE("dataset: a run killed midway and started again gives the files of a r
                                         "-o", (dir / out).string(), "--threads", "2", "--masks", "--json"};
     };
     run_json(args("whole"));
-    fs::create_directories(dir / "stopped" / "images");
-    const bool killed = kill_midway(args("stopped"), dir / "stopped" / "images", 8);
+    // The run's images go to its staging folder until every one is made.
+    const fs::path staged = dir / "stopped" / ".libcam-dataset-partial" / "images";
+    fs::create_directories(staged);
+    const bool killed = kill_midway(args("stopped"), staged, 8);
     if (!killed) WARN("the run ended before it could be killed: the second run below has nothing to finish");
-    const std::size_t before = files_in(dir / "stopped" / "images");
+    const std::size_t before = files_in(staged);
+    // Stopped in the image phase: nothing but the staging folder in the output.
+    if (killed) CHECK(files_in(dir / "stopped") == 1);
     const Json again = run_json(args("stopped"));
     CHECK(again["images_kept"].get<std::size_t>() + again["images_written"].get<std::size_t>() == count);
     if (killed) CHECK(again["images_written"].get<std::size_t>() > 0);
     // The same files, byte for byte: every image and mask, the model, the stamp; none of
     // the killed run's temporary files left.
     CHECK(files_under(dir / "stopped") == files_under(dir / "whole"));
-    WARN("killed with " << before << " entries in images/; the second run wrote " << again["images_written"]
+    WARN("killed with " << before << " entries in the staged images/; the second run wrote " << again["images_written"]
                         << " and kept " << again["images_kept"]);
 }
 
-TEST_CASE("dataset: a progress line on a terminal, none in a log", "[dataset]") {
+TEST_CASE("dataset: a run killed while moving its files into place and started again gives the files of a run never "
+          "stopped, and never shows a model without its images", "[dataset]") {
+    TempDir dir;
+    // Many small copied images (the camera is a pinhole, kept): a finish of hundreds of moves.
+    const int count = 160;
+    fs::create_directories(dir / "model");
+    fs::create_directories(dir / "images");
+    std::string images;
+    for (int i = 0; i < count; ++i) {
+        const std::string name = "p" + std::to_string(1000 + i) + ".png";
+        images += std::to_string(i + 1) + " 1 0 0 0 0 0 0 1 " + name + "\n\n";
+        REQUIRE(cv::imwrite((dir / "images" / name).string(), cv::Mat(6, 8, CV_8U, cv::Scalar(i % 256))));
+    }
+    libcam::test::write_whole_file(dir / "model" / "cameras.txt", "1 PINHOLE 8 6 7 7 4 3\n");
+    libcam::test::write_whole_file(dir / "model" / "images.txt", images);
+    libcam::test::write_whole_file(dir / "model" / "points3D.txt", "");
+    const auto args = [&](const std::string& out) {
+        return std::vector<std::string>{"dataset", (dir / "model").string(), "--images", (dir / "images").string(),
+                                        "-o", (dir / out).string(), "--threads", "2", "--json"};
+    };
+    run_json(args("whole"));
+    // Killed once 40 images are in place: the finish has begun.
+    const fs::path staging = dir / "stopped" / ".libcam-dataset-partial";
+    const bool killed = kill_midway(args("stopped"), dir / "stopped" / "images", 40);
+    if (!killed) WARN("the run ended before it could be killed while finishing");
+    const std::size_t moved = files_in(dir / "stopped" / "images");
+    if (fs::exists(dir / "stopped" / "sparse" / "0" / "images.bin")) CHECK(moved == count);
+    if (fs::exists(dir / "stopped" / ".libcam-dataset")) CHECK(fs::exists(dir / "stopped" / "sparse" / "0" / "images.bin"));
+    const Json again = run_json(args("stopped"));
+    CHECK(again["images_kept"].get<std::size_t>() + again["images_written"].get<std::size_t>() == count);
+    CHECK(files_under(dir / "stopped") == files_under(dir / "whole"));
+    CHECK_FALSE(fs::exists(staging));
+    WARN("killed with " << moved << " of " << count << " images moved into place; the second run wrote "
+                        << again["images_written"] << " and kept " << again["images_kept"]);
+}
+
+TEST_CASE("dataset: a progress line on a terminal, none in a log, unless --progress or LIBCAM_PROGRESS says otherwise", "[dataset]") {
     TempDir dir;
     write_model(dir / "model", "photo.png");
     fs::create_directories(dir / "images");
     REQUIRE(cv::imwrite((dir / "images" / "photo.png").string(), texture(CV_8UC3)));
-    const std::string command = std::string(LIBCAM_EXE) + " dataset " + (dir / "model").string() + " --images " +
-                                (dir / "images").string() + " -o ";
-    // Not a terminal: stderr stays empty.
-    const libcam::test::CliResult logged = run_libcam({"dataset", (dir / "model").string(), "--images",
-                                                       (dir / "images").string(), "-o", (dir / "logged").string()});
-    CHECK(logged.exit_code == 0);
-    CHECK(logged.err.empty());
-    // On a terminal (util-linux's script gives the program one): images done, rate, time left.
+    const std::vector<std::string> run = {"dataset", (dir / "model").string(), "--images", (dir / "images").string()};
+    const auto in_a_log = [&](const std::string& out, const std::vector<std::string>& more) {
+        std::vector<std::string> args = run;
+        args.insert(args.end(), {"-o", (dir / out).string()});
+        args.insert(args.end(), more.begin(), more.end());
+        const libcam::test::CliResult result = run_libcam(args);
+        INFO(result.describe());
+        CHECK(result.exit_code == 0);
+        return result.err;
+    };
+    // Not a terminal: stderr stays empty, unless always is asked for: then plain lines, the
+    // last when the last image is done, and no terminal codes.
+    CHECK(in_a_log("logged", {}).empty());
+    const std::string always = in_a_log("always", {"--progress", "always"});
+    CHECK_THAT(always, Catch::Matches("(images [0-9]+ of 1, [0-9.]+ images/s, [0-9]+ s left\n)*"
+                                      "images 1 of 1, [0-9.]+ images/s, 0 s left\n"));
+    {
+        const libcam::test::ScopedEnvironment variable("LIBCAM_PROGRESS", "always");
+        CHECK_THAT(in_a_log("from-variable", {}), Catch::StartsWith("images 1 of 1, "));
+        CHECK(in_a_log("flag-wins", {"--progress", "never"}).empty());
+    }
+    // On a terminal (util-linux's script gives the program one): images done, rate, time left;
+    // nothing with never.
     const std::string script = "/usr/bin/script";
     if (!fs::exists(script)) {
         WARN("skipped the terminal half: no " << script);
         return;
     }
-    const libcam::test::CliResult shown =
-        libcam::test::run_program(script, {"-qec", command + (dir / "shown").string(), "/dev/null"});
-    INFO(shown.describe());
-    CHECK(shown.exit_code == 0);
-    CHECK(shown.out.find("images 1 of 1, ") != std::string::npos);
-    CHECK(shown.out.find(" images/s, ") != std::string::npos);
-    CHECK(shown.out.find(" s left") != std::string::npos);
+    const auto on_a_terminal = [&](const std::string& out, const std::string& more) {
+        std::string command = std::string(LIBCAM_EXE);
+        for (const std::string& word : run) command += " " + word;
+        const libcam::test::CliResult result =
+            libcam::test::run_program(script, {"-qec", command + " -o " + (dir / out).string() + more, "/dev/null"});
+        INFO(result.describe());
+        CHECK(result.exit_code == 0);
+        return result.out;
+    };
+    const std::string shown = on_a_terminal("shown", "");
+    CHECK(shown.find("images 1 of 1, ") != std::string::npos);
+    CHECK(shown.find(" images/s, ") != std::string::npos);
+    CHECK(shown.find(" s left") != std::string::npos);
+    CHECK(on_a_terminal("quiet", " --progress never").find("images 1 of 1") == std::string::npos);
 }

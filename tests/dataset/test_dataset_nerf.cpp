@@ -309,11 +309,12 @@ TEST_CASE("dataset: a transforms.json without poses or with an image outside its
               ": frames[0]: \"transform_matrix\": missing: a dataset needs each frame's pose\n");
     CHECK(error_of("{" + camera + ", \"frames\": [{\"file_path\": \"../a.png\", " + pose + "}]}") ==
           "libcam: error: " + (dir / "t.json").string() +
-              ": frames[0]: \"file_path\": '../a.png' is outside the json's folder; libcam dataset keeps each image "
-              "under its path there\n");
+              ": frames[0]: \"file_path\": '../a.png' leads out of the json's folder through '..'; libcam dataset "
+              "reads and writes each image under its name, relative to the json's folder\n");
     CHECK(error_of("{" + camera + ", \"frames\": [{\"file_path\": \"a.png\", " + pose +
                    "}, {\"file_path\": \"./a.png\", " + pose + "}]}") ==
-          "libcam: error: " + (dir / "t.json").string() + ": frames[1]: \"file_path\": './a.png' is frames[0]'s image too\n");
+          "libcam: error: " + (dir / "t.json").string() + ": frames[1]: \"file_path\": 'a.png' is also the name of " +
+              (dir / "t.json").string() + ": frames[0]; the output keeps one image per name\n");
     CHECK(error_of("{" + camera + "}") == "libcam: error: " + (dir / "t.json").string() +
                                              ": \"frames\": missing: a dataset needs frames, each with its image and pose\n");
 }

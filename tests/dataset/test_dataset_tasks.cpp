@@ -213,6 +213,7 @@ TEST_CASE("dataset tasks: a plan's tasks run one by one from their JSON give mak
     }
     CHECK(turned);
     CHECK_FALSE(copied);
+    CHECK(libcam::finish_dataset(plan).images_written == plan.tasks.size());
     // One map per camera: the views of the fisheye and the OPENCV lens, each built once.
     CHECK(maps.builds() == whole.cameras.size());
 
@@ -225,16 +226,18 @@ TEST_CASE("dataset tasks: a plan's tasks run one by one from their JSON give mak
         CHECK(written.at(name) == bytes);
     }
 
-    // Stopped with one image and another's mask missing: planning again lists those two.
+    // One image and another's mask lost from the output: planning again lists those two.
     const libcam::ImageTask& lost_image = plan.tasks.front();
     const libcam::ImageTask& lost_mask = plan.tasks.back();
-    fs::remove(lost_image.target_path);
-    fs::remove(lost_mask.mask_path);
+    const fs::path staging = plan.staging.folder;
+    fs::remove(dir / "tasks" / lost_image.target_path.lexically_relative(staging));
+    fs::remove(dir / "tasks" / lost_mask.mask_path.lexically_relative(staging));
     const libcam::DatasetPlan again = libcam::plan_dataset(scene_options(dir.path(), "tasks"));
     REQUIRE(again.tasks.size() == 2);
     CHECK(again.summary.images_kept == plan.tasks.size() - 2);
     CHECK(again.tasks.front().target_path == lost_image.target_path);
     CHECK(again.tasks.back().target_path == lost_mask.target_path);
     for (const libcam::ImageTask& task : again.tasks) libcam::run_image_task(task, maps);
+    libcam::finish_dataset(again);
     CHECK(files_under(dir / "tasks") == expected);
 }

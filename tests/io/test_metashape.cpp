@@ -65,6 +65,8 @@ const Vec3 kCameraInChunk(1, -2, 0.5);
 const Mat3 kChunkToWorld = (Mat3() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
 const Vec3 kChunkTranslation(10, 20, 30);
 constexpr double kChunkScale = 2.0;
+// .xml holds several formats: an error says which one the file's keys made it.
+const std::string kAsMetashape = " (read as Agisoft Metashape XML, by its extension .xml and its keys)";
 
 std::string document_xml(const std::string& sensor, const std::string& version = "2.0.0") {
     return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<document version=\"" + version + "\">\n"
@@ -204,19 +206,19 @@ TEST_CASE("metashape: what libcam cannot hold, and malformed files, are refused 
     bad_f.replace(bad_f.find("<f>1000.000000</f>"), 18, "<f>abc</f>");
     const auto bad = write_file(dir, "bad_f.xml", bad_f);
     CHECK(file_error_of([&] { read_camera_set(bad); }) ==
-          bad.string() + ": line 13: sensor 0 ('lens A') <f>: must be a finite number, got 'abc'");
+          bad.string() + ": line 13: sensor 0 ('lens A') <f>: must be a finite number, got 'abc'" + kAsMetashape);
 
     std::string short_transform = document_xml(sensor_xml(kFrame, "frame"));
     short_transform.replace(short_transform.find(" 0 0 0 1</transform>"), 20, " 0 0 0</transform>");
     const auto cut = write_file(dir, "cut.xml", short_transform);
     CHECK(file_error_of([&] { read_camera_set(cut); }) ==
-          cut.string() + ": line 24: camera 0 ('IMG_0001') <transform>: expected 16 numbers, got 15");
+          cut.string() + ": line 24: camera 0 ('IMG_0001') <transform>: expected 16 numbers, got 15" + kAsMetashape);
 
     std::string no_sensor = document_xml(sensor_xml(kFrame, "frame"));
     no_sensor.replace(no_sensor.find("sensor_id=\"0\""), 13, "sensor_id=\"7\"");
     const auto orphan = write_file(dir, "orphan.xml", no_sensor);
     CHECK(file_error_of([&] { read_camera_set(orphan); }) ==
-          orphan.string() + ": line 23: camera 0 ('IMG_0001'): sensor_id '7' is not a sensor");
+          orphan.string() + ": line 23: camera 0 ('IMG_0001'): sensor_id '7' is not a sensor" + kAsMetashape);
 
     // A sensor's own type and size, which the adjusted calibration's stand for, checked all
     // the same: a type Metashape does not have, a negative width.

@@ -132,7 +132,8 @@ TEST_CASE("transforms.json: a dataparser_transforms.json beside it says the fram
     CHECK(file_error_of([&] { (void)read_camera_set(dir.path() / "transforms.json"); }) ==
           (dir.path() / "transforms.json").string() +
               ": \"applied_transform\": given, and dataparser_transforms.json is beside the file: which move the "
-              "frames are in is not clear; move one of them away");
+              "frames are in is not clear; move one of them away (read as NeRF transforms.json, by its extension .json "
+              "and its keys)");
 }
 
 TEST_CASE("transforms.json: nerfstudio's camera_model names, distortion_params and per-frame models") {

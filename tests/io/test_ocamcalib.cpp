@@ -210,7 +210,9 @@ TEST_CASE("ocamcalib: a malformed file names the file, the line and the value", 
     text.replace(text.find("1.001 0.002 -0.003"), 18, "1.001 0.0x2 -0.003");
     const std::filesystem::path path = write_file(dir, "bad.txt", text);
     const std::string error = file_error_of([&] { read_camera_file(path); });
-    CHECK(error == path.string() + ": line 15: the affine parameters (c, d, e): expected a number, got '0.0x2'");
+    // A .txt names no format: its contents said OCamCalib.
+    CHECK(error == path.string() + ": line 15: the affine parameters (c, d, e): expected a number, got '0.0x2' (read as "
+                                   "OCamCalib calib_results.txt, by its contents (OCamCalib's text))");
     // A count that disagrees with the numbers after it.
     std::string counted = own_file("\n");
     counted.replace(counted.find("3 200.0"), 1, "4");

@@ -138,7 +138,8 @@ TEST_CASE("Every real calibration file is read, and one that leaves out what lib
     const fs::path lego = kFolder / "nerf-synthetic-blender/transforms_train.json";
     CHECK_THROWS_WITH(read_camera_set(lego), lego.string() + ": \"w\", \"h\": missing: the file does not record the "
                                                            "image size, and the first frame's image is not there to read "
-                                                           "it from; give the size (--image-size WxH)");
+                                                           "it from; give the size (--image-size WxH) (read as NeRF "
+                                                           "transforms.json, by its extension .json and its keys)");
 }
 
 TEST_CASE("Rig files: poses in the rig's frame, worked from each file's own transform", "[files][real]") {

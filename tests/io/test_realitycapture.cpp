@@ -143,7 +143,7 @@ TEST_CASE("realitycapture: what libcam cannot hold, and malformed files, are ref
     CHECK(error_of(R"(<x:xmpmeta xmlns:x="adobe:ns:meta/"><rdf:RDF/></x:xmpmeta>)") ==
           "IMG_0001.xmp: no rdf:Description in RealityCapture's namespace "
           "(http://www.capturingreality.com/ns/xcr/1.1#)");
-    CHECK_THAT(error_of("<x:xmpmeta"), Catch::StartsWith("IMG_0001.xmp: not valid XML: "));
+    CHECK_THAT(error_of("<x:xmpmeta"), Catch::StartsWith("IMG_0001.xmp: line 1: not valid XML: "));
     // A rotation that is not one: the camera's own check, naming the file.
     CHECK_THAT(error_of(xmp(R"(xcr:FocalLength35mm="30")", "<xcr:Rotation>2 0 0 0 1 0 0 0 1</xcr:Rotation>"
                                                            "<xcr:Position>0 0 0</xcr:Position>")),

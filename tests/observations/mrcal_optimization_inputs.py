@@ -9,7 +9,9 @@
 #       OPENCV4 camera (one outlier, one half weight) and 3 discrete points. VARIANT spoils
 #       one array: float32-intrinsics, mismatched-imagersizes, frame-out-of-range; or
 #       no-observations leaves out the board's and the points' observations (None, as
-#       mrcal stores an array it does not have).
+#       mrcal stores an array it does not have); or
+#       many-views: the same camera over 558 views of a 10x10 board, a file of 1.07 MiB
+#       (the size of a real calibration that libcam's former 1 MiB bound refused).
 
 import json
 import sys
@@ -81,7 +83,30 @@ def small_inputs():
         point_min_range=0.1, point_max_range=100.0)
 
 
+def many_view_inputs():
+    """The small solve's camera over 558 views of a 10x10 board, each a little apart."""
+    inputs = small_inputs()
+    width, height, spacing, views = 10, 10, 0.03, 558
+    board = mrcal.ref_calibration_object(width, height, spacing)
+    angle = np.arange(views) * 0.37
+    frames = np.stack([0.2 * np.sin(angle), 0.2 * np.cos(1.3 * angle), 0.1 * np.sin(0.7 * angle),
+                       -0.135 + 0.05 * np.cos(angle), -0.135 + 0.05 * np.sin(angle), 1.0 + 0.3 * np.sin(0.5 * angle)],
+                      axis=-1)
+    q = mrcal.project(mrcal.transform_point_rt(frames[:, None, None, :], board), inputs["lensmodel"],
+                      inputs["intrinsics"][0])
+    noise = 0.3 * np.sin(np.arange(q.size).reshape(q.shape))
+    observed = np.concatenate([q + noise, np.ones(q.shape[:-1] + (1,))], axis=-1)
+    indices = np.stack([np.arange(views), np.zeros(views), -np.ones(views)], axis=-1).astype(np.int32)
+    inputs.update(frames_rt_toref=frames, observations_board=observed,
+                  indices_frame_camintrinsics_camextrinsics=indices, calibration_object_spacing=spacing,
+                  calobject_warp=np.zeros(2))
+    return inputs
+
+
 def write(path, variant):
+    if variant == "many-views":
+        mrcal.cameramodel(optimization_inputs=many_view_inputs(), icam_intrinsics=0).write(path)
+        return
     inputs = small_inputs()
     mrcal.cameramodel(optimization_inputs=inputs, icam_intrinsics=0).write(path)
     if variant == "good":

@@ -523,16 +523,24 @@ TEST_CASE("COLMAP observations: a malformed binary model is refused, never read 
     SECTION("a count of images the file cannot hold") {
         model.image_count = std::uint64_t{1} << 40;
         model.write(folder.path());
+        // Each image takes at least 73 bytes: its id (4), quaternion (32), translation (24),
+        // camera id (4), an empty name's NUL (1) and its count of points (8).
+        const auto size = std::filesystem::file_size(images_bin);
         CHECK(error_reading(folder.path()) ==
-              images_bin + ": byte 8: the number of images is 1099511627776, more than the file holds");
+              images_bin + ": byte 8: the number of images is 1099511627776, more than the " + std::to_string(size - 8) +
+                  " bytes left of the file's " + std::to_string(size) + " can hold (at least 73 bytes each)");
     }
     SECTION("a track longer than the file") {
         // Point 20's track begins after the count (8), point 10 (51 bytes and a track of two,
         // 16) and its own 51 bytes: byte 126.
         model.track_length = std::uint64_t{1} << 61;
         model.write(folder.path());
+        // Each element of a track is an image id and a point's index (4 + 4 bytes).
+        const auto size = std::filesystem::file_size(points_bin);
         CHECK(error_reading(folder.path()) == (points_bin + ": byte 126: point 20: the track length 2305843009213693952 "
-                                                             "is more than the file holds"));
+                                                             "is more than the " + std::to_string(size - 126) +
+                                               " bytes left of the file's " + std::to_string(size) +
+                                               " can hold (at least 8 bytes each)"));
     }
     SECTION("every shorter points3D.bin") {
         const std::string whole = model.points();

@@ -5,15 +5,20 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "libcam/check/reproject.hpp"
 #include "libcam/error.hpp"
 #include "temp_dir.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "libcam/io/detail/cameramodel_text.hpp"
 #include "libcam/io/observations.hpp"
 #include "real_cameras.hpp"
 
@@ -176,4 +181,59 @@ TEST_CASE("mrcal observations: a malformed file gives one line naming the file, 
                Contains("optimization_inputs: imagersizes: shape (2, 2) of <i4, expected (1, 2) of numbers"));
     CHECK_THAT(message_of(small_model("frame-out-of-range")),
                Contains("indices_frame_camintrinsics_camextrinsics: row 1: frame 7 is not one of the 2"));
+}
+
+TEST_CASE("mrcal observations: a .cameramodel of 558 views, over 1 MiB, is read by info and reproject alike") {
+    // mrcal writes the inputs of its solve into the file: 558 views of a 10 x 10 board make
+    // 1.06 MiB, which the camera's reader refused as "larger than 1 MiB" while reproject
+    // read it.
+    const fs::path model = small_model("many-views");
+    REQUIRE(fs::file_size(model) > (std::uintmax_t{1} << 20));
+    CHECK(compare_with_mrcal(model) < 1e-9);
+    CHECK(mrcal_summary(model)["views"].get<int>() == 558);
+    // The camera as `libcam info` reads it (libmrcal's parser): the solve's camera, as
+    // mrcal_optimization_inputs.py gave it to mrcal.
+    const Camera camera = read_camera_file(model).camera;
+    CHECK(camera.lens.type == LensType::OpenCv4);
+    CHECK(camera.intrinsics.fx == 800.0);
+    CHECK(camera.intrinsics.fy == 810.0);
+    CHECK(camera.lens.coefficients == std::vector<double>{-0.1, 0.02, 0.001, -0.002});
+    CHECK(camera.size.width == 640);
+    CHECK(camera.size.height == 480);
+    // And the program: both commands take the file.
+    const std::string program = "'" + std::string(LIBCAM_EXE) + "' ";
+    CHECK_THAT(run(program + "info '" + model.string() + "'"), Catch::Matchers::Contains("model     OPENCV4"));
+    CHECK_THAT(run(program + "reproject '" + model.string() + "'"), Catch::Matchers::Contains("55803 observations"));
+}
+
+TEST_CASE("mrcal observations: info's reader and reproject's refuse a damaged .cameramodel with the same line") {
+    const auto message_of = [](const auto& read) -> std::string {
+        try {
+            read();
+        } catch (const FileError& error) {
+            return error.what();
+        }
+        return "no error";
+    };
+    const std::string head = "{\n    'lensmodel': 'LENSMODEL_PINHOLE',\n    'intrinsics': [1, 1, 0, 0],\n";
+    const std::vector<std::pair<std::string, std::string>> damaged = {
+        {head + "    'imagersize': [ 640, 480 ],\n    'optimization_inputs': b'P)h>@6aWAK2mk,\n}\n",
+         "line 5: unterminated string"},
+        {head + "    'valid_intrinsics_region': [[[[[[[[[ 0 ]]]]]]]]],\n}\n", "line 4: nested more than 8 deep"},
+        {head + "    'imagersize': [ 640, 480 ]]],\n}\n", "line 4: unbalanced ']'"},
+        {head + "    'imagersize': [ 640, 480 ,\n", "unbalanced brackets (truncated file?)"},
+    };
+    for (std::size_t i = 0; i < damaged.size(); ++i) {
+        const fs::path path = scratch_folder() / ("damaged-" + std::to_string(i) + ".cameramodel");
+        std::ofstream(path) << damaged[i].first;
+        const std::string camera = message_of([&] { read_camera_file(path); });
+        const std::string observations = message_of([&] { read_observations(path); });
+        INFO(damaged[i].first);
+        CHECK(camera == observations);
+        CHECK_THAT(camera, Catch::Matchers::Contains(path.string() + ": " + damaged[i].second));
+    }
+    // The bound itself, at its edge: 256 MiB.
+    CHECK_NOTHROW(detail::check_cameramodel_size(std::uintmax_t{256} << 20, "big.cameramodel"));
+    CHECK(message_of([] { detail::check_cameramodel_size((std::uintmax_t{256} << 20) + 1, "big.cameramodel"); }) ==
+          "big.cameramodel: 268435457 bytes: larger than the 256 MiB libcam reads as a .cameramodel");
 }

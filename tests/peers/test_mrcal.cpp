@@ -296,6 +296,58 @@ TEST_CASE("A .cameramodel with the legacy key 'lens_model' is rejected, naming t
     CHECK(camera.size == ImageSize{640, 480});
 }
 
+TEST_CASE("A .cameramodel libmrcal refuses is told in libcam's words, with the line, the key and the value",
+          "[mrcal][errors]") {
+    // A valid file, then each change to it and what libcam says of it; that libmrcal
+    // itself refuses each one is checked first (the reference for "not valid").
+    const std::string lines[] = {"{", "    'lensmodel': 'LENSMODEL_PINHOLE',", "    'intrinsics': [ 1000, 1000, 319.5, 239.5 ],",
+                                 "    'extrinsics': [ 0, 0, 0, 0, 0, 0 ],", "    'imagersize': [ 640, 480 ]", "}"};
+    const auto file_with = [&](std::size_t line, const std::string& instead) {
+        std::string text;
+        for (std::size_t i = 0; i < std::size(lines); ++i) {
+            if (i != line || !instead.empty()) text += (i == line ? instead : lines[i]) + "\n";
+        }
+        return text;
+    };
+    struct Case {
+        std::size_t line;
+        std::string instead;  // empty: the line removed
+        std::string said;
+    };
+    const Case cases[] = {
+        {3, "", "missing \"extrinsics\" (a .cameramodel needs lensmodel, intrinsics, extrinsics and imagersize)"},
+        {2, "    'intrinsics': [ 1000, 1000, 319.5 239.5 ],", "line 3: \"intrinsics\": expected ',' between its values"},
+        {2, "    'intrinsics': [ 1000, 1000, 319.5, 239.5, 7 ],",
+         "line 3: \"intrinsics\": more values than the 4 of its lensmodel 'LENSMODEL_PINHOLE'"},
+        {2, "    'intrinsics': [ 1000, 1000, 319.5, x ],", "line 3: \"intrinsics\": expected a finite number, got 'x'"},
+        {2, "    'intrinsics': [ 1000, 1000, 319.5, 1e999 ],",
+         "line 3: \"intrinsics\": expected a finite number, got '1e999'"},
+        {4, "    'imagersize': [ 640, -480 ]", "line 5: \"imagersize\": expected whole numbers >= 0, got '-480'"},
+        {1, "    'lensmodel': 'LENSMODEL_FOO',", "\"lensmodel\": 'LENSMODEL_FOO' is not a lens model mrcal knows (LENSMODEL_...)"},
+        {1, "    'lensmodel': 'LENSMODEL_PINHOLE' 'x': 1,", "line 2: expected ',' after the value"},
+        {0, "(", "expected '{' first: a .cameramodel is a Python dict"},
+        {3, "    'lensmodel': 'LENSMODEL_PINHOLE',", "\"lensmodel\" given twice"},
+        {1, "    'extra': 1,\n    'intrinsics': [ 1, 1, 1, 1 ],\n    'lensmodel': 'LENSMODEL_PINHOLE',",
+         "\"intrinsics\" comes before any \"lensmodel\": libmrcal needs \"lensmodel\" first"},
+        // A spline of 100000 x 100000 knots: 4 + 2 x 10^10 intrinsics, which libmrcal cannot allocate.
+        {1, "    'lensmodel': 'LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=100000_Ny=100000_fov_x_deg=100',",
+         "\"lensmodel\": its spline of Nx=100000 by Ny=100000 asks for 4 + 2 Nx Ny = 20000000004 intrinsics, more than "
+         "libmrcal could allocate"},
+    };
+    for (const Case& c : cases) {
+        const std::string text = file_with(c.line, c.instead);
+        INFO(text);
+        const ModelPtr by_mrcal(mrcal_read_cameramodel_string(text.data(), static_cast<int>(text.size())));
+        CHECK(by_mrcal == nullptr);
+        try {
+            (void)parse_camera(text, CameraFormat::Cameramodel, "f.cameramodel");
+            FAIL("no error");
+        } catch (const FileError& error) {
+            CHECK(std::string(error.what()) == "f.cameramodel: " + c.said);
+        }
+    }
+}
+
 TEST_CASE("A camera with skew cannot be written as .cameramodel", "[mrcal][errors]") {
     TempDir dir;
     Camera camera = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Horizontal));

@@ -16,6 +16,7 @@
 #include "libcam/interop/colmap_dataset.hpp"
 #include "libcam/text/number_format.hpp"
 #include "parse.hpp"
+#include "progress.hpp"
 
 namespace libcam::cli {
 
@@ -23,11 +24,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One line on a terminal's stderr, redrawn at most five times a second: images done, the
-// rate and the time left. Nothing when stderr is not a terminal (a log, a pipe).
+// Progress on stderr: images done, the rate and the time left. On a terminal one line,
+// redrawn at most five times a second; elsewhere (a log, a pipe) nothing by default, and
+// with --progress always a plain line at most once a second and one at the end.
 class ProgressLine {
 public:
-    ProgressLine() : shown_(isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
+    explicit ProgressLine(ProgressMode mode)
+        : terminal_(isatty(STDERR_FILENO) == 1),
+          shown_(mode == ProgressMode::Always || (mode == ProgressMode::Auto && terminal_)),
+          start_(std::chrono::steady_clock::now()) {}
     ~ProgressLine() { finish(); }
     ProgressLine(const ProgressLine&) = delete;
     ProgressLine& operator=(const ProgressLine&) = delete;
@@ -35,14 +40,16 @@ public:
     void update(std::size_t done, std::size_t total) {
         if (!shown_) return;
         const auto now = std::chrono::steady_clock::now();
-        if (done < total && now - last_ < std::chrono::milliseconds(200)) return;
+        const auto every = terminal_ ? std::chrono::milliseconds(200) : std::chrono::milliseconds(1000);
+        if (done < total && now - last_ < every) return;
         last_ = now;
         const double seconds = std::chrono::duration<double>(now - start_).count();
         const double rate = seconds > 0 ? static_cast<double>(done) / seconds : 0.0;
         const double left = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
-        std::fprintf(stderr, "\r\x1b[Kimages %zu of %zu, %.1f images/s, %.0f s left", done, total, rate, left);
+        std::fprintf(stderr, "%simages %zu of %zu, %.1f images/s, %.0f s left%s", terminal_ ? "\r\x1b[K" : "", done,
+                     total, rate, left, terminal_ ? "" : "\n");
         std::fflush(stderr);
-        drawn_ = true;
+        drawn_ = terminal_;
     }
     // Ends the line, before the summary is printed.
     void finish() {
@@ -56,6 +63,7 @@ public:
     }
 
 private:
+    bool terminal_;
     bool shown_;
     bool drawn_ = false;
     std::chrono::steady_clock::time_point start_, last_{};
@@ -75,10 +83,11 @@ struct DatasetFlags {
     bool json = false;
     bool masks = false;
     std::string to = "colmap";
+    std::string progress;
 };
 
 std::string summary_text(const DatasetSummary& s, double seconds, bool with_images) {
-    std::string out = "model: " + s.model_out.string() + "\n";
+    std::string out = "model: " + s.model_out.string() + (s.finished ? "" : " (not written yet: the run is unfinished)") + "\n";
     for (const DatasetCamera& camera : s.cameras) {
         const Intrinsics& k = camera.camera.intrinsics;
         const std::string view = camera.views > 1 ? " view " + std::to_string(camera.view) + " of " +
@@ -100,8 +109,9 @@ std::string summary_text(const DatasetSummary& s, double seconds, bool with_imag
     out += "points: " + std::to_string(s.points_kept) + " of " + std::to_string(s.points_in) + " kept\n";
     if (with_images) {
         out += "images: " + std::to_string(s.images_written + s.images_kept) + " of " + std::to_string(s.model_images_out) +
-               " in the output (" + std::to_string(s.images_written) + " written, " + std::to_string(s.images_kept) +
-               " already there, " + std::to_string(s.images_failed) + " failed)\n";
+               (s.finished ? " in the output (" : " made, not yet in the output (") + std::to_string(s.images_written) +
+               " written, " + std::to_string(s.images_kept) + " already there, " + std::to_string(s.images_failed) +
+               " failed)\n";
         if (s.model_images_out != s.images_in) out += "images: " + std::to_string(s.model_images_out) +
                                                       " in the model, the views of " + std::to_string(s.images_in) + "\n";
     }
@@ -144,7 +154,7 @@ int run_dataset(const DatasetFlags& flags) {
     if (!options.images.empty() && !fs::is_directory(options.images)) {
         throw FileError(options.images.string() + ": no such images folder (give --images, or --no-images)");
     }
-    auto progress = std::make_shared<ProgressLine>();
+    auto progress = std::make_shared<ProgressLine>(progress_mode(flags.progress));
     options.on_image_error = [progress](const std::string& line) { progress->say("libcam: error: " + line); };
     options.on_progress = [progress](std::size_t done, std::size_t total) { progress->update(done, total); };
     const auto start = std::chrono::steady_clock::now();
@@ -152,7 +162,12 @@ int run_dataset(const DatasetFlags& flags) {
     progress->finish();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     emit(flags.json ? dataset_summary_json(summary, seconds) : summary_text(summary, seconds, !flags.no_images), "");
-    return summary.images_failed == 0 ? 0 : 1;
+    if (summary.finished) return 0;
+    progress->say("libcam: error: " + std::to_string(summary.images_failed) + " of " +
+                  std::to_string(summary.model_images_out) + " images failed: " + options.output.string() +
+                  " is as it was; this run's work is kept in " + staging_folder(options.output).string() +
+                  ", and running the same command again finishes it");
+    return 1;
 }
 
 }  // namespace
@@ -165,7 +180,9 @@ Runner add_dataset(CLI::App& app) {
                         "(its frames' cameras and poses; no points)")
         ->required();
     command->add_option("-o,--output", flags->output,
-                        "The folder to write: sparse/0/ (the model; --to nerf: transforms.json) and images/")
+                        "The folder to write: sparse/0/ (the model; --to nerf: transforms.json) and images/, made "
+                        "in OUT/.libcam-dataset-partial and moved in when every image is there (a failed run leaves "
+                        "OUT as it was; the same command again finishes it)")
         ->required();
     command->add_option("--to", flags->to,
                         "colmap: OUT/sparse/0 (a transforms.json's cameras deduplicated, an empty points3D); nerf: "
@@ -192,6 +209,7 @@ Runner add_dataset(CLI::App& app) {
     command->add_flag("--no-images", flags->no_images, "Write the model alone");
     command->add_flag("--masks", flags->masks,
                       "Also write masks/<image name>.png: 255 where the pixel has a source pixel, 0 where it is black");
+    add_progress_option(command, flags->progress, "a line redrawn on a terminal, nothing in a log or a pipe");
     command->add_flag("--json", flags->json,
                       "Print {\"observations_in\", \"observations_kept\", \"images_in\", \"images_out\", \"cameras\", "
                       "\"time_s\", ...}");

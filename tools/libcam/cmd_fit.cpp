@@ -20,6 +20,7 @@
 #include "libcam/report/fit_heatmap.hpp"
 #include "libcam/text/number_format.hpp"
 #include "parse.hpp"
+#include "progress.hpp"
 
 namespace libcam::cli {
 
@@ -45,6 +46,7 @@ struct FitFlags {
     std::string observations;
     int folds = 5;
     double margin = 0.05;
+    std::string progress;
 };
 
 void add_flags(CLI::App& command, FitFlags& flags) {
@@ -89,6 +91,7 @@ void add_flags(CLI::App& command, FitFlags& flags) {
                        "DOUBLE_SPHERE, UCM, EUCM, MEI, EQUISOLID, the thin-prism fisheyes, and Blender's "
                        "FISHEYE_LENS_POLYNOMIAL (square pixels, sensor 36 mm wide)");
     command.add_flag("--json", flags.json, "Print JSON");
+    add_progress_option(&command, flags.progress, "after the fit's first second");
     command.add_option("-o,--output", flags.output, "Write the chosen camera to this file (written atomically)");
     command.add_option("--to", flags.to,
                        "Format for -o (default: from the extension, else json): " + written_formats_help());
@@ -116,13 +119,17 @@ Lattice lattice_from(const std::string& text) {
     return {counts.width, counts.height};
 }
 
-// Prints progress on stderr once the fit has run for a second: a line when a candidate
-// starts, and one a second while a long one runs.
+// Prints progress on stderr: a line when a candidate starts, and one a second while a long
+// one runs. By default only once the fit has run for a second (a quick fit prints
+// nothing); --progress always from the start, never not at all.
 class ProgressPrinter {
 public:
+    explicit ProgressPrinter(ProgressMode mode) : mode_(mode) {}
+
     void operator()(const FitProgress& progress) {
+        if (mode_ == ProgressMode::Never) return;
         const auto now = Clock::now();
-        if (now - start_ < std::chrono::seconds(1)) return;
+        if (mode_ == ProgressMode::Auto && now - start_ < std::chrono::seconds(1)) return;
         if (progress.candidate_index == last_candidate_ && now - last_line_ < std::chrono::seconds(1)) return;
         last_candidate_ = progress.candidate_index;
         last_line_ = now;
@@ -134,6 +141,7 @@ public:
 
 private:
     using Clock = std::chrono::steady_clock;
+    ProgressMode mode_;
     Clock::time_point start_ = Clock::now();
     Clock::time_point last_line_;
     int last_candidate_ = -1;
@@ -386,6 +394,7 @@ Runner add_fit(CLI::App& app) {
     add_flags(*command, *flags);
 
     return [flags] {
+        const ProgressMode progress_when = progress_mode(flags->progress);  // a bad value is a usage error before any work
         if (!flags->observations.empty()) {
             if (!flags->heatmap.empty()) throw UsageError("--heatmap: not with --observations (libcam reproject draws them)");
             ObservationFitFlags fit;
@@ -405,7 +414,7 @@ Runner add_fit(CLI::App& app) {
         if (!flags->to.empty()) output_format(*flags);  // a bad --to is a usage error before any work
         const Camera source = flags->selection.read(flags->source).camera;
         const Scene scene = scene_from(*flags, source.size);
-        ProgressPrinter printer;
+        ProgressPrinter printer(progress_when);
         options.progress = [&](const FitProgress& progress) { printer(progress); };
         const FitReport report = fit_scene(source, scene, options);
         if (!report.chosen) throw Error(no_choice_message(source, options, report));

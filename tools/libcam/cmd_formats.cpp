@@ -1,12 +1,13 @@
 // libcam formats: every camera-file format, what libcam does with it and the lens models
 // it holds, from the one table of formats (plain text, --json, or --markdown: the table of
-// docs/file-formats.md).
+// docs/file-formats.md; --limits: the table of the largest files read, docs/reliability.md).
 
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "commands.hpp"
+#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_formats.hpp"
 
 namespace libcam::cli {
@@ -54,6 +55,12 @@ Json format_json(const CameraFormatInfo& format) {
     out["lens_names"] = format.lens_names;
     out["refuses"] = format.refuses;
     out["library"] = format.library;
+    out["largest_file_bytes"] = format.largest_file;
+    Json beside = Json::array();
+    for (const FilesBesideInfo& files : format.files_beside) {
+        beside.push_back({{"files", files.files}, {"largest_bytes", files.largest}});
+    }
+    out["files_beside"] = beside;
     out["available"] = format.available;
     return out;
 }
@@ -79,6 +86,28 @@ std::string markdown(const std::vector<CameraFormatInfo>& formats) {
     return out.str();
 }
 
+// "tracks.csv: 2 GiB", each file read beside the format's own.
+std::string files_beside_text(const CameraFormatInfo& format) {
+    std::string out;
+    for (const FilesBesideInfo& files : format.files_beside) {
+        out += (out.empty() ? "" : "; ") + std::string(files.files) + ": " + byte_size_text(files.largest);
+    }
+    return out;
+}
+
+// The table of docs/reliability.md: the most libcam reads of each format's files.
+std::string limits_markdown(const std::vector<CameraFormatInfo>& formats) {
+    std::ostringstream out;
+    out << "| format | largest file read | files read beside it |\n";
+    out << "|---|---|---|\n";
+    for (const CameraFormatInfo& format : formats) {
+        if (!format.reads) continue;
+        out << "| `" << format.name << "` | " << byte_size_text(format.largest_file) << " | "
+            << cell(files_beside_text(format)) << " |\n";
+    }
+    return out.str();
+}
+
 std::string plain(const std::vector<CameraFormatInfo>& formats) {
     std::ostringstream out;
     for (const CameraFormatInfo& format : formats) {
@@ -89,6 +118,11 @@ std::string plain(const std::vector<CameraFormatInfo>& formats) {
         out << "  models    " << lens_models_text(format) << "\n";
         if (!format.lens_names.empty()) out << "  its names " << format.lens_names << "\n";
         if (!format.refuses.empty()) out << "  refuses   " << format.refuses << "\n";
+        if (format.reads) {
+            const std::string beside = files_beside_text(format);
+            out << "  reads at most " << byte_size_text(format.largest_file)
+                << (beside.empty() ? "" : " (" + beside + ")") << "\n";
+        }
     }
     return out.str();
 }
@@ -100,13 +134,21 @@ Runner add_formats(CLI::App& app) {
     struct Flags {
         bool json = false;
         bool markdown = false;
+        bool limits = false;
     };
     auto flags = std::make_shared<Flags>();
     CLI::Option* json = command->add_flag(
         "--json", flags->json,
         "Print a JSON array, one object per format: name, title, description, extensions, reads, writes, "
-        "writes_folder, observations, lens_models, lens_names, refuses, library, available");
-    command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md")->excludes(json);
+        "writes_folder, observations, lens_models, lens_names, refuses, library, largest_file_bytes, files_beside, "
+        "available");
+    CLI::Option* markdown_flag =
+        command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md");
+    markdown_flag->excludes(json);
+    command->add_flag("--limits", flags->limits,
+                      "Print the table of docs/reliability.md: the largest file libcam reads of each format")
+        ->excludes(json)
+        ->excludes(markdown_flag);
     return [flags] {
         const std::vector<CameraFormatInfo> formats = camera_formats();
         if (flags->json) {
@@ -114,7 +156,9 @@ Runner add_formats(CLI::App& app) {
             for (const CameraFormatInfo& format : formats) list.push_back(format_json(format));
             std::cout << list.dump(2) << "\n";
         } else {
-            std::cout << (flags->markdown ? markdown(formats) : plain(formats));
+            std::cout << (flags->limits     ? limits_markdown(formats)
+                          : flags->markdown ? markdown(formats)
+                                            : plain(formats));
         }
         return 0;
     };

@@ -2,6 +2,7 @@
 // model, size, K, coefficients, the field of view through the lens, where it has rays,
 // and the pose.
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -24,10 +25,29 @@ std::string axis_text(const AxisFieldOfView& axis) {
     return format_short(axis.degrees, 5) + " deg" + (axis.edge_to_edge ? "" : " (to the last pixel with a ray)");
 }
 
-std::string camera_text(std::size_t index, const NamedCamera& named) {
+// The field of view of each distinct calibration (image size, K and lens, compared bit for
+// bit), worked out once: the views of a reconstruction mostly share a few calibrations, and
+// each takes a millisecond or more.
+class CalibrationFields {
+public:
+    const FieldOfView& of(const Camera& camera) {
+        camera.validate();
+        std::vector<double> values{static_cast<double>(camera.size.width), static_cast<double>(camera.size.height),
+                                   camera.intrinsics.fx, camera.intrinsics.fy, camera.intrinsics.cx,
+                                   camera.intrinsics.cy, camera.intrinsics.skew, static_cast<double>(camera.lens.type)};
+        values.insert(values.end(), camera.lens.coefficients.begin(), camera.lens.coefficients.end());
+        std::string key(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+        const auto known = fields_.find(key);
+        if (known != fields_.end()) return known->second;
+        return fields_.emplace(std::move(key), field_of_view(PreparedCamera(camera))).first->second;
+    }
+
+private:
+    std::map<std::string, FieldOfView> fields_;
+};
+
+std::string camera_text(std::size_t index, const NamedCamera& named, const FieldOfView& fov) {
     const Camera& camera = named.file.camera;
-    const PreparedCamera prepared(camera);
-    const FieldOfView fov = field_of_view(prepared);
     const LensInfo& lens = lens_info(camera.lens.type);
     const Intrinsics& k = camera.intrinsics;
     std::ostringstream out;
@@ -78,9 +98,8 @@ std::string inverse_text(const InverseMiss& miss) {
            format_number(miss.worst_pixel.x()) + ", " + format_number(miss.worst_pixel.y()) + ")\n";
 }
 
-Json camera_json(std::size_t index, const NamedCamera& named) {
+Json camera_json(std::size_t index, const NamedCamera& named, const FieldOfView& fov) {
     const Camera& camera = named.file.camera;
-    const FieldOfView fov = field_of_view(PreparedCamera(camera));
     const Intrinsics& k = camera.intrinsics;
     const auto vec = [](const Vec3& v) { return Json::array({v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}); };
     return {{"index", index},
@@ -123,10 +142,11 @@ Runner add_info(CLI::App& app) {
             set.cameras = {chosen};
             first = index;
         }
+        CalibrationFields fields;
         if (flags->json) {
             Json out = {{"file", flags->file}, {"format", to_string(set.format)}, {"cameras", Json::array()}};
             for (std::size_t i = 0; i < set.cameras.size(); ++i) {
-                Json camera = camera_json(first + i, set.cameras[i]);
+                Json camera = camera_json(first + i, set.cameras[i], fields.of(set.cameras[i].file.camera));
                 if (const auto miss = inverse_miss(flags->file, set, set.cameras[i])) {
                     camera["invpol_miss_px"] = {{"within_half_side", miss->within_half_side},
                                                 {"whole_image", miss->whole_image},
@@ -141,7 +161,7 @@ Runner add_info(CLI::App& app) {
         out << flags->file << ": " << to_string(set.format) << ", " << set.cameras.size()
             << (set.cameras.size() == 1 ? " camera" : " cameras") << "\n";
         for (std::size_t i = 0; i < set.cameras.size(); ++i) {
-            out << "\n" << camera_text(first + i, set.cameras[i]);
+            out << "\n" << camera_text(first + i, set.cameras[i], fields.of(set.cameras[i].file.camera));
             if (const auto miss = inverse_miss(flags->file, set, set.cameras[i])) out << inverse_text(*miss);
         }
         emit(out.str(), "");

@@ -6,6 +6,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
+#include "libcam/text/shown_value.hpp"
 #include "libcam/version.hpp"
 #include "parse.hpp"
 
@@ -58,15 +59,16 @@ Runner add_or_list(CLI::App& app, const CommandInfo& info, std::span<const Comma
     };
 }
 
-// The exit code of a runner: 2 for a usage error, 1 for any other error, each one line.
+// The exit code of a runner: 2 for a usage error, 1 for any other error, each one
+// printable line whatever bytes a file put in it.
 int run_reporting_errors(const Runner& run) {
     try {
         return run();
     } catch (const UsageError& error) {
-        std::cerr << "libcam: usage error: " << error.what() << " (see --help)\n";
+        std::cerr << "libcam: usage error: " << printable_text(error.what()) << " (see --help)\n";
         return 2;
     } catch (const std::exception& error) {
-        std::cerr << "libcam: error: " << error.what() << "\n";
+        std::cerr << "libcam: error: " << printable_text(error.what()) << "\n";
         return 1;
     }
 }

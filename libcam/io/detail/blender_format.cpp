@@ -11,6 +11,7 @@
 #include "libcam/io/detail/document.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -55,14 +56,14 @@ BlenderCameraType camera_type(const Field& camera) {
     const std::string text = type.text();
     if (text == "PERSP") return BlenderCameraType::Perspective;
     if (text == "ORTHO") type.fail("an orthographic camera has no ray through a centre; libcam models central cameras only");
-    if (text != "PANO") type.fail("expected PERSP or PANO, got '" + text + "'");
+    if (text != "PANO") type.fail("expected PERSP or PANO, got " + shown_value(text));
     const Field panorama = camera.at({"panorama_type"});
     const std::string name = panorama.text();
     for (const PanoramaName& entry : kPanoramaTypes) {
         if (entry.name == name) return entry.type;
     }
-    panorama.fail("libcam reads FISHEYE_EQUIDISTANT, FISHEYE_EQUISOLID, FISHEYE_LENS_POLYNOMIAL and EQUIRECTANGULAR, got '" +
-                  name + "'");
+    panorama.fail("libcam reads FISHEYE_EQUIDISTANT, FISHEYE_EQUISOLID, FISHEYE_LENS_POLYNOMIAL and EQUIRECTANGULAR, "
+                  "got " + shown_value(name));
 }
 
 SensorFit sensor_fit(const Field& camera) {
@@ -72,7 +73,7 @@ SensorFit sensor_fit(const Field& camera) {
     for (const auto& [fit, name] : kSensorFits) {
         if (name == text) return fit;
     }
-    field->fail("expected AUTO, HORIZONTAL or VERTICAL, got '" + text + "'");
+    field->fail("expected AUTO, HORIZONTAL or VERTICAL, got " + shown_value(text));
 }
 
 // The pose of a camera object's world matrix: its columns' lengths are the object's scale,

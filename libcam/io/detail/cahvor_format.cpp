@@ -10,6 +10,7 @@
 #include "libcam/io/format_table.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -72,14 +73,15 @@ public:
             const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), value);
             const std::size_t used = static_cast<std::size_t>(end - rest.data());
             if (error != std::errc() || !std::isfinite(value) || (used < rest.size() && rest[used] != ' ' && rest[used] != '\t')) {
-                fail(entry.line, "\"" + key + "\": expected numbers, got '" + entry.value + "'");
+                fail(entry.line, "\"" + key + "\": expected numbers, got " + shown_value(entry.value));
             }
             values.push_back(value);
             if (values.size() > count) break;
             rest = rest.substr(used);
         }
         if (values.size() != count) {
-            fail(entry.line, "\"" + key + "\": expected " + std::to_string(count) + " numbers, got '" + entry.value + "'");
+            fail(entry.line,
+                 "\"" + key + "\": expected " + std::to_string(count) + " numbers, got " + shown_value(entry.value));
         }
         return values;
     }
@@ -116,7 +118,7 @@ std::optional<double> cahvore_linearity(const CahvorFile& file) {
     double linearity = 0.0;
     const auto [end, error] = std::from_chars(rest.data(), rest.data() + rest.size(), linearity);
     if (error != std::errc() || !std::isfinite(linearity)) {
-        file.fail(model.line, "\"Model\": expected CAHVORE3,<linearity>, got '" + model.value + "'");
+        file.fail(model.line, "\"Model\": expected CAHVORE3,<linearity>, got " + shown_value(model.value));
     }
     return linearity;
 }
@@ -129,8 +131,8 @@ std::vector<NamedCamera> parse_cahvor(std::string_view text, const std::string& 
     for (const double side : dimensions) {
         if (side != std::floor(side) || side < 1 || side > static_cast<double>(kMaxImageSide)) {
             file.fail(file.at("Dimensions").line, "\"Dimensions\": expected two whole numbers in [1, " +
-                                                      std::to_string(kMaxImageSide) + "], got '" +
-                                                      file.at("Dimensions").value + "'");
+                                                      std::to_string(kMaxImageSide) + "], got " +
+                                                      shown_value(file.at("Dimensions").value));
         }
     }
     const Vec3 C = file.vector("C");

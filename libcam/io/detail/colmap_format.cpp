@@ -259,7 +259,9 @@ public:
     // A count of records of at least `record_bytes` each, no more than the bytes left hold.
     std::uint64_t count(const std::string& what, std::size_t record_bytes) {
         const auto n = read<std::uint64_t>(what);
-        if (n > remaining() / record_bytes) fail(what + " is " + std::to_string(n) + ", more than the file holds");
+        if (n > remaining() / record_bytes) {
+            fail(what + " is " + std::to_string(n) + ", " + more_than_left(record_bytes));
+        }
         return n;
     }
 
@@ -280,6 +282,11 @@ public:
     }
 
     std::size_t remaining() const { return bytes_.size() - at_; }
+    // "more than the 100 bytes left of the file's 124 can hold (at least 24 bytes each)".
+    std::string more_than_left(std::size_t record_bytes) const {
+        return "more than the " + std::to_string(remaining()) + " bytes left of the file's " +
+               std::to_string(bytes_.size()) + " can hold (at least " + std::to_string(record_bytes) + " bytes each)";
+    }
     std::string where() const { return source_ + ": byte " + std::to_string(at_); }
     [[noreturn]] void fail(const std::string& what) const { throw FileError(where() + ": " + what); }
 
@@ -440,8 +447,8 @@ ColmapPoints3D read_points3d_binary(std::string_view bytes, const std::string& s
             throw FileError(source + ": point " + std::to_string(id) + ": XYZ or ERROR is not finite");
         }
         if (length > in.remaining() / 8) {
-            in.fail("point " + std::to_string(id) + ": the track length " + std::to_string(length) +
-                    " is more than the file holds");
+            in.fail("point " + std::to_string(id) + ": the track length " + std::to_string(length) + " is " +
+                    in.more_than_left(8));
         }
         const char* block = in.take(length * 8, "a track");
         for (std::uint64_t k = 0; k < length; ++k) {
@@ -503,9 +510,8 @@ ColmapPoints3D read_colmap_points3d(std::string_view bytes, const std::string& s
 }
 
 std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder) {
-    std::error_code error;
     for (const char* name : {"cameras.bin", "cameras.txt"}) {
-        if (std::filesystem::is_regular_file(folder / name, error)) return folder / name;
+        if (regular_file_exists(folder / name)) return folder / name;
     }
     return {};
 }
@@ -516,10 +522,9 @@ std::filesystem::path colmap_cameras_file_for(const std::filesystem::path& part)
     const bool model_part = (extension == ".txt" || extension == ".bin") &&
                             (stem == "images" || stem == "points3D" || stem == "frames" || stem == "rigs");
     if (!model_part) return {};
-    std::error_code error;
     const std::filesystem::path folder = part.parent_path().empty() ? "." : part.parent_path();
     const std::filesystem::path same_form = folder / ("cameras" + extension);
-    if (std::filesystem::is_regular_file(same_form, error)) return same_form;
+    if (regular_file_exists(same_form)) return same_form;
     return colmap_cameras_file_in(folder);
 }
 

@@ -234,10 +234,7 @@ void check_model(ColmapModelRecords& model, const ColmapModelPaths& paths) {
     check_points2d_in_tracks(model, paths, first, claimed);
 }
 
-fs::path regular_file_or_empty(const fs::path& path) {
-    std::error_code error;
-    return fs::is_regular_file(path, error) ? path : fs::path();
-}
+fs::path regular_file_or_empty(const fs::path& path) { return regular_file_exists(path) ? path : fs::path(); }
 
 }  // namespace
 
@@ -257,9 +254,9 @@ ColmapModelRecords read_colmap_model_records(const ColmapModelPaths& paths, std:
     model.cameras = read_colmap_cameras(cameras_bytes, paths.cameras.string(), paths.binary);
     const bool with_points = !paths.points3d.empty();
     if (!paths.images.empty()) {
-        model.images = read_colmap_images(read_text_file(paths.images), paths.images.string(), paths.binary, with_points);
+        model.images = read_colmap_images(read_text_file(paths.images, kColmapModelPartLimit), paths.images.string(), paths.binary, with_points);
     }
-    if (with_points) model.points = read_colmap_points3d(read_text_file(paths.points3d), paths.points3d.string(), paths.binary);
+    if (with_points) model.points = read_colmap_points3d(read_text_file(paths.points3d, kColmapModelPartLimit), paths.points3d.string(), paths.binary);
     check_model(model, paths);
     return model;
 }

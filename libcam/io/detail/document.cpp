@@ -19,6 +19,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -59,6 +60,28 @@ private:
     const std::string& source_;
     std::size_t nodes_ = 0;
 };
+
+// ---- the tree detection parsed, for the reader (keep_parsed_document) ----
+
+struct KeptDocument {
+    DocumentSyntax syntax;
+    std::string text;  // compared whole: a buffer freed and reused at the same address is another file
+    std::string source;
+    DocumentNode tree;
+};
+
+thread_local std::optional<KeptDocument> kept_document;
+
+// The kept tree when it is this text's, parsed the same way; the slot is emptied either way,
+// so that a tree no reader takes is not held on to.
+std::optional<DocumentNode> take_kept_document(DocumentSyntax syntax, std::string_view text,
+                                               const std::string& source) {
+    if (!kept_document) return std::nullopt;
+    KeptDocument kept = std::move(*kept_document);
+    kept_document.reset();
+    if (kept.syntax != syntax || kept.source != source || kept.text != text) return std::nullopt;
+    return std::move(kept.tree);
+}
 
 // ---- YAML (yaml-cpp) ----
 
@@ -347,6 +370,7 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
         out.text = std::move(words.front());
     } else if (words.size() > 1) {
         out.kind = DocumentNode::Kind::Sequence;
+        out.items.reserve(words.size());
         for (std::string& word : words) {
             budget.enter(depth + 1, out.line);
             DocumentNode item;
@@ -369,7 +393,13 @@ std::string yaml_number(double value) {
     return text;
 }
 
+void keep_parsed_document(DocumentSyntax syntax, std::string_view text, const std::string& source, DocumentNode tree) {
+    kept_document = KeptDocument{syntax, std::string(text), source, std::move(tree)};
+}
+
 DocumentNode parse_yaml_document(std::string_view text, const std::string& source) {
+    std::optional<DocumentNode> kept = take_kept_document(DocumentSyntax::Yaml, text, source);
+    if (kept) return std::move(*kept);
     const std::string yaml = without_yaml_header(text);
     check_one_yaml_document(yaml, source);
     TreeBudget budget(source);
@@ -555,6 +585,8 @@ private:
 }  // namespace
 
 DocumentNode parse_json_tree(std::string_view text, const std::string& source) {
+    std::optional<DocumentNode> kept = take_kept_document(DocumentSyntax::Json, text, source);
+    if (kept) return std::move(*kept);
     JsonTreeBuilder builder(source);
     if (!nlohmann::json::sax_parse(text.begin(), text.end(), &builder)) builder.refuse();
     return builder.take();
@@ -567,9 +599,9 @@ namespace {
 // A scalar as a message quotes it: a JSON string in JSON's quotes, a JSON number or
 // boolean as it is, any other word in ''.
 std::string quoted(const DocumentNode& scalar) {
-    if (scalar.tag == "string") return nlohmann::json(scalar.text).dump();
-    if (scalar.tag == "number" || scalar.tag == "boolean") return scalar.text;
-    return "'" + std::string(trim(scalar.text)) + "'";
+    if (scalar.tag == "string") return shown_value(scalar.text, '"');
+    if (scalar.tag == "number" || scalar.tag == "boolean") return printable_text(scalar.text, kShownValueLength);
+    return shown_value(trim(scalar.text));
 }
 
 // What a value is, for a message that expected something else.
@@ -636,7 +668,7 @@ std::string Field::child_name(std::string_view key) const {
 
 std::string Field::text() const {
     if (node_->kind != DocumentNode::Kind::Scalar) fail("expected a single value, got " + show(*node_));
-    if (node_->tag == "number" || node_->tag == "boolean") fail("expected a string, got " + node_->text);
+    if (node_->tag == "number" || node_->tag == "boolean") fail("expected a string, got " + quoted(*node_));
     return node_->text;
 }
 
@@ -648,9 +680,10 @@ std::optional<bool> Field::boolean() const {
 }
 
 double Field::number_at(const DocumentNode& scalar, std::size_t index, bool indexed) const {
-    const Field where(scalar, name_, source_);
     const auto fail = [&](const std::string& what) {
-        if (!indexed) where.fail(what);
+        // The field is named only for a message: a copy of its name for every number was
+        // most of the time of reading a file of many numbers.
+        if (!indexed) Field(scalar, name_, source_).fail(what);
         const std::string line = scalar.line > 0 ? ": line " + std::to_string(scalar.line) : "";
         throw FileError(*source_ + line + ": \"" + name_ + "\"[" + std::to_string(index) + "]: " + what);
     };
@@ -670,7 +703,7 @@ double Field::number_at(const DocumentNode& scalar, std::size_t index, bool inde
         fail("expected a number, got " + quoted(scalar));
     }
     if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
-        fail("must be finite, got " + std::string(written));
+        fail("must be finite, got " + printable_text(written, kShownValueLength));
     }
     return value;
 }
@@ -687,7 +720,8 @@ long long Field::integer(long long min, long long max) const {
     const bool digits_only = !word.empty() && end == word.data() + word.size();
     if (!digits_only || error == std::errc::invalid_argument) fail("expected an integer, got " + quoted(*node_));
     if (error == std::errc::result_out_of_range || value < min || value > max) {
-        fail("must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + written);
+        fail("must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
+             printable_text(written, kShownValueLength));
     }
     return value;
 }
@@ -695,7 +729,8 @@ long long Field::integer(long long min, long long max) const {
 long long Field::whole_number(long long min, long long max) const {
     const double value = number();
     if (value != std::floor(value) || value < static_cast<double>(min) || value > static_cast<double>(max)) {
-        fail("expected a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + node_->text);
+        fail("expected a whole number in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
+             printable_text(node_->text, kShownValueLength));
     }
     return static_cast<long long>(value);
 }

@@ -63,6 +63,13 @@ DocumentNode parse_xml_outline(std::string_view text, const std::string& source)
 // double's range, or for a file nested deeper than kMaxDocumentDepth.
 DocumentNode parse_json_tree(std::string_view text, const std::string& source);
 
+// File detection parses a file to see whose keys it holds, and the reader it picks then
+// parses the same text again: kept here, detection's tree is taken by the next
+// parse_json_tree or parse_yaml_document of that very text and source instead of a second
+// parse (yaml-cpp reads a few MB/s). One tree is kept per thread, until the next parse.
+enum class DocumentSyntax { Json, Yaml };
+void keep_parsed_document(DocumentSyntax syntax, std::string_view text, const std::string& source, DocumentNode tree);
+
 // A double as YAML that every YAML reader takes as a float, Python's (PyYAML, which Kalibr
 // and ROS's Python tools read with) included: every digit that matters, with a '.' in
 // the mantissa ("1.0e-09", "500.0", not "1e-09" or "500", which PyYAML reads as a string

@@ -10,6 +10,7 @@
 #include "libcam/error.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -81,7 +82,8 @@ Polynomial calibrated_polynomial(const Field& properties) {
         const Field type = properties.at({"polynomial-type"});
         const std::string kind = type.text();
         if (kind != kBackward && kind != kForward) {
-            type.fail("must be " + std::string(kBackward) + " or " + std::string(kForward) + ", got '" + kind + "'");
+            type.fail("must be " + std::string(kBackward) + " or " + std::string(kForward) + ", got " +
+                      shown_value(kind));
         }
         return {polynomial_of(*polynomial), kind == kForward};
     }
@@ -95,7 +97,9 @@ double property_or(const Field& properties, std::string_view key, double fallbac
 
 Camera read_intrinsics(const Field& properties) {
     const Field model = properties.at({"Model"});
-    if (model.text() != "ftheta") model.fail("libcam reads DriveWorks' ftheta cameras, got '" + model.text() + "'");
+    if (model.text() != "ftheta") {
+        model.fail("libcam reads DriveWorks' ftheta cameras, got " + shown_value(model.text()));
+    }
     const Polynomial polynomial = calibrated_polynomial(properties);
     const std::vector<double>& b = polynomial.coefficients;
     // Pixels per unit of m: the focal length at the centre, so that k1 = 1.

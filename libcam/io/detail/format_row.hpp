@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "libcam/error.hpp"
+#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
 #include "libcam/io/observations.hpp"
@@ -38,6 +40,13 @@ enum class Content : unsigned {
 constexpr unsigned operator|(Content a, Content b) { return static_cast<unsigned>(a) | static_cast<unsigned>(b); }
 constexpr unsigned operator|(unsigned a, Content b) { return a | static_cast<unsigned>(b); }
 
+// Files a format's reader reads beside the one given (COLMAP's images and points3D), and
+// the most it reads of each.
+struct FileBeside {
+    std::string_view files;  // "images and points3D (.bin or .txt)"
+    ReadLimit limit;
+};
+
 struct FormatRow {
     CameraFormat format;
     std::string_view name;         // what --to, --from-format and camera_format_from_string take
@@ -50,6 +59,11 @@ struct FormatRow {
     // Whether a parsed file of a shared extension is this format, by its keys; nullptr:
     // the default for its content when no other row claims the file.
     bool (*claims)(const DocumentNode& root) = nullptr;
+    // Keys its files have and the others of its extension do not (at the top, or in the
+    // first entry of the top list or map): a file that no row claims but has one of
+    // them is read as this format rather than the default, so that a broken file is told
+    // what it is broken as. Where several rows have some, the one with the most.
+    std::array<std::string_view, 4> telling_keys{};
     // Every camera a file holds, from its bytes (checked to be UTF-8 text first unless the
     // row says it has a binary form); every file holding one camera. nullptr: filled at
     // run time by the library named below (install_camera_format).
@@ -59,6 +73,10 @@ struct FormatRow {
     bool write_only = false;     // written, not read back (its reader takes another format's files, or none)
     bool writes_folder = false;  // written as several files into a folder
     bool binary = false;         // has a binary form: its reader checks the text itself
+    // The most libcam reads of one of its files (larger ones are refused, io/atomic_write.hpp),
+    // and the files its reader reads beside it.
+    std::uint64_t largest_file = kCameraFileLimit.max_bytes;
+    std::span<const FileBeside> files_beside = {};
     // The file of this format in a folder given as the path (COLMAP's sparse/0), or empty.
     std::filesystem::path (*file_in_folder)(const std::filesystem::path& folder) = nullptr;
     // The file this format reads for another file of the same model given as the path
@@ -83,14 +101,41 @@ struct FormatRow {
 std::span<const FormatRow> format_rows();
 
 // The file a path names for reading (a folder's cameras file, for COLMAP's sparse/0), its
-// format (`format`, or the one its extension and contents say) and its text; throws
-// FileError for a folder of no format and an empty file (camera_file.cpp).
+// format (`format`, or the one its extension and contents say) and its text, read up to
+// the format's largest_file and checked to be UTF-8 for a format without a binary form;
+// throws FileError for a folder of no format, an empty file, a file too large, and text
+// in another encoding (camera_file.cpp).
 struct LocatedFile {
     std::filesystem::path file;
     CameraFormat format;
     std::string text;
+    // How detection chose the format among several, for messages ("by its extension .json
+    // and its keys"); empty where the caller named the format, or its extension or folder
+    // names only one.
+    std::string how;
 };
 LocatedFile locate_camera_file(const std::filesystem::path& path, std::optional<CameraFormat> format);
+
+// Throws FileError "<source>: UTF-16 text: libcam reads camera files as UTF-8; save it as
+// UTF-8" for text in UTF-16 or UTF-32 (text/utf8.hpp), which would otherwise pass for binary.
+void refuse_wide_text(std::string_view text, const std::string& source);
+
+// Throws the error being handled again, of the same type, its message made printable
+// (text/shown_value.hpp) and, for an error about the file (FileError, NotRepresentable),
+// followed by what the file was read as where detection chose its format among several:
+// "<message> (read as NeRF transforms.json, by its extension .json and its keys)". Call
+// it only from a catch block.
+[[noreturn]] void rethrow_read_as(const LocatedFile& located);
+
+// `read()`, whose errors say what the located file was read as (rethrow_read_as).
+template <class Read>
+auto reading_as(const LocatedFile& located, Read&& read) -> decltype(read()) {
+    try {
+        return read();
+    } catch (const Error&) {
+        rethrow_read_as(located);
+    }
+}
 
 // The cameras of a file that holds observations (OpenSfM, OpenMVG): each view as a camera
 // with its pose, named after the view, its intrinsics named; the intrinsics alone where

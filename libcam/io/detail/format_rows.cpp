@@ -129,6 +129,16 @@ constexpr L kDriveworksRig[] = {L::FTheta, L::FThetaForward};  // DriveWorks' ft
 
 using C = Content;
 
+// ---- the most libcam reads of each format's files, and of the files read beside them ----
+
+// mrcal's .cameramodel with its optimization_inputs (a calibration's every observation,
+// base85): the largest real ones are about 1 MB.
+constexpr std::uint64_t kCameramodelLargest = 256 * kMiB;
+constexpr FileBeside kColmapBeside[] = {{"images and points3D (.bin or .txt)", kColmapModelPartLimit}};
+constexpr FileBeside kNerfBeside[] = {{"dataparser_transforms.json", kCameraFileLimit}};
+constexpr FileBeside kOpenSfmBeside[] = {{"tracks.csv", kReconstructionLimit}};
+constexpr FileBeside kBundlerBeside[] = {{"list.txt", kCameraFileLimit}};
+
 // Every format, in CameraFormat's order. Where several formats share a file ending, the
 // first row whose `claims` accepts the file's keys is its format, else the row without
 // `claims` (libcam's JSON for .json, OpenCV's YAML for .yaml).
@@ -151,7 +161,7 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Cameramodel, .name = "cameramodel", .title = "mrcal .cameramodel",
      .description = "mrcal's .cameramodel, read and written by libmrcal's own parser",
      .extensions = {".cameramodel"}, .content = static_cast<unsigned>(C::PythonDict),
-     .read_observations = read_mrcal_observations, .lenses = kCameramodel,
+     .largest_file = kCameramodelLargest, .read_observations = read_mrcal_observations, .lenses = kCameramodel,
      .lens_names = "mrcal's LENSMODEL_ names", .refuses = "skew", .library = "libcam::interop",
      .installer = "libcam::register_interop_formats()"},
     {.format = CameraFormat::Gl, .name = "gl", .title = "gl JSON",
@@ -161,7 +171,8 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Kalibr, .name = "kalibr", .title = "Kalibr camchain YAML",
      .description = "Kalibr's camchain and camchain-imucam YAML, also as OpenVINS ships it",
      .extensions = {".yaml", ".yml"}, .content = static_cast<unsigned>(C::Yaml), .claims = claims_kalibr_camchain,
-     .read = with_source<parse_kalibr_camchain>, .write = one_file<format_kalibr_camchain>, .lenses = kKalibr,
+     .telling_keys = {"cam0", "T_cn_cnm1", "T_cam_imu", "camera_model"}, .read = with_source<parse_kalibr_camchain>,
+     .write = one_file<format_kalibr_camchain>, .lenses = kKalibr,
      .lens_names = "pinhole, omni, ds, eucm with radtan, equidistant, fov, none", .refuses = "skew"},
     {.format = CameraFormat::Basalt, .name = "basalt", .title = "basalt calibration JSON",
      .description = "basalt's calibration JSON (cereal's value0)", .extensions = {".json"},
@@ -170,13 +181,16 @@ constexpr FormatRow kRows[] = {
      .lens_names = "pinhole, kb4, ds, eucm, ucm, fov, pinhole-radtan8", .refuses = "skew"},
     {.format = CameraFormat::Camodocal, .name = "camodocal", .title = "camodocal YAML",
      .description = "camodocal's YAML, as VINS-Mono and VINS-Fusion ship it", .extensions = {".yaml", ".yml"},
-     .content = static_cast<unsigned>(C::Yaml), .claims = claims_camodocal, .read = with_source<parse_camodocal>,
+     .content = static_cast<unsigned>(C::Yaml), .claims = claims_camodocal,
+     .telling_keys = {"model_type", "mirror_parameters", "projection_parameters", "distortion_parameters"},
+     .read = with_source<parse_camodocal>,
      .read_only = true, .lenses = kCamodocal, .lens_names = "PINHOLE, MEI, KANNALA_BRANDT, SCARAMUZZA"},
     {.format = CameraFormat::Colmap, .name = "colmap", .title = "COLMAP model",
      .description = "COLMAP's sparse model: cameras.txt or .bin with images.txt or .bin beside it; written as "
                     "cameras.txt, images.txt and points3D.txt into a folder",
      .extensions = {".bin"}, .content = C::Table | C::Binary, .read = read_colmap_model,
-     .write = write_colmap_model, .writes_folder = true, .binary = true, .file_in_folder = colmap_cameras_file_in,
+     .write = write_colmap_model, .writes_folder = true, .binary = true, .files_beside = kColmapBeside,
+     .file_in_folder = colmap_cameras_file_in,
      .file_for_part = colmap_cameras_file_for,
      .read_observations = read_colmap_observations, .lenses = kColmap,
      .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
@@ -188,8 +202,9 @@ constexpr FormatRow kRows[] = {
                 "cx = w / 2 - 0.5, cy = h / 2 - 0.5)"},
     {.format = CameraFormat::Nerf, .name = "nerf", .title = "NeRF transforms.json",
      .description = "NeRF's transforms.json (instant-ngp, nerfstudio)", .extensions = {".json"},
-     .content = static_cast<unsigned>(C::Json), .claims = claims_nerf_transforms, .read = read_nerf_transforms,
-     .write = one_file<write_nerf_transforms>, .lenses = kNerf,
+     .content = static_cast<unsigned>(C::Json), .claims = claims_nerf_transforms,
+     .telling_keys = {"frames", "camera_angle_x", "fl_x", "aabb_scale"}, .read = read_nerf_transforms,
+     .write = one_file<write_nerf_transforms>, .files_beside = kNerfBeside, .lenses = kNerf,
      .lens_names = "OPENCV, PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV_FISHEYE, EQUIRECTANGULAR, "
                    "FISHEYE624; instant-ngp's is_fisheye, latlong and f-theta (read as FISHEYE_LENS_POLYNOMIAL)",
      .refuses = "skew; k4 (r^8); instant-ngp's equirectangular and orthographic lenses"},
@@ -199,17 +214,20 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Ros, .name = "ros", .title = "ROS camera_info YAML",
      .description = "ROS's camera_info YAML (camera_calibration_parsers)", .extensions = {".yaml", ".yml"},
      .content = static_cast<unsigned>(C::Yaml), .claims = claims_ros_camera_info,
+     .telling_keys = {"projection_matrix", "rectification_matrix", "camera_name"},
      .read = with_source<parse_ros_camera_info>, .write = one_file<format_ros_camera_info>, .lenses = kRos,
      .lens_names = "plumb_bob, rational_polynomial, equidistant",
      .refuses = "a pose (camera_info holds none: --no-pose writes the intrinsics alone)"},
     {.format = CameraFormat::Open3d, .name = "open3d", .title = "Open3D camera JSON",
      .description = "Open3D's PinholeCameraIntrinsic, PinholeCameraParameters and PinholeCameraTrajectory JSON",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_open3d_camera,
-     .read = with_source<parse_open3d_camera>, .write = one_file<format_open3d_camera>, .lenses = kPinhole,
+     .telling_keys = {"intrinsic_matrix", "class_name"}, .read = with_source<parse_open3d_camera>,
+     .write = one_file<format_open3d_camera>, .lenses = kPinhole,
      .refuses = "distortion"},
     {.format = CameraFormat::Euroc, .name = "euroc", .title = "EuRoC sensor.yaml",
      .description = "the EuRoC (ASL) dataset's camera sensor.yaml", .extensions = {".yaml", ".yml"},
-     .content = static_cast<unsigned>(C::Yaml), .claims = claims_euroc_sensor, .read = with_source<parse_euroc_sensor>,
+     .content = static_cast<unsigned>(C::Yaml), .claims = claims_euroc_sensor, .telling_keys = {"T_BS", "sensor_type"},
+     .read = with_source<parse_euroc_sensor>,
      .read_only = true, .lenses = kEuroc,
      .lens_names = "pinhole with radial-tangential or equidistant"},
     {.format = CameraFormat::Openicc, .name = "openicc", .title = "OpenImuCameraCalibrator JSON",
@@ -233,20 +251,23 @@ constexpr FormatRow kRows[] = {
      .description = "OpenSfM's reconstruction.json (tracks.csv beside it holds the observations), and the camera "
                     "dictionaries of camera_models.json and OpenDroneMap's cameras.json",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_opensfm,
-     .read = read_opensfm, .read_only = true, .read_observations = read_opensfm_observations, .lenses = kOpenSfm,
+     .telling_keys = {"shots", "points", "projection_type"}, .read = read_opensfm, .read_only = true,
+     .largest_file = kReconstructionLimit.max_bytes, .files_beside = kOpenSfmBeside,
+     .read_observations = read_opensfm_observations, .lenses = kOpenSfm,
      .lens_names = "perspective, brown, radial, simple_radial, fisheye, fisheye_opencv, spherical",
      .refuses = "fisheye62, fisheye624, dual"},
     {.format = CameraFormat::OpenMvg, .name = "openmvg", .title = "OpenMVG sfm_data.json",
      .description = "OpenMVG's sfm_data.json: views, intrinsics, extrinsics and the structure's observations",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_openmvg,
-     .read = read_openmvg, .read_only = true, .read_observations = read_openmvg_observations, .lenses = kOpenMvg,
+     .telling_keys = {"sfm_data_version", "root_path", "extrinsics"}, .read = read_openmvg, .read_only = true,
+     .largest_file = kReconstructionLimit.max_bytes, .read_observations = read_openmvg_observations, .lenses = kOpenMvg,
      .lens_names = "pinhole, pinhole_radial_k1, pinhole_radial_k3, pinhole_brown_t2, fisheye, spherical",
      .refuses = "any other intrinsic type"},
     {.format = CameraFormat::GsCameras, .name = "gs-cameras", .title = "3D Gaussian Splatting cameras.json",
      .description = "the cameras.json 3D Gaussian Splatting writes beside its model: per image a size, fx, fy, "
                     "centre and rotation",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_gs_cameras,
-     .read = read_gs_cameras, .read_only = true, .lenses = kPinhole,
+     .telling_keys = {"img_name"}, .read = read_gs_cameras, .read_only = true, .lenses = kPinhole,
      .lens_names = "a pinhole with its principal point at the image centre", .refuses = "distortion"},
     {.format = CameraFormat::Llff, .name = "llff", .title = "LLFF poses_bounds.npy",
      .description = "LLFF's poses_bounds.npy (imgs2poses.py), as NeRF's LLFF scenes ship it: per image a 3x5 "
@@ -258,7 +279,8 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Metashape, .name = "metashape", .title = "Agisoft Metashape XML",
      .description = "Agisoft Metashape's (PhotoScan's) cameras.xml from Export Cameras, and its Export Calibration "
                     "XML", .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_metashape,
-     .read = read_metashape, .write = one_file<format_metashape>, .lenses = kMetashape,
+     .telling_keys = {"document", "calibration"}, .read = read_metashape, .write = one_file<format_metashape>,
+     .largest_file = kReconstructionLimit.max_bytes, .lenses = kMetashape,
      .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical "
                    "(LONLAT with fx = fy); written as cameras.xml, or with --no-pose as Export Calibration's file",
      .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors"},
@@ -267,8 +289,10 @@ constexpr FormatRow kRows[] = {
      .description = "AliceVision's (Meshroom's) SfMData JSON, cameras.sfm: views, intrinsics, poses and the "
                     "structure's observations; written as one view",
      .extensions = {".sfm", ".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_alicevision,
-     .read = read_alicevision, .write = one_file<format_alicevision>,
-     .read_observations = read_alicevision_observations, .lenses = kAliceVision,
+     .telling_keys = {"featuresFolders", "matchesFolders", "poses"}, .read = read_alicevision,
+     .write = one_file<format_alicevision>,
+     .largest_file = kReconstructionLimit.max_bytes, .read_observations = read_alicevision_observations,
+     .lenses = kAliceVision,
      .lens_names = "pinhole, radial1, radial3, brown, fisheye4, fisheye1 (and radialk3pt; equidistant and "
                    "equidistant_r3 read as FISHEYE)",
      .refuses = "skew; the 3DE models and undistortion maps"},
@@ -276,13 +300,14 @@ constexpr FormatRow kRows[] = {
      .description = "VisualSfM's .nvm (NVM_V3): cameras, points and their measurements; the image size is given "
                     "(--image-size), the file has none",
      .extensions = {".nvm"}, .content = static_cast<unsigned>(C::Table), .read = read_nvm, .read_only = true,
-     .read_observations = read_nvm_observations, .lenses = kPinhole,
+     .largest_file = kReconstructionLimit.max_bytes, .read_observations = read_nvm_observations, .lenses = kPinhole,
      .lens_names = "a pinhole per image, its principal point at the image centre",
      .refuses = "a camera with VisualSfM's measurement distortion (its observations are read undistorted), FixedK"},
     {.format = CameraFormat::Bundler, .name = "bundler", .title = "Bundler bundle.out",
      .description = "Bundler's bundle.out (v0.3): f k1 k2, R, t per image, points and their views; names from "
                     "list.txt beside it; the image size is given (--image-size), the file has none",
      .extensions = {".out"}, .content = static_cast<unsigned>(C::Table), .read = read_bundler, .read_only = true,
+     .largest_file = kReconstructionLimit.max_bytes, .files_beside = kBundlerBeside,
      .read_observations = read_bundler_observations, .lenses = kBundler,
      .lens_names = "f, k1, k2: OPENCV4 with p1 = p2 = 0, its principal point at the image centre"},
     // Lens databases.
@@ -290,7 +315,7 @@ constexpr FormatRow kRows[] = {
      .description = "lensfun's lens database (data/db/*.xml): one lens at one focal length, crop factor and image "
                     "size (--lens, --focal, --crop-factor, --image-size)",
      .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_lensfun,
-     .read = read_lensfun, .read_only = true, .lenses = kLensfun,
+     .telling_keys = {"lensdatabase"}, .read = read_lensfun, .read_only = true, .lenses = kLensfun,
      .lens_names = "poly3 and poly5 (OpenCV's k1 k2 once rescaled), ptlens (PTLENS); rectilinear, fisheye, "
                    "and without distortion equisolid, stereographic, equirectangular, panoramic",
      .refuses = "acm, orthographic and fisheye_thoby lenses, ptlens on a fisheye, distortion on the other "
@@ -306,6 +331,7 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Gyroflow, .name = "gyroflow", .title = "Gyroflow lens profile",
      .description = "Gyroflow's lens profile JSON (calib_dimension, fisheye_params, distortion_model)",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_gyroflow,
+     .telling_keys = {"calib_dimension", "fisheye_params", "calibrator_version", "use_opencv_fisheye"},
      .read = read_gyroflow, .read_only = true, .lenses = kGyroflow,
      .lens_names = "opencv_fisheye (FISHEYE), opencv_standard (OpenCV's 12), poly3, poly5 (OPENCV4), ptlens (PTLENS)",
      .refuses = "anamorphic stretch, GoPro, Insta360, Sony and Gyroflow's other models"},
@@ -320,7 +346,9 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::PyOcamCalib, .name = "py-ocamcalib", .title = "py-OCamCalib JSON",
      .description = "py-OCamCalib's calibration JSON (taylor_coefficient, distortion_center, stretch_matrix); it "
                     "stores no image size: give --image-size", .extensions = {".json"},
-     .content = static_cast<unsigned>(C::Json), .claims = claims_py_ocamcalib, .read = read_py_ocamcalib,
+     .content = static_cast<unsigned>(C::Json), .claims = claims_py_ocamcalib,
+     .telling_keys = {"taylor_coefficient", "distortion_center", "stretch_matrix", "inverse_poly"},
+     .read = read_py_ocamcalib,
      .read_only = true, .lenses = kOcamCalib, .lens_names = "Scaramuzza's polynomial up to degree 5"},
     // RealityCapture's XMP sidecars.
     {.format = CameraFormat::RealityCapture, .name = "realitycapture", .title = "RealityCapture XMP",
@@ -341,13 +369,15 @@ constexpr FormatRow kRows[] = {
     {.format = CameraFormat::Woodscape, .name = "woodscape", .title = "WoodScape calibration JSON",
      .description = "Valeo's WoodScape dataset's calibration JSON (radial_poly fisheye, camera-to-vehicle extrinsic)",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_woodscape_camera,
-     .read = with_source<parse_woodscape_camera>, .write = one_file<format_woodscape_camera>, .lenses = kWoodscape,
+     .telling_keys = {"intrinsic", "cx_offset"}, .read = with_source<parse_woodscape_camera>,
+     .write = one_file<format_woodscape_camera>, .lenses = kWoodscape,
      .lens_names = "radial_poly", .refuses = "skew"},
     // ---- NVIDIA DriveWorks' rig.json
     {.format = CameraFormat::DriveworksRig, .name = "driveworks-rig", .title = "DriveWorks rig JSON",
      .description = "NVIDIA DriveWorks' rig.json: its F-theta camera sensors, each placed in the rig's FLU frame",
      .extensions = {".json"}, .content = static_cast<unsigned>(C::Json), .claims = claims_driveworks_rig,
-     .read = with_source<parse_driveworks_rig>, .write = one_file<format_driveworks_rig>, .lenses = kDriveworksRig,
+     .telling_keys = {"rig"}, .read = with_source<parse_driveworks_rig>, .write = one_file<format_driveworks_rig>,
+     .lenses = kDriveworksRig,
      .lens_names = "ftheta (pixeldistance-to-angle or angle-to-pixeldistance polynomial, linear-c d e)",
      .refuses = "skew, max_angle other than pi"},
 };

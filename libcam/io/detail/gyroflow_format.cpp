@@ -7,6 +7,7 @@
 #include "libcam/geometry/image_size.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -49,8 +50,9 @@ Lens gyroflow_lens(const std::string& name, const Field& coefficients) {
         if (k[0] == 0.0 && k[2] == 0.0) return simplest_equal_lens({LensType::OpenCv4, {k[1], 0.0, 0.0, 0.0}});
         return {LensType::Ptlens, {k[0], k[1], k[2]}};
     }
-    throw NotRepresentable(coefficients.source() + ": distortion_model '" + name + "' has no libcam model (libcam reads "
-                           "opencv_fisheye, opencv_standard, poly3, poly5 and ptlens)");
+    throw NotRepresentable(coefficients.source() + ": distortion_model " + shown_value(name) +
+                           " has no libcam model (libcam reads opencv_fisheye, opencv_standard, poly3, poly5 and "
+                           "ptlens)");
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "libcam/geometry/image_size.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -76,7 +77,7 @@ double number(const std::string& text, const std::string& where, std::string_vie
     double value = 0.0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-        throw FileError(where + ": " + std::string(key) + ": must be a finite number, got '" + text + "'");
+        throw FileError(where + ": " + std::string(key) + ": must be a finite number, got " + shown_value(text));
     }
     return value;
 }
@@ -95,12 +96,12 @@ double value_of(const std::vector<ImageLine>& images, std::size_t index, std::st
     const std::string& text = found->second;
     if (!text.empty() && text.front() == '=') {
         if (key.size() != 1 || kLinkable.find(key[0]) == std::string_view::npos) {
-            throw FileError(where + ": " + std::string(key) + ": cannot be linked, got '" + text + "'");
+            throw FileError(where + ": " + std::string(key) + ": cannot be linked, got " + shown_value(text));
         }
         const double target = number(text.substr(1), where, key);
         if (!(target >= 0.0 && target < static_cast<double>(images.size())) || target != std::floor(target) ||
             static_cast<std::size_t>(target) == index) {
-            throw FileError(where + ": " + std::string(key) + ": links to no other image, got '" + text + "'");
+            throw FileError(where + ": " + std::string(key) + ": links to no other image, got " + shown_value(text));
         }
         const ImageLine& linked = images[static_cast<std::size_t>(target)];
         const auto value = linked.values.find(key);

@@ -5,6 +5,7 @@
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/detail/document.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -157,7 +158,7 @@ Camera read_calibrated(const Reader& in, const std::string& source) {
     Camera camera;
     const std::string model = in.string("model");
     const std::optional<LensType> type = lens_type_from_name(model);
-    if (!type) in.fail("model", "unknown lens model '" + model + "'");
+    if (!type) in.fail("model", "unknown lens model " + shown_value(model));
     camera.lens.type = *type;
     camera.size = in.image_size("image_size");
     const Mat3 K = in.matrix("K", 3, 3);
@@ -189,7 +190,9 @@ CameraFile read_gl(const Reader& in, const std::string& source) {
     if (in.has("depth_range")) {
         const std::string name = in.string("depth_range");
         if (name == "zero-to-one") depth_range = DepthRange::ZeroToOne;
-        else if (name != "minus-one-to-one") in.fail("depth_range", "must be minus-one-to-one or zero-to-one, got '" + name + "'");
+        else if (name != "minus-one-to-one") {
+            in.fail("depth_range", "must be minus-one-to-one or zero-to-one, got " + shown_value(name));
+        }
     }
     Camera camera;
     for (int i = 2; i < 4; ++i) {

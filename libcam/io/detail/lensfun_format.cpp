@@ -401,8 +401,7 @@ NamedCamera lens_camera(const Source& source, const LensEntry& lens, const ReadO
 std::vector<NamedCamera> read_lensfun(std::string_view text, const ReadContext& context) {
     const Source source(text, context.source);
     pugi::xml_document document;
-    const pugi::xml_parse_result parsed = document.load_buffer(text.data(), text.size(), pugi::parse_default);
-    if (!parsed) throw FileError(context.source + ": not valid XML: " + parsed.description());
+    load_xml(document, text, context.source);
     const pugi::xml_node root = document.child("lensdatabase");
     if (!root) throw FileError(context.source + ": has no <lensdatabase>");
     std::vector<LensEntry> lenses;

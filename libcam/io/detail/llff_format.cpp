@@ -7,6 +7,7 @@
 #include "libcam/error.hpp"
 #include "libcam/geometry/pose.hpp"
 #include "libcam/io/detail/npz_archive.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -80,7 +81,8 @@ Camera read_camera(const Row& row, NerfPrincipalPoint principal_point) {
 std::vector<NamedCamera> read_llff_poses(std::string_view bytes, const ReadContext& context) {
     const detail::NpyArray array = detail::parse_npy(bytes, context.source);
     if (array.is_text() || array.descr == "|b1") {
-        throw FileError(context.source + ": dtype '" + array.descr + "': expected numbers (LLFF writes <f8)");
+        throw FileError(context.source + ": dtype " + shown_value(array.descr) +
+                        ": expected numbers (LLFF writes <f8)");
     }
     if (array.shape.size() != 2 || array.shape[1] != kColumns || array.shape[0] == 0) {
         std::string shape;

@@ -308,12 +308,7 @@ NamedCamera read_calibration_file(const Source& source, const pugi::xml_node& ro
 
 std::vector<NamedCamera> read_metashape(std::string_view text, const ReadContext& context) {
     pugi::xml_document document;
-    const pugi::xml_parse_result result = document.load_buffer(text.data(), text.size());
-    if (!result) {
-        const std::string_view before = text.substr(0, std::min<std::size_t>(static_cast<std::size_t>(std::max<std::ptrdiff_t>(result.offset, 0)), text.size()));
-        throw FileError(context.source + ": line " + std::to_string(std::count(before.begin(), before.end(), '\n') + 1) +
-                        ": not valid XML: " + result.description());
-    }
+    load_xml(document, text, context.source);
     const Source source(text, context.source);
     const pugi::xml_node root = document.document_element();
     const std::string_view name = root.name();

@@ -11,6 +11,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/io/detail/cameramodel_text.hpp"
 #include "libcam/io/detail/npz_archive.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
@@ -457,6 +458,7 @@ void add_point_observations(const Inputs& inputs, const std::vector<Pose>& extri
 }  // namespace
 
 ObservationSet parse_mrcal_observations(std::string_view text, const std::string& source) {
+    check_cameramodel_lexically(text, source);  // as the camera's reader does: one idea of a .cameramodel
     Inputs inputs;
     inputs.where = source + ": optimization_inputs";
     const std::string encoded = optimization_inputs_literal(text, source);

@@ -14,6 +14,7 @@
 #include "libcam/io/detail/document.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -248,7 +249,7 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
     const bool instant_ngp_fisheye = is_fisheye && is_fisheye->boolean() == std::optional<bool>(true);
     if (is_fisheye && !is_fisheye->boolean()) is_fisheye->fail("expected true or false, got " + is_fisheye->shown());
     if (instant_ngp_fisheye && model_field && model != "OPENCV_FISHEYE" && model != "OPENCV") {
-        is_fisheye->fail("true, but camera_model is '" + model + "'");
+        is_fisheye->fail("true, but camera_model is " + shown_value(model));
     }
     if (instant_ngp_fisheye || model == "OPENCV_FISHEYE") {
         camera.lens = fisheye_lens(keys);
@@ -263,7 +264,7 @@ Camera read_intrinsics(const Keys& keys, ImageSize size, const ReadContext& cont
         camera.lens = fisheye624_lens(keys);
     } else {
         model_field->fail("must be OPENCV, PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV_FISHEYE, "
-                          "EQUIRECTANGULAR or FISHEYE624, got '" + model + "'");
+                          "EQUIRECTANGULAR or FISHEYE624, got " + shown_value(model));
     }
     return camera;
 }
@@ -334,15 +335,14 @@ NerfWorld read_world(const Field& top, const ReadContext& context) {
     if (world.has_transform || world.has_scale) world.source = NerfWorld::Source::AppliedTransform;
     if (context.folder.empty()) return world;
     const std::filesystem::path beside = context.folder / kDataparserTransformsName;
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(beside, error)) return world;
+    if (!regular_file_exists(beside)) return world;
     if (world.source != NerfWorld::Source::None) {
         top.fail_at("applied_transform", std::string("given, and ") + kDataparserTransformsName +
                                              " is beside the file: which move the frames are in is not clear; "
                                              "move one of them away");
     }
     const std::string source = beside.string();
-    const DocumentNode root = parse_json_tree(read_text_file(beside), source);
+    const DocumentNode root = parse_json_tree(read_text_file(beside, kCameraFileLimit), source);
     const Field dataparser(root, "", source);
     world.transform = read_world_transform(dataparser.at({"transform"}));
     world.scale = read_world_scale(dataparser.at({"scale"}));

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "libcam/error.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam::detail {
 
@@ -106,7 +107,7 @@ Header parse_header(std::string_view text, const std::string& where) {
         } else if (key == "shape") {
             header.shape = reader.shape(), has_shape = true;
         } else {
-            fail(where, "npy header: unknown key '" + key + "'");
+            fail(where, "npy header: unknown key " + shown_value(key));
         }
         if (!reader.take(',')) {
             reader.expect('}');
@@ -234,7 +235,7 @@ NpyArray parse_npy(std::string_view bytes, const std::string& where) {
     }
     const Header header = parse_header(bytes.substr(8 + length_bytes, header_length), where);
     const std::size_t item = item_size(header.descr);
-    if (item == 0) fail(where, "dtype '" + header.descr + "' (libcam reads <f8, <i4, <i8, |b1 and <U)");
+    if (item == 0) fail(where, "dtype " + shown_value(header.descr) + " (libcam reads <f8, <i4, <i8, |b1 and <U)");
     if (header.fortran_order) fail(where, "fortran_order True (libcam reads C order)");
     NpyArray array{header.descr, header.shape, {}, {}};
     std::size_t count = 1;

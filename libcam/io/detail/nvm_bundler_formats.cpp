@@ -3,17 +3,18 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <string>
 
 #include "libcam/error.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/word_reader.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -49,7 +50,7 @@ struct NvmFile {
 NvmFile parse_nvm(std::string_view text, const std::string& source, const ImageSize& size) {
     WordReader words(text, source);
     const std::string_view magic = words.word("the header");
-    if (magic != "NVM_V3") words.fail("expected the header NVM_V3, got '" + std::string(magic) + "'");
+    if (magic != "NVM_V3") words.fail("expected the header NVM_V3, got " + shown_value(magic));
     NvmFile out;
     out.set.tool = ObservationTool::VisualSfm;
     out.set.source = source;
@@ -108,8 +109,8 @@ NvmFile parse_nvm(std::string_view text, const std::string& source, const ImageS
 // The names of list.txt beside the file, where it is there.
 std::vector<std::string> list_names(const std::filesystem::path& folder) {
     std::vector<std::string> names;
-    if (folder.empty()) return names;
-    std::ifstream list(folder / "list.txt");
+    if (folder.empty() || !regular_file_exists(folder / "list.txt")) return names;
+    std::istringstream list(read_text_file(folder / "list.txt", kCameraFileLimit));
     std::string line;
     while (std::getline(list, line)) {
         std::istringstream words(line);
@@ -191,8 +192,8 @@ std::vector<NamedCamera> read_nvm(std::string_view text, const ReadContext& cont
     const NvmFile file = parse_nvm(text, context.source, given_size(context.options.size, context.source, "an NVM file"));
     for (std::size_t i = 0; i < file.distortion.size(); ++i) {
         if (file.distortion[i] != 0.0) {
-            throw NotRepresentable(context.source + ": camera " + std::to_string(i) + " ('" + file.set.cameras[i].name +
-                                   "'): VisualSfM's measurement distortion r = " + format_number(file.distortion[i]) +
+            throw NotRepresentable(context.source + ": camera " + std::to_string(i) + " (" +
+                                   shown_value(file.set.cameras[i].name) + "): VisualSfM's measurement distortion r = " + format_number(file.distortion[i]) +
                                    " undistorts the measured pixel, which no libcam lens does (its observations read)");
         }
     }

@@ -14,6 +14,7 @@
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/detail/document.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -68,10 +69,10 @@ double csv_number(const std::string& text, const std::string& source, const std:
     double value = 0.0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (word.empty() || end != word.data() + word.size() || error == std::errc::invalid_argument) {
-        fail(source, where, column, "expected a number, got '" + text + "'");
+        fail(source, where, column, "expected a number, got " + shown_value(text));
     }
     if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
-        fail(source, where, column, "must be finite, got '" + text + "'");
+        fail(source, where, column, "must be finite, got " + shown_value(text));
     }
     return value;
 }
@@ -197,7 +198,7 @@ int used_camera(UsedCameras& used, const CameraSet& file_cameras, const std::str
     try {
         position = static_cast<std::size_t>(&select_camera(file_cameras, row.camera, camera_source) - file_cameras.cameras.data());
     } catch (const InvalidArgument& error) {
-        fail(source, row.where, "camera", "'" + row.camera + "' is not a camera of " + error.what());
+        fail(source, row.where, "camera", shown_value(row.camera) + " is not a camera of " + error.what());
     }
     const auto [found, added] = used.index_of.emplace(position, static_cast<int>(used.cameras.size()));
     if (added) {
@@ -214,7 +215,7 @@ int used_camera(UsedCameras& used, const CameraSet& file_cameras, const std::str
 
 ObservationSet read_observation_table(const std::filesystem::path& table, const std::filesystem::path& camera_file) {
     const std::string source = table.string();
-    const std::string text = read_text_file(table);
+    const std::string text = read_text_file(table, kReconstructionLimit);
     const std::vector<Row> rows = is_json(table) ? json_rows(text, source) : csv_rows(text, source);
     if (rows.empty()) throw FileError(source + ": no observations in it");
     const CameraSet file_cameras = read_camera_set(camera_file);
@@ -231,11 +232,11 @@ ObservationSet read_observation_table(const std::filesystem::path& table, const 
         const auto [found, added] = view_index.emplace(view_name, static_cast<int>(set.views.size()));
         if (added) {
             set.views.push_back({view_name, camera, used.poses[static_cast<std::size_t>(camera)]});
-        } else if (set.views[static_cast<std::size_t>(found->second)].camera != camera) {
+        } else if (const int first = set.views[static_cast<std::size_t>(found->second)].camera; first != camera) {
             fail(source, row.where, "camera",
-                 "'" + row.camera + "', but view '" + view_name + "' was taken by camera '" +
-                     used.cameras[static_cast<std::size_t>(set.views[static_cast<std::size_t>(found->second)].camera)].name +
-                     "' (a view is one image of one camera)");
+                 shown_value(row.camera) + ", but view " + shown_value(view_name) + " was taken by camera " +
+                     shown_value(used.cameras[static_cast<std::size_t>(first)].name) +
+                     " (a view is one image of one camera)");
         }
         set.points.push_back(row.point);
         set.point_ids.push_back(static_cast<std::int64_t>(i + 1));

@@ -13,6 +13,7 @@
 #include "libcam/io/ocamcalib.hpp"
 #include "libcam/lens/ocamcalib.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -51,7 +52,9 @@ std::vector<NumberLine> number_lines(std::string_view text, const std::string& s
         const auto start = line.find_first_not_of(" \t\r");
         if (start == std::string_view::npos || line[start] == '#') continue;
         const std::string_view section = lines.size() < kSections.size() ? kSections[lines.size()] : "after the image size";
-        if (lines.size() == kSections.size()) fail_at(source, number, section, "unexpected line '" + std::string(line.substr(start, 40)) + "'");
+        if (lines.size() == kSections.size()) {
+            fail_at(source, number, section, "unexpected line " + shown_value(line.substr(start)));
+        }
         NumberLine parsed{number, {}};
         std::string_view rest = line.substr(start);
         while (true) {
@@ -62,7 +65,7 @@ std::vector<NumberLine> number_lines(std::string_view text, const std::string& s
             double value = 0.0;
             const auto [stop, error] = std::from_chars(token.data(), token.data() + token.size(), value);
             if (error != std::errc() || stop != token.data() + token.size() || !std::isfinite(value)) {
-                fail_at(source, number, section, "expected a number, got '" + std::string(token.substr(0, 40)) + "'");
+                fail_at(source, number, section, "expected a number, got " + shown_value(token));
             }
             parsed.values.push_back(value);
             rest = rest.substr(token.size());
@@ -259,12 +262,59 @@ Camera ocamcalib_camera_on_xy(std::span<const double> forward, double c, double 
     return validated_camera(std::move(camera), where);
 }
 
+namespace {
+
+// How many numbers a line holds, or -1 where a word is not a number.
+int numbers_in(std::string_view line) {
+    int count = 0;
+    while (true) {
+        const auto word = line.find_first_not_of(" \t\r");
+        if (word == std::string_view::npos) return count;
+        line.remove_prefix(word);
+        const std::string_view token = line.substr(0, line.find_first_of(" \t\r"));
+        double value = 0.0;
+        const auto [stop, error] = std::from_chars(token.data(), token.data() + token.size(), value);
+        if (error != std::errc() || stop != token.data() + token.size()) return -1;
+        ++count;
+        line.remove_prefix(token.size());
+    }
+}
+
+// Whether a "count c0 c1 ..." line's count is the number of the numbers after it.
+bool counted_line(std::string_view line, int numbers) {
+    int count = 0;
+    const std::string_view first = line.substr(line.find_first_not_of(" \t\r"));
+    const auto [stop, error] = std::from_chars(first.data(), first.data() + first.size(), count);
+    return error == std::errc() && count >= 1 && count == numbers - 1;
+}
+
+}  // namespace
+
 bool looks_like_ocamcalib(std::string_view text) {
-    const auto start = text.find_first_not_of(" \t\r\n");
-    if (start == std::string_view::npos || text[start] != '#') return false;
-    const std::string_view first = text.substr(start, text.find('\n', start) - start);
-    return first.find("DIRECT mapping function") != std::string_view::npos ||
-           first.find("ocam_model.ss") != std::string_view::npos;
+    constexpr std::array<int, 5> kShape = {0, 0, 2, 3, 2};  // 0: a counted line
+    std::size_t at = 0;
+    std::size_t content = 0;
+    bool shaped = true;
+    while (at < text.size() && content <= kShape.size()) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::string_view line = text.substr(at, end - at);
+        at = end + 1;
+        const auto start = line.find_first_not_of(" \t\r");
+        if (start == std::string_view::npos) continue;
+        if (line[start] == '#') {
+            const bool toolbox = line.find("DIRECT mapping function") != std::string_view::npos ||
+                                 line.find("ocam_model") != std::string_view::npos;
+            if (toolbox) return true;
+            continue;
+        }
+        if (content < kShape.size()) {
+            const int numbers = numbers_in(line);
+            const bool fits = kShape[content] == 0 ? counted_line(line, numbers) : numbers == kShape[content];
+            shaped = shaped && numbers > 0 && fits;
+        }
+        ++content;
+    }
+    return shaped && content == kShape.size();
 }
 
 std::vector<NamedCamera> read_ocamcalib(std::string_view text, const ReadContext& context) {

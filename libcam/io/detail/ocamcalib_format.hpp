@@ -45,8 +45,10 @@ std::vector<NamedCamera> read_py_ocamcalib(std::string_view text, const ReadCont
 Camera ocamcalib_camera_on_xy(std::span<const double> forward, double c, double d, double e, Vec2 centre,
                               ImageSize size, const std::string& where);
 
-// Whether text looks like a calib_results.txt: its first line that is not blank is the
-// toolbox's comment on the DIRECT mapping polynomial.
+// Whether text looks like a calib_results.txt: one of the toolbox's comments ("... DIRECT
+// mapping function (ocam_model.ss ...") among its first lines, or, with its comments
+// gone, its five lines of numbers: a counted polynomial, another, the centre (2), the
+// affine (3) and the size (2). COLMAP's cameras.txt, whose lines name a model, is neither.
 bool looks_like_ocamcalib(std::string_view text);
 
 }  // namespace libcam

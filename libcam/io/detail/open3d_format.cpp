@@ -7,6 +7,7 @@
 #include "libcam/io/detail/document.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -91,7 +92,7 @@ std::vector<NamedCamera> parse_open3d_camera(std::string_view text, const std::s
     if (kind == "PinholeCameraParameters") return {checked("", read_parameters(top), top)};
     if (!kind.empty() && kind != "PinholeCameraIntrinsic") {
         class_name->fail("must be PinholeCameraIntrinsic, PinholeCameraParameters or PinholeCameraTrajectory, "
-                                  "got '" + kind + "'");
+                                  "got " + shown_value(kind));
     }
     return {checked("", read_intrinsic(top), top)};
 }

@@ -12,6 +12,7 @@
 #include "libcam/io/format_table.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -66,9 +67,9 @@ std::pair<int, char> element_type(const Field& dt, int max_channels) {
                        (type.size() == 1 || channels > 1 || type[0] == '1');
     if (!known || channels > max_channels) {
         dt.fail(max_channels == 1
-                    ? "expected a one-channel element type (d, f, i, u, s, w, c or h), got '" + type + "'"
+                    ? "expected a one-channel element type (d, f, i, u, s, w, c or h), got " + shown_value(type)
                     : "expected an element type of at most " + std::to_string(max_channels) +
-                          " channels (d, f, ..., or \"2f\"), got '" + type + "'");
+                          " channels (d, f, ..., or \"2f\"), got " + shown_value(type));
     }
     return {channels, type.back()};
 }
@@ -83,7 +84,9 @@ OpenCvMatrix read_opencv_matrix(const Field& field, long long max_elements, int 
         std::vector<double> values = field.numbers(static_cast<std::size_t>(max_elements));
         return column(values);
     }
-    if (!node.tag.empty() && node.tag != "opencv-matrix") field.fail("expected an opencv-matrix, got a " + node.tag);
+    if (!node.tag.empty() && node.tag != "opencv-matrix") {
+        field.fail("expected an opencv-matrix, got the type " + shown_value(node.tag));
+    }
     Matrix m;
     m.rows = field.at({"rows"}).integer(0, max_elements);
     m.cols = field.at({"cols"}).integer(0, max_elements);
@@ -191,8 +194,8 @@ CoefficientFamily coefficient_family(const Field& file) {
             : named(kFisheye)        ? std::optional(CoefficientFamily::Fisheye)
                                      : std::nullopt;
         if (!by_name) {
-            model->fail("'" + model->text() +
-                        "' is not a model this reader knows (plumb_bob, rational_polynomial, equidistant or fisheye)");
+            model->fail(shown_value(model->text()) +
+                        " is not a model this reader knows (plumb_bob, rational_polynomial, equidistant or fisheye)");
         }
         if (family && *family != *by_name) model->fail("disagrees with \"fisheye_model\"");
         family = by_name;
@@ -359,7 +362,7 @@ std::vector<NamedCamera> read_orb_slam(const Field& file, const ReadOptions& opt
     std::string type = "PinHole";
     if (const std::optional<Field> field = file.find({"Camera.type"})) type = field->text();
     if (type != "PinHole" && type != "KannalaBrandt8" && type != "Rectified") {
-        file.at({"Camera.type"}).fail("must be PinHole, KannalaBrandt8 or Rectified, got '" + type + "'");
+        file.at({"Camera.type"}).fail("must be PinHole, KannalaBrandt8 or Rectified, got " + shown_value(type));
     }
     const ImageSize size = size_from(file, {"Camera.width"}, {"Camera.height"}, options);
     const bool numbered = file.node().find("Camera1.fx") != nullptr;

@@ -6,6 +6,7 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/detail/document.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -93,7 +94,7 @@ std::vector<NamedCamera> parse_openicc_camera(std::string_view text, const std::
         lens = pinhole_distortion(k);
     } else if (type.text() != "DIVISION_UNDISTORTION") {
         type.fail("must be FISHEYE, DOUBLE_SPHERE, EXTENDED_UNIFIED, DIVISION_UNDISTORTION or PINHOLE (the types the "
-                  "calibrator writes with their parameters), got '" + type.text() + "'");
+                  "calibrator writes with their parameters), got " + shown_value(type.text()));
     }
     Camera camera;
     camera.size = {static_cast<long>(top.at({"image_width"}).whole_number(1, kMaxImageSide)),

@@ -12,6 +12,7 @@
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -60,11 +61,12 @@ OpenSfmLens opensfm_lens(const Field& camera, const std::string& type) {
     if (type == "fisheye_opencv") return {{LensType::Fisheye, {k("k1"), k("k2"), k("k3"), k("k4")}}, true};
     if (type == "spherical" || type == "equirectangular") return {{LensType::Lonlat, {}}, false};
     if (type == "fisheye62" || type == "fisheye624" || type == "dual") {
-        camera.fail_at("projection_type", "'" + type + "' is refused: libcam has no lens model that holds OpenSfM's " +
-                                              type + " exactly");
+        camera.fail_at("projection_type", shown_value(type) +
+                                              " is refused: libcam has no lens model that holds OpenSfM's " + type +
+                                              " exactly");
     }
-    camera.fail_at("projection_type", "unknown projection type '" + type +
-                                          "' (OpenSfM's: perspective, brown, radial, simple_radial, fisheye, "
+    camera.fail_at("projection_type", "unknown projection type " + shown_value(type) +
+                                          " (OpenSfM's: perspective, brown, radial, simple_radial, fisheye, "
                                           "fisheye_opencv, spherical)");
 }
 
@@ -141,7 +143,7 @@ void add_reconstruction(const Field& reconstruction, std::size_t number, Reconst
             const Field shot(shots->node().items[i], shots->name() + "." + name, shots->source());
             const std::string camera = shot.at({"camera"}).text();
             const auto found = camera_of.find(camera);
-            if (found == camera_of.end()) shot.fail_at("camera", "'" + camera + "' is not one of the cameras");
+            if (found == camera_of.end()) shot.fail_at("camera", shown_value(camera) + " is not one of the cameras");
             Pose pose;
             try {
                 pose = Pose::from_rvec(three_numbers(shot.at({"rotation"})), three_numbers(shot.at({"translation"})));
@@ -203,7 +205,7 @@ double csv_number(std::string_view word, const std::string& where, const char* c
     double value = 0.0;
     const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
     if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value)) {
-        throw FileError(where + ": " + column + ": '" + std::string(word) + "' is not a finite number");
+        throw FileError(where + ": " + column + ": " + shown_value(word) + " is not a finite number");
     }
     return value;
 }
@@ -216,8 +218,8 @@ bool is_version_line(std::string_view line, const std::string& source) {
     if (!line.starts_with(kPrefix)) return false;
     const std::string_view version = line.substr(kPrefix.size());
     if (version != "_v1" && version != "_v2" && version != "_v3") {
-        throw FileError(source + ": line 1: unknown tracks version '" + std::string(line) +
-                        "' (OpenSfM's: OPENSFM_TRACKS_VERSION_v1, _v2, _v3)");
+        throw FileError(source + ": line 1: unknown tracks version " + shown_value(line) +
+                        " (OpenSfM's: OPENSFM_TRACKS_VERSION_v1, _v2, _v3)");
     }
     return true;
 }
@@ -274,11 +276,10 @@ ObservationSet read_opensfm_observations(const std::filesystem::path& file, std:
                                  "reconstruction.json with tracks.csv beside it)");
     }
     const std::filesystem::path tracks = file.parent_path() / "tracks.csv";
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(tracks, error)) {
+    if (!regular_file_exists(tracks)) {
         throw FileError(source + ": no tracks.csv beside it: OpenSfM keeps the observed pixels there");
     }
-    add_tracks(read_text_file(tracks), tracks.string(), read);
+    add_tracks(read_text_file(tracks, kReconstructionLimit), tracks.string(), read);
     if (read.set.observations.empty()) {
         throw FileError(tracks.string() + ": no row of a shot and a point of the reconstruction");
     }

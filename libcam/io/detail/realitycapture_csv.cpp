@@ -15,6 +15,7 @@
 #include "libcam/error.hpp"
 #include "libcam/io/detail/realitycapture_format.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -61,16 +62,17 @@ Header parse_header(std::string_view line, const std::string& where) {
     for (std::size_t i = 0; i < fields.size(); ++i) {
         const auto known = std::find(kColumns.begin(), kColumns.end(), fields[i]);
         if (known == kColumns.end()) {
-            throw FileError(where + ": column '" + std::string(fields[i]) +
-                            "' is not one libcam reads (name, x, y, alt, heading, pitch, roll, f, px, py, k1..k4, t1, t2)");
+            throw FileError(where + ": column " + shown_value(fields[i]) +
+                            " is not one libcam reads (name, x, y, alt, heading, pitch, roll, f, px, py, k1..k4, t1, "
+                            "t2)");
         }
         if (!header.index.emplace(*known, i).second) {
-            throw FileError(where + ": column '" + std::string(fields[i]) + "' twice");
+            throw FileError(where + ": column " + shown_value(fields[i]) + " twice");
         }
     }
     for (std::size_t i = 0; i < kRequired; ++i) {
         if (!header.index.contains(kColumns[i])) {
-            throw FileError(where + ": the header has no column '" + std::string(kColumns[i]) + "'");
+            throw FileError(where + ": the header has no column " + shown_value(kColumns[i]));
         }
     }
     return header;
@@ -106,8 +108,7 @@ Row parse_row(std::string_view line, int number, const Header& header, const std
         double value = 0.0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-            throw FileError(where + ": " + std::string(column) + ": must be a finite number, got '" + std::string(text) +
-                            "'");
+            throw FileError(where + ": " + std::string(column) + ": must be a finite number, got " + shown_value(text));
         }
         row.values[column] = value;
     }

@@ -10,7 +10,9 @@
 
 #include "libcam/error.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -46,7 +48,7 @@ public:
             double number = 0.0;
             const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), number);
             if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(number)) {
-                fail(name, "must be finite numbers, got '" + std::string(word) + "'");
+                fail(name, "must be finite numbers, got " + shown_value(word));
             }
             if (out.size() == count) fail(name, "expected " + std::to_string(count) + " numbers, got more");
             out.push_back(number);
@@ -117,8 +119,8 @@ Lens lens_of(const Description& file) {
     const bool radial = model.starts_with("brown");
     const bool tangential = model == "brown3t2" || model == "brown4t2";
     if (model != "perspective" && model != "division" && model != "brown3" && model != "brown4" && !tangential) {
-        file.fail("DistortionModel", "must be perspective, brown3, brown4, brown3t2, brown4t2 or division, got '" +
-                                         model + "'");
+        file.fail("DistortionModel", "must be perspective, brown3, brown4, brown3t2, brown4t2 or division, got " +
+                                         shown_value(model));
     }
     // A coefficient the model does not use must be 0: it would otherwise be dropped.
     const auto unused = [&](std::size_t index, const char* name) {
@@ -187,8 +189,7 @@ bool claims_realitycapture_xmp(const DocumentNode& outline) {
 
 std::vector<NamedCamera> read_realitycapture_xmp(std::string_view text, const ReadContext& context) {
     pugi::xml_document document;
-    const pugi::xml_parse_result result = document.load_buffer(text.data(), text.size());
-    if (!result) throw FileError(context.source + ": not valid XML: " + result.description());
+    load_xml(document, text, context.source);
     const std::optional<Description> file = find_description(document, context.source);
     if (!file) {
         throw FileError(context.source + ": no rdf:Description in RealityCapture's namespace (" +

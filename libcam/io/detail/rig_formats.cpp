@@ -11,6 +11,7 @@
 #include "libcam/io/format_table.hpp"
 #include "libcam/io/detail/ocamcalib_format.hpp"
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -64,7 +65,7 @@ std::string kalibr_distortion_short(const Field& field) {
     const std::string model = field.text();
     if (model == "radtan" || model == "fov" || model == "none") return model;
     if (model == "equidistant" || model == "equi") return "equi";
-    field.fail("must be radtan, equidistant, fov or none, got '" + model + "'");
+    field.fail("must be radtan, equidistant, fov or none, got " + shown_value(model));
 }
 
 // How many of Kalibr's intrinsics lead K for each camera_model: omni's xi, ds's xi and
@@ -80,7 +81,7 @@ NamedCamera read_kalibr_camera(const std::string& name, const Field& cam, const 
     const Field camera_model = cam.at({"camera_model"});
     const std::string projection = camera_model.text();
     if (projection != "pinhole" && projection != "omni" && projection != "ds" && projection != "eucm") {
-        camera_model.fail("must be pinhole, omni, ds or eucm, got '" + projection + "'");
+        camera_model.fail("must be pinhole, omni, ds or eucm, got " + shown_value(projection));
     }
     const Field distortion_model = cam.at({"distortion_model"});
     const std::string kalibr_name = projection + "-" + kalibr_distortion_short(distortion_model);
@@ -193,7 +194,8 @@ NamedCamera read_camodocal(const Field& file, const std::string& source) {
     const auto found = std::find_if(std::begin(kCamodocalModels), std::end(kCamodocalModels),
                                     [&](const CamodocalModel& model) { return model.model_type == model_name; });
     if (found == std::end(kCamodocalModels)) {
-        model_type.fail("must be PINHOLE, MEI, KANNALA_BRANDT or SCARAMUZZA (libcam has no model for '" + model_name + "')");
+        model_type.fail("must be PINHOLE, MEI, KANNALA_BRANDT or SCARAMUZZA (libcam has no model for " +
+                        shown_value(model_name) + ")");
     }
     Camera camera;
     camera.size = size_of(file.at({"image_width"}), file.at({"image_height"}));
@@ -257,7 +259,7 @@ Camera basalt_camera(const Field& entry) {
     // table's names.
     const auto models = lens_models();
     const auto found = std::find_if(models.begin(), models.end(), [&](const LensInfo& info) { return info.basalt == type; });
-    if (found == models.end()) camera_type.fail("must be " + basalt_type_names() + ", got '" + type + "'");
+    if (found == models.end()) camera_type.fail("must be " + basalt_type_names() + ", got " + shown_value(type));
     camera.lens.type = found->type;
     for (const std::string_view name : found->coefficients.view()) {
         camera.lens.coefficients.push_back(value(basalt_coefficient_name(name)));
@@ -269,16 +271,16 @@ Camera basalt_camera(const Field& entry) {
 
 NamedCamera read_euroc_sensor(const Field& file, const std::string& source) {
     const Field sensor_type = file.at({"sensor_type"});
-    if (sensor_type.text() != "camera") sensor_type.fail("must be camera, got '" + sensor_type.text() + "'");
+    if (sensor_type.text() != "camera") sensor_type.fail("must be camera, got " + shown_value(sensor_type.text()));
     const Field camera_model = file.at({"camera_model"});
-    if (camera_model.text() != "pinhole") camera_model.fail("must be pinhole, got '" + camera_model.text() + "'");
+    if (camera_model.text() != "pinhole") camera_model.fail("must be pinhole, got " + shown_value(camera_model.text()));
     const Field distortion_model = file.at({"distortion_model"});
     const std::string distortion = distortion_model.text();
     LensType type = LensType::OpenCv4;
     if (distortion == "equidistant") {
         type = LensType::Fisheye;
     } else if (distortion != "radial-tangential" && distortion != "radtan") {
-        distortion_model.fail("must be radial-tangential or equidistant, got '" + distortion + "'");
+        distortion_model.fail("must be radial-tangential or equidistant, got " + shown_value(distortion));
     }
     const Field intrinsics = file.at({"intrinsics"});
     const std::vector<double> k = intrinsics.numbers(4);

@@ -8,6 +8,7 @@
 #include "libcam/error.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -28,7 +29,8 @@ std::vector<double> numbers(const Field& field, std::size_t count) {
 // The intrinsics' model and order, where the file gives them, must be the one WoodScape has.
 void check_model(const Field& intrinsic) {
     if (const std::optional<Field> model = intrinsic.find({"model"}); model && model->text() != kModelName) {
-        model->fail("must be " + std::string(kModelName) + " (WoodScape's only model), got '" + model->text() + "'");
+        model->fail("must be " + std::string(kModelName) + " (WoodScape's only model), got " +
+                    shown_value(model->text()));
     }
     if (const std::optional<Field> order = intrinsic.find({"poly_order"})) {
         if (order->whole_number(0, 1000) != kPolyOrder) order->fail("must be 4 (k1..k4), got " + order->shown());

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "libcam/error.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam::detail {
 
@@ -49,10 +50,10 @@ double WordReader::number(std::string_view what) {
     double value = 0.0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (error == std::errc::invalid_argument || end != text.data() + text.size()) {
-        fail(std::string(what) + ": expected a number, got '" + std::string(text) + "'");
+        fail(std::string(what) + ": expected a number, got " + shown_value(text));
     }
     if (error == std::errc::result_out_of_range || !std::isfinite(value)) {
-        fail(std::string(what) + ": must be finite, got " + std::string(text));
+        fail(std::string(what) + ": must be finite, got " + printable_text(text, kShownValueLength));
     }
     return value;
 }
@@ -62,11 +63,11 @@ long long WordReader::integer(std::string_view what, long long min, long long ma
     long long value = 0;
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (error == std::errc::invalid_argument || end != text.data() + text.size()) {
-        fail(std::string(what) + ": expected an integer, got '" + std::string(text) + "'");
+        fail(std::string(what) + ": expected an integer, got " + shown_value(text));
     }
     if (error == std::errc::result_out_of_range || value < min || value > max) {
         fail(std::string(what) + ": must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
-             std::string(text));
+             printable_text(text, kShownValueLength));
     }
     return value;
 }
