@@ -178,16 +178,17 @@ TEST_CASE("lensfun: an entry of a model lensfun does not know is refused, naming
         return test::file_error_of([&] { read_camera_file(path, {}, std::nullopt, options); });
     };
     const std::string path = (dir / "db.xml").string();
+    const std::string as_lensfun = " (read as lensfun database XML, by its extension .xml and its keys)";
     CHECK(refusal(R"(<distortion model="poly5" focal="20")", R"(<distortion model="poly7" focal="20")") ==
           path + ": line 11: lens 'Zoom 10-20mm' <distortion> model: 'poly7' is not one of lensfun's (none, poly3, poly5, "
-              "ptlens, acm)");
+              "ptlens, acm)" + as_lensfun);
     CHECK(refusal("        </calibration>\n    </lens>\n    <lens>",
                   "            <tca model=\"quadratic\" focal=\"10\"/>\n        </calibration>\n    </lens>\n    <lens>") ==
-          path + ": line 12: lens 'Zoom 10-20mm' <tca> model: 'quadratic' is not one of lensfun's (none, linear, poly3, acm)");
+          path + ": line 12: lens 'Zoom 10-20mm' <tca> model: 'quadratic' is not one of lensfun's (none, linear, poly3, acm)" + as_lensfun);
     CHECK(refusal("        </calibration>\n    </lens>\n    <lens>",
                   "            <vignetting model=\"cos4\" focal=\"10\" aperture=\"4\" distance=\"10\"/>\n"
                   "        </calibration>\n    </lens>\n    <lens>") ==
-          path + ": line 12: lens 'Zoom 10-20mm' <vignetting> model: 'cos4' is not one of lensfun's (none, pa, acm)");
+          path + ": line 12: lens 'Zoom 10-20mm' <vignetting> model: 'cos4' is not one of lensfun's (none, pa, acm)" + as_lensfun);
 }
 
 TEST_CASE("PTLENS: its formula and its Jacobian on the axis, worked by hand", "[io][lensfun]") {

@@ -227,13 +227,13 @@ TEST_CASE("metashape: what libcam cannot hold, and malformed files, are refused 
     const auto unknown = write_file(dir, "hologram.xml", hologram);
     CHECK(file_error_of([&] { read_camera_set(unknown); }) ==
           unknown.string() + ": line 5: sensor 0 ('lens A') <sensor> type: 'hologram' is not one of Metashape's sensor "
-                             "types (frame, fisheye, spherical, cylindrical, rpc)");
+                             "types (frame, fisheye, spherical, cylindrical, rpc)" + kAsMetashape);
     std::string negative = document_xml(sensor_xml(kFrame, "frame"));
     negative.replace(negative.find("<resolution width=\"640\""), 23, "<resolution width=\"-640\"");
     const auto minus = write_file(dir, "negative.xml", negative);
     CHECK(file_error_of([&] { read_camera_set(minus); }) ==
           minus.string() + ": line 6: sensor 0 ('lens A') <resolution> width: must be a whole number of pixels in "
-                           "[1, 1000000], got '-640'");
+                           "[1, 1000000], got '-640'" + kAsMetashape);
 
     const auto collection = write_file(dir, "old.xml", "<?xml version=\"1.0\"?>\n<document><collection/></document>\n");
     CHECK_THROWS_AS(read_camera_set(collection, CameraFormat::Metashape), FileError);
