@@ -8,6 +8,8 @@
 #       writes a small .cameramodel through mrcal's API: a 3x2 board seen in 2 frames by an
 #       OPENCV4 camera (one outlier, one half weight) and 3 discrete points. VARIANT spoils
 #       one array: float32-intrinsics, mismatched-imagersizes, frame-out-of-range; or
+#       no-observations leaves out the board's and the points' observations (None, as
+#       mrcal stores an array it does not have); or
 #       many-views: the same camera over 558 views of a 10x10 board, a file of 1.07 MiB
 #       (the size of a real calibration that libcam's former 1 MiB bound refused).
 
@@ -115,6 +117,10 @@ def write(path, variant):
         inputs["imagersizes"] = np.array([[640, 480], [640, 480]], dtype=np.int32)
     elif variant == "frame-out-of-range":
         inputs["indices_frame_camintrinsics_camextrinsics"][1, 0] = 7
+    elif variant == "no-observations":
+        for key in ("observations_board", "indices_frame_camintrinsics_camextrinsics", "observations_point",
+                    "indices_point_camintrinsics_camextrinsics"):
+            inputs[key] = None
     else:
         raise SystemExit(f"unknown variant {variant}")
     # The model's text with its optimization_inputs swapped for the spoiled ones: mrcal's
