@@ -181,6 +181,9 @@ TEST_CASE("mrcal observations: a malformed file gives one line naming the file, 
                Contains("optimization_inputs: imagersizes: shape (2, 2) of <i4, expected (1, 2) of numbers"));
     CHECK_THAT(message_of(small_model("frame-out-of-range")),
                Contains("indices_frame_camintrinsics_camextrinsics: row 1: frame 7 is not one of the 2"));
+    // A member said to inflate to 50 MB from 110 bytes: deflate makes at most about 1032
+    // bytes of each, so it is refused before anything is inflated or allocated.
+    CHECK_THAT(message_of(small_model("inflated-member")), Contains(": size 52428800 from 110 compressed bytes"));
 }
 
 TEST_CASE("mrcal observations: a .cameramodel of 558 views, over 1 MiB, is read by info and reproject alike") {
