@@ -22,34 +22,13 @@ static_assert(cv::aruco::DICT_4X4_50 == 0 && cv::aruco::DICT_5X5_100 == 5 && cv:
 
 std::string size_text(const BoardSpec& board) { return std::to_string(board.columns) + "x" + std::to_string(board.rows); }
 
-// A chessboard by OpenCV's sector-based detector. It returns its corners already at
-// sub-pixel accuracy, measured on the image in OpenCV's convention (its documentation:
-// no cornerSubPix is needed after it, and its corners are more accurate than
-// findChessboardCorners + cornerSubPix on blurred or noisy images); libcam's synthetic
-// board test checks them against corners it placed itself. CALIB_CB_ACCURACY searches an
-// upsampled image; CALIB_CB_EXHAUSTIVE tries harder on a board seen steeply.
-void detect_chessboard(const cv::Mat& grey, const BoardSpec& board, BoardDetection& out) {
-    std::vector<cv::Point2f> corners;
-    const int flags = cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_EXHAUSTIVE | cv::CALIB_CB_ACCURACY;
-    if (!cv::findChessboardCornersSB(grey, cv::Size(board.columns, board.rows), corners, flags)) {
-        out.rejected = "no " + size_text(board) + " chessboard found (its inner corners, all of them, must be seen)";
-        return;
-    }
-    for (std::size_t k = 0; k < corners.size(); ++k) {
-        out.ids.push_back(static_cast<int>(k));
-        out.pixels.emplace_back(corners[k].x, corners[k].y);
-    }
-}
-
-// The half-width of the window cornerSubPix may search around each ChArUco corner: the
-// corner's own squares, short of the markers in the white ones (they start
-// (square - marker) / 2 from it along each side). The scale in pixels per square is the
-// smallest of the distances to the other corners found, each over its distance on the
-// board in squares.
-std::vector<int> refinement_windows(const std::vector<cv::Point2f>& corners, const std::vector<int>& ids,
-                                    const BoardSpec& board) {
-    const int across = board.columns - 1;
-    const double clear = 0.8 * 0.5 * (board.square - board.marker) / board.square;  // in squares, with a margin
+// The half-width of the window cornerSubPix may search around each corner: `clear`
+// squares (inside the corner's own squares, short of its neighbours and of a ChArUco
+// board's markers). The scale in pixels per square is the smallest of the distances to
+// the other corners found, each over its distance on the board in squares; corner k is
+// at column k mod `across`, row k div `across`.
+std::vector<int> refinement_windows(const std::vector<cv::Point2f>& corners, const std::vector<int>& ids, int across,
+                                    double clear) {
     std::vector<int> windows;
     for (std::size_t a = 0; a < corners.size(); ++a) {
         double pixels_per_square = std::numeric_limits<double>::infinity();
@@ -65,13 +44,12 @@ std::vector<int> refinement_windows(const std::vector<cv::Point2f>& corners, con
     return windows;
 }
 
-// Each ChArUco corner again by cv::cornerSubPix from where the detector put it: the
-// saddle point of the image's grey levels, in OpenCV's convention whatever the detector's
-// own refinement did (OpenCV 4.6's moves its corners by +0.5 px after refining them). A
+// Each corner again by cv::cornerSubPix from where the detector put it: the saddle point
+// of the image's grey levels, in OpenCV's convention whatever the detector's own
+// refinement did (OpenCV 4.6's ChArUco corners are moved by +0.5 px after refining). A
 // corner the search moves further than its window was no saddle there: it is dropped.
-void refine_charuco(const cv::Mat& grey, const BoardSpec& board, std::vector<cv::Point2f>& corners,
+void refine_corners(const cv::Mat& grey, const std::vector<int>& windows, std::vector<cv::Point2f>& corners,
                     std::vector<int>& ids) {
-    const std::vector<int> windows = refinement_windows(corners, ids, board);
     std::vector<cv::Point2f> kept_corners;
     std::vector<int> kept_ids;
     const cv::TermCriteria until(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 100, 1e-4);
@@ -84,6 +62,32 @@ void refine_charuco(const cv::Mat& grey, const BoardSpec& board, std::vector<cv:
     }
     corners = std::move(kept_corners);
     ids = std::move(kept_ids);
+}
+
+// A chessboard by OpenCV's sector-based detector (CALIB_CB_EXHAUSTIVE tries harder on a
+// board seen steeply), its corners then refined by cornerSubPix in a window of 0.4 square
+// around each. The sector detector's own sub-pixel corners are off the truth by 0.05 to
+// 0.2 px on boards rendered through a known lens, enough to put a calibration four times
+// further from the truth than OpenCV's calibration sample (findChessboardCorners +
+// cornerSubPix) on the same images; the saddle point found by cornerSubPix is not.
+void detect_chessboard(const cv::Mat& grey, const BoardSpec& board, BoardDetection& out) {
+    std::vector<cv::Point2f> corners;
+    const int flags = cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_EXHAUSTIVE | cv::CALIB_CB_ACCURACY;
+    if (!cv::findChessboardCornersSB(grey, cv::Size(board.columns, board.rows), corners, flags)) {
+        out.rejected = "no " + size_text(board) + " chessboard found (its inner corners, all of them, must be seen)";
+        return;
+    }
+    std::vector<int> ids(corners.size());
+    for (std::size_t k = 0; k < corners.size(); ++k) ids[k] = static_cast<int>(k);
+    refine_corners(grey, refinement_windows(corners, ids, board.columns, 0.4), corners, ids);
+    if (ids.size() != corners.size() || ids.size() != static_cast<std::size_t>(board.columns * board.rows)) {
+        out.rejected = "the " + size_text(board) + " chessboard's corners are not all sharp enough to measure";
+        return;
+    }
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+        out.ids.push_back(ids[k]);
+        out.pixels.emplace_back(corners[k].x, corners[k].y);
+    }
 }
 
 void detect_charuco(const cv::Mat& grey, const BoardSpec& board, BoardDetection& out) {
@@ -100,7 +104,9 @@ void detect_charuco(const cv::Mat& grey, const BoardSpec& board, BoardDetection&
     std::vector<cv::Point2f> corners;
     std::vector<int> ids;
     cv::aruco::interpolateCornersCharuco(marker_corners, marker_ids, grey, charuco, corners, ids);
-    refine_charuco(grey, board, corners, ids);
+    // Short of the markers in the white squares: they start (square - marker) / 2 from the corner.
+    const double clear = 0.8 * 0.5 * (board.square - board.marker) / board.square;
+    refine_corners(grey, refinement_windows(corners, ids, board.columns - 1, clear), corners, ids);
     if (corners.size() < kMinCornersPerView) {
         out.rejected = std::to_string(corners.size()) + " corners of the " + size_text(board) +
                        " ChArUco board found, fewer than " + std::to_string(kMinCornersPerView);

@@ -79,7 +79,9 @@ TEST_CASE("libcam calibrate: JSON report, -o, and --observations-out that libcam
     REQUIRE(again.exit_code == 0);
     const nlohmann::json reprojected = nlohmann::json::parse(again.out);
     CHECK(reprojected["count"] == 6 * 54);
-    CHECK(reprojected["rms_px"].get<double>() == Approx(chosen["rms_px"].get<double>()).epsilon(1e-6));
+    // The file's reader holds the board's corners in float as OpenCV's sample does: a few
+    // 1e-9 m, a few 1e-6 px at these distances.
+    CHECK(reprojected["rms_px"].get<double>() == Approx(chosen["rms_px"].get<double>()).margin(1e-5));
 }
 
 TEST_CASE("libcam calibrate refuses in one line: a bad board spec, no usable image", "[calibrate][cli]") {
