@@ -120,8 +120,7 @@ void sort_detections(const std::vector<BoardDetection>& detections, Calibration&
 
 // Drops the corners whose residual under the chosen model is beyond the outlier limit;
 // then the views left with too few. Returns how many corners were dropped.
-std::size_t drop_outliers(Calibration& out, double outlier_sigmas) {
-    const double limit = outlier_sigmas * out.noise_px;
+std::size_t drop_outliers(Calibration& out, double limit) {
     std::size_t dropped = 0;
     for (std::size_t v = 0; v < out.views.size(); ++v) {
         const std::vector<double> errors = out.view_errors(v);
@@ -199,6 +198,11 @@ Calibration calibrate(const std::vector<BoardDetection>& detections, const Board
     fit_options.margin = options.margin;
     Camera start = guess.camera;
     std::vector<Pose> poses = guess.poses;
+    // mrcal's rule: the limit is k times the noise of the first fit, estimated once more
+    // after the first drop (the outliers no longer in it) and then held, so that each round
+    // only drops corners beyond the same limit and the rounds settle instead of shaving a
+    // few corners off a shrinking noise each time.
+    double limit_noise = 0.0;
     while (true) {
         ++out.rounds;
         if (options.stage) {
@@ -208,8 +212,15 @@ Calibration calibrate(const std::vector<BoardDetection>& detections, const Board
         out.fit = fit_observations(start, fit_views_of(out.views, poses, board), fit_options);
         if (!out.fit.chosen) throw Error("calibrate: " + out.fit.reason);
         out.noise_px = noise_of(out);
-        if (out.rounds == kMaxRounds) break;
-        const std::size_t dropped = drop_outliers(out, options.outlier_sigmas);
+        if (out.rounds <= 2) limit_noise = out.noise_px;
+        const double limit = options.outlier_sigmas * limit_noise;
+        if (out.rounds == kMaxRounds) {
+            // The last fit stands; whether it still has corners beyond the limit is said.
+            Calibration probe = out;
+            out.rounds_capped = drop_outliers(probe, limit) > 0;
+            break;
+        }
+        const std::size_t dropped = drop_outliers(out, limit);
         if (dropped == 0) break;
         out.outliers += dropped;
         // The next round starts where this one ended, without the views too few corners remain in.

@@ -11,7 +11,8 @@
 // Outliers, as mrcal rejects them: after a fit, a corner whose residual under the chosen
 // model is more than `outlier_sigmas` times the fit's noise (the residuals' standard
 // deviation per coordinate) from where the model puts it is dropped, and the candidates
-// are fitted again without it, until no corner is dropped. A view left with fewer than
+// are fitted again without it, until no corner is dropped. The noise is the first fit's,
+// estimated once more after the first drop and then held. A view left with fewer than
 // kMinCornersPerView corners is dropped too, and said.
 
 #include <cstddef>
@@ -60,6 +61,7 @@ struct Calibration {
     ObservationFitReport fit;             // candidates, the choice; poses in views' order
     std::size_t outliers = 0;             // corners dropped, over every view
     int rounds = 0;                       // fits run (one more for each round that dropped corners)
+    bool rounds_capped = false;           // the last fit still had corners beyond the limit
     double noise_px = 0.0;                // the chosen fit's residual spread, per coordinate
 
     const ObservationCandidate& chosen() const { return fit.candidates[*fit.chosen]; }

@@ -171,6 +171,9 @@ std::string format_text(const Calibration& c) {
         out << c.outliers << " outlier corners dropped (beyond 5 sigma of the fit's noise, "
             << format_short(c.noise_px, 3) << " px per coordinate): " << outlier_places(c) << "\n";
     }
+    if (c.rounds_capped) {
+        out << "the outlier rounds stopped after " << c.rounds << " fits with corners still beyond the limit\n";
+    }
     out << "\n" << candidates_table(c.fit) << "\n";
     out << "chosen: " << c.fit.reason << "\n";
     out << "  image size " << c.size.width << "x" << c.size.height << "\n";
@@ -201,7 +204,11 @@ std::string format_json(const Calibration& c) {
     for (const RejectedImage& r : c.rejected) out["rejected"].push_back({{"image", r.image}, {"why", r.why}});
     out["corners"] = c.corners();
     out["board"] = c.board.text();
-    out["outliers"] = {{"corners", c.outliers}, {"noise_px", c.noise_px}, {"images", Json::array()}};
+    out["outliers"] = {{"corners", c.outliers},
+                       {"noise_px", c.noise_px},
+                       {"fits", c.rounds},
+                       {"stopped_at_limit", c.rounds_capped},
+                       {"images", Json::array()}};
     for (const CalibrationView& view : c.views) {
         if (!view.outlier_ids.empty()) {
             out["outliers"]["images"].push_back({{"image", view.image}, {"corners", view.outlier_ids}});
