@@ -329,31 +329,7 @@ std::string no_choice_message(const Camera& source, const FitOptions& options, c
     return message;
 }
 
-CameraFormat output_format(const FitFlags& flags) {
-    try {
-        if (!flags.to.empty()) return camera_format_from_string(flags.to);
-    } catch (const InvalidArgument& error) {
-        throw UsageError(std::string("--to: ") + error.what());
-    }
-    return camera_format_from_path(flags.output).value_or(CameraFormat::Json);
-}
-
-std::vector<Candidate> candidates_from(const std::string& text) {
-    std::vector<Candidate> candidates;
-    if (text.empty()) return candidates;
-    std::size_t begin = 0;
-    while (begin <= text.size()) {
-        const std::size_t end = std::min(text.find(',', begin), text.size());
-        const std::string name = text.substr(begin, end - begin);
-        try {
-            candidates.push_back(candidate_named(name));
-        } catch (const InvalidArgument&) {
-            throw UsageError("--model: libcam fit cannot fit '" + name + "'; it fits " + candidate_names());
-        }
-        begin = end + 1;
-    }
-    return candidates;
-}
+CameraFormat output_format(const FitFlags& flags) { return output_format_of(flags.to, flags.output); }
 
 FitOptions options_from(const FitFlags& flags) {
     FitOptions options;

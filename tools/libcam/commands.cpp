@@ -15,7 +15,7 @@ namespace libcam::cli {
 namespace {
 
 // In the order `libcam --help` lists them.
-constexpr std::array<CommandInfo, 15> kCommands = {{
+constexpr std::array<CommandInfo, 16> kCommands = {{
     {"convert", "Convert a FOV camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file", true},
     {"info", "Every camera a file holds: model, size, K, field of view, pose", true},
     {"rays", "World rays through pixels, by K^-1 and by the look-at formula", true},
@@ -39,6 +39,10 @@ constexpr std::array<CommandInfo, 15> kCommands = {{
      "reproduce each tool's own reprojection error",
      true, "--heatmap"},
     {"fit", "The simplest lens model that reproduces a camera over a scene within a pixel tolerance", false},
+    {"calibrate",
+     "A folder of board images (chessboard or ChArUco) to a calibration: the corners found, the lens model the "
+     "views held out of the fit support",
+     false},
     {"bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal", false},
     {"demo",
      "The built-in example: convert the two worked example cameras and check them against OpenCV and mrcal",

@@ -54,19 +54,6 @@ std::vector<FitView> fit_views(const ObservationSet& set, const Reprojection& re
     return views;
 }
 
-// The model and its coefficients by name; a model of many (a splined one), by their count.
-std::string lens_text(const Camera& camera) {
-    std::string text = std::string(lens_info(camera.lens.type).name);
-    if (camera.lens.coefficients.size() > 16) {
-        return text + " (" + std::to_string(camera.lens.coefficients.size()) + " coefficients)";
-    }
-    const auto names = lens_info(camera.lens.type).coefficients.view();
-    for (std::size_t i = 0; i < camera.lens.coefficients.size(); ++i) {
-        text += " " + std::string(i < names.size() ? names[i] : "c") + " " + format_short(camera.lens.coefficients[i], 6);
-    }
-    return text;
-}
-
 std::string format_text(const ObservationSet& set, int camera, const ResidualStats& file_fit,
                         const ObservationFitReport& report) {
     const Camera& own = set.cameras[static_cast<std::size_t>(camera)].camera;
@@ -79,22 +66,7 @@ std::string format_text(const ObservationSet& set, int camera, const ResidualSta
     out << "\n";
     out << "the file's own model: " << lens_text(own) << "; on these observations rms "
         << format_short(file_fit.stats.rms_px, 4) << " px\n\n";
-    out << "candidate                  params  rms px    held-out rms px\n";
-    for (const ObservationCandidate& c : report.candidates) {
-        std::string name(c.candidate.name);
-        name.resize(std::max<std::size_t>(name.size(), 26), ' ');
-        if (!c.fitted) {
-            out << name << " not fitted: " << c.failure << "\n";
-            continue;
-        }
-        std::string params = std::to_string(c.params.size());
-        params.resize(8, ' ');
-        std::string rms = format_short(c.rms_px, 4);
-        rms.resize(10, ' ');
-        out << name << " " << params << rms << format_short(c.heldout_rms_px, 4) << "\n";
-        for (const std::string& flag : c.flags) out << "    " << flag << "\n";
-    }
-    out << "\n";
+    out << candidates_table(report) << "\n";
     if (!report.chosen) {
         out << "no choice: " << report.reason << "\n";
         return out.str();
@@ -121,20 +93,7 @@ std::string format_json(const ObservationSet& set, int camera, const ResidualSta
     const Camera& own = set.cameras[static_cast<std::size_t>(camera)].camera;
     out["file_model"] = {{"model", std::string(lens_info(own.lens.type).name)},
                          {"rms_px", finite_or_null(file_fit.stats.rms_px)}};
-    Json candidates = Json::array();
-    for (const ObservationCandidate& c : report.candidates) {
-        Json entry{{"model", std::string(c.candidate.name)}, {"fitted", c.fitted}};
-        if (c.fitted) {
-            entry["params"] = c.params.size();
-            entry["rms_px"] = finite_or_null(c.rms_px);
-            entry["heldout_rms_px"] = finite_or_null(c.heldout_rms_px);
-            entry["flags"] = c.flags;
-        } else {
-            entry["failure"] = c.failure;
-        }
-        candidates.push_back(entry);
-    }
-    out["candidates"] = candidates;
+    out["candidates"] = candidates_json(report);
     out["reason"] = report.reason;
     if (report.chosen) {
         const ObservationCandidate& chosen = report.candidates[*report.chosen];
@@ -150,6 +109,82 @@ std::string format_json(const ObservationSet& set, int camera, const ResidualSta
 }
 
 }  // namespace
+
+// The model and its coefficients by name; a model of many (a splined one), by their count.
+std::string lens_text(const Camera& camera) {
+    std::string text = std::string(lens_info(camera.lens.type).name);
+    if (camera.lens.coefficients.size() > 16) {
+        return text + " (" + std::to_string(camera.lens.coefficients.size()) + " coefficients)";
+    }
+    const auto names = lens_info(camera.lens.type).coefficients.view();
+    for (std::size_t i = 0; i < camera.lens.coefficients.size(); ++i) {
+        text += " " + std::string(i < names.size() ? names[i] : "c") + " " + format_short(camera.lens.coefficients[i], 6);
+    }
+    return text;
+}
+
+std::vector<Candidate> candidates_from(const std::string& text) {
+    std::vector<Candidate> candidates;
+    if (text.empty()) return candidates;
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+        const std::size_t end = std::min(text.find(',', begin), text.size());
+        const std::string name = text.substr(begin, end - begin);
+        try {
+            candidates.push_back(candidate_named(name));
+        } catch (const InvalidArgument&) {
+            throw UsageError("--model: libcam fit cannot fit '" + name + "'; it fits " + candidate_names());
+        }
+        begin = end + 1;
+    }
+    return candidates;
+}
+
+CameraFormat output_format_of(const std::string& to, const std::string& output) {
+    try {
+        if (!to.empty()) return camera_format_from_string(to);
+    } catch (const InvalidArgument& error) {
+        throw UsageError(std::string("--to: ") + error.what());
+    }
+    return camera_format_from_path(output).value_or(CameraFormat::Json);
+}
+
+std::string candidates_table(const ObservationFitReport& report) {
+    std::ostringstream out;
+    out << "candidate                  params  rms px    held-out rms px\n";
+    for (const ObservationCandidate& c : report.candidates) {
+        std::string name(c.candidate.name);
+        name.resize(std::max<std::size_t>(name.size(), 26), ' ');
+        if (!c.fitted) {
+            out << name << " not fitted: " << c.failure << "\n";
+            continue;
+        }
+        std::string params = std::to_string(c.params.size());
+        params.resize(8, ' ');
+        std::string rms = format_short(c.rms_px, 4);
+        rms.resize(10, ' ');
+        out << name << " " << params << rms << format_short(c.heldout_rms_px, 4) << "\n";
+        for (const std::string& flag : c.flags) out << "    " << flag << "\n";
+    }
+    return out.str();
+}
+
+Json candidates_json(const ObservationFitReport& report) {
+    Json candidates = Json::array();
+    for (const ObservationCandidate& c : report.candidates) {
+        Json entry{{"model", std::string(c.candidate.name)}, {"fitted", c.fitted}};
+        if (c.fitted) {
+            entry["params"] = c.params.size();
+            entry["rms_px"] = finite_or_null(c.rms_px);
+            entry["heldout_rms_px"] = finite_or_null(c.heldout_rms_px);
+            entry["flags"] = c.flags;
+        } else {
+            entry["failure"] = c.failure;
+        }
+        candidates.push_back(entry);
+    }
+    return candidates;
+}
 
 int run_fit_observations(const ObservationFitFlags& flags) {
     const ObservationSet set = read_observations(flags.source);
@@ -167,9 +202,7 @@ int run_fit_observations(const ObservationFitFlags& flags) {
     options.margin = flags.margin;
     const ObservationFitReport report = fit_observations(set.cameras[static_cast<std::size_t>(camera)].camera, views, options);
     if (report.chosen && !flags.output.empty()) {
-        const CameraFormat format = !flags.to.empty() ? camera_format_from_string(flags.to)
-                                                      : camera_format_from_path(flags.output).value_or(CameraFormat::Json);
-        write_camera_file(flags.output, report.candidates[*report.chosen].camera, format);
+        write_camera_file(flags.output, report.candidates[*report.chosen].camera, output_format_of(flags.to, flags.output));
     }
     emit(flags.json ? format_json(set, camera, file_fit, report) : format_text(set, camera, file_fit, report), "");
     return report.chosen ? 0 : 1;

@@ -39,12 +39,6 @@ std::string opencv_number(double value) {
 
 using Matrix = OpenCvMatrix;
 
-std::string yaml_matrix(const std::string& key, const Matrix& m) {
-    std::string out = key + ": !!opencv-matrix\n   rows: " + std::to_string(m.rows) + "\n   cols: " +
-                      std::to_string(m.cols) + "\n   dt: d\n   data: [";
-    for (std::size_t i = 0; i < m.values.size(); ++i) out += (i == 0 ? " " : ", ") + opencv_number(m.values[i]);
-    return out + " ]\n";
-}
 
 std::string xml_matrix(const std::string& key, const Matrix& m) {
     std::string out = "<" + key + " type_id=\"opencv-matrix\">\n  <rows>" + std::to_string(m.rows) + "</rows>\n  <cols>" +
@@ -241,6 +235,14 @@ DocumentNode parse_tree(std::string_view text, const std::string& source) {
 }
 
 }  // namespace
+
+std::string yaml_matrix(const std::string& key, const OpenCvMatrix& m) {
+    const std::string dt = m.channels == 1 ? "d" : "\"" + std::to_string(m.channels) + "d\"";
+    std::string out = key + ": !!opencv-matrix\n   rows: " + std::to_string(m.rows) + "\n   cols: " +
+                      std::to_string(m.cols) + "\n   dt: " + dt + "\n   data: [";
+    for (std::size_t i = 0; i < m.values.size(); ++i) out += (i == 0 ? " " : ", ") + opencv_number(m.values[i]);
+    return out + " ]\n";
+}
 
 std::string format_opencv_storage(const Camera& camera, OpenCvStorage storage) {
     camera.validate();

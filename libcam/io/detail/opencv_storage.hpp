@@ -80,6 +80,9 @@ struct OpenCvMatrix {
     int channels = 1;
     char depth = 'd';  // dt's type letter: 'f' for float, 'd' for double...
 };
+// The matrix as cv::FileStorage writes it in YAML under `key` (dt d, or "2d" for two
+// channels), every number read back to the same double.
+std::string yaml_matrix(const std::string& key, const OpenCvMatrix& m);
 // Refuses more than `max_elements` numbers (before reading them) and more than
 // `max_channels` channels, naming the field.
 OpenCvMatrix read_opencv_matrix(const Field& field, long long max_elements, int max_channels);

@@ -1,0 +1,101 @@
+// `libcam calibrate` as a user runs it: a folder of rendered board images to the JSON
+// report, the chosen camera's file, and the observations file that `libcam reproject`
+// reads back to calibrate's own RMS; and the refusals, one line each.
+
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "synthetic_sets.hpp"
+
+using namespace libcam;
+using namespace libcam::test;
+
+namespace {
+
+// Five views of the chessboard through the OPENCV5 lens, as PNG files, and one file
+// named like an image that is not one.
+void write_board_folder(const std::filesystem::path& folder) {
+    const BoardSpec board = parse_board_spec("chessboard:9x6:0.03");
+    std::vector<PoseSpec> poses = opencv5_poses();
+    poses.resize(6);
+    const std::vector<SyntheticView> views = render_views(opencv5_truth(), board, chessboard_texture(board), poses);
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        cv::imwrite((folder / ("board" + std::to_string(v) + ".png")).string(), views[v].image);
+    }
+    write_whole_file(folder / "broken.png", "not an image");
+    write_whole_file(folder / "notes.txt", "left alone: not named as an image");
+}
+
+}  // namespace
+
+TEST_CASE("libcam calibrate: JSON report, -o, and --observations-out that libcam reproject reads back",
+          "[calibrate][cli]") {
+    TempDir dir;
+    const std::filesystem::path images = dir / "images";
+    std::filesystem::create_directory(images);
+    write_board_folder(images);
+    const CliResult run = run_libcam({"calibrate", images.string(), "--board", "chessboard:9x6:0.03", "--model",
+                                      "OPENCV4,OPENCV5", "--json", "-o", (dir / "camera.yaml").string(),
+                                      "--observations-out", (dir / "observations.yml").string(), "--progress", "never"});
+    REQUIRE(run.exit_code == 0);
+    INFO(run.describe());
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    CHECK(report["images"] == 7);
+    CHECK(report["used"] == 6);
+    REQUIRE(report["rejected"].size() == 1);
+    CHECK(report["rejected"][0]["image"] == (images / "broken.png").string());
+    CHECK(report["rejected"][0]["why"] == "cannot be read as an image");
+    CHECK(report["corners"] == 6 * 54);
+    const nlohmann::json& chosen = report["chosen"];
+    CHECK(chosen["model"] == "OPENCV5");
+    CHECK(chosen["image_size"] == nlohmann::json::array({640, 480}));
+    CHECK(chosen["dist"].size() == 5);
+    CHECK(report["candidates"].size() == 2);
+    for (const char* key : {"model", "rms_px", "heldout_rms_px"}) CHECK(report["candidates"][0].contains(key));
+    REQUIRE(report["views"].size() == 6);
+    for (const char* key : {"image", "corners", "rms_px", "rvec", "tvec"}) CHECK(report["views"][0].contains(key));
+    CHECK_FALSE(report.contains("uncertainty"));
+
+    // The camera written is the one reported.
+    const Camera written = read_camera_file(dir / "camera.yaml").camera;
+    CHECK(written.intrinsics.fx == chosen["K"][0][0].get<double>());
+    CHECK(written.intrinsics.cy == chosen["K"][1][2].get<double>());
+    CHECK(written.lens.coefficients[0] == chosen["dist"][0].get<double>());
+
+    // The board's true pose in view 0 (X_cam = R X_board + t), against the reported one.
+    const Pose truth = board_pose(parse_board_spec("chessboard:9x6:0.03"), opencv5_poses()[0].centre,
+                                  opencv5_poses()[0].tilt);
+    const Vec3 tvec(report["views"][0]["tvec"][0], report["views"][0]["tvec"][1], report["views"][0]["tvec"][2]);
+    // Either numbering of the corners (the board turned half a turn) is the same board.
+    const Vec3 far_corner = truth.camera_from_world(Vec3(8 * 0.03, 5 * 0.03, 0.0));
+    CHECK(std::min((tvec - truth.t).norm(), (tvec - far_corner).norm()) < 0.005);
+
+    // libcam reproject reads the corners and poses back, and gives calibrate's own RMS.
+    REQUIRE(report["outliers"]["corners"] == 0);
+    const CliResult again = run_libcam({"reproject", (dir / "observations.yml").string(), "--json"});
+    REQUIRE(again.exit_code == 0);
+    const nlohmann::json reprojected = nlohmann::json::parse(again.out);
+    CHECK(reprojected["count"] == 6 * 54);
+    // The file's reader holds the board's corners in float as OpenCV's sample does: a few
+    // 1e-9 m, a few 1e-6 px at these distances.
+    CHECK(reprojected["rms_px"].get<double>() == Approx(chosen["rms_px"].get<double>()).margin(1e-5));
+}
+
+TEST_CASE("libcam calibrate refuses in one line: a bad board spec, no usable image", "[calibrate][cli]") {
+    TempDir dir;
+    write_whole_file(dir / "broken.png", "not an image");
+    const CliResult spec = run_libcam({"calibrate", (dir / "broken.png").string(), "--board", "chessboard:9x6"});
+    CHECK(spec.exit_code == 2);
+    CHECK(spec.out.empty());
+    CHECK(spec.err ==
+          "libcam: usage error: --board: board 'chessboard:9x6': form: expected chessboard:CxR:SQUARE (inner corners, "
+          "square side in metres), got 2 parts (see --help)\n");
+    const CliResult none = run_libcam({"calibrate", dir.path().string(), "--board", "chessboard:9x6:0.03"});
+    CHECK(none.exit_code == 1);
+    CHECK(none.out.empty());
+    CHECK(none.err == "libcam: error: calibrate: 0 of 1 images usable, a calibration needs at least two; " +
+                          (dir / "broken.png").string() + ": cannot be read as an image\n");
+}

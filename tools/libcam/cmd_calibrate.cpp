@@ -1,0 +1,291 @@
+// libcam calibrate IMAGES_OR_DIR... --board SPEC: a folder of board images to a
+// calibration, the lens model chosen by views held out of the fit (libcam/calibrate/).
+
+#include <algorithm>
+#include <chrono>
+#include <cctype>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+
+#include "commands.hpp"
+#include "fit_observations.hpp"
+#include "json_output.hpp"
+#include "libcam/calibrate/calibrate.hpp"
+#include "libcam/calibrate/observations_output.hpp"
+#include "libcam/error.hpp"
+#include "libcam/io/atomic_write.hpp"
+#include "libcam/io/camera_file.hpp"
+#include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
+#include "camera_options.hpp"
+#include "parse.hpp"
+#include "progress.hpp"
+
+namespace libcam::cli {
+
+namespace {
+
+struct CalibrateFlags {
+    std::vector<std::string> inputs;
+    std::string board;
+    std::string models;
+    int folds = 5;
+    double margin = 0.05;
+    bool json = false;
+    std::string output;
+    std::string to;
+    std::string observations_out;
+    int threads = 0;
+    std::string progress;
+};
+
+void add_flags(CLI::App& command, CalibrateFlags& flags) {
+    command.add_option("images", flags.inputs, "Board images, or folders of them (their .jpg, .png, ... files)")
+        ->required();
+    command.add_option("--board", flags.board,
+                       "The board: chessboard:CxR:SQUARE (C x R inner corners, square side in metres) or "
+                       "charuco:CxR:SQUARE:MARKER:DICT (C x R squares, marker side, OpenCV's dictionary, e.g. "
+                       "DICT_5X5_100; laid out as OpenCV 4.6's CharucoBoard)")
+        ->required();
+    command.add_option("--model", flags.models,
+                       "Fit these models, comma-separated, simplest first; auto (default): PINHOLE, OPENCV4, "
+                       "OPENCV5, OPENCV8, FISHEYE, and STEREOGRAPHIC where the corners reach 45 degrees from the axis");
+    command.add_option("--folds", flags.folds, "The views are dealt into this many folds for the held-out RMS")
+        ->capture_default_str()
+        ->check(CLI::Range(2, 1000));
+    command.add_option("--margin", flags.margin,
+                       "The chosen model's held-out RMS may exceed the best one's by this fraction")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 10.0));
+    command.add_flag("--json", flags.json, "Print JSON");
+    command.add_option("-o,--output", flags.output, "Write the chosen calibration to this file (written atomically)");
+    command.add_option("--to", flags.to,
+                       "Format for -o (default: from the extension, else json): " + written_formats_help());
+    command.add_option("--observations-out", flags.observations_out,
+                       "Write the corners and board poses as OpenCV's calibration sample does (YAML), for "
+                       "libcam reproject and libcam fit --observations");
+    command.add_option("--threads", flags.threads, "Images searched at once (default: one per processor)")
+        ->check(CLI::Range(1, 1024));
+    add_progress_option(&command, flags.progress, "after the first second");
+}
+
+bool is_image_name(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const char* known : {".jpg", ".jpeg", ".png", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".pnm", ".webp"}) {
+        if (extension == known) return true;
+    }
+    return false;
+}
+
+// The images named, a folder's images (sorted by name) in its place.
+std::vector<std::filesystem::path> images_of(const std::vector<std::string>& inputs) {
+    std::vector<std::filesystem::path> images;
+    for (const std::string& input : inputs) {
+        std::error_code error;
+        if (!std::filesystem::is_directory(input, error)) {
+            images.emplace_back(input);
+            continue;
+        }
+        std::vector<std::filesystem::path> found;
+        for (const auto& entry : std::filesystem::directory_iterator(input, error)) {
+            if (entry.is_regular_file(error) && is_image_name(entry.path())) found.push_back(entry.path());
+        }
+        if (error) throw FileError(input + ": cannot list the folder: " + error.message());
+        std::sort(found.begin(), found.end());
+        if (found.empty()) throw FileError(input + ": the folder holds no images (.jpg, .png, .bmp, .tif, .pgm, ...)");
+        images.insert(images.end(), found.begin(), found.end());
+    }
+    return images;
+}
+
+// Progress lines on stderr: auto prints once a second after the first second, always
+// from the start, never not at all.
+class ProgressPrinter {
+public:
+    explicit ProgressPrinter(ProgressMode mode) : mode_(mode) {}
+
+    void found(std::size_t done, std::size_t total) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (!due(done == total)) return;
+        line("searched " + std::to_string(done) + " of " + std::to_string(total) + " images");
+    }
+    void stage(const std::string& what) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        if (mode_ == ProgressMode::Never || (mode_ == ProgressMode::Auto && elapsed() < 1.0)) return;
+        line(what);
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+    double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+    bool due(bool last) {
+        if (mode_ == ProgressMode::Never) return false;
+        if (mode_ == ProgressMode::Auto && elapsed() < 1.0) return false;
+        const auto now = Clock::now();
+        if (!last && now - last_line_ < std::chrono::seconds(1)) return false;
+        last_line_ = now;
+        return true;
+    }
+    void line(const std::string& what) {
+        std::cerr << "libcam calibrate: " << what << ", " << std::fixed << std::setprecision(1) << elapsed() << " s\n"
+                  << std::defaultfloat;
+    }
+    ProgressMode mode_;
+    std::mutex mutex_;
+    Clock::time_point start_ = Clock::now();
+    Clock::time_point last_line_;
+};
+
+std::string view_name(const std::string& image) { return std::filesystem::path(image).filename().string(); }
+
+// Where outliers were dropped: "left02.jpg (2), left05.jpg (1)".
+std::string outlier_places(const Calibration& c) {
+    std::string places;
+    for (const CalibrationView& view : c.views) {
+        if (view.outlier_ids.empty()) continue;
+        places += (places.empty() ? "" : ", ") + view_name(view.image) + " (" + std::to_string(view.outlier_ids.size()) + ")";
+    }
+    return places;
+}
+
+double view_rms(const Calibration& c, std::size_t v) {
+    double sum = 0.0;
+    const std::vector<double> errors = c.view_errors(v);
+    for (const double e : errors) sum += e * e;
+    return std::sqrt(sum / static_cast<double>(errors.size()));
+}
+
+std::string format_text(const Calibration& c) {
+    const ObservationCandidate& chosen = c.chosen();
+    const Intrinsics& k = chosen.camera.intrinsics;
+    std::ostringstream out;
+    out << c.images << " images, " << c.views.size() << " used, " << c.rejected.size() << " rejected; " << c.corners()
+        << " corners of " << c.board.text() << "\n";
+    for (const RejectedImage& r : c.rejected) out << "  rejected " << r.image << ": " << r.why << "\n";
+    if (c.outliers > 0) {
+        out << c.outliers << " outlier corners dropped (beyond 5 sigma of the fit's noise, "
+            << format_short(c.noise_px, 3) << " px per coordinate): " << outlier_places(c) << "\n";
+    }
+    if (c.rounds_capped) {
+        out << "the outlier rounds stopped after " << c.rounds << " fits with corners still beyond the limit\n";
+    }
+    out << "\n" << candidates_table(c.fit) << "\n";
+    out << "chosen: " << c.fit.reason << "\n";
+    out << "  image size " << c.size.width << "x" << c.size.height << "\n";
+    out << "  K: fx " << format_short(k.fx, 8) << ", fy " << format_short(k.fy, 8) << ", cx " << format_short(k.cx, 8)
+        << ", cy " << format_short(k.cy, 8) << " (OpenCV's pixels)\n";
+    out << "  lens: " << lens_text(chosen.camera) << "\n";
+    out << "  rms " << format_short(chosen.rms_px, 4) << " px, held-out rms " << format_short(chosen.heldout_rms_px, 4)
+        << " px\n\nview                      corners  rms px\n";
+    for (std::size_t v = 0; v < c.views.size(); ++v) {
+        std::string name = view_name(c.views[v].image);
+        name.resize(std::max<std::size_t>(name.size(), 26), ' ');
+        std::string corners = std::to_string(c.views[v].ids.size());
+        corners.resize(9, ' ');
+        out << name << corners << format_short(view_rms(c, v), 4) << "\n";
+    }
+    return out.str();
+}
+
+Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
+
+std::string format_json(const Calibration& c) {
+    const ObservationCandidate& chosen = c.chosen();
+    const Intrinsics& k = chosen.camera.intrinsics;
+    Json out;
+    out["images"] = c.images;
+    out["used"] = c.views.size();
+    out["rejected"] = Json::array();
+    for (const RejectedImage& r : c.rejected) out["rejected"].push_back({{"image", r.image}, {"why", r.why}});
+    out["corners"] = c.corners();
+    out["board"] = c.board.text();
+    out["outliers"] = {{"corners", c.outliers},
+                       {"noise_px", c.noise_px},
+                       {"fits", c.rounds},
+                       {"stopped_at_limit", c.rounds_capped},
+                       {"images", Json::array()}};
+    for (const CalibrationView& view : c.views) {
+        if (!view.outlier_ids.empty()) {
+            out["outliers"]["images"].push_back({{"image", view.image}, {"corners", view.outlier_ids}});
+        }
+    }
+    out["chosen"] = {{"model", std::string(chosen.candidate.name)},
+                     {"image_size", {c.size.width, c.size.height}},
+                     {"K", {{k.fx, k.skew, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}}},
+                     {"dist", chosen.camera.lens.coefficients},
+                     {"rms_px", finite_or_null(chosen.rms_px)},
+                     {"heldout_rms_px", finite_or_null(chosen.heldout_rms_px)},
+                     {"reason", c.fit.reason}};
+    out["candidates"] = candidates_json(c.fit);
+    out["views"] = Json::array();
+    for (std::size_t v = 0; v < c.views.size(); ++v) {
+        const Pose& pose = chosen.poses[v];
+        out["views"].push_back({{"image", c.views[v].image},
+                                {"corners", c.views[v].ids.size()},
+                                {"rms_px", finite_or_null(view_rms(c, v))},
+                                {"rvec", vec_json(pose.rvec())},
+                                {"tvec", vec_json(pose.t)}});
+    }
+    return out.dump(2) + "\n";
+}
+
+CameraFormat output_format(const CalibrateFlags& flags) { return output_format_of(flags.to, flags.output); }
+
+BoardSpec board_from(const std::string& text) {
+    try {
+        return parse_board_spec(text);
+    } catch (const InvalidArgument& error) {
+        throw UsageError(std::string("--board: ") + error.what());
+    }
+}
+
+// Files first, so that a failure to write one leaves stdout empty.
+void write_outputs(const CalibrateFlags& flags, const Calibration& c) {
+    if (!flags.output.empty()) write_camera_file(flags.output, c.chosen().camera, output_format(flags));
+    if (flags.observations_out.empty()) return;
+    ObservationsText text;
+    try {
+        text = format_opencv_observations(c);
+    } catch (const NotRepresentable& error) {
+        throw Error(flags.observations_out + ": " + error.what());
+    }
+    write_file_atomically(flags.observations_out, text.text);
+    if (text.left_out > 0) {
+        std::cerr << "libcam calibrate: " << flags.observations_out << ": " << text.left_out
+                  << " views that saw part of the board left out (OpenCV's calibration output holds whole boards)\n";
+    }
+}
+
+}  // namespace
+
+Runner add_calibrate(CLI::App& app) {
+    CLI::App* command = add_command(app, "calibrate");
+    auto flags = std::make_shared<CalibrateFlags>();
+    add_flags(*command, *flags);
+    return [flags] {
+        // Every flag checked before any work.
+        const ProgressMode progress_when = progress_mode(flags->progress);
+        const BoardSpec board = board_from(flags->board);
+        CalibrationOptions options;
+        options.candidates = flags->models == "auto" ? std::vector<Candidate>{} : candidates_from(flags->models);
+        options.folds = flags->folds;
+        options.margin = flags->margin;
+        if (!flags->output.empty()) output_format(*flags);
+        const std::vector<std::filesystem::path> images = images_of(flags->inputs);
+        ProgressPrinter printer(progress_when);
+        const std::vector<BoardDetection> detections = detect_boards(
+            images, board, flags->threads, [&](std::size_t done) { printer.found(done, images.size()); });
+        options.stage = [&](const std::string& what) { printer.stage(what); };
+        const Calibration calibration = calibrate(detections, board, options);
+        write_outputs(*flags, calibration);
+        emit(flags->json ? format_json(calibration) : format_text(calibration), "");
+        return 0;
+    };
+}
+
+}  // namespace libcam::cli
