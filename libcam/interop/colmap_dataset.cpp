@@ -16,6 +16,7 @@
 #include "libcam/interop/dataset_sources.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
+#include "libcam/io/detail/colmap_model.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/remap/remap_map.hpp"
 #include "libcam/text/number_format.hpp"
@@ -29,22 +30,13 @@ namespace fs = std::filesystem;
 // A COLMAP model, or another source taken in as one (dataset_sources.hpp).
 using ColmapModelRead = DatasetModel;
 
+// The model read and checked as every command reads it (io/detail/colmap_model.hpp).
 ColmapModelRead read_model(const fs::path& folder) {
-    const fs::path cameras_file = colmap_cameras_file_in(folder);
-    if (cameras_file.empty()) throw FileError(folder.string() + ": no cameras.bin or cameras.txt: not a COLMAP model folder");
-    const bool binary = cameras_file.extension() == ".bin";
-    const std::string extension = binary ? ".bin" : ".txt";
-    const fs::path images_file = folder / ("images" + extension);
-    const fs::path points_file = folder / ("points3D" + extension);
-    for (const fs::path& file : {images_file, points_file}) {
-        if (!regular_file_exists(file)) {
-            throw FileError(file.string() + ": missing (a COLMAP model has cameras, images and points3D)");
-        }
-    }
+    ColmapModelRecords records = read_whole_colmap_model(folder);
     ColmapModelRead model;
-    model.cameras = read_colmap_cameras(read_text_file(cameras_file), cameras_file.string(), binary);
-    model.images = read_colmap_images(read_text_file(images_file), images_file.string(), binary, true);
-    model.points = read_colmap_points3d(read_text_file(points_file), points_file.string(), binary);
+    model.cameras = std::move(records.cameras);
+    model.images = std::move(records.images);
+    model.points = std::move(records.points);
     return model;
 }
 

@@ -8,12 +8,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <map>
 #include <optional>
 
 #include "libcam/convert/colmap_models.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
+#include "libcam/io/detail/colmap_model.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
@@ -469,33 +469,20 @@ ColmapPoints3D read_points3d_binary(std::string_view bytes, const std::string& s
 
 std::string id_name(std::uint64_t id) { return "id:" + std::to_string(id); }
 
-std::vector<NamedCamera> camera_set(const std::vector<ColmapCameraRecord>& cameras, const std::vector<ColmapImage>& images,
-                                    const std::string& source) {
-    std::map<std::uint64_t, const ColmapCameraRecord*> by_id;
-    for (const ColmapCameraRecord& camera : cameras) {
-        if (!by_id.emplace(camera.id, &camera).second) {
-            throw FileError(source + ": camera id " + std::to_string(camera.id) + " appears more than once");
-        }
-    }
+// Every image as a camera, named by its name, and every camera no image takes named by
+// its id (colmap_model.hpp has checked the ids).
+std::vector<NamedCamera> camera_set(const ColmapModelRecords& model, const std::string& source) {
     std::vector<NamedCamera> set;
-    std::map<std::uint64_t, bool> used;
-    std::map<std::uint64_t, bool> image_ids;
-    for (const ColmapImage& image : images) {
-        if (!image_ids.emplace(image.id, true).second) {
-            throw FileError(image.where + ": image id " + std::to_string(image.id) + " appears more than once");
-        }
-        const auto found = by_id.find(image.camera_id);
-        if (found == by_id.end()) {
-            throw FileError(image.where + ": CAMERA_ID " + std::to_string(image.camera_id) +
-                            " is not in the cameras file");
-        }
-        Camera camera = found->second->camera;
+    std::vector<bool> used(model.cameras.size(), false);
+    for (const ColmapImage& image : model.images) {
+        const auto position = static_cast<std::size_t>(model.camera_index.find(image.camera_id));
+        Camera camera = model.cameras[position].camera;
         camera.pose = image.pose;
         set.push_back({image.name, {std::move(camera), std::nullopt}, id_name(image.camera_id)});
-        used[image.camera_id] = true;
+        used[position] = true;
     }
-    for (const ColmapCameraRecord& camera : cameras) {
-        if (!used.contains(camera.id)) set.push_back({id_name(camera.id), {camera.camera, std::nullopt}});
+    for (std::size_t c = 0; c < model.cameras.size(); ++c) {
+        if (!used[c]) set.push_back({id_name(model.cameras[c].id), {model.cameras[c].camera, std::nullopt}});
     }
     if (set.empty()) throw FileError(source + ": no camera");
     return set;
@@ -542,17 +529,10 @@ std::filesystem::path colmap_cameras_file_for(const std::filesystem::path& part)
 }
 
 std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadContext& context) {
-    const bool binary = text.find('\0') != std::string_view::npos;
-    const std::vector<ColmapCameraRecord> cameras = read_colmap_cameras(text, context.source, binary);
-    std::vector<ColmapImage> images;
-    if (!context.folder.empty()) {
-        const std::filesystem::path images_file = context.folder / (binary ? "images.bin" : "images.txt");
-        if (regular_file_exists(images_file)) {
-            images = read_colmap_images(read_text_file(images_file, kColmapModelPartLimit), images_file.string(), binary,
-                                        false);
-        }
-    }
-    return camera_set(cameras, images, context.source);
+    // Without a folder (text given alone) the cameras are the whole model.
+    ColmapModelPaths paths = colmap_model_beside(context.source, text);
+    if (context.folder.empty()) paths.images = paths.points3d = std::filesystem::path();
+    return camera_set(read_colmap_model_records(paths, text), context.source);
 }
 
 namespace {

@@ -140,7 +140,7 @@ auto reading_as(const LocatedFile& located, Read&& read) -> decltype(read()) {
 // The cameras of a file that holds observations (OpenSfM, OpenMVG): each view as a camera
 // with its pose, named after the view, its intrinsics named; the intrinsics alone where
 // the file has no view with a pose. Throws FileError "<source>: <where>: no camera" for
-// none (observations.cpp).
+// none (observations.cpp), and what check_observations refuses, in its words.
 std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::string& source, std::string_view where);
 
 // A writer of one file in the table's form.

@@ -196,8 +196,34 @@ pugi::xml_node chosen_calibration(const pugi::xml_node& sensor) {
     return initial;
 }
 
+// A sensor's or calibration's type, where it states one: one of Metashape's
+// (Metashape.Sensor.Type: frame, fisheye, spherical, cylindrical, rpc), whether or not
+// libcam has its model (camera_from says which it reads).
+void check_type(const Source& source, const pugi::xml_node& node, const std::string& where) {
+    const pugi::xml_attribute type = node.attribute("type");
+    if (!type) return;
+    for (const std::string_view known : {"frame", "fisheye", "spherical", "cylindrical", "rpc"}) {
+        if (type.value() == known) return;
+    }
+    source.fail(node, where + " <" + node.name() + "> type: '" + type.value() +
+                          "' is not one of Metashape's sensor types (frame, fisheye, spherical, cylindrical, rpc)");
+}
+
+// What a sensor states, checked whether or not the camera made of it uses it: its type
+// and size, and each of its calibrations' (a sensor without a calibration is skipped,
+// and the adjusted calibration's size stands for the sensor's).
+void check_sensor(const Source& source, const pugi::xml_node& sensor, const std::string& where) {
+    check_type(source, sensor, where);
+    if (const pugi::xml_node size = sensor.child("resolution")) resolution(source, size, where);
+    for (const pugi::xml_node calibration : sensor.children("calibration")) {
+        check_type(source, calibration, where);
+        if (const pugi::xml_node size = calibration.child("resolution")) resolution(source, size, where);
+    }
+}
+
 Sensor read_sensor(const Source& source, const pugi::xml_node& sensor) {
     const std::string where = sensor_where(sensor);
+    check_sensor(source, sensor, where);
     const pugi::xml_node calibration = chosen_calibration(sensor);
     if (!calibration) return {sensor.attribute("label").value(), std::nullopt};
     Calibration terms;
