@@ -30,6 +30,14 @@ namespace fs = std::filesystem;
 // A COLMAP model, or another source taken in as one (dataset_sources.hpp).
 using ColmapModelRead = DatasetModel;
 
+// The model a source names: a transforms.json itself; for a folder, the COLMAP model
+// colmap_model_folder finds (a workspace's sparse/ holding 0/: sparse/0).
+fs::path named_model(const fs::path& source) {
+    if (is_nerf_dataset_source(source)) return source;
+    const fs::path folder = colmap_model_folder(source);
+    return folder.empty() ? source : folder;
+}
+
 // The model read and checked as every command reads it (io/detail/colmap_model.hpp).
 ColmapModelRead read_model(const fs::path& folder) {
     ColmapModelRecords records = read_whole_colmap_model(folder);
@@ -244,7 +252,9 @@ void plain_names(std::vector<ColmapImage>& images, const std::string& field) {
 
 }  // namespace
 
-DatasetPlan plan_dataset(const DatasetOptions& options) {
+DatasetPlan plan_dataset(const DatasetOptions& given) {
+    DatasetOptions options = given;
+    options.model = named_model(given.model);
     const int threads = worker_count(options.threads);
     const bool nerf_source = is_nerf_dataset_source(options.model);
     ColmapModelRead model = nerf_source ? read_nerf_dataset(options.model) : read_model(options.model);
@@ -367,7 +377,7 @@ void set_dataset_camera(DatasetOptions& options, const std::string& camera, std:
 
 fs::path default_dataset_images(const fs::path& model) {
     if (is_nerf_dataset_source(model)) return nerf_dataset_images_folder(model);
-    const fs::path folder = fs::absolute(model).lexically_normal();
+    const fs::path folder = fs::absolute(named_model(model)).lexically_normal();
     const fs::path trimmed = folder.has_filename() ? folder : folder.parent_path();
     return trimmed.parent_path().parent_path() / "images";
 }

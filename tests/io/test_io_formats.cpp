@@ -439,8 +439,8 @@ TEST_CASE("transforms.json is written with COLMAP's pixel corner, OpenGL's camer
     Camera mei = camera;
     mei.lens = {LensType::Mei, {1.2, 0, 0, 0, 0}};
     CHECK_THROWS_WITH(format_camera(mei, CameraFormat::Nerf),
-                      "transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE, LONLAT and "
-                      "RAD_TAN_THIN_PRISM_FISHEYE)");
+                      "NeRF transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE, LONLAT "
+                      "and RAD_TAN_THIN_PRISM_FISHEYE)");
     Camera rational = camera;
     rational.lens = {LensType::OpenCv8, {0, 0, 0, 0, 0, 0.1, 0, 0}};
     CHECK_THROWS_WITH(format_camera(rational, CameraFormat::Nerf),
@@ -507,7 +507,8 @@ TEST_CASE("The format is told from the contents where the extension is shared or
     CHECK(read_camera_set(dir.path() / "transforms.json").format == CameraFormat::Nerf);
     fs::create_directories(dir.path() / "empty");
     CHECK_THAT(file_error_of([&] { (void)read_camera_set(dir.path() / "empty"); }),
-               Catch::EndsWith("a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)"));
+               Catch::EndsWith("a folder, and not a COLMAP model folder (it has no cameras.bin or cameras.txt, nor a "
+                                               "folder inside that has)"));
     write_file_atomically(dir.path() / "odd", "!!! nothing\n");
     CHECK_THAT(file_error_of([&] { (void)read_camera_set(dir.path() / "odd"); }),
                Catch::Contains("unknown camera file format"));

@@ -16,6 +16,10 @@
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
+// Every switch over LensType here names every model, with no default: a new model stops
+// the build until someone decides what this file does with it.
+#pragma GCC diagnostic error "-Wswitch"
+
 namespace libcam {
 
 namespace {
@@ -413,11 +417,34 @@ std::pair<std::string, std::vector<double>> alicevision_type(const Lens& lens) {
         }
         case LensType::Fisheye: return {"fisheye4", k};
         case LensType::Fov: return {"fisheye1", k};
-        default: break;
+        // Every other model, named so that the compiler asks here about a new one.
+        case LensType::OpenCv8:
+        case LensType::OpenCv12:
+        case LensType::OpenCv14:
+        case LensType::Stereographic:
+        case LensType::Lonlat:
+        case LensType::Latlon:
+        case LensType::DoubleSphere:
+        case LensType::Ucm:
+        case LensType::Eucm:
+        case LensType::Mei:
+        case LensType::ThinPrismFisheye:
+        case LensType::RadTanThinPrismFisheye:
+        case LensType::Equisolid:
+        case LensType::Cahvor:
+        case LensType::Cahvore:
+        case LensType::LensPolynomial:
+        case LensType::SplinedStereographic:
+        case LensType::Cylindrical:
+        case LensType::Ptlens:
+        case LensType::OcamCalib:
+        case LensType::Division:
+        case LensType::ThetaPolynomial:
+        case LensType::FTheta:
+        case LensType::FThetaForward:
+            detail::refuse_lens(CameraFormat::AliceVision, lens.type);
     }
-    throw NotRepresentable("AliceVision's cameras.sfm holds pinhole, radial1, radial3, brown (OPENCV4, OPENCV5), "
-                           "fisheye4 (FISHEYE) and fisheye1 (FOV); this camera's lens is " +
-                           std::string(lens_info(lens.type).name));
+    detail::refuse_lens(CameraFormat::AliceVision, lens.type);
 }
 
 }  // namespace

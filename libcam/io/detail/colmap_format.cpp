@@ -16,6 +16,7 @@
 #include "libcam/io/detail/colmap_model.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -514,6 +515,54 @@ std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder
         if (regular_file_exists(folder / name)) return folder / name;
     }
     return {};
+}
+
+namespace {
+
+// COLMAP numbers the models of a workspace's sparse/ 0, 1, 2, ...: in that order (10 after
+// 9), then any other names.
+bool before_in_colmap_order(const std::filesystem::path& a, const std::filesystem::path& b) {
+    const std::string x = a.filename().string(), y = b.filename().string();
+    const auto number = [](const std::string& name) {
+        return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (number(x) != number(y)) return number(x);
+    if (number(x) && x.size() != y.size()) return x.size() < y.size();
+    return x < y;
+}
+
+// The folders directly inside `folder` that hold a COLMAP model, in COLMAP's order.
+std::vector<std::filesystem::path> models_inside(const std::filesystem::path& folder) {
+    std::vector<std::filesystem::path> models;
+    std::error_code error;
+    for (std::filesystem::directory_iterator entry(folder, error), end; !error && entry != end; entry.increment(error)) {
+        std::error_code kind_error;
+        if (entry->is_directory(kind_error) && !colmap_cameras_file_in(entry->path()).empty()) {
+            models.push_back(entry->path());
+        }
+    }
+    std::sort(models.begin(), models.end(), before_in_colmap_order);
+    return models;
+}
+
+}  // namespace
+
+std::filesystem::path colmap_model_folder(const std::filesystem::path& folder) {
+    if (!colmap_cameras_file_in(folder).empty()) return folder;
+    const std::vector<std::filesystem::path> models = models_inside(folder);
+    if (models.size() == 1) return models.front();
+    if (models.empty()) return {};
+    std::string names;
+    for (const std::filesystem::path& model : models) {
+        names += (names.empty() ? "" : ", ") + printable_text(model.filename().string());
+    }
+    throw FileError(printable_text(folder.string()) + " holds " + std::to_string(models.size()) + " COLMAP models (" +
+                    names + "): name one, e.g. " + printable_text((folder / models.front().filename()).string()));
+}
+
+std::filesystem::path colmap_cameras_file_named(const std::filesystem::path& folder) {
+    const std::filesystem::path model = colmap_model_folder(folder);
+    return model.empty() ? model : colmap_cameras_file_in(model);
 }
 
 std::filesystem::path colmap_cameras_file_for(const std::filesystem::path& part) {

@@ -12,8 +12,13 @@
 
 #include "libcam/error.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
+
+// Every switch over LensType here names every model, with no default: a new model stops
+// the build until someone decides what this file does with it.
+#pragma GCC diagnostic error "-Wswitch"
 
 namespace libcam {
 
@@ -375,10 +380,34 @@ Calibration metashape_terms(const Camera& camera) {
             }
             c.type = "spherical";
             return c;
-        default: break;
+        // Every other model, named so that the compiler asks here about a new one.
+        case LensType::OpenCv8:
+        case LensType::OpenCv12:
+        case LensType::OpenCv14:
+        case LensType::Stereographic:
+        case LensType::Latlon:
+        case LensType::DoubleSphere:
+        case LensType::Ucm:
+        case LensType::Eucm:
+        case LensType::Mei:
+        case LensType::Fov:
+        case LensType::ThinPrismFisheye:
+        case LensType::RadTanThinPrismFisheye:
+        case LensType::Equisolid:
+        case LensType::Cahvor:
+        case LensType::Cahvore:
+        case LensType::LensPolynomial:
+        case LensType::SplinedStereographic:
+        case LensType::Cylindrical:
+        case LensType::Ptlens:
+        case LensType::OcamCalib:
+        case LensType::Division:
+        case LensType::ThetaPolynomial:
+        case LensType::FTheta:
+        case LensType::FThetaForward:
+            detail::refuse_lens(CameraFormat::Metashape, camera.lens.type);
     }
-    throw NotRepresentable("Metashape's XML holds frame (PINHOLE, OPENCV4, OPENCV5), fisheye (FISHEYE) and spherical "
-                           "(LONLAT) sensors; this camera's lens is " + std::string(lens_info(camera.lens.type).name));
+    detail::refuse_lens(CameraFormat::Metashape, camera.lens.type);
 }
 
 void add_number(pugi::xml_node parent, const char* name, double value) {
