@@ -99,12 +99,44 @@ struct UnprojectJob {
     const EntryIo<Scalar>* entries = nullptr;
 };
 
+// A remap map (remap/remap_map.hpp): entry k, the target's pixel (k % width, k / width),
+// holds the source pixel that sees its ray.
+struct MapJob {
+    const Camera& source;
+    double source_valid_radius;
+    const Intrinsics* target_intrinsics;  // a PINHOLE target, whose rays are K^-1 [x, y, 1]; else nullptr
+    Mat3 to_source;                       // a direction in the target's frame into the source's
+    bool turned;                          // whether to_source turns (is not the identity)
+    std::size_t width;                    // the target image's
+};
+
+// The target's rays of a run of entries, from its unprojection (in the target's frame).
+struct MapRays {
+    const double* x;
+    const double* y;
+    const double* z;
+    const std::uint8_t* valid;
+};
+
+// Where a map's entries go: entry k's source pixel at x[k], y[k] (NaN: none).
+template <class Scalar>
+struct MapOutput {
+    Scalar* x;
+    Scalar* y;
+};
+
 // The kernels of one instruction set.
 template <class Scalar>
 struct KernelSet {
     void (*project)(const ProjectJob<Scalar>& job, std::size_t begin, std::size_t end);
     void (*project_interleaved)(const ProjectJob<Scalar>& job, std::size_t begin, std::size_t end);
     void (*unproject)(const UnprojectJob<Scalar>& job, std::size_t begin, std::size_t end);
+    // Entries [begin, end) of a map in Scalar, computed in double: their rays from K^-1 where
+    // `rays` is nullptr (a PINHOLE target), else rays' first end - begin; then turned,
+    // projected through the source lens and written, NaN where there is no source. Returns
+    // how many have one.
+    std::size_t (*map)(const MapJob& job, const MapRays* rays, const MapOutput<Scalar>& out, std::size_t begin,
+                       std::size_t end);
 };
 
 // Each compiled set (kernels_sse2.cpp, kernels_avx2.cpp, kernels_avx512.cpp).

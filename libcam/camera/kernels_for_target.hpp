@@ -7,11 +7,12 @@
 // Lane) are compiled for the portable baseline wherever they are not inlined: the
 // linker keeps one copy of each, and a copy built for AVX2 would crash a CPU without
 // it. Then `#pragma GCC target` compiles the kernels (projector_kernel.inl,
-// unprojector_kernel.inl), in a namespace of their own, for the target: GCC inlines the
-// baseline functions into them (a function may take in one built for a subset of its
-// instruction set) and vectorises the loops over points at the target's width. The
-// command line's -mavx2 would instead compile every inline function of the file for
-// AVX2.
+// unprojector_kernel.inl, map_kernel.inl), in a namespace of their own, for the target:
+// GCC inlines the baseline functions into them (a function may take in one built for a
+// subset of its instruction set) and vectorises the loops over points at the target's
+// width. The command line's -mavx2 would instead compile every inline function of the
+// file for AVX2. A helper the loops call per point must therefore be inlined into them
+// (gnu::always_inline where GCC might not: a call would run the baseline's scalar copy).
 //
 // The kernel files are compiled with -ffp-contract=off (libcam/CMakeLists.txt): GCC would
 // otherwise fuse a * b + c into one FMA instruction where the target has it, which
@@ -52,6 +53,7 @@ using namespace libcam::detail;
 
 #include "libcam/camera/projector_kernel.inl"
 #include "libcam/camera/unprojector_kernel.inl"
+#include "libcam/camera/map_kernel.inl"
 
 }  // namespace
 }  // namespace libcam::kernels::LIBCAM_KERNEL_TARGET
@@ -67,7 +69,8 @@ template <>
 const KernelSet<float>& compiled_kernels<SimdTarget::LIBCAM_KERNEL_TARGET_ENUM, float>() {
     static constexpr KernelSet<float> set{&LIBCAM_KERNEL_TARGET::project<float, LIBCAM_KERNEL_TARGET::Layout::Arrays>,
                                           &LIBCAM_KERNEL_TARGET::project<float, LIBCAM_KERNEL_TARGET::Layout::Interleaved>,
-                                          &LIBCAM_KERNEL_TARGET::unproject<float>};
+                                          &LIBCAM_KERNEL_TARGET::unproject<float>,
+                                          &LIBCAM_KERNEL_TARGET::map<float>};
     return set;
 }
 
@@ -75,7 +78,8 @@ template <>
 const KernelSet<double>& compiled_kernels<SimdTarget::LIBCAM_KERNEL_TARGET_ENUM, double>() {
     static constexpr KernelSet<double> set{&LIBCAM_KERNEL_TARGET::project<double, LIBCAM_KERNEL_TARGET::Layout::Arrays>,
                                            &LIBCAM_KERNEL_TARGET::project<double, LIBCAM_KERNEL_TARGET::Layout::Interleaved>,
-                                           &LIBCAM_KERNEL_TARGET::unproject<double>};
+                                           &LIBCAM_KERNEL_TARGET::unproject<double>,
+                                           &LIBCAM_KERNEL_TARGET::map<double>};
     return set;
 }
 

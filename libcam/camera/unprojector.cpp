@@ -189,6 +189,27 @@ void pinhole_image(const Intrinsics& intrinsics, const ImageSize& size, const de
 
 }  // namespace
 
+namespace {
+
+// The block's pixels: those of pixel index first on, index k being pixel (k % width, k /
+// width) of the image, filled row segment by row segment.
+template <class Scalar>
+void image_block_pixels(std::size_t width, std::size_t first, Block<Scalar>& b) {
+    int x = static_cast<int>(first % width), y = static_cast<int>(first / width);
+    for (std::size_t i = 0; i < b.count; x = 0, ++y) {
+        const std::size_t run = std::min(b.count - i, width - static_cast<std::size_t>(x));
+        for (std::size_t j = 0; j < run; ++j) {
+            b.made_x[i + j] = Scalar(x + static_cast<int>(j));
+            b.made_y[i + j] = Scalar(y);
+        }
+        i += run;
+    }
+    b.pixel_x = b.made_x;
+    b.pixel_y = b.made_y;
+}
+
+}  // namespace
+
 template <class Scalar>
 void Unprojector<Scalar>::unproject_image(UnprojectMethod method, Points3<Scalar>& directions, ValidFlags& valid,
                                           int threads) const {
@@ -200,21 +221,25 @@ void Unprojector<Scalar>::unproject_image(UnprojectMethod method, Points3<Scalar
         pinhole_image(camera_.intrinsics, camera_.size, output_into(directions, valid).arrays, threads);
         return;
     }
-    // Pixel index k is (k % width, k / width); each block is filled row segment by row segment.
-    const auto image_pixels = [width](std::size_t first, Block<Scalar>& b) {
-        int x = static_cast<int>(first % width), y = static_cast<int>(first / width);
-        for (std::size_t i = 0; i < b.count; x = 0, ++y) {
-            const std::size_t run = std::min(b.count - i, width - static_cast<std::size_t>(x));
-            for (std::size_t j = 0; j < run; ++j) {
-                b.made_x[i + j] = Scalar(x + static_cast<int>(j));
-                b.made_y[i + j] = Scalar(y);
-            }
-            i += run;
-        }
-        b.pixel_x = b.made_x;
-        b.pixel_y = b.made_y;
-    };
+    const auto image_pixels = [width](std::size_t first, Block<Scalar>& b) { image_block_pixels(width, first, b); };
     run(n, method, threads, image_pixels, output_into(directions, valid));
+}
+
+template <class Scalar>
+void Unprojector<Scalar>::unproject_image_part(UnprojectMethod method, std::size_t first, std::size_t count,
+                                               Points3<Scalar>& directions, ValidFlags& valid) const {
+    const std::size_t width = static_cast<std::size_t>(camera_.size.width);
+    const std::size_t n = width * static_cast<std::size_t>(camera_.size.height);
+    if (first > n || count > n - first) {
+        throw InvalidArgument("unproject_image_part: pixels " + std::to_string(first) + " to " +
+                              std::to_string(first + count) + " of an image of " + std::to_string(n));
+    }
+    directions.resize(count);
+    valid.resize(count);
+    const auto image_pixels = [width, first](std::size_t offset, Block<Scalar>& b) {
+        image_block_pixels(width, first + offset, b);
+    };
+    run(count, method, 1, image_pixels, output_into(directions, valid));
 }
 
 template <class Scalar>

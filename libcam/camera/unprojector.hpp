@@ -114,6 +114,13 @@ public:
     void unproject_image(UnprojectMethod method, Points3<Scalar>& directions, ValidFlags& valid,
                          int threads = 1) const;
 
+    // Entries [first, first + count) of that, on the calling thread: a part of the image
+    // small enough for the cache, for a caller that goes on with its rays (the remap maps).
+    // The same bits as unproject() on those pixels. Throws InvalidArgument for a range
+    // past the image's last pixel.
+    void unproject_image_part(UnprojectMethod method, std::size_t first, std::size_t count,
+                              Points3<Scalar>& directions, ValidFlags& valid) const;
+
     // One pixel; false where it has no ray (direction then left as it was). The same
     // bits as the pixel gets in any batch.
     bool unproject(const Vec2T& pixel, UnprojectMethod method, Vec3T& direction) const;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -51,18 +52,29 @@ double median_of(std::vector<double> values) {
     return nearest_rank_quantile(values, 0.5);
 }
 
+// Now, in seconds, by `clock` (BenchClock).
+double seconds_now(BenchClock clock) {
+    if (clock == BenchClock::ThreadCpu) {
+        timespec now{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
+        return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+    }
+    return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
 // Every candidate run once to warm up (page faults, caches), then `repeat` rounds in
 // which each runs once, so that a slow spell of the machine spreads over all of them.
 // Candidates share output buffers: each outcome is read right after its last run.
-std::vector<BenchRow> measure(std::vector<Contender>& candidates, int repeat) {
+std::vector<BenchRow> measure(std::vector<Contender>& candidates, const BenchSettings& settings) {
+    const int repeat = settings.repeat;
     for (Contender& c : candidates) c.run();
     std::vector<std::vector<double>> seconds(candidates.size());
     for (int round = 0; round < repeat; ++round) {
         for (std::size_t i = 0; i < candidates.size(); ++i) {
             Contender& c = candidates[i];
-            const Clock::time_point start = Clock::now();
+            const double start = seconds_now(settings.clock);
             c.run();
-            seconds[i].push_back(std::chrono::duration<double>(Clock::now() - start).count());
+            seconds[i].push_back(seconds_now(settings.clock) - start);
             if (round + 1 == repeat && c.outcome) {
                 const Outcome outcome = c.outcome();
                 c.row.error = error_stats(outcome.errors_px);
@@ -591,7 +603,7 @@ std::vector<BenchRow> grid_rows(const Setup& setup, const Unprojector<double>& u
     add_camera_projection(candidates, setup, prepared, work);
     add_opencv_projection(candidates, setup, cv_points, work);
     add_mrcal_projection(candidates, setup, mrcal_points, work);
-    return measure(candidates, setup.settings.repeat);
+    return measure(candidates, setup.settings);
 }
 
 // Every pixel's ray through the lens and through a pinhole with the same K.
@@ -609,7 +621,7 @@ std::vector<BenchRow> full_frame_rows(const Setup& setup, const Unprojector<doub
     add_memset(candidates, setup, n, work.frame_float, work.frame_valid);
     add_full_frame(candidates, setup, unprojector_double, work.frame_double, work.frame_valid);
     add_full_frame(candidates, setup, unprojector_float, work.frame_float, work.frame_valid);
-    return measure(candidates, setup.settings.repeat);
+    return measure(candidates, setup.settings);
 }
 
 // ---------------------------------------------------------------------------------
@@ -803,7 +815,7 @@ std::vector<BenchRow> map_rows(const Setup& setup, Workspace& work) {
         add_libcam_maps(candidates, setup, *direction, sample, work.map_float);
     }
     add_opencv_maps(candidates, setup, undistort, distort, sample, work);
-    std::vector<BenchRow> rows = measure(candidates, setup.settings.repeat);
+    std::vector<BenchRow> rows = measure(candidates, setup.settings);
     set_map_ratios(rows);
     work.map = RemapMap();
     work.map_float = RemapMapFloat();
@@ -816,6 +828,10 @@ std::vector<BenchRow> map_rows(const Setup& setup, Workspace& work) {
 
 BenchResult run_bench(const std::string& name, const Camera& camera, const BenchSettings& settings) {
     camera.validate();
+    const bool threads_one = std::all_of(settings.threads.begin(), settings.threads.end(), [](int t) { return t == 1; });
+    if (settings.clock == BenchClock::ThreadCpu && !threads_one) {
+        throw InvalidArgument("bench clock: a thread's CPU time measures one-thread rows only, not rows on more threads");
+    }
     const PixelGrid grid_shape{settings.grid_x, settings.grid_y};
     grid_shape.validate("bench grid");
     const BenchCase bench_case{name, camera};

@@ -39,6 +39,13 @@ struct BenchRow {
     double defined_differently = 0;
 };
 
+// How each repetition is timed: by the wall clock, or by the CPU time of the thread that
+// runs it, which other programs running on a busy machine do not lengthen (a call of a few
+// milliseconds that waits one turn of the scheduler looks several times slower by the
+// wall clock). The CPU time measures one-thread rows only: every row then runs on the
+// calling thread (libcam's at one thread, OpenCV's set to one, mrcal's).
+enum class BenchClock { Wall, ThreadCpu };
+
 struct BenchSettings {
     int grid_x = 601, grid_y = 401;  // pixels across and down, corners included (each >= 2)
     int repeat = 5;                  // timed repetitions, interleaved across the candidates
@@ -50,6 +57,7 @@ struct BenchSettings {
     // Instead of the rows above, the remap maps between the lens and a pinhole with its K
     // and size, both ways, and OpenCV's: every pixel of the image, no grid.
     bool maps = false;
+    BenchClock clock = BenchClock::Wall;  // ThreadCpu needs threads == {1}
 };
 
 struct BenchResult {
@@ -57,7 +65,8 @@ struct BenchResult {
     double table_build_ms_double = 0, table_build_ms_float = 0;  // Unprojector construction
 };
 
-// Measures every method on `camera`; `name` labels its rows.
+// Measures every method on `camera`; `name` labels its rows. Throws InvalidArgument for
+// the thread's CPU time with more than one thread.
 BenchResult run_bench(const std::string& name, const Camera& camera, const BenchSettings& settings);
 
 }  // namespace libcam

@@ -20,4 +20,14 @@ struct ImageSize {
     bool operator==(const ImageSize&) const = default;
 };
 
+// Whether a pixel lies on an image of `size`: within the pixels' own area,
+// [-0.5, W - 0.5] x [-0.5, H - 0.5], widened by `margin` (negative: narrowed; -0.5 keeps
+// to the span of the pixel centres, where interpolation never reads past the edge). The
+// comparisons joined by &, not &&: no branch, so that the remap kernels' loops vectorise.
+inline bool on_image(double x, double y, const ImageSize& size, double margin = 0.0) {
+    const double edge = 0.5 + margin;
+    return (x >= -edge) & (y >= -edge) & (x <= static_cast<double>(size.width) - 1.0 + edge) &
+           (y <= static_cast<double>(size.height) - 1.0 + edge);
+}
+
 }  // namespace libcam

@@ -33,8 +33,11 @@ template <class Scalar>
 inline constexpr bool kArithmeticAngle =
     std::is_same_v<Scalar, float> || std::is_same_v<Scalar, double> || is_lane_v<Scalar>;
 
+// Always inlined: the batch kernels call it per point, and a call would run the copy
+// compiled for the portable baseline, a point at a time (when more models came to call
+// it, GCC stopped inlining it: FISHEYE's batch projection became 3.3 times as slow).
 template <class Scalar>
-Scalar angle_from_axis(const Scalar& y, const Scalar& x) {
+[[gnu::always_inline]] inline Scalar angle_from_axis(const Scalar& y, const Scalar& x) {
     if constexpr (!kArithmeticAngle<Scalar>) {
         using std::atan2;
         return atan2(y, x);

@@ -89,12 +89,11 @@ Span span_of_source(const PreparedCamera& source, const Mat3& rotation, int thre
     std::mutex merging;
     parallel_chunks(n, threads, kStep, [&](std::size_t begin, std::size_t end) {
         Span span;
-        Points2<double> pixels, m;
+        Points2<double> m;
         Points3<double> rays;
         ValidFlags has_ray, projected;
         for (std::size_t first = begin; first < end; first += kStep) {
-            detail::image_pixels(pixels, first, std::min(kStep, end - first), width);
-            unprojector.unproject(pixels, UnprojectMethod::Exact, rays, has_ray);
+            unprojector.unproject_image_part(UnprojectMethod::Exact, first, std::min(kStep, end - first), rays, has_ray);
             detail::turn(rays, rotation);
             for (std::size_t j = 0; j < rays.size(); ++j) {
                 if (has_ray[j] == 0) continue;

@@ -18,7 +18,9 @@
 // pinhole the render was made with (source). Both go through this one function.
 
 #include <cstddef>
+#include <limits>
 #include <memory>
+#include <new>
 #include <utility>
 #include <vector>
 
@@ -36,9 +38,19 @@ struct RemapOptions {
     int threads = 1;
 };
 
+namespace detail {
+// Memory for a map's coordinates (remap_map.cpp). Above a few MiB it is asked for in
+// 2 MiB pages where the system gives them on request (Linux's transparent huge pages):
+// the first write of a map of hundreds of MB then takes one page fault per 2 MiB instead
+// of one per 4 KiB, which was most of the time of a large map.
+void* allocate_map_memory(std::size_t bytes);
+void free_map_memory(void* memory, std::size_t bytes) noexcept;
+}  // namespace detail
+
 // A std::allocator whose new elements are left uninitialised: a map's millions of
 // coordinates are each written once, by the thread that computes them, instead of
 // first being zeroed by one thread (a pass over the whole map the threads wait for).
+// Its memory is allocate_map_memory's.
 template <class T>
 struct UninitialisedAllocator : std::allocator<T> {
     using value_type = T;
@@ -49,6 +61,11 @@ struct UninitialisedAllocator : std::allocator<T> {
     UninitialisedAllocator() = default;
     template <class U>
     UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) {
+        if (n > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
+        return static_cast<T*>(detail::allocate_map_memory(n * sizeof(T)));
+    }
+    void deallocate(T* p, std::size_t n) noexcept { detail::free_map_memory(p, n * sizeof(T)); }
     template <class U>
     void construct(U* p) noexcept {
         ::new (static_cast<void*>(p)) U;  // default-initialised: no value for a double
@@ -94,14 +111,5 @@ extern template RemapMapFloat build_remap_map<float>(const PreparedCamera&, cons
 // The rotation between two cameras' poses: X_target = R X_source for a direction, so
 // R = R_target R_source^T (their rotations from the same world).
 Mat3 rotation_between(const Camera& target, const Camera& source);
-
-// Whether a source pixel lies on an image of `size`: within the pixels' own area,
-// [-0.5, W - 0.5] x [-0.5, H - 0.5], widened by `margin` (negative: narrowed; -0.5 keeps
-// to the span of the pixel centres, where interpolation never reads past the edge).
-inline bool on_image(double x, double y, const ImageSize& size, double margin = 0.0) {
-    const double edge = 0.5 + margin;
-    return x >= -edge && y >= -edge && x <= static_cast<double>(size.width) - 1.0 + edge &&
-           y <= static_cast<double>(size.height) - 1.0 + edge;
-}
 
 }  // namespace libcam

@@ -164,6 +164,19 @@ TEST_CASE("bench --maps: libcam's maps both ways in double and float, and OpenCV
     }
 }
 
+TEST_CASE("bench --clock cpu: the same rows timed by the thread's CPU time, said in the JSON, wall by default") {
+    const json cpu = bench_json({"--case", "mild", "--threads", "1", "--simd", "best", "--clock", "cpu"});
+    CHECK(cpu["clock"] == "cpu");
+    const json wall = bench_json({"--case", "mild", "--threads", "1", "--simd", "best"});
+    CHECK(wall["clock"] == "wall");
+    CHECK(row_names(cpu) == row_names(wall));
+    for (const json& row : cpu["rows"]) {
+        INFO(row.dump());
+        CHECK(row["threads"] == 1);
+        CHECK(row["ns_per_point"].get<double>() >= 0);
+    }
+}
+
 TEST_CASE("bench usage errors exit 2 with one line on stderr and nothing on stdout") {
     for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
              {"bench", "--repeat", "2"},
@@ -172,6 +185,8 @@ TEST_CASE("bench usage errors exit 2 with one line on stderr and nothing on stdo
              {"bench", "--threads", "0"},
              {"bench", "--simd", "avx9"},
              {"bench", "--simd", ""},
+             {"bench", "--clock", "sundial"},
+             {"bench", "--clock", "cpu"},  // its default threads, 1,2
          }) {
         const CliResult result = run_libcam(args);
         INFO(result.describe());

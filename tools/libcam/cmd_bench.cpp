@@ -36,6 +36,7 @@ struct BenchFlags {
     int repeat = 5;
     std::string threads = "1,2";
     std::string simd = "all";
+    std::string clock = "wall";
     bool full_frame = false;
     bool maps = false;
     bool json = false;
@@ -108,6 +109,13 @@ BenchSettings settings_from(const BenchFlags& flags) {
     }
     if (settings.threads.empty()) throw UsageError("--threads: expected a list such as 1,2");
     settings.simd_targets = simd_targets_from(flags.simd);
+    if (flags.clock != "wall" && flags.clock != "cpu") throw UsageError("--clock: expected wall or cpu, got '" + flags.clock + "'");
+    settings.clock = flags.clock == "cpu" ? BenchClock::ThreadCpu : BenchClock::Wall;
+    const bool one_thread = settings.threads == std::vector<int>(settings.threads.size(), 1);
+    if (settings.clock == BenchClock::ThreadCpu && !one_thread) {
+        throw UsageError("--clock cpu: a thread's CPU time measures one-thread rows only: add --threads 1, got '" +
+                         flags.threads + "'");
+    }
     settings.full_frame = flags.full_frame;
     settings.maps = flags.maps;
     return settings;
@@ -142,6 +150,7 @@ struct CaseResult {
 
 std::string format_json(const std::vector<CaseResult>& results, const BenchSettings& settings) {
     nlohmann::json out;
+    out["clock"] = settings.clock == BenchClock::ThreadCpu ? "cpu" : "wall";
     out["simd"] = {{"in_use", simd_target_name(simd_target())}, {"supported", nlohmann::json::array()}};
     for (SimdTarget target : supported_simd_targets()) out["simd"]["supported"].push_back(simd_target_name(target));
     out["rows"] = nlohmann::json::array();
@@ -182,10 +191,15 @@ void format_map_table(std::ostream& out, const std::vector<BenchRow>& rows) {
     }
 }
 
-std::string format_maps(const std::vector<CaseResult>& results) {
+// What the times are: the wall clock's, or the running thread's CPU time.
+std::string clock_note(const BenchSettings& settings) {
+    return settings.clock == BenchClock::ThreadCpu ? "; times: the CPU time of the thread that ran each" : "";
+}
+
+std::string format_maps(const std::vector<CaseResult>& results, const BenchSettings& settings) {
     std::ostringstream out;
     out << std::left;
-    out << "batch kernels: " << simd_target_name(simd_target()) << " in use\n";
+    out << "batch kernels: " << simd_target_name(simd_target()) << " in use" << clock_note(settings) << "\n";
     for (const CaseResult& r : results) {
         const Camera& camera = r.bench_case.camera;
         out << "camera " << r.bench_case.name << ": " << lens_info(camera.lens.type).name << ", " << camera.size.width << "x"
@@ -203,12 +217,12 @@ std::string format_maps(const std::vector<CaseResult>& results) {
 }
 
 std::string format_table(const std::vector<CaseResult>& results, const BenchSettings& settings) {
-    if (settings.maps) return format_maps(results);
+    if (settings.maps) return format_maps(results, settings);
     std::ostringstream out;
     out << std::left;
     out << "batch kernels: " << simd_target_name(simd_target()) << " in use; this CPU runs";
     for (SimdTarget target : supported_simd_targets()) out << " " << simd_target_name(target);
-    out << " (simd column: the set each libcam row ran on)\n";
+    out << " (simd column: the set each libcam row ran on)" << clock_note(settings) << "\n";
     for (const CaseResult& r : results) {
         const Camera& camera = r.bench_case.camera;
         out << "camera " << r.bench_case.name << ": " << lens_info(camera.lens.type).name << ", " << camera.size.width << "x"
@@ -256,6 +270,9 @@ Runner add_bench(CLI::App& app) {
     command->add_option("--simd", flags->simd,
                         "Instruction sets libcam's one-thread batch rows run on, each forced in turn: all (every set "
                         "this CPU runs, default), best (the one in use), or a list such as sse2,avx2");
+    command->add_option("--clock", flags->clock,
+                        "How each repetition is timed: wall (the wall clock, default) or cpu (the CPU time of the "
+                        "thread that runs it, which other programs on a busy machine do not lengthen; with --threads 1)");
     command->add_flag("--full-frame", flags->full_frame,
                       "Also time every pixel's ray for the lens and for a pinhole with the same K, against memset");
     command->add_flag("--maps", flags->maps,
