@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
-#include "libcam/interop/colmap_dataset.hpp"
+#include "libcam/dataset/colmap_dataset.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
 
 namespace libcam {

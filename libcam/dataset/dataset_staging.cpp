@@ -1,4 +1,4 @@
-#include "libcam/interop/dataset_staging.hpp"
+#include "libcam/dataset/dataset_staging.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -6,7 +6,7 @@
 #include <set>
 
 #include "libcam/error.hpp"
-#include "libcam/interop/dataset_paths.hpp"
+#include "libcam/dataset/detail/dataset_paths.hpp"
 #include "libcam/io/atomic_write.hpp"
 
 namespace libcam {

@@ -1,10 +1,10 @@
-#include "libcam/interop/dataset_sources.hpp"
+#include "libcam/dataset/detail/dataset_sources.hpp"
 
 #include <algorithm>
 #include <sstream>
 
 #include "libcam/error.hpp"
-#include "libcam/interop/dataset_paths.hpp"
+#include "libcam/dataset/detail/dataset_paths.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/lens/lens_model.hpp"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "libcam/interop/colmap_dataset.hpp"
+#include "libcam/dataset/colmap_dataset.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
 #include "libcam/io/detail/nerf_transforms.hpp"
 

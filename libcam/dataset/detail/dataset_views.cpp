@@ -1,4 +1,4 @@
-#include "libcam/interop/dataset_views.hpp"
+#include "libcam/dataset/detail/dataset_views.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -1,11 +1,11 @@
-#include "libcam/interop/dataset_output.hpp"
+#include "libcam/dataset/detail/dataset_output.hpp"
 
 #include <algorithm>
 #include <set>
 
 #include "libcam/error.hpp"
-#include "libcam/interop/dataset_paths.hpp"
-#include "libcam/interop/dataset_sources.hpp"
+#include "libcam/dataset/detail/dataset_paths.hpp"
+#include "libcam/dataset/detail/dataset_sources.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/text/number_format.hpp"
 

@@ -17,7 +17,7 @@
 // renumbered), and a point left with no observation is dropped. Each point's ERROR is
 // recomputed in the new pixels (the mean over its track, as COLMAP defines it).
 //
-// With `views` (dataset_views.hpp) a wide lens becomes several pinholes turned away from
+// With `views` (detail/dataset_views.hpp) a wide lens becomes several pinholes turned away from
 // its axis: each source image becomes one image per view (its pose turned), each
 // observation is written in every view it lands on and its point's track names each.
 //
@@ -27,7 +27,7 @@
 // A source camera that is already a pinhole, given no --size or field of view, is kept as
 // it is and its images copied.
 //
-// Paths (dataset_paths.hpp): each image's name is a plain relative path inside the images
+// Paths (detail/dataset_paths.hpp): each image's name is a plain relative path inside the images
 // folder, and the output's folders stay inside the output folder, or the run is refused
 // before it writes anything, as it is for a model it cannot read, a camera it cannot
 // choose or a source image that is not there.
@@ -52,8 +52,8 @@
 #include <string>
 #include <vector>
 
-#include "libcam/interop/dataset_staging.hpp"
-#include "libcam/interop/dataset_tasks.hpp"
+#include "libcam/dataset/dataset_staging.hpp"
+#include "libcam/dataset/dataset_tasks.hpp"
 #include "libcam/interop/image_remap.hpp"
 #include "libcam/remap/new_camera.hpp"
 
@@ -62,13 +62,13 @@ namespace libcam {
 // What the output's cameras and poses are written as.
 enum class DatasetFormat {
     Colmap,  // OUT/sparse/0/{cameras,images,points3D}
-    Nerf,    // OUT/transforms.json (and sparse_pc.ply): dataset_sources.hpp
+    Nerf,    // OUT/transforms.json (and sparse_pc.ply): detail/dataset_sources.hpp
 };
 
 struct DatasetOptions {
     // A COLMAP model folder (cameras, images, points3D; .bin or .txt), or NeRF's
     // transforms.json (a .json file: its frames' cameras and poses, no points;
-    // dataset_sources.hpp).
+    // detail/dataset_sources.hpp).
     std::filesystem::path model;
     std::filesystem::path images;  // the source images; empty: write the model alone
     std::filesystem::path output;  // gets sparse/0/ (or transforms.json) and images/
@@ -81,7 +81,7 @@ struct DatasetOptions {
     int threads = 1;
     bool text = false;  // write the model as text instead of binary
     // Split a lens wider than one pinhole holds well into several pinhole views, each with
-    // its own camera, images and turned pose (dataset_views.hpp); `camera` is then unused.
+    // its own camera, images and turned pose (detail/dataset_views.hpp); `camera` is then unused.
     bool views = false;
     // Also write masks/<image name>.png: 255 where the output pixel has a source pixel, 0
     // where it is black (COLMAP's mask convention, ImageReader.mask_path).
@@ -162,7 +162,7 @@ DatasetSummary finish_dataset(const DatasetPlan& plan);
 void set_dataset_camera(DatasetOptions& options, const std::string& camera, std::optional<ImageSize> size);
 
 // The source images beside a model: X/images for the COLMAP model X/sparse/0; for a
-// transforms.json where its frames are (dataset_sources.hpp).
+// transforms.json where its frames are (detail/dataset_sources.hpp).
 std::filesystem::path default_dataset_images(const std::filesystem::path& model);
 
 // The summary as `libcam dataset --json` prints it (with "time_s" when `seconds` is given).

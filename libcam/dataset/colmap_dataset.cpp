@@ -1,4 +1,4 @@
-#include "libcam/interop/colmap_dataset.hpp"
+#include "libcam/dataset/colmap_dataset.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -10,10 +10,10 @@
 #include "libcam/camera/parallel.hpp"
 #include "libcam/convert/colmap_models.hpp"
 #include "libcam/error.hpp"
-#include "libcam/interop/dataset_output.hpp"
-#include "libcam/interop/dataset_paths.hpp"
-#include "libcam/interop/dataset_views.hpp"
-#include "libcam/interop/dataset_sources.hpp"
+#include "libcam/dataset/detail/dataset_output.hpp"
+#include "libcam/dataset/detail/dataset_paths.hpp"
+#include "libcam/dataset/detail/dataset_views.hpp"
+#include "libcam/dataset/detail/dataset_sources.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
 #include "libcam/lens/lens_model.hpp"
@@ -26,7 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A COLMAP model, or another source taken in as one (dataset_sources.hpp).
+// A COLMAP model, or another source taken in as one (detail/dataset_sources.hpp).
 using ColmapModelRead = DatasetModel;
 
 ColmapModelRead read_model(const fs::path& folder) {
@@ -222,7 +222,7 @@ void count_kept(const std::vector<ColmapImage>& images, const std::vector<std::v
 }
 
 // --camera views: the model's cameras, images and tracks replaced by the views'
-// (dataset_views.hpp), `source_of` and `source_names` saying where each image comes from.
+// (detail/dataset_views.hpp), `source_of` and `source_names` saying where each image comes from.
 void split_model_into_views(ColmapModelRead& model, std::vector<std::size_t>& camera_of,
                             std::vector<std::size_t>& source_of, std::vector<std::string>& source_names,
                             std::vector<ColmapCameraRecord>& new_records, DatasetSummary& summary,
@@ -245,7 +245,7 @@ void split_model_into_views(ColmapModelRead& model, std::vector<std::size_t>& ca
     source_of = std::move(split.source_of);
 }
 
-// Every image's name made plain, or the run refused (dataset_paths.hpp).
+// Every image's name made plain, or the run refused (detail/dataset_paths.hpp).
 void plain_names(std::vector<ColmapImage>& images, const std::string& field) {
     for (ColmapImage& image : images) image.name = plain_image_name(image.name, image.where, field, "the images folder");
 }

@@ -1,4 +1,4 @@
-#include "libcam/interop/dataset_paths.hpp"
+#include "libcam/dataset/detail/dataset_paths.hpp"
 
 #include <sys/stat.h>
 

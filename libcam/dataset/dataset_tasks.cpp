@@ -1,4 +1,4 @@
-#include "libcam/interop/dataset_tasks.hpp"
+#include "libcam/dataset/dataset_tasks.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -11,8 +11,8 @@
 
 #include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
-#include "libcam/interop/dataset_paths.hpp"
-#include "libcam/interop/dataset_staging.hpp"
+#include "libcam/dataset/detail/dataset_paths.hpp"
+#include "libcam/dataset/dataset_staging.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/detail/json_format.hpp"
