@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/dataset/detail/dataset_views.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/observations.hpp"

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/detail/mrcal_observations.hpp"
 

@@ -1,4 +1,4 @@
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 
 #include <algorithm>
 #include <cmath>
