@@ -22,7 +22,7 @@
 #include "libcam/convert/fov_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/mrcal.hpp"
-#include "libcam/interop/mrcal_c.hpp"
+#include "libcam/interop/detail/mrcal_c.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "support.hpp"
 

@@ -25,11 +25,11 @@
 #include <cstdint>
 #include <limits>
 
-#include "libcam/camera/batch_kernels.hpp"
-#include "libcam/camera/kernels.hpp"
-#include "libcam/camera/point_scale.hpp"
-#include "libcam/camera/unprojector_domain.hpp"
-#include "libcam/camera/unprojector_table.hpp"
+#include "libcam/camera/detail/batch_kernels.hpp"
+#include "libcam/camera/detail/kernels.hpp"
+#include "libcam/camera/detail/point_scale.hpp"
+#include "libcam/camera/detail/unprojector_domain.hpp"
+#include "libcam/camera/detail/unprojector_table.hpp"
 #include "libcam/lens/lane.hpp"
 #include "libcam/lens/lens_models.hpp"
 #include "libcam/lens/undistort.hpp"
@@ -50,8 +50,8 @@ namespace {
 
 using namespace libcam::detail;
 
-#include "libcam/camera/projector_kernel.inl"
-#include "libcam/camera/unprojector_kernel.inl"
+#include "libcam/camera/detail/projector_kernel.inl"
+#include "libcam/camera/detail/unprojector_kernel.inl"
 
 }  // namespace
 }  // namespace libcam::kernels::LIBCAM_KERNEL_TARGET

@@ -1,6 +1,6 @@
 // What unprojector_domain.hpp declares: the parts that are not templates on the model.
 
-#include "libcam/camera/unprojector_domain.hpp"
+#include "libcam/camera/detail/unprojector_domain.hpp"
 
 #include <algorithm>
 

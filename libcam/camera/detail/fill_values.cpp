@@ -1,4 +1,4 @@
-#include "libcam/camera/fill_values.hpp"
+#include "libcam/camera/detail/fill_values.hpp"
 
 // GCC compiles each function below for AVX-512, AVX2 and plain x86-64 and picks one
 // when the program is loaded (target_clones). The loops call nothing, so no inline

@@ -1,5 +1,5 @@
 // The projection kernel, compiled once per instruction set: included only by
-// camera/kernels_for_target.hpp, inside its target region, which has included every
+// camera/detail/kernels_for_target.hpp, inside its target region, which has included every
 // header this file uses (no #include here: a header first included inside the region
 // would compile its inline functions for the region's instruction set).
 

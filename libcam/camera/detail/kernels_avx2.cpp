@@ -3,4 +3,4 @@
 #define LIBCAM_KERNEL_TARGET avx2
 #define LIBCAM_KERNEL_TARGET_ENUM Avx2
 #define LIBCAM_KERNEL_PRAGMA "avx2,fma"
-#include "libcam/camera/kernels_for_target.hpp"
+#include "libcam/camera/detail/kernels_for_target.hpp"

@@ -4,4 +4,4 @@
 #define LIBCAM_KERNEL_TARGET avx512
 #define LIBCAM_KERNEL_TARGET_ENUM Avx512
 #define LIBCAM_KERNEL_PRAGMA "avx2,fma,avx512f,avx512dq,avx512vl,avx512bw,prefer-vector-width=512"
-#include "libcam/camera/kernels_for_target.hpp"
+#include "libcam/camera/detail/kernels_for_target.hpp"

@@ -1,13 +1,13 @@
 #pragma once
 // Internal to libcam: the batch kernels, compiled once per instruction set
-// (camera/simd.hpp, camera/kernels_for_target.hpp), and what passes between them and
+// (camera/simd.hpp, camera/detail/kernels_for_target.hpp), and what passes between them and
 // the code that calls them (camera/projector.cpp, camera/unprojector.cpp). Everything
 // here is compiled for the portable baseline.
 
 #include <cstddef>
 #include <cstdint>
 
-#include "libcam/camera/batch_kernels.hpp"
+#include "libcam/camera/detail/batch_kernels.hpp"
 #include "libcam/camera/camera.hpp"
 #include "libcam/camera/simd.hpp"
 #include "libcam/camera/unprojector.hpp"

@@ -1,5 +1,5 @@
 // The unprojection kernel, compiled once per instruction set: included only by
-// camera/kernels_for_target.hpp, inside its target region, which has included every
+// camera/detail/kernels_for_target.hpp, inside its target region, which has included every
 // header this file uses (no #include here: see projector_kernel.inl).
 
 constexpr int kFastNewtonSteps = 1;
