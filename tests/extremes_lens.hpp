@@ -465,7 +465,7 @@ inline std::vector<Vec3> points_at_every_scale() {
 // ------------------------------------------------------ the NaN / infinity sweep
 
 // Everything at once: every model (mild, strong, near-zero, hand folds), points at every
-// scale and side, pixels from the principal point to 1e300 px away, and the FOV cameras
+// scale and side, pixels from the principal point to 1e300 px away, and the look-at cameras
 // at their extremes. A result is either flagged (invalid, or an error thrown) or finite.
 struct SweepCount {
     std::size_t results = 0, unflagged_non_finite = 0;

@@ -1,4 +1,4 @@
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,11 @@
 
 namespace libcam {
 
-Camera to_camera(const LookAtCamera& fov_camera) {
-    fov_camera.validate();
-    const FovPinholeT<double> pinhole = pinhole_from_fov<double>(fov_camera);
+Camera to_camera(const LookAtCamera& look_at_camera) {
+    look_at_camera.validate();
+    const FovPinholeT<double> pinhole = pinhole_from_fov<double>(look_at_camera);
     Camera camera;
-    camera.size = fov_camera.size;
+    camera.size = look_at_camera.size;
     camera.intrinsics = Intrinsics{pinhole.focal.x(), pinhole.focal.y(), pinhole.principal_point.x(),
                                    pinhole.principal_point.y(), 0.0};
     camera.pose = Pose{pinhole.R, pinhole.t};
@@ -129,7 +129,7 @@ LookAtCamera to_look_at_camera(const Camera& camera, FovAxis axis) {
     if (!description.fits_axis(axis)) {
         std::string reasons;
         for (const std::string& reason : description.deviations) reasons += (reasons.empty() ? "" : "; ") + reason;
-        throw NotRepresentable("not a FOV camera on the " + std::string(to_string(axis)) + " axis: " + reasons);
+        throw NotRepresentable("not a look-at camera on the " + std::string(to_string(axis)) + " axis: " + reasons);
     }
     return LookAtCamera{description.eye,
                      description.gaze,

@@ -1,4 +1,4 @@
-// The FOV camera and its conversions at the extremes, against the 113-bit
+// The look-at camera and its conversions at the extremes, against the 113-bit
 // reference: libcam's own templated formulas (look_at_formulas.hpp, pinhole_from_fov,
 // look_at_formula_in) run in Quad from the very same inputs. Each extreme is a group of
 // rows (extremes.hpp) with a documented bound; the test cases assert the bounds and
@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "extremes.hpp"
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "reference.hpp"
 #include "support.hpp"
@@ -41,7 +41,7 @@ const std::vector<double>& fov_sweep() {
 // A camera with a random pose (eye within 100 of the origin, up at least ~6 degrees
 // from the gaze), the given fov, axis and size.
 LookAtCamera swept_camera(double fov, FovAxis axis, ImageSize size) {
-    LookAtCamera camera = random_fov_camera(size, axis);
+    LookAtCamera camera = random_look_at_camera(size, axis);
     camera.fov_deg = fov;
     return camera;
 }
@@ -231,7 +231,7 @@ double basis_error(const BasisT<Scalar>& basis, const BasisT<Quad>& reference) {
         {angle_error(basis.u, reference.u), angle_error(basis.v, reference.v), angle_error(basis.w, reference.w)});
 }
 
-// A FOV camera through look_at, for the pose extremes (fov and size are ordinary).
+// A look-at camera through look_at, for the pose extremes (fov and size are ordinary).
 LookAtCamera posed_camera(const Vec3& eye, const Vec3& target, const Vec3& up) {
     return LookAtCamera::look_at(eye, target, up, 60.0, FovAxis::Horizontal, {1920, 1080});
 }
@@ -411,7 +411,7 @@ std::vector<Row> up_near_gaze_rows() {
 }
 
 // K -> fov angles of a camera whose principal point is off centre, up to 10000 image
-// sides away (not a FOV camera: the way back reports its angles and frustum). The
+// sides away (not a look-at camera: the way back reports its angles and frustum). The
 // reference: atan(high) - atan(low) in Quad, the edges' tangents from the same K.
 std::vector<Row> off_centre_rows() {
     Worst worst;

@@ -1,5 +1,5 @@
-// FOV camera <-> calibrated camera: K, R, t by hand, round trips, rays both ways,
-// and the way back refusing what is not a FOV camera.
+// The look-at camera <-> calibrated camera: K, R, t by hand, round trips, rays both ways,
+// and the way back refusing what is not a look-at camera.
 
 #include <catch2/catch.hpp>
 
@@ -67,7 +67,7 @@ TEST_CASE("R has rows u, -v, gaze and t = -R eye") {
     REQUIRE((P.row(0) - Eigen::RowVector4d(1.5, -s, -s, 5 * std::sqrt(2.0))).norm() < 1e-14);
 }
 
-TEST_CASE("round trip FOV camera -> K, R, t -> FOV camera") {
+TEST_CASE("round trip look-at camera -> K, R, t -> look-at camera") {
     int cameras = 0;
     for (int i = 0; i < 400; ++i) {
         // Aspect ratios from 1:8 to 8:1, fov from 1 to 179 degrees, every axis.
@@ -75,7 +75,7 @@ TEST_CASE("round trip FOV camera -> K, R, t -> FOV camera") {
         const long width = std::max(1L, std::lround(1000 * std::sqrt(aspect)));
         const long height = std::max(1L, std::lround(1000 / std::sqrt(aspect)));
         const FovAxis axis = test::random_axis(i);
-        LookAtCamera original = test::random_fov_camera({width, height}, axis);
+        LookAtCamera original = test::random_look_at_camera({width, height}, axis);
         if (i < 8) original.fov_deg = (i % 2 == 0) ? 1.0 : 179.0;  // the ends of the range, exactly
         // A diagonal fov must leave both axes under 180: always true; any fov < 180 is valid.
         const LookAtCamera back = to_look_at_camera(to_camera(original), axis);
@@ -107,7 +107,7 @@ TEST_CASE("rays both ways agree on every pixel of a 1920x1080 image") {
     long pixels = 0;
     for (int i = 0; i < 20; ++i) {
         const ImageSize size = i < 16 ? ImageSize{1920, 1080} : ImageSize{i % 2 ? 300L : 2400L, i % 2 ? 2400L : 300L};
-        const LookAtCamera fov = test::random_fov_camera(size, test::random_axis(i));
+        const LookAtCamera fov = test::random_look_at_camera(size, test::random_axis(i));
         const PixelOrigin origin = i % 2 == 0 ? PixelOrigin::BottomLeft : PixelOrigin::TopLeft;
         const PreparedCamera camera(to_camera(fov));
         const LookAtRayFormula look_at = fov.look_at_formula();
@@ -137,7 +137,7 @@ TEST_CASE("fov angles and frustum of an off-centre camera, by hand") {
     REQUIRE(std::abs(d.frustum.top - 20.5 / 100) < 1e-16);
     REQUIRE(relative_error(d.fov_deg.horizontal, deg(std::atan(0.695) + std::atan(0.305))) < 1e-14);
     REQUIRE(relative_error(d.fov_deg.vertical, deg(std::atan(0.295) + std::atan(0.205))) < 1e-14);
-    REQUIRE_FALSE(d.is_fov_camera());
+    REQUIRE_FALSE(d.is_look_at_camera());
     REQUIRE_THROWS_AS(to_look_at_camera(camera, FovAxis::Horizontal), NotRepresentable);
     REQUIRE_THROWS_WITH(to_look_at_camera(camera, FovAxis::Both), Catch::Matchers::Contains("principal point cx 30"));
 }
@@ -150,7 +150,7 @@ TEST_CASE("fov angles of a centred camera, by hand") {
     REQUIRE(relative_error(d.fov_deg.horizontal, 90.0) < 1e-15);                            // 2 atan(500/500)
     REQUIRE(relative_error(d.fov_deg.vertical, deg(2 * std::atan(0.5))) < 1e-15);           // 2 atan(250/500)
     REQUIRE(relative_error(d.fov_deg.diagonal, deg(2 * std::atan(std::sqrt(1.25)))) < 1e-15);  // hypot(1, .5)
-    // Square pixels: a FOV camera on horizontal, vertical, diagonal; W/fx != H/fy, so not "both".
+    // Square pixels: a look-at camera on horizontal, vertical, diagonal; W/fx != H/fy, so not "both".
     REQUIRE(d.fits_axis(FovAxis::Horizontal));
     REQUIRE(d.fits_axis(FovAxis::Vertical));
     REQUIRE(d.fits_axis(FovAxis::Diagonal));
@@ -164,7 +164,7 @@ TEST_CASE("skew and non-square pixels are reported, not dropped") {
     camera.size = {640, 480};
     camera.intrinsics = {500.0, 500.0, 319.5, 239.5, 2.0};
     FovDescription d = describe_fov(camera);
-    REQUIRE_FALSE(d.is_fov_camera());
+    REQUIRE_FALSE(d.is_look_at_camera());
     REQUIRE(d.deviations.size() == 2);  // the skew, and W/fx = 1.28 != H/fy = 0.96
     REQUIRE_THAT(d.deviations[0], Catch::Matchers::Contains("skew 2"));
 
@@ -175,7 +175,7 @@ TEST_CASE("skew and non-square pixels are reported, not dropped") {
     REQUIRE_THROWS_WITH(to_look_at_camera(camera, FovAxis::Vertical), Catch::Matchers::Contains("not square"));
 }
 
-TEST_CASE("bad FOV cameras are refused with the field named") {
+TEST_CASE("bad look-at cameras are refused with the field named") {
     using Catch::Matchers::Contains;
     auto fov = [](double deg) { return LookAtCamera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, deg, FovAxis::Both, {3, 3}}; };
     for (double bad : {0.0, -5.0, 180.0, 200.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
