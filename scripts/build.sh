@@ -21,6 +21,10 @@ if command -v ccache >/dev/null 2>&1 && [ "${LIBCAM_CCACHE:-1}" = 1 ]; then
 fi
 if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$root" -B "$build" "${generator[@]}" "${launcher[@]}" -DCMAKE_BUILD_TYPE="${LIBCAM_BUILD_TYPE:-RelWithDebInfo}" "$@"
+elif [ "$#" -gt 0 ]; then
+  # Settings given again are applied to the existing folder (the quick start's build/
+  # without the AVX kernels, then scripts/test.sh's with them).
+  cmake -S "$root" -B "$build" "$@" > /dev/null
 fi
 targets=()
 for target in ${LIBCAM_BUILD_TARGET:-}; do targets+=(--target "$target"); done

@@ -497,7 +497,21 @@ inline std::vector<Vec2> sweep_pixels(const Camera& camera) {
     return pixels;
 }
 
-inline std::vector<Camera> sweep_cameras() {
+// Whether Camera::validate takes the camera. A real lens's coefficients behind a focal
+// length of 4.4e-6 px put the pixel next to the principal point 2.3e5 focal lengths off the
+// axis, far past the lens's domain: such a camera images nothing beyond its principal
+// point, and libcam refuses it (camera.cpp says the rule) before any batch code sees it.
+inline bool images_something(const Camera& camera) {
+    try {
+        camera.validate();
+        return true;
+    } catch (const InvalidArgument&) {
+        return false;
+    }
+}
+
+// The cameras of the sweeps; `refused` counts those Camera::validate refuses, left out.
+inline std::vector<Camera> sweep_cameras(std::size_t* refused = nullptr) {
     std::vector<Camera> cameras;
     for (const LensCase& c : sanitized_subset(lens_cases())) cameras.push_back(c.camera);
     for (const LensCase& c : coefficient_extremes()) cameras.push_back(c.camera);
@@ -517,6 +531,9 @@ inline std::vector<Camera> sweep_cameras() {
             cameras.push_back(camera);
         }
     }
+    const auto kept_end = std::stable_partition(cameras.begin(), cameras.end(), images_something);
+    if (refused) *refused = static_cast<std::size_t>(cameras.end() - kept_end);
+    cameras.erase(kept_end, cameras.end());
     return cameras;
 }
 

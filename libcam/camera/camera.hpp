@@ -37,7 +37,10 @@ struct Camera {
     Lens lens;
     Pose pose;
 
-    // Throws InvalidArgument naming the field for a bad size, K, lens or pose.
+    // Throws InvalidArgument naming the field for a bad size, K, lens or pose, and for a
+    // camera whose numbers contradict each other: K not invertible over the image, or a
+    // lens that has no ray, or changes its scale by more than 2, within the pixel next to
+    // the principal point (camera.cpp says the rule).
     void validate() const;
 
     // P = K [R | t] (pinhole part only: distortion is not linear).

@@ -16,6 +16,7 @@
 #include "libcam/dataset/detail/dataset_sources.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
+#include "libcam/io/detail/colmap_model.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/remap/remap_map.hpp"
 #include "libcam/text/number_format.hpp"
@@ -29,22 +30,21 @@ namespace fs = std::filesystem;
 // A COLMAP model, or another source taken in as one (detail/dataset_sources.hpp).
 using ColmapModelRead = DatasetModel;
 
+// The model a source names: a transforms.json itself; for a folder, the COLMAP model
+// colmap_model_folder finds (a workspace's sparse/ holding 0/: sparse/0).
+fs::path named_model(const fs::path& source) {
+    if (is_nerf_dataset_source(source)) return source;
+    const fs::path folder = colmap_model_folder(source);
+    return folder.empty() ? source : folder;
+}
+
+// The model read and checked as every command reads it (io/detail/colmap_model.hpp).
 ColmapModelRead read_model(const fs::path& folder) {
-    const fs::path cameras_file = colmap_cameras_file_in(folder);
-    if (cameras_file.empty()) throw FileError(folder.string() + ": no cameras.bin or cameras.txt: not a COLMAP model folder");
-    const bool binary = cameras_file.extension() == ".bin";
-    const std::string extension = binary ? ".bin" : ".txt";
-    const fs::path images_file = folder / ("images" + extension);
-    const fs::path points_file = folder / ("points3D" + extension);
-    for (const fs::path& file : {images_file, points_file}) {
-        if (!regular_file_exists(file)) {
-            throw FileError(file.string() + ": missing (a COLMAP model has cameras, images and points3D)");
-        }
-    }
+    ColmapModelRecords records = read_whole_colmap_model(folder);
     ColmapModelRead model;
-    model.cameras = read_colmap_cameras(read_text_file(cameras_file), cameras_file.string(), binary);
-    model.images = read_colmap_images(read_text_file(images_file), images_file.string(), binary, true);
-    model.points = read_colmap_points3d(read_text_file(points_file), points_file.string(), binary);
+    model.cameras = std::move(records.cameras);
+    model.images = std::move(records.images);
+    model.points = std::move(records.points);
     return model;
 }
 
@@ -252,7 +252,9 @@ void plain_names(std::vector<ColmapImage>& images, const std::string& field) {
 
 }  // namespace
 
-DatasetPlan plan_dataset(const DatasetOptions& options) {
+DatasetPlan plan_dataset(const DatasetOptions& given) {
+    DatasetOptions options = given;
+    options.model = named_model(given.model);
     const int threads = worker_count(options.threads);
     const bool nerf_source = is_nerf_dataset_source(options.model);
     ColmapModelRead model = nerf_source ? read_nerf_dataset(options.model) : read_model(options.model);
@@ -375,7 +377,7 @@ void set_dataset_camera(DatasetOptions& options, const std::string& camera, std:
 
 fs::path default_dataset_images(const fs::path& model) {
     if (is_nerf_dataset_source(model)) return nerf_dataset_images_folder(model);
-    const fs::path folder = fs::absolute(model).lexically_normal();
+    const fs::path folder = fs::absolute(named_model(model)).lexically_normal();
     const fs::path trimmed = folder.has_filename() ? folder : folder.parent_path();
     return trimmed.parent_path().parent_path() / "images";
 }

@@ -1,6 +1,8 @@
 #include "libcam/geometry/intrinsics.hpp"
 
 #include <cmath>
+#include <limits>
+#include <utility>
 #include <string>
 
 #include "libcam/error.hpp"
@@ -35,7 +37,10 @@ void Intrinsics::validate(const char* field) const {
     // The common case first, without building a message: Camera checks K on every call.
     const bool finite = std::isfinite(fx) && std::isfinite(fy) && std::isfinite(cx) && std::isfinite(cy) &&
                         std::isfinite(skew);
-    if (finite && fx > 0.0 && fy > 0.0) return;
+    // A focal length is divided by (normalized_from_pixel): a subnormal one (5e-324) passes
+    // "> 0" but has no finite inverse, so the smallest is the smallest normal number.
+    constexpr double kSmallest = std::numeric_limits<double>::min();
+    if (finite && fx >= kSmallest && fy >= kSmallest) return;
     const std::string prefix(field);
     require_finite((prefix + ".fx").c_str(), fx);
     require_finite((prefix + ".fy").c_str(), fy);
@@ -44,6 +49,12 @@ void Intrinsics::validate(const char* field) const {
     require_finite((prefix + ".skew").c_str(), skew);
     if (!(fx > 0.0)) throw InvalidArgument(prefix + ".fx: must be > 0, got " + format_number(fx));
     if (!(fy > 0.0)) throw InvalidArgument(prefix + ".fy: must be > 0, got " + format_number(fy));
+    for (const auto& [name, value] : {std::pair{".fx", fx}, std::pair{".fy", fy}}) {
+        if (value < kSmallest) {
+            throw InvalidArgument(prefix + name + ": " + format_number(value) + " is subnormal (a focal length must be at least " +
+                                  format_number(kSmallest) + ")");
+        }
+    }
 }
 
 }  // namespace libcam

@@ -27,7 +27,8 @@ struct Intrinsics {
     // K(1,0) is 0, every entry is finite, and fx, fy > 0.
     static Intrinsics from_K(const Mat3& K, const char* field = "K");
 
-    // Throws InvalidArgument unless every value is finite and fx, fy > 0.
+    // Throws InvalidArgument unless every value is finite and fx, fy are normal numbers > 0
+    // (not subnormal: their inverses must be finite).
     void validate(const char* field = "K") const;
 
     // K^-1 [x, y, 1]: the normalised image point (x/z, y/z) of a pixel. In any scalar

@@ -106,6 +106,9 @@ void check_observations(const ObservationSet& set) {
 namespace detail {
 
 std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::string& source, std::string_view where) {
+    // The checks reading the file's observations makes, so that its cameras and its
+    // observations are refused alike (`libcam info` and `libcam reproject` agree).
+    check_observations(set);
     std::vector<NamedCamera> cameras;
     for (const ObservedView& view : set.views) {
         const ObservedCamera& intrinsics = set.cameras[static_cast<std::size_t>(view.camera)];

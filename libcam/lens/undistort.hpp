@@ -63,7 +63,12 @@ bool solve_radial(const Parameters& lens, Scalar target, Scalar& r) {
     constexpr int kMaxIterations = 200;
     Scalar low(0), high = lens.valid_radius, slope(0);
     if (high < std::numeric_limits<Scalar>::infinity()) {
-        if (!(Model::radial_distortion(lens, high, slope) > target)) {
+        // Where d folds over, d(valid_radius) is its largest value. Where the rational
+        // model's denominator reaches 0 instead, d runs to +infinity there, and the root's
+        // rounding may put valid_radius just past it, where d has changed sign: every
+        // target is then below d inside the bracket.
+        const Scalar at_high = Model::radial_distortion(lens, high, slope);
+        if (!(at_high > target) && !(at_high < Scalar(0))) {
             // Past the radial part's maximum: only the tangential terms can still bring
             // the pixel in. Start step 2 well inside the fold, where its Jacobian is sound.
             r = high * Scalar(0.9);

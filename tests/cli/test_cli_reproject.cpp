@@ -1,5 +1,5 @@
-// `libcam reproject` and `libcam fit --observations`, run as a user runs them, on COLMAP
-// text models this test writes: a pinhole camera whose pixels are worked out by
+// `libcam reproject` and `libcam fit --observations` (and info and dataset given a
+// workspace's sparse/ folder), run as a user runs them, on COLMAP text models this test writes: a pinhole camera whose pixels are worked out by
 // x = f X / Z + cx (plus COLMAP's half pixel), with a known pattern of noise.
 
 #include <catch2/catch.hpp>
@@ -129,6 +129,43 @@ TEST_CASE("libcam reproject --observations-out and --heatmap write their files")
     CHECK(count == 1 + 900);
     const std::string picture = libcam::test::read_whole_file(png);
     CHECK(picture.substr(1, 3) == "PNG");
+}
+
+TEST_CASE("info, reproject and dataset given a workspace's sparse/ take its one model, and ask to name one of several") {
+    TempDir dir;
+    const std::string sparse = (dir / "sparse").string();
+    write_model(dir / "sparse" / "0", true);
+    const auto info = run_libcam({"info", sparse, "--json"});
+    REQUIRE(info.exit_code == 0);
+    CHECK(Json::parse(info.out).at("cameras").size() == 6);  // the six images of write_model
+    const auto reproject = run_libcam({"reproject", sparse, "--json"});
+    REQUIRE(reproject.exit_code == 0);
+    CHECK(Json::parse(reproject.out)["count"] == 900);
+    const auto dataset = run_libcam({"dataset", sparse, "-o", (dir / "out").string(), "--no-images", "--text"});
+    REQUIRE(dataset.exit_code == 0);
+    CHECK(libcam::test::read_whole_file(dir / "out" / "sparse" / "0" / "cameras.txt")
+              .find("1 PINHOLE 640 480 800 800 320 240") != std::string::npos);
+    // The images beside the model are the workspace's images/ (sparse/0's grandparent's).
+    const auto no_images = run_libcam({"dataset", sparse, "-o", (dir / "out2").string()});
+    CHECK(no_images.exit_code != 0);
+    CHECK(no_images.err.find((dir / "images").string() + ": no such images folder") != std::string::npos);
+
+    // COLMAP's mapper numbers its models 0, 1, 2, ...: 10 comes after 2.
+    write_model(dir / "sparse" / "10", true);
+    write_model(dir / "sparse" / "2", true);
+    std::filesystem::create_directories(dir / "sparse" / "notes");  // a folder without a model is not one
+    const std::string several = sparse + " holds 3 COLMAP models (0, 2, 10): name one, e.g. " + sparse + "/0";
+    for (const char* command : {"info", "reproject"}) {
+        const auto refused = run_libcam({command, sparse});
+        INFO(command);
+        CHECK(refused.exit_code == 1);
+        CHECK(refused.err.find(several) != std::string::npos);
+        CHECK(std::count(refused.err.begin(), refused.err.end(), '\n') == 1);
+    }
+    const auto refused = run_libcam({"dataset", sparse, "-o", (dir / "out3").string(), "--no-images"});
+    CHECK(refused.exit_code == 1);
+    CHECK(refused.err.find(several) != std::string::npos);
+    CHECK(run_libcam({"info", sparse + "/2"}).exit_code == 0);
 }
 
 TEST_CASE("libcam reproject refuses what it cannot read, in one line") {

@@ -121,7 +121,7 @@ TEST_CASE("COLMAP model folder: each image with its camera's intrinsics and its 
     // The cameras file named directly reads the images beside it too; so does another file
     // of the model named instead (not read as if it were the cameras).
     CHECK(read_camera_set(dir.path() / "cameras.txt").cameras.size() == 3);
-    write_file_atomically(dir.path() / "points3D.txt", "# 3D point list\n");
+    write_file_atomically(dir.path() / "points3D.txt", "# 3D point list\n7 0 0 1 0 0 0 0.5 9 1\n");
     for (const char* part : {"images.txt", "points3D.txt"}) {
         INFO(part);
         const CameraSet from_part = read_camera_set(dir.path() / part);
@@ -261,14 +261,14 @@ TEST_CASE("COLMAP files that are wrong are refused, naming the file, line and fi
           "cameras.txt: line 1: WIDTH: expected an integer in [1, 1000000], got '0'");
     CHECK_THAT(error_of("1 PINHOLE 640 480 -5 510 320 240\n"), Catch::StartsWith("cameras.txt: line 1: camera 1: "));
     CHECK(error_of("1 PINHOLE 640 480 500 510 320 240\n1 PINHOLE 640 480 500 510 320 240\n") ==
-          "cameras.txt: camera id 1 appears more than once");
+          "cameras.txt: CAMERA_ID 1 appears more than once");
     CHECK(error_of("# only comments\n") == "cameras.txt: no camera");
 
     test::TempDir dir;
     write_file_atomically(dir.path() / "cameras.txt", "1 PINHOLE 640 480 500 510 320 240\n");
     write_file_atomically(dir.path() / "images.txt", "1 1 0 0 0 0 0 0 2 a.png\n\n");
     CHECK(file_error_of([&] { (void)read_camera_set(dir.path()); }) ==
-          (dir.path() / "images.txt").string() + ": line 1: image 1: CAMERA_ID 2 is not in the cameras file");
+          (dir.path() / "images.txt").string() + ": line 1: image 1 (a.png): CAMERA_ID 2 is not in cameras.txt");
     write_file_atomically(dir.path() / "images.txt", "1 2 0 0 0 0 0 0 1 a.png\n\n");
     CHECK(file_error_of([&] { (void)read_camera_set(dir.path()); }) ==
           (dir.path() / "images.txt").string() + ": line 1: image 1: the quaternion's norm is 2, not 1");
@@ -439,8 +439,8 @@ TEST_CASE("transforms.json is written with COLMAP's pixel corner, OpenGL's camer
     Camera mei = camera;
     mei.lens = {LensType::Mei, {1.2, 0, 0, 0, 0}};
     CHECK_THROWS_WITH(format_camera(mei, CameraFormat::Nerf),
-                      "transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE, LONLAT and "
-                      "RAD_TAN_THIN_PRISM_FISHEYE)");
+                      "NeRF transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE, LONLAT "
+                      "and RAD_TAN_THIN_PRISM_FISHEYE)");
     Camera rational = camera;
     rational.lens = {LensType::OpenCv8, {0, 0, 0, 0, 0, 0.1, 0, 0}};
     CHECK_THROWS_WITH(format_camera(rational, CameraFormat::Nerf),
@@ -507,7 +507,8 @@ TEST_CASE("The format is told from the contents where the extension is shared or
     CHECK(read_camera_set(dir.path() / "transforms.json").format == CameraFormat::Nerf);
     fs::create_directories(dir.path() / "empty");
     CHECK_THAT(file_error_of([&] { (void)read_camera_set(dir.path() / "empty"); }),
-               Catch::EndsWith("a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)"));
+               Catch::EndsWith("a folder, and not a COLMAP model folder (it has no cameras.bin or cameras.txt, nor a "
+                                               "folder inside that has)"));
     write_file_atomically(dir.path() / "odd", "!!! nothing\n");
     CHECK_THAT(file_error_of([&] { (void)read_camera_set(dir.path() / "odd"); }),
                Catch::Contains("unknown camera file format"));

@@ -220,6 +220,21 @@ TEST_CASE("metashape: what libcam cannot hold, and malformed files, are refused 
     CHECK(file_error_of([&] { read_camera_set(orphan); }) ==
           orphan.string() + ": line 23: camera 0 ('IMG_0001'): sensor_id '7' is not a sensor" + kAsMetashape);
 
+    // A sensor's own type and size, which the adjusted calibration's stand for, checked all
+    // the same: a type Metashape does not have, a negative width.
+    std::string hologram = document_xml(sensor_xml(kFrame, "frame"));
+    hologram.replace(hologram.find("type=\"frame\">"), 14, "type=\"hologram\">");
+    const auto unknown = write_file(dir, "hologram.xml", hologram);
+    CHECK(file_error_of([&] { read_camera_set(unknown); }) ==
+          unknown.string() + ": line 5: sensor 0 ('lens A') <sensor> type: 'hologram' is not one of Metashape's sensor "
+                             "types (frame, fisheye, spherical, cylindrical, rpc)" + kAsMetashape);
+    std::string negative = document_xml(sensor_xml(kFrame, "frame"));
+    negative.replace(negative.find("<resolution width=\"640\""), 23, "<resolution width=\"-640\"");
+    const auto minus = write_file(dir, "negative.xml", negative);
+    CHECK(file_error_of([&] { read_camera_set(minus); }) ==
+          minus.string() + ": line 6: sensor 0 ('lens A') <resolution> width: must be a whole number of pixels in "
+                           "[1, 1000000], got '-640'" + kAsMetashape);
+
     const auto collection = write_file(dir, "old.xml", "<?xml version=\"1.0\"?>\n<document><collection/></document>\n");
     CHECK_THROWS_AS(read_camera_set(collection, CameraFormat::Metashape), FileError);
 }
@@ -421,8 +436,8 @@ TEST_CASE("metashape: --no-pose writes Export Calibration's file, and what Metas
 
     camera.lens = {LensType::OpenCv8, {0.4, 0.05, 1e-3, -2e-3, 0.01, 0.7, 0.1, 0.02}};
     CHECK_THROWS_WITH(write_camera_file(dir.path() / "rational.xml", camera, CameraFormat::Metashape),
-                      "Metashape's XML holds frame (PINHOLE, OPENCV4, OPENCV5), fisheye (FISHEYE) and spherical "
-                      "(LONLAT) sensors; this camera's lens is OPENCV8");
+                      "Agisoft Metashape XML has no model for a OPENCV8 lens (it holds PINHOLE, OPENCV4, OPENCV5 and "
+                      "FISHEYE)");
     CHECK_FALSE(std::filesystem::exists(dir.path() / "rational.xml"));
     camera.lens = {LensType::Lonlat, {}};
     CHECK_THROWS_AS(write_camera_file(dir.path() / "sphere.xml", camera, CameraFormat::Metashape), NotRepresentable);

@@ -530,11 +530,12 @@ void sweep_fov(SweepCount& in_double) {
 
 std::vector<Row> sweep_rows() {
     SweepCount in_double, in_float;
-    for (const Camera& camera : sweep_cameras()) sweep_lens(camera, in_double, in_float);
+    std::size_t refused = 0;
+    for (const Camera& camera : sweep_cameras(&refused)) sweep_lens(camera, in_double, in_float);
     sweep_fov(in_double);
     const std::string extreme =
         "sweep: every model and extreme above, points at scales 5e-324 to 1.7e308, pixels to 1e300 px away, FOV "
-        "cameras with eye to 1e300";
+        "cameras with eye to 1e300 (" + std::to_string(refused) + " cameras that image nothing refused)";
     return {{extreme,
              "valid but NaN or infinite [count of " + std::to_string(in_double.results) + " double, " +
                  std::to_string(in_float.results) + " float]",

@@ -257,18 +257,25 @@ std::vector<Row> coefficient_method_rows() {
 // (f = 4.4e-6 over 1600 px: |m| to 2e8, mostly past the domain).
 std::vector<Row> focal_extreme_method_rows() {
     ExtremeWorst worst;
+    std::size_t kept = 0, refused = 0;
     for (const LensCase& c : lens_cases()) {
         for (double f : {5.7e12, 4.4e-6}) {
             Camera camera = c.camera;
             if (f > 1) camera = scaled_camera(camera, 100000.0 / static_cast<double>(camera.size.width));
             camera.intrinsics.fx = camera.intrinsics.fy = f;
+            if (!images_something(camera)) {
+                ++refused;
+                continue;
+            }
+            ++kept;
             std::vector<Vec2> pixels = corner_pixels(camera.size);
             for (const Vec2& p : pixel_grid(camera.size, 11, 9)) pixels.push_back(p);
             score_methods(c.name + " f " + std::to_string(f), camera, pixels, worst, UnprojectorOptions{.table_nodes = 96});
         }
     }
     return method_rows("batch: every model at f = 5.7e12 px (fov 1e-6 deg over 100000 px) and f = 4.4e-6 px (179.999 "
-                       "deg over 1600 px), corners and 11x9 grids (96-node tables)",
+                       "deg over 1600 px), corners and 11x9 grids (96-node tables): " +
+                           std::to_string(kept) + " cameras, " + std::to_string(refused) + " that image nothing refused",
                        worst, "as above");
 }
 
@@ -384,11 +391,13 @@ void sweep_batches(const Camera& camera, BatchSweepCount& count) {
 
 std::vector<Row> batch_sweep_rows() {
     BatchSweepCount count;
-    for (const Camera& camera : sweep_cameras()) {
+    std::size_t refused = 0;
+    for (const Camera& camera : sweep_cameras(&refused)) {
         sweep_batches<double>(camera, count);
         sweep_batches<float>(camera, count);
     }
-    return {{"batch sweep: the cameras, points and pixels of the sweep above, Projector and every method",
+    return {{"batch sweep: the cameras, points and pixels of the sweep above (" + std::to_string(refused) +
+                 " cameras that image nothing refused), Projector and every method",
              "valid but NaN, infinite or zero [count of " + std::to_string(count.results[0]) + " double, " +
                  std::to_string(count.results[1]) + " float]",
              static_cast<double>(count.unflagged_non_finite[0]), static_cast<double>(count.unflagged_non_finite[1]), 0,

@@ -357,3 +357,58 @@ TEST_CASE("A camera it cannot use is refused when it is prepared, naming the fie
     }
     CHECK(PreparedCamera(good).project_camera_point(Vec3(0.1, 0.2, 1.0)).valid);
 }
+
+// Camera::validate's rule for numbers that image nothing (camera.cpp): each case's line
+// worked by hand. A 640x480 camera, f = 500, principal point at the centre.
+TEST_CASE("A camera whose numbers contradict each other is refused, naming the number, and real lenses are not") {
+    Camera camera;
+    camera.size = {640, 480};
+    camera.intrinsics = {500.0, 500.0, 319.5, 239.5, 0.0};
+    const auto refusal = [&](const Lens& lens, double fx = 500.0) {
+        Camera with = camera;
+        with.lens = lens;
+        with.intrinsics.fx = fx;
+        return error_of([&] { with.validate(); });  // "InvalidArgument: <message>"
+    };
+    // 5e-324 is subnormal: 1 / 5e-324 overflows.
+    CHECK(refusal({}, 5e-324) ==
+          "InvalidArgument: K.fx: 5e-324 is subnormal (a focal length must be at least 2.2250738585072014e-308)");
+    // k1 = 1e30: r + k1 r^3 = m has r = C t^(1/3) at t pixels off the axis. From t0 = 2^-20,
+    // r moves per pixel (2^(-10/3) - 2^(-20/3)) C / (2^-10 - 2^-20) = 91.60 C over the
+    // first 1/1024 of a pixel and (1 - 2^(-20/3)) C / (1 - 2^-20) = 0.9902 C over the
+    // whole: a factor of 92.5.
+    const std::string tail = " within the pixel (1, 0) off the principal point (by at most 2 in a camera: its focal "
+                             "length is the lens's scale there)";
+    CHECK(refusal({LensType::OpenCv4, {1e30, 0.0, 0.0, 0.0}}) ==
+          "InvalidArgument: dist[0] (k1): 1e+30: the lens's scale changes by a factor of 92.5" + tail);
+    // k1 = -1e30 folds the lens over at r = 1 / sqrt(3e30): 2.9e-13 pixels from the centre.
+    CHECK(refusal({LensType::OpenCv4, {-1e30, 0.0, 0.0, 0.0}}) ==
+          "InvalidArgument: dist[0] (k1): -1e+30: the pixel (1, 0) off the principal point has no ray");
+    CHECK(refusal({LensType::OpenCv5, {-0.2, 0.05, 0.0, 0.0, -1e20}}) ==
+          "InvalidArgument: dist[4] (k3): -1e+20: the pixel (1, 0) off the principal point has no ray");
+    // An image whose corner K's inverse cannot reach: (-0.5 - 1e300) / 1e-9 overflows.
+    Camera far = camera;
+    far.intrinsics = {1e-9, 500.0, 1e300, 239.5, 0.0};
+    CHECK(error_of([&] { far.validate(); }) ==
+          "InvalidArgument: K: the image's corner (-0.5, -0.5) has no finite direction (fx 1e-09, fy 500, cx 1e+300, cy 239.5, skew 0)");
+
+    // Kept: a field of view of a millionth of a degree (fx = W / (2 tan(fov / 2))), a
+    // strong real lens, a wide fisheye, UCM whose centre scales by 1 / (1 + xi).
+    Camera narrow = camera;
+    narrow.intrinsics.fx = narrow.intrinsics.fy = 640.0 / (2.0 * std::tan(1e-6 * std::numbers::pi / 360.0));
+    CHECK_NOTHROW(narrow.validate());
+    // And 179 degrees on a 3-pixel image, whose one pixel spans 89 degrees: the pinhole's
+    // scale is its plane's, which K keeps linear.
+    Camera wide;
+    wide.size = {3, 2};
+    wide.intrinsics = {3.0 / (2.0 * std::tan(89.5 * std::numbers::pi / 180.0)), 1.0, 1.0, 0.5, 0.0};
+    CHECK_NOTHROW(wide.validate());
+    for (const Lens& lens : {Lens{LensType::OpenCv8, {-0.4, 0.2, 0.001, -0.002, -0.05, 0.1, 0.05, 0.01}},
+                             Lens{LensType::Fisheye, {0.1, -0.05, 0.01, -0.001}}, Lens{LensType::Ucm, {3.0}}}) {
+        CAPTURE(lens_info(lens.type).name);
+        Camera real = camera;
+        real.lens = lens;
+        CHECK_NOTHROW(real.validate());
+    }
+    CHECK_NOTHROW(wide_reference_camera().validate());
+}

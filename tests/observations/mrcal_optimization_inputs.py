@@ -8,10 +8,16 @@
 #       writes a small .cameramodel through mrcal's API: a 3x2 board seen in 2 frames by an
 #       OPENCV4 camera (one outlier, one half weight) and 3 discrete points. VARIANT spoils
 #       one array: float32-intrinsics, mismatched-imagersizes, frame-out-of-range; or
+#       no-observations leaves out the board's and the points' observations (None, as
+#       mrcal stores an array it does not have); or
+#       inflated-member: the npz archive's first member said (in its central directory) to
+#       inflate to 50 MB from its 110 compressed bytes, as a zip bomb claims; or
 #       many-views: the same camera over 558 views of a 10x10 board, a file of 1.07 MiB
 #       (the size of a real calibration that libcam's former 1 MiB bound refused).
 
+import base64
 import json
+import struct
 import sys
 
 import numpy as np
@@ -115,13 +121,29 @@ def write(path, variant):
         inputs["imagersizes"] = np.array([[640, 480], [640, 480]], dtype=np.int32)
     elif variant == "frame-out-of-range":
         inputs["indices_frame_camintrinsics_camextrinsics"][1, 0] = 7
-    else:
+    elif variant == "no-observations":
+        for key in ("observations_board", "indices_frame_camintrinsics_camextrinsics", "observations_point",
+                    "indices_point_camintrinsics_camextrinsics"):
+            inputs[key] = None
+    elif variant != "inflated-member":
         raise SystemExit(f"unknown variant {variant}")
     # The model's text with its optimization_inputs swapped for the spoiled ones: mrcal's
     # own writer would refuse them.
     text = open(path).read()
     good = repr(cameramodel_module._serialize_optimization_inputs(small_inputs()))
     spoiled = repr(cameramodel_module._serialize_optimization_inputs(inputs))
+    if variant == "inflated-member":
+        archive = bytearray(base64.b85decode(cameramodel_module._serialize_optimization_inputs(inputs)))
+        # The first member's uncompressed size, in its central directory entry and in its
+        # local header (and that header's zip64 field, where numpy wrote one) alike.
+        struct.pack_into("<I", archive, archive.find(b"PK\x01\x02") + 24, 50 * 2**20)
+        local = archive.find(b"PK\x03\x04")
+        struct.pack_into("<I", archive, local + 22, 50 * 2**20)
+        name_length, extra_length = struct.unpack_from("<HH", archive, local + 26)
+        extra = local + 30 + name_length
+        if extra_length >= 12 and struct.unpack_from("<H", archive, extra)[0] == 1:
+            struct.pack_into("<Q", archive, extra + 4, 50 * 2**20)
+        spoiled = repr(base64.b85encode(bytes(archive)))
     assert good in text
     open(path, "w").write(text.replace(good, spoiled))
 

@@ -302,6 +302,7 @@ private:
 struct BinaryModel {
     std::uint64_t missing_point = 20;  // the POINT3D_ID image 2's second 2-D point names
     std::uint64_t track_length = 2;    // point 20's
+    std::uint32_t last_index = 1;      // the POINT2D_IDX of point 20's last track element
     std::uint64_t image_count = 2;
 
     std::string cameras() const {
@@ -332,7 +333,7 @@ struct BinaryModel {
         b.put<std::uint64_t>(10).put(0.0).put(0.0).put(2.0).put<std::uint8_t>(255).put<std::uint8_t>(0).put<std::uint8_t>(0);
         b.put(3.0).put<std::uint64_t>(2).put<std::uint32_t>(1).put<std::uint32_t>(0).put<std::uint32_t>(2).put<std::uint32_t>(0);
         b.put<std::uint64_t>(20).put(1.0).put(0.5).put(4.0).put<std::uint8_t>(0).put<std::uint8_t>(255).put<std::uint8_t>(0);
-        b.put(0.25).put<std::uint64_t>(track_length).put<std::uint32_t>(1).put<std::uint32_t>(1).put<std::uint32_t>(2).put<std::uint32_t>(1);
+        b.put(0.25).put<std::uint64_t>(track_length).put<std::uint32_t>(1).put<std::uint32_t>(1).put<std::uint32_t>(2).put<std::uint32_t>(last_index);
         return b.str();
     }
     void write(const std::filesystem::path& folder) const {
@@ -390,6 +391,16 @@ TEST_CASE("COLMAP observations: a hand-made text model, its numbers worked by ha
         CHECK(std::isnan(set.reported_per_point[1]));
         CHECK(set.reported[0].value == 3.0);
     }
+    SECTION("a track naming a 2-D point of no point links it to the point, as COLMAP's Reconstruction::AddPoint3D does") {
+        model.points = replaced(model.points, "0.25 1 1 2 1", "0.25 1 1 2 1 1 2");
+        model.write(folder.path());
+        const ObservationSet set = read_observations(folder.path());
+        REQUIRE(set.observations.size() == 5);
+        // Image 1's third 2-D point, (100, 100) in COLMAP's pixels: point 20's, in OpenCV's.
+        CHECK(set.observations[2].view == 0);
+        CHECK(set.observations[2].point == 1);
+        CHECK(set.observations[2].pixel == Vec2(99.5, 99.5));
+    }
     SECTION("an image with no 2-D points, and one whose line of points is missing at the end") {
         model.images += "3 1 0 0 0 0 0 1 1 c.jpg\n\n4 1 0 0 0 0 0 2 1 d.jpg";
         model.write(folder.path());
@@ -429,6 +440,36 @@ TEST_CASE("COLMAP observations: a malformed model is refused in one line naming 
         model.write(folder.path());
         CHECK(error_reading(folder.path()) == points_txt + ": POINT3D_ID 10: TRACK[1]: IMAGE_ID 9 is not in images.txt");
     }
+    SECTION("a track naming a POINT2D_IDX past its image's POINTS2D") {
+        model.points = replaced(model.points, "3 1 0 2 0", "3 1 0 2 1000000");
+        model.write(folder.path());
+        CHECK(error_reading(folder.path()) ==
+              points_txt + ": POINT3D_ID 10: TRACK[1]: POINT2D_IDX 1000000 is not one of image 2 (b.jpg)'s 2 POINTS2D");
+    }
+    SECTION("a track naming a 2-D point of an image whose line of points is missing at the end") {
+        model.images = replaced(model.images, "70.5 241.5 10 320.5 303 20\n", "");
+        model.write(folder.path());
+        CHECK(error_reading(folder.path()) ==
+              points_txt + ": POINT3D_ID 10: TRACK[1]: POINT2D_IDX 0 is not one of image 2 (b.jpg)'s 0 POINTS2D");
+    }
+    SECTION("a track naming another point's 2-D point") {
+        model.points = replaced(model.points, "0.25 1 1 2 1", "0.25 1 0 2 1");
+        model.write(folder.path());
+        CHECK(error_reading(folder.path()) ==
+              points_txt + ": POINT3D_ID 20: TRACK[0]: image 1 (a.jpg)'s POINTS2D[0] is POINT3D_ID 10's");
+    }
+    SECTION("a track naming one 2-D point twice") {
+        model.points = replaced(model.points, "3 1 0 2 0", "3 1 0 1 0");
+        model.write(folder.path());
+        CHECK(error_reading(folder.path()) ==
+              points_txt + ": POINT3D_ID 10: TRACK[1]: image 1 (a.jpg)'s POINTS2D[0] is in the track twice");
+    }
+    SECTION("a 2-D point its 3-D point's track does not name") {
+        model.points = replaced(model.points, "0.25 1 1 2 1", "0.25 1 1");
+        model.write(folder.path());
+        CHECK(error_reading(folder.path()) ==
+              images_txt + ": line 4: image 2 (b.jpg): POINTS2D[1]: POINT3D_ID 20's track in points3D.txt does not name it");
+    }
     SECTION("a line of 2-D points that stops inside a triple") {
         model.images = replaced(model.images, "320.5 303 20", "320.5 303");
         model.write(folder.path());
@@ -456,7 +497,7 @@ TEST_CASE("COLMAP observations: a malformed model is refused in one line naming 
         write_file(folder.path() / "images.txt", model.images);
         CHECK(error_reading(folder.path()) ==
               folder.path().string() +
-                  ": a COLMAP model's observations are in cameras.txt, images.txt and points3D.txt; points3D.txt is missing");
+                  ": a COLMAP model is cameras.txt, images.txt and points3D.txt; points3D.txt is missing");
     }
 }
 
@@ -472,6 +513,12 @@ TEST_CASE("COLMAP observations: a malformed binary model is refused, never read 
         model.write(folder.path());
         CHECK(error_reading(folder.path()) == images_bin + ": byte 158: image 2 (b.jpg): POINTS2D[1]: POINT3D_ID 99999 "
                                                            "is not in points3D.bin");
+    }
+    SECTION("a track naming a POINT2D_IDX past its image's POINTS2D") {
+        model.last_index = 7;
+        model.write(folder.path());
+        CHECK(error_reading(folder.path()) ==
+              points_bin + ": POINT3D_ID 20: TRACK[1]: POINT2D_IDX 7 is not one of image 2 (b.jpg)'s 2 POINTS2D");
     }
     SECTION("a count of images the file cannot hold") {
         model.image_count = std::uint64_t{1} << 40;

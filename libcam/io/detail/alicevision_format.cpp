@@ -16,6 +16,10 @@
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 
+// Every switch over LensType here names every model, with no default: a new model stops
+// the build until someone decides what this file does with it.
+#pragma GCC diagnostic error "-Wswitch"
+
 namespace libcam {
 
 namespace {
@@ -24,6 +28,8 @@ using Kind = DocumentNode::Kind;
 
 // AliceVision's ids are 32-bit (IndexT); its largest marks "undefined".
 constexpr long long kMaxId = 0xffffffffLL;
+// AliceVision's UndefinedIndexT: the id of an intrinsic or pose a view does not have.
+constexpr long long kUndefinedId = kMaxId;
 
 // The newest version libcam knows: AliceVision refuses a file newer than itself, and so
 // does libcam (the focal length's meaning changed as late as 1.2.11).
@@ -321,9 +327,19 @@ void read_views(const Field& top, const std::unordered_map<long long, int>& intr
         const std::optional<Field> intrinsic_id = view.find({"intrinsicId"});
         const std::optional<Field> pose_id = view.find({"poseId"});
         if (!intrinsic_id || !pose_id) continue;
-        const auto intrinsic = intrinsics.find(intrinsic_id->integer(0, kMaxId));
+        const long long intrinsic_number = intrinsic_id->integer(0, kMaxId);
+        if (intrinsic_number == kUndefinedId) continue;  // no intrinsic: not reconstructed
+        // AliceVision writes an intrinsic for every id a view names; an id it lacks is a
+        // dangling reference, not a view left out of the reconstruction.
+        const auto intrinsic = intrinsics.find(intrinsic_number);
+        if (intrinsic == intrinsics.end()) {
+            intrinsic_id->fail("view " + std::to_string(id) + " names intrinsic " + std::to_string(intrinsic_number) +
+                               ", which \"intrinsics\" lacks");
+        }
+        // "poses" holds the reconstructed views' poses alone: a view without one was not
+        // localised (AliceVision's SfMData::isPoseAndIntrinsicDefined).
         const auto pose = poses.find(pose_id->integer(0, kMaxId));
-        if (intrinsic == intrinsics.end() || pose == poses.end()) continue;  // not reconstructed
+        if (pose == poses.end()) continue;
         const Camera& camera = out.set.cameras[static_cast<std::size_t>(intrinsic->second)].camera;
         for (const auto& [key, side] : {std::pair{"width", camera.size.width}, std::pair{"height", camera.size.height}}) {
             const std::optional<Field> given = view.find({key});
@@ -401,11 +417,34 @@ std::pair<std::string, std::vector<double>> alicevision_type(const Lens& lens) {
         }
         case LensType::Fisheye: return {"fisheye4", k};
         case LensType::Fov: return {"fisheye1", k};
-        default: break;
+        // Every other model, named so that the compiler asks here about a new one.
+        case LensType::OpenCv8:
+        case LensType::OpenCv12:
+        case LensType::OpenCv14:
+        case LensType::Stereographic:
+        case LensType::Lonlat:
+        case LensType::Latlon:
+        case LensType::DoubleSphere:
+        case LensType::Ucm:
+        case LensType::Eucm:
+        case LensType::Mei:
+        case LensType::ThinPrismFisheye:
+        case LensType::RadTanThinPrismFisheye:
+        case LensType::Equisolid:
+        case LensType::Cahvor:
+        case LensType::Cahvore:
+        case LensType::LensPolynomial:
+        case LensType::SplinedStereographic:
+        case LensType::Cylindrical:
+        case LensType::Ptlens:
+        case LensType::OcamCalib:
+        case LensType::Division:
+        case LensType::ThetaPolynomial:
+        case LensType::FTheta:
+        case LensType::FThetaForward:
+            detail::refuse_lens(CameraFormat::AliceVision, lens.type);
     }
-    throw NotRepresentable("AliceVision's cameras.sfm holds pinhole, radial1, radial3, brown (OPENCV4, OPENCV5), "
-                           "fisheye4 (FISHEYE) and fisheye1 (FOV); this camera's lens is " +
-                           std::string(lens_info(lens.type).name));
+    detail::refuse_lens(CameraFormat::AliceVision, lens.type);
 }
 
 }  // namespace

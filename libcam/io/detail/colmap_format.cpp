@@ -8,14 +8,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <map>
 #include <optional>
 
 #include "libcam/convert/colmap_models.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
+#include "libcam/io/detail/colmap_model.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -469,33 +470,20 @@ ColmapPoints3D read_points3d_binary(std::string_view bytes, const std::string& s
 
 std::string id_name(std::uint64_t id) { return "id:" + std::to_string(id); }
 
-std::vector<NamedCamera> camera_set(const std::vector<ColmapCameraRecord>& cameras, const std::vector<ColmapImage>& images,
-                                    const std::string& source) {
-    std::map<std::uint64_t, const ColmapCameraRecord*> by_id;
-    for (const ColmapCameraRecord& camera : cameras) {
-        if (!by_id.emplace(camera.id, &camera).second) {
-            throw FileError(source + ": camera id " + std::to_string(camera.id) + " appears more than once");
-        }
-    }
+// Every image as a camera, named by its name, and every camera no image takes named by
+// its id (colmap_model.hpp has checked the ids).
+std::vector<NamedCamera> camera_set(const ColmapModelRecords& model, const std::string& source) {
     std::vector<NamedCamera> set;
-    std::map<std::uint64_t, bool> used;
-    std::map<std::uint64_t, bool> image_ids;
-    for (const ColmapImage& image : images) {
-        if (!image_ids.emplace(image.id, true).second) {
-            throw FileError(image.where + ": image id " + std::to_string(image.id) + " appears more than once");
-        }
-        const auto found = by_id.find(image.camera_id);
-        if (found == by_id.end()) {
-            throw FileError(image.where + ": CAMERA_ID " + std::to_string(image.camera_id) +
-                            " is not in the cameras file");
-        }
-        Camera camera = found->second->camera;
+    std::vector<bool> used(model.cameras.size(), false);
+    for (const ColmapImage& image : model.images) {
+        const auto position = static_cast<std::size_t>(model.camera_index.find(image.camera_id));
+        Camera camera = model.cameras[position].camera;
         camera.pose = image.pose;
         set.push_back({image.name, {std::move(camera), std::nullopt}, id_name(image.camera_id)});
-        used[image.camera_id] = true;
+        used[position] = true;
     }
-    for (const ColmapCameraRecord& camera : cameras) {
-        if (!used.contains(camera.id)) set.push_back({id_name(camera.id), {camera.camera, std::nullopt}});
+    for (std::size_t c = 0; c < model.cameras.size(); ++c) {
+        if (!used[c]) set.push_back({id_name(model.cameras[c].id), {model.cameras[c].camera, std::nullopt}});
     }
     if (set.empty()) throw FileError(source + ": no camera");
     return set;
@@ -529,6 +517,54 @@ std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder
     return {};
 }
 
+namespace {
+
+// COLMAP numbers the models of a workspace's sparse/ 0, 1, 2, ...: in that order (10 after
+// 9), then any other names.
+bool before_in_colmap_order(const std::filesystem::path& a, const std::filesystem::path& b) {
+    const std::string x = a.filename().string(), y = b.filename().string();
+    const auto number = [](const std::string& name) {
+        return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; });
+    };
+    if (number(x) != number(y)) return number(x);
+    if (number(x) && x.size() != y.size()) return x.size() < y.size();
+    return x < y;
+}
+
+// The folders directly inside `folder` that hold a COLMAP model, in COLMAP's order.
+std::vector<std::filesystem::path> models_inside(const std::filesystem::path& folder) {
+    std::vector<std::filesystem::path> models;
+    std::error_code error;
+    for (std::filesystem::directory_iterator entry(folder, error), end; !error && entry != end; entry.increment(error)) {
+        std::error_code kind_error;
+        if (entry->is_directory(kind_error) && !colmap_cameras_file_in(entry->path()).empty()) {
+            models.push_back(entry->path());
+        }
+    }
+    std::sort(models.begin(), models.end(), before_in_colmap_order);
+    return models;
+}
+
+}  // namespace
+
+std::filesystem::path colmap_model_folder(const std::filesystem::path& folder) {
+    if (!colmap_cameras_file_in(folder).empty()) return folder;
+    const std::vector<std::filesystem::path> models = models_inside(folder);
+    if (models.size() == 1) return models.front();
+    if (models.empty()) return {};
+    std::string names;
+    for (const std::filesystem::path& model : models) {
+        names += (names.empty() ? "" : ", ") + printable_text(model.filename().string());
+    }
+    throw FileError(printable_text(folder.string()) + " holds " + std::to_string(models.size()) + " COLMAP models (" +
+                    names + "): name one, e.g. " + printable_text((folder / models.front().filename()).string()));
+}
+
+std::filesystem::path colmap_cameras_file_named(const std::filesystem::path& folder) {
+    const std::filesystem::path model = colmap_model_folder(folder);
+    return model.empty() ? model : colmap_cameras_file_in(model);
+}
+
 std::filesystem::path colmap_cameras_file_for(const std::filesystem::path& part) {
     const std::string extension = part.extension().string();
     const std::string stem = part.stem().string();
@@ -542,17 +578,10 @@ std::filesystem::path colmap_cameras_file_for(const std::filesystem::path& part)
 }
 
 std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadContext& context) {
-    const bool binary = text.find('\0') != std::string_view::npos;
-    const std::vector<ColmapCameraRecord> cameras = read_colmap_cameras(text, context.source, binary);
-    std::vector<ColmapImage> images;
-    if (!context.folder.empty()) {
-        const std::filesystem::path images_file = context.folder / (binary ? "images.bin" : "images.txt");
-        if (regular_file_exists(images_file)) {
-            images = read_colmap_images(read_text_file(images_file, kColmapModelPartLimit), images_file.string(), binary,
-                                        false);
-        }
-    }
-    return camera_set(cameras, images, context.source);
+    // Without a folder (text given alone) the cameras are the whole model.
+    ColmapModelPaths paths = colmap_model_beside(context.source, text);
+    if (context.folder.empty()) paths.images = paths.points3d = std::filesystem::path();
+    return camera_set(read_colmap_model_records(paths, text), context.source);
 }
 
 namespace {

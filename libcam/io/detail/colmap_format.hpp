@@ -93,7 +93,9 @@ std::vector<ColmapImage> read_colmap_images(std::string_view bytes, const std::s
 ColmapPoints3D read_colmap_points3d(std::string_view bytes, const std::string& source, bool binary);
 
 // Every camera of a cameras.txt or cameras.bin (told apart by a NUL byte, which text
-// never has), with the images file of the same kind beside it when context.folder has one.
+// never has), with the images file of the same kind beside it when context.folder has one,
+// the model read and checked as every command reads it (colmap_model.hpp: with points3D
+// where it is there too).
 std::vector<NamedCamera> read_colmap_model(std::string_view cameras, const ReadContext& context);
 
 // cameras.txt, images.txt and points3D.txt holding the camera. Throws NotRepresentable for what
@@ -112,6 +114,17 @@ ColmapModelBytes write_colmap_files(const std::vector<ColmapCameraRecord>& camer
 
 // The cameras file of a COLMAP model folder (cameras.bin, else cameras.txt), or empty.
 std::filesystem::path colmap_cameras_file_in(const std::filesystem::path& folder);
+
+// The COLMAP model a folder names: the folder itself when it holds a cameras file, else
+// the one model folder inside it (a workspace's sparse/, holding 0/). Empty when it holds
+// none; throws FileError naming them when it holds several ("sparse holds 2 COLMAP models
+// (0, 1): name one, e.g. sparse/0"). Every command that takes a model folder asks here.
+std::filesystem::path colmap_model_folder(const std::filesystem::path& folder);
+// What a folder holding neither is told, after its name.
+inline constexpr std::string_view kNoColmapModel =
+    "not a COLMAP model folder (it has no cameras.bin or cameras.txt, nor a folder inside that has)";
+// The cameras file of colmap_model_folder(folder), or empty.
+std::filesystem::path colmap_cameras_file_named(const std::filesystem::path& folder);
 
 // For another file of a COLMAP model (images, points3D, frames or rigs, .txt or .bin):
 // the cameras file beside it (the same form first), or empty.

@@ -3,7 +3,8 @@
 // every image of images.txt/.bin as a view (its NAME, its camera, its world-to-camera pose
 // as COLMAP stores it), every point of points3D.txt/.bin (XYZ, POINT3D_ID, ERROR), and
 // every 2-D point of an image whose POINT3D_ID is not -1 as an observation, in OpenCV's
-// pixels (COLMAP's minus 0.5).
+// pixels (COLMAP's minus 0.5). The model is read and checked by the reader every command
+// shares (colmap_model.hpp).
 //
 // What COLMAP stored about its fit: the mean of points3D's ERROR column (points whose
 // ERROR is -1 have none, as COLMAP's Point3D::HasError says), which `colmap

@@ -6,6 +6,7 @@
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/io/detail/colmap_format.hpp"
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/ocamcalib_format.hpp"
 #include "libcam/io/format_table.hpp"
@@ -335,7 +336,7 @@ std::filesystem::path file_named(const std::filesystem::path& path, std::optiona
                 return inside;
             }
         }
-        throw FileError(path.string() + ": a folder, and not a COLMAP model (it has no cameras.bin or cameras.txt)");
+        throw FileError(path.string() + ": a folder, and " + std::string(kNoColmapModel));
     }
     for (const FormatRow& row : format_rows()) {
         if (row.file_for_part == nullptr || (format && *format != row.format)) continue;

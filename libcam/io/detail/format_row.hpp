@@ -77,7 +77,8 @@ struct FormatRow {
     // and the files its reader reads beside it.
     std::uint64_t largest_file = kCameraFileLimit.max_bytes;
     std::span<const FileBeside> files_beside = {};
-    // The file of this format in a folder given as the path (COLMAP's sparse/0), or empty.
+    // The file of this format in a folder given as the path (COLMAP's sparse/0, or sparse/ holding
+    // one model), or empty; throws FileError for a folder that holds several.
     std::filesystem::path (*file_in_folder)(const std::filesystem::path& folder) = nullptr;
     // The file this format reads for another file of the same model given as the path
     // (COLMAP's images.bin: the cameras.bin beside it), or empty when the path is not one.
@@ -99,6 +100,12 @@ struct FormatRow {
 
 // Every row, in CameraFormat's order (format_rows.cpp).
 std::span<const FormatRow> format_rows();
+
+// What a writer says of a lens its format cannot hold, from the format's row: throws
+// NotRepresentable "<title> has no model for a <NAME> lens (it holds PINHOLE, OPENCV4 and
+// FISHEYE)". A writer names every LensType in its switch, with no default, so that the
+// compiler asks it about a new model; those it refuses come here.
+[[noreturn]] void refuse_lens(CameraFormat format, LensType type);
 
 // The file a path names for reading (a folder's cameras file, for COLMAP's sparse/0), its
 // format (`format`, or the one its extension and contents say) and its text, read up to
@@ -140,7 +147,7 @@ auto reading_as(const LocatedFile& located, Read&& read) -> decltype(read()) {
 // The cameras of a file that holds observations (OpenSfM, OpenMVG): each view as a camera
 // with its pose, named after the view, its intrinsics named; the intrinsics alone where
 // the file has no view with a pose. Throws FileError "<source>: <where>: no camera" for
-// none (observations.cpp).
+// none (observations.cpp), and what check_observations refuses, in its words.
 std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::string& source, std::string_view where);
 
 // A writer of one file in the table's form.

@@ -190,7 +190,7 @@ constexpr FormatRow kRows[] = {
                     "cameras.txt, images.txt and points3D.txt into a folder",
      .extensions = {".bin"}, .content = C::Table | C::Binary, .read = read_colmap_model,
      .write = write_colmap_model, .writes_folder = true, .binary = true, .files_beside = kColmapBeside,
-     .file_in_folder = colmap_cameras_file_in,
+     .file_in_folder = colmap_cameras_file_named,
      .file_for_part = colmap_cameras_file_for,
      .read_observations = read_colmap_observations, .lenses = kColmap,
      .lens_names = "SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV, OPENCV_FISHEYE, "
@@ -397,5 +397,16 @@ static_assert(rows_match_formats(), "every CameraFormat needs exactly one row, i
 }  // namespace
 
 std::span<const FormatRow> format_rows() { return kRows; }
+
+void refuse_lens(CameraFormat format, LensType type) {
+    const FormatRow& row = kRows[static_cast<std::size_t>(format)];
+    std::string held;
+    for (std::size_t i = 0; i < row.lenses.size(); ++i) {
+        const bool last = i + 1 == row.lenses.size();
+        held += std::string(i == 0 ? "" : last ? " and " : ", ") + std::string(lens_info(row.lenses[i]).name);
+    }
+    throw NotRepresentable(std::string(row.title) + " has no model for a " + std::string(lens_info(type).name) +
+                           " lens (it holds " + held + ")");
+}
 
 }  // namespace libcam::detail

@@ -83,10 +83,38 @@ double aspect_ratio(const Source& source, const pugi::xml_node& node, std::strin
     return ratio;
 }
 
+// A calibration element's model: one of lensfun's for that element, "none" where the
+// attribute is absent. lensfun's database parser refuses the whole file on any other
+// ("Bad attribute value", database.cpp at 0.3.95), so this reader refuses it too rather
+// than skip the entry and interpolate the rest.
+std::string calibration_model(const Source& source, const pugi::xml_node& element, const std::string& where,
+                              std::initializer_list<std::string_view> known) {
+    const pugi::xml_attribute attribute = element.attribute("model");
+    const std::string model = attribute ? attribute.value() : "none";
+    std::string names;
+    for (const std::string_view name : known) {
+        if (name == model) return model;
+        names += (names.empty() ? "" : ", ") + std::string(name);
+    }
+    source.fail(element, where + " <" + element.name() + "> model: '" + model + "' is not one of lensfun's (" + names +
+                             ")");
+}
+
+// The models of a calibration's tca and vignetting entries, which libcam does not use
+// but lensfun checks.
+void check_other_models(const Source& source, const pugi::xml_node& calibration, const std::string& where) {
+    for (const pugi::xml_node tca : calibration.children("tca")) {
+        calibration_model(source, tca, where, {"none", "linear", "poly3", "acm"});
+    }
+    for (const pugi::xml_node vignetting : calibration.children("vignetting")) {
+        calibration_model(source, vignetting, where, {"none", "pa", "acm"});
+    }
+}
+
 // The terms a distortion model's attributes hold, lensfun's names for each place.
 Distortion read_distortion(const Source& source, const pugi::xml_node& element, const std::string& where) {
     Distortion out;
-    out.model = element.attribute("model").value();
+    out.model = calibration_model(source, element, where, {"none", "poly3", "poly5", "ptlens", "acm"});
     const std::string field = where + " <distortion>";
     const pugi::xml_attribute focal = element.attribute("focal");
     if (!focal) source.fail(element, field + ": has no focal");
@@ -146,6 +174,7 @@ LensEntry read_lens(const Source& source, const pugi::xml_node& node) {
     // factor and aspect ratio (lfLens::GetCalibrationSetForAttributes), whatever the
     // <calibration> element's attributes say.
     for (const pugi::xml_node calibration : node.children("calibration")) {
+        check_other_models(source, calibration, where);
         for (const pugi::xml_node element : calibration.children("distortion")) {
             Distortion entry = read_distortion(source, element, where);
             if (entry.model == "none") continue;

@@ -16,7 +16,9 @@
 //   for: the terms fall roughly as 1 / f) and of the real focal length (_lf_interpolate: the tangents are
 //   the centred differences, or the one-sided difference at an end); outside the
 //   calibrated range the nearest calibration is used as it is. Only the lens's first
-//   distortion model counts (lensfun warns and skips entries of another model).
+//   distortion model counts (lensfun warns and skips entries of another model). A
+//   distortion, tca or vignetting model lensfun does not know is refused: lensfun's
+//   parser refuses the whole database then (database.cpp, "Bad attribute value").
 // - The real focal length f_r: real-focal= where the file gives it, else focal (1 - a -
 //   b - c) for ptlens and focal (1 - k1) for poly3, focal for poly5.
 // - Pixels: lensfun's normalised coordinates are in units of f_r, so fx = fy =

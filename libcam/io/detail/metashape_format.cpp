@@ -12,8 +12,13 @@
 
 #include "libcam/error.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
+
+// Every switch over LensType here names every model, with no default: a new model stops
+// the build until someone decides what this file does with it.
+#pragma GCC diagnostic error "-Wswitch"
 
 namespace libcam {
 
@@ -196,8 +201,34 @@ pugi::xml_node chosen_calibration(const pugi::xml_node& sensor) {
     return initial;
 }
 
+// A sensor's or calibration's type, where it states one: one of Metashape's
+// (Metashape.Sensor.Type: frame, fisheye, spherical, cylindrical, rpc), whether or not
+// libcam has its model (camera_from says which it reads).
+void check_type(const Source& source, const pugi::xml_node& node, const std::string& where) {
+    const pugi::xml_attribute type = node.attribute("type");
+    if (!type) return;
+    for (const std::string_view known : {"frame", "fisheye", "spherical", "cylindrical", "rpc"}) {
+        if (type.value() == known) return;
+    }
+    source.fail(node, where + " <" + node.name() + "> type: '" + type.value() +
+                          "' is not one of Metashape's sensor types (frame, fisheye, spherical, cylindrical, rpc)");
+}
+
+// What a sensor states, checked whether or not the camera made of it uses it: its type
+// and size, and each of its calibrations' (a sensor without a calibration is skipped,
+// and the adjusted calibration's size stands for the sensor's).
+void check_sensor(const Source& source, const pugi::xml_node& sensor, const std::string& where) {
+    check_type(source, sensor, where);
+    if (const pugi::xml_node size = sensor.child("resolution")) resolution(source, size, where);
+    for (const pugi::xml_node calibration : sensor.children("calibration")) {
+        check_type(source, calibration, where);
+        if (const pugi::xml_node size = calibration.child("resolution")) resolution(source, size, where);
+    }
+}
+
 Sensor read_sensor(const Source& source, const pugi::xml_node& sensor) {
     const std::string where = sensor_where(sensor);
+    check_sensor(source, sensor, where);
     const pugi::xml_node calibration = chosen_calibration(sensor);
     if (!calibration) return {sensor.attribute("label").value(), std::nullopt};
     Calibration terms;
@@ -349,10 +380,34 @@ Calibration metashape_terms(const Camera& camera) {
             }
             c.type = "spherical";
             return c;
-        default: break;
+        // Every other model, named so that the compiler asks here about a new one.
+        case LensType::OpenCv8:
+        case LensType::OpenCv12:
+        case LensType::OpenCv14:
+        case LensType::Stereographic:
+        case LensType::Latlon:
+        case LensType::DoubleSphere:
+        case LensType::Ucm:
+        case LensType::Eucm:
+        case LensType::Mei:
+        case LensType::Fov:
+        case LensType::ThinPrismFisheye:
+        case LensType::RadTanThinPrismFisheye:
+        case LensType::Equisolid:
+        case LensType::Cahvor:
+        case LensType::Cahvore:
+        case LensType::LensPolynomial:
+        case LensType::SplinedStereographic:
+        case LensType::Cylindrical:
+        case LensType::Ptlens:
+        case LensType::OcamCalib:
+        case LensType::Division:
+        case LensType::ThetaPolynomial:
+        case LensType::FTheta:
+        case LensType::FThetaForward:
+            detail::refuse_lens(CameraFormat::Metashape, camera.lens.type);
     }
-    throw NotRepresentable("Metashape's XML holds frame (PINHOLE, OPENCV4, OPENCV5), fisheye (FISHEYE) and spherical "
-                           "(LONLAT) sensors; this camera's lens is " + std::string(lens_info(camera.lens.type).name));
+    detail::refuse_lens(CameraFormat::Metashape, camera.lens.type);
 }
 
 void add_number(pugi::xml_node parent, const char* name, double value) {

@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "libcam/error.hpp"
+#include "libcam/io/camera_file.hpp"
 #include "libcam/io/detail/cameramodel_text.hpp"
 #include "libcam/io/detail/npz_archive.hpp"
 #include "libcam/lens/lens_model.hpp"
@@ -470,11 +471,18 @@ ObservationSet parse_mrcal_observations(std::string_view text, const std::string
     const std::vector<Pose> extrinsics = poses_of(inputs.numeric("extrinsics_rt_fromref", {kAny, 6}, false));
     add_board_observations(inputs, frames, extrinsics, set);
     add_point_observations(inputs, extrinsics, set);
+    if (set.observations.empty()) {
+        fail(inputs.where, "observations_board and observations_point hold no observation (the solve's inputs "
+                           "were saved without them): nothing to reproject");
+    }
     return set;
 }
 
 ObservationSet read_mrcal_observations(const std::filesystem::path& file, std::string_view text,
                                        const ObservationReadOptions&) {
+    // The file's own camera first, read and checked as `libcam info` reads it (libmrcal's
+    // parser, libcam::interop): a file that reader refuses is refused here with its line.
+    (void)parse_camera_set(text, CameraFormat::Cameramodel, file.string());
     return parse_mrcal_observations(text, file.string());
 }
 

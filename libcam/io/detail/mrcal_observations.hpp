@@ -4,7 +4,8 @@
 // (mrcal's cameramodel.py, _serialize_optimization_inputs). Read here without mrcal:
 // every camera of the solve, one view per board observation (and per camera seeing
 // discrete points), the board's corners with mrcal's calobject_warp applied, and each
-// observation's weight (negative or zero: mrcal's outlier).
+// observation's weight (negative or zero: mrcal's outlier). A solve whose inputs hold no
+// observation is refused: there is nothing to reproject.
 
 #include <filesystem>
 #include <string>
@@ -14,7 +15,9 @@
 
 namespace libcam::detail {
 
-// The cameramodel row's read_observations.
+// The cameramodel row's read_observations: the file's own camera first, read and checked
+// as `libcam info` reads it (the row's reader, libmrcal's parser: libcam::interop must be
+// registered), so that the two refuse a file alike; then parse_mrcal_observations.
 ObservationSet read_mrcal_observations(const std::filesystem::path& file, std::string_view text,
                                        const ObservationReadOptions& options);
 

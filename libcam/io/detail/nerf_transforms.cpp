@@ -12,9 +12,14 @@
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/document.hpp"
+#include "libcam/io/detail/format_row.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 #include "libcam/text/shown_value.hpp"
+
+// Every switch over LensType here names every model, with no default: a new model stops
+// the build until someone decides what this file does with it.
+#pragma GCC diagnostic error "-Wswitch"
 
 namespace libcam {
 
@@ -462,10 +467,28 @@ nlohmann::ordered_json intrinsics_json(const Camera& camera) {
             model = "FISHEYE624";
             distortion_params = lens.coefficients;
             break;
-        default:
-            throw NotRepresentable("transforms.json has no model for a " + std::string(lens_info(lens.type).name) +
-                                   " lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE, LONLAT and "
-                                   "RAD_TAN_THIN_PRISM_FISHEYE)");
+        // Every other model, named so that the compiler asks here about a new one.
+        case LensType::Stereographic:
+        case LensType::Latlon:
+        case LensType::DoubleSphere:
+        case LensType::Ucm:
+        case LensType::Eucm:
+        case LensType::Mei:
+        case LensType::Fov:
+        case LensType::ThinPrismFisheye:
+        case LensType::Equisolid:
+        case LensType::Cahvor:
+        case LensType::Cahvore:
+        case LensType::LensPolynomial:
+        case LensType::SplinedStereographic:
+        case LensType::Cylindrical:
+        case LensType::Ptlens:
+        case LensType::OcamCalib:
+        case LensType::Division:
+        case LensType::ThetaPolynomial:
+        case LensType::FTheta:
+        case LensType::FThetaForward:
+            detail::refuse_lens(CameraFormat::Nerf, lens.type);
     }
     out["camera_model"] = model;
     out["w"] = camera.size.width;

@@ -9,10 +9,15 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/detail/document.hpp"
+#include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/format_table.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 #include "libcam/text/shown_value.hpp"
+
+// Every switch over LensType here names every model, with no default: a new model stops
+// the build until someone decides what this file does with it.
+#pragma GCC diagnostic error "-Wswitch"
 
 namespace libcam {
 
@@ -491,11 +496,32 @@ std::pair<std::string, std::vector<double>> ros_distortion(const Lens& lens) {
             return {"rational_polynomial", coefficients};
         case LensType::Fisheye:
             return {"equidistant", coefficients};
-        default:
-            break;
+        // Every other model, named so that the compiler asks here about a new one.
+        case LensType::Stereographic:
+        case LensType::Lonlat:
+        case LensType::Latlon:
+        case LensType::DoubleSphere:
+        case LensType::Ucm:
+        case LensType::Eucm:
+        case LensType::Mei:
+        case LensType::Fov:
+        case LensType::ThinPrismFisheye:
+        case LensType::RadTanThinPrismFisheye:
+        case LensType::Equisolid:
+        case LensType::Cahvor:
+        case LensType::Cahvore:
+        case LensType::LensPolynomial:
+        case LensType::SplinedStereographic:
+        case LensType::Cylindrical:
+        case LensType::Ptlens:
+        case LensType::OcamCalib:
+        case LensType::Division:
+        case LensType::ThetaPolynomial:
+        case LensType::FTheta:
+        case LensType::FThetaForward:
+            detail::refuse_lens(CameraFormat::Ros, lens.type);
     }
-    throw NotRepresentable("ROS's camera_info holds plumb_bob, rational_polynomial and equidistant lenses, not this " +
-                           std::string(lens_info(lens.type).name) + " lens");
+    detail::refuse_lens(CameraFormat::Ros, lens.type);
 }
 
 std::string ros_matrix(const std::string& key, long long rows, long long cols, const std::vector<double>& values) {

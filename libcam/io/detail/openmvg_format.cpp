@@ -186,9 +186,20 @@ void read_views(const Field& top, const std::unordered_map<long long, int>& intr
     for_each_entry(*list, [&](long long id, const Field& value) {
         const Field data = pointer_data(value, cereal);
         out.every_view.insert(id);
-        const auto intrinsic = intrinsics.find(data.at({"id_intrinsic"}).integer(0, kMaxId));
+        const Field intrinsic_id = data.at({"id_intrinsic"});
+        const long long intrinsic_number = intrinsic_id.integer(0, kMaxId);
+        if (intrinsic_number == kMaxId) return;  // UndefinedIndexT: no intrinsic, not reconstructed
+        // OpenMVG writes an intrinsic for every id a view names (and its Load refuses an
+        // intrinsic no view names); an id it lacks is a dangling reference.
+        const auto intrinsic = intrinsics.find(intrinsic_number);
+        if (intrinsic == intrinsics.end()) {
+            intrinsic_id.fail("view " + std::to_string(id) + " names intrinsic " + std::to_string(intrinsic_number) +
+                              ", which \"intrinsics\" lacks");
+        }
+        // "extrinsics" holds the reconstructed views' poses alone: a view without one was not
+        // localised (OpenMVG's SfM_Data::IsPoseAndIntrinsicDefined).
         const auto pose = poses.find(data.at({"id_pose"}).integer(0, kMaxId));
-        if (intrinsic == intrinsics.end() || pose == poses.end()) return;  // not reconstructed
+        if (pose == poses.end()) return;
         out.posed_view[id] = static_cast<int>(out.set.views.size());
         out.set.views.push_back({data.at({"filename"}).text(), intrinsic->second, pose->second});
     });
