@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/observations.hpp"
 

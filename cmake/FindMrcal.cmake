@@ -1,6 +1,6 @@
 # Finds libmrcal (Debian: libmrcal-dev), which ships no CMake or pkg-config file.
 # Defines the imported target Mrcal::mrcal. Its C headers have no extern "C" guards:
-# include them only through libcam/interop/mrcal_c.hpp, which wraps them.
+# include them only through libcam/interop/detail/mrcal_c.hpp, which wraps them.
 find_path(Mrcal_INCLUDE_DIR NAMES mrcal/mrcal.h)
 find_library(Mrcal_LIBRARY NAMES mrcal)
 

@@ -31,7 +31,7 @@ public:
 };
 
 // A camera that cannot be expressed in the requested form (e.g. an off-centre
-// principal point asked for as a FOV camera, skew asked for in mrcal's format).
+// principal point asked for as a look-at camera, skew asked for in mrcal's format).
 class NotRepresentable : public Error {
 public:
     using Error::Error;

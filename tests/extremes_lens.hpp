@@ -300,7 +300,7 @@ enum class Expect { Valid, Flagged, Either };
 // Near the backward axis STEREOGRAPHIC forms |p| + z as rho^2 / (|p| - z), and FISHEYE
 // and FOV (of (a x, a y, z), a = 2 tan(omega / 2)) the direction (x, y) / rho, from the
 // point as given, or scaled to a largest coordinate in [1, 2) when that lies outside
-// 2^(min exponent / 4) .. 2^(max exponent / 4) (camera/point_scale.hpp): where rho^2 is
+// 2^(min exponent / 4) .. 2^(max exponent / 4) (camera/detail/point_scale.hpp): where rho^2 is
 // no longer a normal number libcam flags the point. Flagged there, either within a
 // factor 8 of the threshold, nullopt elsewhere (and for FISHEYE and FOV wherever their
 // series on the forward axis applies, z > 0 and rho < 1e-3 z).
@@ -465,7 +465,7 @@ inline std::vector<Vec3> points_at_every_scale() {
 // ------------------------------------------------------ the NaN / infinity sweep
 
 // Everything at once: every model (mild, strong, near-zero, hand folds), points at every
-// scale and side, pixels from the principal point to 1e300 px away, and the FOV cameras
+// scale and side, pixels from the principal point to 1e300 px away, and the look-at cameras
 // at their extremes. A result is either flagged (invalid, or an error thrown) or finite.
 struct SweepCount {
     std::size_t results = 0, unflagged_non_finite = 0;

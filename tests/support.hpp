@@ -7,7 +7,7 @@
 #include <random>
 #include <string>
 
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 
 namespace libcam::test {
@@ -34,9 +34,9 @@ inline FovAxis random_axis(int i) {
     return axes[i % 4];
 }
 
-// A FOV camera with a random eye, gaze, up (at least ~6 degrees from the gaze), fov in
+// A look-at camera with a random eye, gaze, up (at least ~6 degrees from the gaze), fov in
 // [fov_low, fov_high] and the given size.
-inline LookAtCamera random_fov_camera(ImageSize size, FovAxis axis, double fov_low = 1.0, double fov_high = 179.0) {
+inline LookAtCamera random_look_at_camera(ImageSize size, FovAxis axis, double fov_low = 1.0, double fov_high = 179.0) {
     LookAtCamera camera;
     camera.eye = random_vector(100.0);
     camera.gaze = random_unit() * uniform(0.1, 10.0);

@@ -2,7 +2,8 @@
 // (no OpenCV, mrcal or Ceres anywhere in the build) and prints the ray through the
 // lower-left pixel (pixel (0, 0) counted from the bottom, as a graphics camera counts).
 // A file of a format that needs libcam::interop (mrcal's .cameramodel) is refused with
-// a message that says so.
+// a message that says so. Built as consumer_interop (LIBCAM_CONSUMER_INTEROP, linking
+// libcam::interop), it registers interop's formats first and reads that file too.
 // Usage: consumer_io CAMERA_FILE
 
 #include <cstdio>
@@ -10,6 +11,9 @@
 
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
+#ifdef LIBCAM_CONSUMER_INTEROP
+#include "libcam/interop/formats.hpp"
+#endif
 
 int main(int argc, char** argv) {
     using namespace libcam;
@@ -18,6 +22,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
+#ifdef LIBCAM_CONSUMER_INTEROP
+        register_interop_formats();
+#endif
         const PreparedCamera camera(read_camera_file(argv[1]).camera);
         const Ray ray = camera.ray(opencv_pixel({0, 0}, PixelOrigin::BottomLeft, camera.camera().size));
         const Camera& description = camera.camera();

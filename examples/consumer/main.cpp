@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/version.hpp"
 
 int main() {

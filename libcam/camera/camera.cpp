@@ -8,8 +8,8 @@
 #include <string>
 #include <utility>
 
-#include "libcam/camera/batch_kernels.hpp"
-#include "libcam/camera/point_scale.hpp"
+#include "libcam/camera/detail/batch_kernels.hpp"
+#include "libcam/camera/detail/point_scale.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/lens/lens_models.hpp"
 #include "libcam/lens/undistort.hpp"
@@ -205,7 +205,7 @@ std::vector<Projection> PreparedCamera::project_camera_points(std::span<const Ve
         const typename Model::Parameters parameters = detail::prepared_parameters<Model>(*state_);
         for (std::size_t i = 0; i < camera_points.size(); ++i) {
             // A power-of-two scaling (exact) where the model needs it, for points at
-            // 1e-300 or 1e300 (camera/point_scale.hpp).
+            // 1e-300 or 1e300 (camera/detail/point_scale.hpp).
             const Vec3& point = camera_points[i];
             const bool scale = detail::needs_scaling<Model>(point.x(), point.y(), point.z());
             Vec2 normalized;

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "libcam/camera/kernels.hpp"
+#include "libcam/camera/detail/kernels.hpp"
 #include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
 

@@ -6,7 +6,7 @@
 // floats per instruction). Its batch kernels are compiled three times: for SSE2, for
 // AVX2 with FMA (four doubles), and for AVX-512 (eight), and each batch call runs the
 // best set this CPU has. Every set computes each point with the same IEEE operations in
-// the same order (no fused multiply-add: see camera/kernels_for_target.hpp), so every
+// the same order (no fused multiply-add: see camera/detail/kernels_for_target.hpp), so every
 // target gives the same bits, and the same bits as the one-point calls.
 //
 // A target can be forced, for tests and for measuring one against another: by the

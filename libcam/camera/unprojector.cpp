@@ -7,13 +7,13 @@
 #include <optional>
 #include <string>
 
-#include "libcam/camera/batch_kernels.hpp"
-#include "libcam/camera/fill_values.hpp"
-#include "libcam/camera/kernels.hpp"
+#include "libcam/camera/detail/batch_kernels.hpp"
+#include "libcam/camera/detail/fill_values.hpp"
+#include "libcam/camera/detail/kernels.hpp"
 #include "libcam/camera/parallel.hpp"
-#include "libcam/camera/streaming_store.hpp"
-#include "libcam/camera/unprojector_domain.hpp"
-#include "libcam/camera/unprojector_table.hpp"
+#include "libcam/camera/detail/streaming_store.hpp"
+#include "libcam/camera/detail/unprojector_domain.hpp"
+#include "libcam/camera/detail/unprojector_table.hpp"
 #include "libcam/error.hpp"
 #include "libcam/lens/undistort.hpp"
 

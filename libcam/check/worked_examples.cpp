@@ -4,7 +4,7 @@
 #include <cmath>
 #include <opencv2/calib3d.hpp>
 
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/interop/mrcal.hpp"
 #include "libcam/interop/opencv.hpp"
 
@@ -21,10 +21,10 @@ std::vector<WorkedExample> worked_examples() {
     std::vector<WorkedExample> examples(2);
     examples[0].name = "example 1";
     examples[0].title = examples[0].name + ": eye (0,0,0), gaze -z, up +y, 90 deg, 3x3";
-    examples[0].fov_camera = LookAtCamera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, size};
+    examples[0].look_at_camera = LookAtCamera{{0, 0, 0}, {0, 0, -1}, {0, 1, 0}, 90.0, FovAxis::Both, size};
     examples[1].name = "example 2";
     examples[1].title = examples[1].name + ": eye (0,5,5), target (0,0,0), up +y, 90 deg, 3x3";
-    examples[1].fov_camera = LookAtCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, size);
+    examples[1].look_at_camera = LookAtCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0, FovAxis::Both, size);
     for (WorkedExample& example : examples) {
         for (const Vec2& pixel : pixels) example.pixels.push_back({pixel, Vec3::Zero(), Vec2::Zero()});
     }
@@ -49,7 +49,7 @@ double rodrigues_error(const Camera& camera) {
 std::vector<WorkedExample> check_worked_examples() {
     std::vector<WorkedExample> examples = worked_examples();
     for (WorkedExample& example : examples) {
-        const Camera camera = to_camera(example.fov_camera);
+        const Camera camera = to_camera(example.look_at_camera);
         example.camera = camera;
         const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
         const cv::Mat dist = opencv_distortion(camera.lens);
@@ -65,7 +65,7 @@ std::vector<WorkedExample> check_worked_examples() {
 
         const PreparedCamera prepared(camera);
         for (WorkedExamplePixel& pixel : example.pixels) {
-            pixel.look_at_direction = example.fov_camera.look_at_ray(pixel.bottom_left_pixel, PixelOrigin::BottomLeft);
+            pixel.look_at_direction = example.look_at_camera.look_at_ray(pixel.bottom_left_pixel, PixelOrigin::BottomLeft);
             pixel.opencv_pixel = opencv_pixel(pixel.bottom_left_pixel, PixelOrigin::BottomLeft, camera.size);
             const Ray ray = prepared.ray(pixel.opencv_pixel);
             keep_worst(look_at, angle_between(pixel.look_at_direction, ray.direction));

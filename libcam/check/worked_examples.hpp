@@ -29,8 +29,8 @@ struct WorkedExampleCheck {
 struct WorkedExample {
     std::string name;   // "example 1"
     std::string title;  // the name and the camera
-    LookAtCamera fov_camera;
-    Camera camera;  // to_camera(fov_camera)
+    LookAtCamera look_at_camera;
+    Camera camera;  // to_camera(look_at_camera)
     std::vector<WorkedExamplePixel> pixels;
     std::vector<WorkedExampleCheck> checks;
 };

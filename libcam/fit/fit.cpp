@@ -106,7 +106,7 @@ namespace {
 constexpr double kNegligibleFraction = 1e-3;
 
 // Where a candidate's fit starts, the better result kept: the previous candidate's
-// solution when the candidate contains that model (the FOV camera is a PINHOLE), so it
+// solution when the candidate contains that model (the look-at camera is a PINHOLE), so it
 // never fits worse than the simpler model; and the source, exactly when the candidate
 // contains the source's model, else its K undistorted. Both are needed: over wide
 // scenes a simpler model's solution can lie in a poor basin for the richer one (a

@@ -41,12 +41,12 @@ typename LensInScalar<Model, T>::Parameters lens_parameters(const T* free_coeffi
 
 // How K's free parameters sit at the start of a candidate's parameters.
 enum class Core {
-    Focal,           // the FOV camera: f, the principal point at the image centre
+    Focal,           // the look-at camera: f, the principal point at the image centre
     PrincipalPoint,  // cx cy, square pixels at a sensor's fixed scale
     Full,            // fx fy cx cy
 };
 
-// What the fit holds fixed: the FOV camera's principal point, a sensor's scale.
+// What the fit holds fixed: the look-at camera's principal point, a sensor's scale.
 struct HeldIntrinsics {
     Vec2 image_centre = Vec2::Zero();
     double focal = 0.0;

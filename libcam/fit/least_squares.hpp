@@ -29,7 +29,7 @@ struct LeastSquaresState {
 using IterationHook = std::function<void(int)>;
 
 // Fits `candidate` from `start`; only the unknowns options.motion allows move besides
-// the intrinsics. The image's size gives what K holds fixed: the FOV camera's principal
+// the intrinsics. The image's size gives what K holds fixed: the look-at camera's principal
 // point (the image centre), a sensor-scale candidate's pixels per millimetre. Calls
 // `hook` after each iteration (options.progress is fit_candidates' business).
 LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSize& size,

@@ -71,7 +71,7 @@ struct LookAtCamera {
     Vec3 field_ray(double sx, double sy) const { return look_at_formula().field_ray(sx, sy); }
 };
 
-// The look-at formula of a FOV camera in Scalar: look_at_formula() in double, and the
+// The look-at formula of a look-at camera in Scalar: look_at_formula() in double, and the
 // tests' reference in 113 bits from the same inputs.
 template <class Scalar>
 LookAtRayFormulaT<Scalar> look_at_formula_in(const LookAtCamera& camera) {

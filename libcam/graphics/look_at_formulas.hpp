@@ -1,5 +1,5 @@
 #pragma once
-// The FOV camera's formulas (the look-at ray, the basis, the half-angle tangents, K
+// The look-at camera's formulas (the look-at ray, the basis, the half-angle tangents, K
 // from the fov), each written once as a template on the scalar type. The double API
 // (LookAtCamera, to_camera) calls them in double; the tests call the very same code in a
 // 113-bit type and use it as the reference (tests/reference.hpp). Where a double overload

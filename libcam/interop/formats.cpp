@@ -9,7 +9,7 @@ namespace libcam {
 
 namespace {
 
-// The bridge's reader and writer in the table's form. The format records no FOV camera
+// The bridge's reader and writer in the table's form. The format records no look-at camera
 // and has no options.
 
 CameraFile read_cameramodel(std::string_view text, const std::string& source) {

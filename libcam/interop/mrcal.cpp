@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "libcam/error.hpp"
-#include "libcam/interop/mrcal_c.hpp"
+#include "libcam/interop/detail/mrcal_c.hpp"
 #include "libcam/interop/mrcal_diagnostic.hpp"
 #include "libcam/io/detail/cameramodel_text.hpp"
 

@@ -30,11 +30,11 @@ enum class CameraFormat {
 // How many formats there are (the table of formats checks that each has its row).
 inline constexpr std::size_t kCameraFormatCount = static_cast<std::size_t>(CameraFormat::DriveworksRig) + 1;
 
-// What a file holds: the calibrated camera, and the FOV camera it was made from when
+// What a file holds: the calibrated camera, and the look-at camera it was made from when
 // the file says so (libcam JSON records the fov axis).
 struct CameraFile {
     Camera camera;
-    std::optional<LookAtCamera> fov_camera;
+    std::optional<LookAtCamera> look_at_camera;
 };
 
 // One camera of a file: the file's name for it (cam0, a camodocal camera_name, a COLMAP
@@ -54,7 +54,7 @@ struct CameraSet {
 };
 
 struct WriteOptions {
-    std::optional<LookAtCamera> fov_camera;  // JSON: record the FOV camera's own axis and up
+    std::optional<LookAtCamera> look_at_camera;  // JSON: record the look-at camera's own axis and up
     double gl_near = 0.1;
     double gl_far = 1000.0;
     DepthRange gl_depth_range = DepthRange::MinusOneToOne;

@@ -2,7 +2,7 @@
 // Observations: the pixels where a tool saw known points (a calibration's board corners,
 // a reconstruction's tracks), with the cameras and poses the tool solved from them, and
 // the numbers the tool stored about its own fit. read_observations reads them from the
-// files calibration and reconstruction tools write; libcam/check/reproject.hpp checks
+// files calibration and reconstruction tools write; libcam/reproject/reproject.hpp checks
 // them; docs/reprojection.md defines each tool's number.
 //
 //   const ObservationSet set = read_observations("sparse/0");

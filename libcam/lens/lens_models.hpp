@@ -33,7 +33,7 @@
 //   Vec3T ray_from_undistorted(parameters, u)            the ray through u
 //
 // Optional: `static constexpr bool projects_ratios = true` for a model that starts from
-// x / z and y / z (a point at any scale then needs no rescaling, camera/point_scale.hpp).
+// x / z and y / z (a point at any scale then needs no rescaling, camera/detail/point_scale.hpp).
 
 #include <algorithm>
 #include <cmath>

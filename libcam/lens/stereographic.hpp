@@ -10,7 +10,7 @@
 // where |p| + Z = 0. For Z < 0, |p| + Z is evaluated as (X^2 + Y^2) / (|p| - Z), which
 // does not cancel. Where X^2 + Y^2 is no longer a normal number (within ~1e-154 rad of
 // the backward axis for |p| ~ 1, 1e-19 rad in float; Camera and Projector scale a point
-// far from |p| ~ 1 first, see camera/point_scale.hpp) m overflows and the point is
+// far from |p| ~ 1 first, see camera/detail/point_scale.hpp) m overflows and the point is
 // flagged. Every m has a ray.
 
 #include <Eigen/Core>

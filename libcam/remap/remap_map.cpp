@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <atomic>
 
-#include "libcam/camera/kernels.hpp"
+#include "libcam/camera/detail/kernels.hpp"
 #include "libcam/camera/parallel.hpp"
 #include "libcam/camera/unprojector.hpp"
 #include "libcam/error.hpp"

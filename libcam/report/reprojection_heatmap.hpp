@@ -1,9 +1,9 @@
 #pragma once
 // The picture of `libcam reproject --heatmap`: where on the image a file's residuals are,
-// and which views carry them, drawn from a reprojection (check/reproject.hpp), as
+// and which views carry them, drawn from a reprojection (reproject/reproject.hpp), as
 // mrcal-show-residuals draws a calibration's.
 
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/report/image.hpp"
 
 namespace libcam {

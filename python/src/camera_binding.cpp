@@ -16,7 +16,7 @@
 
 #include "arrays.hpp"
 #include "libcam/camera/parallel.hpp"
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/convert/opengl.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
@@ -25,9 +25,9 @@
 
 namespace libcam::python {
 
-PythonCamera::PythonCamera(const Camera& camera, PixelOrigin origin, std::optional<LookAtCamera> fov_camera) {
+PythonCamera::PythonCamera(const Camera& camera, PixelOrigin origin, std::optional<LookAtCamera> look_at_camera) {
     PreparedCamera prepared(camera);
-    state_ = std::make_shared<State>(prepared, origin, std::move(fov_camera));
+    state_ = std::make_shared<State>(prepared, origin, std::move(look_at_camera));
 }
 
 template <>
@@ -582,7 +582,7 @@ py::dict to_gl(const PythonCamera& python_camera, double near, double far, const
 
 WriteOptions write_options(const PythonCamera& camera) {
     WriteOptions options;
-    options.fov_camera = camera.fov_camera();
+    options.look_at_camera = camera.look_at_camera();
     return options;
 }
 

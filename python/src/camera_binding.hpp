@@ -24,12 +24,12 @@ class PythonCamera {
 public:
     // Validates the camera (libcam.Error naming the field otherwise).
     explicit PythonCamera(const Camera& camera, PixelOrigin origin = PixelOrigin::TopLeft,
-                          std::optional<LookAtCamera> fov_camera = std::nullopt);
+                          std::optional<LookAtCamera> look_at_camera = std::nullopt);
 
     const Camera& camera() const { return state_->prepared.camera(); }
     const PreparedCamera& prepared() const { return state_->prepared; }
     PixelOrigin pixel_origin() const { return state_->origin; }
-    const std::optional<LookAtCamera>& fov_camera() const { return state_->fov_camera; }
+    const std::optional<LookAtCamera>& look_at_camera() const { return state_->look_at_camera; }
 
     template <class T>
     const Projector<T>& projector() const;
@@ -40,11 +40,11 @@ public:
 private:
     struct State {
         State(const PreparedCamera& camera, PixelOrigin pixel_origin, std::optional<LookAtCamera> fov)
-            : prepared(camera), origin(pixel_origin), fov_camera(std::move(fov)), projector_double(camera),
+            : prepared(camera), origin(pixel_origin), look_at_camera(std::move(fov)), projector_double(camera),
               projector_float(camera) {}
         PreparedCamera prepared;
         PixelOrigin origin;
-        std::optional<LookAtCamera> fov_camera;
+        std::optional<LookAtCamera> look_at_camera;
         Projector<double> projector_double;
         Projector<float> projector_float;
         std::once_flag float_unprojector_built;

@@ -9,8 +9,8 @@
 #include "arrays.hpp"
 #include "camera_binding.hpp"
 #include "libcam/error.hpp"
-#include "libcam/interop/colmap_dataset.hpp"
-#include "libcam/interop/dataset_tasks.hpp"
+#include "libcam/dataset/colmap_dataset.hpp"
+#include "libcam/dataset/dataset_tasks.hpp"
 
 namespace libcam::python {
 

@@ -8,7 +8,7 @@
 #include "camera_binding.hpp"
 #include "dataset_binding.hpp"
 #include "libcam/camera/simd.hpp"
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/formats.hpp"
 #include "libcam/io/camera_file.hpp"
@@ -111,7 +111,7 @@ std::optional<CameraFormat> format_from(const std::optional<std::string>& name) 
     return camera_format_from_string(*name);
 }
 
-PythonCamera camera_of(const CameraFile& file) { return PythonCamera(file.camera, PixelOrigin::TopLeft, file.fov_camera); }
+PythonCamera camera_of(const CameraFile& file) { return PythonCamera(file.camera, PixelOrigin::TopLeft, file.look_at_camera); }
 
 }  // namespace
 

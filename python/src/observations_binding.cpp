@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "camera_binding.hpp"
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/io/observations.hpp"
 
 namespace libcam::python {

@@ -345,7 +345,7 @@ TEST_CASE("convert: JSON of example camera 2 (eye 0,5,5 looking at the origin)")
     CHECK_CLOSE(vec3(j["t"]), Vector3d(0, 0, 5 * kSqrt2), 1e-12);
     CHECK_CLOSE(vec3(j["eye"]), Vector3d(0, 5, 5), 1e-12);
     CHECK_CLOSE(vec3(j["gaze"]), Vector3d(0, -1, -1) / kSqrt2, 1e-12);
-    // up: the FOV camera's up as given, (0,1,0) (json_format.hpp), not its own v.
+    // up: the look-at camera's up as given, (0,1,0) (json_format.hpp), not its own v.
     CHECK_CLOSE(vec3(j["up"]), Vector3d(0, 1, 0), 1e-12);
 }
 
@@ -827,7 +827,7 @@ TEST_CASE("info gives each image of a model the field of view of its own calibra
 TEST_CASE("convert writes a COLMAP model into a folder, info lists its image, and NeRF's sizes come from flags") {
     TempDir dir;
     const std::string model = (dir.path() / "sparse").string();
-    // A 60-degree FOV camera: COLMAP's cx is libcam's 319.5 plus 0.5.
+    // A 60-degree look-at camera: COLMAP's cx is libcam's 319.5 plus 0.5.
     const CliResult written = run_libcam({"convert", "--fov", "60", "--fov-axis", "horizontal", "--size", "640x480",
                                           "--to", "colmap", "-o", model, "--image-name", "frame_7.png"});
     INFO(written.describe());

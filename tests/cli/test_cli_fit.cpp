@@ -22,7 +22,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// A FOV camera: 1280x720, horizontal fov 70 deg (fx = fy = 640 / tan 35 deg),
+// A look-at camera: 1280x720, horizontal fov 70 deg (fx = fy = 640 / tan 35 deg),
 // centred principal point, no distortion, at the origin.
 std::string fov_json() {
     const double f = 640.0 / std::tan(35.0 * std::numbers::pi / 180.0);

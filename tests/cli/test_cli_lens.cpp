@@ -69,7 +69,7 @@ TEST_CASE("rays through a distorted lens: inside the fold a ray, past it valid f
     REQUIRE(std::abs(rays[0].at("direction")[0].get<double>() - r / norm) < 1e-12);
     REQUIRE(std::abs(rays[0].at("direction")[1].get<double>()) < 1e-12);
     REQUIRE(std::abs(rays[0].at("direction")[2].get<double>() - 1 / norm) < 1e-12);
-    // Not a FOV camera: no look-at direction.
+    // Not a look-at camera: no look-at direction.
     REQUIRE(rays[0].at("direction_look_at").is_null());
 
     REQUIRE(rays[1].at("valid") == false);
@@ -101,7 +101,7 @@ TEST_CASE("convert carries distortion through json, opencv-yaml, opencv-xml and 
     REQUIRE(end.at("model") == "OPENCV4");
     REQUIRE(end.at("dist") == json::parse("[-0.5, 0, 0, 0]"));
     REQUIRE(end.at("K") == json::parse("[[500, 0, 499.5], [0, 500, 374.5], [0, 0, 1]]"));
-    REQUIRE(end.at("fov_axes").empty());  // a lens with distortion is no FOV camera
+    REQUIRE(end.at("fov_axes").empty());  // a lens with distortion is no look-at camera
 }
 
 TEST_CASE("a format that cannot hold the model is an error, and writes nothing") {

@@ -14,7 +14,7 @@
 #include <catch2/catch.hpp>
 #include <type_traits>
 
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "support.hpp"
 
 using namespace libcam;
@@ -119,7 +119,7 @@ TEST_CASE("look-at example 2: the top centre of the field of view") {
 
 TEST_CASE("look-at formula: any eye and orthonormal basis") {
     for (int i = 0; i < 50; ++i) {
-        const LookAtCamera camera = test::random_fov_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
+        const LookAtCamera camera = test::random_look_at_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
         const Basis b = camera.basis();
         // An orthonormal, left-handed basis with w along the gaze.
         REQUIRE(std::abs(b.u.dot(b.v)) < 1e-15);
@@ -136,7 +136,7 @@ TEST_CASE("look-at formula: any eye and orthonormal basis") {
 TEST_CASE("the right-handed basis describes the same rays") {
     // With the right-handed basis, the look-at formula holds with w replaced by -w.
     for (int i = 0; i < 20; ++i) {
-        const LookAtCamera camera = test::random_fov_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
+        const LookAtCamera camera = test::random_look_at_camera({3, 3}, FovAxis::Both, 90.0, 90.0);
         const Basis left = camera.basis(Handedness::Left);
         const Basis right = camera.basis(Handedness::Right);
         require_near(right.u, left.u);
@@ -166,7 +166,7 @@ TEST_CASE("row origin: bottom-left pixel (0, 0) is the lower-left pixel, OpenCV 
     require_near(example_camera_1().look_at_ray({0, 2}, PixelOrigin::TopLeft).normalized(), expected);
 }
 
-TEST_CASE("The look-at formula refuses a FOV camera built by hand that validate() refuses, naming the field") {
+TEST_CASE("The look-at formula refuses a look-at camera built by hand that validate() refuses, naming the field") {
     using Catch::Matchers::Contains;
     LookAtCamera zero_gaze;
     zero_gaze.gaze = Vec3::Zero();
@@ -186,10 +186,10 @@ TEST_CASE("The look-at formula refuses a FOV camera built by hand that validate(
     }
 }
 
-// The graphics camera's old name, kept for one release in its old header.
+// The graphics camera's old names, kept for one release in the one old header left.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wdeprecated-declarations"
-#include "libcam/fov/fov_camera.hpp"
+#include "libcam/convert/fov_convert.hpp"
 TEST_CASE("FovCamera and to_fov_camera, the old names, are LookAtCamera and to_look_at_camera") {
     static_assert(std::is_same_v<libcam::FovCamera, libcam::LookAtCamera>);
     const libcam::LookAtCamera camera = libcam::LookAtCamera::look_at({0, 5, 5}, {0, 0, 0}, {0, 1, 0}, 90.0,

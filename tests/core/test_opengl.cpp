@@ -15,7 +15,7 @@ namespace {
 // A calibrated camera with random K (optionally off-centre and skewed) and pose.
 Camera random_camera(bool centred, bool skewed) {
     const ImageSize size{std::lround(test::uniform(100, 4000)), std::lround(test::uniform(100, 4000))};
-    Camera camera = to_camera(test::random_fov_camera(size, test::random_axis(static_cast<int>(size.width)), 5, 170));
+    Camera camera = to_camera(test::random_look_at_camera(size, test::random_axis(static_cast<int>(size.width)), 5, 170));
     if (!centred) {
         camera.intrinsics.cx += test::uniform(-0.2, 0.2) * static_cast<double>(size.width);
         camera.intrinsics.cy += test::uniform(-0.2, 0.2) * static_cast<double>(size.height);

@@ -15,8 +15,8 @@
 #include <sstream>
 
 #include "cli_runner.hpp"
-#include "libcam/check/reproject.hpp"
-#include "libcam/interop/dataset_views.hpp"
+#include "libcam/reproject/reproject.hpp"
+#include "libcam/dataset/detail/dataset_views.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/observations.hpp"
 #include "real_cameras.hpp"

@@ -11,8 +11,8 @@
 
 #include "cli_runner.hpp"
 #include "libcam/error.hpp"
-#include "libcam/interop/colmap_dataset.hpp"
-#include "libcam/interop/dataset_tasks.hpp"
+#include "libcam/dataset/colmap_dataset.hpp"
+#include "libcam/dataset/dataset_tasks.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
 #include "temp_dir.hpp"

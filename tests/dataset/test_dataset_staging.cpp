@@ -11,8 +11,8 @@
 
 #include "cli_runner.hpp"
 #include "libcam/error.hpp"
-#include "libcam/interop/colmap_dataset.hpp"
-#include "libcam/interop/dataset_tasks.hpp"
+#include "libcam/dataset/colmap_dataset.hpp"
+#include "libcam/dataset/dataset_tasks.hpp"
 #include "temp_dir.hpp"
 
 namespace {

@@ -19,7 +19,7 @@
 #include "lens_cases.hpp"
 #include "blender_reference.hpp"
 #include "libcam/convert/blender_camera.hpp"
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/fit/fit.hpp"
 #include "libcam/interop/mrcal.hpp"
@@ -128,7 +128,7 @@ double independent_max_error(const Camera& source, const Camera& fitted, const S
 
 }  // namespace
 
-TEST_CASE("a camera made as a FOV camera is found to be one, with no error") {
+TEST_CASE("a camera made as a look-at camera is found to be one, with no error") {
     const LookAtCamera made = LookAtCamera::look_at({1, 2, 3}, {4, -1, 9}, {0, 1, 0}, 70.0, FovAxis::Horizontal, {1280, 720});
     const Camera source = to_camera(made);
     FitOptions options;
@@ -148,7 +148,7 @@ TEST_CASE("a camera made as a FOV camera is found to be one, with no error") {
     CHECK(world.pose.centre().isApprox(made.eye, 1e-12));
 }
 
-TEST_CASE("a mildly distorted lens needs OPENCV4 over the whole image but is a FOV camera in a small central region") {
+TEST_CASE("a mildly distorted lens needs OPENCV4 over the whole image but is a look-at camera in a small central region") {
     const Camera source = mildly_distorted();
     FitOptions options;
     options.tolerance_px = 0.05;
@@ -162,7 +162,7 @@ TEST_CASE("a mildly distorted lens needs OPENCV4 over the whole image but is a F
     CHECK(candidate(whole, "PINHOLE").max_px > 1.0);
 
     // Within 40 px of the centre (r = 1/30) the distortion moves no pixel by more than
-    // 1200 (0.02 r^3 + 3.5e-4 r^2) = 1.4e-3 px, far inside 0.05 px: the FOV camera serves.
+    // 1200 (0.02 r^3 + 3.5e-4 r^2) = 1.4e-3 px, far inside 0.05 px: the look-at camera serves.
     // (A least-squares fit may trade some of its largest error for a smaller RMS: 2x.)
     const FitReport centre = fit_scene(source, Scene::circle(40.0, centre_of(source.size)), options);
     CHECK(chosen(centre).fit.candidate.name == "LOOK_AT");
@@ -208,7 +208,7 @@ TEST_CASE("the chosen model is within the tolerance everywhere in the scene, by 
     }
 }
 
-TEST_CASE("the fitted camera may rotate: an off-centre principal point is a rotated FOV camera") {
+TEST_CASE("the fitted camera may rotate: an off-centre principal point is a rotated look-at camera") {
     // f = 2500 on a 1000x800 image (tan of the half width 0.2), principal point 2 px right
     // and 1.5 px up of the centre. Without motion a centred camera is off by ~2.5 px
     // everywhere; turned by ~(2, 1.5)/2500 rad, it is off by at most about

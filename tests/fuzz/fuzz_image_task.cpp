@@ -1,5 +1,5 @@
 // libFuzzer target for the dataset's image task read from its JSON line
-// (interop/dataset_tasks.hpp: what another process or machine receives). Properties checked
+// (dataset/dataset_tasks.hpp: what another process or machine receives). Properties checked
 // on every input:
 //   - image_task_from_json returns a task or throws a libcam::Error; anything else (a crash,
 //     a sanitizer report, another exception type, a leak) fails the run;
@@ -12,7 +12,7 @@
 #include <string_view>
 
 #include "libcam/error.hpp"
-#include "libcam/interop/dataset_tasks.hpp"
+#include "libcam/dataset/dataset_tasks.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -21,7 +21,7 @@
 #include <string>
 #include <string_view>
 
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/detail/colmap_model.hpp"

@@ -14,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/formats.hpp"
 #include "libcam/io/camera_file.hpp"

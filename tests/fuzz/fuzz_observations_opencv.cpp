@@ -17,7 +17,7 @@
 #include <string_view>
 #include <unistd.h>
 
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/observations.hpp"
 

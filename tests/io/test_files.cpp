@@ -29,7 +29,7 @@
 #include "temp_dir.hpp"
 #include "libcam/camera/camera.hpp"
 #include "libcam/camera/example_cameras.hpp"
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -142,7 +142,7 @@ const char* extension(CameraFormat format) {
 TEST_CASE("Round trip through every format: K, R, t and size come back", "[files]") {
     TempDir dir;
     for (int i = 0; i < 16; ++i) {
-        const LookAtCamera fov = libcam::test::random_fov_camera(kSizes[i % std::size(kSizes)], libcam::test::random_axis(i));
+        const LookAtCamera fov = libcam::test::random_look_at_camera(kSizes[i % std::size(kSizes)], libcam::test::random_axis(i));
         const Camera camera = to_camera(fov);
         for (CameraFormat format : kFormats) {
             CAPTURE(i, to_string(format), fov.size.width, fov.size.height, fov.fov_deg);
@@ -162,7 +162,7 @@ TEST_CASE("Round trip through every format: K, R, t and size come back", "[files
     CHECK(folder_listing(dir.path()).size() == 16 * std::size(kFormats) * 2);
 }
 
-TEST_CASE("Round trip of a camera that is no FOV camera (skew, off-centre, fx != fy)", "[files]") {
+TEST_CASE("Round trip of a camera that is no look-at camera (skew, off-centre, fx != fy)", "[files]") {
     TempDir dir;
     Camera camera;
     camera.size = {1280, 720};
@@ -183,20 +183,20 @@ TEST_CASE("Round trip of a camera that is no FOV camera (skew, off-centre, fx !=
     }
 }
 
-TEST_CASE("JSON with \"fov_axis\" reads back the FOV camera: same fov, gaze and basis", "[files]") {
+TEST_CASE("JSON with \"fov_axis\" reads back the look-at camera: same fov, gaze and basis", "[files]") {
     TempDir dir;
     for (int i = 0; i < 24; ++i) {
         const FovAxis axis = libcam::test::random_axis(i);
-        const LookAtCamera fov = i % 6 == 1   ? libcam::test::random_fov_camera(kSizes[i % 6], axis, 1.0, 1.0 + 1e-9)
-                              : i % 6 == 4 ? libcam::test::random_fov_camera(kSizes[i % 6], axis, 179.0 - 1e-9, 179.0)
-                                           : libcam::test::random_fov_camera(kSizes[i % 6], axis);
+        const LookAtCamera fov = i % 6 == 1   ? libcam::test::random_look_at_camera(kSizes[i % 6], axis, 1.0, 1.0 + 1e-9)
+                              : i % 6 == 4 ? libcam::test::random_look_at_camera(kSizes[i % 6], axis, 179.0 - 1e-9, 179.0)
+                                           : libcam::test::random_look_at_camera(kSizes[i % 6], axis);
         const fs::path path = dir.path() / ("fov" + std::to_string(i) + ".json");
         WriteOptions options;
-        options.fov_camera = fov;
+        options.look_at_camera = fov;
         write_camera_file(path, to_camera(fov), CameraFormat::Json, options);
         const CameraFile file = read_camera_file(path);
-        REQUIRE(file.fov_camera.has_value());
-        const LookAtCamera& back = *file.fov_camera;
+        REQUIRE(file.look_at_camera.has_value());
+        const LookAtCamera& back = *file.look_at_camera;
         CAPTURE(i, to_string(axis), fov.fov_deg, back.fov_deg, fov.size.width, fov.size.height);
         CHECK(back.fov_axis == fov.fov_axis);
         CHECK(back.size == fov.size);
@@ -212,10 +212,10 @@ TEST_CASE("JSON with \"fov_axis\" reads back the FOV camera: same fov, gaze and 
         const Vec2 corner(0.0, 0.0);
         CHECK((back.look_at_ray(corner).normalized() - fov.look_at_ray(corner).normalized()).norm() <= 1e-12);
     }
-    // Without "fov_axis" there is no FOV camera in the file.
+    // Without "fov_axis" there is no look-at camera in the file.
     const fs::path plain = dir.path() / "plain.json";
-    write_camera_file(plain, to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Vertical)), CameraFormat::Json);
-    CHECK_FALSE(read_camera_file(plain).fov_camera.has_value());
+    write_camera_file(plain, to_camera(libcam::test::random_look_at_camera({640, 480}, FovAxis::Vertical)), CameraFormat::Json);
+    CHECK_FALSE(read_camera_file(plain).look_at_camera.has_value());
 }
 
 // ---------------------------------------------------------------------------------
@@ -376,7 +376,7 @@ TEST_CASE("Stereo files written by cv::FileStorage: stereo_calib's pair and ORB-
 TEST_CASE("A file written by libcam's opencv-yaml/xml reads back through cv::FileStorage", "[files][opencv]") {
     TempDir dir;
     for (int i = 0; i < 8; ++i) {
-        const Camera camera = to_camera(libcam::test::random_fov_camera(kSizes[i % 6], libcam::test::random_axis(i)));
+        const Camera camera = to_camera(libcam::test::random_look_at_camera(kSizes[i % 6], libcam::test::random_axis(i)));
         for (CameraFormat format : {CameraFormat::OpenCvYaml, CameraFormat::OpenCvXml}) {
             CAPTURE(i, to_string(format));
             const fs::path path = dir.path() / (std::string("camera") + extension(format));
@@ -612,7 +612,7 @@ TEST_CASE("JSON numbers that overflow to infinity are refused as a libcam error 
 
 TEST_CASE("Truncated, empty, missing and directory paths are refused with FileError", "[files][errors]") {
     TempDir dir;
-    const Camera camera = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Both));
+    const Camera camera = to_camera(libcam::test::random_look_at_camera({640, 480}, FovAxis::Both));
 
     // Truncated JSON: every cut of a valid file.
     const std::string json = format_camera(camera, CameraFormat::Json);
@@ -940,7 +940,7 @@ TEST_CASE("Malformed OpenCV YAML and XML are refused, naming the key", "[files][
     }
 
     // XML: one missing key and one bad value, in cv::FileStorage's own XML.
-    const Camera camera = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Horizontal));
+    const Camera camera = to_camera(libcam::test::random_look_at_camera({640, 480}, FovAxis::Horizontal));
     std::string xml = format_camera(camera, CameraFormat::OpenCvXml);
     const auto start = xml.find("<camera_matrix");
     const auto end = xml.find("</camera_matrix>");
@@ -1055,13 +1055,13 @@ TEST_CASE("Malformed .cameramodel and gl files are refused", "[files][errors]") 
 
 TEST_CASE("Formats that cannot hold a camera say so, and write nothing", "[files][errors]") {
     TempDir dir;
-    Camera camera = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Diagonal));
+    Camera camera = to_camera(libcam::test::random_look_at_camera({640, 480}, FovAxis::Diagonal));
     camera.intrinsics.skew = 1.0;
     const fs::path path = dir.path() / "skew.cameramodel";
     CHECK_THROWS_AS(write_camera_file(path, camera, CameraFormat::Cameramodel), NotRepresentable);
     CHECK(fs::is_empty(dir.path()));
     // An invalid camera is refused by every writer before anything is written.
-    Camera broken = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Diagonal));
+    Camera broken = to_camera(libcam::test::random_look_at_camera({640, 480}, FovAxis::Diagonal));
     broken.intrinsics.fx = -1.0;
     for (CameraFormat format : kFormats) {
         CAPTURE(to_string(format));
@@ -1181,7 +1181,7 @@ TEST_CASE("write_file_atomically fails cleanly: FileError, old file intact, no t
     }
 
     SECTION("write_camera_file over an existing camera in a failing folder keeps the old camera") {
-        const Camera camera = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Both));
+        const Camera camera = to_camera(libcam::test::random_look_at_camera({640, 480}, FovAxis::Both));
         const fs::path camera_path = folder / "good.json";
         write_camera_file(camera_path, camera, CameraFormat::Json);
         const std::string before = slurp(camera_path);

@@ -22,7 +22,7 @@
 #include "gs_reference.hpp"
 #include "lens_cases.hpp"
 #include "lensfun_reference.hpp"
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/observations.hpp"
 #include "libcam/text/number_format.hpp"

@@ -491,7 +491,7 @@ void sweep_lens(const Camera& camera, SweepCount& in_double, SweepCount& in_floa
     }
 }
 
-// The FOV cameras at every extreme: to_camera either throws or gives finite K, R, t,
+// The look-at cameras at every extreme: to_camera either throws or gives finite K, R, t,
 // and every probe ray is finite.
 void sweep_fov(SweepCount& in_double) {
     rng().seed(17);
@@ -500,12 +500,12 @@ void sweep_fov(SweepCount& in_double) {
              {ImageSize{1, 1}, ImageSize{100000, 100000}, ImageSize{1, 10000}, ImageSize{100000, 10}}) {
             for (FovAxis axis : {FovAxis::Horizontal, FovAxis::Vertical, FovAxis::Diagonal, FovAxis::Both}) {
                 for (double eye_scale : {0.0, 1e7, 1e300}) {
-                    LookAtCamera fov_camera = random_fov_camera(size, axis);
-                    fov_camera.fov_deg = fov;
-                    fov_camera.eye = random_unit() * eye_scale;
+                    LookAtCamera look_at_camera = random_look_at_camera(size, axis);
+                    look_at_camera.fov_deg = fov;
+                    look_at_camera.eye = random_unit() * eye_scale;
                     Camera camera;
                     try {
-                        camera = to_camera(fov_camera);
+                        camera = to_camera(look_at_camera);
                     } catch (const Error&) {
                         in_double.add(false, false, "");
                         continue;
@@ -513,13 +513,13 @@ void sweep_fov(SweepCount& in_double) {
                     const bool finite =
                         camera.intrinsics.K().allFinite() && camera.pose.R.allFinite() && camera.pose.t.allFinite();
                     in_double.add(true, finite,
-                                  "FOV camera fov " + std::to_string(fov) + " eye " + std::to_string(eye_scale));
+                                  "look-at camera fov " + std::to_string(fov) + " eye " + std::to_string(eye_scale));
                     const PreparedCamera prepared(camera);
                     for (const Vec2& pixel : corner_pixels(size)) {
                         const Ray ray = prepared.ray(pixel);
                         in_double.add(ray.valid, ray.direction.allFinite() && ray.origin.allFinite(),
-                                      "FOV camera ray " + show(pixel));
-                        const Vec3 look_at = fov_camera.look_at_ray(pixel, PixelOrigin::TopLeft);
+                                      "look-at camera ray " + show(pixel));
+                        const Vec3 look_at = look_at_camera.look_at_ray(pixel, PixelOrigin::TopLeft);
                         in_double.add(true, look_at.allFinite(), "FOV look-at ray " + show(pixel));
                     }
                 }

@@ -606,7 +606,7 @@ bool same_bits(const Vector& a, const Vector& b) {
 
 // Points over the domain, and some the batch path treats apart: outside the domain
 // (behind the camera, on its plane, at the origin, on the coordinate axes, past the
-// fold), at extreme scales (its second pass, camera/point_scale.hpp), not finite.
+// fold), at extreme scales (its second pass, camera/detail/point_scale.hpp), not finite.
 std::vector<Vec3> batch_points(const LensInfo& info, const Camera& camera) {
     const std::vector<Vec3> inside = sample_points(info, camera);
     std::vector<Vec3> points = inside;

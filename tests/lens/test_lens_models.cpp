@@ -16,7 +16,7 @@
 
 #include "lens_cases.hpp"
 #include "libcam/interop/mrcal.hpp"
-#include "libcam/interop/mrcal_c.hpp"
+#include "libcam/interop/detail/mrcal_c.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "libcam/camera/projector.hpp"
 #include "libcam/camera/unprojector.hpp"

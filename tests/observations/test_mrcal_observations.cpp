@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "temp_dir.hpp"
 #include "libcam/io/camera_file.hpp"

@@ -9,7 +9,7 @@
 
 #include "../error_message.hpp"
 #include "../temp_dir.hpp"
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/observations.hpp"

@@ -10,7 +10,7 @@
 
 #include "../real_cameras.hpp"
 #include "../temp_dir.hpp"
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
 

@@ -1,11 +1,11 @@
-// check/reproject.hpp on observation sets made by hand: a pinhole camera whose pixels are
+// reproject/reproject.hpp on observation sets made by hand: a pinhole camera whose pixels are
 // worked out from x = fx X / Z + cx, so every expected residual is known without libcam.
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 
 namespace {

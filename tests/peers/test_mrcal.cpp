@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "temp_dir.hpp"
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/mrcal.hpp"
-#include "libcam/interop/mrcal_c.hpp"
+#include "libcam/interop/detail/mrcal_c.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "support.hpp"
 
@@ -62,9 +62,9 @@ std::vector<Camera> test_cameras() {
     for (int i = 0; i < 24; ++i) {
         const ImageSize size = kSizes[i % std::size(kSizes)];
         const FovAxis axis = libcam::test::random_axis(i);
-        if (i % 6 == 1) cameras.push_back(to_camera(libcam::test::random_fov_camera(size, axis, 1.0, 1.0 + 1e-9)));
-        else if (i % 6 == 4) cameras.push_back(to_camera(libcam::test::random_fov_camera(size, axis, 179.0 - 1e-9, 179.0)));
-        else cameras.push_back(to_camera(libcam::test::random_fov_camera(size, axis)));
+        if (i % 6 == 1) cameras.push_back(to_camera(libcam::test::random_look_at_camera(size, axis, 1.0, 1.0 + 1e-9)));
+        else if (i % 6 == 4) cameras.push_back(to_camera(libcam::test::random_look_at_camera(size, axis, 179.0 - 1e-9, 179.0)));
+        else cameras.push_back(to_camera(libcam::test::random_look_at_camera(size, axis)));
     }
     return cameras;
 }
@@ -350,7 +350,7 @@ TEST_CASE("A .cameramodel libmrcal refuses is told in libcam's words, with the l
 
 TEST_CASE("A camera with skew cannot be written as .cameramodel", "[mrcal][errors]") {
     TempDir dir;
-    Camera camera = to_camera(libcam::test::random_fov_camera({640, 480}, FovAxis::Horizontal));
+    Camera camera = to_camera(libcam::test::random_look_at_camera({640, 480}, FovAxis::Horizontal));
     camera.intrinsics.skew = 0.25;
     REQUIRE_THROWS_AS(format_camera(camera, CameraFormat::Cameramodel), NotRepresentable);
     REQUIRE_THROWS_WITH(format_camera(camera, CameraFormat::Cameramodel), Contains("skew"));

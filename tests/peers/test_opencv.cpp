@@ -13,14 +13,14 @@
 #include <numbers>
 #include <vector>
 
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/interop/opencv.hpp"
 #include "opencv_k.hpp"
 #include "support.hpp"
 
 using namespace libcam;
 using libcam::test::check_opencv_k;
-using libcam::test::random_fov_camera;
+using libcam::test::random_look_at_camera;
 using libcam::test::uniform;
 
 namespace {
@@ -29,15 +29,15 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 const ImageSize kSizes[] = {{1920, 1080}, {640, 4000}, {4000, 500}, {1000, 1000}, {3, 3}, {1, 1}, {7, 2}};
 
-// At least 20 random FOV cameras over every axis and size, plus the extreme angles.
+// At least 20 random look-at cameras over every axis and size, plus the extreme angles.
 std::vector<LookAtCamera> test_cameras() {
     std::vector<LookAtCamera> cameras;
     for (int i = 0; i < 28; ++i) {
         const ImageSize size = kSizes[i % std::size(kSizes)];
         const FovAxis axis = libcam::test::random_axis(i);
-        if (i % 7 == 3) cameras.push_back(random_fov_camera(size, axis, 1.0, 1.0 + 1e-9));
-        else if (i % 7 == 5) cameras.push_back(random_fov_camera(size, axis, 179.0 - 1e-9, 179.0));
-        else cameras.push_back(random_fov_camera(size, axis));
+        if (i % 7 == 3) cameras.push_back(random_look_at_camera(size, axis, 1.0, 1.0 + 1e-9));
+        else if (i % 7 == 5) cameras.push_back(random_look_at_camera(size, axis, 179.0 - 1e-9, 179.0));
+        else cameras.push_back(random_look_at_camera(size, axis));
     }
     return cameras;
 }
@@ -150,8 +150,8 @@ TEST_CASE("cv::projectPoints meets 1e-9 px flat when the camera sits near the or
     // allows 1e-9 px at every depth and fov (measured worst: ~3e-10 px at fov 1 degree,
     // fx ~ 2.3e5): no conditioning allowance at all.
     for (int i = 0; i < 24; ++i) {
-        LookAtCamera fov = i % 3 == 0 ? random_fov_camera(kSizes[i % 3], libcam::test::random_axis(i), 1.0, 1.0 + 1e-9)
-                                   : random_fov_camera(kSizes[i % 3], libcam::test::random_axis(i));
+        LookAtCamera fov = i % 3 == 0 ? random_look_at_camera(kSizes[i % 3], libcam::test::random_axis(i), 1.0, 1.0 + 1e-9)
+                                   : random_look_at_camera(kSizes[i % 3], libcam::test::random_axis(i));
         fov.eye = libcam::test::random_vector(1.0);
         const Camera camera = to_camera(fov);
         const PreparedCamera prepared(camera);
@@ -170,9 +170,9 @@ TEST_CASE("cv::projectPoints meets 1e-9 px flat when the camera sits near the or
 }
 
 TEST_CASE("libcam's cv::Mat arguments hold K, rvec and tvec in OpenCV's layout", "[opencv]") {
-    const Camera camera = to_camera(random_fov_camera({1920, 1080}, FovAxis::Horizontal));
+    const Camera camera = to_camera(random_look_at_camera({1920, 1080}, FovAxis::Horizontal));
     const cv::Mat K = opencv_camera_matrix(camera.intrinsics);
-    REQUIRE(camera.intrinsics.skew == 0.0);  // a FOV camera has none
+    REQUIRE(camera.intrinsics.skew == 0.0);  // a look-at camera has none
     check_opencv_k(K, camera.intrinsics);
     // Centred principal point in OpenCV's pixel-centre convention: (W-1)/2, (H-1)/2.
     CHECK(camera.intrinsics.cx == 959.5);
@@ -233,7 +233,7 @@ TEST_CASE("cv::undistortPoints agrees with normalized_from_pixel for a hand-made
     }
 }
 
-TEST_CASE("cv::Rodrigues agrees with pose.R and pose.rvec() on random FOV cameras", "[opencv]") {
+TEST_CASE("cv::Rodrigues agrees with pose.R and pose.rvec() on random look-at cameras", "[opencv]") {
     for (const LookAtCamera& fov : test_cameras()) {
         const Pose pose = to_camera(fov).pose;
         cv::Mat R_cv;

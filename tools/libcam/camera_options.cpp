@@ -1,6 +1,6 @@
 #include "camera_options.hpp"
 
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_formats.hpp"
 #include "parse.hpp"
@@ -102,19 +102,19 @@ CameraFile CameraOptions::camera() const {
     if (fov_axis != "horizontal" && fov_axis != "vertical" && fov_axis != "diagonal" && fov_axis != "both") {
         throw UsageError("--fov-axis: expected horizontal, vertical, diagonal or both, got '" + fov_axis + "'");
     }
-    LookAtCamera fov_camera;
-    fov_camera.fov_deg = parse_number("--fov", fov);
-    fov_camera.fov_axis = fov_axis_from_string(fov_axis);
-    fov_camera.size = parse_size("--size", size);
-    fov_camera.eye = parse_vec3("--eye", eye);
-    fov_camera.up = parse_vec3("--up", up);
+    LookAtCamera look_at_camera;
+    look_at_camera.fov_deg = parse_number("--fov", fov);
+    look_at_camera.fov_axis = fov_axis_from_string(fov_axis);
+    look_at_camera.size = parse_size("--size", size);
+    look_at_camera.eye = parse_vec3("--eye", eye);
+    look_at_camera.up = parse_vec3("--up", up);
     if (!target.empty()) {
-        fov_camera = LookAtCamera::look_at(fov_camera.eye, parse_vec3("--target", target), fov_camera.up,
-                                        fov_camera.fov_deg, fov_camera.fov_axis, fov_camera.size);
+        look_at_camera = LookAtCamera::look_at(look_at_camera.eye, parse_vec3("--target", target), look_at_camera.up,
+                                        look_at_camera.fov_deg, look_at_camera.fov_axis, look_at_camera.size);
     } else if (!gaze.empty()) {
-        fov_camera.gaze = parse_vec3("--gaze", gaze);
+        look_at_camera.gaze = parse_vec3("--gaze", gaze);
     }
-    return {to_camera(fov_camera), fov_camera};
+    return {to_camera(look_at_camera), look_at_camera};
 }
 
 std::string written_formats_help() {

@@ -1,5 +1,5 @@
 #pragma once
-// The camera flags shared by `convert` and `rays`: a FOV camera given by flags, or a
+// The camera flags shared by `convert` and `rays`: a look-at camera given by flags, or a
 // camera file given by --from.
 
 #include <CLI/CLI.hpp>

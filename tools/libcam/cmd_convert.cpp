@@ -1,4 +1,4 @@
-// libcam convert: a FOV camera (flags) or a camera file, written in any format.
+// libcam convert: a look-at camera (flags) or a camera file, written in any format.
 
 #include "camera_options.hpp"
 #include "commands.hpp"
@@ -57,7 +57,7 @@ Runner add_convert(CLI::App& app) {
         options.image_name = flags->image_name;
         options.drop_pose = flags->no_pose;
         const CameraFile file = flags->camera.camera();
-        options.fov_camera = file.fov_camera;
+        options.look_at_camera = file.look_at_camera;
         if (camera_format_writes_folder(format)) {
             if (flags->output.empty()) {
                 throw UsageError("--to " + flags->to + ": writes several files: give the folder to write them into (-o)");

@@ -1,5 +1,5 @@
 // libcam dataset: a whole COLMAP reconstruction into pinhole cameras, its images
-// undistorted and its observations moved (libcam/interop/colmap_dataset.hpp).
+// undistorted and its observations moved (libcam/dataset/colmap_dataset.hpp).
 
 #include <unistd.h>
 
@@ -13,7 +13,7 @@
 #include "commands.hpp"
 #include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
-#include "libcam/interop/colmap_dataset.hpp"
+#include "libcam/dataset/colmap_dataset.hpp"
 #include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 #include "progress.hpp"

@@ -13,7 +13,7 @@
 #include "commands.hpp"
 #include "json_output.hpp"
 #include "libcam/convert/blender_camera.hpp"
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/fit/fit.hpp"
 #include "libcam/io/camera_file.hpp"
@@ -356,7 +356,7 @@ void write_outputs(const FitFlags& flags, const Camera& source, const Scene& sce
     if (!flags.output.empty()) {
         const Camera camera = camera_in_world(chosen.fit, source);
         WriteOptions write;
-        if (chosen.fit.candidate.look_at) write.fov_camera = to_look_at_camera(camera, FovAxis::Horizontal);
+        if (chosen.fit.candidate.look_at) write.look_at_camera = to_look_at_camera(camera, FovAxis::Horizontal);
         write_camera_file(flags.output, camera, output_format(flags), write);
     }
     if (!flags.heatmap.empty()) write_png(flags.heatmap, fit_heatmap(source, scene, options, chosen));

@@ -1,5 +1,5 @@
 // libcam rays: the ray through each pixel, by the calibrated path R^T K^-1 [x, y, 1]
-// and, for a FOV camera, by the look-at formula, with the angle between them; and
+// and, for a look-at camera, by the look-at formula, with the angle between them; and
 // libcam project, the other way: the pixel of each world point.
 
 #include <iostream>
@@ -8,7 +8,7 @@
 
 #include "camera_options.hpp"
 #include "commands.hpp"
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/text/number_format.hpp"
 #include "parse.hpp"
 
@@ -22,12 +22,12 @@ struct RayRow {
     std::optional<Vec3> look_at_direction;  // unit
 };
 
-// The FOV camera to run the look-at formula on: the file's own, or any axis on which the
+// The look-at camera to run the look-at formula on: the file's own, or any axis on which the
 // calibrated camera is one.
-std::optional<LookAtCamera> look_at_camera(const CameraFile& file) {
-    if (file.fov_camera) return file.fov_camera;
+std::optional<LookAtCamera> graphics_camera_of(const CameraFile& file) {
+    if (file.look_at_camera) return file.look_at_camera;
     const FovDescription description = describe_fov(file.camera);
-    if (!description.is_fov_camera()) return std::nullopt;
+    if (!description.is_look_at_camera()) return std::nullopt;
     return to_look_at_camera(file.camera, description.fov_axes.front());
 }
 
@@ -160,13 +160,13 @@ Runner add_rays(CLI::App& app) {
         for (const std::string& text : flags->pixels) pixels.push_back(parse_vec2("--pixels", text));
         const PixelOrigin origin = flags->camera.origin();
         const CameraFile file = flags->camera.camera();
-        const std::optional<LookAtCamera> fov_camera = look_at_camera(file);
+        const std::optional<LookAtCamera> look_at_camera = graphics_camera_of(file);
 
         std::vector<RayRow> rows;
         const PreparedCamera camera(file.camera);
         for (const Vec2& pixel : pixels) {
             RayRow row{pixel, camera.ray(opencv_pixel(pixel, origin, file.camera.size)), std::nullopt};
-            if (fov_camera) row.look_at_direction = fov_camera->look_at_ray(pixel, origin).normalized();
+            if (look_at_camera) row.look_at_direction = look_at_camera->look_at_ray(pixel, origin).normalized();
             rows.push_back(row);
         }
         emit(flags->json ? format_json(rows) : format_table(rows), "");

@@ -1,6 +1,6 @@
 // libcam reproject SRC: every observation a calibration or reconstruction file holds,
 // reprojected through libcam's projection of the cameras and poses the file's tool solved
-// (check/reproject.hpp); the statistics, each number the file stored beside libcam's
+// (reproject/reproject.hpp); the statistics, each number the file stored beside libcam's
 // recomputation of it, the pixel-centre check, the worst observations; --json,
 // --observations-out (one CSV row per observation) and --heatmap (the residual field).
 
@@ -11,7 +11,7 @@
 
 #include "commands.hpp"
 #include "json_output.hpp"
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/observations.hpp"

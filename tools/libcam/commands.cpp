@@ -16,7 +16,7 @@ namespace {
 
 // In the order `libcam --help` lists them.
 constexpr std::array<CommandInfo, 16> kCommands = {{
-    {"convert", "Convert a FOV camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file", true},
+    {"convert", "Convert a look-at camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file", true},
     {"info", "Every camera a file holds: model, size, K, field of view, pose", true},
     {"rays", "World rays through pixels, by K^-1 and by the look-at formula", true},
     {"project", "The pixel of each world point (through R|t, K and the lens)", true},

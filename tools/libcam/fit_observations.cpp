@@ -4,7 +4,7 @@
 
 #include "commands.hpp"
 #include "json_output.hpp"
-#include "libcam/check/reproject.hpp"
+#include "libcam/reproject/reproject.hpp"
 #include "libcam/error.hpp"
 #include "libcam/fit/observation_fit.hpp"
 #include "libcam/io/camera_file.hpp"

@@ -2,7 +2,7 @@
 // A COLMAP model (cameras, images and points3D, .bin or .txt) read and checked once, for
 // every command that reads one: its cameras (`libcam info`, colmap_format.hpp), its
 // observations (`libcam reproject`, colmap_observations.hpp) and the whole model
-// (`libcam dataset`, interop/colmap_dataset.hpp). The three agree on what a model is: one
+// (`libcam dataset`, dataset/colmap_dataset.hpp). The three agree on what a model is: one
 // these checks refuse, each refuses with the same line.
 //
 // The checks, in this order, the first that fails naming the file, the record and the value:

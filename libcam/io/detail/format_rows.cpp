@@ -43,7 +43,7 @@ using L = LensType;
 // ---- readers and writers in the table's form ----------------------------------------------
 
 std::string write_json(const Camera& camera, const WriteOptions& options) {
-    return format_json(camera, options.fov_camera);
+    return format_json(camera, options.look_at_camera);
 }
 
 std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
@@ -55,7 +55,7 @@ std::string write_gl_json(const Camera& camera, const WriteOptions& options) {
     return format_gl_json(to_opengl(camera, options.gl_near, options.gl_far, options.gl_depth_range), camera.size);
 }
 
-// OpenCV's files (one camera, a stereo pair, ORB-SLAM's settings) record no FOV camera.
+// OpenCV's files (one camera, a stereo pair, ORB-SLAM's settings) record no look-at camera.
 std::vector<NamedCamera> read_opencv_storage(std::string_view text, const ReadContext& context) {
     return parse_opencv_storage_set(text, context.source, context.options);
 }

@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "libcam/convert/fov_convert.hpp"
+#include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/text/shown_value.hpp"
@@ -212,10 +212,10 @@ CameraFile read_gl(const Reader& in, const std::string& source) {
     return {camera, std::nullopt};
 }
 
-// The FOV camera a file records with "fov_axis". Its eye, gaze, up and fov are taken
+// The look-at camera a file records with "fov_axis". Its eye, gaze, up and fov are taken
 // from the file when they agree with K, R, t (so JSON -> JSON is exact), refused when
 // they do not.
-LookAtCamera read_fov_camera(const Reader& in, const Camera& camera, const std::string& source) {
+LookAtCamera read_look_at_camera(const Reader& in, const Camera& camera, const std::string& source) {
     FovAxis axis{};
     validated(source, [&] { axis = fov_axis_from_string(in.string("fov_axis")); });
     LookAtCamera fov;
@@ -273,7 +273,7 @@ ordered camera_keys(const Camera& camera) {
 
 }  // namespace
 
-std::string format_json(const Camera& camera, const std::optional<LookAtCamera>& fov_camera) {
+std::string format_json(const Camera& camera, const std::optional<LookAtCamera>& look_at_camera) {
     const FovDescription fov = describe_fov(camera);
     ordered out = camera_keys(camera);
     out["rvec"] = vector_json(camera.pose.rvec());
@@ -286,12 +286,12 @@ std::string format_json(const Camera& camera, const std::optional<LookAtCamera>&
                              {"right", tidy(fov.frustum.right)},
                              {"bottom", tidy(fov.frustum.bottom)},
                              {"top", tidy(fov.frustum.top)}};
-    // A FOV camera's own eye and up as the user gave them (the centre -R^T t carries
+    // A look-at camera's own eye and up as the user gave them (the centre -R^T t carries
     // the rounding of R and t); otherwise the camera's centre and its own up.
-    out["eye"] = vector_json(fov_camera ? fov_camera->eye : fov.eye);
-    out["gaze"] = vector_json(fov_camera ? Vec3(fov_camera->gaze.normalized()) : fov.gaze);
-    out["up"] = vector_json(fov_camera ? fov_camera->up : fov.up);
-    if (fov_camera) out["fov_axis"] = to_string(fov_camera->fov_axis);
+    out["eye"] = vector_json(look_at_camera ? look_at_camera->eye : fov.eye);
+    out["gaze"] = vector_json(look_at_camera ? Vec3(look_at_camera->gaze.normalized()) : fov.gaze);
+    out["up"] = vector_json(look_at_camera ? look_at_camera->up : fov.up);
+    if (look_at_camera) out["fov_axis"] = to_string(look_at_camera->fov_axis);
     ordered axes = ordered::array();
     for (FovAxis axis : fov.fov_axes) axes.push_back(to_string(axis));
     out["fov_axes"] = axes;
@@ -329,7 +329,7 @@ CameraFile parse_json_camera(std::string_view text, const std::string& source) {
     if (in.has("projection")) return read_gl(in, source);
 
     CameraFile file{read_calibrated(in, source), std::nullopt};
-    if (in.has("fov_axis")) file.fov_camera = read_fov_camera(in, file.camera, source);
+    if (in.has("fov_axis")) file.look_at_camera = read_look_at_camera(in, file.camera, source);
     return file;
 }
 

@@ -11,16 +11,16 @@
 //   "camera_center": [3],
 //   "fov_deg": {"horizontal": h, "vertical": v, "diagonal": d},
 //   "frustum": {"left", "right", "bottom", "top"}   at z = 1, y up
-//   "eye", "gaze", "up": [3]            the FOV camera's as given (gaze normalised); for
+//   "eye", "gaze", "up": [3]            the look-at camera's as given (gaze normalised); for
 //                                       another camera its centre, axis and own up
-//   "fov_axis": "both",                 when written from a FOV camera
+//   "fov_axis": "both",                 when written from a look-at camera
 //   "fov_axes": [...], "not_fov_because": [...]
 // }
 //
 // On input, "model", "image_size", "K", "t" and one of "R" or "rvec" are required;
 // "dist" may be left out for PINHOLE. "R" and "rvec", and "P" when present, must agree
 // with each other (a damaged file is refused, not guessed at). The other keys are
-// derived and only read back when "fov_axis" asks for the FOV camera.
+// derived and only read back when "fov_axis" asks for the look-at camera.
 //
 // The "gl" format is JSON too: {"projection": 4x4, "view": 4x4, "viewport": [0,0,W,H],
 // "near", "far", "depth_range"}, row-major.
@@ -33,7 +33,7 @@
 
 namespace libcam {
 
-std::string format_json(const Camera& camera, const std::optional<LookAtCamera>& fov_camera);
+std::string format_json(const Camera& camera, const std::optional<LookAtCamera>& look_at_camera);
 std::string format_gl_json(const GlCamera& gl, const ImageSize& size);
 
 // Parses libcam JSON or gl JSON (chosen by the presence of "projection").
