@@ -157,9 +157,20 @@ const std::array<Translation, 20>& translations() {
 }  // namespace
 
 std::string mrcal_parse_failure(std::string_view diagnostic, std::string_view text) {
-    // "cameramodel-parser.re(254): Didn't see ...": the words after libmrcal's own place.
-    std::string words(diagnostic.substr(0, diagnostic.find('\n')));
+    // "cameramodel-parser.re(254): Didn't see ...": the words after libmrcal's own place, on
+    // the first line that has one. Other lines written meanwhile are not libmrcal's (a
+    // sanitizer's warning, in a checked build, before libmrcal's "malloc() failed").
     static const std::regex place("^[^ ]*\\(\\d+\\): ");
+    std::string words(diagnostic.substr(0, diagnostic.find('\n')));
+    for (std::size_t at = 0; at < diagnostic.size();) {
+        const std::size_t end = std::min(diagnostic.find('\n', at), diagnostic.size());
+        const std::string line(diagnostic.substr(at, end - at));
+        if (std::regex_search(line, place)) {
+            words = line;
+            break;
+        }
+        at = end + 1;
+    }
     words = std::regex_replace(words, place, "", std::regex_constants::format_first_only);
     for (const Translation& translation : translations()) {
         Match match;

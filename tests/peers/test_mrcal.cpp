@@ -22,6 +22,7 @@
 #include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/mrcal.hpp"
+#include "libcam/interop/mrcal_diagnostic.hpp"
 #include "libcam/interop/detail/mrcal_c.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "support.hpp"
@@ -346,6 +347,19 @@ TEST_CASE("A .cameramodel libmrcal refuses is told in libcam's words, with the l
             CHECK(std::string(error.what()) == "f.cameramodel: " + c.said);
         }
     }
+}
+
+TEST_CASE("libmrcal's own line is found among other lines written to stderr meanwhile", "[mrcal][errors]") {
+    // A checked build's allocator warns before libmrcal says "malloc() failed"; the
+    // message is libmrcal's line, translated, not the warning.
+    const std::string text =
+        "{\n    'lensmodel': 'LENSMODEL_SPLINED_STEREOGRAPHIC_order=3_Nx=100000_Ny=100000_fov_x_deg=100',\n}\n";
+    CHECK(libcam::mrcal_parse_failure("==7==WARNING: AddressSanitizer failed to allocate 0x10 bytes\n"
+                                      "cameramodel-parser.re(458): malloc() failed\n",
+                                      text) ==
+          "\"lensmodel\": its spline of Nx=100000 by Ny=100000 asks for 4 + 2 Nx Ny = 20000000004 intrinsics, more "
+          "than libmrcal could allocate");
+    CHECK(libcam::mrcal_parse_failure("no place here\n", text) == "libmrcal could not read it: no place here");
 }
 
 TEST_CASE("A camera with skew cannot be written as .cameramodel", "[mrcal][errors]") {
