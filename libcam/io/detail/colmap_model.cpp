@@ -174,7 +174,10 @@ void check_tracks(ColmapModelRecords& model, const ColmapModelPaths& paths, cons
     for (std::size_t p = 0; p < points.ids.size(); ++p) {
         const std::uint64_t id = points.ids[p];
         for (std::size_t k = points.track_begin[p]; k < points.track_begin[p + 1]; ++k) {
-            const auto [image_id, index] = points.track[k];
+            // Named variables, not a structured binding: the lambdas below use them, which
+            // C++20 allows of a binding only from clang 16 on.
+            const std::uint32_t image_id = points.track[k].image_id;
+            const std::uint32_t index = points.track[k].point2d_index;
             const auto where = [&] {
                 return paths.points3d.string() + ": POINT3D_ID " + std::to_string(id) + ": TRACK[" +
                        std::to_string(k - points.track_begin[p]) + "]: ";
