@@ -279,7 +279,11 @@ ColmapModelRecords read_whole_colmap_model(const fs::path& cameras, std::string_
 
 ColmapModelRecords read_whole_colmap_model(const fs::path& folder_or_file) {
     const detail::LocatedFile located = detail::locate_camera_file(folder_or_file, CameraFormat::Colmap);
-    return read_whole_colmap_model(located.file, located.text);
+    try {
+        return read_whole_colmap_model(located.file, located.text);
+    } catch (...) {
+        detail::rethrow_read_as(located);  // in one printable line, as every reader's message
+    }
 }
 
 }  // namespace libcam
