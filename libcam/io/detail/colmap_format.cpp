@@ -13,7 +13,6 @@
 #include "libcam/convert/colmap_models.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
-#include "libcam/io/detail/colmap_model.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
 #include "libcam/text/shown_value.hpp"
@@ -466,29 +465,6 @@ ColmapPoints3D read_points3d_binary(std::string_view bytes, const std::string& s
     return points;
 }
 
-// ---- the set -----------------------------------------------------------------------------
-
-std::string id_name(std::uint64_t id) { return "id:" + std::to_string(id); }
-
-// Every image as a camera, named by its name, and every camera no image takes named by
-// its id (colmap_model.hpp has checked the ids).
-std::vector<NamedCamera> camera_set(const ColmapModelRecords& model, const std::string& source) {
-    std::vector<NamedCamera> set;
-    std::vector<bool> used(model.cameras.size(), false);
-    for (const ColmapImage& image : model.images) {
-        const auto position = static_cast<std::size_t>(model.camera_index.find(image.camera_id));
-        Camera camera = model.cameras[position].camera;
-        camera.pose = image.pose;
-        set.push_back({image.name, {std::move(camera), std::nullopt}, id_name(image.camera_id)});
-        used[position] = true;
-    }
-    for (std::size_t c = 0; c < model.cameras.size(); ++c) {
-        if (!used[c]) set.push_back({id_name(model.cameras[c].id), {model.cameras[c].camera, std::nullopt}});
-    }
-    if (set.empty()) throw FileError(source + ": no camera");
-    return set;
-}
-
 }  // namespace
 
 std::vector<ColmapCameraRecord> read_colmap_cameras(std::string_view bytes, const std::string& source, bool binary) {
@@ -575,13 +551,6 @@ std::filesystem::path colmap_cameras_file_for(const std::filesystem::path& part)
     const std::filesystem::path same_form = folder / ("cameras" + extension);
     if (regular_file_exists(same_form)) return same_form;
     return colmap_cameras_file_in(folder);
-}
-
-std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadContext& context) {
-    // Without a folder (text given alone) the cameras are the whole model.
-    ColmapModelPaths paths = colmap_model_beside(context.source, text);
-    if (context.folder.empty()) paths.images = paths.points3d = std::filesystem::path();
-    return camera_set(read_colmap_model_records(paths, text), context.source);
 }
 
 namespace {

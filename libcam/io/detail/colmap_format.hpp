@@ -92,12 +92,6 @@ std::vector<ColmapImage> read_colmap_images(std::string_view bytes, const std::s
                                             bool with_points);
 ColmapPoints3D read_colmap_points3d(std::string_view bytes, const std::string& source, bool binary);
 
-// Every camera of a cameras.txt or cameras.bin (told apart by a NUL byte, which text
-// never has), with the images file of the same kind beside it when context.folder has one,
-// the model read and checked as every command reads it (colmap_model.hpp: with points3D
-// where it is there too).
-std::vector<NamedCamera> read_colmap_model(std::string_view cameras, const ReadContext& context);
-
 // cameras.txt, images.txt and points3D.txt holding the camera. Throws NotRepresentable for what
 // COLMAP cannot hold.
 std::vector<CameraFileText> write_colmap_model(const Camera& camera, const WriteOptions& options);

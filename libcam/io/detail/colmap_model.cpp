@@ -286,4 +286,38 @@ ColmapModelRecords read_whole_colmap_model(const fs::path& folder_or_file) {
     }
 }
 
+namespace {
+
+std::string id_name(std::uint64_t id) { return "id:" + std::to_string(id); }
+
+// Every image as a camera, named by its name, and every camera no image takes named by
+// its id (colmap_model.hpp has checked the ids).
+std::vector<NamedCamera> camera_set(const ColmapModelRecords& model, const std::string& source) {
+    std::vector<NamedCamera> set;
+    std::vector<bool> used(model.cameras.size(), false);
+    for (const ColmapImage& image : model.images) {
+        const auto position = static_cast<std::size_t>(model.camera_index.find(image.camera_id));
+        Camera camera = model.cameras[position].camera;
+        camera.pose = image.pose;
+        set.push_back({image.name, {std::move(camera), std::nullopt}, id_name(image.camera_id)});
+        used[position] = true;
+    }
+    for (std::size_t c = 0; c < model.cameras.size(); ++c) {
+        if (!used[c]) set.push_back({id_name(model.cameras[c].id), {model.cameras[c].camera, std::nullopt}});
+    }
+    if (set.empty()) throw FileError(source + ": no camera");
+    return set;
+}
+
+}  // namespace
+
+// The format row's reader (`libcam info`): here, above the record parsers it checks, so the
+// parsers never depend on the model.
+std::vector<NamedCamera> read_colmap_model(std::string_view text, const ReadContext& context) {
+    // Without a folder (text given alone) the cameras are the whole model.
+    ColmapModelPaths paths = colmap_model_beside(context.source, text);
+    if (context.folder.empty()) paths.images = paths.points3d = std::filesystem::path();
+    return camera_set(read_colmap_model_records(paths, text), context.source);
+}
+
 }  // namespace libcam

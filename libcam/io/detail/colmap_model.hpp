@@ -95,4 +95,10 @@ ColmapModelRecords read_whole_colmap_model(const std::filesystem::path& cameras,
 // The same from a model folder or any of its files, found as `libcam info` finds it.
 ColmapModelRecords read_whole_colmap_model(const std::filesystem::path& folder_or_file);
 
+// Every camera of a cameras.txt or cameras.bin (told apart by a NUL byte, which text
+// never has), with the images file of the same kind beside it when context.folder has one,
+// the model read and checked as every command reads it (above: with points3D
+// where it is there too).
+std::vector<NamedCamera> read_colmap_model(std::string_view cameras, const ReadContext& context);
+
 }  // namespace libcam

@@ -9,6 +9,7 @@
 #include "libcam/io/detail/blender_format.hpp"
 #include "libcam/io/detail/cahvor_format.hpp"
 #include "libcam/io/detail/colmap_format.hpp"
+#include "libcam/io/detail/colmap_model.hpp"
 #include "libcam/io/detail/colmap_observations.hpp"
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/gs_cameras.hpp"
