@@ -37,7 +37,8 @@ double disc_to_certify(const Camera& camera, const typename Model::Parameters& l
     return radius;
 }
 
-// The image of the disc |u| <= radius under distort, sampled on 64 rings of 4096 points:
+// The image of the disc |u| <= radius under distort, sampled on 64 rings (the rim at 4096
+// directions, the rings inside at 1024):
 // the smallest |m| on its rim and the largest anywhere. nullopt where distort is not
 // defined on the whole disc.
 struct DiscImage {
@@ -69,9 +70,17 @@ std::optional<DiscImage> image_of_disc(const typename Model::Parameters& lens, d
     image.rim.reserve(kAngles);
     // The rim first: where distort is undefined on a disc it is most often undefined
     // there, and the disc is given up after one ring instead of the whole disc.
+    // The rim is sampled at every direction (its samples are the rim the caller keeps);
+    // the rings inside, which give only the largest |m| and whether distort is defined,
+    // at every fourth: 1024 directions, 6e-3 rad apart, still finer than the rings'
+    // own spacing (1/64 of the radius), which is what bounds how far a sample can miss
+    // the largest |m|. A quarter of the work (`libcam info` works this out once per
+    // calibration, and a project can hold a hundred).
+    constexpr std::size_t kInsideStride = 4;
     for (int ring = kRings; ring >= 1; --ring) {
         const double r = radius * ring / kRings;
-        for (std::size_t a = 0; a < static_cast<std::size_t>(kAngles); ++a) {
+        const std::size_t stride = ring == kRings ? 1 : kInsideStride;
+        for (std::size_t a = 0; a < static_cast<std::size_t>(kAngles); a += stride) {
             Vec2 m;
             if (!Model::distort(lens, Vec2(r * directions.cosine[a], r * directions.sine[a]), m)) return std::nullopt;
             if (ring == kRings) {
