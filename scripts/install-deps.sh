@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev          # core math
   libopencv-dev          # reference
   libopencv-contrib-dev  # reference: cv::omnidir (the unified camera model)
-  libmrcal-dev mrcal python3-mrcal   # reference + .cameramodel files
+  libmrcal-dev mrcal python3-mrcal mrgingham   # reference + .cameramodel files; mrgingham: chessboard corners beside libcam's
   catch2                 # tests (2.13)
   libcli11-dev           # command-line parsing
   nlohmann-json3-dev     # JSON camera files
