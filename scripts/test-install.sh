@@ -25,6 +25,7 @@ for path in bin/libcam include/libcam/version.hpp include/libcam/dataset/colmap_
             lib/cmake/libcam/libcamConfig.cmake lib/pkgconfig/libcam.pc lib/pkgconfig/libcam-core.pc \
             lib/pkgconfig/libcam-io.pc lib/pkgconfig/libcam-check.pc include/libcam/check/verify.hpp \
             lib/pkgconfig/libcam-fit.pc lib/pkgconfig/libcam-report.pc lib/pkgconfig/libcam-calibrate.pc \
+            lib/pkgconfig/libcam-stereo.pc include/libcam/stereo/rectify.hpp \
             lib/libcam/libcam-commands.so; do
   [ -e "$work/prefix/$path" ] || { echo "test-install: missing $path in the install"; exit 1; }
 done
