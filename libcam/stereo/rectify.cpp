@@ -152,18 +152,19 @@ double azimuth_of(const Vec3& d) { return std::atan2(d.x(), std::hypot(d.y(), d.
 double elevation_of(const Vec3& d) { return std::atan2(d.y(), d.z()); }
 
 // The angles the rays of both cameras span in a rectified frame: azimuth and elevation, and
-// whether any looks sideways or behind (z <= 0), where no pinhole reaches.
+// whether any looks sideways or behind (z <= 0), where no pinhole reaches. Elevation is taken
+// from the rays more than kNearPoleDeg from the baseline's line: near it a ray's elevation
+// turns fast with its direction (on the line it has none), and a lens that sees just past 90
+// degrees along the baseline would otherwise ask for every elevation, twice the rows, for a
+// few pixels that see no depth.
 struct AngleSpan {
     double az_low = std::numeric_limits<double>::infinity(), az_high = -az_low;
     double el_low = az_low, el_high = -az_low;
     double az_off_centre = 0;  // largest |az - centre|, for mrcal's symmetric view
-    // Largest |el| of the rays more than kNearPoleDeg from the baseline's line: near it a
-    // ray's elevation turns fast with its direction (at the line itself it has none), and a
-    // lens that sees just past 90 degrees along the baseline would otherwise ask for every
-    // elevation, twice the rows, for a few pixels that see no depth.
-    double el_off_pole = 0;
     bool beside_or_behind = false;
     std::size_t rays = 0;
+
+    double el_off_centre() const { return el_low > el_high ? 0.0 : std::max(std::abs(el_low), std::abs(el_high)); }
 };
 
 AngleSpan span_of(const std::array<const SourceRays*, 2>& sources, const std::array<Mat3, 2>& rotations, double az0) {
@@ -175,9 +176,10 @@ AngleSpan span_of(const std::array<const SourceRays*, 2>& sources, const std::ar
             const Vec3 d = rotations[k] * ray_at(source, i);
             const double az = azimuth_of(d), el = elevation_of(d);
             span.az_low = std::min(span.az_low, az), span.az_high = std::max(span.az_high, az);
-            span.el_low = std::min(span.el_low, el), span.el_high = std::max(span.el_high, el);
+            if (std::abs(az) <= (90.0 - kNearPoleDeg) * kDegree) {
+                span.el_low = std::min(span.el_low, el), span.el_high = std::max(span.el_high, el);
+            }
             span.az_off_centre = std::max(span.az_off_centre, std::abs(az - az0));
-            if (std::abs(az) <= (90.0 - kNearPoleDeg) * kDegree) span.el_off_pole = std::max(span.el_off_pole, std::abs(el));
             span.beside_or_behind = span.beside_or_behind || !(d.z() > 0);
             ++span.rays;
         }
@@ -402,7 +404,7 @@ void rectify_to_latlon(RectifiedPair& pair, const std::array<const Camera*, 2>& 
                        const MrcalFrame& frame) {
     const AngleSpan span = span_of(rays, frame.rotations, frame.az0);
     const Vec2 resolution = resolution_at_centre(*prepared[0], frame.rotations[0].transpose(), frame.az0);
-    const double half_el = span.el_off_pole;
+    const double half_el = span.el_off_centre();
     const ImageSize size{side_for(2 * span.az_off_centre, resolution.x(), "across"),
                          side_for(2 * half_el, resolution.y(), "down")};
     // mrcal's: (az0, 0) at the image's centre.
@@ -458,7 +460,7 @@ RectifiedPair rectify_pair(const Camera& first, const Camera& second, const Rect
         pair.why = std::string(lens_info(pair.model).name) + " as asked. ";
     } else {
         const AngleSpan span = span_of(rays, frame.rotations, frame.az0);
-        const double across = span.az_high - span.az_low, down = span.el_high - span.el_low;
+        const double across = span.az_high - span.az_low, down = std::max(span.el_high - span.el_low, 0.0);
         const double limit = kWidestRectifiedPinholeDeg * kDegree;
         const std::string seen = "the cameras see " + degrees(across) + " along the baseline and " + degrees(down) +
                                  " across it";
