@@ -21,6 +21,9 @@ import time
 import cv2
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "peers"))
+from opencv_stereo import write_stereo_files  # noqa: E402
+
 CV2_SCRIPT = r'''
 import sys
 import cv2
@@ -74,15 +77,7 @@ def main():
     D2 = np.array([-0.19, 0.045, -3e-4, 6e-4, -0.004])
     R, _ = cv2.Rodrigues(np.array([0.012, -0.018, 0.006]))
     T = (-R @ np.array([0.12, 0.004, -0.003])).reshape(3, 1)
-    intrinsics, extrinsics = os.path.join(work, "intrinsics.yml"), os.path.join(work, "extrinsics.yml")
-    fs = cv2.FileStorage(intrinsics, cv2.FILE_STORAGE_WRITE)
-    for key, value in (("M1", K1), ("D1", D1), ("M2", K2), ("D2", D2)):
-        fs.write(key, value)
-    fs.release()
-    fs = cv2.FileStorage(extrinsics, cv2.FILE_STORAGE_WRITE)
-    fs.write("R", R)
-    fs.write("T", T)
-    fs.release()
+    intrinsics, extrinsics = write_stereo_files(cv2, work, "bench", K1, D1, K2, D2, R, T)
     script = os.path.join(work, "cv2_rectify.py")
     with open(script, "w") as f:
         f.write(CV2_SCRIPT)

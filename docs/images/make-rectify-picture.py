@@ -18,45 +18,18 @@ import tempfile
 import cv2
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "peers"))
+from opencv_stereo import calibrate_sample_pairs, write_stereo_files  # noqa: E402
+
 
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     libcam, folder = sys.argv[1:3]
     output = sys.argv[3] if len(sys.argv) > 3 else os.path.join(os.path.dirname(__file__), "rectify-opencv-sample.png")
-    pattern = (9, 6)
-    board = np.zeros((pattern[0] * pattern[1], 3), np.float32)
-    board[:, :2] = np.mgrid[0:pattern[0], 0:pattern[1]].T.reshape(-1, 2)
-    objects, corners = [], ([], [])
-    size = None
-    for i in range(1, 15):
-        names = [os.path.join(folder, f"{side}{i:02d}.jpg") for side in ("left", "right")]
-        if not all(os.path.isfile(n) for n in names):
-            continue
-        found = []
-        for name in names:
-            gray = cv2.imread(name, cv2.IMREAD_GRAYSCALE)
-            size = gray.shape[::-1]
-            ok, c = cv2.findChessboardCorners(gray, pattern)
-            found.append(cv2.cornerSubPix(gray, c, (11, 11), (-1, -1), (3, 30, 0.01)) if ok else None)
-        if all(f is not None for f in found):
-            objects.append(board)
-            corners[0].append(found[0])
-            corners[1].append(found[1])
-    _, K1, D1, _, _ = cv2.calibrateCamera(objects, corners[0], size, None, None)
-    _, K2, D2, _, _ = cv2.calibrateCamera(objects, corners[1], size, None, None)
-    _, K1, D1, K2, D2, R, T, _, _ = cv2.stereoCalibrate(objects, corners[0], corners[1], K1, D1, K2, D2, size,
-                                                        flags=cv2.CALIB_FIX_INTRINSIC)
+    K1, D1, K2, D2, R, T, _, _, _ = calibrate_sample_pairs(cv2, np, folder)
     work = tempfile.mkdtemp(prefix="rectify-picture-")
-    intrinsics, extrinsics = os.path.join(work, "intrinsics.yml"), os.path.join(work, "extrinsics.yml")
-    fs = cv2.FileStorage(intrinsics, cv2.FILE_STORAGE_WRITE)
-    for key, value in (("M1", K1), ("D1", D1), ("M2", K2), ("D2", D2)):
-        fs.write(key, value)
-    fs.release()
-    fs = cv2.FileStorage(extrinsics, cv2.FILE_STORAGE_WRITE)
-    fs.write("R", R)
-    fs.write("T", T)
-    fs.release()
+    intrinsics, extrinsics = write_stereo_files(cv2, work, "sample", K1, D1, K2, D2, R, T)
     out = os.path.join(work, "rectified")
     subprocess.run([libcam, "rectify", intrinsics, extrinsics, "--images", os.path.join(folder, "left01.jpg"),
                     os.path.join(folder, "right01.jpg"), "-o", out], check=True)

@@ -267,8 +267,7 @@ bool both_see_all(const Intrinsics& K, const ImageSize& size, const std::array<c
 }
 
 // Keep::Valid: the smallest focal length (widest view) about the principal point with a
-// source for every pixel in both images, by bisection on log f (a narrower view lies inside
-// a wider one that passed: a lens's valid region is star-shaped about its axis).
+// source for every pixel in both images.
 double widest_valid_focal(const Vec2& principal, const ImageSize& size, const std::array<const PreparedCamera*, 2>& sources,
                           const std::array<Mat3, 2>& rotations, double start) {
     const auto passes = [&](double f) { return both_see_all({f, f, principal.x(), principal.y(), 0.0}, size, sources, rotations); };
@@ -279,21 +278,9 @@ double widest_valid_focal(const Vec2& principal, const ImageSize& size, const st
                                    std::hypot(static_cast<double>(size.width) - principal.x(),
                                               static_cast<double>(size.height) - principal.y())});
     const double widest = reach / std::tan(0.5 * kWidestPinholeDeg * kDegree);
-    if (passes(widest)) return widest;
-    double narrow = std::max(start, widest);
-    for (int doubling = 0; !passes(narrow); ++doubling) {
-        if (doubling == 60) {
-            throw InvalidArgument("rectify: no pinhole view, however narrow, about the principal point has a source "
-                                  "in both images for every pixel: the cameras do not see the same part of the scene");
-        }
-        narrow *= 2.0;
-    }
-    double wide = widest;
-    while (narrow / wide > 1.0 + 1e-12) {
-        const double middle = std::sqrt(wide * narrow);
-        (passes(middle) ? narrow : wide) = middle;
-    }
-    return narrow;
+    return smallest_passing_scale(widest, start, passes,
+                                  "rectify: no pinhole view, however narrow, about the principal point has a source in "
+                                  "both images for every pixel: the cameras do not see the same part of the scene");
 }
 
 // Keep::All: the largest focal length (narrowest view) that puts every pixel centre of both

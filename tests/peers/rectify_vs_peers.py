@@ -30,6 +30,8 @@ import shutil
 import subprocess
 import sys
 
+from opencv_stereo import calibrate_sample_pairs, write_stereo_files
+
 SKIP = 77
 failures = []
 
@@ -161,23 +163,6 @@ def fisheye_pair_against_mrcal(np, cv2, mrcal, libcam, work):
         check(out["cameras"][k]["kept"] >= 0.95, f"fisheye pair: camera {k} keeps {out['cameras'][k]['kept']:.4f}")
 
 
-def write_stereo_files(cv2, work, name, K1, D1, K2, D2, R, T, size=None):
-    intrinsics = os.path.join(work, f"{name}-intrinsics.yml")
-    extrinsics = os.path.join(work, f"{name}-extrinsics.yml")
-    fs = cv2.FileStorage(intrinsics, cv2.FILE_STORAGE_WRITE)
-    if size is not None:
-        fs.write("image_width", size[0])
-        fs.write("image_height", size[1])
-    for key, value in (("M1", K1), ("D1", D1), ("M2", K2), ("D2", D2)):
-        fs.write(key, value)
-    fs.release()
-    fs = cv2.FileStorage(extrinsics, cv2.FILE_STORAGE_WRITE)
-    fs.write("R", R)
-    fs.write("T", T)
-    fs.release()
-    return intrinsics, extrinsics
-
-
 def blobs_land_where_the_truth_says(np, cv2, libcam, work):
     size = (320, 240)
     K1 = np.array([[262.0, 0, 158.5], [0, 260.5, 121.25], [0, 0, 1]])
@@ -273,33 +258,8 @@ def opencv_sample_pairs(np, cv2, libcam, real_data, work):
     if not os.path.isdir(folder):
         print(f"skipped: OpenCV's sample pairs (no folder {folder})")
         return
-    pattern = (9, 6)
-    board = np.zeros((pattern[0] * pattern[1], 3), np.float32)
-    board[:, :2] = np.mgrid[0:pattern[0], 0:pattern[1]].T.reshape(-1, 2)
-    criteria = (cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 30, 0.01)
-    objects, left, right = [], [], []
-    size = None
-    for i in range(1, 15):
-        names = [os.path.join(folder, f"{side}{i:02d}.jpg") for side in ("left", "right")]
-        if not all(os.path.isfile(n) for n in names):
-            continue
-        found = []
-        for name in names:
-            gray = cv2.imread(name, cv2.IMREAD_GRAYSCALE)
-            size = gray.shape[::-1]
-            ok, corners = cv2.findChessboardCorners(gray, pattern)
-            if ok:
-                corners = cv2.cornerSubPix(gray, corners, (11, 11), (-1, -1), criteria)
-            found.append(corners if ok else None)
-        if found[0] is not None and found[1] is not None:
-            objects.append(board)
-            left.append(found[0])
-            right.append(found[1])
+    K1, D1, K2, D2, R, T, size, rms, (objects, left, right) = calibrate_sample_pairs(cv2, np, folder)
     check(len(objects) >= 8, f"OpenCV's sample pairs: the board found in both images of {len(objects)} pairs")
-    _, K1, D1, _, _ = cv2.calibrateCamera(objects, left, size, None, None)
-    _, K2, D2, _, _ = cv2.calibrateCamera(objects, right, size, None, None)
-    rms, K1, D1, K2, D2, R, T, _, _ = cv2.stereoCalibrate(objects, left, right, K1, D1, K2, D2, size,
-                                                          flags=cv2.CALIB_FIX_INTRINSIC)
     print(f"cv2.stereoCalibrate: RMS {rms:.4f} px over {len(objects)} pairs")
     intrinsics, extrinsics = write_stereo_files(cv2, work, "sample", K1, D1, K2, D2, R, T)
     images = [os.path.join(folder, "left01.jpg"), os.path.join(folder, "right01.jpg")]

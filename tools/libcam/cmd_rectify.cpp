@@ -16,6 +16,7 @@
 
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "image_flags.hpp"
 #include "json_output.hpp"
 #include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
@@ -193,13 +194,7 @@ int run_rectify(const RectifyFlags& flags) {
     if (!flags.images.empty() && flags.images.size() != 2) throw UsageError("--images: give two images, LEFT RIGHT");
     if (!flags.images.empty() && flags.output.empty()) throw UsageError("-o: give the folder for the rectified images");
     if (flags.threads < 1) throw UsageError("--threads: expected 1 or more");
-    const Interpolation interpolation = [&] {
-        try {
-            return interpolation_from_string(flags.interpolation);
-        } catch (const InvalidArgument& error) {
-            throw UsageError(std::string("--") + error.what());
-        }
-    }();
+    const Interpolation interpolation = interpolation_flag(flags.interpolation);
     RectifyRequest request;
     request.model = model_from(flags.to);
     request.keep = keep_from(flags.keep);
