@@ -25,6 +25,7 @@ for path in bin/libcam include/libcam/version.hpp include/libcam/dataset/colmap_
             lib/cmake/libcam/libcamConfig.cmake lib/pkgconfig/libcam.pc lib/pkgconfig/libcam-core.pc \
             lib/pkgconfig/libcam-io.pc lib/pkgconfig/libcam-check.pc include/libcam/check/verify.hpp \
             lib/pkgconfig/libcam-fit.pc lib/pkgconfig/libcam-report.pc lib/pkgconfig/libcam-calibrate.pc \
+            lib/pkgconfig/libcam-stereo.pc include/libcam/stereo/rectify.hpp \
             lib/libcam/libcam-commands.so; do
   [ -e "$work/prefix/$path" ] || { echo "test-install: missing $path in the install"; exit 1; }
 done
@@ -131,6 +132,9 @@ echo "$("$work/consumer/consumer_reproject")" | awk '$1 == "residual_px" { ok = 
 # mrcal's .cameramodel, read through the installed libcam::interop, holds the same camera.
 check "$("$work/consumer/consumer_interop" "$work/camera.cameramodel")"
 run_consumer consumer_dataset "images /data/scene/images"
+# Two pinholes 0.5 apart: the disparity of a point 4 in front gives back depth 4.
+echo "$("$work/consumer/consumer_stereo")" | awk '$1 == "baseline" { ok = ($2 - 0.5)^2 < 1e-24 && ($4 - 4)^2 < 1e-20 } END { exit !ok }' ||
+  { echo "test-install: consumer_stereo's depth is not 4:"; "$work/consumer/consumer_stereo"; exit 1; }
 run_consumer consumer_check "checks [1-9][0-9]* failed 0"
 run_consumer consumer_report "png 89 50 4e 47 0d 0a 1a 0a"
 

@@ -147,9 +147,7 @@ bool sees_only_source(const Camera& target, const PreparedCamera& source, const 
 }
 
 // The widest target with no pixel lacking a source: the smallest f that passes
-// sees_only_source, by bisection on log f (a larger f sees a narrower view, inside a
-// wider one that passed, for a valid region that is star-shaped about the axis, as a
-// lens's is).
+// sees_only_source.
 double widest_valid_scale(LensType model, const ImageSize& size, const PreparedCamera& source, const Pose& pose,
                           const Mat3& to_source) {
     const Projector<double> projector(source);
@@ -165,22 +163,9 @@ double widest_valid_scale(LensType model, const ImageSize& size, const PreparedC
                           : model == LensType::Lonlat
                               ? std::max(half_w / std::numbers::pi, half_h / (0.5 * std::numbers::pi))
                               : std::max(half_w / std::numbers::pi, half_h / widest_tangent);
-    if (passes(widest)) return widest;
-    double narrow = std::max(source.camera().intrinsics.fx, widest);
-    for (int doubling = 0; !passes(narrow); ++doubling) {
-        if (doubling == 60) {
-            throw InvalidArgument(
-                "new camera: the source camera sees nothing along the target's axis (no view, however narrow, has a "
-                "source for every pixel)");
-        }
-        narrow *= 2.0;
-    }
-    double wide = widest;
-    while (narrow / wide > 1.0 + 1e-12) {
-        const double middle = std::sqrt(wide * narrow);
-        (passes(middle) ? narrow : wide) = middle;
-    }
-    return narrow;
+    return smallest_passing_scale(widest, source.camera().intrinsics.fx, passes,
+                                  "new camera: the source camera sees nothing along the target's axis (no view, "
+                                  "however narrow, has a source for every pixel)");
 }
 
 // f for a field of view across the image on an axis, edge to edge.
@@ -290,6 +275,22 @@ NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest
     chosen.why = std::string(lens_info(model).name) + " " + size_text(size) + ", " + view_of(chosen.camera) +
                  ", f " + format_short(f, 6) + " px, principal point at the centre: " + why;
     return chosen;
+}
+
+double smallest_passing_scale(double widest, double start, const std::function<bool(double)>& passes,
+                              const std::string& nothing_passes) {
+    if (passes(widest)) return widest;
+    double narrow = std::max(start, widest);
+    for (int doubling = 0; !passes(narrow); ++doubling) {
+        if (doubling == 60) throw InvalidArgument(nothing_passes);
+        narrow *= 2.0;
+    }
+    double wide = widest;
+    while (narrow / wide > 1.0 + 1e-12) {
+        const double middle = std::sqrt(wide * narrow);
+        (passes(middle) ? narrow : wide) = middle;
+    }
+    return narrow;
 }
 
 double widest_ray_angle(const PreparedCamera& lens, int threads) {

@@ -20,6 +20,7 @@
 // request cannot be met it throws InvalidArgument saying why. The target keeps the
 // source's centre and, turned by `rotation`, its axes.
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -56,6 +57,14 @@ struct NewCamera {
 };
 
 NewCamera choose_new_camera(const PreparedCamera& source, const NewCameraRequest& request);
+
+// The smallest scale f >= `widest` (the widest view: the smallest f) for which passes(f)
+// holds, to 1e-12 relative, by bisection on log f: a larger f sees a narrower view, inside a
+// wider one that passed, where the region that passes is star-shaped about the view's centre
+// (a lens's valid region is). The search starts from `start` (doubling it until it passes);
+// throws InvalidArgument(`nothing_passes`) when sixty doublings never pass.
+double smallest_passing_scale(double widest, double start, const std::function<bool(double)>& passes,
+                              const std::string& nothing_passes);
 
 // The largest angle (radians) between the optical axis and the ray of any pixel of the
 // lens (exact unprojection of every pixel). Throws InvalidArgument when no pixel has one.

@@ -268,3 +268,40 @@ def remap_map(
     threads: int = 1,
 ) -> tuple[FloatArray, BoolArray]:
     """(height, width, 2) source coordinates for cv2.remap, NaN where none, and the mask."""
+
+class RectifiedPair:
+    """A rectified stereo pair (rectify): the two rectified cameras and what they keep."""
+    @property
+    def model(self) -> Literal["PINHOLE", "LATLON"]: ...
+    @property
+    def baseline(self) -> float: ...
+    @property
+    def cameras(self) -> tuple[Camera, Camera]: ...
+    @property
+    def rotations(self) -> tuple[FloatArray, FloatArray]: ...
+    @property
+    def kept(self) -> tuple[float, float]: ...
+    @property
+    def Q(self) -> FloatArray | None: ...
+    @property
+    def why(self) -> str: ...
+    def maps(
+        self, dtype: npt.DTypeLike = np.float32, threads: int = 1
+    ) -> tuple[tuple[FloatArray, BoolArray], tuple[FloatArray, BoolArray]]:
+        """Each source image's map into its rectified image, as remap_map gives it."""
+
+def rectify(
+    first: Camera,
+    second: Camera,
+    to: Literal["pinhole", "latlon", "auto"] = "auto",
+    keep: Literal["valid", "all"] = "valid",
+    size: tuple[int, int] | None = None,
+    threads: int = 1,
+) -> RectifiedPair:
+    """The pair rectified: PINHOLE as OpenCV's stereoRectify, LATLON as mrcal's rectified_system."""
+
+def disparity_to_range(pair: RectifiedPair, pixels: ArrayLike, disparity: ArrayLike) -> FloatArray:
+    """(N,) distances from the first centre of the points at the first image's pixels with these disparities."""
+
+def disparity_to_points(pair: RectifiedPair, pixels: ArrayLike, disparity: ArrayLike) -> FloatArray:
+    """(N, 3) points in the first rectified camera's frame."""

@@ -13,6 +13,7 @@
 #include "libcam/check/verify.hpp"
 #include "libcam/remap/new_camera.hpp"
 #include "libcam/remap/remap_map.hpp"
+#include "libcam/stereo/rectify.hpp"
 
 namespace libcam::python {
 
@@ -230,9 +231,117 @@ py::tuple remap_map(const PythonCamera& target, const PythonCamera& source, cons
     return type.is(py::dtype::of<float>()) ? built.template operator()<float>() : built.template operator()<double>();
 }
 
+// ------------------------------------------------------------------------- stereo
+
+// A rectified pair with the two source cameras its maps come from.
+struct PythonStereoPair {
+    RectifiedPair pair;
+    PythonCamera first, second;
+};
+
+PythonStereoPair rectify(const PythonCamera& first, const PythonCamera& second, const std::string& to,
+                         const std::string& keep, const py::object& size, int threads) {
+    RectifyRequest request;
+    if (to == "pinhole") {
+        request.model = LensType::Pinhole;
+    } else if (to == "latlon") {
+        request.model = LensType::Latlon;
+    } else if (to != "auto") {
+        throw InvalidArgument("to: expected 'pinhole', 'latlon' or 'auto', got '" + to + "'");
+    }
+    request.keep = keep_from(keep);
+    if (!size.is_none()) request.size = size_from(size);
+    request.threads = thread_count(threads);
+    RectifiedPair pair;
+    {
+        py::gil_scoped_release release;
+        pair = rectify_pair(first.camera(), second.camera(), request);
+    }
+    return {std::move(pair), first, second};
+}
+
+// (N, 2) left pixels and N disparities, as float64 arrays.
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+template <class Each>
+void for_each_disparity(const Doubles& pixels, const Doubles& disparity, Each&& each) {
+    if (pixels.ndim() != 2 || pixels.shape(1) != 2) throw py::type_error("pixels: expected shape (N, 2)");
+    if (disparity.ndim() != 1 || disparity.shape(0) != pixels.shape(0)) {
+        throw py::type_error("disparity: expected shape (N,), one per pixel");
+    }
+    const double* p = pixels.data();
+    const double* d = disparity.data();
+    for (py::ssize_t i = 0; i < pixels.shape(0); ++i) each(i, Vec2(p[2 * i], p[2 * i + 1]), d[i]);
+}
+
+py::array_t<double> disparity_to_range(const PythonStereoPair& stereo, const Doubles& pixels, const Doubles& disparity) {
+    py::array_t<double> out(pixels.ndim() == 2 ? pixels.shape(0) : 0);
+    double* r = out.mutable_data();
+    for_each_disparity(pixels, disparity, [&](py::ssize_t i, const Vec2& q, double d) {
+        r[i] = range_from_disparity(stereo.pair, q, d);
+    });
+    return out;
+}
+
+py::array_t<double> disparity_to_points(const PythonStereoPair& stereo, const Doubles& pixels, const Doubles& disparity) {
+    py::array_t<double> out(std::vector<py::ssize_t>{pixels.ndim() == 2 ? pixels.shape(0) : 0, 3});
+    double* x = out.mutable_data();
+    for_each_disparity(pixels, disparity, [&](py::ssize_t i, const Vec2& q, double d) {
+        const Vec3 point = point_from_disparity(stereo.pair, q, d);
+        for (int c = 0; c < 3; ++c) x[3 * i + c] = point[c];
+    });
+    return out;
+}
+
+py::tuple stereo_maps(const PythonStereoPair& stereo, const py::object& dtype, int threads) {
+    py::list maps;
+    for (std::size_t k = 0; k < 2; ++k) {
+        const PythonCamera rectified(stereo.pair.cameras[k].camera);
+        maps.append(remap_map(rectified, k == 0 ? stereo.first : stereo.second, "exact",
+                              to_numpy(stereo.pair.cameras[k].rotation), dtype, threads));
+    }
+    return py::tuple(maps);
+}
+
 }  // namespace
 
 void bind_tools(py::module_& m) {
+    py::class_<PythonStereoPair>(m, "RectifiedPair", "A rectified stereo pair (libcam.rectify).")
+        .def_property_readonly("model", [](const PythonStereoPair& s) { return std::string(lens_info(s.pair.model).name); },
+                               "'PINHOLE' or 'LATLON'.")
+        .def_property_readonly("baseline", [](const PythonStereoPair& s) { return s.pair.baseline; },
+                               "The distance between the two centres, in the poses' units.")
+        .def_property_readonly("cameras", [](const PythonStereoPair& s) {
+            return py::make_tuple(PythonCamera(s.pair.cameras[0].camera), PythonCamera(s.pair.cameras[1].camera));
+        }, "The two rectified cameras (in the sources' world).")
+        .def_property_readonly("rotations", [](const PythonStereoPair& s) {
+            return py::make_tuple(to_numpy(s.pair.cameras[0].rotation), to_numpy(s.pair.cameras[1].rotation));
+        }, "Each source camera's frame into the rectified frame (OpenCV's R1, R2).")
+        .def_property_readonly("kept", [](const PythonStereoPair& s) {
+            return py::make_tuple(s.pair.cameras[0].kept, s.pair.cameras[1].kept);
+        }, "The share of each source image's pixels looking in front of it that land on its rectified image.")
+        .def_property_readonly("Q", [](const PythonStereoPair& s) -> py::object {
+            if (s.pair.model != LensType::Pinhole) return py::none();
+            return to_numpy(s.pair.Q);
+        }, "PINHOLE: OpenCV's disparity-to-depth matrix; None for LATLON.")
+        .def_property_readonly("why", [](const PythonStereoPair& s) { return s.pair.why; })
+        .def("maps", &stereo_maps, py::arg("dtype") = py::dtype::of<float>(), py::arg("threads") = 1,
+             "((map, valid), (map, valid)): each source image's map into its rectified image, as remap_map gives it.")
+        .def("__repr__", [](const PythonStereoPair& s) {
+            return "<libcam.RectifiedPair " + std::string(lens_info(s.pair.model).name) + ", baseline " +
+                   std::to_string(s.pair.baseline) + ">";
+        });
+    m.def("rectify", &rectify, py::arg("first"), py::arg("second"), py::arg("to") = "auto", py::arg("keep") = "valid",
+          py::arg("size") = py::none(), py::arg("threads") = 1, R"doc(
+The two cameras rectified (as the libcam program's rectify command): to 'pinhole' (OpenCV's
+stereoRectify), 'latlon' (mrcal's rectified_system) or 'auto'; keep 'valid' (no black border)
+or 'all' (pinhole). The cameras' poses place them in one world. Returns a RectifiedPair.)doc");
+    m.def("disparity_to_range", &disparity_to_range, py::arg("pair"), py::arg("pixels"), py::arg("disparity"), R"doc(
+The distance from the first camera's centre of each point seen at `pixels` (N, 2) of the
+first rectified image with `disparity` (N,) = u_left - u_right: PINHOLE through Q, LATLON
+as mrcal.stereo_range. NaN where the disparity is not positive.)doc");
+    m.def("disparity_to_points", &disparity_to_points, py::arg("pair"), py::arg("pixels"), py::arg("disparity"),
+          "The points (N, 3) in the first rectified camera's frame (see disparity_to_range).");
     m.def("verify", &verify, py::arg("camera"), py::arg("grid") = py::make_tuple(200, 150),
           py::arg("depths") = std::vector<double>{0.5, 2.0, 10.0, 1000.0}, py::arg("threads") = 0, R"doc(
 Checks the camera's projection and unprojection against OpenCV and mrcal on a grid of

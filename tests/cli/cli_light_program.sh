@@ -26,7 +26,7 @@ for run in "--version" "--help" "info $work/camera.json" "convert --from $work/c
 done
 
 # --help lists every command, the module's too.
-for command in convert info rays project derive remap dataset render-plan verify fit bench demo; do
+for command in convert info rays project derive remap rectify dataset render-plan verify fit bench demo; do
   "$program" --help | grep -Eq "^  $command " || fail "libcam --help does not list $command"
 done
 

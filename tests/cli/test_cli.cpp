@@ -664,7 +664,7 @@ TEST_CASE("bad input: rays-only flags, a missing output folder, no subcommand") 
 
 // (A name that starts with "--" would be read by Catch as a flag, and the test never run.)
 TEST_CASE("Each subcommand's --help exits 0 and prints its usage") {
-    for (const char* command : {"convert", "rays", "project", "info", "remap", "dataset", "derive", "render-plan", "verify", "fit",
+    for (const char* command : {"convert", "rays", "project", "info", "remap", "rectify", "dataset", "derive", "render-plan", "verify", "fit",
                                 "bench", "demo"}) {
         INFO(command);
         const CliResult r = run_libcam({command, "--help"});

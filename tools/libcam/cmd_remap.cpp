@@ -8,6 +8,7 @@
 
 #include "camera_options.hpp"
 #include "commands.hpp"
+#include "image_flags.hpp"
 #include "libcam/camera/parallel.hpp"
 #include "libcam/error.hpp"
 #include "libcam/interop/image_remap.hpp"
@@ -141,13 +142,7 @@ int run_remap(const RemapFlags& flags) {
     if (!flags.map_out.empty()) check_map_file_name(flags.map_out);
     if (!flags.stmap_out.empty()) check_stmap_file_name(flags.stmap_out);
     if (flags.threads < 1) throw UsageError("--threads: expected 1 or more");
-    const Interpolation interpolation = [&] {
-        try {
-            return interpolation_from_string(flags.interpolation);
-        } catch (const InvalidArgument& error) {
-            throw UsageError(std::string("--") + error.what());
-        }
-    }();
+    const Interpolation interpolation = interpolation_flag(flags.interpolation);
     const Mat3 rotation = flags.rotate.empty() ? Mat3::Identity() : rotation_from_rvec(parse_vec3("--rotate", flags.rotate));
     const PreparedCamera lens(flags.source.read(flags.from).camera);
     NewCamera chosen = target_camera(flags, lens, rotation);

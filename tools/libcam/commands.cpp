@@ -15,7 +15,7 @@ namespace libcam::cli {
 namespace {
 
 // In the order `libcam --help` lists them.
-constexpr std::array<CommandInfo, 16> kCommands = {{
+constexpr std::array<CommandInfo, 17> kCommands = {{
     {"convert", "Convert a look-at camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file", true},
     {"info", "Every camera a file holds: model, size, K, field of view, pose", true},
     {"rays", "World rays through pixels, by K^-1 and by the look-at formula", true},
@@ -23,6 +23,10 @@ constexpr std::array<CommandInfo, 16> kCommands = {{
     {"remap",
      "Turn images from one camera into another: undistort into a pinhole, LONLAT or cylindrical camera chosen for "
      "the lens, or (--inverse) distort renders to the real lens",
+     false},
+    {"rectify",
+     "A calibrated pair's rectified cameras and images (a point on the same row of both): pinhole as OpenCV's, "
+     "LATLON as mrcal's for wide lenses; depth from disparity",
      false},
     {"dataset",
      "A whole COLMAP reconstruction (or NeRF's transforms.json) into pinhole cameras: images undistorted, "

@@ -22,6 +22,7 @@ Runner add_calibrate(CLI::App& app);
 Runner add_bench(CLI::App& app);
 Runner add_info(CLI::App& app);
 Runner add_remap(CLI::App& app);
+Runner add_rectify(CLI::App& app);
 Runner add_dataset(CLI::App& app);
 Runner add_derive(CLI::App& app);
 Runner add_render_plan(CLI::App& app);
