@@ -15,7 +15,7 @@ namespace libcam::cli {
 namespace {
 
 // In the order `libcam --help` lists them.
-constexpr std::array<CommandInfo, 16> kCommands = {{
+constexpr std::array<CommandInfo, 17> kCommands = {{
     {"convert", "Convert a look-at camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file", true},
     {"info", "Every camera a file holds: model, size, K, field of view, pose", true},
     {"rays", "World rays through pixels, by K^-1 and by the look-at formula", true},
@@ -42,6 +42,10 @@ constexpr std::array<CommandInfo, 16> kCommands = {{
     {"calibrate",
      "A folder of board images (chessboard or ChArUco) to a calibration: the corners found, the lens model the "
      "views held out of the fit support",
+     false},
+    {"uncertainty",
+     "How far a calibration can be trusted at each pixel: mrcal's projection uncertainty, from the observations a "
+     "calibration file holds",
      false},
     {"bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal", false},
     {"demo",
