@@ -78,7 +78,7 @@ TEST_CASE("libcam uncertainty refuses in one line: no observations, a pixel off 
                                        "   rows: 3\n   cols: 3\n   dt: d\n   data: [ 500., 0., 320., 0., 500., 240., 0., 0., 1. ]\n"
                                        "distortion_coefficients: !!opencv-matrix\n   rows: 5\n   cols: 1\n   dt: d\n"
                                        "   data: [ 0., 0., 0., 0., 0. ]\n");
-    check_refusal(run_libcam({"uncertainty", camera.string()}), 1, "holds no observations");
+    check_refusal(run_libcam({"uncertainty", camera.string()}), 1, "no observations");
     const fs::path model = dir / "small.cameramodel";
     python("write '" + model.string() + "'");
     check_refusal(run_libcam({"uncertainty", model.string(), "--at", "700,20"}), 2, "--at: pixel (700, 20) is off");
