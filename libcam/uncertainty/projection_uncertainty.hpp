@@ -23,7 +23,8 @@
 //
 // Differences from mrcal: mrcal also frees the board's bow (calobject_warp) where its
 // solve did, and adds its small regularization terms to J; libcam holds the board flat as
-// the file gives it and has no regularization (on mrcal's own solves: sigma within 4%).
+// the file gives it and has no regularization (on mrcal's real OPENCV8 solve of a bowed board: sigma
+// 4% under mrcal's; on a flat board without regularization: the same to 1e-9).
 
 #include <cstddef>
 #include <limits>

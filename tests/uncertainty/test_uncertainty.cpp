@@ -87,7 +87,7 @@ TEST_CASE("uncertainty against mrcal: the real OPENCV8 solve in opencv8-0.camera
     }
     // mrcal freed the board's bow (calobject_warp) in this solve and adds its
     // regularization; libcam holds the board as solved and has none. On this file that
-    // leaves libcam's sigma up to 4% under mrcal's (the bow's freedom), where 10% is allowed.
+    // leaves libcam's sigma about 4% under mrcal's (the bow's freedom), where 10% is allowed.
     const double at_infinity = compare_with_mrcal(model, "inf", kAtInfinity);
     const double at_ten = compare_with_mrcal(model, "10", 10.0);
     WARN("opencv8-0: libcam's sigma within " << 100.0 * at_infinity << "% of mrcal's at infinity, "

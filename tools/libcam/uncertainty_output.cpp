@@ -35,7 +35,7 @@ Json at_json(const std::vector<Vec2>& pixels, const std::vector<double>& sigma_p
 std::string at_lines(const std::vector<Vec2>& pixels, const std::vector<double>& sigma_px) {
     std::ostringstream out;
     for (std::size_t i = 0; i < pixels.size(); ++i) {
-        out << "  at (" << format_short(pixels[i].x()) << ", " << format_short(pixels[i].y()) << "): ";
+        out << "  at (" << format_short(pixels[i].x(), 7) << ", " << format_short(pixels[i].y(), 7) << "): ";
         if (std::isfinite(sigma_px[i])) out << "sigma " << format_short(sigma_px[i], 4) << " px\n";
         else out << "no ray through this pixel\n";
     }
