@@ -1,7 +1,7 @@
 # Installs headers, libraries, the `libcam` program, the CMake package
 # (find_package(libcam CONFIG COMPONENTS ...) -> libcam::core, libcam::io,
-# libcam::reproject, libcam::interop, libcam::dataset, libcam::check, libcam::fit, libcam::report,
-# libcam::calibrate, libcam::stereo) and a pkg-config file per library.
+# libcam::reproject, libcam::interop, libcam::dataset, libcam::check, libcam::fit, libcam::uncertainty,
+# libcam::report, libcam::calibrate, libcam::stereo) and a pkg-config file per library.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -9,7 +9,7 @@ set(LIBCAM_CMAKE_DIR "${CMAKE_INSTALL_LIBDIR}/cmake/libcam")
 
 # One export set per library, so that a consumer's find_package loads only the
 # components it asks for (and needs only their dependencies).
-foreach(layer core io reproject interop dataset check fit report calibrate stereo)
+foreach(layer core io reproject interop dataset check fit uncertainty report calibrate stereo)
   string(SUBSTRING ${layer} 0 1 first)
   string(TOUPPER ${first} first)
   string(SUBSTRING ${layer} 1 -1 rest)
@@ -45,7 +45,7 @@ install(FILES
 # pkg-config files find the prefix from their own folder, so an installed tree can move.
 # libcam.pc is libcam::interop's (its historical name).
 file(RELATIVE_PATH LIBCAM_PC_TO_PREFIX "/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/")
-foreach(pc libcam-core libcam-io libcam-reproject libcam libcam-dataset libcam-check libcam-fit libcam-report
+foreach(pc libcam-core libcam-io libcam-reproject libcam libcam-dataset libcam-check libcam-fit libcam-uncertainty libcam-report
           libcam-calibrate libcam-stereo)
   configure_file("cmake/${pc}.pc.in" "${PROJECT_BINARY_DIR}/${pc}.pc" @ONLY)
   install(FILES "${PROJECT_BINARY_DIR}/${pc}.pc" DESTINATION "${CMAKE_INSTALL_LIBDIR}/pkgconfig")

@@ -8,6 +8,7 @@
 #include "libcam/error.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/uncertainty/uncertainty_map.hpp"
 
 namespace libcam {
 
@@ -154,7 +155,50 @@ double noise_of(const Calibration& out) {
     return std::sqrt(sum / static_cast<double>(2 * count));
 }
 
+// Tiles across the image for a candidate's worst sigma over the observed region.
+constexpr long kUncertaintyColumns = 40;
+
+CandidateUncertainty uncertainty_of(const Calibration& c, std::size_t candidate) {
+    CandidateUncertainty out;
+    try {
+        const SolvedCalibration solved = c.solved(candidate);
+        const ProjectionUncertainty uncertainty(solved);
+        out.noise_px = uncertainty.observed_pixel_uncertainty_px();
+        out.centre_px = uncertainty.sigma_px({Vec2(c.size.centre_x(), c.size.centre_y())}).front();
+        const UncertaintyMap map = uncertainty_map(uncertainty, kUncertaintyColumns, kAtInfinity);
+        out.worst_observed_px = summarize(map, observed_region(solved)).worst_observed_px;
+        out.parameters = uncertainty.parameters();
+        out.computed = true;
+    } catch (const InvalidArgument& error) {
+        out.failure = error.what();
+    }
+    return out;
+}
+
+// Each fitted candidate's uncertainty; its parameters whose standard deviation exceeds
+// their size flagged on it.
+void measure_uncertainty(Calibration& c) {
+    c.uncertainty.clear();
+    for (std::size_t i = 0; i < c.fit.candidates.size(); ++i) {
+        ObservationCandidate& candidate = c.fit.candidates[i];
+        c.uncertainty.push_back(candidate.fitted ? uncertainty_of(c, i) : CandidateUncertainty{});
+        for (const ParameterSpread& p : c.uncertainty.back().parameters) {
+            if (p.stdev <= std::abs(p.value)) continue;
+            candidate.flags.push_back(p.name + " = " + format_short(p.value, 4) + " with a standard deviation of " +
+                                      format_short(p.stdev, 4) + ": the data do not pin it down");
+        }
+    }
+}
+
 }  // namespace
+
+SolvedCalibration Calibration::solved(std::size_t candidate) const {
+    const ObservationCandidate& fitted = fit.candidates.at(candidate);
+    SolvedCalibration out;
+    out.camera = fitted.camera;
+    out.views = fit_views_of(views, fitted.poses, board);
+    return out;
+}
 
 std::size_t Calibration::corners() const {
     std::size_t total = 0;
@@ -240,6 +284,7 @@ Calibration calibrate(const std::vector<BoardDetection>& detections, const Board
         out.views = std::move(kept);
         if (out.views.size() < 2) too_few_views(out);
     }
+    measure_uncertainty(out);
     return out;
 }
 

@@ -8,6 +8,10 @@
 // own) and cross-validated by view; the simplest within the margin of the best held-out
 // RMS is chosen.
 //
+// Each fitted candidate's projection uncertainty is measured at the end (at the image
+// centre, and the worst over the region the corners covered); a parameter whose standard
+// deviation exceeds its own size is flagged on the candidate: the data do not pin it down.
+//
 // Outliers, as mrcal rejects them: after a fit, a corner whose residual under the chosen
 // model is more than `outlier_sigmas` times the fit's noise (the residuals' standard
 // deviation per coordinate) from where the model puts it is dropped, and the candidates
@@ -24,6 +28,7 @@
 #include "libcam/calibrate/board.hpp"
 #include "libcam/calibrate/detect.hpp"
 #include "libcam/fit/observation_fit.hpp"
+#include "libcam/uncertainty/projection_uncertainty.hpp"
 
 namespace libcam {
 
@@ -52,6 +57,17 @@ struct CalibrationView {
     std::vector<Vec2> outlier_pixels;
 };
 
+// A candidate's projection uncertainty (uncertainty/projection_uncertainty.hpp), points at
+// infinity: how far the data pin the model down, beside its held-out RMS.
+struct CandidateUncertainty {
+    bool computed = false;
+    std::string failure;             // why not, when not computed
+    double noise_px = 0.0;           // the noise its residuals imply
+    double centre_px = 0.0;          // sigma at the image centre
+    double worst_observed_px = 0.0;  // the largest sigma over the region the corners covered
+    std::vector<ParameterSpread> parameters;
+};
+
 struct Calibration {
     BoardSpec board;
     ImageSize size;
@@ -63,11 +79,15 @@ struct Calibration {
     int rounds = 0;                       // fits run (one more for each round that dropped corners)
     bool rounds_capped = false;           // the last fit still had corners beyond the limit
     double noise_px = 0.0;                // the chosen fit's residual spread, per coordinate
+    std::vector<CandidateUncertainty> uncertainty;  // one per fit.candidates
 
     const ObservationCandidate& chosen() const { return fit.candidates[*fit.chosen]; }
     std::size_t corners() const;
     // |residual| of each kept corner of view v under the chosen camera and that view's pose.
     std::vector<double> view_errors(std::size_t v) const;
+    // A fitted candidate (index into fit.candidates) as a solved calibration: its camera,
+    // each view's pose under it and the corners kept.
+    SolvedCalibration solved(std::size_t candidate) const;
 };
 
 // PINHOLE, OPENCV4, OPENCV5, OPENCV8 and FISHEYE; and where the corners reach past

@@ -9,6 +9,7 @@
 #include <cstddef>
 
 #include "libcam/error.hpp"
+#include "libcam/fit/observation_fit.hpp"
 #include "libcam/lens/lens_models.hpp"
 
 namespace libcam::detail {
@@ -282,6 +283,42 @@ HeldIntrinsics held_for(const Candidate& candidate, const ImageSize& size) {
     return held;
 }
 
+// The residuals of one set of observations under `params` and a pose, and their
+// derivatives, by the solver's own residual and automatic differentiation.
+template <class Model, Core kCore>
+ResidualDerivatives derivatives_with(const HeldIntrinsics& held, const std::vector<double>& params, const Vec3& rotation,
+                                     const Vec3& shift, const std::vector<FitSample>& observations) {
+    using Residuals = ReprojectionResiduals<Model, kCore>;
+    if (params.size() != static_cast<std::size_t>(Residuals::kParams)) {
+        throw InvalidArgument("fit: " + std::to_string(params.size()) + " parameters for a model with " +
+                              std::to_string(Residuals::kParams));
+    }
+    static const std::vector<FitSample> kNoGuards;
+    const auto rows = static_cast<Eigen::Index>(2 * observations.size());
+    ResidualDerivatives out;
+    if (observations.empty()) {
+        out.by_intrinsics.resize(0, Residuals::kParams);
+        out.by_pose.resize(0, 6);
+        return out;
+    }
+    ceres::AutoDiffCostFunction<Residuals, ceres::DYNAMIC, Residuals::kParams, 3, 3> cost(
+        new Residuals(observations, kNoGuards, held), static_cast<int>(rows));
+    // Ceres writes each block's Jacobian row-major.
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    RowMajor by_intrinsics(rows, Residuals::kParams), by_rotation(rows, 3), by_shift(rows, 3);
+    out.residuals.resize(rows);
+    const double* blocks[3] = {params.data(), rotation.data(), shift.data()};
+    double* jacobians[3] = {by_intrinsics.data(), by_rotation.data(), by_shift.data()};
+    if (!cost.Evaluate(blocks, out.residuals.data(), jacobians)) {
+        throw InvalidArgument("fit: an observation lies outside the " + std::string(lens_info(Model::type).name) +
+                              " model's valid domain, or its coefficients are out of the model's range");
+    }
+    out.by_intrinsics = by_intrinsics;
+    out.by_pose.resize(rows, 6);
+    out.by_pose << by_rotation, by_shift;
+    return out;
+}
+
 }  // namespace
 
 ViewsState solve_views(const Candidate& candidate, const ImageSize& size,
@@ -302,3 +339,17 @@ LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSiz
 }
 
 }  // namespace libcam::detail
+
+namespace libcam {
+
+ResidualDerivatives residual_derivatives(const Candidate& candidate, const ImageSize& size,
+                                         const std::vector<double>& params, const Pose& pose,
+                                         const std::vector<FitSample>& observations) {
+    const detail::HeldIntrinsics held = detail::held_for(candidate, size);
+    const Vec3 rotation = pose.rvec();
+    return detail::with_candidate(candidate, [&]<class Model, detail::Core kCore>() {
+        return detail::derivatives_with<Model, kCore>(held, params, rotation, pose.t, observations);
+    });
+}
+
+}  // namespace libcam

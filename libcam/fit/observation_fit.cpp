@@ -60,19 +60,6 @@ std::vector<std::size_t> all_views(std::size_t n) {
     return out;
 }
 
-// The names of a candidate's parameters, in their order (fit.hpp's Candidate).
-std::vector<std::string> parameter_names(const Candidate& candidate) {
-    if (candidate.look_at) return {"f"};
-    std::vector<std::string> names;
-    if (detail::core_count(candidate) == 4) names = {"fx", "fy"};
-    names.insert(names.end(), {"cx", "cy"});
-    const auto coefficients = lens_info(candidate.lens).coefficients.view();
-    for (std::size_t i = static_cast<std::size_t>(candidate.held_coefficients); i < coefficients.size(); ++i) {
-        names.emplace_back(coefficients[i]);
-    }
-    return names;
-}
-
 // Parameters whose fold-to-fold spread exceeds their size: the data do not pin them down.
 std::vector<std::string> undetermined(const Candidate& candidate, const std::vector<double>& params,
                                       const std::vector<std::vector<double>>& per_fold) {
@@ -363,6 +350,38 @@ ObservationFitReport fit_observations(const Camera& start, const std::vector<Fit
     }
     choose(report);
     return report;
+}
+
+std::vector<std::string> parameter_names(const Candidate& candidate) {
+    if (candidate.look_at) return {"f"};
+    std::vector<std::string> names;
+    if (detail::core_count(candidate) == 4) names = {"fx", "fy"};
+    names.insert(names.end(), {"cx", "cy"});
+    const auto coefficients = lens_info(candidate.lens).coefficients.view();
+    for (std::size_t i = static_cast<std::size_t>(candidate.held_coefficients); i < coefficients.size(); ++i) {
+        names.emplace_back(coefficients[i]);
+    }
+    return names;
+}
+
+CameraParameters parameters_of(const Camera& camera) {
+    const std::string model(lens_info(camera.lens.type).name);
+    CameraParameters out;
+    try {
+        out.candidate = candidate_named(model);
+    } catch (const InvalidArgument&) {
+        throw InvalidArgument("camera: libcam's fit does not take the " + model + " model, so it cannot differentiate it");
+    }
+    if (out.candidate.sensor_width_mm > 0.0 || out.candidate.held_coefficients > 0) {
+        throw InvalidArgument("camera: the fit holds part of the " + model +
+                              " model fixed (its sensor scale or leading coefficient), so it cannot take this camera's own");
+    }
+    if (camera.intrinsics.skew != 0.0) {
+        throw InvalidArgument("camera: skew " + format_short(camera.intrinsics.skew) +
+                              ": the fit's models have none, so it cannot differentiate this camera");
+    }
+    out.params = detail::start_from(out.candidate, camera).params;
+    return out;
 }
 
 }  // namespace libcam

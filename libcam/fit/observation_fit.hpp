@@ -19,6 +19,7 @@
 // The points are held where the file has them: a board's corners in its own frame (exact:
 // the board is what was measured), or a reconstruction's triangulated points.
 
+#include <Eigen/Core>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -71,6 +72,34 @@ struct ObservationFitReport {
     std::optional<std::size_t> chosen;  // index into candidates
     std::string reason;                 // why that one, in words
 };
+
+// The names of a candidate's free parameters, in their order ("fx", "fy", "cx", "cy",
+// then the lens's coefficients after the held ones; "f" for LOOK_AT).
+std::vector<std::string> parameter_names(const Candidate& candidate);
+
+// A camera as the free parameters of the candidate of its own lens model, exactly.
+struct CameraParameters {
+    Candidate candidate;
+    std::vector<double> params;
+};
+// Throws InvalidArgument, naming the model, for a model libcam does not fit, a camera with
+// skew, or a model the fit holds at a sensor's scale or with coefficients held at 0
+// (the candidate could not hold the camera exactly).
+CameraParameters parameters_of(const Camera& camera);
+
+// The residuals of observations seen by a camera with `params` from `pose`, as the fit
+// defines them (two per observation: projected minus observed, x then y), and their
+// derivatives by automatic differentiation (the solver's own): by_intrinsics has a column
+// per parameter, by_pose six: the pose's rotation (Rodrigues vector) then its
+// translation. Throws InvalidArgument when an observation does not project.
+struct ResidualDerivatives {
+    Eigen::VectorXd residuals;
+    Eigen::MatrixXd by_intrinsics;
+    Eigen::MatrixXd by_pose;
+};
+ResidualDerivatives residual_derivatives(const Candidate& candidate, const ImageSize& size,
+                                         const std::vector<double>& params, const Pose& pose,
+                                         const std::vector<FitSample>& observations);
 
 // `start`: the file's own camera (its size, and intrinsics and lens as a start); its pose
 // is ignored. Throws InvalidArgument for fewer than two views or an empty view list.

@@ -179,6 +179,9 @@ def read_observations(path: str, camera_file: str = "", size: tuple[int, int] | 
     """The observations of OpenCV's calibration output, mrcal's optimization_inputs, a COLMAP model, OpenSfM, OpenMVG,
     AliceVision, VisualSfM or Bundler (size: their image size, which those two files lack), or a table."""
 
+def projection_uncertainty(
+    observations: Observations, pixels: Any, distance: float = ..., camera: int = 0
+) -> dict[str, Any]: ...
 def reproject(observations: Observations, threads: int = 0) -> dict[str, Any]:
     """Every residual (projected - observed) as arrays, the statistics, and the file's own numbers recomputed."""
 

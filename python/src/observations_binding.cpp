@@ -3,11 +3,14 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
 
 #include "camera_binding.hpp"
 #include "libcam/reproject/reproject.hpp"
+#include "libcam/error.hpp"
 #include "libcam/io/observations.hpp"
+#include "libcam/uncertainty/uncertainty_map.hpp"
 
 namespace libcam::python {
 
@@ -131,6 +134,40 @@ py::dict reproject_set(const ObservationSet& set, int threads) {
     return reprojection_dict(set, r);
 }
 
+py::dict projection_uncertainty_of(const ObservationSet& set, const std::vector<std::array<double, 2>>& pixels,
+                                   double distance, int camera) {
+    if (camera < 0 || static_cast<std::size_t>(camera) >= set.cameras.size()) {
+        throw InvalidArgument("camera: " + std::to_string(camera) + ": the observations hold " +
+                              std::to_string(set.cameras.size()) + " cameras");
+    }
+    const ProjectionUncertainty uncertainty(solved_calibration(set, camera));
+    std::vector<Vec2> at;
+    for (const auto& p : pixels) at.emplace_back(p[0], p[1]);
+    const std::vector<Mat2> covariances = uncertainty.covariances(at, distance);
+    py::array_t<double> covariance({static_cast<py::ssize_t>(at.size()), py::ssize_t{2}, py::ssize_t{2}});
+    py::array_t<double> sigma(static_cast<py::ssize_t>(at.size()));
+    for (std::size_t i = 0; i < at.size(); ++i) {
+        for (int r = 0; r < 2; ++r) {
+            for (int c = 0; c < 2; ++c) covariance.mutable_at(static_cast<py::ssize_t>(i), r, c) = covariances[i](r, c);
+        }
+        sigma.mutable_at(static_cast<py::ssize_t>(i)) = worst_direction_stdev(covariances[i]);
+    }
+    py::list parameters;
+    for (const ParameterSpread& p : uncertainty.parameters()) {
+        py::dict entry;
+        entry["name"] = p.name;
+        entry["value"] = p.value;
+        entry["stdev"] = p.stdev;
+        parameters.append(entry);
+    }
+    py::dict out;
+    out["observed_pixel_uncertainty_px"] = uncertainty.observed_pixel_uncertainty_px();
+    out["sigma_px"] = sigma;
+    out["covariance"] = covariance;
+    out["parameters"] = parameters;
+    return out;
+}
+
 }  // namespace
 
 void bind_observations(py::module_& m) {
@@ -206,6 +243,15 @@ mrcal's optimization_inputs, a COLMAP model folder, OpenSfM's reconstruction.jso
 OpenMVG's sfm_data.json, AliceVision's cameras.sfm, VisualSfM's .nvm or Bundler's
 bundle.out (size=(width, height): their files store none), or a .csv/.json table with
 camera_file. Returns libcam.Observations.)doc");
+    m.def("projection_uncertainty", &projection_uncertainty_of, py::arg("observations"), py::arg("pixels"),
+          py::arg("distance") = kAtInfinity, py::arg("camera") = 0, R"doc(
+mrcal's projection uncertainty (mrcal 2.2's projection_uncertainty, what =
+'worstdirection-stdev') of a calibration's observations (libcam.read_observations of a
+.cameramodel with optimization_inputs, OpenCV's calibration output, ...): the point at
+`distance` (the board's unit; infinity: the direction) along each pixel's ray (OpenCV's
+pixels, (n, 2)). Returns {'observed_pixel_uncertainty_px' (the noise the residuals
+imply), 'sigma_px' (n,) (NaN where a pixel has no ray), 'covariance' (n, 2, 2),
+'parameters': [{'name', 'value', 'stdev'}]}, as the libcam program's uncertainty command.)doc");
     m.def("reproject", &reproject_set, py::arg("observations"), py::arg("threads") = 0, R"doc(
 Every observation reprojected through libcam's projection of its camera and pose (as the
 libcam program's reproject command): {'observed', 'projected', 'residual' (n, 2) in the

@@ -39,7 +39,8 @@ TEST_CASE("libcam calibrate: JSON report, -o, and --observations-out that libcam
     write_board_folder(images);
     const CliResult run = run_libcam({"calibrate", images.string(), "--board", "chessboard:9x6:0.03", "--model",
                                       "OPENCV4,OPENCV5", "--json", "-o", (dir / "camera.yaml").string(),
-                                      "--observations-out", (dir / "observations.yml").string(), "--progress", "never"});
+                                      "--observations-out", (dir / "observations.yml").string(), "--progress", "never",
+                                      "--at", "319.5,239.5", "--at", "40,30", "--heatmap", (dir / "sigma.png").string()});
     REQUIRE(run.exit_code == 0);
     INFO(run.describe());
     const nlohmann::json report = nlohmann::json::parse(run.out);
@@ -57,7 +58,17 @@ TEST_CASE("libcam calibrate: JSON report, -o, and --observations-out that libcam
     for (const char* key : {"model", "rms_px", "heldout_rms_px"}) CHECK(report["candidates"][0].contains(key));
     REQUIRE(report["views"].size() == 6);
     for (const char* key : {"image", "corners", "rms_px", "rvec", "tvec"}) CHECK(report["views"][0].contains(key));
-    CHECK_FALSE(report.contains("uncertainty"));
+    // The projection uncertainty at each --at pixel; each candidate's beside its held-out RMS.
+    REQUIRE(report["uncertainty"].size() == 2);
+    CHECK(report["uncertainty"][1]["pixel"] == nlohmann::json::array({40.0, 30.0}));
+    const double centre_sigma = report["uncertainty"][0]["sigma_px"].get<double>();
+    CHECK(centre_sigma > 0.0);
+    CHECK(report["uncertainty"][1]["sigma_px"].get<double>() > centre_sigma);
+    for (const char* key : {"noise_px", "centre_sigma_px", "worst_observed_sigma_px", "parameters"}) {
+        CHECK(report["candidates"][1]["uncertainty"].contains(key));
+    }
+    CHECK(report["candidates"][1]["uncertainty"]["centre_sigma_px"].get<double>() == Approx(centre_sigma));
+    CHECK(std::filesystem::file_size(dir / "sigma.png") > 1000);
 
     // The camera written is the one reported.
     const Camera written = read_camera_file(dir / "camera.yaml").camera;
@@ -82,6 +93,14 @@ TEST_CASE("libcam calibrate: JSON report, -o, and --observations-out that libcam
     // The file's reader holds the board's corners in float as OpenCV's sample does: a few
     // 1e-9 m, a few 1e-6 px at these distances.
     CHECK(reprojected["rms_px"].get<double>() == Approx(chosen["rms_px"].get<double>()).margin(1e-5));
+
+    // libcam uncertainty reads the same corners and poses from that file: the same sigma.
+    const CliResult uncertainty =
+        run_libcam({"uncertainty", (dir / "observations.yml").string(), "--at", "319.5,239.5", "--json"});
+    INFO(uncertainty.describe());
+    REQUIRE(uncertainty.exit_code == 0);
+    const nlohmann::json sigma = nlohmann::json::parse(uncertainty.out);
+    CHECK(sigma["at"][0]["sigma_px"].get<double>() == Approx(centre_sigma).epsilon(1e-3));
 }
 
 TEST_CASE("libcam calibrate refuses in one line: a bad board spec, no usable image", "[calibrate][cli]") {

@@ -6,6 +6,8 @@
 #include <cctype>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
+#include <memory>
 #include <iostream>
 #include <mutex>
 #include <sstream>
@@ -20,13 +22,18 @@
 #include "libcam/io/camera_file.hpp"
 #include "libcam/text/number_format.hpp"
 #include "libcam/text/shown_value.hpp"
+#include "libcam/uncertainty/uncertainty_map.hpp"
 #include "camera_options.hpp"
 #include "parse.hpp"
 #include "progress.hpp"
+#include "uncertainty_output.hpp"
 
 namespace libcam::cli {
 
 namespace {
+
+// mrcal-show-projection-uncertainty's default grid: 60 points across.
+constexpr long kHeatmapColumns = 60;
 
 struct CalibrateFlags {
     std::vector<std::string> inputs;
@@ -38,6 +45,8 @@ struct CalibrateFlags {
     std::string output;
     std::string to;
     std::string observations_out;
+    std::vector<std::string> at;
+    std::string heatmap;
     int threads = 0;
     std::string progress;
 };
@@ -67,6 +76,11 @@ void add_flags(CLI::App& command, CalibrateFlags& flags) {
     command.add_option("--observations-out", flags.observations_out,
                        "Write the corners and board poses as OpenCV's calibration sample does (YAML), for "
                        "libcam reproject and libcam fit --observations");
+    command.add_option("--at", flags.at,
+                       "Pixels x,y (OpenCV's) where the chosen model's projection uncertainty is reported (points at "
+                       "infinity); repeat for more");
+    command.add_option("--heatmap", flags.heatmap,
+                       "Write a PNG of the chosen model's projection uncertainty over the image, with the corners");
     command.add_option("--threads", flags.threads, "Images searched at once (default: one per processor)")
         ->check(CLI::Range(1, 1024));
     add_progress_option(&command, flags.progress, "after the first second");
@@ -160,7 +174,50 @@ double view_rms(const Calibration& c, std::size_t v) {
     return std::sqrt(sum / static_cast<double>(errors.size()));
 }
 
-std::string format_text(const Calibration& c) {
+// Each candidate's projection uncertainty beside its held-out RMS.
+std::string uncertainty_table(const Calibration& c) {
+    std::ostringstream out;
+    out << "projection uncertainty (worst direction, points at infinity), with the noise the residuals imply:\n"
+        << "candidate                  held-out rms px  noise px  sigma centre px  worst observed px\n";
+    for (std::size_t i = 0; i < c.fit.candidates.size(); ++i) {
+        const ObservationCandidate& candidate = c.fit.candidates[i];
+        if (!candidate.fitted) continue;
+        std::string name(candidate.candidate.name);
+        name.resize(std::max<std::size_t>(name.size(), 27), ' ');
+        const CandidateUncertainty& u = c.uncertainty[i];
+        if (!u.computed) {
+            out << name << "not computed: " << u.failure << "\n";
+            continue;
+        }
+        const auto cell = [](double value, std::size_t width) {
+            std::string text = format_short(value, 4);
+            text.resize(std::max(text.size() + 1, width), ' ');
+            return text;
+        };
+        out << name << cell(candidate.heldout_rms_px, 17) << cell(u.noise_px, 10) << cell(u.centre_px, 17)
+            << format_short(u.worst_observed_px, 4) << "\n";
+    }
+    return out.str();
+}
+
+// The chosen model's uncertainty (points at infinity) at the --at pixels, or at the image
+// centre when none is given.
+struct ChosenUncertainty {
+    std::vector<Vec2> pixels;
+    std::vector<double> sigma_px;
+};
+ChosenUncertainty chosen_uncertainty(const Calibration& c, const std::vector<std::string>& at) {
+    ChosenUncertainty out;
+    out.pixels = at.empty() ? std::vector<Vec2>{Vec2(c.size.centre_x(), c.size.centre_y())} : at_pixels(at, c.size);
+    if (c.uncertainty[*c.fit.chosen].computed) {
+        out.sigma_px = ProjectionUncertainty(c.solved(*c.fit.chosen)).sigma_px(out.pixels);
+    } else {
+        out.sigma_px.assign(out.pixels.size(), std::numeric_limits<double>::quiet_NaN());
+    }
+    return out;
+}
+
+std::string format_text(const Calibration& c, const ChosenUncertainty& at) {
     const ObservationCandidate& chosen = c.chosen();
     const Intrinsics& k = chosen.camera.intrinsics;
     std::ostringstream out;
@@ -174,14 +231,24 @@ std::string format_text(const Calibration& c) {
     if (c.rounds_capped) {
         out << "the outlier rounds stopped after " << c.rounds << " fits with corners still beyond the limit\n";
     }
-    out << "\n" << candidates_table(c.fit) << "\n";
+    out << "\n" << candidates_table(c.fit) << "\n" << uncertainty_table(c) << "\n";
     out << "chosen: " << c.fit.reason << "\n";
     out << "  image size " << c.size.width << "x" << c.size.height << "\n";
     out << "  K: fx " << format_short(k.fx, 8) << ", fy " << format_short(k.fy, 8) << ", cx " << format_short(k.cx, 8)
         << ", cy " << format_short(k.cy, 8) << " (OpenCV's pixels)\n";
     out << "  lens: " << lens_text(chosen.camera) << "\n";
     out << "  rms " << format_short(chosen.rms_px, 4) << " px, held-out rms " << format_short(chosen.heldout_rms_px, 4)
-        << " px\n\nview                      corners  rms px\n";
+        << " px\n";
+    const CandidateUncertainty& u = c.uncertainty[*c.fit.chosen];
+    if (u.computed) {
+        out << "  projection uncertainty (worst direction, points at infinity): worst inside the region the corners "
+               "covered "
+            << format_short(u.worst_observed_px, 4) << " px\n"
+            << at_lines(at.pixels, at.sigma_px);
+    } else {
+        out << "  projection uncertainty: not computed: " << u.failure << "\n";
+    }
+    out << "\nview                      corners  rms px\n";
     for (std::size_t v = 0; v < c.views.size(); ++v) {
         std::string name = view_name(c.views[v].image);
         name.resize(std::max<std::size_t>(name.size(), 26), ' ');
@@ -194,7 +261,7 @@ std::string format_text(const Calibration& c) {
 
 Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
-std::string format_json(const Calibration& c) {
+std::string format_json(const Calibration& c, const ChosenUncertainty& at) {
     const ObservationCandidate& chosen = c.chosen();
     const Intrinsics& k = chosen.camera.intrinsics;
     Json out;
@@ -222,6 +289,18 @@ std::string format_json(const Calibration& c) {
                      {"heldout_rms_px", finite_or_null(chosen.heldout_rms_px)},
                      {"reason", c.fit.reason}};
     out["candidates"] = candidates_json(c.fit);
+    for (std::size_t i = 0; i < c.fit.candidates.size(); ++i) {
+        const CandidateUncertainty& u = c.uncertainty[i];
+        if (!c.fit.candidates[i].fitted) continue;
+        if (!u.computed) {
+            out["candidates"][i]["uncertainty"] = {{"failure", u.failure}};
+            continue;
+        }
+        out["candidates"][i]["uncertainty"] = {{"noise_px", u.noise_px},
+                                               {"centre_sigma_px", finite_or_null(u.centre_px)},
+                                               {"worst_observed_sigma_px", finite_or_null(u.worst_observed_px)},
+                                               {"parameters", parameters_json(u.parameters)}};
+    }
     out["views"] = Json::array();
     for (std::size_t v = 0; v < c.views.size(); ++v) {
         const Pose& pose = chosen.poses[v];
@@ -231,6 +310,7 @@ std::string format_json(const Calibration& c) {
                                 {"rvec", vec_json(pose.rvec())},
                                 {"tvec", vec_json(pose.t)}});
     }
+    out["uncertainty"] = at_json(at.pixels, at.sigma_px);
     return out.dump(2) + "\n";
 }
 
@@ -244,9 +324,26 @@ BoardSpec board_from(const std::string& text) {
     }
 }
 
+// The chosen model's uncertainty over the image, with the corners kept.
+void write_heatmap(const std::string& path, const Calibration& c) {
+    const SolvedCalibration solved = c.solved(*c.fit.chosen);
+    std::unique_ptr<ProjectionUncertainty> uncertainty;
+    try {
+        uncertainty = std::make_unique<ProjectionUncertainty>(solved);
+    } catch (const InvalidArgument& error) {
+        throw Error(path + ": the projection uncertainty cannot be computed: " + error.what());
+    }
+    const UncertaintyMap map = uncertainty_map(*uncertainty, kHeatmapColumns, kAtInfinity);
+    const UncertaintySummary summary = summarize(map, observed_region(solved));
+    write_uncertainty_heatmap(path, map, solved,
+                              std::string(c.chosen().candidate.name) + ", points at infinity: worst observed " +
+                                  format_short(summary.worst_observed_px, 3) + " px");
+}
+
 // Files first, so that a failure to write one leaves stdout empty.
 void write_outputs(const CalibrateFlags& flags, const Calibration& c) {
     if (!flags.output.empty()) write_camera_file(flags.output, c.chosen().camera, output_format(flags));
+    if (!flags.heatmap.empty()) write_heatmap(flags.heatmap, c);
     if (flags.observations_out.empty()) return;
     ObservationsText text;
     try {
@@ -276,14 +373,16 @@ Runner add_calibrate(CLI::App& app) {
         options.folds = flags->folds;
         options.margin = flags->margin;
         if (!flags->output.empty()) output_format(*flags);
+        for (const std::string& pixel : flags->at) parse_vec2("--at", pixel);  // on the image: checked once its size is known
         const std::vector<std::filesystem::path> images = images_of(flags->inputs);
         ProgressPrinter printer(progress_when);
         const std::vector<BoardDetection> detections = detect_boards(
             images, board, flags->threads, [&](std::size_t done) { printer.found(done, images.size()); });
         options.stage = [&](const std::string& what) { printer.stage(what); };
         const Calibration calibration = calibrate(detections, board, options);
+        const ChosenUncertainty at = chosen_uncertainty(calibration, flags->at);
         write_outputs(*flags, calibration);
-        emit(flags->json ? format_json(calibration) : format_text(calibration), "");
+        emit(flags->json ? format_json(calibration, at) : format_text(calibration, at), "");
         return 0;
     };
 }

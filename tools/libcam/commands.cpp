@@ -47,6 +47,10 @@ constexpr std::array<CommandInfo, 17> kCommands = {{
      "A folder of board images (chessboard or ChArUco) to a calibration: the corners found, the lens model the "
      "views held out of the fit support",
      false},
+    {"uncertainty",
+     "How far a calibration can be trusted at each pixel: mrcal's projection uncertainty, from the observations a "
+     "calibration file holds",
+     false},
     {"bench", "Time and accuracy of every projection and unprojection method of libcam, OpenCV and mrcal", false},
     {"demo",
      "The built-in example: convert the two worked example cameras and check them against OpenCV and mrcal",

@@ -19,6 +19,7 @@ Runner add_demo(CLI::App& app);
 Runner add_verify(CLI::App& app);
 Runner add_fit(CLI::App& app);
 Runner add_calibrate(CLI::App& app);
+Runner add_uncertainty(CLI::App& app);
 Runner add_bench(CLI::App& app);
 Runner add_info(CLI::App& app);
 Runner add_remap(CLI::App& app);

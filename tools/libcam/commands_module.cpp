@@ -24,8 +24,8 @@ int quiet_opencv_errors(int, const char*, const char*, const char*, int, void*) 
 // The commands only the module runs; it runs the light ones too (light_commands()).
 constexpr CommandAdder kModuleCommands[] = {
     {"remap", add_remap}, {"dataset", add_dataset}, {"render-plan", add_render_plan}, {"verify", add_verify},
-    {"fit", add_fit},     {"calibrate", add_calibrate}, {"bench", add_bench},     {"demo", add_demo},
-    {"rectify", add_rectify},
+    {"fit", add_fit},     {"calibrate", add_calibrate}, {"uncertainty", add_uncertainty}, {"bench", add_bench},
+    {"demo", add_demo},   {"rectify", add_rectify},
 };
 
 void write_reprojection_heatmap(const std::string& path, const libcam::ObservationSet& set,

@@ -1,0 +1,104 @@
+#pragma once
+// How far a calibration can be trusted at each pixel: mrcal's projection uncertainty
+// (mrcal 2.2's projection_uncertainty, what = 'worstdirection-stdev').
+//
+// The noise of the observed corners moves the solution (the intrinsics and every board
+// pose); the uncertainty is how far that moves the projection of a point seen at a pixel.
+// As mrcal computes it:
+//   - the noise sigma: the standard deviation of the fit's residuals (x and y of every
+//     observation used, each weighted by its observation's weight), not a stored value;
+//   - the covariance of the solution: sigma^2 (J^T J)^-1, J the derivatives of every
+//     residual by the intrinsics and by every board pose at the solution (the fit's own
+//     residuals, differentiated automatically);
+//   - the point: the pixel's ray, at `distance` along it (infinity: the direction alone),
+//     carried into each board's frame by that board's solved pose. The boards are what
+//     the data fix, the camera's frame is not: a principal-point shift and a common turn
+//     of every board look alike to the corners. The point comes back into the camera as
+//     the mean over the boards of each one carried back by its (perturbed) pose, then is
+//     projected by the (perturbed) intrinsics;
+//   - sigma_px: the square root of the larger eigenvalue of the 2x2 covariance of that
+//     projection, the standard deviation in the worst direction.
+// J^T J is inverted once, through the Schur complement over the poses (each board's pose
+// touches only its own residuals), and every pixel reuses it.
+//
+// Differences from mrcal: mrcal also frees the board's bow (calobject_warp) where its
+// solve did, and adds its small regularization terms to J; libcam holds the board flat as
+// the file gives it and has no regularization (on mrcal's real OPENCV8 solve of a bowed board: sigma
+// 4% under mrcal's; on a flat board without regularization: the same to 1e-9).
+
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "libcam/camera/unprojector.hpp"
+#include "libcam/fit/observation_fit.hpp"
+
+namespace libcam {
+
+using Mat2 = Eigen::Matrix2d;
+
+// A solved calibration: the camera (intrinsics and lens; its pose is not used) and each
+// view's solved board pose (board to camera) with the observations it was solved from
+// (board points, observed pixels).
+struct SolvedCalibration {
+    Camera camera;
+    std::vector<FitView> views;
+    // Each observation's weight (the tool's, mrcal's), as views' observations; empty:
+    // every observation weighs 1.
+    std::vector<std::vector<double>> weights;
+};
+
+// One intrinsic parameter: its value and its standard deviation.
+struct ParameterSpread {
+    std::string name;
+    double value = 0.0;
+    double stdev = 0.0;
+};
+
+inline constexpr double kAtInfinity = std::numeric_limits<double>::infinity();
+
+// The square root of the larger eigenvalue of a 2x2 covariance (mrcal's worst_direction_stdev).
+double worst_direction_stdev(const Mat2& covariance);
+
+class ProjectionUncertainty {
+public:
+    // Throws InvalidArgument when the camera's model cannot be differentiated
+    // (parameters_of), an observation does not project, or the observations do not
+    // determine the intrinsics (J^T J singular: too few views or corners).
+    explicit ProjectionUncertainty(const SolvedCalibration& solved);
+
+    // sigma: the noise the fit's residuals imply, per coordinate, in pixels.
+    double observed_pixel_uncertainty_px() const { return noise_px_; }
+    const Camera& camera() const { return camera_; }
+    std::size_t observations() const { return observations_; }
+    // The intrinsics with their standard deviations.
+    std::vector<ParameterSpread> parameters() const;
+
+    // The covariance (pixels^2) of the projection of the point at `distance` (in the
+    // board's unit) along the ray through each pixel; NaN where the pixel has no ray or
+    // the point does not project.
+    std::vector<Mat2> covariances(const std::vector<Vec2>& pixels, double distance = kAtInfinity) const;
+    // Their worst-direction standard deviations (sigma_px).
+    std::vector<double> sigma_px(const std::vector<Vec2>& pixels, double distance = kAtInfinity) const;
+
+private:
+    Camera camera_;
+    // The exact unprojection with the smallest start table: a table over the whole image
+    // would cost more than every pixel a report asks about.
+    std::shared_ptr<const Unprojector<double>> unprojector_;
+    CameraParameters parameters_;
+    std::vector<Pose> poses_;
+    double noise_px_ = 0.0;
+    std::size_t observations_ = 0;
+    // The Schur complement's inverse (intrinsics' covariance / sigma^2); per view: V^-1
+    // (its pose block's inverse) and V^-1 W^T (W: the intrinsics-by-pose block).
+    Eigen::MatrixXd intrinsics_inverse_;
+    std::vector<Eigen::Matrix<double, 6, 6>> pose_inverse_;
+    std::vector<Eigen::MatrixXd> pose_coupling_;
+};
+
+}  // namespace libcam
