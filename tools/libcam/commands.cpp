@@ -15,7 +15,7 @@ namespace libcam::cli {
 namespace {
 
 // In the order `libcam --help` lists them.
-constexpr std::array<CommandInfo, 17> kCommands = {{
+constexpr std::array<CommandInfo, 18> kCommands = {{
     {"convert", "Convert a look-at camera or a camera file to K, R|t, P, rvec, an OpenGL projection, or a file", true},
     {"info", "Every camera a file holds: model, size, K, field of view, pose", true},
     {"rays", "World rays through pixels, by K^-1 and by the look-at formula", true},
