@@ -9,14 +9,13 @@
 
 #include <catch2/catch.hpp>
 
-#include <cstdio>
 #include <map>
-#include <memory>
 #include <sstream>
 #include <string>
 
 #include "libcam/calibrate/detect.hpp"
 #include "synthetic_sets.hpp"
+#include "shell_output.hpp"
 #include "temp_dir.hpp"
 
 using namespace libcam;
@@ -31,12 +30,10 @@ bool mrgingham_installed() { return std::system("mrgingham --help > /dev/null 2>
 std::map<std::string, std::vector<Vec2>> mrgingham_corners(const std::vector<std::string>& images) {
     std::string command = "mrgingham --gridn 10 --jobs 1";
     for (const std::string& image : images) command += " '" + image + "'";
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen(command.c_str(), "r"), ::pclose);
-    REQUIRE(pipe);
     std::map<std::string, std::vector<Vec2>> corners;
-    char line[1024];
-    while (std::fgets(line, sizeof line, pipe.get()) != nullptr) {
-        if (line[0] == '#') continue;
+    std::istringstream lines(shell_output(command));
+    for (std::string line; std::getline(lines, line);) {
+        if (line.empty() || line[0] == '#') continue;
         std::istringstream words(line);
         std::string image, x, y;
         words >> image >> x >> y;

@@ -19,22 +19,13 @@
 #include "libcam/io/camera_file.hpp"
 #include "error_message.hpp"
 #include "temp_dir.hpp"
+#include "shell_output.hpp"
 
 using namespace libcam;
 
 namespace {
 
-std::string run(const std::string& command) {
-    std::FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::string output;
-    char buffer[65536];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-    const int status = pclose(pipe);
-    INFO(command);
-    REQUIRE(status == 0);
-    return output;
-}
+using libcam::test::shell_output;
 
 bool pano_trafo_present() {
     if (std::system("command -v pano_trafo > /dev/null 2>&1") == 0) return true;
@@ -70,7 +61,7 @@ void check_against_pano_trafo(const std::string& image_line, double tolerance) {
     std::string input;
     for (const Vec2& p : pixels) input += std::to_string(p.x()) + " " + std::to_string(p.y()) + "\n";
     const auto points = write_file(dir, "points.txt", input);
-    std::istringstream output(run("pano_trafo -r '" + path.string() + "' 0 < '" + points.string() + "'"));
+    std::istringstream output(shell_output("pano_trafo -r '" + path.string() + "' 0 < '" + points.string() + "'"));
     const PreparedCamera camera(read_camera_file(path).camera);
     for (const Vec2& pixel : pixels) {
         Vec2 hugin;
@@ -187,7 +178,7 @@ TEST_CASE("Hugin: each image's y p r and TrX TrY TrZ against pano_trafo on an eq
         for (const Vec2& p : pixels) input += std::to_string(p.x()) + " " + std::to_string(p.y()) + "\n";
         const auto points = write_file(dir, "points.txt", input);
         std::istringstream output(
-            run("pano_trafo '" + path.string() + "' " + std::to_string(index) + " < '" + points.string() + "'"));
+            shell_output("pano_trafo '" + path.string() + "' " + std::to_string(index) + " < '" + points.string() + "'"));
         const PreparedCamera prepared(camera);
         for (const Vec2& pixel : pixels) {
             Vec2 panorama;

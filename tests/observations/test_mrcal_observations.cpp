@@ -21,8 +21,11 @@
 #include "libcam/io/detail/cameramodel_text.hpp"
 #include "libcam/io/observations.hpp"
 #include "real_cameras.hpp"
+#include "shell_output.hpp"
 
 namespace {
+
+using libcam::test::shell_output;
 
 using namespace libcam;
 namespace fs = std::filesystem;
@@ -30,21 +33,9 @@ namespace fs = std::filesystem;
 // Beside this file (found from the docs folder: __FILE__ is relative to the build folder).
 const fs::path kScript = fs::path(LIBCAM_DOCS_DIR).parent_path() / "tests/observations/mrcal_optimization_inputs.py";
 
-// The command's standard output; fails the test unless it exits 0.
-std::string run(const std::string& command) {
-    std::FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::string output;
-    char buffer[65536];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-    const int status = pclose(pipe);
-    INFO(command);
-    REQUIRE(status == 0);
-    return output;
-}
-
 nlohmann::json mrcal_summary(const fs::path& model) {
-    return nlohmann::json::parse(run("/usr/bin/python3 '" + kScript.string() + "' summary '" + model.string() + "'"));
+    return nlohmann::json::parse(
+        shell_output("/usr/bin/python3 '" + kScript.string() + "' summary '" + model.string() + "'"));
 }
 
 // A folder of this test program's own, removed when it ends (two runs at once never share it).
@@ -55,7 +46,7 @@ const fs::path& scratch_folder() {
 
 fs::path small_model(const std::string& variant) {
     const fs::path model = scratch_folder() / (variant + ".cameramodel");
-    run("/usr/bin/python3 '" + kScript.string() + "' write '" + model.string() + "' " + variant);
+    shell_output("/usr/bin/python3 '" + kScript.string() + "' write '" + model.string() + "' " + variant);
     return model;
 }
 
@@ -205,8 +196,9 @@ TEST_CASE("mrcal observations: a .cameramodel of 558 views, over 1 MiB, is read 
     CHECK(camera.size.height == 480);
     // And the program: both commands take the file.
     const std::string program = "'" + std::string(LIBCAM_EXE) + "' ";
-    CHECK_THAT(run(program + "info '" + model.string() + "'"), Catch::Matchers::Contains("model     OPENCV4"));
-    CHECK_THAT(run(program + "reproject '" + model.string() + "'"), Catch::Matchers::Contains("55803 observations"));
+    CHECK_THAT(shell_output(program + "info '" + model.string() + "'"), Catch::Matchers::Contains("model     OPENCV4"));
+    CHECK_THAT(shell_output(program + "reproject '" + model.string() + "'"),
+               Catch::Matchers::Contains("55803 observations"));
 }
 
 TEST_CASE("mrcal observations: info's reader and reproject's refuse a damaged .cameramodel with the same line") {

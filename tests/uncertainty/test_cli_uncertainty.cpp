@@ -10,6 +10,7 @@
 
 #include "cli_runner.hpp"
 #include "temp_dir.hpp"
+#include "shell_output.hpp"
 
 namespace {
 
@@ -19,15 +20,7 @@ namespace fs = std::filesystem;
 const fs::path kScript = fs::path(LIBCAM_DOCS_DIR).parent_path() / "tests/uncertainty/mrcal_uncertainty.py";
 
 std::string python(const std::string& arguments) {
-    const std::string command = "/usr/bin/python3 '" + kScript.string() + "' " + arguments;
-    std::FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::string output;
-    char buffer[4096];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-    INFO(command);
-    REQUIRE(pclose(pipe) == 0);
-    return output;
+    return shell_output("/usr/bin/python3 '" + kScript.string() + "' " + arguments);
 }
 
 // One line on stderr, nothing on stdout, the exit code given.

@@ -20,31 +20,22 @@
 #include "libcam/uncertainty/uncertainty_map.hpp"
 #include "real_cameras.hpp"
 #include "temp_dir.hpp"
+#include "shell_output.hpp"
 
 namespace {
+
+using libcam::test::shell_output;
 
 using namespace libcam;
 namespace fs = std::filesystem;
 
 const fs::path kScript = fs::path(LIBCAM_DOCS_DIR).parent_path() / "tests/uncertainty/mrcal_uncertainty.py";
 
-std::string run(const std::string& command) {
-    std::FILE* pipe = popen(command.c_str(), "r");
-    REQUIRE(pipe != nullptr);
-    std::string output;
-    char buffer[65536];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
-    const int status = pclose(pipe);
-    INFO(command);
-    REQUIRE(status == 0);
-    return output;
-}
-
 // mrcal's sigma (and its noise) at each pixel, the point at `distance` ("inf": at infinity).
 nlohmann::json mrcal_sigma(const fs::path& model, const std::string& distance, const std::vector<Vec2>& pixels) {
     std::string command = "/usr/bin/python3 '" + kScript.string() + "' sigma '" + model.string() + "' " + distance;
     for (const Vec2& p : pixels) command += " " + std::to_string(p.x()) + "," + std::to_string(p.y());
-    return nlohmann::json::parse(run(command));
+    return nlohmann::json::parse(shell_output(command));
 }
 
 // The image's centre, its four corners and the middles of its four edges.
@@ -97,7 +88,7 @@ TEST_CASE("uncertainty against mrcal: the real OPENCV8 solve in opencv8-0.camera
 TEST_CASE("uncertainty against mrcal: a small OPENCV4 solve made by mrcal.optimize", "[uncertainty][mrcal]") {
     const test::TempDir folder;
     const fs::path model = folder.path() / "small.cameramodel";
-    run("/usr/bin/python3 '" + kScript.string() + "' write '" + model.string() + "'");
+    shell_output("/usr/bin/python3 '" + kScript.string() + "' write '" + model.string() + "'");
     // The same problem in both: the board flat, no regularization, no outlier rejection. Only
     // the solver's last digits differ, so the agreement must be far inside the 10% allowed.
     const double at_infinity = compare_with_mrcal(model, "inf", kAtInfinity);
