@@ -47,7 +47,8 @@ struct NamedCamera {
     std::string intrinsics_name = {};
     // A view the file lists with its calibration but without a pose (a photo Metashape
     // has not aligned, a view of OpenMVG's or AliceVision's file before or left out of the
-    // reconstruction): its pose here is the identity, which says nothing of where it was.
+    // reconstruction, a NeRF frame without transform_matrix): its pose here is the
+    // identity, which says nothing of where it was.
     bool unposed = false;
 };
 
