@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
@@ -165,6 +166,7 @@ std::vector<CameraFormatInfo> camera_formats() {
                               .lenses = {row.lenses.begin(), row.lenses.end()},
                               .lens_names = row.lens_names,
                               .refuses = row.refuses,
+                              .camera_names = row.camera_names,
                               .library = row.library,
                               .largest_file = row.largest_file,
                               .files_beside = std::move(beside),
@@ -294,11 +296,47 @@ CameraFile parse_camera(std::string_view text, CameraFormat format, const std::s
     return parse_camera_set(text, format, source, options).cameras.front().file;
 }
 
+namespace {
+
+// The last part of a camera's name that is a path ("D:/photos/a.jpg", "images\\a.jpg"):
+// the image's file name; empty for a name that is no path.
+std::string_view image_file_name(std::string_view name) {
+    const std::size_t slash = name.find_last_of("/\\");
+    return slash == std::string_view::npos ? std::string_view() : name.substr(slash + 1);
+}
+
+// "3 (D:/a/x.jpg), 7 (D:/b/x.jpg)": cameras by position and name.
+std::string listed(const CameraSet& set, const std::vector<std::size_t>& positions) {
+    std::string names;
+    for (const std::size_t i : positions) {
+        const std::string& name = set.cameras[i].name;
+        names += (names.empty() ? "" : ", ") + std::to_string(i) + (name.empty() ? "" : " (" + name + ")");
+    }
+    return names;
+}
+
+// The camera whose image has the file name `selector`, where exactly one has; throws
+// InvalidArgument naming them where several have.
+const NamedCamera* by_image_file_name(const CameraSet& set, std::string_view selector, const std::string& source) {
+    std::vector<std::size_t> matches;
+    for (std::size_t i = 0; i < set.cameras.size(); ++i) {
+        if (image_file_name(set.cameras[i].name) == selector) matches.push_back(i);
+    }
+    if (matches.empty()) return nullptr;
+    if (matches.size() == 1) return &set.cameras[matches.front()];
+    throw InvalidArgument(source + ": the image file name '" + std::string(selector) + "' names " +
+                          std::to_string(matches.size()) + " cameras: " + listed(set, matches) +
+                          "; give one's whole name or its position");
+}
+
+}  // namespace
+
 const NamedCamera& select_camera(const CameraSet& set, std::string_view selector, const std::string& source) {
     if (selector.empty()) return set.cameras.front();
     for (const NamedCamera& camera : set.cameras) {
         if (!camera.name.empty() && camera.name == selector) return camera;
     }
+    if (const NamedCamera* camera = by_image_file_name(set, selector, source)) return *camera;
     for (const NamedCamera& camera : set.cameras) {
         if (!camera.intrinsics_name.empty() && camera.intrinsics_name == selector) return camera;
     }
@@ -307,14 +345,11 @@ const NamedCamera& select_camera(const CameraSet& set, std::string_view selector
         const std::size_t index = std::stoul(std::string(selector));
         if (index < set.cameras.size()) return set.cameras[index];
     }
-    std::string names;
-    for (std::size_t i = 0; i < set.cameras.size(); ++i) {
-        const std::string& name = set.cameras[i].name;
-        names += (i == 0 ? "" : ", ") + std::to_string(i) + (name.empty() ? "" : " (" + name + ")");
-    }
+    std::vector<std::size_t> every(set.cameras.size());
+    for (std::size_t i = 0; i < every.size(); ++i) every[i] = i;
     throw InvalidArgument(source + ": no camera '" + std::string(selector) + "'; it holds " +
                           std::to_string(set.cameras.size()) + (set.cameras.size() == 1 ? " camera: " : " cameras: ") +
-                          names);
+                          listed(set, every));
 }
 
 CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format,

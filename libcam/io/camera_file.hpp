@@ -62,9 +62,12 @@ CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std
 CameraSet read_camera_set(const std::filesystem::path& path, std::optional<CameraFormat> format = std::nullopt,
                           const ReadOptions& options = {});
 
-// The camera `selector` names: a camera's name in the file, the first view of the
-// intrinsics it names (a COLMAP camera id, "id:2"), or its position counting from 0;
-// the first camera when empty. Throws InvalidArgument listing the cameras.
+// The camera `selector` names: a camera's name in the file; the file name of the image
+// it names, where its name is a path ("20250614_204908.jpg" for a view named
+// "D:/photos/20250614_204908.jpg"), when no other camera's image has that file name; the
+// first view of the intrinsics it names (a COLMAP camera id, "id:2"); or its position
+// counting from 0; the first camera when empty. Throws InvalidArgument listing the
+// cameras, or the cameras whose images share the file name.
 const NamedCamera& select_camera(const CameraSet& set, std::string_view selector, const std::string& source);
 
 // Reads one camera of a file (read_camera_set, then select_camera).

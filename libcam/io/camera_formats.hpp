@@ -30,6 +30,7 @@ struct CameraFormatInfo {
     std::vector<LensType> lenses;  // the lens models its files hold exactly
     std::string_view lens_names;   // the format's own names for them, in words
     std::string_view refuses;      // what it cannot hold besides other lens models (skew, a pose)
+    std::string_view camera_names; // the names that select one of its cameras (select_camera), besides its position
     std::string_view library;      // the library that reads and writes it ("libcam::io")
     std::uint64_t largest_file = 0;  // the most libcam reads of one of its files: larger ones are refused
     std::vector<FilesBesideInfo> files_beside;

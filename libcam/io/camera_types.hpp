@@ -45,6 +45,11 @@ struct NamedCamera {
     // Where the file holds several views taken with one set of intrinsics (COLMAP's
     // images of one camera), the name of those intrinsics ("id:2"); else empty.
     std::string intrinsics_name = {};
+    // A view the file lists with its calibration but without a pose (a photo Metashape
+    // has not aligned, a view of OpenMVG's or AliceVision's file before or left out of the
+    // reconstruction, a NeRF frame without transform_matrix): its pose here is the
+    // identity, which says nothing of where it was.
+    bool unposed = false;
 };
 
 // Every camera a file holds, in the file's order (at least one).

@@ -105,7 +105,8 @@ void check_observations(const ObservationSet& set) {
 
 namespace detail {
 
-std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::string& source, std::string_view where) {
+std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::string& source, std::string_view where,
+                                          std::span<const ObservedView> unposed) {
     // The checks reading the file's observations makes, so that its cameras and its
     // observations are refused alike (`libcam info` and `libcam reproject` agree).
     check_observations(set);
@@ -115,6 +116,10 @@ std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::
         Camera camera = intrinsics.camera;
         camera.pose = view.pose;
         cameras.push_back({view.name, {camera, std::nullopt}, intrinsics.name});
+    }
+    for (const ObservedView& view : unposed) {
+        const ObservedCamera& intrinsics = set.cameras.at(static_cast<std::size_t>(view.camera));
+        cameras.push_back({view.name, {intrinsics.camera, std::nullopt}, intrinsics.name, true});
     }
     if (cameras.empty()) {
         for (const ObservedCamera& camera : set.cameras) cameras.push_back({camera.name, {camera.camera, std::nullopt}});

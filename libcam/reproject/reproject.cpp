@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "libcam/camera/parallel.hpp"
+#include "libcam/lens/lens_models.hpp"
 
 namespace libcam {
 
@@ -30,6 +31,21 @@ bool on_image(const Vec2& pixel, const ImageSize& size) {
     return pixel.x() >= -0.5 && pixel.y() >= -0.5 && pixel.x() <= size.width - 0.5 && pixel.y() <= size.height - 0.5;
 }
 
+// The pixel of a camera point by the lens model's formula with no bound on its valid
+// domain (its coefficients as they are, the valid radius infinite): what a tool that
+// evaluates the formula as it stands computes past the fold. NaN where even the formula
+// gives no finite pixel (behind the camera, a rational model's pole).
+Vec2 formula_pixel(const Camera& camera, const Vec3& camera_point) {
+    return visit_lens_model<double>(camera.lens.type, [&]<class Model>() {
+        typename Model::Parameters unbounded = Model::parameters(camera.lens.coefficients);
+        unbounded.valid_radius = kInfinity;
+        Vec2 normalized;
+        if (!Model::project(unbounded, camera_point, normalized)) return Vec2(kNaN, kNaN);
+        const Vec2 pixel = camera.intrinsics.pixel_from_normalized(normalized);
+        return pixel.allFinite() ? pixel : Vec2(kNaN, kNaN);
+    });
+}
+
 ObservationResidual residual_of(const ObservationSet& set, const std::vector<PreparedCamera>& cameras,
                                 const Observation& observation) {
     const ObservedView& view = set.views[static_cast<std::size_t>(observation.view)];
@@ -42,6 +58,9 @@ ObservationResidual residual_of(const ObservationSet& set, const std::vector<Pre
         out.residual = Vec2(kNaN, kNaN);
         out.error_px = kInfinity;
         out.status = camera_point.z() <= 0.0 ? ResidualStatus::BehindCamera : ResidualStatus::OutsideDomain;
+        if (out.status == ResidualStatus::OutsideDomain) {
+            out.past_domain_projected = formula_pixel(camera.camera(), camera_point);
+        }
     } else {
         out.projected = projection.pixel;
         out.residual = projection.pixel - observation.pixel;
@@ -210,6 +229,60 @@ std::vector<ResidualStats> group_stats(const ObservationSet& set, const std::vec
     return out;
 }
 
+// The residuals by the tools' own rule for their stored numbers: those libcam counts,
+// and the inliers past the valid domain with the formula's pixel there, counted too
+// (`added` of them).
+std::vector<ObservationResidual> by_tools_rule(const ObservationSet& set, std::vector<ObservationResidual> residuals,
+                                               std::size_t& added) {
+    added = 0;
+    for (std::size_t i = 0; i < residuals.size(); ++i) {
+        ObservationResidual& r = residuals[i];
+        if (r.status != ResidualStatus::OutsideDomain || !r.past_domain_projected.allFinite()) continue;
+        r.projected = r.past_domain_projected;
+        r.residual = r.projected - set.observations[i].pixel;
+        r.error_px = r.residual.norm();
+        r.status = ResidualStatus::Counted;
+        ++added;
+    }
+    return residuals;
+}
+
+// The numbers the file stored against libcam's recomputation of them by the tool's rule
+// (by_tools_rule), into `summary` (whose `all` and `outside_domain` are filled).
+void compare_stored_numbers(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
+                            bool set_weighted, ReprojectionSummary& summary) {
+    const bool stored_any = !set.reported.empty() || !set.reported_per_view.empty() || !set.reported_per_point.empty();
+    if (!stored_any) return;
+    // The same residuals where nothing is past the valid domain.
+    const std::vector<ObservationResidual> tools_residuals =
+        summary.outside_domain == 0 ? std::vector<ObservationResidual>{}
+                                    : by_tools_rule(set, residuals, summary.reported_past_domain);
+    const std::vector<ObservationResidual>& counted = summary.outside_domain == 0 ? residuals : tools_residuals;
+    const ResidualStats tools_all =
+        summary.reported_past_domain == 0 ? summary.all : stats_of(set, counted, {}, set_weighted);
+    const bool needs_point_means =
+        !set.reported_per_point.empty() ||
+        std::any_of(set.reported.begin(), set.reported.end(),
+                    [](const ReportedNumber& n) { return n.measure == ReportedMeasure::MeanOfPointMeans; });
+    const std::vector<double> point_means =
+        needs_point_means ? per_point_mean_errors(set, counted) : std::vector<double>{};
+    for (const ReportedNumber& number : set.reported) {
+        summary.reported.push_back({number, recompute(tools_all, point_means, number.measure)});
+    }
+    if (!set.reported_per_view.empty()) {
+        const auto view_of = [](const Observation& o) { return static_cast<std::size_t>(o.view); };
+        const std::vector<ResidualStats> views = group_stats(set, counted, set.views.size(), set_weighted, view_of);
+        std::vector<double> view_rms;
+        for (const ResidualStats& view : views) view_rms.push_back(view.stats.count == 0 ? kNaN : view.stats.rms_px);
+        summary.per_view_reported =
+            compare_items(set.reported_per_view, view_rms, [&](std::size_t v) { return set.views[v].name; });
+    }
+    if (!set.reported_per_point.empty()) {
+        summary.per_point_reported = compare_items(set.reported_per_point, point_means,
+                                                   [&](std::size_t p) { return std::to_string(set.point_ids[p]); });
+    }
+}
+
 }  // namespace
 
 ResidualStats residual_stats(const ObservationSet& set, const std::vector<ObservationResidual>& residuals,
@@ -277,33 +350,14 @@ Reprojection reproject(const ObservationSet& set, int threads) {
             ? std::vector<ResidualStats>{summary.all}
             : group_stats(set, out.residuals, set.cameras.size(), set_weighted,
                           [&](const Observation& o) { return camera_of_view[static_cast<std::size_t>(o.view)]; });
-    std::vector<double> view_rms;
     for (std::size_t v = 0; v < set.views.size(); ++v) {
-        view_rms.push_back(per_view[v].stats.count == 0 ? kNaN : per_view[v].stats.rms_px);
         summary.per_view.push_back({set.views[v].name, std::move(per_view[v])});
     }
     for (std::size_t c = 0; c < set.cameras.size(); ++c) {
         summary.per_camera.push_back({set.cameras[c].name, std::move(per_camera[c])});
     }
-
-    const bool needs_point_means =
-        !set.reported_per_point.empty() ||
-        std::any_of(set.reported.begin(), set.reported.end(),
-                    [](const ReportedNumber& n) { return n.measure == ReportedMeasure::MeanOfPointMeans; });
-    const std::vector<double> point_means =
-        needs_point_means ? per_point_mean_errors(set, out.residuals) : std::vector<double>{};
-    for (const ReportedNumber& number : set.reported) {
-        summary.reported.push_back({number, recompute(summary.all, point_means, number.measure)});
-    }
-    if (!set.reported_per_view.empty()) {
-        summary.per_view_reported =
-            compare_items(set.reported_per_view, view_rms, [&](std::size_t v) { return set.views[v].name; });
-    }
-    if (!set.reported_per_point.empty()) {
-        summary.per_point_reported = compare_items(set.reported_per_point, point_means,
-                                                   [&](std::size_t p) { return std::to_string(set.point_ids[p]); });
-    }
     summary.convention = convention_check(out.residuals, summary.all);
+    compare_stored_numbers(set, out.residuals, set_weighted, summary);
     return out;
 }
 

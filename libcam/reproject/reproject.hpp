@@ -12,8 +12,14 @@
 // statistics only when they are inliers whose point projects (in front of the camera,
 // inside the lens's valid domain) and whose observed pixel lies on the image; the others
 // are counted apart by reason.
+//
+// The numbers a file stored are recomputed by its tool's rule, not libcam's: a tool
+// evaluates its model's formula without a bound on the valid domain (OpenCV's
+// projectPoints counts every corner), so a point past the domain counts there with the
+// pixel the formula gives all the same.
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -37,6 +43,10 @@ struct ObservationResidual {
     Vec2 residual = Vec2::Zero();   // projected - observed
     double error_px = 0.0;          // |residual|; +inf where the point does not project
     ResidualStatus status = ResidualStatus::Counted;
+    // Past the lens's valid domain (OutsideDomain): the pixel the model's formula gives
+    // there all the same, what a tool that evaluates it without that bound computed; NaN
+    // otherwise, and where even the formula gives no finite pixel.
+    Vec2 past_domain_projected = Vec2::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 // The statistics of some counted residuals.
@@ -84,9 +94,13 @@ struct ReprojectionSummary {
     std::size_t behind_camera = 0;
     std::size_t outside_domain = 0;
     std::size_t outside_image = 0;
+    // The stored numbers against libcam's recomputation by the tool's rule (above), and how
+    // many observations past the valid domain that rule counts which libcam's own
+    // statistics set apart.
     std::vector<ReportedComparison> reported;
     std::optional<PerItemComparison> per_view_reported;   // OpenCV's per-view errors
     std::optional<PerItemComparison> per_point_reported;  // COLMAP's ERROR column
+    std::size_t reported_past_domain = 0;
     ConventionCheck convention;
 };
 

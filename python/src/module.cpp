@@ -195,7 +195,9 @@ does not know or a set this CPU does not run.)doc");
         R"doc(
 Reads one camera of a camera file (OpenCV YAML/XML, mrcal .cameramodel, Kalibr, ROS,
 COLMAP, basalt, NeRF transforms.json, libcam JSON, ...; libcam.formats lists them).
-camera: the file's name for it, or its position counting from 0 (default: the first).
+camera: the file's name for it, its image's file name alone where that name is a path
+        and no other camera's image shares it, or its position counting from 0 (default:
+        the first).
 format: the format's name, when the extension and contents do not tell.
 size: (width, height), for files that do not record it (NeRF's synthetic scenes).
 Raises libcam.FileError naming the file and the field for a file it cannot read.)doc");

@@ -109,6 +109,7 @@ py::dict reprojection_dict(const ObservationSet& set, const Reprojection& r) {
     out["reported"] = reported;
     out["recomputed"] = recomputed;
     out["definitions"] = definitions;
+    out["recomputed_past_domain"] = s.reported_past_domain;
     out["per_view_reported"] = comparison(s.per_view_reported);
     out["per_point_reported"] = comparison(s.per_point_reported);
     out["convention_check"] =
@@ -258,7 +259,9 @@ libcam program's reproject command): {'observed', 'projected', 'residual' (n, 2)
 file's pixels, residual = projected - observed; 'error_px', 'counted' (n,); 'status';
 'view', 'point_id'; 'summary': {'count', 'rms_px', 'mean_px', 'median_px', 'p99_px',
 'max_px', 'bias_px', 'weighted_rms_px'}; 'per_view', 'per_camera'; 'reported' and
-'recomputed' (the file's own numbers and libcam's value of each), 'definitions';
+'recomputed' (the file's own numbers and libcam's value of each by its tool's rule, which
+counts 'recomputed_past_domain' observations past the lens's valid domain that libcam's
+own statistics set apart), 'definitions';
 'convention_check': {'best_shift_px', 'suspect', ...}}.)doc");
 }
 

@@ -767,6 +767,75 @@ cam1:
     CHECK_THAT(bad_format.err, Catch::Contains("--from-format"));
 }
 
+TEST_CASE("A camera picked by its image's file name (--camera), and info says which views have no pose") {
+    // A Metashape 1.5 document as Export Cameras writes it before alignment: one frame
+    // sensor (f 1000, cx 12.5 from the centre of 640 x 480), two cameras without a
+    // <transform>; and an OpenMVG-style name as a path, to find by its file name.
+    TempDir dir;
+    const std::string xml = (dir.path() / "cameras.xml").string();
+    write_whole_file(xml, R"(<?xml version="1.0" encoding="UTF-8"?>
+<document version="1.5.0">
+  <chunk label="Chunk 1" enabled="true">
+    <sensors next_id="1">
+      <sensor id="0" label="body" type="frame">
+        <resolution width="640" height="480"/>
+        <calibration type="frame" class="initial">
+          <resolution width="640" height="480"/>
+          <f>1000</f>
+          <cx>12.5</cx>
+        </calibration>
+      </sensor>
+    </sensors>
+    <cameras next_id="2" next_group_id="0">
+      <camera id="0" sensor_id="0" label="DSC_0001"/>
+      <camera id="1" sensor_id="0" label="DSC_0002"/>
+    </cameras>
+  </chunk>
+</document>
+)");
+    const CliResult info = run_libcam({"info", xml, "--camera", "DSC_0002"});
+    INFO(info.describe());
+    REQUIRE(info.exit_code == 0);
+    CHECK_THAT(info.out, Catch::Contains("camera 1: DSC_0002 (intrinsics body)"));
+    // cx = 320 + 12.5 - 0.5 (Metashape's pixel (0, 0) is the top-left pixel's corner).
+    CHECK_THAT(info.out, Catch::Contains("K         fx 1000, fy 1000, cx 332, cy 239.5"));
+    CHECK_THAT(info.out, Catch::Contains("pose      none: the file lists this view without a pose"));
+    const CliResult listed = run_libcam({"info", xml, "--json"});
+    REQUIRE(listed.exit_code == 0);
+    const json cameras = json::parse(listed.out).at("cameras");
+    REQUIRE(cameras.size() == 2);
+    CHECK(cameras[0].at("posed") == false);
+    CHECK(cameras[1].at("name") == "DSC_0002");
+
+    // A COLMAP model whose image names are paths: IMG_2.jpg alone finds day2/IMG_2.jpg.
+    const fs::path model = dir.path() / "model";
+    fs::create_directories(model);
+    write_whole_file((model / "cameras.txt").string(), "1 PINHOLE 640 480 500 500 320 240\n");
+    write_whole_file((model / "images.txt").string(),
+                     "1 1 0 0 0 0 0 0 1 day1/IMG_1.jpg\n\n2 1 0 0 0 1 0 0 1 day2/IMG_2.jpg\n\n"
+                     "3 1 0 0 0 2 0 0 1 day2/IMG_1.jpg\n\n");
+    const CliResult by_file_name = run_libcam({"info", model.string(), "--camera", "IMG_2.jpg", "--json"});
+    INFO(by_file_name.describe());
+    REQUIRE(by_file_name.exit_code == 0);
+    CHECK(json::parse(by_file_name.out).at("cameras")[0].at("name") == "day2/IMG_2.jpg");
+    CHECK(json::parse(by_file_name.out).at("cameras")[0].at("posed") == true);
+    const CliResult ambiguous = run_libcam({"info", model.string(), "--camera", "IMG_1.jpg"});
+    CHECK(ambiguous.exit_code == 1);
+    CHECK_THAT(ambiguous.err, Catch::Contains("the image file name 'IMG_1.jpg' names 2 cameras: 0 (day1/IMG_1.jpg), "
+                                              "2 (day2/IMG_1.jpg); give one's whole name or its position"));
+}
+
+TEST_CASE("libcam formats says which names --camera takes for each format it reads") {
+    const CliResult result = run_libcam({"formats", "--json"});
+    REQUIRE(result.exit_code == 0);
+    for (const json& format : json::parse(result.out)) {
+        CAPTURE(format.at("name"));
+        if (format.at("reads") == true) CHECK_FALSE(format.at("camera_names").get<std::string>().empty());
+    }
+    const CliResult plain = run_libcam({"formats"});
+    CHECK_THAT(plain.out, Catch::Contains("  --camera  each view's path, or its image's file name alone, posed or not"));
+}
+
 TEST_CASE("info gives each image of a model the field of view of its own calibration, shared or not") {
     // Five images over three calibrations: two pinholes with the same K on different image
     // widths, and a radial lens (COLMAP's SIMPLE_RADIAL, r (1 + k r^2)). info works each

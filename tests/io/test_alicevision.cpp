@@ -71,9 +71,17 @@ TEST_CASE("AliceVision: Meshroom's cameras.sfm as SOURCES.md gives it", "[alicev
     }
     const CameraSet set = read_camera_set(file);
     CHECK(set.format == CameraFormat::AliceVision);
-    REQUIRE(set.cameras.size() == 34);  // 51 views, 34 of them with a pose
+    // 51 views, 34 of them with a pose: those first, then the 17 unposed ones.
+    REQUIRE(set.cameras.size() == 51);
+    for (std::size_t i = 0; i < set.cameras.size(); ++i) CHECK(set.cameras[i].unposed == (i >= 34));
     const NamedCamera& first = set.cameras.front();
     CHECK(first.name == "D:/DHBW/Studienarbeit/data/20250614_204908.jpg");
+    // Found by the image's file name, as a user knows it; an unposed view too.
+    CHECK(&select_camera(set, "20250614_204908.jpg", file.string()) == &first);
+    const NamedCamera& unposed = select_camera(set, "20250614_203816.jpg", file.string());
+    CHECK(unposed.name == "D:/DHBW/Studienarbeit/data/20250614_203816.jpg");
+    CHECK(unposed.unposed);
+    CHECK(unposed.file.camera.intrinsics.K() == first.file.camera.intrinsics.K());
     CHECK(first.intrinsics_name == "id:2390361049");
     const Camera& camera = first.file.camera;
     CHECK(camera.size == ImageSize{4000, 3000});
@@ -336,4 +344,44 @@ TEST_CASE("AliceVision: a rig's view is its sub-pose after the rig's pose, and o
     CHECK(file_error_of([&] { read_camera_set(path); }) ==
           path.string() + ": \"intrinsics[0].undistortionType\": '3declassicld' has no libcam lens (an undistortion "
                           "map: libcam reads intrinsics whose undistortionType is none)");
+}
+
+TEST_CASE("AliceVision: a view is found by its image's file name alone, unless two views share it",
+          "[alicevision]") {
+    test::TempDir dir;
+    // Three views of the sample scene's intrinsic, their paths as Meshroom on Windows writes
+    // them; only view 0 has a pose (AliceVision lists the localised views' poses alone).
+    std::string text = sample_file("\"1\", \"2\", \"5\"",
+        R"("type": "radial3", "initialFocalLength": "-1", "focalLength": "8.7976539589442808", "pixelRatio": "2", )"
+        R"("pixelRatioLocked": "true", "principalPoint": ["-26", "16"])");
+    const std::string views =
+        R"("views": [{"viewId": "0", "poseId": "0", "intrinsicId": "1", "path": "D:/photos/day1/IMG_1.jpg", )"
+        R"("width": "4092", "height": "2048", "metadata": ""}, )"
+        R"({"viewId": "1", "poseId": "1", "intrinsicId": "1", "path": "D:/photos/day2/IMG_1.jpg", )"
+        R"("width": "4092", "height": "2048", "metadata": ""}, )"
+        R"({"viewId": "2", "poseId": "2", "intrinsicId": "1", "path": "D:\\photos\\day2\\IMG_2.jpg", )"
+        R"("width": "4092", "height": "2048", "metadata": ""}])";
+    text.replace(text.find(kSampleView), kSampleView.size(), views);
+    const std::filesystem::path file = write_file(dir, "cameras.sfm", text);
+    const CameraSet set = read_camera_set(file);
+    REQUIRE(set.cameras.size() == 3);
+    check_sample_camera(set.cameras[0].file.camera);
+    CHECK_FALSE(set.cameras[0].unposed);
+    CHECK(set.cameras[1].unposed);
+    CHECK(set.cameras[2].unposed);
+    CHECK(set.cameras[2].file.camera.intrinsics.K() == set.cameras[0].file.camera.intrinsics.K());
+    // A backslashed Windows path's file name, and the whole path.
+    CHECK(&select_camera(set, "IMG_2.jpg", file.string()) == &set.cameras[2]);
+    CHECK(&select_camera(set, "D:/photos/day2/IMG_1.jpg", file.string()) == &set.cameras[1]);
+    // Two views' images are IMG_1.jpg: the error names both.
+    try {
+        select_camera(set, "IMG_1.jpg", file.string());
+        FAIL("IMG_1.jpg names two views");
+    } catch (const InvalidArgument& error) {
+        CHECK(std::string(error.what()) == file.string() + ": the image file name 'IMG_1.jpg' names 2 cameras: "
+                                                           "0 (D:/photos/day1/IMG_1.jpg), 1 (D:/photos/day2/IMG_1.jpg); "
+                                                           "give one's whole name or its position");
+    }
+    // A file name no view has: every camera listed.
+    CHECK_THROWS_WITH(select_camera(set, "IMG_3.jpg", file.string()), Catch::Contains("no camera 'IMG_3.jpg'"));
 }

@@ -859,6 +859,40 @@ TEST_CASE("OpenImuCameraCalibrator's layout as other writers fill it: focal leng
         "dist_coeffs": [0.1, -0.2, 0.0, 0.0]}})",
                                      CameraFormat::Openicc, "s21.json").camera;
     CHECK(four.lens == Lens{LensType::OpenCv4, {0.1, -0.2, 0.0, 0.0}});
+    // UMI's RealSense colour camera (example/calibration/realsense_intrinsics.json), as UMI
+    // ships it: fx and fy themselves, no distortion, no skew.
+    const Camera umi = parse_camera(R"({
+    "image_height": 720,
+    "image_width": 1280,
+    "intrinsic_type": "PINHOLE",
+    "intrinsics": {
+      "fx": 914.43774414,
+      "fy": 912.53448486,
+      "principal_pt_x": 646.18066406,
+      "principal_pt_y": 369.3788147
+    }
+}  )",
+                                    CameraFormat::Openicc, "realsense_intrinsics.json").camera;
+    check_intrinsics(umi, 914.43774414, 912.53448486, 646.18066406, 369.3788147);
+    CHECK(umi.size == ImageSize{1280, 720});
+    CHECK(umi.lens.type == LensType::Pinhole);
+    CHECK(umi.intrinsics.skew == 0.0);
+    // Found by its keys among the .json formats.
+    {
+        test::TempDir dir;
+        const auto path = dir / "realsense_intrinsics.json";
+        std::ofstream(path) << R"({"image_height": 720, "image_width": 1280, "intrinsic_type": "PINHOLE",
+            "intrinsics": {"fx": 914.43774414, "fy": 912.53448486, "principal_pt_x": 646.18066406,
+            "principal_pt_y": 369.3788147}})";
+        CHECK(read_camera_set(path).format == CameraFormat::Openicc);
+    }
+    // Without any focal length, one line saying which keys give one.
+    CHECK_THAT(file_error_of([&] {
+                   (void)parse_camera(R"({"image_width": 640, "image_height": 480, "intrinsic_type": "PINHOLE",
+                       "intrinsics": {"principal_pt_x": 320, "principal_pt_y": 240}})",
+                                      CameraFormat::Openicc, "none.json");
+               }),
+               Catch::Contains("none.json: \"intrinsics\": no focal length: expected the calibrator's focal_length"));
     // A RealSense's PINHOLE with fisheye keys at 0 and aspect_ratio 1: no distortion.
     const auto realsense = [](const std::string& aspect, const std::string& k1) {
         return R"({"image_width": 848, "image_height": 480, "intrinsic_type": "PINHOLE", "intrinsics": {"aspect_ratio": )" +

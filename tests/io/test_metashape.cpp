@@ -4,6 +4,7 @@
 // "Camera models"), which is what pins the P1/P2 swap, b1/b2 and the pixel centre.
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -115,10 +116,17 @@ TEST_CASE("metashape: a frame sensor projects as Metashape's formula, P1/P2 swap
     const auto path = write_file(dir, "cameras.xml", document_xml(sensor_xml(kFrame, "frame")));
     const CameraSet set = read_camera_set(path);
     CHECK(set.format == CameraFormat::Metashape);
-    // The camera without a transform (IMG_0002, not aligned) is not read.
-    REQUIRE(set.cameras.size() == 1);
+    // The aligned camera first; the one without a transform (IMG_0002, not aligned) after
+    // it, with its sensor's calibration and said to be unposed.
+    REQUIRE(set.cameras.size() == 2);
     CHECK(set.cameras[0].name == "IMG_0001");
     CHECK(set.cameras[0].intrinsics_name == "lens A");
+    CHECK_FALSE(set.cameras[0].unposed);
+    CHECK(set.cameras[1].name == "IMG_0002");
+    CHECK(set.cameras[1].intrinsics_name == "lens A");
+    CHECK(set.cameras[1].unposed);
+    CHECK(set.cameras[1].file.camera.intrinsics.K() == set.cameras[0].file.camera.intrinsics.K());
+    CHECK(set.cameras[1].file.camera.lens == set.cameras[0].file.camera.lens);
     const Camera& camera = set.cameras[0].file.camera;
     CHECK(camera.lens.type == LensType::OpenCv5);
     CHECK(camera.intrinsics.fx == 1003.0);
@@ -138,16 +146,42 @@ TEST_CASE("metashape: a fisheye sensor is Kannala-Brandt, k4 included") {
     check_pixels(camera, fisheye, true);
 }
 
-TEST_CASE("metashape: with no aligned camera, each calibrated sensor is a camera without a pose") {
+TEST_CASE("metashape: with no aligned camera, each camera is listed unposed with its sensor's calibration") {
     const test::TempDir dir;
+    // As Metashape 1.5 exports a chunk before alignment: each camera's <reference> (its
+    // GPS position) and no <transform>.
     std::string text = document_xml(sensor_xml(kFrame, "frame"), "1.5.0");
     text.replace(text.find("<transform>0.6"), std::string("<transform>").size(), "<reference>");
     text.replace(text.find("</transform>\n      </camera>"), std::string("</transform>").size(), "</reference>");
+    const auto path = write_file(dir, "cameras.xml", text);
+    const CameraSet set = read_camera_set(path);
+    REQUIRE(set.cameras.size() == 2);
+    for (const NamedCamera& named : set.cameras) {
+        CHECK(named.unposed);
+        CHECK(named.intrinsics_name == "lens A");
+        CHECK(named.file.camera.pose.R == Mat3::Identity());
+        CHECK(named.file.camera.pose.t == Vec3::Zero());
+        // The sensor's adjusted calibration, by the header's mapping: fx = f + b1, cx = w/2 + cx - 0.5.
+        CHECK(named.file.camera.intrinsics.fx == 1003.0);
+        CHECK(named.file.camera.intrinsics.cx == 320 + 12.5 - 0.5);
+    }
+    CHECK(set.cameras[0].name == "IMG_0001");
+    CHECK(set.cameras[1].name == "IMG_0002");
+    // By its label, and by its sensor's label (the sensor's first camera).
+    CHECK(&select_camera(set, "IMG_0002", path.string()) == &set.cameras[1]);
+    CHECK(&select_camera(set, "lens A", path.string()) == &set.cameras[0]);
+}
+
+TEST_CASE("metashape: a chunk without cameras gives each calibrated sensor, without a pose") {
+    const test::TempDir dir;
+    std::string text = document_xml(sensor_xml(kFrame, "frame"), "1.5.0");
+    const std::size_t cameras = text.find("    <cameras ");
+    text.erase(cameras, text.find("    </cameras>\n") + std::string("    </cameras>\n").size() - cameras);
     const CameraSet set = read_camera_set(write_file(dir, "cameras.xml", text));
     REQUIRE(set.cameras.size() == 1);
     CHECK(set.cameras[0].name == "lens A");
+    CHECK_FALSE(set.cameras[0].unposed);
     CHECK(set.cameras[0].file.camera.pose.R == Mat3::Identity());
-    CHECK(set.cameras[0].file.camera.pose.t == Vec3::Zero());
 }
 
 TEST_CASE("metashape: a spherical sensor is LONLAT") {
@@ -266,18 +300,28 @@ TEST_CASE("metashape: hwiyoung calib_lcam.xml and calib_lcam2.xml (Export Calibr
     }
 }
 
-TEST_CASE("metashape: hwiyoung cameras.xml (1.5.0, no camera aligned) gives its two calibrated sensors") {
+TEST_CASE("metashape: hwiyoung cameras.xml (1.5.0, no camera aligned) lists its 100 calibrated cameras unposed") {
     const auto path = test::real_data_path("metashape/hwiyoung-MappingLocalization/cameras.xml");
     if (!test::real_data_present(path)) {
         WARN("skipped: " << path << " is absent");
         return;
     }
     const CameraSet set = read_camera_set(path);
-    REQUIRE(set.cameras.size() == 2);  // train_L and train_R; test_L and test_R have no calibration
-    CHECK(set.cameras[0].name == "train_L");
-    CHECK(set.cameras[1].name == "train_R");
-    CHECK(set.cameras[0].file.camera.intrinsics.fx == 1278.2700476188);
-    CHECK(set.cameras[0].file.camera.intrinsics.cy == Approx(516 + 12.57474453 - 0.5).epsilon(1e-15));
+    // 120 cameras: 50 each of train_L and train_R, whose sensors are calibrated; the 20 of
+    // test_L and test_R, whose sensors have no calibration, give none.
+    REQUIRE(set.cameras.size() == 100);
+    CHECK(std::all_of(set.cameras.begin(), set.cameras.end(), [](const NamedCamera& c) { return c.unposed; }));
+    const NamedCamera& left = select_camera(set, "018864_L", path.string());
+    CHECK(&left == &set.cameras[0]);
+    CHECK(left.intrinsics_name == "train_L");
+    // train_L's calibration as the file gives it: f 1278.2700476188, cy offset 12.57474453.
+    CHECK(left.file.camera.intrinsics.fx == 1278.2700476188);
+    CHECK(left.file.camera.intrinsics.cy == Approx(516 + 12.57474453 - 0.5).epsilon(1e-15));
+    const NamedCamera& right = select_camera(set, "018864_R", path.string());
+    CHECK(right.intrinsics_name == "train_R");
+    CHECK(right.file.camera.intrinsics.fx == 1279.71039201197);
+    // A sensor's label still finds its first camera.
+    CHECK(&select_camera(set, "train_R", path.string()) == &right);
 }
 
 TEST_CASE("metashape: lab336 cameras.xml (2.0.0): 47 sensors, 47 aligned cameras") {
@@ -327,13 +371,103 @@ TEST_CASE("metashape: bitbyt3r cameras.xml (1.5): b1 b2 as fx and skew, 94 camer
     CHECK(camera.pose.centre().x() == Approx(-0.54581061063111036).margin(1e-12));
 }
 
-TEST_CASE("metashape: OpenCV's XML stays OpenCV's, and PhotoScan's pre-1.0 collection is refused") {
+TEST_CASE("metashape: OpenCV's XML stays OpenCV's; PhotoScan 0.9's collection (amarburg) is read") {
     const auto opencv = test::real_data_path("metashape/3dom-fbk-deep-image-matching/camera_calib.xml");
     if (test::real_data_present(opencv)) CHECK(read_camera_set(opencv).format == CameraFormat::OpenCvXml);
     const auto old = test::real_data_path("metashape/amarburg-photoscan_outputs/demo/cameras.xml");
-    if (test::real_data_present(old)) {
-        CHECK_THROWS_WITH(read_camera_set(old, CameraFormat::Metashape), Catch::Contains("<collection>"));
+    if (!test::real_data_present(old)) return;
+    const CameraSet set = read_camera_set(old);
+    CHECK(set.format == CameraFormat::Metashape);
+    REQUIRE(set.cameras.size() == 16);  // 16 <camera>, each with a <transform>
+    const NamedCamera& first = set.cameras[0];
+    CHECK(first.name == "IMG_7618.jpg");
+    CHECK_FALSE(first.unposed);
+    const Camera& camera = first.file.camera;
+    // Its <calibration> as written: cx, cy absolute, less half a pixel into OpenCV's.
+    CHECK(camera.size == ImageSize{972, 648});
+    CHECK(camera.intrinsics.fx == 1.8707469131103019e+003);
+    CHECK(camera.intrinsics.fy == 1.8738616128634769e+003);
+    CHECK(camera.intrinsics.cx == 5.2586579873845619e+002 - 0.5);
+    CHECK(camera.intrinsics.cy == 4.0083738488303931e+002 - 0.5);
+    CHECK(camera.intrinsics.skew == -8.6319592049510652e-001);
+    CHECK(camera.lens == Lens{LensType::OpenCv5, {-1.6675726916786160e-001, 7.5676071357423513e-001,
+                                                   -1.4556415480751863e-003, -5.2912191800171066e-005,
+                                                   -2.1665527393930941e+000}});
+    // Its centre: the collection's transform (s R | t) applied to the camera's position
+    // (the fourth column of its own transform), worked out here from the file's numbers.
+    const double c[3] = {7.0737615896838760e-002, -4.0025763682849508e-001, 2.0569299557796403e-001};
+    const double g[12] = {2.7694900329729840e+001, 2.5392011594365184e+002, 5.4118470162177800e+001,
+                          6.6670066415987478e+005, 2.5949821314888629e+002, -2.8762442620351280e+001,
+                          2.1542666622218207e+000, 5.4456422027225094e+006, 8.0567652359546997e+000,
+                          5.3558736089261856e+001, -2.5541689826685177e+002, 4.6848797492713061e+002};
+    for (int i = 0; i < 3; ++i) {
+        const double world = g[4 * i] * c[0] + g[4 * i + 1] * c[1] + g[4 * i + 2] * c[2] + g[4 * i + 3];
+        CHECK(camera.pose.centre()(i) == Approx(world).epsilon(1e-12));
     }
+}
+
+namespace {
+
+// Agisoft Lens's pixel of a camera-frame point (its manual 0.4, "Camera model"), pixel
+// (0, 0) the top-left pixel's corner: P1 and P2 in OpenCV's order, cx and cy absolute.
+Vec2 agisoft_lens_pixel(double fx, double fy, double cx, double cy, double skew, const double k[3], double p1,
+                        double p2, const Vec3& point) {
+    const double x = point.x() / point.z(), y = point.y() / point.z();
+    const double r2 = x * x + y * y;
+    const double radial = 1 + k[0] * r2 + k[1] * r2 * r2 + k[2] * r2 * r2 * r2;
+    const double xd = x * radial + p2 * (r2 + 2 * x * x) + 2 * p1 * x * y;
+    const double yd = y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
+    return {cx + xd * fx + yd * skew, cy + yd * fy};
+}
+
+}  // namespace
+
+TEST_CASE("metashape: PhotoScan 0.9's collection projects as Agisoft Lens's formula, its scaled transform undone") {
+    // As PhotoScan 0.9's Export Cameras writes it: one camera posed by the same rotations
+    // as the documents above (camera to collection), the collection's transform a 4x4
+    // [s R | t] with s = 2; and one camera not aligned.
+    const double k[3] = {0.1, -0.05, 0.01};
+    const std::string calibration =
+        "      <calibration>\n        <width>640</width>\n        <height>480</height>\n"
+        "        <fx>1000</fx>\n        <fy>1002</fy>\n        <cx>330.25</cx>\n        <cy>245.5</cy>\n"
+        "        <skew>-0.8</skew>\n        <k1>0.1</k1>\n        <k2>-0.05</k2>\n        <k3>0.01</k3>\n"
+        "        <p1>0.002</p1>\n        <p2>-0.003</p2>\n      </calibration>\n";
+    const std::string text =
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<collection>\n  <cameras>\n"
+        "    <camera label=\"IMG_0001.jpg\">\n      <resolution width=\"640\" height=\"480\"/>\n" + calibration +
+        "      <transform>0.6 0 0.8 1 0 1 0 -2 -0.8 0 0.6 0.5 0 0 0 1</transform>\n    </camera>\n"
+        "    <camera label=\"IMG_0002.jpg\">\n      <resolution width=\"640\" height=\"480\"/>\n" + calibration +
+        "    </camera>\n  </cameras>\n"
+        "  <transform>0 -2 0 10 2 0 0 20 0 0 2 30 0 0 0 1</transform>\n</collection>\n";
+    const test::TempDir dir;
+    const auto path = write_file(dir, "cameras.xml", text);
+    const CameraSet set = read_camera_set(path);
+    CHECK(set.format == CameraFormat::Metashape);
+    REQUIRE(set.cameras.size() == 2);
+    CHECK(set.cameras[0].name == "IMG_0001.jpg");
+    CHECK_FALSE(set.cameras[0].unposed);
+    CHECK(set.cameras[1].name == "IMG_0002.jpg");
+    CHECK(set.cameras[1].unposed);
+    const PreparedCamera prepared(set.cameras[0].file.camera);
+    const Vec3 camera_in_world = kChunkScale * (kChunkToWorld * kCameraInChunk) + kChunkTranslation;
+    const Vec3 forward = kChunkToWorld * kCameraToChunk * Vec3(0, 0, 1);
+    const Vec3 right = kChunkToWorld * kCameraToChunk * Vec3(1, 0, 0);
+    const Vec3 down = kChunkToWorld * kCameraToChunk * Vec3(0, 1, 0);
+    for (const auto& [a, b] : {std::pair{0.0, 0.0}, {0.3, -0.2}, {-0.25, 0.35}, {0.4, 0.3}}) {
+        const Vec3 world = camera_in_world + 7.0 * forward + 7.0 * a * right + 7.0 * b * down;
+        const Vec2 expected =
+            agisoft_lens_pixel(1000, 1002, 330.25, 245.5, -0.8, k, 0.002, -0.003, camera_point_of(world)) - Vec2(0.5, 0.5);
+        const Projection got = prepared.project(world);
+        REQUIRE(got.valid);
+        CHECK(std::abs(got.pixel.x() - expected.x()) < 1e-9);
+        CHECK(std::abs(got.pixel.y() - expected.y()) < 1e-9);
+    }
+    // A collection transform that is no rotation with a scale: one line saying so.
+    std::string sheared = text;
+    sheared.replace(sheared.find("0 -2 0 10"), 9, "1 -2 0 10");
+    const std::string message = file_error_of([&] { (void)read_camera_set(write_file(dir, "sheared.xml", sheared)); });
+    CHECK_THAT(message, Catch::Contains("<collection> <transform>: not a rotation with a scale and a translation"));
+    CHECK(message.find('\n') == std::string::npos);
 }
 
 // ---- the writer -----------------------------------------------------------------------

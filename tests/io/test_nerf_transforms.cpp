@@ -333,3 +333,18 @@ TEST_CASE("transforms.json: instant-ngp's fox scene still reads with its numbers
     CHECK(std::abs(c.pose.centre().x() - 3.168359405609479) < 1e-9);
     CHECK(std::abs(c.pose.centre().y() - -5.4794898611466945) < 1e-9);
 }
+
+TEST_CASE("transforms.json: a frame without its transform_matrix is listed unposed") {
+    const CameraSet set = parse_camera_set(R"({"fl_x": 500, "w": 640, "h": 480, "frames": [
+        {"file_path": "images/a.png", "transform_matrix": [[1, 0, 0, 4], [0, 1, 0, 6], [0, 0, 1, 8], [0, 0, 0, 1]]},
+        {"file_path": "images/b.png"}]})",
+                                           CameraFormat::Nerf, "t.json");
+    REQUIRE(set.cameras.size() == 2);
+    CHECK_FALSE(set.cameras[0].unposed);
+    CHECK(set.cameras[1].unposed);
+    CHECK(set.cameras[1].file.camera.intrinsics.fx == 500.0);
+    // Its image's file name alone finds it.
+    CHECK(&select_camera(set, "b.png", "t.json") == &set.cameras[1]);
+    // A file without frames is one camera of intrinsics, not a view: not said to be unposed.
+    CHECK_FALSE(parse_camera_set(R"({"fl_x": 500, "w": 640, "h": 480})", CameraFormat::Nerf, "t.json").cameras[0].unposed);
+}

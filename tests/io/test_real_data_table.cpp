@@ -144,20 +144,21 @@ const RealFile kFiles[] = {
     // ---- OpenMVG.
     {"kapture-samples/maupertuis_openMVG/ChateauMaupertuisTest/reconstruction_global/sfm_data.json", "OPENCV5", 4, 4,
      1228, Proof::RecomputedMean, 0.470, 0.0005},
-    {"kapture-samples/maupertuis_openMVG/ChateauMaupertuisTest/matches/sfm_data.json", "PINHOLE", 1, 0, 0,
+    {"kapture-samples/maupertuis_openMVG/ChateauMaupertuisTest/matches/sfm_data.json", "PINHOLE", 4, 0, 0,
      Proof::Library},
     {"kapture-samples/t265/Everest_undistorted/sfm_data_small.json", "FISHEYE", 5, 5, 0, Proof::Library},
     // ---- AliceVision (Meshroom).
-    {.path = "alicevision-meshroom-LoD2to3/data/meshroom/cameras.sfm", .models = "OPENCV5", .cameras = 34, .posed = 34,
+    {.path = "alicevision-meshroom-LoD2to3/data/meshroom/cameras.sfm", .models = "OPENCV5", .cameras = 51, .posed = 34,
      .observations = 0, .proof = Proof::Library, .fx = 2795.0, .fx_tolerance = 0.05},
     // ---- Metashape.
     {"metashape/hwiyoung-MappingLocalization/calibration/calib_lcam.xml", "OPENCV5", 1, 0, 0, Proof::Library},
     {"metashape/hwiyoung-MappingLocalization/calibration/calib_lcam2.xml", "OPENCV5", 1, 0, 0, Proof::Library},
     {"metashape/hwiyoung-MappingLocalization/calibration/calib_rcam.xml", "OPENCV5", 1, 0, 0, Proof::Library},
     {"metashape/hwiyoung-MappingLocalization/calibration/calib_rcam2.xml", "OPENCV5", 1, 0, 0, Proof::Library},
-    {"metashape/hwiyoung-MappingLocalization/cameras.xml", "OPENCV5", 2, 0, 0, Proof::Library},
+    {"metashape/hwiyoung-MappingLocalization/cameras.xml", "OPENCV5", 100, 0, 0, Proof::Library},
     {"metashape/lab336-4DGS-Preprocess/cameras.xml", "OPENCV4", 47, 47, 0, Proof::Library},
     {"metashape/bitbyt3r-metashape-automation/cameras.xml", "OPENCV4", 94, 94, 0, Proof::Library},
+    {"metashape/amarburg-photoscan_outputs/demo/cameras.xml", "OPENCV5", 16, 16, 0, Proof::Library},
     // Metashape's export as OpenCV's XML, read as OpenCV's.
     {"metashape/3dom-fbk-deep-image-matching/camera_calib.xml", "OPENCV5", 1, 0, 0, Proof::Library},
     {"metashape/3dom-fbk-deep-image-matching/staua-calib.xml", "OPENCV5", 1, 0, 0, Proof::Library},

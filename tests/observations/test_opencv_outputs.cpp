@@ -184,6 +184,55 @@ TEST_CASE("OpenCV's calibration sample: every projection equals cv::projectPoint
     }
 }
 
+TEST_CASE("OpenCV's calibration sample: the stored errors recomputed by OpenCV's rule, corners past the domain counted") {
+    // BeyondCloud's fisheye_cali: a wide lens fitted as OPENCV5 (fx 243 px on 640 x 480,
+    // k1 -0.253) whose radial part folds over inside the image; 3 of its 1200 corners lie
+    // past the fold. OpenCV counts every corner: its avg_reprojection_error and per-view
+    // errors are recomputed here with cv::projectPoints, independently of libcam.
+    const std::filesystem::path path =
+        test::real_cameras_folder("opencv-calib-sample-outputs/fisheye_cali/out_camera_data.xml");
+    if (!test::real_data_present(path)) return;
+    const ObservationSet set = read_observations(path);
+    REQUIRE(set.reported.size() == 1);
+    CHECK(set.reported[0].value == 3.0766923253942005);  // as stored
+    const OpenCvProjections opencv = project_with_opencv(path);
+    const auto corners = static_cast<std::size_t>(opencv.image_points.cols);
+    double sum_squares = 0.0;
+    std::vector<double> view_sums(set.views.size(), 0.0);
+    for (const Observation& o : set.observations) {
+        const cv::Point2d p = opencv.projected[static_cast<std::size_t>(o.view)][static_cast<std::size_t>(o.point)];
+        const double squared = (Vec2(p.x, p.y) - o.pixel).squaredNorm();
+        sum_squares += squared;
+        view_sums[static_cast<std::size_t>(o.view)] += squared;
+    }
+    const double opencv_avg = std::sqrt(sum_squares / static_cast<double>(set.observations.size()));
+
+    const Reprojection r = reproject(set);
+    // libcam's own statistics set the 3 apart, and say so.
+    CHECK(r.summary.outside_domain == 3);
+    CHECK(r.summary.all.stats.count == 1197);
+    // The stored number, by OpenCV's rule: every corner, those past the domain at the
+    // pixel the formula gives there, which is cv::projectPoints' pixel.
+    CHECK(r.summary.reported_past_domain == 3);
+    REQUIRE(r.summary.reported.size() == 1);
+    CHECK(r.summary.reported[0].recomputed == Approx(opencv_avg).epsilon(1e-12));
+    CHECK(r.summary.reported[0].recomputed == Approx(3.0766923253942005).epsilon(kFloatStorage));
+    for (std::size_t i = 0; i < r.residuals.size(); ++i) {
+        if (r.residuals[i].status != ResidualStatus::OutsideDomain) continue;
+        const Observation& o = set.observations[i];
+        const cv::Point2d p = opencv.projected[static_cast<std::size_t>(o.view)][static_cast<std::size_t>(o.point)];
+        CHECK((r.residuals[i].past_domain_projected - Vec2(p.x, p.y)).norm() < 1e-9);
+    }
+    // Each view's, against OpenCV's and against the stored float.
+    REQUIRE(r.summary.per_view_reported);
+    CHECK(r.summary.per_view_reported->compared == 25);
+    CHECK(r.summary.per_view_reported->max_abs_difference < kFloatStorage);
+    for (std::size_t v = 0; v < set.views.size(); ++v) {
+        const double opencv_view = std::sqrt(view_sums[v] / static_cast<double>(corners));
+        CHECK(opencv_view == Approx(set.reported_per_view[v]).epsilon(kFloatStorage).margin(kFloatProjectionPx));
+    }
+}
+
 TEST_CASE("OpenCV's calibration sample: jrebort-mcc's degenerate lens (k3 = -19949) and its domain") {
     const std::filesystem::path path =
         test::real_data_path("opencv-calib-outputs2/jrebort-mcc/out_camera_data.xml");

@@ -174,6 +174,43 @@ TEST_CASE("OpenMVG: a hand-made sfm_data.json reprojects to the pixels worked by
     CHECK(cameras.cameras[2].intrinsics_name == "id:2");
 }
 
+TEST_CASE("OpenMVG: before SfM every view is a camera with its intrinsic, said to be unposed") {
+    test::TempDir dir;
+    // As openMVG_main_SfMInit_ImageListing writes it: views and intrinsics, no poses and no
+    // structure (here their keys renamed away).
+    std::string text = openmvg_sfm_data();
+    text.replace(text.find("\"extrinsics\""), 12, "\"no_extrinsics\"");
+    text.replace(text.find("\"structure\""), 11, "\"no_structure\"");
+    write(dir / "sfm_data.json", text);
+    const CameraSet set = read_camera_set(dir / "sfm_data.json");
+    REQUIRE(set.cameras.size() == 3);
+    for (std::size_t i = 0; i < 3; ++i) {
+        const NamedCamera& view = set.cameras[i];
+        CHECK(view.name == "v" + std::to_string(i) + ".jpg");
+        CHECK(view.intrinsics_name == "id:" + std::to_string(i));
+        CHECK(view.unposed);
+        CHECK(view.file.camera.pose.R == Mat3::Identity());
+        CHECK(view.file.camera.intrinsics.fx == 1000.0);  // each intrinsic's focal_length
+    }
+    // Intrinsic 2 is pinhole_brown_t2 with t1 = 0.01: OpenCV's p1.
+    CHECK(set.cameras[2].file.camera.lens == Lens{LensType::OpenCv4, {0.0, 0.0, 0.01, 0.0}});
+    CHECK(&select_camera(set, "v1.jpg", "sfm_data.json") == &set.cameras[1]);
+
+    // A view SfM did not localise (its id_pose not among the extrinsics): the posed views
+    // first, then it, unposed.
+    text = openmvg_sfm_data();
+    const std::string pose_1 = R"({"key": 1, "value": {"rotation")";
+    text.replace(text.find(pose_1), pose_1.size(), R"({"key": 7, "value": {"rotation")");
+    write(dir / "sfm_data.json", text);
+    const CameraSet partial = read_camera_set(dir / "sfm_data.json");
+    REQUIRE(partial.cameras.size() == 3);
+    CHECK(partial.cameras[0].name == "v0.jpg");
+    CHECK(partial.cameras[1].name == "v2.jpg");
+    CHECK(partial.cameras[2].name == "v1.jpg");
+    CHECK_FALSE(partial.cameras[1].unposed);
+    CHECK(partial.cameras[2].unposed);
+}
+
 TEST_CASE("OpenMVG: what libcam cannot hold, and malformed files, give one line naming the field") {
     test::TempDir dir;
     write(dir / "sfm_data.json", openmvg_sfm_data("pinhole_radial_k9"));
@@ -265,16 +302,24 @@ TEST_CASE("OpenMVG maupertuis: 1228 observations reproject as SOURCES.md recompu
     CHECK(camera.lens == Lens{LensType::OpenCv5, {-0.15063858971626434, 0.19775746608000222, 0.0, 0.0, 0.012089634954989254}});
 }
 
-TEST_CASE("OpenMVG: intrinsics before SfM, and the nested serialization of a fisheye", "[real-data]") {
+TEST_CASE("OpenMVG: the views before SfM, and the nested serialization of a fisheye", "[real-data]") {
     const fs::path matches =
         test::real_data_path("kapture-samples/maupertuis_openMVG/ChateauMaupertuisTest/matches/sfm_data.json");
     if (test::real_data_present(matches)) {
         const CameraSet set = read_camera_set(matches);
         CHECK(set.format == CameraFormat::OpenMvg);
-        REQUIRE(set.cameras.size() == 1);
-        CHECK(set.cameras[0].name == "id:0");
-        CHECK(set.cameras[0].file.camera.intrinsics.cx == 800.0);
-        CHECK(set.cameras[0].file.camera.lens.type == LensType::Pinhole);  // k = 0
+        // Its 4 views (MaupertuisTest_01.jpg ... _04.jpg), each with intrinsic 0 (1600x1200,
+        // focal_length 1615.5989389233603, principal point (800, 600)), none posed.
+        REQUIRE(set.cameras.size() == 4);
+        for (std::size_t i = 0; i < 4; ++i) {
+            CHECK(set.cameras[i].name == "MaupertuisTest_0" + std::to_string(i + 1) + ".jpg");
+            CHECK(set.cameras[i].intrinsics_name == "id:0");
+            CHECK(set.cameras[i].unposed);
+            CHECK(set.cameras[i].file.camera.intrinsics.fx == 1615.5989389233603);
+            CHECK(set.cameras[i].file.camera.intrinsics.cx == 800.0);
+            CHECK(set.cameras[i].file.camera.lens.type == LensType::Pinhole);  // k = 0
+        }
+        CHECK(&select_camera(set, "MaupertuisTest_03.jpg", matches.string()) == &set.cameras[2]);
         CHECK_THAT(error_of(matches), Catch::Contains("no observation"));
     }
     const fs::path t265 = test::real_data_path("kapture-samples/t265/Everest_undistorted/sfm_data_small.json");

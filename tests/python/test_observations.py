@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import libcam
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, real_camera
 
 REAL_DATA = pathlib.Path(os.environ.get("LIBCAM_REAL_DATA", SOURCE_DIR.parent / "shared" / "real-data"))
 
@@ -84,3 +84,33 @@ def test_a_bundle_file_needs_its_image_size_and_reads_with_it():
     result = libcam.reproject(observations)
     assert result["observed"][0] == pytest.approx((319.5 + 79.90025, 239.5 - 39.950125), abs=1e-9)
     assert result["error_px"][0] == pytest.approx(0.0, abs=1e-9)
+
+
+def test_opencv_fisheye_cali_stored_error_by_opencvs_rule_against_cv2():
+    """A wide lens fitted as OPENCV5 whose distortion folds over inside the image: 3 of its
+    1200 corners lie past libcam's valid domain. cv2.projectPoints counts every corner."""
+    path = real_camera("opencv-calib-sample-outputs/fisheye_cali/out_camera_data.xml")
+    stored = cv2.FileStorage(str(path), cv2.FILE_STORAGE_READ)
+    K = stored.getNode("camera_matrix").mat()
+    dist = stored.getNode("distortion_coefficients").mat()
+    extrinsics = stored.getNode("extrinsic_parameters").mat()
+    image_points = stored.getNode("image_points").mat().reshape(extrinsics.shape[0], -1, 2).astype(np.float64)
+    width, height = int(stored.getNode("board_width").real()), int(stored.getNode("board_height").real())
+    square = stored.getNode("square_size").real()
+    board = np.array([[j * square, i * square, 0.0] for i in range(height) for j in range(width)])
+    squares = []
+    for view, corners in enumerate(image_points):
+        projected, _ = cv2.projectPoints(board, extrinsics[view, :3], extrinsics[view, 3:], K, dist)
+        squares.append(((projected.reshape(-1, 2) - corners) ** 2).sum(axis=1))
+    squares = np.array(squares)
+    opencv_avg = math.sqrt(squares.mean())
+    opencv_per_view = np.sqrt(squares.mean(axis=1))
+
+    result = libcam.reproject(libcam.read_observations(str(path)))
+    assert result["summary"]["count"] == 1197  # libcam's own statistics set 3 apart
+    assert result["recomputed_past_domain"] == 3
+    assert result["recomputed"]["avg_reprojection_error"] == pytest.approx(opencv_avg, rel=1e-12)
+    assert result["reported"]["avg_reprojection_error"] == pytest.approx(opencv_avg, rel=1e-5)
+    per_view = stored.getNode("per_view_reprojection_errors").mat().ravel()
+    assert opencv_per_view == pytest.approx(list(per_view), rel=1e-5, abs=2e-5)
+    assert result["per_view_reported"]["max_abs_difference_px"] < 1e-5

@@ -9,8 +9,10 @@ namespace libcam::cli {
 
 void FileSelection::add_to(CLI::App& command) {
     command.add_option("--camera", camera,
-                       "Which camera of a file holding several: its name in the file (cam1) or its position "
-                       "counting from 0 (default: the first)");
+                       "Which camera of a file holding several: its name in the file (cam1), its image's file "
+                       "name where that name is a path (IMG_1.jpg for D:/photos/IMG_1.jpg) and no other camera's "
+                       "image shares it, or its position counting from 0 (default: the first); `libcam formats` "
+                       "says which names each format has");
     command.add_option("--from-format", format,
                        "The file's format, when its extension and contents do not say: " + camera_format_names());
     command.add_option("--image-size", image_size,

@@ -54,6 +54,7 @@ Json format_json(const CameraFormatInfo& format) {
     out["lens_models"] = lens_names(format);
     out["lens_names"] = format.lens_names;
     out["refuses"] = format.refuses;
+    out["camera_names"] = format.camera_names;
     out["library"] = format.library;
     out["largest_file_bytes"] = format.largest_file;
     Json beside = Json::array();
@@ -77,11 +78,12 @@ std::string cell(std::string_view text) {
 
 std::string markdown(const std::vector<CameraFormatInfo>& formats) {
     std::ostringstream out;
-    out << "| format | what | libcam | lens models it holds | the format's names | cannot hold |\n";
-    out << "|---|---|---|---|---|---|\n";
+    out << "| format | what | libcam | lens models it holds | the format's names | cannot hold | --camera takes |\n";
+    out << "|---|---|---|---|---|---|---|\n";
     for (const CameraFormatInfo& format : formats) {
         out << "| `" << format.name << "` | " << cell(format.description) << " | " << access(format) << " | "
-            << lens_models_text(format) << " | " << cell(format.lens_names) << " | " << cell(format.refuses) << " |\n";
+            << lens_models_text(format) << " | " << cell(format.lens_names) << " | " << cell(format.refuses) << " | "
+            << cell(format.camera_names) << " |\n";
     }
     return out.str();
 }
@@ -118,6 +120,7 @@ std::string plain(const std::vector<CameraFormatInfo>& formats) {
         out << "  models    " << lens_models_text(format) << "\n";
         if (!format.lens_names.empty()) out << "  its names " << format.lens_names << "\n";
         if (!format.refuses.empty()) out << "  refuses   " << format.refuses << "\n";
+        if (format.reads) out << "  --camera  " << format.camera_names << "\n";
         if (format.reads) {
             const std::string beside = files_beside_text(format);
             out << "  reads at most " << byte_size_text(format.largest_file)
@@ -140,8 +143,8 @@ Runner add_formats(CLI::App& app) {
     CLI::Option* json = command->add_flag(
         "--json", flags->json,
         "Print a JSON array, one object per format: name, title, description, extensions, reads, writes, "
-        "writes_folder, observations, lens_models, lens_names, refuses, library, largest_file_bytes, files_beside, "
-        "available");
+        "writes_folder, observations, lens_models, lens_names, refuses, camera_names (what --camera takes besides a "
+        "position), library, largest_file_bytes, files_beside, available");
     CLI::Option* markdown_flag =
         command->add_flag("--markdown", flags->markdown, "Print the table of docs/file-formats.md");
     markdown_flag->excludes(json);

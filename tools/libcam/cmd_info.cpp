@@ -77,8 +77,12 @@ std::string camera_text(std::size_t index, const NamedCamera& named, const Field
         << (fov.rayless_fraction == 0 ? std::string("every pixel has one")
                                       : format_short(100 * fov.rayless_fraction, 3) + "% of the pixels have none")
         << "\n";
-    out << "  pose      world to camera: rvec " << vec_text(camera.pose.rvec()) << ", t " << vec_text(camera.pose.t)
-        << "; centre " << vec_text(camera.pose.centre()) << "\n";
+    if (named.unposed) {
+        out << "  pose      none: the file lists this view without a pose (not aligned or not reconstructed)\n";
+    } else {
+        out << "  pose      world to camera: rvec " << vec_text(camera.pose.rvec()) << ", t " << vec_text(camera.pose.t)
+            << "; centre " << vec_text(camera.pose.centre()) << "\n";
+    }
     return out.str();
 }
 
@@ -105,6 +109,7 @@ Json camera_json(std::size_t index, const NamedCamera& named, const FieldOfView&
     return {{"index", index},
             {"name", named.name},
             {"intrinsics_name", named.intrinsics_name},
+            {"posed", !named.unposed},
             {"model", lens_info(camera.lens.type).name},
             {"image_size", {camera.size.width, camera.size.height}},
             {"K", {{k.fx, k.skew, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}}},

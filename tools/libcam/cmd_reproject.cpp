@@ -131,6 +131,11 @@ std::string format_text(const ObservationSet& set, const Reprojection& r, std::s
                 << " compared, largest difference " << format_short(s.per_point_reported->max_abs_difference)
                 << " px (point " << s.per_point_reported->worst_item << ")\n";
         }
+        if (s.reported_past_domain > 0) {
+            out << "  by the tool's rule: every observation, the " << s.reported_past_domain
+                << " past the lens's valid domain too, projected there by the model's formula as the tool itself "
+                   "did (the statistics above set them apart)\n";
+        }
     }
     const ConventionCheck& c = s.convention;
     out << "\npixel-centre check: the best constant shift of every projection is " << vector_text(c.best_shift_px)
@@ -212,6 +217,7 @@ std::string format_json(const ObservationSet& set, const Reprojection& r, std::s
     out["reported"] = reported;
     out["recomputed"] = recomputed;
     out["definitions"] = definitions;
+    out["recomputed_past_domain"] = s.reported_past_domain;
     if (s.per_view_reported) out["per_view_reported"] = item_comparison_json(*s.per_view_reported);
     if (s.per_point_reported) out["per_point_reported"] = item_comparison_json(*s.per_point_reported);
     out["convention_check"] = {{"best_shift_px", {s.convention.best_shift_px.x(), s.convention.best_shift_px.y()}},

@@ -286,6 +286,8 @@ struct SfmData {
     ObservationSet set;
     std::unordered_map<long long, int> posed_view;  // view id -> index into set.views
     std::unordered_set<long long> every_view;
+    // Views with an intrinsic but no pose (not localised).
+    std::vector<ObservedView> unposed_views;
 };
 
 std::string intrinsic_name(long long id) { return "id:" + std::to_string(id); }
@@ -338,14 +340,17 @@ void read_views(const Field& top, const std::unordered_map<long long, int>& intr
         }
         // "poses" holds the reconstructed views' poses alone: a view without one was not
         // localised (AliceVision's SfMData::isPoseAndIntrinsicDefined).
-        const auto pose = poses.find(pose_id->integer(0, kMaxId));
-        if (pose == poses.end()) continue;
         const Camera& camera = out.set.cameras[static_cast<std::size_t>(intrinsic->second)].camera;
         for (const auto& [key, side] : {std::pair{"width", camera.size.width}, std::pair{"height", camera.size.height}}) {
             const std::optional<Field> given = view.find({key});
             if (given && given->whole_number(0, kMaxImageSide) != 0 && given->whole_number(0, kMaxImageSide) != side) {
                 given->fail("the view's image is " + given->node().text + " pixels, its intrinsic's " + std::to_string(side));
             }
+        }
+        const auto pose = poses.find(pose_id->integer(0, kMaxId));
+        if (pose == poses.end()) {
+            out.unposed_views.push_back({view.at({"path"}).text(), intrinsic->second, Pose()});
+            continue;
         }
         out.posed_view[id] = static_cast<int>(out.set.views.size());
         out.set.views.push_back({view.at({"path"}).text(), intrinsic->second, *view_pose(view, pose->second, rigs)});
@@ -457,7 +462,8 @@ bool claims_alicevision(const DocumentNode& root) {
 }
 
 std::vector<NamedCamera> read_alicevision(std::string_view text, const ReadContext& context) {
-    return detail::cameras_of_views(read_sfm_data(text, context.source).set, context.source, "\"intrinsics\": ");
+    const SfmData read = read_sfm_data(text, context.source);
+    return detail::cameras_of_views(read.set, context.source, "\"intrinsics\": ", read.unposed_views);
 }
 
 ObservationSet read_alicevision_observations(const std::filesystem::path& file, std::string_view text,

@@ -51,7 +51,9 @@
 // distortions) and other pairs have no libcam lens and are refused.
 //
 // Reading gives one camera per view with an intrinsic and a pose, named by its path, its
-// intrinsics named "id:N"; a file without poses gives one camera per intrinsic.
+// intrinsics named "id:N"; then one per view with an intrinsic but no pose, said to be
+// unposed; a file without views, one camera per intrinsic. A view is found by its path or
+// by its image's file name alone (select_camera).
 // Observations: every observation of the structure in a view with a pose.
 //
 // Written as version 1.2.6 (Meshroom 2023's, which every later AliceVision reads): one

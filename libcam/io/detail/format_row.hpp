@@ -96,6 +96,10 @@ struct FormatRow {
     // The library that reads and writes it: "libcam::io", or the one that fills the row.
     std::string_view library = "libcam::io";
     std::string_view installer = {};  // the call that fills the row, for that library
+    // Which names `--camera` (select_camera) takes for a camera of its files, besides the
+    // camera's position: "each view's path, or its image's file name alone"; "one camera"
+    // where its files hold one.
+    std::string_view camera_names = {};
 };
 
 // Every row, in CameraFormat's order (format_rows.cpp).
@@ -145,10 +149,13 @@ auto reading_as(const LocatedFile& located, Read&& read) -> decltype(read()) {
 }
 
 // The cameras of a file that holds observations (OpenSfM, OpenMVG): each view as a camera
-// with its pose, named after the view, its intrinsics named; the intrinsics alone where
-// the file has no view with a pose. Throws FileError "<source>: <where>: no camera" for
-// none (observations.cpp), and what check_observations refuses, in its words.
-std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::string& source, std::string_view where);
+// with its pose, named after the view, its intrinsics named; then each of `unposed` (views
+// the file lists without a pose, their `camera` an index into set.cameras), said to be
+// unposed; the intrinsics alone where the file has no view. Throws FileError "<source>:
+// <where>: no camera" for none (observations.cpp), and what check_observations refuses,
+// in its words.
+std::vector<NamedCamera> cameras_of_views(const ObservationSet& set, const std::string& source, std::string_view where,
+                                          std::span<const ObservedView> unposed = {});
 
 // A writer of one file in the table's form.
 template <std::string (*write)(const Camera&, const WriteOptions&)>

@@ -1,17 +1,21 @@
 #include "libcam/io/detail/metashape_format.hpp"
 
+#include <Eigen/LU>
 #include <pugixml.hpp>
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <map>
 #include <filesystem>
+#include <iterator>
 #include <optional>
 #include <sstream>
 #include <string>
 
 #include "libcam/error.hpp"
 #include "libcam/geometry/image_size.hpp"
+#include "libcam/geometry/pose.hpp"
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
@@ -239,7 +243,8 @@ Sensor read_sensor(const Source& source, const pugi::xml_node& sensor) {
     return {sensor.attribute("label").value(), camera_from(source, calibration, read_terms(source, calibration, terms, where), where)};
 }
 
-// A chunk's aligned cameras, or where none is aligned, its calibrated sensors.
+// A chunk's aligned cameras, then those not aligned whose sensor is calibrated (unposed);
+// where it has neither, its calibrated sensors.
 void read_chunk(const Source& source, const pugi::xml_node& chunk, std::vector<NamedCamera>& out) {
     std::map<std::string, Sensor, std::less<>> sensors;
     std::vector<std::string> sensor_order;
@@ -264,14 +269,22 @@ void read_chunk(const Source& source, const pugi::xml_node& chunk, std::vector<N
         }
     }
     const std::size_t first = out.size();
+    std::vector<NamedCamera> unaligned;
     for (const pugi::xml_node camera : cameras) {
-        const pugi::xml_node transform = camera.child("transform");
-        if (!transform) continue;
         const std::string where = std::string("camera ") + camera.attribute("id").value() + " ('" +
                                   camera.attribute("label").value() + "')";
         const auto sensor = sensors.find(std::string_view(camera.attribute("sensor_id").value()));
         if (sensor == sensors.end()) {
             source.fail(camera, where + ": sensor_id '" + camera.attribute("sensor_id").value() + "' is not a sensor");
+        }
+        const pugi::xml_node transform = camera.child("transform");
+        if (!transform) {
+            // Not aligned: its sensor's calibration without a pose, where the sensor has one.
+            if (sensor->second.camera) {
+                unaligned.push_back({camera.attribute("label").value(), {*sensor->second.camera, {}},
+                                     sensor->second.label, true});
+            }
+            continue;
         }
         if (!sensor->second.camera) {
             source.fail(camera, where + ": its sensor '" + sensor->second.label + "' has no calibration");
@@ -289,6 +302,7 @@ void read_chunk(const Source& source, const pugi::xml_node& chunk, std::vector<N
         out.push_back({camera.attribute("label").value(), {validated_camera(posed, source.name() + ": " + where), {}},
                        sensor->second.label});
     }
+    out.insert(out.end(), std::make_move_iterator(unaligned.begin()), std::make_move_iterator(unaligned.end()));
     if (out.size() != first) return;
     for (const std::string& id : sensor_order) {
         const Sensor& sensor = sensors.at(id);
@@ -309,6 +323,76 @@ NamedCamera read_calibration_file(const Source& source, const pugi::xml_node& ro
     return {std::string(), {camera_from(source, root, read_terms(source, root, terms, "<calibration>"), "<calibration>"), {}}};
 }
 
+// ---- PhotoScan before 1.0: <collection> -------------------------------------------------
+
+// The collection's <transform>: 16 numbers, row by row, [s R | t; 0 0 0 1], the cameras'
+// frame to the world. The scale is the cube root of the 3x3 block's determinant.
+Similarity collection_similarity(const Source& source, const pugi::xml_node& transform) {
+    Similarity out;
+    if (!transform) return out;
+    const std::vector<double> m = source.numbers(transform, 16, "<collection>");
+    Mat3 scaled;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) scaled(i, j) = m[static_cast<std::size_t>(4 * i + j)];
+        out.t(i) = m[static_cast<std::size_t>(4 * i + 3)];
+    }
+    const double determinant = scaled.determinant();
+    out.scale = std::cbrt(determinant);
+    out.R = nearest_rotation_if_rounded(scaled / out.scale);
+    const bool rotation = determinant > 0.0 && (out.R.transpose() * out.R - Mat3::Identity()).cwiseAbs().maxCoeff() < 1e-6;
+    if (!rotation || m[12] != 0.0 || m[13] != 0.0 || m[14] != 0.0 || m[15] != 1.0) {
+        source.fail(transform, "<collection> <transform>: not a rotation with a scale and a translation, [s R | t; 0 0 "
+                               "0 1] (the 3x3 block's determinant is " + format_number(determinant) + ")");
+    }
+    return out;
+}
+
+// A camera's own <calibration> in Agisoft Lens's terms (the header says how they map).
+Camera collection_camera(const Source& source, const pugi::xml_node& calibration, const std::string& where) {
+    const pugi::xml_node width = calibration.child("width");
+    const pugi::xml_node height = calibration.child("height");
+    if (!width || !height) source.fail(calibration, where + " <calibration>: no <width> and <height>");
+    for (const char* const required : {"fx", "fy", "cx", "cy"}) {
+        if (!calibration.child(required)) source.fail(calibration, where + " <calibration>: no <" + required + ">");
+    }
+    const auto term = [&](const char* name) { return source.number_or(calibration, name, 0.0, where); };
+    if (term("k4") != 0.0) {
+        source.fail(calibration.child("k4"), where + " <k4>: PhotoScan's calibration before 1.0 has no k4 (got " +
+                                                 format_number(term("k4")) + ")");
+    }
+    Camera camera;
+    camera.size = {source.side(width, width.text().get(), where + " <calibration> <width>"),
+                   source.side(height, height.text().get(), where + " <calibration> <height>")};
+    // Agisoft's pixel (0, 0) is the top-left pixel's corner: OpenCV's is half a pixel on.
+    camera.intrinsics = {term("fx"), term("fy"), term("cx") - 0.5, term("cy") - 0.5, term("skew")};
+    camera.lens = simplest_equal_lens({LensType::OpenCv5, {term("k1"), term("k2"), term("p1"), term("p2"), term("k3")}});
+    return validated_camera(camera, source.name() + ": " + where);
+}
+
+// PhotoScan's (0.9's) Export Cameras: each camera with its own calibration; posed cameras
+// first, then those without a <transform> (not aligned), unposed.
+std::vector<NamedCamera> read_collection(const Source& source, const pugi::xml_node& root) {
+    const Similarity to_world = collection_similarity(source, root.child("transform"));
+    std::vector<NamedCamera> posed, unposed;
+    for (const pugi::xml_node camera : root.child("cameras").children("camera")) {
+        const std::string where = std::string("camera '") + camera.attribute("label").value() + "'";
+        const pugi::xml_node calibration = camera.child("calibration");
+        if (!calibration) continue;  // no calibration: nothing to read
+        NamedCamera named{camera.attribute("label").value(), {collection_camera(source, calibration, where), {}}};
+        if (const pugi::xml_node transform = camera.child("transform")) {
+            named.file.camera.pose = camera_pose(source, transform, to_world, where);
+            named.file.camera = validated_camera(named.file.camera, source.name() + ": " + where);
+            posed.push_back(std::move(named));
+        } else {
+            named.unposed = true;
+            unposed.push_back(std::move(named));
+        }
+    }
+    posed.insert(posed.end(), std::make_move_iterator(unposed.begin()), std::make_move_iterator(unposed.end()));
+    if (posed.empty()) source.fail(root, "PhotoScan's <collection>: no camera with a <calibration>");
+    return posed;
+}
+
 }  // namespace
 
 std::vector<NamedCamera> read_metashape(std::string_view text, const ReadContext& context) {
@@ -318,11 +402,10 @@ std::vector<NamedCamera> read_metashape(std::string_view text, const ReadContext
     const pugi::xml_node root = document.document_element();
     const std::string_view name = root.name();
     if (name == "calibration") return {read_calibration_file(source, root)};
-    if (name == "collection") {
-        source.fail(root, "PhotoScan's pre-1.0 <collection> files are not read (their cx, cy are not Metashape's)");
-    }
+    if (name == "collection") return read_collection(source, root);
     if (name != "document") {
-        source.fail(root, "expected Metashape's <document> or <calibration>, got <" + std::string(name) + ">");
+        source.fail(root, "expected Metashape's <document> or <calibration>, or PhotoScan's <collection> (before 1.0), "
+                          "got <" + std::string(name) + ">");
     }
     std::vector<NamedCamera> cameras;
     for (const pugi::xml_node chunk : root.children("chunk")) read_chunk(source, chunk, cameras);
@@ -332,6 +415,7 @@ std::vector<NamedCamera> read_metashape(std::string_view text, const ReadContext
 
 bool claims_metashape(const DocumentNode& outline) {
     if (const DocumentNode* document = outline.find("document")) return document->find("chunk") != nullptr;
+    if (const DocumentNode* collection = outline.find("collection")) return collection->find("cameras") != nullptr;
     if (const DocumentNode* calibration = outline.find("calibration")) return calibration->find("projection") != nullptr;
     return false;
 }

@@ -23,11 +23,23 @@
 // v = h/2 + f lat). Any other type, and tangential terms on a fisheye, are refused.
 //
 // Reading gives one camera per aligned camera (one with a transform), named by its label,
-// its sensor's label as intrinsics_name, and its pose in the chunk's world frame. Where no
-// camera is aligned, one camera per calibrated sensor, named by its label, without a pose.
-// Cameras that are not aligned in a document where others are, are not read (they have no
-// pose). Sensors with no calibration (Metashape then guesses from EXIF) give no camera.
+// its sensor's label as intrinsics_name, and its pose in the chunk's world frame; then one
+// per camera not aligned, with its sensor's calibration, said to be unposed. Cameras of a
+// sensor with no calibration (Metashape then guesses from EXIF) give none. A chunk without
+// such cameras gives one camera per calibrated sensor, named by its label, without a pose.
 // A calibration file gives one camera without a pose and without a name.
+//
+// PhotoScan before 1.0 (0.9's Export Cameras) wrote <collection> instead: each camera
+// with its own <calibration> (width, height, fx, fy, cx, cy, skew, k1 k2 k3, p1 p2) and
+// <transform> (4x4, camera to the collection's frame), and the collection's <transform>
+// ([s R | t; 0 0 0 1], to the world). That calibration is Agisoft Lens's (its manual 0.4,
+// "Camera model"): u = cx + x' fx + y' skew, v = cy + y' fy, x' = x (1 + K1 r^2 + K2 r^4 +
+// K3 r^6) + P2 (r^2 + 2 x^2) + 2 P1 x y, y' = y (...) + P1 (r^2 + 2 y^2) + 2 P2 x y: cx, cy
+// absolute, and P1, P2 in OpenCV's order (not swapped, as Metashape's later are). Agisoft's
+// pixel (0, 0) is taken as the top-left pixel's corner, as its later manuals define it (the
+// file does not say): cx - 0.5, cy - 0.5 in OpenCV's pixels. Read as OPENCV5 (or the
+// simplest OpenCV model that is the same lens), named by each camera's label, posed as
+// the document's cameras are; a camera without a <transform>, unposed.
 //
 // Written (format_metashape) the same way back: cameras.xml, a <document version="1.5.0">
 // with one chunk, one sensor and its adjusted calibration (f = fy, b1 = fx - fy, b2 = skew,
@@ -50,7 +62,8 @@ std::vector<NamedCamera> read_metashape(std::string_view text, const ReadContext
 std::string format_metashape(const Camera& camera, const WriteOptions& options);
 
 // Whether an XML file's outline (parse_xml_outline) is Metashape's: <document> holding a
-// <chunk>, or <calibration> holding a <projection>.
+// <chunk>, <calibration> holding a <projection>, or PhotoScan's <collection> holding
+// <cameras>.
 bool claims_metashape(const DocumentNode& outline);
 
 }  // namespace libcam

@@ -402,7 +402,8 @@ NerfScene read_nerf_scene(std::string_view text, const ReadContext& context) {
         } catch (const InvalidArgument& error) {
             frame.fail(error.what());
         }
-        scene.cameras.push_back({std::move(name), {std::move(camera), std::nullopt}});
+        // A frame without its transform_matrix is a view listed without a pose.
+        scene.cameras.push_back({std::move(name), {std::move(camera), std::nullopt}, {}, count > 0 && !matrix});
     };
     if (count == 0) read_camera(first_frame);
     for (std::size_t i = 0; i < count; ++i) read_camera(frames->item(i));

@@ -38,9 +38,15 @@ Lens pinhole_distortion(const Field& k) {
 }
 
 // fx and fy: the calibrator's focal_length and aspect_ratio (fy / fx), or the focal
-// lengths themselves as some writers store them.
+// lengths themselves as other writers store them (focal_length_x and _y; fx and fy in
+// UMI's RealSense files).
 std::pair<double, double> focal_lengths(const Field& k, ImageSize size) {
     if (const std::optional<Field> fx = k.find({"focal_length_x"})) return {fx->number(), k.at({"focal_length_y"}).number()};
+    if (const std::optional<Field> fx = k.find({"fx"})) return {fx->number(), k.at({"fy"}).number()};
+    if (!k.find({"focal_length"})) {
+        k.fail("no focal length: expected the calibrator's focal_length (with aspect_ratio), or focal_length_x and "
+               "focal_length_y, or fx and fy");
+    }
     const double focal = k.at({"focal_length"}).number();
     const std::optional<Field> aspect = k.find({"aspect_ratio"});
     if (!aspect) return {focal, focal};

@@ -9,7 +9,9 @@
 //
 // fx = f and fy = a f (the calibrator's aspect ratio is fy / fx; UMI's own loader uses f
 // for both, which differs from the calibration by the aspect ratio); pixel centres are at
-// integers. The types: FISHEYE is cv::fisheye's model (FISHEYE, "radial_distortion_1".."_4"),
+// integers. Files other writers fill in the same layout give the focal lengths themselves:
+// focal_length_x and focal_length_y, or fx and fy (UMI's RealSense PINHOLE files:
+// "intrinsics": {"fx", "fy", "principal_pt_x", "principal_pt_y"}). The types: FISHEYE is cv::fisheye's model (FISHEYE, "radial_distortion_1".."_4"),
 // DOUBLE_SPHERE is DOUBLE_SPHERE ("xi", "alpha"), EXTENDED_UNIFIED is EUCM ("alpha",
 // "beta"), PINHOLE has no distortion (the calibrator writes none for it), and
 // DIVISION_UNDISTORTION ("div_undist_distortion": Theia's k, per squared pixel) is DIVISION

@@ -122,6 +122,8 @@ struct SfmData {
     ObservationSet set;
     std::unordered_map<long long, int> posed_view;  // view id -> index into set.views
     std::unordered_set<long long> every_view;
+    // Views with an intrinsic but no pose (before SfM, or not localised by it).
+    std::vector<ObservedView> unposed_views;
 };
 
 std::string intrinsic_name(long long id) { return "id:" + std::to_string(id); }
@@ -199,7 +201,10 @@ void read_views(const Field& top, const std::unordered_map<long long, int>& intr
         // "extrinsics" holds the reconstructed views' poses alone: a view without one was not
         // localised (OpenMVG's SfM_Data::IsPoseAndIntrinsicDefined).
         const auto pose = poses.find(data.at({"id_pose"}).integer(0, kMaxId));
-        if (pose == poses.end()) return;
+        if (pose == poses.end()) {
+            out.unposed_views.push_back({data.at({"filename"}).text(), intrinsic->second, Pose()});
+            return;
+        }
         out.posed_view[id] = static_cast<int>(out.set.views.size());
         out.set.views.push_back({data.at({"filename"}).text(), intrinsic->second, pose->second});
     });
@@ -244,7 +249,8 @@ SfmData read_sfm_data(std::string_view text, const std::string& source) {
 bool claims_openmvg(const DocumentNode& root) { return root.find("sfm_data_version") != nullptr; }
 
 std::vector<NamedCamera> read_openmvg(std::string_view text, const ReadContext& context) {
-    return detail::cameras_of_views(read_sfm_data(text, context.source).set, context.source, "\"intrinsics\": ");
+    const SfmData read = read_sfm_data(text, context.source);
+    return detail::cameras_of_views(read.set, context.source, "\"intrinsics\": ", read.unposed_views);
 }
 
 ObservationSet read_openmvg_observations(const std::filesystem::path& file, std::string_view text,

@@ -23,8 +23,9 @@
 // OpenMVG's cam2ima puts it); any other type is refused.
 //
 // Reading cameras gives one per view with a pose, named by its filename, with its
-// intrinsics (intrinsics_name "id:N") and its pose; a file without poses (before SfM)
-// gives one per intrinsic, named "id:N", without a pose.
+// intrinsics (intrinsics_name "id:N") and its pose; then one per view with an intrinsic
+// but without a pose (every view of a file before SfM), said to be unposed; a file
+// without views, one per intrinsic, named "id:N", without a pose.
 //
 // Observations: every observation of the structure in a view with a pose. OpenMVG stores
 // no reprojection error in the file.
