@@ -371,7 +371,7 @@ TEST_CASE("metashape: bitbyt3r cameras.xml (1.5): b1 b2 as fx and skew, 94 camer
     CHECK(camera.pose.centre().x() == Approx(-0.54581061063111036).margin(1e-12));
 }
 
-TEST_CASE("metashape: OpenCV's XML stays OpenCV's; PhotoScan 0.9's collection (amarburg) is read") {
+TEST_CASE("metashape: OpenCV's XML stays OpenCV's, and PhotoScan 0.9's collection (amarburg) is read") {
     const auto opencv = test::real_data_path("metashape/3dom-fbk-deep-image-matching/camera_calib.xml");
     if (test::real_data_present(opencv)) CHECK(read_camera_set(opencv).format == CameraFormat::OpenCvXml);
     const auto old = test::real_data_path("metashape/amarburg-photoscan_outputs/demo/cameras.xml");
