@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "libcam/camera/camera.hpp"
 #include "libcam/error.hpp"
@@ -93,14 +94,22 @@ Vec3 camera_point_of(const Vec3& world) {
     return kCameraToChunk.transpose() * (in_chunk - kCameraInChunk);
 }
 
-void check_pixels(const Camera& camera, const Terms& terms, bool fisheye) {
-    const PreparedCamera prepared(camera);
+// World points 7 units in front of the test's camera, at the centre and towards each side.
+std::vector<Vec3> points_in_view() {
     const Vec3 camera_in_world = kChunkScale * (kChunkToWorld * kCameraInChunk) + kChunkTranslation;
     const Vec3 forward = kChunkToWorld * kCameraToChunk * Vec3(0, 0, 1);
     const Vec3 right = kChunkToWorld * kCameraToChunk * Vec3(1, 0, 0);
     const Vec3 down = kChunkToWorld * kCameraToChunk * Vec3(0, 1, 0);
+    std::vector<Vec3> points;
     for (const auto& [a, b] : {std::pair{0.0, 0.0}, {0.3, -0.2}, {-0.25, 0.35}, {0.4, 0.3}}) {
-        const Vec3 world = camera_in_world + 7.0 * forward + 7.0 * a * right + 7.0 * b * down;
+        points.push_back(camera_in_world + 7.0 * forward + 7.0 * a * right + 7.0 * b * down);
+    }
+    return points;
+}
+
+void check_pixels(const Camera& camera, const Terms& terms, bool fisheye) {
+    const PreparedCamera prepared(camera);
+    for (const Vec3& world : points_in_view()) {
         const Vec2 expected = metashape_pixel(terms, camera_point_of(world), fisheye) - Vec2(0.5, 0.5);
         const Projection got = prepared.project(world);
         REQUIRE(got.valid);
@@ -449,12 +458,7 @@ TEST_CASE("metashape: PhotoScan 0.9's collection projects as Agisoft Lens's form
     CHECK(set.cameras[1].name == "IMG_0002.jpg");
     CHECK(set.cameras[1].unposed);
     const PreparedCamera prepared(set.cameras[0].file.camera);
-    const Vec3 camera_in_world = kChunkScale * (kChunkToWorld * kCameraInChunk) + kChunkTranslation;
-    const Vec3 forward = kChunkToWorld * kCameraToChunk * Vec3(0, 0, 1);
-    const Vec3 right = kChunkToWorld * kCameraToChunk * Vec3(1, 0, 0);
-    const Vec3 down = kChunkToWorld * kCameraToChunk * Vec3(0, 1, 0);
-    for (const auto& [a, b] : {std::pair{0.0, 0.0}, {0.3, -0.2}, {-0.25, 0.35}, {0.4, 0.3}}) {
-        const Vec3 world = camera_in_world + 7.0 * forward + 7.0 * a * right + 7.0 * b * down;
+    for (const Vec3& world : points_in_view()) {
         const Vec2 expected =
             agisoft_lens_pixel(1000, 1002, 330.25, 245.5, -0.8, k, 0.002, -0.003, camera_point_of(world)) - Vec2(0.5, 0.5);
         const Projection got = prepared.project(world);
