@@ -212,7 +212,7 @@ const ObservationCandidate& candidate_of(const Calibration& c, const std::string
 // (synthetic_sets.hpp): over boards kept to the middle third, OPENCV4 was chosen with a
 // focal length 1% short, its k1 making up for the k3 it lacks.
 TEST_CASE("Calibrate: a chessboard through an OPENCV5 lens gives OPENCV5, nearer the truth than OpenCV's",
-          "[calibrate][fit]") {
+          "[sweep][calibrate][fit]") {
     const Camera truth = opencv5_truth();
     const ChessboardRun run = run_chessboard_set(truth, opencv5_poses(), false);
     const Calibration& c = run.calibration;
@@ -235,7 +235,7 @@ TEST_CASE("Calibrate: a chessboard through an OPENCV5 lens gives OPENCV5, nearer
 }
 
 TEST_CASE("Calibrate: a ChArUco board through an OPENCV5 lens gives OPENCV5, nearer the truth than OpenCV's",
-          "[calibrate][fit]") {
+          "[sweep][calibrate][fit]") {
     const BoardSpec board = parse_board_spec("charuco:10x8:0.03:0.022:DICT_4X4_50");
     const Camera truth = opencv5_truth();
     const std::vector<SyntheticView> views =
@@ -276,7 +276,7 @@ TEST_CASE("Calibrate: a ChArUco board through an OPENCV5 lens gives OPENCV5, nea
 }
 
 TEST_CASE("Calibrate: a chessboard through a fisheye gives FISHEYE, nearer the truth than OpenCV's fisheye",
-          "[calibrate][fit]") {
+          "[sweep][calibrate][fit]") {
     const ChessboardRun run = run_chessboard_set(fisheye_truth(), fisheye_poses(), true);
     INFO(run.describe_it());
     CHECK(run.calibration.rejected.empty());

@@ -101,7 +101,7 @@ TEST_CASE("round trip look-at camera -> K, R, t -> look-at camera") {
     REQUIRE(cameras == 400);
 }
 
-TEST_CASE("rays both ways agree on every pixel of a 1920x1080 image") {
+TEST_CASE("rays both ways agree on every pixel of a 1920x1080 image", "[sweep]") {
     // 20 random cameras, every fov axis, both pixel origins; plus non-square sizes.
     double worst = 0.0;
     long pixels = 0;

@@ -403,7 +403,7 @@ std::map<Key, std::vector<Carried>> carried_errors(const libcam::ObservationSet&
 
 }  // namespace
 
-TEST_CASE("dataset: real COLMAP models keep each point's reprojection error", "[dataset][real]") {
+TEST_CASE("dataset: real COLMAP models keep each point's reprojection error", "[sweep][dataset][real]") {
     for (const char* name : {"colmap-halogenname-south-building/sparse/0", "colmap-bartoszek-test_colmap/sparse/0",
                              "colmap-vijayvamsi7-table/final_try_1_workspace/sparse/0",
                              "colmap-consideringname-ggbond-3dgs/distorted/sparse/0"}) {

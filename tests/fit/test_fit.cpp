@@ -169,7 +169,7 @@ TEST_CASE("a mildly distorted lens needs OPENCV4 over the whole image but is a l
     CHECK(chosen(centre).max_px < 2 * 1.4e-3);
 }
 
-TEST_CASE("the chosen model is within the tolerance everywhere in the scene, by an independent denser check") {
+TEST_CASE("the chosen model is within the tolerance everywhere in the scene, by an independent denser check", "[sweep]") {
     struct Case {
         std::string name;
         Camera source;
@@ -520,7 +520,7 @@ Camera basalt_camera(const std::filesystem::path& file) {
 
 TEST_CASE("basalt's Double Sphere and EUCM calibrations become a FISHEYE within 0.1 px, checked by the papers' formulas "
           "and cv::fisheye",
-          "[real]") {
+          "[sweep][real]") {
     const std::filesystem::path folder = real_cameras_folder("basalt");
     if (!real_cameras_present(folder)) return;
     for (const char* name : {"euroc_ds_calib.json", "euroc_eucm_calib.json", "tumvi_512_ds_calib.json", "tumvi_512_eucm_calib.json"}) {
@@ -556,7 +556,7 @@ TEST_CASE("basalt's Double Sphere and EUCM calibrations become a FISHEYE within 
 // model meets. The spline also turns the image a little about its axis (it projects the
 // axis 66 px from its principal point on the 170-degree lens), so the fitted camera may
 // rotate, as mrcal-convert-lensmodel's fit does.
-TEST_CASE("mrcal's splined calibrations become an OpenCV model, checked by mrcal_project and OpenCV", "[real]") {
+TEST_CASE("mrcal's splined calibrations become an OpenCV model, checked by mrcal_project and OpenCV", "[sweep][real]") {
     const std::filesystem::path folder = real_cameras_folder("mrcal");
     if (!real_cameras_present(folder)) return;
     struct SplinedCase {

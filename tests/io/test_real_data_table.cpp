@@ -477,7 +477,7 @@ Row row_of(const RealFile& file) {
 }  // namespace
 
 TEST_CASE("Every real reconstruction and calibration libcam reads, with the number that proves it read right",
-          "[files][real-data]") {
+          "[sweep][files][real-data]") {
     if (!test::real_data_present(test::real_data_path())) return;
     for (const RealFile& file : kFiles) {
         if (!test::real_data_present(test::real_data_path(file.path))) continue;

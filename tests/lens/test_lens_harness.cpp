@@ -320,7 +320,7 @@ JacobianErrors jacobian_errors(const Lens& lens, const std::vector<Vec3>& points
 
 }  // namespace
 
-TEST_CASE("harness: Jacobians match central differences in long double", "[harness]") {
+TEST_CASE("harness: Jacobians match central differences in long double", "[sweep][harness]") {
     for_each_model([]<class Model>(const LensInfo& info, const LensCase& lens_case) {
         const JacobianErrors errors = jacobian_errors<Model>(lens_case.camera.lens, sample_points(info, lens_case.camera));
         INFO("worst d m / d point " << errors.point.value << " (bound " << kJacobianTolerance << ") at "
@@ -582,7 +582,7 @@ void check_float_unprojector(const PreparedCamera& camera, const std::vector<Vec
 
 }  // namespace
 
-TEST_CASE("harness: float agrees with double within a multiple of float's epsilon", "[harness]") {
+TEST_CASE("harness: float agrees with double within a multiple of float's epsilon", "[sweep][harness]") {
     for_each_model([]<class Model>(const LensInfo& info, const LensCase& lens_case) {
         check_float_projection<Model>(lens_case.camera.lens, sample_points(info, lens_case.camera));
         check_float_unprojector(prepared_camera(lens_case), pixels_past_edges(lens_case.camera.size, 41, 31));

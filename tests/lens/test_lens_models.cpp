@@ -204,7 +204,7 @@ RaysThroughMrcal rays_through_mrcal(const Camera& camera) {
 
 }  // namespace
 
-TEST_CASE("CAHVORE: libcam's rays reproject through mrcal_project onto their pixels (mrcal 2.2 has no unproject for it)") {
+TEST_CASE("CAHVORE: libcam's rays reproject through mrcal_project onto their pixels (mrcal 2.2 has no unproject for it)", "[sweep]") {
     std::vector<LensCase> cases;
     for (const LensCase& c : lens_cases()) {
         if (c.camera.lens.type != LensType::Cahvore) continue;
@@ -513,7 +513,7 @@ TEST_CASE("The fold-over radius is the same on every call: more lenses than the 
     CHECK(wrong_on_thread == 0);
 }
 
-TEST_CASE("Jacobians match central differences in long double and ceres::Jet") {
+TEST_CASE("Jacobians match central differences in long double and ceres::Jet", "[sweep]") {
     for (const LensCase& c : lens_cases()) {
         INFO(c.name);
         std::vector<Vec3> points = sample_points(c.camera, lens_info(c.camera.lens.type).sees_behind_camera ? 170.0 : 89.5);

@@ -328,7 +328,7 @@ TEST_CASE("UCM's and EUCM's valid angles and rims are the ones worked by hand, a
     CHECK_THAT(refused(LensType::Eucm, {0.5, 0.0}), Catch::Contains("(beta): must be positive, got 0"));
 }
 
-TEST_CASE("fit: basalt's Double Sphere and EUCM calibrations become an OpenCV model within 0.1 px, as OpenCV projects it") {
+TEST_CASE("fit: basalt's Double Sphere and EUCM calibrations become an OpenCV model within 0.1 px, as OpenCV projects it", "[sweep]") {
     for (const LensCase& c : lens_cases()) {
         if (c.name != "DOUBLE_SPHERE mild" && c.name != "DOUBLE_SPHERE strong" && c.name != "EUCM mild" &&
             c.name != "EUCM strong") {

@@ -88,7 +88,7 @@ TEST_CASE("The real wide lens (6016x4016, OPENCV8): every pixel of a 601x401 gri
                                        << grid.worst << " px");
 }
 
-TEST_CASE("Unprojection agrees with mrcal_unproject and cv::undistortPoints wherever they converge inside the domain") {
+TEST_CASE("Unprojection agrees with mrcal_unproject and cv::undistortPoints wherever they converge inside the domain", "[sweep]") {
     std::vector<LensCase> cases = lens_cases();
     for (const LensCase& c : cases) {
         // COLMAP's models have no independent inverse here; test_unprojector reprojects

@@ -132,7 +132,7 @@ const char* scalar_name() {
 
 }  // namespace
 
-TEST_CASE("exact in double: every valid pixel of dense grids within 1e-9 px through OpenCV or mrcal, every model", "[engine]") {
+TEST_CASE("exact in double: every valid pixel of dense grids within 1e-9 px through OpenCV or mrcal, every model", "[sweep][engine]") {
     for (const LensCase& c : all_lens_cases()) {
         INFO(c.name);
         const Unprojector<double> unprojector(c.camera);
@@ -163,7 +163,7 @@ TEST_CASE("The real wide lens (6016x4016, OPENCV8), 601x401 pixels: exact within
     }
 }
 
-TEST_CASE("Every method, in float and double, flags exactly the pixels the full solver flags, in and past the image") {
+TEST_CASE("Every method, in float and double, flags exactly the pixels the full solver flags, in and past the image", "[sweep]") {
     for (const LensCase& c : all_lens_cases()) {
         INFO(c.name);
         const std::vector<Vec2> grid = grid_past_edges(c.camera.size, sweep_side(121), sweep_side(91));
@@ -204,7 +204,7 @@ TEST_CASE("Past a fold worked by hand, no method in either scalar type returns a
     }
 }
 
-TEST_CASE("fast and lut on every lens of the test set, folds inside the image included: within 0.01 px", "[engine]") {
+TEST_CASE("fast and lut on every lens of the test set, folds inside the image included: within 0.01 px", "[sweep][engine]") {
     // They answer only in the table cells checked to be within the budget (0.005 px at
     // five checkpoints); next to a fold, where the inverse steepens, the full solver does.
     for (const LensCase& c : all_lens_cases()) {
@@ -569,7 +569,7 @@ TEST_CASE("The instruction sets: names, the default, and a forced set this build
 
 TEMPLATE_TEST_CASE("Interleaved projection (numpy's (N, 3) to (N, 2)) and projection on the caller's (3, N) rows give "
                    "the arrays' bits, on every lens of the test set",
-                   "[engine]", float, double) {
+                   "[sweep][engine]", float, double) {
     using Scalar = TestType;
     for (const LensCase& lens : all_lens_cases()) {
         const Camera camera = scaled_to_width(lens.camera, 160);

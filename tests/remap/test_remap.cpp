@@ -240,7 +240,7 @@ TEST_CASE("A pinhole to a CYLINDRICAL panorama: libcam's map is OpenCV's stitchi
 }
 
 TEST_CASE("The float map is the double map rounded once: the same pixels without a source, every coordinate "
-          "the double one rounded to float", "[remap]") {
+          "the double one rounded to float", "[sweep][remap]") {
     // Both directions (undistorting: a PINHOLE target, its rays from K^-1 row by row;
     // distorting: the lens's unprojection), turned and not, a lens whose corners have no
     // ray in the pinhole (the fisheye's, past 90 degrees) and a skewed pinhole.
@@ -396,7 +396,7 @@ void check_new_cameras(const Camera& lens) {
 }  // namespace
 
 TEST_CASE("The new camera for real lenses: 'valid' leaves no pixel without a source, 'all' loses no lens pixel",
-          "[remap][real]") {
+          "[sweep][remap][real]") {
     if (!real_cameras_present()) return;
     struct Lens {
         const char* file;
@@ -413,7 +413,7 @@ TEST_CASE("The new camera for real lenses: 'valid' leaves no pixel without a sou
 }
 
 TEST_CASE("The new camera where OpenCV's choosers fail: a fisheye whose corners have no ray, a lens whose corners wrap",
-          "[remap][opencv]") {
+          "[sweep][remap][opencv]") {
     // (Section names without ':' past the first line: Catch 2.13 indents a wrapped name to
     // its ':', and loops forever printing one that has it near the end of a line.)
     SECTION("the fisheye of OpenCV's issue 23961, whose corners have no ray") {
