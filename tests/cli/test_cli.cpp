@@ -767,6 +767,50 @@ cam1:
     CHECK_THAT(bad_format.err, Catch::Contains("--from-format"));
 }
 
+namespace {
+
+// The line of `libcam info`'s text that gives the field of view.
+std::string fov_line(const std::string& info_text) {
+    std::istringstream lines(info_text);
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind("  fov ", 0) == 0) return line;
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("info says of each axis whether its field of view spans the image or stops at the last pixel with a ray") {
+    // r (1 + k1 r^2) with k1 = -0.2 folds at r = 1 / sqrt(0.6), whose image is 0.8607 f =
+    // 258.2 px from the centre (f = 300): the horizontal edges, 320 px out, have no ray; the
+    // vertical ones, 240 px out, have (test_field_of_view works the angles).
+    TempDir dir;
+    const std::string chain = (dir.path() / "camchain.yaml").string();
+    std::ofstream(chain) << R"(cam0:
+  camera_model: pinhole
+  distortion_model: radtan
+  intrinsics: [300, 300, 319.5, 239.5]
+  distortion_coeffs: [-0.2, 0.0, 0.0, 0.0]
+  resolution: [640, 480]
+)";
+    const CliResult folding = run_libcam({"info", chain});
+    INFO(folding.describe());
+    REQUIRE(folding.exit_code == 0);
+    CHECK_THAT(fov_line(folding.out), Catch::Matches(R"(  fov +horizontal [0-9.]+ deg \(to the last pixel with a ray\), )"
+                                                     R"(vertical [0-9.]+ deg \(edge to edge\), through the lens)"));
+
+    std::ofstream(chain) << R"(cam0:
+  camera_model: pinhole
+  distortion_model: radtan
+  intrinsics: [300, 300, 319.5, 239.5]
+  distortion_coeffs: [-0.02, 0.0, 0.0, 0.0]
+  resolution: [640, 480]
+)";
+    const CliResult mild = run_libcam({"info", chain});
+    REQUIRE(mild.exit_code == 0);
+    CHECK_THAT(fov_line(mild.out), Catch::Matches(R"(  fov +horizontal [0-9.]+ deg, vertical [0-9.]+ deg )"
+                                                  R"(\(through the lens, edge to edge\))"));
+}
+
 TEST_CASE("A camera picked by its image's file name (--camera), and info says which views have no pose") {
     // A Metashape 1.5 document as Export Cameras writes it before alignment: one frame
     // sensor (f 1000, cx 12.5 from the centre of 640 x 480), two cameras without a

@@ -21,8 +21,19 @@ using Json = nlohmann::ordered_json;
 
 std::string vec_text(const Vec3& v) { return format_number(v.x() + 0.0) + " " + format_number(v.y() + 0.0) + " " + format_number(v.z() + 0.0); }
 
-std::string axis_text(const AxisFieldOfView& axis) {
-    return format_short(axis.degrees, 5) + " deg" + (axis.edge_to_edge ? "" : " (to the last pixel with a ray)");
+std::string axis_text(const AxisFieldOfView& axis) { return format_short(axis.degrees, 5) + " deg"; }
+
+// Each axis's angle is through the lens; it spans the image edge to edge unless the lens has
+// no ray for the pixels at that edge, and then it stops at the last pixel that has one.
+std::string fov_text(const FieldOfView& fov) {
+    const std::string horizontal = "horizontal " + axis_text(fov.horizontal);
+    const std::string vertical = "vertical " + axis_text(fov.vertical);
+    if (fov.horizontal.edge_to_edge && fov.vertical.edge_to_edge)
+        return horizontal + ", " + vertical + " (through the lens, edge to edge)";
+    const auto span = [](const AxisFieldOfView& axis) {
+        return std::string(axis.edge_to_edge ? " (edge to edge)" : " (to the last pixel with a ray)");
+    };
+    return horizontal + span(fov.horizontal) + ", " + vertical + span(fov.vertical) + ", through the lens";
 }
 
 // The field of view of each distinct calibration (image size, K and lens, compared bit for
@@ -71,8 +82,7 @@ std::string camera_text(std::size_t index, const NamedCamera& named, const Field
         }
         out << "\n";
     }
-    out << "  fov       horizontal " << axis_text(fov.horizontal) << ", vertical " << axis_text(fov.vertical)
-        << " (through the lens, edge to edge)\n";
+    out << "  fov       " << fov_text(fov) << "\n";
     out << "  rays      up to " << format_short(fov.valid_angle_deg, 5) << " deg from the optical axis; "
         << (fov.rayless_fraction == 0 ? std::string("every pixel has one")
                                       : format_short(100 * fov.rayless_fraction, 3) + "% of the pixels have none")
