@@ -850,6 +850,11 @@ TEST_CASE("A camera picked by its image's file name (--camera), and info says wh
     REQUIRE(cameras.size() == 2);
     CHECK(cameras[0].at("posed") == false);
     CHECK(cameras[1].at("name") == "DSC_0002");
+    // A command that uses the pose says that the view has none.
+    const CliResult unposed_rays = run_libcam({"rays", "--from", xml, "--camera", "DSC_0002", "--pixels", "332,239.5"});
+    INFO(unposed_rays.describe());
+    REQUIRE(unposed_rays.exit_code == 0);
+    CHECK_THAT(unposed_rays.err, Catch::Contains("camera 'DSC_0002' has no pose in the file; the identity pose is used"));
 
     // A COLMAP model whose image names are paths: IMG_2.jpg alone finds day2/IMG_2.jpg.
     const fs::path model = dir.path() / "model";
@@ -863,6 +868,9 @@ TEST_CASE("A camera picked by its image's file name (--camera), and info says wh
     REQUIRE(by_file_name.exit_code == 0);
     CHECK(json::parse(by_file_name.out).at("cameras")[0].at("name") == "day2/IMG_2.jpg");
     CHECK(json::parse(by_file_name.out).at("cameras")[0].at("posed") == true);
+    const CliResult posed_rays = run_libcam({"rays", "--from", model.string(), "--camera", "IMG_2.jpg", "--pixels", "0,0"});
+    REQUIRE(posed_rays.exit_code == 0);
+    CHECK(posed_rays.err.empty());
     const CliResult ambiguous = run_libcam({"info", model.string(), "--camera", "IMG_1.jpg"});
     CHECK(ambiguous.exit_code == 1);
     CHECK_THAT(ambiguous.err, Catch::Contains("the image file name 'IMG_1.jpg' names 2 cameras: 0 (day1/IMG_1.jpg), "

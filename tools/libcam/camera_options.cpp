@@ -1,8 +1,11 @@
 #include "camera_options.hpp"
 
+#include <iostream>
+
 #include "libcam/convert/look_at_convert.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_formats.hpp"
+#include "libcam/text/shown_value.hpp"
 #include "parse.hpp"
 
 namespace libcam::cli {
@@ -65,6 +68,10 @@ CameraFile FileSelection::read(const std::string& path) const {
     return read_camera_file(path, camera, chosen_format(), read_options());
 }
 
+NamedCamera FileSelection::read_named(const std::string& path) const {
+    return select_camera(read_set(path), camera, path);
+}
+
 void CameraOptions::add_to(CLI::App& command) {
     auto* from_option = command.add_option(
         "--from", from, "Camera file (libcam JSON, OpenCV YAML/XML, .cameramodel, .cahvor, Kalibr, basalt, camodocal, COLMAP, "
@@ -98,7 +105,19 @@ PixelOrigin CameraOptions::origin() const {
 }
 
 CameraFile CameraOptions::camera() const {
-    if (!from.empty()) return selection.read(from);
+    if (!from.empty()) {
+        // The commands that take a camera this way use its pose (rays from its centre, world
+        // points projected, extrinsics written). A view the file lists without one has the
+        // identity there: said once, so that no one takes it for where the view was.
+        NamedCamera named = selection.read_named(from);
+        if (named.unposed) {
+            std::cerr << "libcam: warning: " << printable_text(from) << ": "
+                      << (named.name.empty() ? std::string("this camera") : "camera '" + printable_text(named.name) + "'")
+                      << " has no pose in the file; the identity pose is used (the camera at the origin, looking "
+                         "down +z)\n";
+        }
+        return std::move(named.file);
+    }
     if (fov.empty()) throw UsageError("--fov: required (or give a camera file with --from)");
     if (size.empty()) throw UsageError("--size: required (or give a camera file with --from)");
     if (fov_axis != "horizontal" && fov_axis != "vertical" && fov_axis != "diagonal" && fov_axis != "both") {

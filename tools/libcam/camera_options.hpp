@@ -27,6 +27,7 @@ struct FileSelection {
     std::optional<CameraFormat> chosen_format() const;  // throws UsageError for an unknown name
     ReadOptions read_options() const;                  // throws UsageError for malformed flags
     CameraFile read(const std::string& path) const;
+    NamedCamera read_named(const std::string& path) const;  // with the file's name for it, and whether it is posed
     CameraSet read_set(const std::string& path) const;
 };
 
