@@ -177,19 +177,18 @@ void check_stmap_file_name(const std::filesystem::path& path) {
     }
 }
 
-void write_map_file(const std::filesystem::path& path, const RemapMap& map) {
+std::string encoded_map(const std::filesystem::path& path, const RemapMap& map) {
     check_map_file_name(path);
-    if (path.extension() == ".npy") {
-        write_file_atomically(path, npy_bytes(map));
-        return;
-    }
-    std::string bytes;
+    if (path.extension() == ".npy") return npy_bytes(map);
     try {
-        bytes = exr_bytes(map);
+        return exr_bytes(map);
     } catch (const std::exception& error) {
         throw FileError(path.string() + ": OpenEXR could not write the map: " + error.what());
     }
-    write_file_atomically(path, bytes);
+}
+
+void write_map_file(const std::filesystem::path& path, const RemapMap& map) {
+    write_file_atomically(path, encoded_map(path, map));
 }
 
 void write_stmap_file(const std::filesystem::path& path, const RemapMap& map, const StmapFormat& format) {

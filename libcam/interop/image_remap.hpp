@@ -65,6 +65,9 @@ void write_image(const std::filesystem::path& path, const cv::Mat& image, int jp
 // NumPy .npy array of shape (height, width, 2). Chosen by the extension (.exr, .npy);
 // written atomically. Throws FileError naming the file.
 void write_map_file(const std::filesystem::path& path, const RemapMap& map);
+// The bytes write_map_file writes, for a caller that writes several files only once all are
+// made; FileError naming the file.
+std::string encoded_map(const std::filesystem::path& path, const RemapMap& map);
 // The same checks of the file's name alone, for a caller that checks before it works:
 // FileError unless it ends in .exr or .npy (map) or .exr (STMap).
 void check_map_file_name(const std::filesystem::path& path);

@@ -224,6 +224,17 @@ def blobs_land_where_the_truth_says(np, cv2, libcam, work):
     fs = cv2.FileStorage(os.path.join(folder, "extrinsics.yml"), cv2.FILE_STORAGE_READ)
     check(np.abs(fs.getNode("R1").mat() - Rr[0]).max() < 1e-15 and np.abs(fs.getNode("P2").mat() - P[1]).max() < 1e-9,
           "blobs: extrinsics.yml holds R1 and P2 as --json gives them")
+    # The maps alone (no images), against cv2.initUndistortRectifyMap with the same R and P.
+    maps = os.path.join(work, "blobs-maps")
+    shutil.rmtree(maps, ignore_errors=True)
+    run(libcam, ["rectify", intrinsics, extrinsics, "--size", "320x240", "-o", maps, "--maps", "npy"])
+    for k, (name, (Ksrc, Dsrc, _, _)) in enumerate(zip(("left-map.npy", "right-map.npy"), sources)):
+        ours = np.load(os.path.join(maps, name))
+        check(ours.shape == (size[1], size[0], 2), f"maps: {name} is {ours.shape}")
+        map_x, map_y = cv2.initUndistortRectifyMap(Ksrc, Dsrc, Rr[k], P[k][:, :3], size, cv2.CV_32FC1)
+        gap = np.abs(ours - np.dstack([map_x, map_y])).max()
+        check(gap < 1e-3, f"maps: {name} is cv2.initUndistortRectifyMap's within 1e-3 px (worst {gap:.2e})")
+        check(not os.path.exists(os.path.join(maps, name.replace("-map.npy", ".png"))), "maps: no image without --images")
 
 
 def bad_input(np, cv2, libcam, work):
@@ -244,7 +255,9 @@ def bad_input(np, cv2, libcam, work):
                                  R, np.array([[-0.1], [0.0], [0.0]]))
     for label, args, words in (("one camera", [one], "holds one camera"),
                                ("same centre", [same_centre], "same centre"),
-                               ("no image size", list(no_size), "--size")):
+                               ("no image size", list(no_size), "--size"),
+                               ("maps of an unknown kind", list(no_size) + ["--size", "320x240", "--maps", "tiff"],
+                                "--maps: expected exr or npy, got 'tiff'")):
         shutil.rmtree(folder, ignore_errors=True)
         result = run(libcam, ["rectify"] + args + ["-o", folder], expect_ok=False)
         lines = result.stderr.strip().splitlines()

@@ -45,6 +45,7 @@ struct RectifyFlags {
     std::vector<std::string> images;
     std::string size;
     std::string interpolation = "linear";
+    std::string maps;  // with -o: also write each camera's map, as .exr or .npy
     int threads = worker_count(0);
 };
 
@@ -194,6 +195,9 @@ int run_rectify(const RectifyFlags& flags) {
     if (!flags.images.empty() && flags.images.size() != 2) throw UsageError("--images: give two images, LEFT RIGHT");
     if (!flags.images.empty() && flags.output.empty()) throw UsageError("-o: give the folder for the rectified images");
     if (flags.threads < 1) throw UsageError("--threads: expected 1 or more");
+    if (!flags.maps.empty() && flags.maps != "exr" && flags.maps != "npy")
+        throw UsageError("--maps: expected exr or npy, got '" + flags.maps + "'");
+    if (!flags.maps.empty() && flags.output.empty()) throw UsageError("-o: give the folder for the maps");
     const Interpolation interpolation = interpolation_flag(flags.interpolation);
     RectifyRequest request;
     request.model = model_from(flags.to);
@@ -246,13 +250,20 @@ int run_rectify(const RectifyFlags& flags) {
     // Everything made before anything is written: a failure leaves the folder as it was.
     std::vector<OutputFile> files;
     const char* side[2] = {"left", "right"};
-    for (std::size_t k = 0; k < images.size(); ++k) {
+    for (std::size_t k = 0; k < 2 && (!images.empty() || !flags.maps.empty()); ++k) {
         RemapOptions remap_options;
         remap_options.rotation = pair.cameras[k].rotation;
         remap_options.threads = flags.threads;
         const RemapMap map = build_remap_map(PreparedCamera(pair.cameras[k].camera),
                                              PreparedCamera(pair_sources[k].file.camera), remap_options);
-        files.push_back({std::string(side[k]) + ".png", encoded_png(remap_image(images[k], map, interpolation), flags.images[k])});
+        if (!images.empty()) {
+            files.push_back({std::string(side[k]) + ".png",
+                             encoded_png(remap_image(images[k], map, interpolation), flags.images[k])});
+        }
+        if (!flags.maps.empty()) {
+            const std::string name = std::string(side[k]) + "-map." + flags.maps;
+            files.push_back({name, encoded_map(fs::path(flags.output) / name, map)});
+        }
     }
     for (std::size_t k = 0; k < 2; ++k) {
         files.push_back({std::string(side[k]) + ".json", format_camera(pair.cameras[k].camera, CameraFormat::Json)});
@@ -292,6 +303,10 @@ Runner add_rectify(CLI::App& app) {
                         "Folder for left.json and right.json (the rectified cameras), extrinsics.yml (OpenCV's R1 R2 "
                         "P1 P2 Q) or the .cameramodel files (LATLON), and with --images left.png and right.png");
     command->add_option("--images", flags->images, "The two images to rectify, LEFT RIGHT")->expected(2);
+    command->add_option("--maps", flags->maps,
+                        "With -o: also write each rectified camera's map, left-map and right-map: for each rectified "
+                        "pixel the source pixel x, y (OpenCV's convention, NaN where none), as exr (channels R, G) or "
+                        "npy (height x width x 2)");
     command->add_option("--size", flags->size,
                         "The cameras' image size WIDTHxHEIGHT, for files that hold none (OpenCV's stereo files); "
                         "default: the images'");
