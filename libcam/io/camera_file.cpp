@@ -291,6 +291,58 @@ CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std
     return parse_in_context(text, format, {source, {}, options});
 }
 
+bool is_opencv_stereo_extrinsics(std::string_view text) {
+    const auto has_key = [&](const std::string& key) {
+        return text.starts_with(key + ":") || text.find("\n" + key + ":") != std::string_view::npos;
+    };
+    return has_key("R") && has_key("T") && !has_key("M1") && !has_key("K1") && !has_key("camera_matrix");
+}
+
+namespace {
+
+// The text with its YAML header ("%YAML:1.0", "---") blanked where it opens the text: the
+// second file's keys can follow the first's in one document, each line where it was.
+std::string without_yaml_header(std::string_view text) {
+    std::string body(text);
+    for (const std::string_view header : {"%YAML:1.0", "%YAML 1.0", "---"}) {
+        const std::size_t at = body.find(header);
+        if (at != std::string::npos && body.find_first_not_of(" \t\r\n") == at) body.replace(at, header.size(), header.size(), ' ');
+    }
+    return body;
+}
+
+// A message "JOINED: line N: ..." about the joined document, said of the file line N is in.
+std::string said_of_its_file(const std::string& message, const std::string& joined, std::size_t first_lines,
+                             const std::string& first, const std::string& second) {
+    const std::string prefix = joined + ": line ";
+    if (!message.starts_with(prefix)) return message;
+    std::size_t end = prefix.size();
+    std::size_t line = 0;
+    while (end < message.size() && end - prefix.size() < 9 && message[end] >= '0' && message[end] <= '9')
+        line = 10 * line + static_cast<std::size_t>(message[end++] - '0');
+    if (end == prefix.size() || line == 0) return message;
+    const std::string rest = message.substr(end);
+    return line <= first_lines ? first + ": line " + std::to_string(line) + rest
+                               : second + ": line " + std::to_string(line - first_lines) + rest;
+}
+
+}  // namespace
+
+CameraSet parse_opencv_stereo_files(std::string_view intrinsics, const std::string& intrinsics_source,
+                                    std::string_view extrinsics, const std::string& extrinsics_source,
+                                    const ReadOptions& options) {
+    std::string joined(intrinsics);
+    if (!joined.empty() && !joined.ends_with('\n')) joined += '\n';
+    const auto first_lines = static_cast<std::size_t>(std::count(joined.begin(), joined.end(), '\n'));
+    joined += without_yaml_header(extrinsics);
+    const std::string source = intrinsics_source + " with " + extrinsics_source;
+    try {
+        return parse_camera_set(joined, CameraFormat::OpenCvYaml, source, options);
+    } catch (const FileError& error) {
+        throw FileError(said_of_its_file(error.what(), source, first_lines, intrinsics_source, extrinsics_source));
+    }
+}
+
 CameraFile parse_camera(std::string_view text, CameraFormat format, const std::string& source,
                         const ReadOptions& options) {
     return parse_camera_set(text, format, source, options).cameras.front().file;

@@ -55,6 +55,16 @@ CameraFile parse_camera(std::string_view text, CameraFormat format, const std::s
 CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std::string& source,
                            const ReadOptions& options = {});
 
+// OpenCV's stereo_calib sample writes a calibrated pair in two files: intrinsics.yml (M1 D1
+// M2 D2, and the image size where it was given one) and extrinsics.yml (R T, and its
+// rectification). Whether `text` is the second kind (R and T, no camera matrix).
+bool is_opencv_stereo_extrinsics(std::string_view text);
+// The pair's two cameras from the two files' texts, read as one OpenCV YAML document; an
+// error about a line names the file that line is in and its line there.
+CameraSet parse_opencv_stereo_files(std::string_view intrinsics, const std::string& intrinsics_source,
+                                    std::string_view extrinsics, const std::string& extrinsics_source,
+                                    const ReadOptions& options = {});
+
 // Reads every camera of a file, in `format` or else the format its extension and
 // contents say: .json is libcam's, gl, basalt's or NeRF's by its keys; .yaml/.yml
 // OpenCV's, Kalibr's or camodocal's; .txt and .bin COLMAP's; without a known extension,

@@ -253,7 +253,18 @@ def bad_input(np, cv2, libcam, work):
     no_size = write_stereo_files(cv2, work, "nosize", np.array([[300.0, 0, 159.5], [0, 300, 119.5], [0, 0, 1]]),
                                  np.zeros(5), np.array([[300.0, 0, 159.5], [0, 300, 119.5], [0, 0, 1]]), np.zeros(5),
                                  R, np.array([[-0.1], [0.0], [0.0]]))
-    for label, args, words in (("one camera", [one], "holds one camera"),
+    # A bad number in the second of OpenCV's two files: the line named is that file's own.
+    bad_extrinsics = os.path.join(work, "bad-extrinsics.yml")
+    with open(no_size[1]) as f:
+        lines = f.read().splitlines()
+    t_data = next(i for i, line in enumerate(lines) if line.strip().startswith("data:") and i > next(
+        j for j, key in enumerate(lines) if key.startswith("T:")))
+    lines[t_data] = lines[t_data].replace("[", "[ zz,", 1)
+    with open(bad_extrinsics, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    for label, args, words in (("a bad number in extrinsics.yml", [no_size[0], bad_extrinsics, "--size", "320x240"],
+                                f"{bad_extrinsics}: line {t_data + 1}: "),
+                               ("one camera", [one], "holds one camera"),
                                ("same centre", [same_centre], "same centre"),
                                ("no image size", list(no_size), "--size"),
                                ("maps of an unknown kind", list(no_size) + ["--size", "320x240", "--maps", "tiff"],

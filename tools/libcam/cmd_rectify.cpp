@@ -63,25 +63,6 @@ Keep keep_from(const std::string& text) {
                      "'");
 }
 
-// OpenCV's stereo_calib sample writes the pair in two files: intrinsics.yml (M1 D1 M2 D2)
-// and extrinsics.yml (R T, and its rectification). Whether `path` is the second kind.
-bool is_opencv_extrinsics(const std::string& text) {
-    const auto has_key = [&](const std::string& key) {
-        return text.starts_with(key + ":") || text.find("\n" + key + ":") != std::string::npos;
-    };
-    return has_key("R") && has_key("T") && !has_key("M1") && !has_key("K1") && !has_key("camera_matrix");
-}
-
-// The two files as one document: the second's keys after the first's (its YAML header left out).
-std::string joined_yaml(const std::string& first, const std::string& second) {
-    std::string body = second;
-    for (const std::string header : {"%YAML:1.0", "%YAML 1.0", "---"}) {
-        const std::size_t at = body.find(header);
-        if (at != std::string::npos && body.find_first_not_of(" \t\r\n") == at) body.erase(0, at + header.size());
-    }
-    return first + (first.ends_with("\n") ? "" : "\n") + body;
-}
-
 // Every camera the sources hold, in order: one file with two or more posed cameras, OpenCV's
 // two stereo files, or two files of one camera each (mrcal's .cameramodel with extrinsics).
 std::vector<NamedCamera> cameras_of(const RectifyFlags& flags, const ReadOptions& options) {
@@ -89,9 +70,9 @@ std::vector<NamedCamera> cameras_of(const RectifyFlags& flags, const ReadOptions
     if (flags.sources.size() == 2) {
         const std::string& second = flags.sources[1];
         const std::string second_text = read_text_file(second, kCameraFileLimit);
-        if (is_opencv_extrinsics(second_text)) {
-            const std::string joined = joined_yaml(read_text_file(first, kCameraFileLimit), second_text);
-            return parse_camera_set(joined, CameraFormat::OpenCvYaml, first + " with " + second, options).cameras;
+        if (is_opencv_stereo_extrinsics(second_text)) {
+            return parse_opencv_stereo_files(read_text_file(first, kCameraFileLimit), first, second_text, second, options)
+                .cameras;
         }
     }
     std::vector<NamedCamera> cameras;
