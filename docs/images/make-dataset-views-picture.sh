@@ -27,38 +27,16 @@ here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$work/scene/images"
 # The fisheye photo: each pixel's ray (Kannala-Brandt inverted by Newton's method) meets
 # the walls of a room, each wall checkered in its own colour.
-/usr/bin/python3 - "$work/scene/sparse/0/cameras.txt" "$work/scene/images/image.png" <<'PY'
-import sys, numpy as np, cv2
+/usr/bin/python3 - "$work/scene/sparse/0/cameras.txt" "$work/scene/images/image.png" "$here" <<'PY'
+import sys, cv2
+sys.path.insert(0, sys.argv[3])
+from fisheye_room import kannala_brandt_rays, room_image
 line = [l for l in open(sys.argv[1]) if l.strip() and not l.startswith("#")][0].split()
 w, h = int(line[2]), int(line[3])
 fx, fy, cx, cy, *k = map(float, line[4:])
 cx, cy = cx - 0.5, cy - 0.5  # COLMAP's pixels to OpenCV's
-y, x = np.mgrid[0:h, 0:w].astype(np.float64)
-a, b = (x - cx) / fx, (y - cy) / fy
-theta_d = np.hypot(a, b)
-theta = theta_d.copy()
-for _ in range(30):
-    t2 = theta * theta
-    f = theta * (1 + t2 * (k[0] + t2 * (k[1] + t2 * (k[2] + t2 * k[3])))) - theta_d
-    df = 1 + t2 * (3 * k[0] + t2 * (5 * k[1] + t2 * (7 * k[2] + t2 * 9 * k[3])))
-    theta = theta - f / df
-scale = np.where(theta_d > 0, np.sin(theta) / np.maximum(theta_d, 1e-12), 1.0)
-ray = np.dstack([a * scale, b * scale, np.cos(theta)])
-centre = np.array([0.3, -0.2, 0.0])  # the camera, off the room's centre
-half = np.array([2.0, 1.5, 2.5])
-# The wall each ray leaves the room through: the smallest positive distance over the axes.
-with np.errstate(divide="ignore", invalid="ignore"):
-    dist = np.where(ray > 0, (half - centre) / ray, np.where(ray < 0, (-half - centre) / ray, np.inf))
-axis = np.argmin(dist, axis=2)
-hit = centre + ray * np.take_along_axis(dist, axis[..., None], 2)
-sign = np.take_along_axis(np.sign(ray), axis[..., None], 2)[..., 0]
-wall = axis * 2 + (sign > 0)
-u = np.where(axis == 0, hit[..., 2], hit[..., 0])
-v = np.where(axis == 1, hit[..., 2], hit[..., 1])
-board = ((np.floor(u / 0.4) + np.floor(v / 0.4)) % 2).astype(np.float64)
-tints = np.array([[90, 160, 230], [230, 140, 90], [120, 210, 120], [200, 200, 200], [210, 120, 210], [90, 200, 220]], np.float64)
-image = tints[wall] * (0.45 + 0.55 * board[..., None])
-cv2.imwrite(sys.argv[2], np.clip(image, 0, 255).astype(np.uint8))
+# The camera off the room's centre.
+cv2.imwrite(sys.argv[2], room_image(kannala_brandt_rays(w, h, fx, fy, cx, cy, k), [0.3, -0.2, 0.0]))
 PY
 
 "$libcam" dataset "$work/scene/sparse/0" -o "$work/views" --camera views --json > "$work/views.json"

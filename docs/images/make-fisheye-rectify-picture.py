@@ -6,9 +6,8 @@ rectification (`libcam rectify --to latlon`). Each picture's caption says the sh
 fisheye's pixels whose view lands in it.
 
 The pair (Kannala-Brandt lenses of 848x800 as a RealSense T265's factory calibration, 6.4 cm
-apart) stands inside a room 4 m wide whose walls, floor and ceiling are chessboards of their
-own colour. Each fisheye image is drawn here by tracing every pixel's ray (its angle from
-the axis solved from the lens's polynomial) to the wall it meets.
+apart) stands inside a room of checkered walls (fisheye_room.py: every pixel's ray traced to
+the wall it meets).
 
 Usage: make-fisheye-rectify-picture.py LIBCAM [OUTPUT_PNG]
 """
@@ -22,51 +21,24 @@ import tempfile
 import cv2
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fisheye_room import kannala_brandt_rays, room_image  # noqa: E402
+
 SIZE = (848, 800)
 K = [[286.2, 286.0, 421.5, 398.2], [285.4, 285.3, 425.1, 401.0]]
 D = [[-0.0085, 0.047, -0.044, 0.0084], [-0.0071, 0.043, -0.041, 0.0078]]
 RVEC_RIGHT = [0.002, -0.003, 0.001]       # the right camera's turn
 CENTRE_RIGHT = [0.064, 0.0002, -0.0003]   # and its centre, in the left camera's frame (m)
-ROOM_HALF_WIDTH = 2.0
-FACE_COLOURS = [(60, 60, 220), (60, 200, 60), (220, 120, 40), (40, 200, 220), (200, 60, 200), (180, 180, 180)]
 
 
 def rays(k, d):
-    """Each pixel's ray (H, W, 3) through a Kannala-Brandt lens: theta solved from
-    theta_d = theta (1 + k1 theta^2 + k2 theta^4 + k3 theta^6 + k4 theta^8) by Newton."""
-    u, v = np.meshgrid(np.arange(SIZE[0], dtype=float), np.arange(SIZE[1], dtype=float))
-    x, y = (u - k[2]) / k[0], (v - k[3]) / k[1]
-    theta_d = np.hypot(x, y)
-    theta = theta_d.copy()
-    for _ in range(20):
-        t2 = theta * theta
-        f = theta * (1 + t2 * (d[0] + t2 * (d[1] + t2 * (d[2] + t2 * d[3])))) - theta_d
-        df = 1 + t2 * (3 * d[0] + t2 * (5 * d[1] + t2 * (7 * d[2] + t2 * 9 * d[3])))
-        theta -= f / df
-    scale = np.where(theta_d > 0, np.sin(theta) / np.maximum(theta_d, 1e-300), 1.0)
-    return np.stack([x * scale, y * scale, np.cos(theta)], axis=-1)
+    """Each pixel's ray (H, W, 3) through one of the pair's lenses."""
+    return kannala_brandt_rays(SIZE[0], SIZE[1], k[0], k[1], k[2], k[3], d)
 
 
 def render(k, d, R_cam_from_left, centre):
-    """The room seen through one lens: the nearest wall each ray meets, a chessboard of 25 cm
-    squares in that wall's colour."""
-    directions = rays(k, d) @ R_cam_from_left  # in the left camera's frame (rows: R^T v)
-    distance = np.full(directions.shape[:2], np.inf)
-    image = np.zeros(directions.shape[:2] + (3,), np.uint8)
-    for axis in range(3):
-        for sign in (-1, 1):
-            component = directions[..., axis]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                t = (sign * ROOM_HALF_WIDTH - centre[axis]) / component
-            hit = (t > 0) & (t < distance)
-            distance = np.where(hit, t, distance)
-            point = centre + directions * t[..., None]
-            others = [a for a in range(3) if a != axis]
-            squares = (np.floor(point[..., others[0]] / 0.25) + np.floor(point[..., others[1]] / 0.25)) % 2
-            colour = np.array(FACE_COLOURS[2 * axis + (sign > 0)], float)
-            shade = np.where(squares[..., None] > 0, colour, 0.35 * colour + 20)
-            image = np.where(hit[..., None], shade.astype(np.uint8), image)
-    return image
+    """The room seen through one lens from `centre` (in the left camera's frame)."""
+    return room_image(rays(k, d) @ R_cam_from_left, centre)  # rows: R^T v, the rays in the left camera's frame
 
 
 def kalibr_camchain(R, t):
@@ -143,7 +115,7 @@ def main():
     width, height = report["cameras"][0]["image_size"]
 
     panels = [
-        captioned(images[0], ["The left fisheye (848x800, T265-like)", "a room of 4 m, chessboard walls"], 400),
+        captioned(images[0], ["The left fisheye (848x800, T265-like)", "a room of checkered walls"], 400),
         captioned(opencv_left, ["OpenCV: cv2.fisheye.stereoRectify, f " f"{P1[0, 0]:.1f} px",
                                 f"{100 * opencv_kept:.0f}% kept, the centre {K[0][0] / P1[0, 0]:.1f}x smaller"], 400),
         captioned(libcam_left, [f"libcam rectify --to latlon, {width}x{height}",
