@@ -48,6 +48,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -146,6 +147,8 @@ struct DatasetPlan {
     DatasetSummary summary;
     std::vector<ImageTask> tasks;
     DatasetStaging staging;  // what finish_dataset moves into place
+    // The output folder locked against another run while any copy of the plan lives.
+    std::shared_ptr<const OutputLock> lock;
 };
 DatasetPlan plan_dataset(const DatasetOptions& options);
 

@@ -1,9 +1,15 @@
 #include "libcam/dataset/dataset_staging.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <optional>
 #include <set>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include "libcam/error.hpp"
 #include "libcam/dataset/detail/dataset_paths.hpp"
@@ -116,6 +122,25 @@ bool EarlierWork::finished(const fs::path& relative, const std::string& name) co
     const bool vouched = output_matches_ || std::binary_search(finishing_.begin(), finishing_.end(), name);
     return vouched && fs::is_regular_file(staging_.output / relative, error);
 }
+
+OutputLock::OutputLock(const std::filesystem::path& output) {
+    std::error_code error;
+    std::filesystem::create_directories(output, error);
+    if (error) throw FileError(output.string() + ": cannot make the output folder: " + error.message());
+    descriptor_ = ::open(output.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (descriptor_ < 0) throw FileError(output.string() + ": cannot open the output folder: " + std::strerror(errno));
+    if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
+        const int cause = errno;
+        ::close(descriptor_);
+        if (cause == EWOULDBLOCK) {
+            throw FileError(output.string() + ": another libcam dataset run is writing this folder; wait for it to "
+                                              "finish, or give another output folder");
+        }
+        throw FileError(output.string() + ": cannot lock the output folder: " + std::strerror(cause));
+    }
+}
+
+OutputLock::~OutputLock() { ::close(descriptor_); }
 
 void check_staging_folder(const fs::path& folder) {
     std::error_code error;

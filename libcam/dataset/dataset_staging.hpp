@@ -63,6 +63,22 @@ private:
     std::vector<std::string> finishing_;  // sorted: the names an interrupted finish was moving
 };
 
+// Held by a run from its first write until it has finished or stopped: an exclusive lock on
+// OUT itself (flock on the folder: no file is added to OUT), so that a second run on the same
+// OUT is refused at once instead of mixing its files with the first's. The lock goes with
+// the process: a run that is killed leaves none behind. Makes OUT when it is not there;
+// FileError when another run holds it, or OUT cannot be made or opened.
+class OutputLock {
+public:
+    explicit OutputLock(const std::filesystem::path& output);
+    ~OutputLock();
+    OutputLock(const OutputLock&) = delete;
+    OutputLock& operator=(const OutputLock&) = delete;
+
+private:
+    int descriptor_ = -1;
+};
+
 // Throws FileError for a staging folder that is a symbolic link (a run's work stays in a
 // folder of its own).
 void check_staging_folder(const std::filesystem::path& folder);

@@ -55,7 +55,9 @@ def plan(
     observations moved, the model (sparse/0, or transforms.json with to="nerf") and the stamp
     written to OUTPUT/.libcam-dataset-partial; returns the tasks of the images still to
     write (those of an earlier run with the same options are kept and not listed). Nothing
-    is in OUTPUT itself until finish(plan).
+    is in OUTPUT itself until finish(plan). The plan holds OUTPUT until finish(plan) or until
+    it is deleted: meanwhile another run on OUTPUT (another plan, `libcam dataset`) raises
+    libcam.FileError.
 
     src: a COLMAP model folder or a transforms.json. images: the source images (default:
     X/images for X/sparse/0; a transforms.json's own folder or its images/). camera:

@@ -205,12 +205,13 @@ False). libcam.dataset.finish(plan) moves the whole into place once every task h
 
     m.def(
         "dataset_finish",
-        [](const PythonPlan& plan) {
+        [](PythonPlan& plan) {
             DatasetSummary summary;
             {
                 py::gil_scoped_release release;
                 summary = finish_dataset(plan.plan);
             }
+            plan.plan.lock.reset();  // finished: the output folder is free for another run
             return summary_dict(summary);
         },
         py::arg("plan"), "libcam.dataset.finish (the docstring is there).");
