@@ -320,7 +320,7 @@ DatasetPlan plan_dataset(const DatasetOptions& given) {
     if (!options.images.empty()) {
         plan.tasks = dataset_image_tasks(options, plan.staging, model.images, source_names, camera_of, summary);
     }
-    plan.lock = std::make_shared<const OutputLock>(options.output);
+    plan.lock = lock_output(options.output);
     prepare_staging(plan.staging);
     write_staged_model(options, plan.staging, new_records, model.images, points, model.world);
     plan.summary = std::move(summary);

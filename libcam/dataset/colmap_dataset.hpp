@@ -147,7 +147,8 @@ struct DatasetPlan {
     DatasetSummary summary;
     std::vector<ImageTask> tasks;
     DatasetStaging staging;  // what finish_dataset moves into place
-    // The output folder locked against another run while any copy of the plan lives.
+    // The output folder locked against another process's run while any copy of the plan
+    // lives (lock_output).
     std::shared_ptr<const OutputLock> lock;
 };
 DatasetPlan plan_dataset(const DatasetOptions& options);

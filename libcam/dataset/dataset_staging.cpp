@@ -4,6 +4,9 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 
@@ -124,9 +127,6 @@ bool EarlierWork::finished(const fs::path& relative, const std::string& name) co
 }
 
 OutputLock::OutputLock(const std::filesystem::path& output) {
-    std::error_code error;
-    std::filesystem::create_directories(output, error);
-    if (error) throw FileError(output.string() + ": cannot make the output folder: " + error.message());
     descriptor_ = ::open(output.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (descriptor_ < 0) throw FileError(output.string() + ": cannot open the output folder: " + std::strerror(errno));
     if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
@@ -141,6 +141,22 @@ OutputLock::OutputLock(const std::filesystem::path& output) {
 }
 
 OutputLock::~OutputLock() { ::close(descriptor_); }
+
+std::shared_ptr<const OutputLock> lock_output(const std::filesystem::path& output) {
+    std::error_code error;
+    std::filesystem::create_directories(output, error);
+    if (error) throw FileError(output.string() + ": cannot make the output folder: " + error.message());
+    // A folder's one name in this process, whichever path led to it.
+    const std::string key = std::filesystem::weakly_canonical(output, error).string();
+    static std::mutex mutex;
+    static std::map<std::string, std::weak_ptr<const OutputLock>> held;
+    const std::lock_guard<std::mutex> guard(mutex);
+    std::weak_ptr<const OutputLock>& entry = held[error ? output.string() : key];
+    if (std::shared_ptr<const OutputLock> lock = entry.lock()) return lock;
+    auto lock = std::make_shared<const OutputLock>(output);
+    entry = lock;
+    return lock;
+}
 
 void check_staging_folder(const fs::path& folder) {
     std::error_code error;

@@ -16,6 +16,7 @@
 // keeps an image listed there found in OUT as one of this run's, and finishes the moves.
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -64,10 +65,10 @@ private:
 };
 
 // Held by a run from its first write until it has finished or stopped: an exclusive lock on
-// OUT itself (flock on the folder: no file is added to OUT), so that a second run on the same
-// OUT is refused at once instead of mixing its files with the first's. The lock goes with
-// the process: a run that is killed leaves none behind. Makes OUT when it is not there;
-// FileError when another run holds it, or OUT cannot be made or opened.
+// OUT itself (flock on the folder: no file is added to OUT), so that a run of another
+// process on the same OUT is refused at once instead of mixing its files with this one's.
+// The lock goes with the process: a run that is killed leaves none behind. Made by
+// lock_output.
 class OutputLock {
 public:
     explicit OutputLock(const std::filesystem::path& output);
@@ -78,6 +79,11 @@ public:
 private:
     int descriptor_ = -1;
 };
+
+// OUT's lock: the one this process already holds for it (plans made again in one process,
+// to resume or after a failure, share it), else a new one. Makes OUT when it is not there;
+// FileError when another process holds it, or OUT cannot be made or opened.
+std::shared_ptr<const OutputLock> lock_output(const std::filesystem::path& output);
 
 // Throws FileError for a staging folder that is a symbolic link (a run's work stays in a
 // folder of its own).

@@ -56,8 +56,8 @@ def plan(
     written to OUTPUT/.libcam-dataset-partial; returns the tasks of the images still to
     write (those of an earlier run with the same options are kept and not listed). Nothing
     is in OUTPUT itself until finish(plan). The plan holds OUTPUT until finish(plan) or until
-    it is deleted: meanwhile another run on OUTPUT (another plan, `libcam dataset`) raises
-    libcam.FileError.
+    it is deleted: meanwhile a run on OUTPUT in another process (`libcam dataset`, another
+    Python) is refused. Plans made again in this process share the hold.
 
     src: a COLMAP model folder or a transforms.json. images: the source images (default:
     X/images for X/sparse/0; a transforms.json's own folder or its images/). camera:
