@@ -238,19 +238,25 @@ std::optional<std::size_t> choose(const std::vector<CandidateReport>& reports) {
 
 }  // namespace
 
+std::string HeldParameters::text() const {
+    std::string out = square_pixels ? "fx = fy" : "";
+    for (const std::string& name : zero_coefficients) out += (out.empty() ? "" : ", ") + name + " = 0";
+    return out;
+}
+
 int Candidate::num_params() const {
     if (look_at) return 1;
     return static_cast<int>(core_count(*this)) + lens_info(lens).num_coefficients - held_coefficients;
 }
 
 namespace {
-const Candidate kLookAtCandidate{"LOOK_AT", LensType::Pinhole, true};
+const Candidate kLookAtCandidate{"LOOK_AT", LensType::Pinhole, true, 0.0, 0, {}};
 // The look-at candidate's name before it was LOOK_AT, taken for one more release ("FOV"
 // also names Devernay and Faugeras' lens model, which libcam fit does not fit).
 constexpr std::string_view kLookAtOldName = "FOV";
 
 Candidate candidate_of(const LensInfo& info) {
-    return {info.name, info.type, false, info.fit_sensor_width_mm, info.fit_held_coefficients};
+    return {info.name, info.type, false, info.fit_sensor_width_mm, info.fit_held_coefficients, {}};
 }
 }  // namespace
 

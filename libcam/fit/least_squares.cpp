@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 
 #include "libcam/error.hpp"
 #include "libcam/fit/observation_fit.hpp"
@@ -205,8 +206,51 @@ int solve_or_throw(const ceres::Solver::Options& options, ceres::Problem& proble
     return static_cast<int>(summary.iterations.size());
 }
 
+// The intrinsics move only along the candidate's free directions B (free_directions,
+// orthonormal columns): x + B delta, so that what is held stays held.
+class FreeDirectionsManifold : public ceres::Manifold {
+public:
+    explicit FreeDirectionsManifold(Eigen::MatrixXd directions) : directions_(std::move(directions)) {}
+    int AmbientSize() const override { return static_cast<int>(directions_.rows()); }
+    int TangentSize() const override { return static_cast<int>(directions_.cols()); }
+    bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
+        Eigen::Map<Eigen::VectorXd>(x_plus_delta, directions_.rows()) =
+            Eigen::Map<const Eigen::VectorXd>(x, directions_.rows()) +
+            directions_ * Eigen::Map<const Eigen::VectorXd>(delta, directions_.cols());
+        return true;
+    }
+    bool PlusJacobian(const double* /*x*/, double* jacobian) const override {
+        Eigen::Map<RowMajor>(jacobian, directions_.rows(), directions_.cols()) = directions_;
+        return true;
+    }
+    bool Minus(const double* y, const double* x, double* y_minus_x) const override {
+        Eigen::Map<Eigen::VectorXd>(y_minus_x, directions_.cols()) =
+            directions_.transpose() * (Eigen::Map<const Eigen::VectorXd>(y, directions_.rows()) -
+                                       Eigen::Map<const Eigen::VectorXd>(x, directions_.rows()));
+        return true;
+    }
+    bool MinusJacobian(const double* /*x*/, double* jacobian) const override {
+        Eigen::Map<RowMajor>(jacobian, directions_.cols(), directions_.rows()) = directions_.transpose();
+        return true;
+    }
+
+private:
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    Eigen::MatrixXd directions_;
+};
+
+// The candidate's held parameters: the start moved onto them (B B^T params) and the solver
+// kept on them. Nothing held: nothing done.
+void hold_parameters(const Candidate& candidate, ceres::Problem& problem, std::vector<double>& params) {
+    if (!candidate.held.any()) return;
+    Eigen::MatrixXd directions = free_directions(candidate);
+    Eigen::Map<Eigen::VectorXd> values(params.data(), static_cast<Eigen::Index>(params.size()));
+    values = directions * (directions.transpose() * values);
+    problem.SetManifold(params.data(), new FreeDirectionsManifold(std::move(directions)));
+}
+
 template <class Model, Core kCore>
-LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSample>& observations,
+LeastSquaresState solve_with(const Candidate& candidate, const HeldIntrinsics& held, const std::vector<FitSample>& observations,
                              LeastSquaresState state, const SolveOptions& settings, const IterationHook& hook) {
     using Residuals = ReprojectionResiduals<Model, kCore>;
     if (state.params.size() != static_cast<std::size_t>(Residuals::kParams)) {
@@ -217,6 +261,7 @@ LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSa
         new Residuals(observations, settings.must_project, held), static_cast<int>(2 * observations.size()));
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, state.params.data(), state.rotation.data(), state.shift.data());
+    hold_parameters(candidate, problem, state.params);
     if (settings.motion == CameraMotion::None) problem.SetParameterBlockConstant(state.rotation.data());
     if (settings.motion != CameraMotion::RotationAndShift) problem.SetParameterBlockConstant(state.shift.data());
 
@@ -228,7 +273,7 @@ LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSa
 }
 
 template <class Model, Core kCore>
-ViewsState solve_views_with(const HeldIntrinsics& held, const std::vector<std::vector<FitSample>>& views,
+ViewsState solve_views_with(const Candidate& candidate, const HeldIntrinsics& held, const std::vector<std::vector<FitSample>>& views,
                             ViewsState state, bool hold_intrinsics) {
     using Residuals = ReprojectionResiduals<Model, kCore>;
     if (state.params.size() != static_cast<std::size_t>(Residuals::kParams) || state.rotations.size() != views.size() ||
@@ -246,7 +291,11 @@ ViewsState solve_views_with(const HeldIntrinsics& held, const std::vector<std::v
         observations += views[v].size();
     }
     if (observations == 0) throw InvalidArgument("fit: no observations to fit");
-    if (hold_intrinsics) problem.SetParameterBlockConstant(state.params.data());
+    if (hold_intrinsics) {
+        problem.SetParameterBlockConstant(state.params.data());
+    } else {
+        hold_parameters(candidate, problem, state.params);
+    }
     ceres::Solver::Options options = solver_options();
     // The poses are independent given the intrinsics: Ceres eliminates them (the Schur
     // complement), leaving a system the size of the intrinsics.
@@ -325,7 +374,7 @@ ViewsState solve_views(const Candidate& candidate, const ImageSize& size,
                        const std::vector<std::vector<FitSample>>& views, ViewsState start, bool hold_intrinsics) {
     const HeldIntrinsics held = held_for(candidate, size);
     return with_candidate(candidate, [&]<class Model, Core kCore>() {
-        return solve_views_with<Model, kCore>(held, views, std::move(start), hold_intrinsics);
+        return solve_views_with<Model, kCore>(candidate, held, views, std::move(start), hold_intrinsics);
     });
 }
 
@@ -334,7 +383,7 @@ LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSiz
                                       const SolveOptions& options, const IterationHook& hook) {
     const HeldIntrinsics held = held_for(candidate, size);
     return with_candidate(candidate, [&]<class Model, Core kCore>() {
-        return solve_with<Model, kCore>(held, observations, std::move(start), options, hook);
+        return solve_with<Model, kCore>(candidate, held, observations, std::move(start), options, hook);
     });
 }
 

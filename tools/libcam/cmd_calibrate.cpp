@@ -17,6 +17,7 @@
 #include "json_output.hpp"
 #include "libcam/calibrate/calibrate.hpp"
 #include "libcam/calibrate/observations_output.hpp"
+#include "libcam/calibrate/opencv_flags.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
@@ -39,8 +40,11 @@ struct CalibrateFlags {
     std::vector<std::string> inputs;
     std::string board;
     std::string models;
+    std::string opencv_flags;
+    std::string corners = "libcam";
     int folds = 5;
     double margin = 0.05;
+    bool keep_outliers = false;
     bool json = false;
     std::string output;
     std::string to;
@@ -62,6 +66,17 @@ void add_flags(CLI::App& command, CalibrateFlags& flags) {
     command.add_option("--model", flags.models,
                        "Fit these models, comma-separated, simplest first; auto (default): PINHOLE, OPENCV4, "
                        "OPENCV5, OPENCV8, FISHEYE, and STEREOGRAPHIC where the corners reach 45 degrees from the axis");
+    command.add_option("--opencv-flags", flags.opencv_flags,
+                       "Hold what OpenCV's calibrateCamera flags hold, to reproduce a calibration made with them: "
+                       "FIX_ASPECT_RATIO (fx = fy), ZERO_TANGENT_DIST (p1 = p2 = 0), FIX_K1 ... FIX_K6 (that "
+                       "coefficient at 0); OpenCV's names (CALIB_ optional), comma-separated, or the number its files "
+                       "store (flags: 2)");
+    command.add_option("--corners", flags.corners,
+                       "How a chessboard's corners are found: libcam (default; findChessboardCornersSB, each corner "
+                       "refined in a window within its own squares) or opencv-sample (as OpenCV's calibration sample: "
+                       "findChessboardCorners, cornerSubPix in an 11x11 window), to reproduce its results")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"libcam", "opencv-sample"}));
     command.add_option("--folds", flags.folds, "The views are dealt into this many folds for the held-out RMS")
         ->capture_default_str()
         ->check(CLI::Range(2, 1000));
@@ -69,6 +84,8 @@ void add_flags(CLI::App& command, CalibrateFlags& flags) {
                        "The chosen model's held-out RMS may exceed the best one's by this fraction")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 10.0));
+    command.add_flag("--keep-outliers", flags.keep_outliers,
+                     "Fit every corner found, none dropped as an outlier (as OpenCV's calibrateCamera takes them)");
     command.add_flag("--json", flags.json, "Print JSON");
     command.add_option("-o,--output", flags.output, "Write the chosen calibration to this file (written atomically)");
     command.add_option("--to", flags.to,
@@ -231,6 +248,7 @@ std::string format_text(const Calibration& c, const ChosenUncertainty& at) {
     if (c.rounds_capped) {
         out << "the outlier rounds stopped after " << c.rounds << " fits with corners still beyond the limit\n";
     }
+    if (c.held.any()) out << "held in every model, as OpenCV's flags ask: " << c.held.text() << "\n";
     out << "\n" << candidates_table(c.fit) << "\n" << uncertainty_table(c) << "\n";
     out << "chosen: " << c.fit.reason << "\n";
     out << "  image size " << c.size.width << "x" << c.size.height << "\n";
@@ -271,6 +289,7 @@ std::string format_json(const Calibration& c, const ChosenUncertainty& at) {
     for (const RejectedImage& r : c.rejected) out["rejected"].push_back({{"image", r.image}, {"why", r.why}});
     out["corners"] = c.corners();
     out["board"] = c.board.text();
+    out["held"] = c.held.text();
     out["outliers"] = {{"corners", c.outliers},
                        {"noise_px", c.noise_px},
                        {"fits", c.rounds},
@@ -324,6 +343,14 @@ BoardSpec board_from(const std::string& text) {
     }
 }
 
+HeldParameters opencv_flags_from(const std::string& text) {
+    try {
+        return held_by_opencv_flags(text);
+    } catch (const InvalidArgument& error) {
+        throw UsageError(error.what());
+    }
+}
+
 // The chosen model's uncertainty over the image, with the corners kept.
 void write_heatmap(const std::string& path, const Calibration& c) {
     const SolvedCalibration solved = c.solved(*c.fit.chosen);
@@ -364,20 +391,23 @@ Runner add_calibrate(CLI::App& app) {
     CLI::App* command = add_command(app, "calibrate");
     auto flags = std::make_shared<CalibrateFlags>();
     add_flags(*command, *flags);
-    return [flags] {
+    return [flags, command] {
         // Every flag checked before any work.
         const ProgressMode progress_when = progress_mode(flags->progress);
         const BoardSpec board = board_from(flags->board);
         CalibrationOptions options;
+        if (command->count("--opencv-flags") > 0) options.held = opencv_flags_from(flags->opencv_flags);
         options.candidates = flags->models == "auto" ? std::vector<Candidate>{} : candidates_from(flags->models);
         options.folds = flags->folds;
         options.margin = flags->margin;
+        if (flags->keep_outliers) options.outlier_sigmas = std::numeric_limits<double>::infinity();
         if (!flags->output.empty()) output_format(*flags);
         for (const std::string& pixel : flags->at) parse_vec2("--at", pixel);  // on the image: checked once its size is known
         const std::vector<std::filesystem::path> images = images_of(flags->inputs);
         ProgressPrinter printer(progress_when);
         const std::vector<BoardDetection> detections = detect_boards(
-            images, board, flags->threads, [&](std::size_t done) { printer.found(done, images.size()); });
+            images, board, flags->threads, [&](std::size_t done) { printer.found(done, images.size()); },
+            flags->corners == "opencv-sample" ? CornerMethod::OpenCvSample : CornerMethod::Libcam);
         options.stage = [&](const std::string& what) { printer.stage(what); };
         const Calibration calibration = calibrate(detections, board, options);
         const ChosenUncertainty at = chosen_uncertainty(calibration, flags->at);
