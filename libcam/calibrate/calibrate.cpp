@@ -231,6 +231,13 @@ std::vector<double> Calibration::view_errors(std::size_t v) const {
     return reprojection_errors(camera, samples);
 }
 
+double Calibration::view_rms_px(std::size_t v) const {
+    double sum = 0.0;
+    const std::vector<double> errors = view_errors(v);
+    for (const double e : errors) sum += e * e;
+    return std::sqrt(sum / static_cast<double>(errors.size()));
+}
+
 std::vector<Candidate> default_calibration_candidates(double widest_angle_deg) {
     std::vector<Candidate> list;
     for (const char* name : {"PINHOLE", "OPENCV4", "OPENCV5", "OPENCV8", "FISHEYE"}) list.push_back(candidate_named(name));

@@ -88,6 +88,8 @@ struct Calibration {
     std::size_t corners() const;
     // |residual| of each kept corner of view v under the chosen camera and that view's pose.
     std::vector<double> view_errors(std::size_t v) const;
+    // Their RMS.
+    double view_rms_px(std::size_t v) const;
     // A fitted candidate (index into fit.candidates) as a solved calibration: its camera,
     // each view's pose under it and the corners kept.
     SolvedCalibration solved(std::size_t candidate) const;

@@ -16,6 +16,7 @@
 #include "fit_observations.hpp"
 #include "json_output.hpp"
 #include "libcam/calibrate/calibrate.hpp"
+#include "libcam/calibrate/calibration_json.hpp"
 #include "libcam/calibrate/observations_output.hpp"
 #include "libcam/calibrate/opencv_flags.hpp"
 #include "libcam/error.hpp"
@@ -184,13 +185,6 @@ std::string outlier_places(const Calibration& c) {
     return places;
 }
 
-double view_rms(const Calibration& c, std::size_t v) {
-    double sum = 0.0;
-    const std::vector<double> errors = c.view_errors(v);
-    for (const double e : errors) sum += e * e;
-    return std::sqrt(sum / static_cast<double>(errors.size()));
-}
-
 // Each candidate's projection uncertainty beside its held-out RMS.
 std::string uncertainty_table(const Calibration& c) {
     std::ostringstream out;
@@ -226,11 +220,7 @@ struct ChosenUncertainty {
 ChosenUncertainty chosen_uncertainty(const Calibration& c, const std::vector<std::string>& at) {
     ChosenUncertainty out;
     out.pixels = at.empty() ? std::vector<Vec2>{Vec2(c.size.centre_x(), c.size.centre_y())} : at_pixels(at, c.size);
-    if (c.uncertainty[*c.fit.chosen].computed) {
-        out.sigma_px = ProjectionUncertainty(c.solved(*c.fit.chosen)).sigma_px(out.pixels);
-    } else {
-        out.sigma_px.assign(out.pixels.size(), std::numeric_limits<double>::quiet_NaN());
-    }
+    out.sigma_px = chosen_sigma_px(c, out.pixels);
     return out;
 }
 
@@ -272,65 +262,13 @@ std::string format_text(const Calibration& c, const ChosenUncertainty& at) {
         name.resize(std::max<std::size_t>(name.size(), 26), ' ');
         std::string corners = std::to_string(c.views[v].ids.size());
         corners.resize(9, ' ');
-        out << name << corners << format_short(view_rms(c, v), 4) << "\n";
+        out << name << corners << format_short(c.view_rms_px(v), 4) << "\n";
     }
     return out.str();
 }
 
-Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
-
 std::string format_json(const Calibration& c, const ChosenUncertainty& at) {
-    const ObservationCandidate& chosen = c.chosen();
-    const Intrinsics& k = chosen.camera.intrinsics;
-    Json out;
-    out["images"] = c.images;
-    out["used"] = c.views.size();
-    out["rejected"] = Json::array();
-    for (const RejectedImage& r : c.rejected) out["rejected"].push_back({{"image", r.image}, {"why", r.why}});
-    out["corners"] = c.corners();
-    out["board"] = c.board.text();
-    out["held"] = c.held.text();
-    out["outliers"] = {{"corners", c.outliers},
-                       {"noise_px", c.noise_px},
-                       {"fits", c.rounds},
-                       {"stopped_at_limit", c.rounds_capped},
-                       {"images", Json::array()}};
-    for (const CalibrationView& view : c.views) {
-        if (!view.outlier_ids.empty()) {
-            out["outliers"]["images"].push_back({{"image", view.image}, {"corners", view.outlier_ids}});
-        }
-    }
-    out["chosen"] = {{"model", std::string(chosen.candidate.name)},
-                     {"image_size", {c.size.width, c.size.height}},
-                     {"K", {{k.fx, k.skew, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}}},
-                     {"dist", chosen.camera.lens.coefficients},
-                     {"rms_px", finite_or_null(chosen.rms_px)},
-                     {"heldout_rms_px", finite_or_null(chosen.heldout_rms_px)},
-                     {"reason", c.fit.reason}};
-    out["candidates"] = candidates_json(c.fit);
-    for (std::size_t i = 0; i < c.fit.candidates.size(); ++i) {
-        const CandidateUncertainty& u = c.uncertainty[i];
-        if (!c.fit.candidates[i].fitted) continue;
-        if (!u.computed) {
-            out["candidates"][i]["uncertainty"] = {{"failure", u.failure}};
-            continue;
-        }
-        out["candidates"][i]["uncertainty"] = {{"noise_px", u.noise_px},
-                                               {"centre_sigma_px", finite_or_null(u.centre_px)},
-                                               {"worst_observed_sigma_px", finite_or_null(u.worst_observed_px)},
-                                               {"parameters", parameters_json(u.parameters)}};
-    }
-    out["views"] = Json::array();
-    for (std::size_t v = 0; v < c.views.size(); ++v) {
-        const Pose& pose = chosen.poses[v];
-        out["views"].push_back({{"image", c.views[v].image},
-                                {"corners", c.views[v].ids.size()},
-                                {"rms_px", finite_or_null(view_rms(c, v))},
-                                {"rvec", vec_json(pose.rvec())},
-                                {"tvec", vec_json(pose.t)}});
-    }
-    out["uncertainty"] = at_json(at.pixels, at.sigma_px);
-    return out.dump(2) + "\n";
+    return calibration_json(c, at.pixels, at.sigma_px);
 }
 
 CameraFormat output_format(const CalibrateFlags& flags) { return output_format_of(flags.to, flags.output); }
