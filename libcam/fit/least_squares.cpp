@@ -146,6 +146,50 @@ private:
     HeldIntrinsics held_;
 };
 
+// The second camera of a pair: a board point carried into the first camera by the board's
+// pose, into the second by the pair's, then projected (solve_pair).
+template <class Model, Core kCore>
+class SecondCameraResiduals {
+public:
+    static constexpr int kCoreParams = ReprojectionResiduals<Model, kCore>::kCoreParams;
+    static constexpr int kHeld = ReprojectionResiduals<Model, kCore>::kHeld;
+    static constexpr int kParams = ReprojectionResiduals<Model, kCore>::kParams;
+
+    SecondCameraResiduals(const std::vector<FitSample>& observations, const HeldIntrinsics& held)
+        : observations_(observations), held_(held) {}
+
+    template <class T>
+    bool operator()(const T* intrinsics, const T* board_rotation, const T* board_shift, const T* rotation,
+                    const T* shift, T* residuals) const {
+        std::array<double, Model::num_coefficients> coefficients{};
+        for (int i = kHeld; i < Model::num_coefficients; ++i) {
+            coefficients[static_cast<std::size_t>(i)] = scalar_part(intrinsics[kCoreParams + i - kHeld]);
+        }
+        if (!coefficients_allowed<Model>(coefficients)) return false;
+        const typename LensInScalar<Model, T>::Parameters lens = lens_parameters<Model, kHeld>(intrinsics + kCoreParams);
+        for (std::size_t i = 0; i < observations_.size(); ++i) {
+            const Vec3& p = observations_[i].point;
+            const T point[3] = {T(p.x()), T(p.y()), T(p.z())};
+            T on_board[3], in_second[3];
+            ceres::AngleAxisRotatePoint(board_rotation, point, on_board);
+            for (int k = 0; k < 3; ++k) on_board[k] += board_shift[k];
+            ceres::AngleAxisRotatePoint(rotation, on_board, in_second);
+            const Eigen::Matrix<T, 3, 1> camera_point(in_second[0] + shift[0], in_second[1] + shift[1],
+                                                      in_second[2] + shift[2]);
+            Eigen::Matrix<T, 2, 1> m;
+            if (!LensInScalar<Model, T>::project(lens, camera_point, m)) return false;
+            const Eigen::Matrix<T, 2, 1> pixel = pixel_from_normalized<kCore>(intrinsics, held_, m);
+            residuals[2 * i] = pixel.x() - T(observations_[i].pixel.x());
+            residuals[2 * i + 1] = pixel.y() - T(observations_[i].pixel.y());
+        }
+        return true;
+    }
+
+private:
+    const std::vector<FitSample>& observations_;
+    HeldIntrinsics held_;
+};
+
 // Reports each iteration, and ends the solve once the RMS error is negligible.
 class IterationWatch : public ceres::IterationCallback {
 public:
@@ -325,6 +369,42 @@ auto with_candidate(const Candidate& candidate, Body&& body) {
     });
 }
 
+// The first camera's residual blocks of a pair (solve_pair): as solve_views_with's.
+template <class Model, Core kCore>
+void add_first_camera(const Candidate& candidate, const HeldIntrinsics& held, const std::vector<std::vector<FitSample>>& views,
+                      ViewsState& state, ceres::Problem& problem) {
+    using Residuals = ReprojectionResiduals<Model, kCore>;
+    if (state.params.size() != static_cast<std::size_t>(Residuals::kParams)) {
+        throw InvalidArgument("fit: a start that does not match the first camera's model");
+    }
+    static const std::vector<FitSample> kNoGuards;
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        if (views[v].empty()) continue;
+        auto* cost = new ceres::AutoDiffCostFunction<Residuals, ceres::DYNAMIC, Residuals::kParams, 3, 3>(
+            new Residuals(views[v], kNoGuards, held), static_cast<int>(2 * views[v].size()));
+        problem.AddResidualBlock(cost, nullptr, state.params.data(), state.rotations[v].data(), state.shifts[v].data());
+    }
+    hold_parameters(candidate, problem, state.params);
+}
+
+// The second camera's residual blocks of a pair, through the pair's pose.
+template <class Model, Core kCore>
+void add_second_camera(const Candidate& candidate, const HeldIntrinsics& held,
+                       const std::vector<std::vector<FitSample>>& views, PairState& state, ceres::Problem& problem) {
+    using Residuals = SecondCameraResiduals<Model, kCore>;
+    if (state.second.size() != static_cast<std::size_t>(Residuals::kParams)) {
+        throw InvalidArgument("fit: a start that does not match the second camera's model");
+    }
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        if (views[v].empty()) continue;
+        auto* cost = new ceres::AutoDiffCostFunction<Residuals, ceres::DYNAMIC, Residuals::kParams, 3, 3, 3, 3>(
+            new Residuals(views[v], held), static_cast<int>(2 * views[v].size()));
+        problem.AddResidualBlock(cost, nullptr, state.second.data(), state.first.rotations[v].data(),
+                                 state.first.shifts[v].data(), state.rotation.data(), state.shift.data());
+    }
+    hold_parameters(candidate, problem, state.second);
+}
+
 HeldIntrinsics held_for(const Candidate& candidate, const ImageSize& size) {
     HeldIntrinsics held;
     held.image_centre = {size.centre_x(), size.centre_y()};
@@ -376,6 +456,32 @@ ViewsState solve_views(const Candidate& candidate, const ImageSize& size,
     return with_candidate(candidate, [&]<class Model, Core kCore>() {
         return solve_views_with<Model, kCore>(candidate, held, views, std::move(start), hold_intrinsics);
     });
+}
+
+PairState solve_pair(const Candidate& first, const ImageSize& first_size, const Candidate& second,
+                     const ImageSize& second_size, const std::vector<std::vector<FitSample>>& first_views,
+                     const std::vector<std::vector<FitSample>>& second_views, PairState state) {
+    const std::size_t views = first_views.size();
+    if (second_views.size() != views || state.first.rotations.size() != views || state.first.shifts.size() != views) {
+        throw InvalidArgument("fit: a pair's start that does not match its views");
+    }
+    ceres::Problem problem;
+    const HeldIntrinsics first_held = held_for(first, first_size), second_held = held_for(second, second_size);
+    with_candidate(first, [&]<class Model, Core kCore>() {
+        add_first_camera<Model, kCore>(first, first_held, first_views, state.first, problem);
+    });
+    with_candidate(second, [&]<class Model, Core kCore>() {
+        add_second_camera<Model, kCore>(second, second_held, second_views, state, problem);
+    });
+    if (problem.NumResidualBlocks() == 0) throw InvalidArgument("fit: no observations to fit");
+    ceres::Solver::Options options = solver_options();
+    // The board poses are independent given the intrinsics and the pair's pose: eliminated.
+    options.linear_solver_type = ceres::DENSE_SCHUR;
+    options.max_num_iterations = 200;
+    options.function_tolerance = 1e-12;
+    options.parameter_tolerance = 1e-12;
+    state.first.iterations = solve_or_throw(options, problem, second.lens);
+    return state;
 }
 
 LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSize& size,
