@@ -17,6 +17,7 @@
 #include "json_output.hpp"
 #include "libcam/calibrate/calibrate.hpp"
 #include "libcam/calibrate/calibration_json.hpp"
+#include "libcam/calibrate/pair_output.hpp"
 #include "libcam/calibrate/observations_output.hpp"
 #include "libcam/calibrate/opencv_flags.hpp"
 #include "libcam/error.hpp"
@@ -39,6 +40,8 @@ constexpr long kHeatmapColumns = 60;
 
 struct CalibrateFlags {
     std::vector<std::string> inputs;
+    std::vector<std::string> left;
+    std::vector<std::string> right;
     std::string board;
     std::string models;
     std::string opencv_flags;
@@ -57,8 +60,11 @@ struct CalibrateFlags {
 };
 
 void add_flags(CLI::App& command, CalibrateFlags& flags) {
-    command.add_option("images", flags.inputs, "Board images, or folders of them (their .jpg, .png, ... files)")
-        ->required();
+    command.add_option("images", flags.inputs, "Board images, or folders of them (their .jpg, .png, ... files)");
+    command.add_option("--left", flags.left,
+                       "A stereo pair: the left camera's board images (or folders), each with the right image of the "
+                       "same board view at the same place in --right; -o then names a folder for the pair's files");
+    command.add_option("--right", flags.right, "A stereo pair: the right camera's board images (or folders)");
     command.add_option("--board", flags.board,
                        "The board: chessboard:CxR:SQUARE (C x R inner corners, square side in metres) or "
                        "charuco:CxR:SQUARE:MARKER:DICT (C x R squares, marker side, OpenCV's dictionary, e.g. "
@@ -323,6 +329,80 @@ void write_outputs(const CalibrateFlags& flags, const Calibration& c) {
     }
 }
 
+// The pair's text report: each camera's model and K after the joint fit, R and T.
+std::string format_pair_text(const PairCalibration& pair) {
+    std::ostringstream out;
+    out << pair.pairs.size() << " views used by both cameras (left: " << pair.first.views.size() << " of "
+        << pair.first.images << ", right: " << pair.second.views.size() << " of " << pair.second.images << ")\n";
+    for (const RejectedImage& r : pair.first.rejected) out << "  rejected " << r.image << ": " << r.why << "\n";
+    for (const RejectedImage& r : pair.second.rejected) out << "  rejected " << r.image << ": " << r.why << "\n";
+    const auto camera_line = [&](const char* name, const Calibration& alone, const Camera& camera) {
+        const Intrinsics& k = camera.intrinsics;
+        out << name << ": " << alone.fit.reason << "\n  after the joint fit: fx " << format_short(k.fx, 8) << ", fy "
+            << format_short(k.fy, 8) << ", cx " << format_short(k.cx, 8) << ", cy " << format_short(k.cy, 8) << "; "
+            << lens_text(camera) << "\n";
+    };
+    camera_line("left", pair.first, pair.first_camera);
+    camera_line("right", pair.second, pair.second_camera);
+    const Pose& pose = pair.second_camera.pose;
+    out << "right from left (X_right = R X_left + T): rvec " << format_short(pose.rvec().x(), 6) << " "
+        << format_short(pose.rvec().y(), 6) << " " << format_short(pose.rvec().z(), 6) << " rad, T "
+        << format_short(pose.t.x(), 6) << " " << format_short(pose.t.y(), 6) << " " << format_short(pose.t.z(), 6)
+        << " (baseline " << format_short(pose.t.norm(), 6) << ", the board's unit)\n";
+    out << "rms " << format_short(pair.rms_px, 4) << " px over both cameras' corners in the views both used\n";
+    return out.str();
+}
+
+// -o DIR for a pair: OpenCV's stereo_calib files (intrinsics.yml, extrinsics.yml) and the
+// two cameras as mrcal .cameramodel files, the right one posed from the left. Every text
+// is made before any file is written.
+void write_pair_outputs(const std::string& folder, const PairCalibration& pair) {
+    std::vector<std::pair<std::filesystem::path, std::string>> files;
+    const std::filesystem::path dir(folder);
+    try {
+        const OpenCvStereoFiles opencv = format_opencv_stereo(pair);
+        files.emplace_back(dir / "intrinsics.yml", opencv.intrinsics);
+        files.emplace_back(dir / "extrinsics.yml", opencv.extrinsics);
+    } catch (const NotRepresentable& error) {
+        std::cerr << "libcam calibrate: " << folder << ": intrinsics.yml and extrinsics.yml not written: " << error.what()
+                  << "\n";
+    }
+    try {
+        files.emplace_back(dir / "left.cameramodel", format_camera(pair.first_camera, CameraFormat::Cameramodel));
+        files.emplace_back(dir / "right.cameramodel", format_camera(pair.second_camera, CameraFormat::Cameramodel));
+    } catch (const NotRepresentable& error) {
+        files.resize(std::min<std::size_t>(files.size(), 2));
+        std::cerr << "libcam calibrate: " << folder << ": the .cameramodel files not written: " << error.what() << "\n";
+    }
+    if (files.empty()) throw Error(folder + ": neither OpenCV's stereo files nor mrcal's models can hold this pair");
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) throw FileError(folder + ": cannot create the folder: " + error.message());
+    for (const auto& [path, text] : files) write_file_atomically(path, text);
+}
+
+int run_pair(const CalibrateFlags& flags, const BoardSpec& board, const CalibrationOptions& options,
+             ProgressMode progress_when) {
+    if (!flags.inputs.empty()) throw UsageError("--left and --right take the pair's images: no images before them");
+    if (flags.left.empty() || flags.right.empty()) throw UsageError("a pair needs both --left and --right images");
+    if (!flags.at.empty() || !flags.heatmap.empty() || !flags.observations_out.empty() || !flags.to.empty()) {
+        throw UsageError("--at, --heatmap, --observations-out and --to are for one camera, not a pair");
+    }
+    const CornerMethod method = flags.corners == "opencv-sample" ? CornerMethod::OpenCvSample : CornerMethod::Libcam;
+    std::vector<BoardDetection> found[2];
+    const std::vector<std::string>* lists[2] = {&flags.left, &flags.right};
+    for (int side = 0; side < 2; ++side) {
+        const std::vector<std::filesystem::path> images = images_of(*lists[side]);
+        ProgressPrinter printer(progress_when);
+        found[side] = detect_boards(
+            images, board, flags.threads, [&](std::size_t done) { printer.found(done, images.size()); }, method);
+    }
+    const PairCalibration pair = calibrate_pair(found[0], found[1], board, options);
+    if (!flags.output.empty()) write_pair_outputs(flags.output, pair);
+    emit(flags.json ? pair_calibration_json(pair) : format_pair_text(pair), "");
+    return 0;
+}
+
 }  // namespace
 
 Runner add_calibrate(CLI::App& app) {
@@ -339,7 +419,9 @@ Runner add_calibrate(CLI::App& app) {
         options.folds = flags->folds;
         options.margin = flags->margin;
         if (flags->keep_outliers) options.outlier_sigmas = std::numeric_limits<double>::infinity();
+        if (!flags->left.empty() || !flags->right.empty()) return run_pair(*flags, board, options, progress_when);
         if (!flags->output.empty()) output_format(*flags);
+        if (flags->inputs.empty()) throw UsageError("give the board images (or --left and --right for a pair)");
         for (const std::string& pixel : flags->at) parse_vec2("--at", pixel);  // on the image: checked once its size is known
         const std::vector<std::filesystem::path> images = images_of(flags->inputs);
         ProgressPrinter printer(progress_when);
