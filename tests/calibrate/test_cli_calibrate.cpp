@@ -172,3 +172,21 @@ TEST_CASE("libcam calibrate refuses OpenCV's flags it does not take in one line"
         CHECK(run.err.find("--opencv-flags") != std::string::npos);
     }
 }
+
+TEST_CASE("libcam calibrate refuses a pair without both sides or with lists of different lengths in one line",
+          "[calibrate][cli][pair]") {
+    TempDir dir;
+    write_whole_file(dir / "broken.png", "not an image");
+    const std::string image = (dir / "broken.png").string();
+    const CliResult one_side = run_libcam({"calibrate", "--left", image, "--board", "chessboard:9x6:0.03"});
+    CHECK(one_side.exit_code == 2);
+    CHECK(one_side.err == "libcam: usage error: a pair needs both --left and --right images (see --help)\n");
+    const CliResult lengths =
+        run_libcam({"calibrate", "--left", image, image, "--right", image, "--board", "chessboard:9x6:0.03", "-o",
+                    (dir / "out").string()});
+    CHECK(lengths.exit_code == 1);
+    CHECK(lengths.out.empty());
+    CHECK(lengths.err == "libcam: error: calibrate: 2 images of the first camera and 1 of the second: a pair needs one "
+                         "of each per view\n");
+    CHECK(!std::filesystem::exists(dir / "out"));
+}
