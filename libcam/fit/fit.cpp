@@ -250,13 +250,13 @@ int Candidate::num_params() const {
 }
 
 namespace {
-const Candidate kLookAtCandidate{"LOOK_AT", LensType::Pinhole, true, 0.0, 0, {}};
+const Candidate kLookAtCandidate{"LOOK_AT", LensType::Pinhole, true};
 // The look-at candidate's name before it was LOOK_AT, taken for one more release ("FOV"
 // also names Devernay and Faugeras' lens model, which libcam fit does not fit).
 constexpr std::string_view kLookAtOldName = "FOV";
 
 Candidate candidate_of(const LensInfo& info) {
-    return {info.name, info.type, false, info.fit_sensor_width_mm, info.fit_held_coefficients, {}};
+    return {info.name, info.type, false, info.fit_sensor_width_mm, info.fit_held_coefficients};
 }
 }  // namespace
 

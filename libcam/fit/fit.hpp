@@ -83,7 +83,7 @@ struct Candidate {
     int held_coefficients = 0;
     // Held by the user's request (a calibration with OpenCV's flags): the free parameters
     // below stay num_params(), the fit moves them only along free_directions().
-    HeldParameters held;
+    HeldParameters held{};
 
     // The pixels per millimetre a sensor-scale candidate holds for an image `width` wide.
     double sensor_pixels_per_mm(int width) const { return static_cast<double>(width) / sensor_width_mm; }

@@ -7,6 +7,8 @@
 #include <opencv2/calib3d.hpp>
 
 #include "libcam/calibrate/calibrate_pair.hpp"
+#include "libcam/calibrate/pair_list.hpp"
+#include "libcam/error.hpp"
 #include "synthetic_sets.hpp"
 
 using namespace libcam;
@@ -122,4 +124,24 @@ TEST_CASE("Calibrate a pair refuses image lists of different lengths in one line
     std::vector<BoardDetection> two(2), three(3);
     CHECK_THROWS_WITH(calibrate_pair(two, three, board, CalibrationOptions{}),
                       "calibrate: 2 images of the first camera and 3 of the second: a pair needs one of each per view");
+}
+
+TEST_CASE("A pair's image list as OpenCV's stereo_calib reads it: left and right in turn, beside the list",
+          "[calibrate][pair]") {
+    // stereo_calib.xml's form, as OpenCV's sample ships it.
+    const std::string xml = "<?xml version=\"1.0\"?>\n<opencv_storage>\n<imagelist>\n\"left01.jpg\"\n\"right01.jpg\"\n"
+                            "\"left02.jpg\"\n\"/data/right02.jpg\"\n</imagelist>\n</opencv_storage>\n";
+    const PairList list = parse_pair_list(xml, "/work/pairs/stereo_calib.xml");
+    REQUIRE(list.left.size() == 2);
+    REQUIRE(list.right.size() == 2);
+    CHECK(list.left[0] == std::filesystem::path("/work/pairs/left01.jpg"));
+    CHECK(list.right[0] == std::filesystem::path("/work/pairs/right01.jpg"));
+    CHECK(list.right[1] == std::filesystem::path("/data/right02.jpg"));
+    const PairList yaml = parse_pair_list("%YAML:1.0\nimagelist:\n  - a.png\n  - b.png\n", "list.yml");
+    CHECK(yaml.left == std::vector<std::filesystem::path>{"a.png"});
+    CHECK_THROWS_WITH(parse_pair_list("%YAML:1.0\nimagelist:\n  - a.png\n", "list.yml"),
+                      "list.yml: imagelist: 1 names, an odd count: the list holds left and right images in turn");
+    CHECK_THROWS_WITH(parse_pair_list("%YAML:1.0\nimages:\n  - a.png\n", "list.yml"),
+                      "list.yml: imagelist: missing, or not a list of image names");
+    CHECK_THROWS_AS(parse_pair_list("<opencv_storage><imagelist>", "list.xml"), FileError);
 }

@@ -190,3 +190,14 @@ TEST_CASE("libcam calibrate refuses a pair without both sides or with lists of d
                          "of each per view\n");
     CHECK(!std::filesystem::exists(dir / "out"));
 }
+
+TEST_CASE("libcam calibrate --pairs refuses a list with an odd count in one line", "[calibrate][cli][pair]") {
+    TempDir dir;
+    write_whole_file(dir / "list.yml", "%YAML:1.0\nimagelist:\n  - a.png\n  - b.png\n  - c.png\n");
+    const CliResult run =
+        run_libcam({"calibrate", "--pairs", (dir / "list.yml").string(), "--board", "chessboard:9x6:0.03"});
+    CHECK(run.exit_code != 0);
+    CHECK(run.out.empty());
+    CHECK(run.err.find((dir / "list.yml").string() + ": imagelist: 3 names, an odd count") != std::string::npos);
+    CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+}

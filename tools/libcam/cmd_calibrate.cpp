@@ -17,6 +17,7 @@
 #include "json_output.hpp"
 #include "libcam/calibrate/calibrate.hpp"
 #include "libcam/calibrate/calibration_json.hpp"
+#include "libcam/calibrate/pair_list.hpp"
 #include "libcam/calibrate/pair_output.hpp"
 #include "libcam/calibrate/observations_output.hpp"
 #include "libcam/calibrate/opencv_flags.hpp"
@@ -42,6 +43,7 @@ struct CalibrateFlags {
     std::vector<std::string> inputs;
     std::vector<std::string> left;
     std::vector<std::string> right;
+    std::string pairs;
     std::string board;
     std::string models;
     std::string opencv_flags;
@@ -65,6 +67,9 @@ void add_flags(CLI::App& command, CalibrateFlags& flags) {
                        "A stereo pair: the left camera's board images (or folders), each with the right image of the "
                        "same board view at the same place in --right; -o then names a folder for the pair's files");
     command.add_option("--right", flags.right, "A stereo pair: the right camera's board images (or folders)");
+    command.add_option("--pairs", flags.pairs,
+                       "A stereo pair's image list as OpenCV's stereo_calib sample reads it (stereo_calib.xml: left "
+                       "and right images in turn; names relative to the list's folder), instead of --left and --right");
     command.add_option("--board", flags.board,
                        "The board: chessboard:CxR:SQUARE (C x R inner corners, square side in metres) or "
                        "charuco:CxR:SQUARE:MARKER:DICT (C x R squares, marker side, OpenCV's dictionary, e.g. "
@@ -384,15 +389,28 @@ void write_pair_outputs(const std::string& folder, const PairCalibration& pair) 
 int run_pair(const CalibrateFlags& flags, const BoardSpec& board, const CalibrationOptions& options,
              ProgressMode progress_when) {
     if (!flags.inputs.empty()) throw UsageError("--left and --right take the pair's images: no images before them");
-    if (flags.left.empty() || flags.right.empty()) throw UsageError("a pair needs both --left and --right images");
+    if (!flags.pairs.empty() && (!flags.left.empty() || !flags.right.empty())) {
+        throw UsageError("--pairs names the pair's images: not with --left or --right");
+    }
+    if (flags.pairs.empty() && (flags.left.empty() || flags.right.empty())) {
+        throw UsageError("a pair needs both --left and --right images");
+    }
     if (!flags.at.empty() || !flags.heatmap.empty() || !flags.observations_out.empty() || !flags.to.empty()) {
         throw UsageError("--at, --heatmap, --observations-out and --to are for one camera, not a pair");
     }
     const CornerMethod method = flags.corners == "opencv-sample" ? CornerMethod::OpenCvSample : CornerMethod::Libcam;
+    std::vector<std::filesystem::path> lists[2];
+    if (!flags.pairs.empty()) {
+        PairList list = read_pair_list(flags.pairs);
+        lists[0] = std::move(list.left);
+        lists[1] = std::move(list.right);
+    } else {
+        lists[0] = images_of(flags.left);
+        lists[1] = images_of(flags.right);
+    }
     std::vector<BoardDetection> found[2];
-    const std::vector<std::string>* lists[2] = {&flags.left, &flags.right};
     for (int side = 0; side < 2; ++side) {
-        const std::vector<std::filesystem::path> images = images_of(*lists[side]);
+        const std::vector<std::filesystem::path>& images = lists[side];
         ProgressPrinter printer(progress_when);
         found[side] = detect_boards(
             images, board, flags.threads, [&](std::size_t done) { printer.found(done, images.size()); }, method);
@@ -419,7 +437,9 @@ Runner add_calibrate(CLI::App& app) {
         options.folds = flags->folds;
         options.margin = flags->margin;
         if (flags->keep_outliers) options.outlier_sigmas = std::numeric_limits<double>::infinity();
-        if (!flags->left.empty() || !flags->right.empty()) return run_pair(*flags, board, options, progress_when);
+        if (!flags->left.empty() || !flags->right.empty() || !flags->pairs.empty()) {
+            return run_pair(*flags, board, options, progress_when);
+        }
         if (!flags->output.empty()) output_format(*flags);
         if (flags->inputs.empty()) throw UsageError("give the board images (or --left and --right for a pair)");
         for (const std::string& pixel : flags->at) parse_vec2("--at", pixel);  // on the image: checked once its size is known
