@@ -175,6 +175,21 @@ CandidateUncertainty uncertainty_of(const Calibration& c, std::size_t candidate)
     return out;
 }
 
+// A parameter whose standard deviation exceeds its size, flagged on its candidate: on the
+// line the folds already flagged it on, if they did ("k3 = ... ranges from ... over the
+// folds, with a standard deviation of ...: ..."), else on a line of its own.
+void flag_spread(ObservationCandidate& candidate, const ParameterSpread& p) {
+    const std::string spread = "a standard deviation of " + format_short(p.stdev, 4);
+    const std::string named = p.name + " = ";
+    for (std::string& flag : candidate.flags) {
+        const std::size_t why = flag.rfind(": ");
+        if (flag.rfind(named, 0) != 0 || why == std::string::npos) continue;
+        flag.insert(why, ", with " + spread);
+        return;
+    }
+    candidate.flags.push_back(named + format_short(p.value, 4) + " with " + spread + ": the data do not pin it down");
+}
+
 // Each fitted candidate's uncertainty; its parameters whose standard deviation exceeds
 // their size flagged on it.
 void measure_uncertainty(Calibration& c) {
@@ -183,9 +198,7 @@ void measure_uncertainty(Calibration& c) {
         ObservationCandidate& candidate = c.fit.candidates[i];
         c.uncertainty.push_back(candidate.fitted ? uncertainty_of(c, i) : CandidateUncertainty{});
         for (const ParameterSpread& p : c.uncertainty.back().parameters) {
-            if (p.stdev <= std::abs(p.value)) continue;
-            candidate.flags.push_back(p.name + " = " + format_short(p.value, 4) + " with a standard deviation of " +
-                                      format_short(p.stdev, 4) + ": the data do not pin it down");
+            if (p.stdev > std::abs(p.value)) flag_spread(candidate, p);
         }
     }
 }
@@ -197,6 +210,7 @@ SolvedCalibration Calibration::solved(std::size_t candidate) const {
     SolvedCalibration out;
     out.camera = fitted.camera;
     out.views = fit_views_of(views, fitted.poses, board);
+    out.held = fitted.candidate.held;
     return out;
 }
 
@@ -217,6 +231,13 @@ std::vector<double> Calibration::view_errors(std::size_t v) const {
     return reprojection_errors(camera, samples);
 }
 
+double Calibration::view_rms_px(std::size_t v) const {
+    double sum = 0.0;
+    const std::vector<double> errors = view_errors(v);
+    for (const double e : errors) sum += e * e;
+    return std::sqrt(sum / static_cast<double>(errors.size()));
+}
+
 std::vector<Candidate> default_calibration_candidates(double widest_angle_deg) {
     std::vector<Candidate> list;
     for (const char* name : {"PINHOLE", "OPENCV4", "OPENCV5", "OPENCV8", "FISHEYE"}) list.push_back(candidate_named(name));
@@ -231,6 +252,7 @@ Calibration calibrate(const std::vector<BoardDetection>& detections, const Board
                       const CalibrationOptions& options) {
     Calibration out;
     out.board = board;
+    out.held = options.held;
     out.images = detections.size();
     sort_detections(detections, out);
     if (out.views.size() < 2) too_few_views(out);
@@ -238,6 +260,7 @@ Calibration calibrate(const std::vector<BoardDetection>& detections, const Board
     ObservationFitOptions fit_options;
     fit_options.candidates =
         options.candidates.empty() ? default_calibration_candidates(widest_angle_deg(guess, out.views)) : options.candidates;
+    for (Candidate& candidate : fit_options.candidates) candidate.held = options.held;
     fit_options.folds = options.folds;
     fit_options.margin = options.margin;
     Camera start = guess.camera;

@@ -38,6 +38,8 @@ struct CalibrationOptions {
     int folds = 5;
     double margin = 0.05;
     double outlier_sigmas = 5.0;
+    // Held in every candidate, as OpenCV's calibration flags hold them (opencv_flags.hpp).
+    HeldParameters held;
     // Called as each stage starts ("fitting 6 models to 13 views"), for a progress line.
     std::function<void(const std::string&)> stage;
 };
@@ -75,6 +77,7 @@ struct Calibration {
     std::vector<RejectedImage> rejected;  // in the images' order
     std::vector<CalibrationView> views;   // the fit's views, in the same order
     ObservationFitReport fit;             // candidates, the choice; poses in views' order
+    HeldParameters held;                  // what every candidate held
     std::size_t outliers = 0;             // corners dropped, over every view
     int rounds = 0;                       // fits run (one more for each round that dropped corners)
     bool rounds_capped = false;           // the last fit still had corners beyond the limit
@@ -85,6 +88,8 @@ struct Calibration {
     std::size_t corners() const;
     // |residual| of each kept corner of view v under the chosen camera and that view's pose.
     std::vector<double> view_errors(std::size_t v) const;
+    // Their RMS.
+    double view_rms_px(std::size_t v) const;
     // A fitted candidate (index into fit.candidates) as a solved calibration: its camera,
     // each view's pose under it and the corners kept.
     SolvedCalibration solved(std::size_t candidate) const;

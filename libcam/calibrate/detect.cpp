@@ -90,6 +90,22 @@ void detect_chessboard(const cv::Mat& grey, const BoardSpec& board, BoardDetecti
     }
 }
 
+// OpenCV's calibration sample's corners (CornerMethod::OpenCvSample).
+void detect_chessboard_as_opencv_sample(const cv::Mat& grey, const BoardSpec& board, BoardDetection& out) {
+    std::vector<cv::Point2f> corners;
+    const int flags = cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_FAST_CHECK | cv::CALIB_CB_NORMALIZE_IMAGE;
+    if (!cv::findChessboardCorners(grey, cv::Size(board.columns, board.rows), corners, flags)) {
+        out.rejected = "no " + size_text(board) + " chessboard found (its inner corners, all of them, must be seen)";
+        return;
+    }
+    cv::cornerSubPix(grey, corners, cv::Size(11, 11), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.1));
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+        out.ids.push_back(static_cast<int>(k));
+        out.pixels.emplace_back(corners[k].x, corners[k].y);
+    }
+}
+
 void detect_charuco(const cv::Mat& grey, const BoardSpec& board, BoardDetection& out) {
     const cv::Ptr<cv::aruco::Dictionary> dictionary = cv::aruco::getPredefinedDictionary(board.dictionary_id);
     const cv::Ptr<cv::aruco::CharucoBoard> charuco = cv::aruco::CharucoBoard::create(
@@ -118,11 +134,13 @@ void detect_charuco(const cv::Mat& grey, const BoardSpec& board, BoardDetection&
     }
 }
 
-BoardDetection detect_in(const cv::Mat& grey, const BoardSpec& board) {
+BoardDetection detect_in(const cv::Mat& grey, const BoardSpec& board, CornerMethod method) {
     BoardDetection out;
     out.size = {grey.cols, grey.rows};
     try {
-        if (board.kind == BoardKind::Chessboard) {
+        if (board.kind == BoardKind::Chessboard && method == CornerMethod::OpenCvSample) {
+            detect_chessboard_as_opencv_sample(grey, board, out);
+        } else if (board.kind == BoardKind::Chessboard) {
             detect_chessboard(grey, board, out);
         } else {
             detect_charuco(grey, board, out);
@@ -139,13 +157,14 @@ BoardDetection detect_in(const cv::Mat& grey, const BoardSpec& board) {
 
 }  // namespace
 
-BoardDetection detect_board_in(const unsigned char* grey, const ImageSize& size, const BoardSpec& board) {
+BoardDetection detect_board_in(const unsigned char* grey, const ImageSize& size, const BoardSpec& board,
+                               CornerMethod method) {
     const cv::Mat image(static_cast<int>(size.height), static_cast<int>(size.width), CV_8UC1,
                         const_cast<unsigned char*>(grey));
-    return detect_in(image, board);
+    return detect_in(image, board, method);
 }
 
-BoardDetection detect_board(const std::filesystem::path& image, const BoardSpec& board) {
+BoardDetection detect_board(const std::filesystem::path& image, const BoardSpec& board, CornerMethod method) {
     cv::Mat grey;
     try {
         grey = cv::imread(image.string(), cv::IMREAD_GRAYSCALE);
@@ -158,13 +177,14 @@ BoardDetection detect_board(const std::filesystem::path& image, const BoardSpec&
         out.rejected = "cannot be read as an image";
         return out;
     }
-    out = detect_in(grey, board);
+    out = detect_in(grey, board, method);
     out.image = image.string();
     return out;
 }
 
 std::vector<BoardDetection> detect_boards(const std::vector<std::filesystem::path>& images, const BoardSpec& board,
-                                          int threads, const std::function<void(std::size_t)>& done) {
+                                          int threads, const std::function<void(std::size_t)>& done,
+                                          CornerMethod method) {
     std::vector<BoardDetection> out(images.size());
     const unsigned machine = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t workers =
@@ -174,7 +194,7 @@ std::vector<BoardDetection> detect_boards(const std::vector<std::filesystem::pat
     std::mutex report;
     const auto work = [&] {
         for (std::size_t i = next++; i < images.size(); i = next++) {
-            out[i] = detect_board(images[i], board);
+            out[i] = detect_board(images[i], board, method);
             const std::lock_guard<std::mutex> lock(report);
             ++finished;
             if (done) done(finished);

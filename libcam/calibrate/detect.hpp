@@ -25,6 +25,16 @@ namespace libcam {
 // board's pose (six unknowns) with room to spare for the intrinsics they share.
 inline constexpr std::size_t kMinCornersPerView = 6;
 
+// How a chessboard's corners are found. Libcam: cv::findChessboardCornersSB, each corner
+// then refined by cv::cornerSubPix in a window of 0.4 square around it. OpenCvSample: as
+// OpenCV's calibration sample finds them (cv::findChessboardCorners with its adaptive
+// threshold, fast check and normalised image; cornerSubPix in an 11 x 11 window, 30
+// iterations or a step under 0.1 px), so that its results can be reproduced: a window of
+// fixed size reaches past the corner's own squares on small boards, which moves the
+// corners (on OpenCV's 640 x 480 samples the calibration's RMS is twice libcam's).
+// ChArUco boards are found one way.
+enum class CornerMethod { Libcam, OpenCvSample };
+
 struct BoardDetection {
     std::string image;  // the image's path as given
     ImageSize size;     // zero where it could not be read
@@ -34,16 +44,19 @@ struct BoardDetection {
 };
 
 // The corners of `board` in one image; never throws for a bad image (rejected says why).
-BoardDetection detect_board(const std::filesystem::path& image, const BoardSpec& board);
+BoardDetection detect_board(const std::filesystem::path& image, const BoardSpec& board,
+                            CornerMethod method = CornerMethod::Libcam);
 
 // The same for every image, on `threads` threads (0: as many as the machine has), in the
 // images' order. `done` (optional) is called after each image, with the count so far,
 // from whichever thread finished it, one call at a time.
 std::vector<BoardDetection> detect_boards(const std::vector<std::filesystem::path>& images, const BoardSpec& board,
-                                          int threads, const std::function<void(std::size_t)>& done = {});
+                                          int threads, const std::function<void(std::size_t)>& done = {},
+                                          CornerMethod method = CornerMethod::Libcam);
 
 // Detection on an image already in memory (8-bit grey, rows of `size.width` bytes):
 // what the tests render.
-BoardDetection detect_board_in(const unsigned char* grey, const ImageSize& size, const BoardSpec& board);
+BoardDetection detect_board_in(const unsigned char* grey, const ImageSize& size, const BoardSpec& board,
+                               CornerMethod method = CornerMethod::Libcam);
 
 }  // namespace libcam

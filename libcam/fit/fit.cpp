@@ -238,6 +238,12 @@ std::optional<std::size_t> choose(const std::vector<CandidateReport>& reports) {
 
 }  // namespace
 
+std::string HeldParameters::text() const {
+    std::string out = square_pixels ? "fx = fy" : "";
+    for (const std::string& name : zero_coefficients) out += (out.empty() ? "" : ", ") + name + " = 0";
+    return out;
+}
+
 int Candidate::num_params() const {
     if (look_at) return 1;
     return static_cast<int>(core_count(*this)) + lens_info(lens).num_coefficients - held_coefficients;

@@ -59,6 +59,19 @@ enum class CameraMotion {
     RotationAndShift,  // it may also move its centre (needs points at finite depths)
 };
 
+// Parameters a fit holds, as OpenCV's calibrateCamera flags hold them: fx = fy
+// (CALIB_FIX_ASPECT_RATIO with an aspect ratio of 1) and coefficients held at 0
+// (CALIB_ZERO_TANGENT_DIST holds p1 and p2, CALIB_FIX_K3 k3, ...), by name, in any
+// candidate that has them.
+struct HeldParameters {
+    bool square_pixels = false;
+    std::vector<std::string> zero_coefficients;
+
+    bool any() const { return square_pixels || !zero_coefficients.empty(); }
+    // "fx = fy, p1 = 0, p2 = 0"; empty when nothing is held.
+    std::string text() const;
+};
+
 struct Candidate {
     std::string_view name;  // "LOOK_AT", or the lens model's name
     LensType lens = LensType::Pinhole;
@@ -68,6 +81,9 @@ struct Candidate {
     // per millimetre (0: fx and fy fitted); and the leading coefficients held at 0.
     double sensor_width_mm = 0.0;
     int held_coefficients = 0;
+    // Held by the user's request (a calibration with OpenCV's flags): the free parameters
+    // below stay num_params(), the fit moves them only along free_directions().
+    HeldParameters held{};
 
     // The pixels per millimetre a sensor-scale candidate holds for an image `width` wide.
     double sensor_pixels_per_mm(int width) const { return static_cast<double>(width) / sensor_width_mm; }

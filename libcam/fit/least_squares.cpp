@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 
 #include "libcam/error.hpp"
 #include "libcam/fit/observation_fit.hpp"
@@ -145,6 +146,50 @@ private:
     HeldIntrinsics held_;
 };
 
+// The second camera of a pair: a board point carried into the first camera by the board's
+// pose, into the second by the pair's, then projected (solve_pair).
+template <class Model, Core kCore>
+class SecondCameraResiduals {
+public:
+    static constexpr int kCoreParams = ReprojectionResiduals<Model, kCore>::kCoreParams;
+    static constexpr int kHeld = ReprojectionResiduals<Model, kCore>::kHeld;
+    static constexpr int kParams = ReprojectionResiduals<Model, kCore>::kParams;
+
+    SecondCameraResiduals(const std::vector<FitSample>& observations, const HeldIntrinsics& held)
+        : observations_(observations), held_(held) {}
+
+    template <class T>
+    bool operator()(const T* intrinsics, const T* board_rotation, const T* board_shift, const T* rotation,
+                    const T* shift, T* residuals) const {
+        std::array<double, Model::num_coefficients> coefficients{};
+        for (int i = kHeld; i < Model::num_coefficients; ++i) {
+            coefficients[static_cast<std::size_t>(i)] = scalar_part(intrinsics[kCoreParams + i - kHeld]);
+        }
+        if (!coefficients_allowed<Model>(coefficients)) return false;
+        const typename LensInScalar<Model, T>::Parameters lens = lens_parameters<Model, kHeld>(intrinsics + kCoreParams);
+        for (std::size_t i = 0; i < observations_.size(); ++i) {
+            const Vec3& p = observations_[i].point;
+            const T point[3] = {T(p.x()), T(p.y()), T(p.z())};
+            T on_board[3], in_second[3];
+            ceres::AngleAxisRotatePoint(board_rotation, point, on_board);
+            for (int k = 0; k < 3; ++k) on_board[k] += board_shift[k];
+            ceres::AngleAxisRotatePoint(rotation, on_board, in_second);
+            const Eigen::Matrix<T, 3, 1> camera_point(in_second[0] + shift[0], in_second[1] + shift[1],
+                                                      in_second[2] + shift[2]);
+            Eigen::Matrix<T, 2, 1> m;
+            if (!LensInScalar<Model, T>::project(lens, camera_point, m)) return false;
+            const Eigen::Matrix<T, 2, 1> pixel = pixel_from_normalized<kCore>(intrinsics, held_, m);
+            residuals[2 * i] = pixel.x() - T(observations_[i].pixel.x());
+            residuals[2 * i + 1] = pixel.y() - T(observations_[i].pixel.y());
+        }
+        return true;
+    }
+
+private:
+    const std::vector<FitSample>& observations_;
+    HeldIntrinsics held_;
+};
+
 // Reports each iteration, and ends the solve once the RMS error is negligible.
 class IterationWatch : public ceres::IterationCallback {
 public:
@@ -205,8 +250,51 @@ int solve_or_throw(const ceres::Solver::Options& options, ceres::Problem& proble
     return static_cast<int>(summary.iterations.size());
 }
 
+// The intrinsics move only along the candidate's free directions B (free_directions,
+// orthonormal columns): x + B delta, so that what is held stays held.
+class FreeDirectionsManifold : public ceres::Manifold {
+public:
+    explicit FreeDirectionsManifold(Eigen::MatrixXd directions) : directions_(std::move(directions)) {}
+    int AmbientSize() const override { return static_cast<int>(directions_.rows()); }
+    int TangentSize() const override { return static_cast<int>(directions_.cols()); }
+    bool Plus(const double* x, const double* delta, double* x_plus_delta) const override {
+        Eigen::Map<Eigen::VectorXd>(x_plus_delta, directions_.rows()) =
+            Eigen::Map<const Eigen::VectorXd>(x, directions_.rows()) +
+            directions_ * Eigen::Map<const Eigen::VectorXd>(delta, directions_.cols());
+        return true;
+    }
+    bool PlusJacobian(const double* /*x*/, double* jacobian) const override {
+        Eigen::Map<RowMajor>(jacobian, directions_.rows(), directions_.cols()) = directions_;
+        return true;
+    }
+    bool Minus(const double* y, const double* x, double* y_minus_x) const override {
+        Eigen::Map<Eigen::VectorXd>(y_minus_x, directions_.cols()) =
+            directions_.transpose() * (Eigen::Map<const Eigen::VectorXd>(y, directions_.rows()) -
+                                       Eigen::Map<const Eigen::VectorXd>(x, directions_.rows()));
+        return true;
+    }
+    bool MinusJacobian(const double* /*x*/, double* jacobian) const override {
+        Eigen::Map<RowMajor>(jacobian, directions_.cols(), directions_.rows()) = directions_.transpose();
+        return true;
+    }
+
+private:
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    Eigen::MatrixXd directions_;
+};
+
+// The candidate's held parameters: the start moved onto them (B B^T params) and the solver
+// kept on them. Nothing held: nothing done.
+void hold_parameters(const Candidate& candidate, ceres::Problem& problem, std::vector<double>& params) {
+    if (!candidate.held.any()) return;
+    Eigen::MatrixXd directions = free_directions(candidate);
+    Eigen::Map<Eigen::VectorXd> values(params.data(), static_cast<Eigen::Index>(params.size()));
+    values = directions * (directions.transpose() * values);
+    problem.SetManifold(params.data(), new FreeDirectionsManifold(std::move(directions)));
+}
+
 template <class Model, Core kCore>
-LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSample>& observations,
+LeastSquaresState solve_with(const Candidate& candidate, const HeldIntrinsics& held, const std::vector<FitSample>& observations,
                              LeastSquaresState state, const SolveOptions& settings, const IterationHook& hook) {
     using Residuals = ReprojectionResiduals<Model, kCore>;
     if (state.params.size() != static_cast<std::size_t>(Residuals::kParams)) {
@@ -217,6 +305,7 @@ LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSa
         new Residuals(observations, settings.must_project, held), static_cast<int>(2 * observations.size()));
     ceres::Problem problem;
     problem.AddResidualBlock(cost, nullptr, state.params.data(), state.rotation.data(), state.shift.data());
+    hold_parameters(candidate, problem, state.params);
     if (settings.motion == CameraMotion::None) problem.SetParameterBlockConstant(state.rotation.data());
     if (settings.motion != CameraMotion::RotationAndShift) problem.SetParameterBlockConstant(state.shift.data());
 
@@ -228,7 +317,7 @@ LeastSquaresState solve_with(const HeldIntrinsics& held, const std::vector<FitSa
 }
 
 template <class Model, Core kCore>
-ViewsState solve_views_with(const HeldIntrinsics& held, const std::vector<std::vector<FitSample>>& views,
+ViewsState solve_views_with(const Candidate& candidate, const HeldIntrinsics& held, const std::vector<std::vector<FitSample>>& views,
                             ViewsState state, bool hold_intrinsics) {
     using Residuals = ReprojectionResiduals<Model, kCore>;
     if (state.params.size() != static_cast<std::size_t>(Residuals::kParams) || state.rotations.size() != views.size() ||
@@ -246,7 +335,11 @@ ViewsState solve_views_with(const HeldIntrinsics& held, const std::vector<std::v
         observations += views[v].size();
     }
     if (observations == 0) throw InvalidArgument("fit: no observations to fit");
-    if (hold_intrinsics) problem.SetParameterBlockConstant(state.params.data());
+    if (hold_intrinsics) {
+        problem.SetParameterBlockConstant(state.params.data());
+    } else {
+        hold_parameters(candidate, problem, state.params);
+    }
     ceres::Solver::Options options = solver_options();
     // The poses are independent given the intrinsics: Ceres eliminates them (the Schur
     // complement), leaving a system the size of the intrinsics.
@@ -274,6 +367,42 @@ auto with_candidate(const Candidate& candidate, Body&& body) {
             throw InvalidArgument("fit: " + std::string(info.name) + " is not a fit candidate");
         }
     });
+}
+
+// The first camera's residual blocks of a pair (solve_pair): as solve_views_with's.
+template <class Model, Core kCore>
+void add_first_camera(const Candidate& candidate, const HeldIntrinsics& held, const std::vector<std::vector<FitSample>>& views,
+                      ViewsState& state, ceres::Problem& problem) {
+    using Residuals = ReprojectionResiduals<Model, kCore>;
+    if (state.params.size() != static_cast<std::size_t>(Residuals::kParams)) {
+        throw InvalidArgument("fit: a start that does not match the first camera's model");
+    }
+    static const std::vector<FitSample> kNoGuards;
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        if (views[v].empty()) continue;
+        auto* cost = new ceres::AutoDiffCostFunction<Residuals, ceres::DYNAMIC, Residuals::kParams, 3, 3>(
+            new Residuals(views[v], kNoGuards, held), static_cast<int>(2 * views[v].size()));
+        problem.AddResidualBlock(cost, nullptr, state.params.data(), state.rotations[v].data(), state.shifts[v].data());
+    }
+    hold_parameters(candidate, problem, state.params);
+}
+
+// The second camera's residual blocks of a pair, through the pair's pose.
+template <class Model, Core kCore>
+void add_second_camera(const Candidate& candidate, const HeldIntrinsics& held,
+                       const std::vector<std::vector<FitSample>>& views, PairState& state, ceres::Problem& problem) {
+    using Residuals = SecondCameraResiduals<Model, kCore>;
+    if (state.second.size() != static_cast<std::size_t>(Residuals::kParams)) {
+        throw InvalidArgument("fit: a start that does not match the second camera's model");
+    }
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        if (views[v].empty()) continue;
+        auto* cost = new ceres::AutoDiffCostFunction<Residuals, ceres::DYNAMIC, Residuals::kParams, 3, 3, 3, 3>(
+            new Residuals(views[v], held), static_cast<int>(2 * views[v].size()));
+        problem.AddResidualBlock(cost, nullptr, state.second.data(), state.first.rotations[v].data(),
+                                 state.first.shifts[v].data(), state.rotation.data(), state.shift.data());
+    }
+    hold_parameters(candidate, problem, state.second);
 }
 
 HeldIntrinsics held_for(const Candidate& candidate, const ImageSize& size) {
@@ -325,8 +454,34 @@ ViewsState solve_views(const Candidate& candidate, const ImageSize& size,
                        const std::vector<std::vector<FitSample>>& views, ViewsState start, bool hold_intrinsics) {
     const HeldIntrinsics held = held_for(candidate, size);
     return with_candidate(candidate, [&]<class Model, Core kCore>() {
-        return solve_views_with<Model, kCore>(held, views, std::move(start), hold_intrinsics);
+        return solve_views_with<Model, kCore>(candidate, held, views, std::move(start), hold_intrinsics);
     });
+}
+
+PairState solve_pair(const Candidate& first, const ImageSize& first_size, const Candidate& second,
+                     const ImageSize& second_size, const std::vector<std::vector<FitSample>>& first_views,
+                     const std::vector<std::vector<FitSample>>& second_views, PairState state) {
+    const std::size_t views = first_views.size();
+    if (second_views.size() != views || state.first.rotations.size() != views || state.first.shifts.size() != views) {
+        throw InvalidArgument("fit: a pair's start that does not match its views");
+    }
+    ceres::Problem problem;
+    const HeldIntrinsics first_held = held_for(first, first_size), second_held = held_for(second, second_size);
+    with_candidate(first, [&]<class Model, Core kCore>() {
+        add_first_camera<Model, kCore>(first, first_held, first_views, state.first, problem);
+    });
+    with_candidate(second, [&]<class Model, Core kCore>() {
+        add_second_camera<Model, kCore>(second, second_held, second_views, state, problem);
+    });
+    if (problem.NumResidualBlocks() == 0) throw InvalidArgument("fit: no observations to fit");
+    ceres::Solver::Options options = solver_options();
+    // The board poses are independent given the intrinsics and the pair's pose: eliminated.
+    options.linear_solver_type = ceres::DENSE_SCHUR;
+    options.max_num_iterations = 200;
+    options.function_tolerance = 1e-12;
+    options.parameter_tolerance = 1e-12;
+    state.first.iterations = solve_or_throw(options, problem, second.lens);
+    return state;
 }
 
 LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSize& size,
@@ -334,7 +489,7 @@ LeastSquaresState solve_least_squares(const Candidate& candidate, const ImageSiz
                                       const SolveOptions& options, const IterationHook& hook) {
     const HeldIntrinsics held = held_for(candidate, size);
     return with_candidate(candidate, [&]<class Model, Core kCore>() {
-        return solve_with<Model, kCore>(held, observations, std::move(start), options, hook);
+        return solve_with<Model, kCore>(candidate, held, observations, std::move(start), options, hook);
     });
 }
 

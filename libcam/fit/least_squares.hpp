@@ -50,6 +50,23 @@ struct ViewsState {
 ViewsState solve_views(const Candidate& candidate, const ImageSize& size,
                        const std::vector<std::vector<FitSample>>& views, ViewsState start, bool hold_intrinsics);
 
+// Two cameras' views of the same boards (a stereo pair): each camera's intrinsics shared
+// over its views, one board pose per view in the first camera's frame (Rodrigues, shift:
+// board to first camera), and the second camera's pose from the first (X_second =
+// R(rotation) X_first + shift, OpenCV's stereoCalibrate R and T). Residuals, two per
+// observation: the first camera's as solve_views', the second's K lens(R(rotation)
+// (R(board) point + board shift) + shift) - pixel. first_views[v] and second_views[v]
+// are one view's corners seen by each camera.
+struct PairState {
+    ViewsState first;            // the first camera's intrinsics and the board poses
+    std::vector<double> second;  // the second camera's intrinsics
+    Vec3 rotation = Vec3::Zero();
+    Vec3 shift = Vec3::Zero();
+};
+PairState solve_pair(const Candidate& first, const ImageSize& first_size, const Candidate& second,
+                     const ImageSize& second_size, const std::vector<std::vector<FitSample>>& first_views,
+                     const std::vector<std::vector<FitSample>>& second_views, PairState start);
+
 // The camera that a candidate's parameters describe, with pose `pose` (fit.cpp).
 Camera camera_from_params(const Candidate& candidate, const ImageSize& size, const std::vector<double>& params,
                           const Pose& pose);

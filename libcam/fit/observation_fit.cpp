@@ -364,6 +364,31 @@ std::vector<std::string> parameter_names(const Candidate& candidate) {
     return names;
 }
 
+Eigen::MatrixXd free_directions(const Candidate& candidate) {
+    const std::vector<std::string> names = parameter_names(candidate);
+    const auto count = static_cast<Eigen::Index>(names.size());
+    const HeldParameters& held = candidate.held;
+    const auto held_at_zero = [&](const std::string& name) {
+        return std::find(held.zero_coefficients.begin(), held.zero_coefficients.end(), name) !=
+               held.zero_coefficients.end();
+    };
+    const bool tie_focal = held.square_pixels && count >= 2 && names[0] == "fx" && names[1] == "fy";
+    std::vector<Eigen::VectorXd> columns;
+    for (Eigen::Index i = 0; i < count; ++i) {
+        const std::string& name = names[static_cast<std::size_t>(i)];
+        if (tie_focal && i == 1) continue;
+        // The coefficients after K's: a held name among K's own ("fx") is not a coefficient.
+        if (i >= static_cast<Eigen::Index>(detail::core_count(candidate)) && held_at_zero(name)) continue;
+        Eigen::VectorXd column = Eigen::VectorXd::Zero(count);
+        column(i) = 1.0;
+        if (tie_focal && i == 0) column(0) = column(1) = std::sqrt(0.5);
+        columns.push_back(std::move(column));
+    }
+    Eigen::MatrixXd out(count, static_cast<Eigen::Index>(columns.size()));
+    for (std::size_t c = 0; c < columns.size(); ++c) out.col(static_cast<Eigen::Index>(c)) = columns[c];
+    return out;
+}
+
 CameraParameters parameters_of(const Camera& camera) {
     const std::string model(lens_info(camera.lens.type).name);
     CameraParameters out;

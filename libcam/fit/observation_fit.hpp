@@ -77,6 +77,13 @@ struct ObservationFitReport {
 // then the lens's coefficients after the held ones; "f" for LOOK_AT).
 std::vector<std::string> parameter_names(const Candidate& candidate);
 
+// The directions the candidate's parameters may move in under its held ones: one column
+// per free direction (orthonormal), num_params() rows. Without held parameters, the
+// identity; fx = fy: one column (1, 1) / sqrt(2) for both; a coefficient held at 0: no
+// column has it (a held name the model lacks holds nothing). Parameters p that satisfy
+// what is held are B B^T p.
+Eigen::MatrixXd free_directions(const Candidate& candidate);
+
 // A camera as the free parameters of the candidate of its own lens model, exactly.
 struct CameraParameters {
     Candidate candidate;

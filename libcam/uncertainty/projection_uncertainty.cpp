@@ -1,6 +1,7 @@
 #include "libcam/uncertainty/projection_uncertainty.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 
 #include "libcam/error.hpp"
@@ -53,12 +54,14 @@ double worst_direction_stdev(const Mat2& c) {
 ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
     : camera_(solved.camera), parameters_(parameters_of(solved.camera)) {
     camera_.pose = Pose{};
+    parameters_.candidate.held = solved.held;
+    directions_ = free_directions(parameters_.candidate);
     unprojector_ = std::make_shared<const Unprojector<double>>(camera_, UnprojectorOptions{.table_nodes = 4, .threads = 1});
     if (!solved.weights.empty() && solved.weights.size() != solved.views.size()) {
         throw InvalidArgument("uncertainty: weights for " + std::to_string(solved.weights.size()) + " views of " +
                               std::to_string(solved.views.size()));
     }
-    const auto count = static_cast<Eigen::Index>(parameters_.params.size());
+    const Eigen::Index count = directions_.cols();
     Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(count, count);
     std::vector<double> residuals;
     for (std::size_t v = 0; v < solved.views.size(); ++v) {
@@ -73,6 +76,7 @@ ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
             }
             weigh_rows(d, solved.weights[v]);
         }
+        d.by_intrinsics = d.by_intrinsics * directions_;
         residuals.insert(residuals.end(), d.residuals.data(), d.residuals.data() + d.residuals.size());
         observations_ += view.observations.size();
         // J^T J's blocks: U (intrinsics), W (intrinsics by this pose), V (this pose). The
@@ -101,10 +105,11 @@ ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
 
 std::vector<ParameterSpread> ProjectionUncertainty::parameters() const {
     const std::vector<std::string> names = parameter_names(parameters_.candidate);
+    const Eigen::MatrixXd covariance = directions_ * intrinsics_inverse_ * directions_.transpose();
     std::vector<ParameterSpread> out;
     for (std::size_t i = 0; i < parameters_.params.size(); ++i) {
         const auto k = static_cast<Eigen::Index>(i);
-        out.push_back({names[i], parameters_.params[i], noise_px_ * std::sqrt(intrinsics_inverse_(k, k))});
+        out.push_back({names[i], parameters_.params[i], noise_px_ * std::sqrt(std::max(0.0, covariance(k, k)))});
     }
     return out;
 }
@@ -130,7 +135,7 @@ std::vector<Mat2> ProjectionUncertainty::covariances(const std::vector<Vec2>& pi
     // the views of each one's board point carried back by its pose.
     const ResidualDerivatives at_camera =
         residual_derivatives(parameters_.candidate, camera_.size, parameters_.params, Pose{}, points);
-    Eigen::MatrixXd reduced = at_camera.by_intrinsics;  // 2n x count: dq/di - sum_v dq/dpose_v V^-1 W^T
+    Eigen::MatrixXd reduced = at_camera.by_intrinsics * directions_;  // 2n x count: dq/di - sum_v dq/dpose_v V^-1 W^T
     std::vector<Mat2> from_poses(points.size(), Mat2::Zero());  // sum_v dq/dpose_v V^-1 dq/dpose_v^T
     const double share = 1.0 / static_cast<double>(poses_.size());
     std::vector<FitSample> on_board(points.size());

@@ -50,6 +50,9 @@ struct SolvedCalibration {
     // Each observation's weight (the tool's, mrcal's), as views' observations; empty:
     // every observation weighs 1.
     std::vector<std::vector<double>> weights;
+    // What the fit held (fx = fy, coefficients at 0): the solution moves only along the
+    // rest, and so does its uncertainty.
+    HeldParameters held;
 };
 
 // One intrinsic parameter: its value and its standard deviation.
@@ -75,7 +78,8 @@ public:
     double observed_pixel_uncertainty_px() const { return noise_px_; }
     const Camera& camera() const { return camera_; }
     std::size_t observations() const { return observations_; }
-    // The intrinsics with their standard deviations.
+    // The intrinsics with their standard deviations (0 for a held coefficient; fx and fy
+    // the same when held equal).
     std::vector<ParameterSpread> parameters() const;
 
     // The covariance (pixels^2) of the projection of the point at `distance` (in the
@@ -91,10 +95,13 @@ private:
     // would cost more than every pixel a report asks about.
     std::shared_ptr<const Unprojector<double>> unprojector_;
     CameraParameters parameters_;
+    // The directions the intrinsics may move in (free_directions): J's intrinsics columns
+    // are taken along them, and the covariance below is over them.
+    Eigen::MatrixXd directions_;
     std::vector<Pose> poses_;
     double noise_px_ = 0.0;
     std::size_t observations_ = 0;
-    // The Schur complement's inverse (intrinsics' covariance / sigma^2); per view: V^-1
+    // The Schur complement's inverse (the free directions' covariance / sigma^2); per view: V^-1
     // (its pose block's inverse) and V^-1 W^T (W: the intrinsics-by-pose block).
     Eigen::MatrixXd intrinsics_inverse_;
     std::vector<Eigen::Matrix<double, 6, 6>> pose_inverse_;

@@ -1,6 +1,7 @@
 """Type stubs for libcam: graphics cameras and calibrated cameras, exact both ways."""
 
-from typing import Any, Literal, Sequence, TypedDict
+import os
+from typing import Any, Dict, Literal, Optional, Sequence, Tuple, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -178,6 +179,23 @@ class Observations:
 def read_observations(path: str, camera_file: str = "", size: tuple[int, int] | None = None) -> Observations:
     """The observations of OpenCV's calibration output, mrcal's optimization_inputs, a COLMAP model, OpenSfM, OpenMVG,
     AliceVision, VisualSfM or Bundler (size: their image size, which those two files lack), or a table."""
+
+def calibrate(
+    views: Sequence[Union[str, "os.PathLike[str]", npt.ArrayLike, Tuple[Sequence[int], npt.ArrayLike]]],
+    board: str,
+    image_size: Optional[Tuple[int, int]] = None,
+    model: str = "auto",
+    folds: int = 5,
+    margin: float = 0.05,
+    opencv_flags: Optional[str] = None,
+    corners: str = "libcam",
+    keep_outliers: bool = False,
+    at: Sequence[Tuple[float, float]] = (),
+    threads: int = 0,
+) -> Dict[str, Any]:
+    """A calibration from board images or the corners found in them: calibrate --json's dict,
+    numpy arrays for chosen['K'], chosen['dist'], each view's rvec and tvec, and rvecs, tvecs (n, 3)."""
+    ...
 
 def projection_uncertainty(
     observations: Observations, pixels: Any, distance: float = ..., camera: int = 0

@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include "arrays.hpp"
+#include "calibrate_binding.hpp"
 #include "camera_binding.hpp"
 #include "dataset_binding.hpp"
 #include "libcam/camera/simd.hpp"
@@ -157,6 +158,7 @@ PYBIND11_MODULE(_libcam, m) {
     bind_tools(m);
     bind_observations(m);
     bind_dataset(m);
+    bind_calibrate(m);
 
     m.def(
         "simd_target", [] { return std::string(simd_target_name(simd_target())); },

@@ -14,6 +14,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "libcam/calibrate/calibrate.hpp"
+#include "libcam/calibrate/opencv_flags.hpp"
 #include "libcam/error.hpp"
 #include "synthetic_sets.hpp"
 #include "truth_distance.hpp"
@@ -286,16 +287,44 @@ TEST_CASE("Calibrate: a chessboard through a fisheye gives FISHEYE, nearer the t
     CHECK(run.libcam <= run.opencv_on_ours * 1.001);
 }
 
-TEST_CASE("Calibrate OpenCV's sample images: OpenCV's model, against calibrateCamera and OpenCV's stored calibration",
-          "[calibrate][real]") {
+// OpenCV's sample images of the left camera, as its calibration sample's list names them
+// (the folder is absent: an empty list).
+std::vector<std::filesystem::path> opencv_left_images() {
     const std::filesystem::path folder = std::filesystem::path(LIBCAM_REAL_DATA) / "opencv-stereo-samples";
-    if (!std::filesystem::is_directory(folder)) {
-        WARN("skipped: no real data at " << folder.string());
-        return;
-    }
     std::vector<std::filesystem::path> images;
+    if (!std::filesystem::is_directory(folder)) return images;
     for (const char* name : {"01", "02", "03", "04", "05", "06", "07", "08", "09", "11", "12", "13", "14"}) {
         images.push_back(folder / ("left" + std::string(name) + ".jpg"));
+    }
+    return images;
+}
+
+// A calibration's corners as calibrateCamera takes them.
+struct OpenCvPoints {
+    std::vector<std::vector<cv::Point3f>> object;
+    std::vector<std::vector<cv::Point2f>> image;
+};
+OpenCvPoints opencv_points(const Calibration& c) {
+    OpenCvPoints out;
+    const std::vector<Vec3> corners = c.board.corner_points();
+    for (const CalibrationView& view : c.views) {
+        out.object.emplace_back();
+        out.image.emplace_back();
+        for (std::size_t k = 0; k < view.ids.size(); ++k) {
+            const Vec3& p = corners[static_cast<std::size_t>(view.ids[k])];
+            out.object.back().emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), 0.0f);
+            out.image.back().emplace_back(static_cast<float>(view.pixels[k].x()), static_cast<float>(view.pixels[k].y()));
+        }
+    }
+    return out;
+}
+
+TEST_CASE("Calibrate OpenCV's sample images: OpenCV's model, against calibrateCamera and OpenCV's stored calibration",
+          "[calibrate][real]") {
+    const std::vector<std::filesystem::path> images = opencv_left_images();
+    if (images.empty()) {
+        WARN("skipped: no folder opencv-stereo-samples in " LIBCAM_REAL_DATA);
+        return;
     }
     const BoardSpec board = parse_board_spec("chessboard:9x6:0.025");
     const std::vector<BoardDetection> found = detect_boards(images, board, 0);
@@ -308,18 +337,9 @@ TEST_CASE("Calibrate OpenCV's sample images: OpenCV's model, against calibrateCa
 
     // cv::calibrateCamera on the same corners, OPENCV5 with fx and fy free: the same
     // problem, solved by OpenCV.
-    std::vector<std::vector<cv::Point3f>> object_points;
-    std::vector<std::vector<cv::Point2f>> image_points;
-    const std::vector<Vec3> corners = board.corner_points();
-    for (const CalibrationView& view : c.views) {
-        object_points.emplace_back();
-        image_points.emplace_back();
-        for (std::size_t k = 0; k < view.ids.size(); ++k) {
-            const Vec3& p = corners[static_cast<std::size_t>(view.ids[k])];
-            object_points.back().emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), 0.0f);
-            image_points.back().emplace_back(static_cast<float>(view.pixels[k].x()), static_cast<float>(view.pixels[k].y()));
-        }
-    }
+    const OpenCvPoints points = opencv_points(c);
+    const auto& object_points = points.object;
+    const auto& image_points = points.image;
     cv::Mat K, dist;
     std::vector<cv::Mat> rvecs, tvecs;
     const double opencv_rms = cv::calibrateCamera(object_points, image_points, cv::Size(640, 480), K, dist, rvecs, tvecs);
@@ -345,3 +365,148 @@ TEST_CASE("Calibrate OpenCV's sample images: OpenCV's model, against calibrateCa
     CHECK(c.chosen().rms_px < 0.3926);
 }
 
+
+namespace {
+
+// OpenCV's calibration sample's output (left_intrinsics.yml): K, the distortion, each
+// view's pose and its RMS.
+struct StoredCalibration {
+    cv::Mat K, dist, extrinsics;
+    double rms = 0.0;
+    int flags = 0;
+};
+StoredCalibration stored_left_calibration() {
+    const std::string path = std::string(LIBCAM_REAL_DATA) + "/opencv-stereo-samples/left_intrinsics.yml";
+    cv::FileStorage file(path, cv::FileStorage::READ);
+    REQUIRE(file.isOpened());
+    StoredCalibration out;
+    file["camera_matrix"] >> out.K;
+    file["distortion_coefficients"] >> out.dist;
+    file["extrinsic_parameters"] >> out.extrinsics;
+    file["avg_reprojection_error"] >> out.rms;
+    file["flags"] >> out.flags;
+    return out;
+}
+
+// The RMS of the corners' distances from where the stored calibration projects the board.
+double rms_under(const StoredCalibration& stored, const OpenCvPoints& points) {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::size_t v = 0; v < points.image.size(); ++v) {
+        const cv::Mat pose = stored.extrinsics.row(static_cast<int>(v));
+        std::vector<cv::Point2f> projected;
+        cv::projectPoints(points.object[v], pose.colRange(0, 3), pose.colRange(3, 6), stored.K, stored.dist, projected);
+        for (std::size_t k = 0; k < projected.size(); ++k) {
+            const cv::Point2f d = projected[k] - points.image[v][k];
+            sum += d.x * d.x + d.y * d.y;
+            ++count;
+        }
+    }
+    return std::sqrt(sum / static_cast<double>(count));
+}
+
+}  // namespace
+
+TEST_CASE("Calibrate OpenCV's sample images with OpenCV's flags: its stored calibration reproduced",
+          "[calibrate][real]") {
+    const std::vector<std::filesystem::path> images = opencv_left_images();
+    if (images.empty()) {
+        WARN("skipped: no folder opencv-stereo-samples in " LIBCAM_REAL_DATA);
+        return;
+    }
+    const StoredCalibration stored = stored_left_calibration();
+    REQUIRE(stored.flags == cv::CALIB_FIX_ASPECT_RATIO);
+    const BoardSpec board = parse_board_spec("chessboard:9x6:0.025");
+    const std::vector<BoardDetection> found = detect_boards(images, board, 0, {}, CornerMethod::OpenCvSample);
+    CalibrationOptions options;
+    options.candidates = {candidate_named("OPENCV5")};
+    options.outlier_sigmas = std::numeric_limits<double>::infinity();  // every corner, as calibrateCamera takes them
+    options.held = held_by_opencv_flags(std::to_string(stored.flags));
+    const Calibration c = calibrate(found, board, options);
+    REQUIRE(c.views.size() == 13);
+    REQUIRE(c.corners() == 13 * 54);
+    const OpenCvPoints points = opencv_points(c);
+
+    // The same corners as OpenCV's sample found: under OpenCV's stored calibration (its K,
+    // distortion and each view's pose) their RMS is the one it stored for its own corners.
+    const double corners_rms = rms_under(stored, points);
+    INFO("the corners under OpenCV's stored calibration: RMS " << corners_rms << " px, stored " << stored.rms);
+    CHECK(std::abs(corners_rms / stored.rms - 1.0) < 1e-3);
+
+    // libcam's fit with fx = fy against OpenCV's standard deviations (calibrateCameraExtended
+    // on the same corners with the stored flags) and its stored numbers.
+    cv::Mat K = cv::Mat::eye(3, 3, CV_64F), dist, deviations, pose_deviations, view_errors;
+    std::vector<cv::Mat> rvecs, tvecs;
+    const double opencv_rms = cv::calibrateCamera(points.object, points.image, cv::Size(640, 480), K, dist, rvecs,
+                                                          tvecs, deviations, pose_deviations, view_errors, stored.flags);
+    const Camera& ours = c.chosen().camera;
+    const Intrinsics& k = ours.intrinsics;
+    INFO("libcam: fx " << k.fx << " fy " << k.fy << " cx " << k.cx << " cy " << k.cy << " dist "
+                       << Eigen::Map<const Eigen::VectorXd>(ours.lens.coefficients.data(), 5).transpose() << " rms "
+                       << c.chosen().rms_px << "; OpenCV now: " << K << " " << dist.t() << " rms " << opencv_rms
+                       << " std " << deviations.rowRange(0, 9).t() << "; stored: " << stored.K << " " << stored.dist.t());
+    CHECK(k.fx == k.fy);
+    const double ours_k[4] = {k.fx, k.fy, k.cx, k.cy};
+    const int where[4][2] = {{0, 0}, {1, 1}, {0, 2}, {1, 2}};
+    for (int i = 0; i < 4; ++i) {
+        // OpenCV reports fx's deviation as 0 (it holds fx / fy): fx is fy, with fy's.
+        const double deviation = deviations.at<double>(i == 0 ? 1 : i);
+        CHECK(std::abs(ours_k[i] - K.at<double>(where[i][0], where[i][1])) < deviation);
+        CHECK(std::abs(ours_k[i] - stored.K.at<double>(where[i][0], where[i][1])) < deviation);
+    }
+    for (int i = 0; i < 5; ++i) {
+        const double deviation = deviations.at<double>(4 + i);
+        CHECK(std::abs(ours.lens.coefficients[static_cast<std::size_t>(i)] - dist.at<double>(i)) < deviation);
+        CHECK(std::abs(ours.lens.coefficients[static_cast<std::size_t>(i)] - stored.dist.at<double>(i)) < deviation);
+    }
+    CHECK(std::abs(c.chosen().rms_px / stored.rms - 1.0) < 0.01);
+
+    // The fx = fy fit's own standard deviations against OpenCV's: the same linearisation,
+    // the noise estimated differently. libcam's (mrcal's) per coordinate: S / 2N over the N
+    // corners' 2N residuals (S their sum of squares); OpenCV's S / (N - p), p the free
+    // parameters (8 intrinsics, 6 per view): its deviations are sqrt(2N / (N - p)) times
+    // libcam's, 1.51 here.
+    const std::vector<ParameterSpread> spread = c.uncertainty[*c.fit.chosen].parameters;
+    REQUIRE(spread.size() == 9);
+    CHECK(spread[0].stdev == Approx(spread[1].stdev).epsilon(1e-9));
+    const double corners = static_cast<double>(c.corners());
+    const double opencv_scale = std::sqrt(2.0 * corners / (corners - (8.0 + 6.0 * 13.0)));
+    for (int i = 1; i < 9; ++i) {
+        const ParameterSpread& p = spread[static_cast<std::size_t>(i)];
+        INFO(p.name << ": libcam " << p.stdev << ", OpenCV " << deviations.at<double>(i));
+        CHECK(p.stdev * opencv_scale == Approx(deviations.at<double>(i)).epsilon(0.01));
+    }
+}
+
+TEST_CASE("Calibrate with OpenCV's flags: p1 p2 and k3 held at 0 as calibrateCamera holds them", "[calibrate][real]") {
+    const std::vector<std::filesystem::path> images = opencv_left_images();
+    if (images.empty()) {
+        WARN("skipped: no folder opencv-stereo-samples in " LIBCAM_REAL_DATA);
+        return;
+    }
+    const BoardSpec board = parse_board_spec("chessboard:9x6:0.025");
+    const std::vector<BoardDetection> found = detect_boards(images, board, 0);
+    CalibrationOptions options;
+    options.candidates = {candidate_named("OPENCV5")};
+    options.outlier_sigmas = std::numeric_limits<double>::infinity();
+    options.held = held_by_opencv_flags("CALIB_FIX_ASPECT_RATIO, zero_tangent_dist,FIX_K3");
+    const Calibration c = calibrate(found, board, options);
+    const OpenCvPoints points = opencv_points(c);
+    cv::Mat K = cv::Mat::eye(3, 3, CV_64F), dist;
+    std::vector<cv::Mat> rvecs, tvecs;
+    const double opencv_rms =
+        cv::calibrateCamera(points.object, points.image, cv::Size(640, 480), K, dist, rvecs, tvecs,
+                            cv::CALIB_FIX_ASPECT_RATIO | cv::CALIB_ZERO_TANGENT_DIST | cv::CALIB_FIX_K3);
+    const Camera& ours = c.chosen().camera;
+    INFO("libcam: " << ours.intrinsics.fx << " " << ours.intrinsics.cx << " " << ours.intrinsics.cy << " rms "
+                    << c.chosen().rms_px << "; OpenCV: " << K << " " << dist.t() << " rms " << opencv_rms);
+    CHECK(ours.intrinsics.fx == ours.intrinsics.fy);
+    CHECK(ours.lens.coefficients[2] == 0.0);
+    CHECK(ours.lens.coefficients[3] == 0.0);
+    CHECK(ours.lens.coefficients[4] == 0.0);
+    CHECK(c.chosen().rms_px == Approx(opencv_rms).epsilon(1e-4));
+    CHECK(std::abs(ours.intrinsics.fx - K.at<double>(0, 0)) < 0.01);
+    CHECK(std::abs(ours.intrinsics.cx - K.at<double>(0, 2)) < 0.01);
+    CHECK(std::abs(ours.intrinsics.cy - K.at<double>(1, 2)) < 0.01);
+    for (int i = 0; i < 2; ++i) CHECK(std::abs(ours.lens.coefficients[static_cast<std::size_t>(i)] - dist.at<double>(i)) < 1e-4);
+}

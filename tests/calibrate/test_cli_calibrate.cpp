@@ -118,3 +118,86 @@ TEST_CASE("libcam calibrate refuses in one line: a bad board spec, no usable ima
     CHECK(none.err == "libcam: error: calibrate: 0 of 1 images usable, a calibration needs at least two; " +
                           (dir / "broken.png").string() + ": cannot be read as an image\n");
 }
+
+TEST_CASE("libcam calibrate with OpenCV's flags on OpenCV's sample images: its stored RMS and the model they support",
+          "[calibrate][cli][real]") {
+    const std::filesystem::path folder = std::filesystem::path(LIBCAM_REAL_DATA) / "opencv-stereo-samples";
+    if (!std::filesystem::is_directory(folder)) {
+        WARN("skipped: no folder opencv-stereo-samples in " LIBCAM_REAL_DATA);
+        return;
+    }
+    // OpenCV's calibration sample's own output for these images: its flags and its RMS.
+    cv::FileStorage stored((folder / "left_intrinsics.yml").string(), cv::FileStorage::READ);
+    REQUIRE(stored.isOpened());
+    const int flags = static_cast<int>(stored["flags"]);
+    const double stored_rms = static_cast<double>(stored["avg_reprojection_error"]);
+    std::vector<std::string> args = {"calibrate"};
+    for (const char* name : {"01", "02", "03", "04", "05", "06", "07", "08", "09", "11", "12", "13", "14"}) {
+        args.push_back((folder / ("left" + std::string(name) + ".jpg")).string());
+    }
+    for (const std::string& more : {std::string("--board"), std::string("chessboard:9x6:0.025"), std::string("--opencv-flags"),
+                                    std::to_string(flags), std::string("--corners"), std::string("opencv-sample"),
+                                    std::string("--keep-outliers"), std::string("--json"), std::string("--progress"),
+                                    std::string("never")}) {
+        args.push_back(more);
+    }
+    const CliResult run = run_libcam(args);
+    INFO(run.describe());
+    REQUIRE(run.exit_code == 0);
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    CHECK(report["held"] == "fx = fy");
+    CHECK(report["corners"] == 13 * 54);
+    bool found = false;
+    for (const nlohmann::json& candidate : report["candidates"]) {
+        if (candidate["model"] != "OPENCV5") continue;
+        found = true;
+        CHECK(candidate["params"] == 8);
+        CHECK(std::abs(candidate["rms_px"].get<double>() / stored_rms - 1.0) < 0.01);
+    }
+    CHECK(found);
+    const nlohmann::json& K = report["chosen"]["K"];
+    CHECK(K[0][0].get<double>() == K[1][1].get<double>());
+}
+
+TEST_CASE("libcam calibrate refuses OpenCV's flags it does not take in one line", "[calibrate][cli]") {
+    TempDir dir;
+    write_whole_file(dir / "broken.png", "not an image");
+    for (const char* flags : {"FIX_PRINCIPAL_POINT", "16386", "FIX_ASPECT", ""}) {
+        const CliResult run =
+            run_libcam({"calibrate", (dir / "broken.png").string(), "--board", "chessboard:9x6:0.03", "--opencv-flags", flags});
+        INFO(flags << ": " << run.describe());
+        CHECK(run.exit_code == 2);
+        CHECK(run.out.empty());
+        CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+        CHECK(run.err.find("--opencv-flags") != std::string::npos);
+    }
+}
+
+TEST_CASE("libcam calibrate refuses a pair without both sides or with lists of different lengths in one line",
+          "[calibrate][cli][pair]") {
+    TempDir dir;
+    write_whole_file(dir / "broken.png", "not an image");
+    const std::string image = (dir / "broken.png").string();
+    const CliResult one_side = run_libcam({"calibrate", "--left", image, "--board", "chessboard:9x6:0.03"});
+    CHECK(one_side.exit_code == 2);
+    CHECK(one_side.err == "libcam: usage error: a pair needs both --left and --right images (see --help)\n");
+    const CliResult lengths =
+        run_libcam({"calibrate", "--left", image, image, "--right", image, "--board", "chessboard:9x6:0.03", "-o",
+                    (dir / "out").string()});
+    CHECK(lengths.exit_code == 1);
+    CHECK(lengths.out.empty());
+    CHECK(lengths.err == "libcam: error: calibrate: 2 images of the first camera and 1 of the second: a pair needs one "
+                         "of each per view\n");
+    CHECK(!std::filesystem::exists(dir / "out"));
+}
+
+TEST_CASE("libcam calibrate --pairs refuses a list with an odd count in one line", "[calibrate][cli][pair]") {
+    TempDir dir;
+    write_whole_file(dir / "list.yml", "%YAML:1.0\nimagelist:\n  - a.png\n  - b.png\n  - c.png\n");
+    const CliResult run =
+        run_libcam({"calibrate", "--pairs", (dir / "list.yml").string(), "--board", "chessboard:9x6:0.03"});
+    CHECK(run.exit_code != 0);
+    CHECK(run.out.empty());
+    CHECK(run.err.find((dir / "list.yml").string() + ": imagelist: 3 names, an odd count") != std::string::npos);
+    CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+}

@@ -18,6 +18,11 @@
 5. OpenCV's sample pairs (real images, 9x6 chessboard; skipped when absent): calibrated with
    cv2.stereoCalibrate here, rectified by libcam from the stereo files; the rows of matched
    corners agree as well as through cv2.stereoRectify.
+6. OpenCV's sample pairs calibrated by libcam as a pair (`libcam calibrate --left --right`,
+   OpenCV's sample's corners, OPENCV5 as cv2 fits it) against cv2.calibrateCamera +
+   cv2.stereoCalibrate on the same corners (RMS, R, T), and rectified by libcam from the
+   files calibrate wrote: the rows of matched corners within 0.3 px, beside
+   cv2.stereoRectify's.
 
 Usage: rectify_vs_peers.py LIBCAM REAL_DATA_FOLDER WORK_FOLDER
 Exits 77 (skipped) when mrcal's or OpenCV's Python module is absent.
@@ -317,6 +322,83 @@ def opencv_sample_pairs(np, cv2, libcam, real_data, work):
         check(out["cameras"][k]["kept"] >= 0.5, f"OpenCV's sample pairs: camera {k} keeps {out['cameras'][k]['kept']:.4f}")
 
 
+def sample_corners(cv2, np, folder, side):
+    """Each sample image's corners as OpenCV's calibration sample finds them (what `libcam
+    calibrate --corners opencv-sample` does), None where the board is not found."""
+    criteria = (cv2.TERM_CRITERIA_EPS | cv2.TERM_CRITERIA_COUNT, 30, 0.1)
+    flags = cv2.CALIB_CB_ADAPTIVE_THRESH | cv2.CALIB_CB_FAST_CHECK | cv2.CALIB_CB_NORMALIZE_IMAGE
+    out = []
+    for i in SAMPLE_VIEWS:
+        gray = cv2.imread(os.path.join(folder, f"{side}{i:02d}.jpg"), cv2.IMREAD_GRAYSCALE)
+        ok, corners = cv2.findChessboardCorners(gray, (9, 6), flags=flags)
+        out.append(cv2.cornerSubPix(gray, corners, (11, 11), (-1, -1), criteria) if ok else None)
+    return out
+
+
+SAMPLE_VIEWS = (1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14)
+
+
+def libcam_calibrated_sample_pairs(np, cv2, libcam, real_data, work):
+    folder = os.path.join(real_data, "opencv-stereo-samples")
+    if not os.path.isdir(folder):
+        print(f"skipped: OpenCV's sample pairs calibrated by libcam (no folder {folder})")
+        return
+    out_folder = os.path.join(work, "sample-pair")
+    shutil.rmtree(out_folder, ignore_errors=True)
+    sides = {side: [os.path.join(folder, f"{side}{i:02d}.jpg") for i in SAMPLE_VIEWS] for side in ("left", "right")}
+    result = run(libcam, ["calibrate", "--left"] + sides["left"] + ["--right"] + sides["right"] +
+                 ["--board", "chessboard:9x6:0.025", "--corners", "opencv-sample", "--model", "OPENCV5",
+                  "--keep-outliers", "--json", "-o", out_folder, "--progress", "never"])
+    pair = json.loads(result.stdout)
+    # cv2 on the same corners of the same views: each camera, then the pair (intrinsics free).
+    left, right = sample_corners(cv2, np, folder, "left"), sample_corners(cv2, np, folder, "right")
+    used = [k for k in range(len(SAMPLE_VIEWS)) if left[k] is not None and right[k] is not None]
+    check(used == pair["pairs"], f"OpenCV's sample pairs: libcam used the views cv2 finds in both ({pair['pairs']})")
+    board = np.zeros((54, 3), np.float32)
+    board[:, :2] = np.mgrid[0:9, 0:6].T.reshape(-1, 2) * 0.025
+    objects = [board] * len(used)
+    L, R_ = [left[k] for k in used], [right[k] for k in used]
+    size = (640, 480)
+    _, K1, D1, _, _ = cv2.calibrateCamera(objects, L, size, None, None)
+    _, K2, D2, _, _ = cv2.calibrateCamera(objects, R_, size, None, None)
+    tight = (cv2.TERM_CRITERIA_COUNT | cv2.TERM_CRITERIA_EPS, 200, 1e-12)
+    rms, K1, D1, K2, D2, R, T, _, _ = cv2.stereoCalibrate(objects, L, R_, K1, D1, K2, D2, size,
+                                                          flags=cv2.CALIB_USE_INTRINSIC_GUESS, criteria=tight)
+    turn = rotation_angle(np, np.array(pair["R"]), R)
+    shift = np.linalg.norm(np.array(pair["T"]) - T.ravel())
+    print(f"libcam calibrate --left --right: RMS {pair['rms_px']:.6f} px, T {np.array(pair['T'])}; "
+          f"cv2.stereoCalibrate: RMS {rms:.6f} px, T {T.ravel()}; R {turn:.2e} rad apart, T {shift:.2e} m apart")
+    check(abs(pair["rms_px"] - rms) < 1e-3 * rms, "OpenCV's sample pairs: libcam's pair RMS is cv2.stereoCalibrate's")
+    check(turn < 1e-6 and shift < 1e-6, "OpenCV's sample pairs: R and T as cv2.stereoCalibrate's (1e-6)")
+    # Rectified by libcam from the files calibrate wrote; the rows of matched corners.
+    result = run(libcam, ["rectify", os.path.join(out_folder, "intrinsics.yml"),
+                          os.path.join(out_folder, "extrinsics.yml"), "--json"])
+    rectified = json.loads(result.stdout)
+    cams = pair["cameras"]
+    Kl, Dl = np.array(cams[0]["K"]), np.array(cams[0]["dist"])
+    Kr, Dr = np.array(cams[1]["K"]), np.array(cams[1]["dist"])
+    P = np.array(rectified["cameras"][0]["K"])
+    gaps = []
+    for l, r in zip(L, R_):
+        ql = cv2.undistortPointsIter(l.astype(float), Kl, Dl, np.array(rectified["cameras"][0]["R"]), P, tight)
+        qr = cv2.undistortPointsIter(r.astype(float), Kr, Dr, np.array(rectified["cameras"][1]["R"]), P, tight)
+        gaps.extend(np.abs(ql.reshape(-1, 2)[:, 1] - qr.reshape(-1, 2)[:, 1]))
+    gaps = np.array(gaps)
+    R1, R2, P1, P2, _, _, _ = cv2.stereoRectify(K1, D1, K2, D2, size, R, T, alpha=0)
+    theirs = []
+    for l, r in zip(L, R_):
+        ql = cv2.undistortPointsIter(l.astype(float), K1, D1, R1, P1[:, :3], tight)
+        qr = cv2.undistortPointsIter(r.astype(float), K2, D2, R2, P2[:, :3], tight)
+        theirs.extend(np.abs(ql.reshape(-1, 2)[:, 1] - qr.reshape(-1, 2)[:, 1]))
+    theirs = np.array(theirs)
+    print(f"rows of {gaps.size} matched corners apart, calibrated and rectified by libcam: RMS "
+          f"{np.sqrt((gaps ** 2).mean()):.4f} px, max {gaps.max():.4f}; by cv2.stereoCalibrate + stereoRectify: RMS "
+          f"{np.sqrt((theirs ** 2).mean()):.4f} px, max {theirs.max():.4f}")
+    check(np.sqrt((gaps ** 2).mean()) < 0.3, "OpenCV's sample pairs calibrated by libcam: rows agree within 0.3 px (RMS)")
+    check(np.sqrt((gaps ** 2).mean()) < 1.05 * np.sqrt((theirs ** 2).mean()) * P[1, 1] / P1[1, 1] + 0.01,
+          "OpenCV's sample pairs calibrated by libcam: rows agree as well as through cv2")
+
+
 def main():
     if len(sys.argv) != 4:
         sys.exit(__doc__)
@@ -334,6 +416,7 @@ def main():
     blobs_land_where_the_truth_says(np, cv2, libcam, work)
     bad_input(np, cv2, libcam, work)
     opencv_sample_pairs(np, cv2, libcam, real_data, work)
+    libcam_calibrated_sample_pairs(np, cv2, libcam, real_data, work)
     if failures:
         print(f"{len(failures)} checks failed")
         return 1

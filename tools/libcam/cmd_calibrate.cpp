@@ -16,7 +16,11 @@
 #include "fit_observations.hpp"
 #include "json_output.hpp"
 #include "libcam/calibrate/calibrate.hpp"
+#include "libcam/calibrate/calibration_json.hpp"
+#include "libcam/calibrate/pair_list.hpp"
+#include "libcam/calibrate/pair_output.hpp"
 #include "libcam/calibrate/observations_output.hpp"
+#include "libcam/calibrate/opencv_flags.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
@@ -37,10 +41,16 @@ constexpr long kHeatmapColumns = 60;
 
 struct CalibrateFlags {
     std::vector<std::string> inputs;
+    std::vector<std::string> left;
+    std::vector<std::string> right;
+    std::string pairs;
     std::string board;
     std::string models;
+    std::string opencv_flags;
+    std::string corners = "libcam";
     int folds = 5;
     double margin = 0.05;
+    bool keep_outliers = false;
     bool json = false;
     std::string output;
     std::string to;
@@ -52,8 +62,14 @@ struct CalibrateFlags {
 };
 
 void add_flags(CLI::App& command, CalibrateFlags& flags) {
-    command.add_option("images", flags.inputs, "Board images, or folders of them (their .jpg, .png, ... files)")
-        ->required();
+    command.add_option("images", flags.inputs, "Board images, or folders of them (their .jpg, .png, ... files)");
+    command.add_option("--left", flags.left,
+                       "A stereo pair: the left camera's board images (or folders), each with the right image of the "
+                       "same board view at the same place in --right; -o then names a folder for the pair's files");
+    command.add_option("--right", flags.right, "A stereo pair: the right camera's board images (or folders)");
+    command.add_option("--pairs", flags.pairs,
+                       "A stereo pair's image list as OpenCV's stereo_calib sample reads it (stereo_calib.xml: left "
+                       "and right images in turn; names relative to the list's folder), instead of --left and --right");
     command.add_option("--board", flags.board,
                        "The board: chessboard:CxR:SQUARE (C x R inner corners, square side in metres) or "
                        "charuco:CxR:SQUARE:MARKER:DICT (C x R squares, marker side, OpenCV's dictionary, e.g. "
@@ -62,6 +78,17 @@ void add_flags(CLI::App& command, CalibrateFlags& flags) {
     command.add_option("--model", flags.models,
                        "Fit these models, comma-separated, simplest first; auto (default): PINHOLE, OPENCV4, "
                        "OPENCV5, OPENCV8, FISHEYE, and STEREOGRAPHIC where the corners reach 45 degrees from the axis");
+    command.add_option("--opencv-flags", flags.opencv_flags,
+                       "Hold what OpenCV's calibrateCamera flags hold, to reproduce a calibration made with them: "
+                       "FIX_ASPECT_RATIO (fx = fy), ZERO_TANGENT_DIST (p1 = p2 = 0), FIX_K1 ... FIX_K6 (that "
+                       "coefficient at 0); OpenCV's names (CALIB_ optional), comma-separated, or the number its files "
+                       "store (flags: 2)");
+    command.add_option("--corners", flags.corners,
+                       "How a chessboard's corners are found: libcam (default; findChessboardCornersSB, each corner "
+                       "refined in a window within its own squares) or opencv-sample (as OpenCV's calibration sample: "
+                       "findChessboardCorners, cornerSubPix in an 11x11 window), to reproduce its results")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"libcam", "opencv-sample"}));
     command.add_option("--folds", flags.folds, "The views are dealt into this many folds for the held-out RMS")
         ->capture_default_str()
         ->check(CLI::Range(2, 1000));
@@ -69,6 +96,8 @@ void add_flags(CLI::App& command, CalibrateFlags& flags) {
                        "The chosen model's held-out RMS may exceed the best one's by this fraction")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 10.0));
+    command.add_flag("--keep-outliers", flags.keep_outliers,
+                     "Fit every corner found, none dropped as an outlier (as OpenCV's calibrateCamera takes them)");
     command.add_flag("--json", flags.json, "Print JSON");
     command.add_option("-o,--output", flags.output, "Write the chosen calibration to this file (written atomically)");
     command.add_option("--to", flags.to,
@@ -167,13 +196,6 @@ std::string outlier_places(const Calibration& c) {
     return places;
 }
 
-double view_rms(const Calibration& c, std::size_t v) {
-    double sum = 0.0;
-    const std::vector<double> errors = c.view_errors(v);
-    for (const double e : errors) sum += e * e;
-    return std::sqrt(sum / static_cast<double>(errors.size()));
-}
-
 // Each candidate's projection uncertainty beside its held-out RMS.
 std::string uncertainty_table(const Calibration& c) {
     std::ostringstream out;
@@ -209,11 +231,7 @@ struct ChosenUncertainty {
 ChosenUncertainty chosen_uncertainty(const Calibration& c, const std::vector<std::string>& at) {
     ChosenUncertainty out;
     out.pixels = at.empty() ? std::vector<Vec2>{Vec2(c.size.centre_x(), c.size.centre_y())} : at_pixels(at, c.size);
-    if (c.uncertainty[*c.fit.chosen].computed) {
-        out.sigma_px = ProjectionUncertainty(c.solved(*c.fit.chosen)).sigma_px(out.pixels);
-    } else {
-        out.sigma_px.assign(out.pixels.size(), std::numeric_limits<double>::quiet_NaN());
-    }
+    out.sigma_px = chosen_sigma_px(c, out.pixels);
     return out;
 }
 
@@ -231,6 +249,7 @@ std::string format_text(const Calibration& c, const ChosenUncertainty& at) {
     if (c.rounds_capped) {
         out << "the outlier rounds stopped after " << c.rounds << " fits with corners still beyond the limit\n";
     }
+    if (c.held.any()) out << "held in every model, as OpenCV's flags ask: " << c.held.text() << "\n";
     out << "\n" << candidates_table(c.fit) << "\n" << uncertainty_table(c) << "\n";
     out << "chosen: " << c.fit.reason << "\n";
     out << "  image size " << c.size.width << "x" << c.size.height << "\n";
@@ -254,64 +273,13 @@ std::string format_text(const Calibration& c, const ChosenUncertainty& at) {
         name.resize(std::max<std::size_t>(name.size(), 26), ' ');
         std::string corners = std::to_string(c.views[v].ids.size());
         corners.resize(9, ' ');
-        out << name << corners << format_short(view_rms(c, v), 4) << "\n";
+        out << name << corners << format_short(c.view_rms_px(v), 4) << "\n";
     }
     return out.str();
 }
 
-Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
-
 std::string format_json(const Calibration& c, const ChosenUncertainty& at) {
-    const ObservationCandidate& chosen = c.chosen();
-    const Intrinsics& k = chosen.camera.intrinsics;
-    Json out;
-    out["images"] = c.images;
-    out["used"] = c.views.size();
-    out["rejected"] = Json::array();
-    for (const RejectedImage& r : c.rejected) out["rejected"].push_back({{"image", r.image}, {"why", r.why}});
-    out["corners"] = c.corners();
-    out["board"] = c.board.text();
-    out["outliers"] = {{"corners", c.outliers},
-                       {"noise_px", c.noise_px},
-                       {"fits", c.rounds},
-                       {"stopped_at_limit", c.rounds_capped},
-                       {"images", Json::array()}};
-    for (const CalibrationView& view : c.views) {
-        if (!view.outlier_ids.empty()) {
-            out["outliers"]["images"].push_back({{"image", view.image}, {"corners", view.outlier_ids}});
-        }
-    }
-    out["chosen"] = {{"model", std::string(chosen.candidate.name)},
-                     {"image_size", {c.size.width, c.size.height}},
-                     {"K", {{k.fx, k.skew, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}}},
-                     {"dist", chosen.camera.lens.coefficients},
-                     {"rms_px", finite_or_null(chosen.rms_px)},
-                     {"heldout_rms_px", finite_or_null(chosen.heldout_rms_px)},
-                     {"reason", c.fit.reason}};
-    out["candidates"] = candidates_json(c.fit);
-    for (std::size_t i = 0; i < c.fit.candidates.size(); ++i) {
-        const CandidateUncertainty& u = c.uncertainty[i];
-        if (!c.fit.candidates[i].fitted) continue;
-        if (!u.computed) {
-            out["candidates"][i]["uncertainty"] = {{"failure", u.failure}};
-            continue;
-        }
-        out["candidates"][i]["uncertainty"] = {{"noise_px", u.noise_px},
-                                               {"centre_sigma_px", finite_or_null(u.centre_px)},
-                                               {"worst_observed_sigma_px", finite_or_null(u.worst_observed_px)},
-                                               {"parameters", parameters_json(u.parameters)}};
-    }
-    out["views"] = Json::array();
-    for (std::size_t v = 0; v < c.views.size(); ++v) {
-        const Pose& pose = chosen.poses[v];
-        out["views"].push_back({{"image", c.views[v].image},
-                                {"corners", c.views[v].ids.size()},
-                                {"rms_px", finite_or_null(view_rms(c, v))},
-                                {"rvec", vec_json(pose.rvec())},
-                                {"tvec", vec_json(pose.t)}});
-    }
-    out["uncertainty"] = at_json(at.pixels, at.sigma_px);
-    return out.dump(2) + "\n";
+    return calibration_json(c, at.pixels, at.sigma_px);
 }
 
 CameraFormat output_format(const CalibrateFlags& flags) { return output_format_of(flags.to, flags.output); }
@@ -321,6 +289,14 @@ BoardSpec board_from(const std::string& text) {
         return parse_board_spec(text);
     } catch (const InvalidArgument& error) {
         throw UsageError(std::string("--board: ") + error.what());
+    }
+}
+
+HeldParameters opencv_flags_from(const std::string& text) {
+    try {
+        return held_by_opencv_flags(text);
+    } catch (const InvalidArgument& error) {
+        throw UsageError(error.what());
     }
 }
 
@@ -358,26 +334,120 @@ void write_outputs(const CalibrateFlags& flags, const Calibration& c) {
     }
 }
 
+// The pair's text report: each camera's model and K after the joint fit, R and T.
+std::string format_pair_text(const PairCalibration& pair) {
+    std::ostringstream out;
+    out << pair.pairs.size() << " views used by both cameras (left: " << pair.first.views.size() << " of "
+        << pair.first.images << ", right: " << pair.second.views.size() << " of " << pair.second.images << ")\n";
+    for (const RejectedImage& r : pair.first.rejected) out << "  rejected " << r.image << ": " << r.why << "\n";
+    for (const RejectedImage& r : pair.second.rejected) out << "  rejected " << r.image << ": " << r.why << "\n";
+    const auto camera_line = [&](const char* name, const Calibration& alone, const Camera& camera) {
+        const Intrinsics& k = camera.intrinsics;
+        out << name << ": " << alone.fit.reason << "\n  after the joint fit: fx " << format_short(k.fx, 8) << ", fy "
+            << format_short(k.fy, 8) << ", cx " << format_short(k.cx, 8) << ", cy " << format_short(k.cy, 8) << "; "
+            << lens_text(camera) << "\n";
+    };
+    camera_line("left", pair.first, pair.first_camera);
+    camera_line("right", pair.second, pair.second_camera);
+    const Pose& pose = pair.second_camera.pose;
+    out << "right from left (X_right = R X_left + T): rvec " << format_short(pose.rvec().x(), 6) << " "
+        << format_short(pose.rvec().y(), 6) << " " << format_short(pose.rvec().z(), 6) << " rad, T "
+        << format_short(pose.t.x(), 6) << " " << format_short(pose.t.y(), 6) << " " << format_short(pose.t.z(), 6)
+        << " (baseline " << format_short(pose.t.norm(), 6) << ", the board's unit)\n";
+    out << "rms " << format_short(pair.rms_px, 4) << " px over both cameras' corners in the views both used\n";
+    return out.str();
+}
+
+// -o DIR for a pair: OpenCV's stereo_calib files (intrinsics.yml, extrinsics.yml) and the
+// two cameras as mrcal .cameramodel files, the right one posed from the left. Every text
+// is made before any file is written.
+void write_pair_outputs(const std::string& folder, const PairCalibration& pair) {
+    std::vector<std::pair<std::filesystem::path, std::string>> files;
+    const std::filesystem::path dir(folder);
+    try {
+        const OpenCvStereoFiles opencv = format_opencv_stereo(pair);
+        files.emplace_back(dir / "intrinsics.yml", opencv.intrinsics);
+        files.emplace_back(dir / "extrinsics.yml", opencv.extrinsics);
+    } catch (const NotRepresentable& error) {
+        std::cerr << "libcam calibrate: " << folder << ": intrinsics.yml and extrinsics.yml not written: " << error.what()
+                  << "\n";
+    }
+    try {
+        files.emplace_back(dir / "left.cameramodel", format_camera(pair.first_camera, CameraFormat::Cameramodel));
+        files.emplace_back(dir / "right.cameramodel", format_camera(pair.second_camera, CameraFormat::Cameramodel));
+    } catch (const NotRepresentable& error) {
+        files.resize(std::min<std::size_t>(files.size(), 2));
+        std::cerr << "libcam calibrate: " << folder << ": the .cameramodel files not written: " << error.what() << "\n";
+    }
+    if (files.empty()) throw Error(folder + ": neither OpenCV's stereo files nor mrcal's models can hold this pair");
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) throw FileError(folder + ": cannot create the folder: " + error.message());
+    for (const auto& [path, text] : files) write_file_atomically(path, text);
+}
+
+int run_pair(const CalibrateFlags& flags, const BoardSpec& board, const CalibrationOptions& options,
+             ProgressMode progress_when) {
+    if (!flags.inputs.empty()) throw UsageError("--left and --right take the pair's images: no images before them");
+    if (!flags.pairs.empty() && (!flags.left.empty() || !flags.right.empty())) {
+        throw UsageError("--pairs names the pair's images: not with --left or --right");
+    }
+    if (flags.pairs.empty() && (flags.left.empty() || flags.right.empty())) {
+        throw UsageError("a pair needs both --left and --right images");
+    }
+    if (!flags.at.empty() || !flags.heatmap.empty() || !flags.observations_out.empty() || !flags.to.empty()) {
+        throw UsageError("--at, --heatmap, --observations-out and --to are for one camera, not a pair");
+    }
+    const CornerMethod method = flags.corners == "opencv-sample" ? CornerMethod::OpenCvSample : CornerMethod::Libcam;
+    std::vector<std::filesystem::path> lists[2];
+    if (!flags.pairs.empty()) {
+        PairList list = read_pair_list(flags.pairs);
+        lists[0] = std::move(list.left);
+        lists[1] = std::move(list.right);
+    } else {
+        lists[0] = images_of(flags.left);
+        lists[1] = images_of(flags.right);
+    }
+    std::vector<BoardDetection> found[2];
+    for (int side = 0; side < 2; ++side) {
+        const std::vector<std::filesystem::path>& images = lists[side];
+        ProgressPrinter printer(progress_when);
+        found[side] = detect_boards(
+            images, board, flags.threads, [&](std::size_t done) { printer.found(done, images.size()); }, method);
+    }
+    const PairCalibration pair = calibrate_pair(found[0], found[1], board, options);
+    if (!flags.output.empty()) write_pair_outputs(flags.output, pair);
+    emit(flags.json ? pair_calibration_json(pair) : format_pair_text(pair), "");
+    return 0;
+}
+
 }  // namespace
 
 Runner add_calibrate(CLI::App& app) {
     CLI::App* command = add_command(app, "calibrate");
     auto flags = std::make_shared<CalibrateFlags>();
     add_flags(*command, *flags);
-    return [flags] {
+    return [flags, command] {
         // Every flag checked before any work.
         const ProgressMode progress_when = progress_mode(flags->progress);
         const BoardSpec board = board_from(flags->board);
         CalibrationOptions options;
+        if (command->count("--opencv-flags") > 0) options.held = opencv_flags_from(flags->opencv_flags);
         options.candidates = flags->models == "auto" ? std::vector<Candidate>{} : candidates_from(flags->models);
         options.folds = flags->folds;
         options.margin = flags->margin;
+        if (flags->keep_outliers) options.outlier_sigmas = std::numeric_limits<double>::infinity();
+        if (!flags->left.empty() || !flags->right.empty() || !flags->pairs.empty()) {
+            return run_pair(*flags, board, options, progress_when);
+        }
         if (!flags->output.empty()) output_format(*flags);
+        if (flags->inputs.empty()) throw UsageError("give the board images (or --left and --right for a pair)");
         for (const std::string& pixel : flags->at) parse_vec2("--at", pixel);  // on the image: checked once its size is known
         const std::vector<std::filesystem::path> images = images_of(flags->inputs);
         ProgressPrinter printer(progress_when);
         const std::vector<BoardDetection> detections = detect_boards(
-            images, board, flags->threads, [&](std::size_t done) { printer.found(done, images.size()); });
+            images, board, flags->threads, [&](std::size_t done) { printer.found(done, images.size()); },
+            flags->corners == "opencv-sample" ? CornerMethod::OpenCvSample : CornerMethod::Libcam);
         options.stage = [&](const std::string& what) { printer.stage(what); };
         const Calibration calibration = calibrate(detections, board, options);
         const ChosenUncertainty at = chosen_uncertainty(calibration, flags->at);

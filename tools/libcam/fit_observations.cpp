@@ -159,7 +159,7 @@ std::string candidates_table(const ObservationFitReport& report) {
             out << name << " not fitted: " << c.failure << "\n";
             continue;
         }
-        std::string params = std::to_string(c.params.size());
+        std::string params = std::to_string(free_directions(c.candidate).cols());
         params.resize(8, ' ');
         std::string rms = format_short(c.rms_px, 4);
         rms.resize(10, ' ');
@@ -174,7 +174,7 @@ Json candidates_json(const ObservationFitReport& report) {
     for (const ObservationCandidate& c : report.candidates) {
         Json entry{{"model", std::string(c.candidate.name)}, {"fitted", c.fitted}};
         if (c.fitted) {
-            entry["params"] = c.params.size();
+            entry["params"] = free_directions(c.candidate).cols();  // the free ones: fx = fy counts once
             entry["rms_px"] = finite_or_null(c.rms_px);
             entry["heldout_rms_px"] = finite_or_null(c.heldout_rms_px);
             entry["flags"] = c.flags;

@@ -1,0 +1,37 @@
+#pragma once
+// A stereo pair from two cameras' images of the same board views (`libcam calibrate --left
+// IMAGES --right IMAGES`): each camera calibrated alone as `libcam calibrate` does (its
+// model chosen by held-out views, outliers dropped), then both refined together on the
+// views both cameras used: both intrinsics, the second camera's pose from the first and
+// one board pose per view (Ceres, libcam::fit's solve_pair), as cv::stereoCalibrate
+// refines them.
+//
+// The pose is OpenCV's stereoCalibrate convention: X_second = R X_first + T, in the
+// board's unit.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "libcam/calibrate/calibrate.hpp"
+
+namespace libcam {
+
+struct PairCalibration {
+    Calibration first, second;  // each camera alone
+    // The views both cameras used (indices into the image lists) and their board poses in
+    // the first camera, after the joint fit.
+    std::vector<std::size_t> pairs;
+    std::vector<Pose> board_poses;
+    Camera first_camera;   // jointly refined, pose identity
+    Camera second_camera;  // jointly refined, pose = the pair's: X_second = R X_first + T
+    double rms_px = 0.0;   // over both cameras' corners in the pairs
+};
+
+// `first[i]` and `second[i]` are the same board view seen by each camera. Throws Error, in
+// one line, when either camera cannot be calibrated or fewer than two views were used by
+// both.
+PairCalibration calibrate_pair(const std::vector<BoardDetection>& first, const std::vector<BoardDetection>& second,
+                               const BoardSpec& board, const CalibrationOptions& options);
+
+}  // namespace libcam

@@ -1,0 +1,113 @@
+# libcam.calibrate against cv2.calibrateCamera on the same corner arrays (board corners
+# projected through a known OPENCV5 camera by cv2.projectPoints, with noise), and against
+# the libcam program's calibrate --json on OpenCV's sample images.
+
+import json
+import os
+import pathlib
+import subprocess
+
+import cv2
+import numpy as np
+import pytest
+
+import libcam
+from conftest import SOURCE_DIR
+
+REAL_DATA = pathlib.Path(os.environ.get("LIBCAM_REAL_DATA", SOURCE_DIR.parent / "shared" / "real-data"))
+SIZE = (640, 480)
+K_TRUE = np.array([[520.0, 0.0, 322.0], [0.0, 518.0, 241.0], [0.0, 0.0, 1.0]])
+DIST_TRUE = np.array([-0.28, 0.09, 0.0012, -0.0008, 0.0])
+
+
+def board_points(columns=9, rows=6, square=0.03):
+    grid = np.mgrid[0:columns, 0:rows].T.reshape(-1, 2) * square
+    return np.hstack([grid, np.zeros((len(grid), 1))]).astype(np.float32)
+
+
+def synthetic_corners(views=10, noise_px=0.1, seed=5):
+    """Each view's 54 corners as cv2.projectPoints puts them, in the board's order, plus noise."""
+    rng = np.random.default_rng(seed)
+    points = board_points()
+    centre = points.mean(axis=0)
+    corners = []
+    for v in range(views):
+        rvec = np.array([0.5 * np.sin(v), 0.45 * np.cos(1.7 * v), 0.2 * np.sin(0.7 * v)])
+        R, _ = cv2.Rodrigues(rvec)
+        tvec = -R @ centre + np.array([0.06 * np.sin(2.1 * v), 0.05 * np.cos(1.3 * v), 0.45 + 0.03 * v])
+        pixels, _ = cv2.projectPoints(points, rvec, tvec, K_TRUE, DIST_TRUE)
+        corners.append(pixels.reshape(-1, 2) + rng.normal(0.0, noise_px, (len(points), 2)))
+    return corners
+
+
+def opencv_calibration(corners, flags=0):
+    objects = [board_points()] * len(corners)
+    images = [c.astype(np.float32).reshape(-1, 1, 2) for c in corners]
+    K = np.eye(3)
+    return cv2.calibrateCamera(objects, images, SIZE, K, None, flags=flags)
+
+
+@pytest.mark.parametrize("flags", ["", "FIX_ASPECT_RATIO", "FIX_ASPECT_RATIO,ZERO_TANGENT_DIST"])
+def test_calibrate_corner_arrays_as_cv2_calibrateCamera(flags):
+    corners = synthetic_corners()
+    got = libcam.calibrate(corners, "chessboard:9x6:0.03", image_size=SIZE, model="OPENCV5",
+                           opencv_flags=flags or None, keep_outliers=True)
+    opencv_flags = {"": 0, "FIX_ASPECT_RATIO": cv2.CALIB_FIX_ASPECT_RATIO,
+                    "FIX_ASPECT_RATIO,ZERO_TANGENT_DIST": cv2.CALIB_FIX_ASPECT_RATIO | cv2.CALIB_ZERO_TANGENT_DIST}[flags]
+    rms, K, dist, rvecs, tvecs = opencv_calibration(corners, opencv_flags)
+    chosen = got["chosen"]
+    assert chosen["model"] == "OPENCV5"
+    assert isinstance(chosen["K"], np.ndarray) and chosen["K"].shape == (3, 3)
+    np.testing.assert_allclose(chosen["K"], K, atol=1e-3)
+    # OpenCV stops earlier (its k2 and k3 differ by 5e-5 from the minimum, far inside their
+    # standard deviations): the same minimum, libcam's never above OpenCV's.
+    np.testing.assert_allclose(chosen["dist"], dist.ravel(), atol=2e-4)
+    assert chosen["rms_px"] == pytest.approx(rms, rel=1e-5)
+    assert chosen["rms_px"] <= rms * (1 + 1e-9)
+    assert got["rvecs"].shape == (10, 3) and got["tvecs"].shape == (10, 3)
+    np.testing.assert_allclose(got["rvecs"], np.hstack(rvecs).T, atol=1e-6)
+    np.testing.assert_allclose(got["tvecs"], np.hstack(tvecs).T, atol=1e-6)
+    np.testing.assert_allclose(got["views"][3]["rvec"], rvecs[3].ravel(), atol=1e-6)
+    if flags:
+        assert chosen["K"][0, 0] == chosen["K"][1, 1]
+        assert got["held"].startswith("fx = fy")
+
+
+def test_calibrate_partial_views_by_id():
+    corners = synthetic_corners()
+    ids = list(range(9, 54))  # the first row unseen
+    views = [(ids, c[9:]) for c in corners]
+    got = libcam.calibrate(views, "chessboard:9x6:0.03", image_size=SIZE, model="OPENCV5", keep_outliers=True)
+    objects = [board_points()[9:]] * len(corners)
+    rms, K, dist, _, _ = cv2.calibrateCamera(objects, [c[9:].astype(np.float32) for c in corners], SIZE, np.eye(3), None)
+    assert got["corners"] == 10 * 45
+    np.testing.assert_allclose(got["chosen"]["K"], K, atol=1e-3)
+    assert got["chosen"]["rms_px"] == pytest.approx(rms, rel=1e-5)
+
+
+def test_calibrate_refuses_bad_views():
+    corners = synthetic_corners(views=3)
+    with pytest.raises(libcam.Error, match="image_size"):
+        libcam.calibrate(corners, "chessboard:9x6:0.03")
+    with pytest.raises(libcam.Error, match="corner id 54 is not one of the 54"):
+        libcam.calibrate([(list(range(7, 61)), c) for c in corners], "chessboard:9x6:0.03", image_size=SIZE)
+    with pytest.raises(libcam.Error, match="--opencv-flags"):
+        libcam.calibrate(corners, "chessboard:9x6:0.03", image_size=SIZE, opencv_flags="FIX_PRINCIPAL_POINT")
+    with pytest.raises(libcam.Error, match="board"):
+        libcam.calibrate(corners, "chessboard:9x6", image_size=SIZE)
+
+
+def test_calibrate_images_as_the_program_does():
+    folder = REAL_DATA / "opencv-stereo-samples"
+    if not folder.is_dir():
+        pytest.skip(f"skipped: OpenCV's sample images are absent ({folder} not found)")
+    images = [str(folder / f"left{n:02d}.jpg") for n in (1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14)]
+    args = ["--board", "chessboard:9x6:0.025", "--model", "OPENCV4,OPENCV5", "--opencv-flags", "2", "--at", "20,30"]
+    program = subprocess.run([os.environ["LIBCAM_EXE"], "calibrate", *images, *args, "--json", "--progress", "never"],
+                             check=True, capture_output=True, text=True)
+    expected = json.loads(program.stdout)
+    got = libcam.calibrate(images, "chessboard:9x6:0.025", model="OPENCV4,OPENCV5", opencv_flags="2", at=[(20, 30)])
+    for key in ("rvecs", "tvecs"):
+        got.pop(key)
+    as_lists = json.loads(json.dumps(got, default=lambda a: a.tolist()))
+    assert as_lists == expected
