@@ -251,6 +251,7 @@ BlenderCamera blender_from_camera(const Camera& camera) {
         case LensType::ThetaPolynomial: break;
         case LensType::FTheta: break;
         case LensType::FThetaForward: break;
+        case LensType::BrownK4: break;
     }
     throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
                           " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "
