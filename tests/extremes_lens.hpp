@@ -218,7 +218,7 @@ inline std::vector<LensCase> large_image_cases() {
 // ----------------------------------------------------------------- the fold-over radius
 
 // Radial-only lenses whose fold is worked by hand (d(r) = r P(r^2) / Q(r^2); r_max where
-// d'(r) = 0, d_max = d(r_max)), one per OpenCV model and FISHEYE, in Quad from the
+// d'(r) = 0, d_max = d(r_max)), one per OpenCV model, BROWN_K4 and FISHEYE, in Quad from the
 // coefficients as stored (doubles).
 struct HandFold {
     std::string name;
@@ -252,6 +252,10 @@ inline std::vector<HandFold> hand_folds() {
     const Quad r14 = pow(Quad(1) / (5 * k_quarter), Quad(1) / 6);
     folds.push_back({"OPENCV14 k6 = 0.25", lens(LensType::OpenCv14, {0, 0, 0, 0, 0, 0, 0, 0.25, 0, 0, 0, 0, 0, 0}), r14,
                      r14 / (1 + k_quarter * pow(r14, 6))});
+    // d = r (1 - 0.1 r^8): d' = 1 - 0.9 r^8.
+    const Quad rb = pow(Quad(1) / (9 * k_tenth), Quad(1) / 8);
+    folds.push_back({"BROWN_K4 k4 = -0.1", lens(LensType::BrownK4, {0, 0, 0, 0, 0, -0.1}), rb,
+                     rb * (1 - k_tenth * pow(rb, 8))});
     // theta_d = theta (1 - 0.2 theta^2): theta_d' = 1 - 0.6 theta^2.
     const Quad rf = sqrt(Quad(1) / (3 * k_fifth));
     folds.push_back({"FISHEYE k1 = -0.2", lens(LensType::Fisheye, {-0.2, 0, 0, 0}), rf, rf * (1 - k_fifth * rf * rf)});

@@ -291,6 +291,12 @@ inline std::vector<LensCase> lens_cases() {
         {"FTHETA_FORWARD ncore", real_camera(LensType::FThetaForward,
                                              {1.0002, 0.0001, -0.0003, 1.0, -15.0 / 1200, -40.0 / 1200, 6.0 / 1200, 0.0, 1.4},
                                              {3840, 2160}, {1200, 1200, 1919.5, 1079.5})},
+        // ---- BROWN_K4, made up in the shape of Metashape's adjusted frame calibrations
+        // (each radial term an order below the one before, P1 P2 near 1e-4; written in
+        // OpenCV's order): a mild lens that never folds over, and a strong one whose k4 < 0
+        // folds r R(r) over at r = 1.08, inside the image's corners (r = 1.1 there).
+        {"BROWN_K4 mild", lens_camera(LensType::BrownK4, {-0.08, 0.02, 1.5e-4, -2e-4, -0.003, 4e-4})},
+        {"BROWN_K4 strong", lens_camera(LensType::BrownK4, {-0.3, 0.09, 9e-4, -7e-4, -0.02, -0.02})},
     };
     return cases;
 }
@@ -471,6 +477,27 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
         }
         return pixels;
     }
+    if (camera.lens.type == LensType::BrownK4) {
+        // Metashape's frame camera (its manual's appendix "Camera models") in OpenCV's order,
+        // in long double: m = u (1 + k1 r^2 + k2 r^4 + k3 r^6 + k4 r^8) + OpenCV's tangential
+        // terms, u = (x/z, y/z); nothing behind the camera or past the fold.
+        const PreparedCamera prepared(camera);
+        const std::vector<double>& k = camera.lens.coefficients;
+        std::vector<Vec2> pixels;
+        for (const Vec3& ray : rays) {
+            const long double x = static_cast<long double>(ray.x()) / ray.z(), y = static_cast<long double>(ray.y()) / ray.z();
+            const long double r2 = x * x + y * y;
+            const long double radial = 1 + k[0] * r2 + k[1] * r2 * r2 + k[4] * r2 * r2 * r2 + k[5] * r2 * r2 * r2 * r2;
+            const long double mx = x * radial + 2 * k[2] * x * y + k[3] * (r2 + 2 * x * x);
+            const long double my = y * radial + k[2] * (r2 + 2 * y * y) + 2 * k[3] * x * y;
+            const bool inside = ray.z() > 0 && std::sqrt(r2) < prepared.valid_radius();
+            const Intrinsics& K = camera.intrinsics;
+            pixels.push_back(inside ? Vec2(static_cast<double>(K.fx * mx + K.skew * my + K.cx),
+                                           static_cast<double>(K.fy * my + K.cy))
+                                    : Vec2::Constant(kInfinity));
+        }
+        return pixels;
+    }
     if (camera.lens.type == LensType::OcamCalib) {
         // Scaramuzza's world2cam without its invpol, as his MATLAB world2cam solves it: the
         // sensor radius r whose ray (r (X, Y) / rho, g(r)) meets the point is the first
@@ -550,6 +577,7 @@ inline std::string reference_library(LensType type) {
     if (colmap_only(type)) return "COLMAP's formulas";
     if (has_paper_formulas(type)) return "its paper's formulas";
     if (type == LensType::Ptlens) return "PanoTools' polynomial";
+    if (type == LensType::BrownK4) return "Metashape's formula";
     if (type == LensType::OcamCalib) return "Scaramuzza's world2cam";
     if (!in_opencv(type)) return "mrcal_project";
     switch (lens_info(type).opencv) {

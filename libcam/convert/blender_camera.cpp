@@ -184,11 +184,13 @@ BlenderCamera blender_from_camera(const Camera& camera) {
             }
             require_no_skew(camera, "FISHEYE_EQUIDISTANT");
             // fisheye_to_direction spans fisheye_fov over the width and over the height alike,
-            // whatever the pixel aspect: fx = W / fov and fy = H / fov, nothing else.
+            // whatever the pixel aspect: fx = W / fov and fy = H / fov, nothing else. Another
+            // fx, fy is the polynomial fisheye theta = r (k1 = -1 with the same K: m = theta
+            // (X, Y) / |(X, Y)| in both), whose sensor follows the pixel aspect.
             if (!(std::abs(width / k.fx - height / k.fy) <= 1e-9 * width / k.fx)) {
-                throw InvalidArgument("intrinsics: Blender's FISHEYE_EQUIDISTANT spans one field of view over the width "
-                                      "and over the height (W / fx = H / fy), got W / fx " +
-                                      format_number(width / k.fx) + ", H / fy " + format_number(height / k.fy));
+                Camera polynomial = camera;
+                polynomial.lens = {LensType::LensPolynomial, {0.0, -1.0, 0.0, 0.0, 0.0}};
+                return blender_from_camera(polynomial);
             }
             blender.type = BlenderCameraType::FisheyeEquidistant;
             blender.fisheye_fov = width / k.fx;
@@ -251,6 +253,7 @@ BlenderCamera blender_from_camera(const Camera& camera) {
         case LensType::ThetaPolynomial: break;
         case LensType::FTheta: break;
         case LensType::FThetaForward: break;
+        case LensType::BrownK4: break;
     }
     throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
                           " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "

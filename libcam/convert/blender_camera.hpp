@@ -13,6 +13,7 @@
 //   FISHEYE_EQUIDISTANT  FISHEYE with zero coefficients: fx = W / fov and fy = H / fov
 //                        (theta = fov / 2 at each edge, the pixel aspect plays no part),
 //                        so only W / fx = H / fy, 10 to 360 degrees; cx, cy by the shift.
+//                        (Another fx, fy: FISHEYE_LENS_POLYNOMIAL with theta = r draws it.)
 //   FISHEYE_EQUISOLID    EQUISOLID: fx, fy, cx, cy, no skew. fx = lens W / sensor width,
 //                        fy = lens H / sensor height, where Cycles' sensor is S wide and
 //                        S (H pixel_aspect_y) / (W pixel_aspect_x) high (horizontal fit;
@@ -90,15 +91,18 @@ Camera camera_from_blender(const BlenderCamera& blender);
 // fitted horizontally and, for fx != fy, the pixel aspect (the larger of the two 1).
 // Perspective: PINHOLE without skew, a 36 mm sensor (wider where the lens would be under
 // Blender's 1 mm: past 173 degrees across).
-// FISHEYE_EQUIDISTANT: FISHEYE with zero coefficients and W / fx = H / fy.
+// FISHEYE_EQUIDISTANT: FISHEYE with zero coefficients and W / fx = H / fy. The same lens
+// with W / fx != H / fy (fields of view over the width and the height that differ) is the
+// polynomial fisheye theta = r, k1 = -1 (FISHEYE_LENS_POLYNOMIAL below, with the same K),
+// whose sensor follows the pixel aspect.
 // FISHEYE_EQUISOLID: EQUISOLID, a 36 mm sensor (or the width that keeps the lens within
 // Blender's 0.01 to 100 mm) and the field of view of its whole domain (2 pi).
 // FISHEYE_LENS_POLYNOMIAL: the sensor W / fx mm wide (at least Blender's 1 mm: narrower,
 // the coefficients are rescaled to a 1 mm sensor), fisheye_fov twice the largest angle
 // the polynomial images. EQUIRECTANGULAR: LONLAT.
 // Throws InvalidArgument saying why for a camera Blender cannot draw (another model, skew,
-// an equidistant fisheye with W / fx != H / fy, fy / fx beyond the pixel aspect's 1/200 to
-// 200); W / fx = H / fy means within a relative 1e-9.
+// fy / fx beyond the pixel aspect's 1/200 to 200); W / fx = H / fy means within a relative
+// 1e-9.
 BlenderCamera blender_from_camera(const Camera& camera);
 
 }  // namespace libcam

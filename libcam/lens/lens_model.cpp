@@ -78,6 +78,11 @@ std::string_view to_string(OpenCvFunction function) {
 Lens simplest_equal_lens(const Lens& lens) {
     const LensInfo& info = lens_info(lens.type);
     if (info.num_coefficients == kVariableCoefficientCount) return lens;
+    // BROWN_K4 is OPENCV5 followed by k4, but its family is its own: OPENCV8's k4 divides.
+    if (lens.type == LensType::BrownK4 && lens.coefficients.size() == 6 && lens.coefficients[5] == 0.0) {
+        return simplest_equal_lens({LensType::OpenCv5, std::vector<double>(lens.coefficients.begin(),
+                                                                           lens.coefficients.begin() + 5)});
+    }
     for (const LensInfo& smaller : kLensTable) {
         if (smaller.family != info.family || smaller.family_rank >= info.family_rank) continue;
         const std::span<const std::string_view> names = smaller.coefficients.view();

@@ -50,7 +50,9 @@
     _(ThetaPolynomial, ThetaPolynomialLens) \
     /* NVIDIA's F-theta */ \
     _(FTheta, FThetaLens) \
-    _(FThetaForward, FThetaForwardLens)
+    _(FThetaForward, FThetaForwardLens) \
+    /* Brown's radial-tangential lens to r^8 (Metashape's, RealityCapture's brown4) */ \
+    _(BrownK4, BrownK4Lens)
 
 namespace libcam {
 
@@ -107,6 +109,7 @@ enum class LensFamily {
     ThetaPolynomial,  // WoodScape's: not FISHEYE's, whose powers of theta are odd
     FTheta,  // NVIDIA's: not FISHEYE_LENS_POLYNOMIAL's, whose angle has the other sign and no affine
     FThetaForward,  // NVIDIA's with the forward polynomial the reference: not THETA_POLYNOMIAL's (no affine, degree 4)
+    BrownK4,  // not PINHOLE's: its k4 multiplies r^8 where OPENCV8's divides (simplest_equal_lens gives OPENCV5 for k4 = 0)
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -332,6 +335,15 @@ inline constexpr LensInfo kLensTable[] = {
      .also_named = "NVIDIA's F-theta with its forward polynomial the reference (angle-to-pixeldistance, "
                    "NCore's ANGLE_TO_PIXELDIST)",
      .family = LensFamily::FThetaForward, .family_rank = 0, .fit = FitCandidate::No},
+    // Brown's radial-tangential lens with a fourth radial coefficient (brown_k4.hpp): OPENCV5
+    // with k4 r^8 added to the radial factor, as Metashape's frame camera and RealityCapture's
+    // brown4 and brown4t2 have it.
+    {.type = LensType::BrownK4, .name = "BROWN_K4", .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4"},
+     .num_coefficients = 6, .sees_behind_camera = false, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "Metashape's frame camera with k4; RealityCapture's brown4 and brown4t2 (1 + k1 r^2 + k2 r^4 + "
+                   "k3 r^6 + k4 r^8)",
+     .family = LensFamily::BrownK4, .family_rank = 0, .fit = FitCandidate::No},
 };
 
 namespace detail {
@@ -407,7 +419,8 @@ constexpr bool lens_contains(LensType container, LensType model) {
 struct Lens;
 // The simplest model of the lens's family that is this very lens: a model below it whose
 // coefficients are its leading ones, the rest exactly 0 (OPENCV8 with k3..k6 = 0 is
-// OPENCV4; PINHOLE when every coefficient is 0). The lens itself when there is none.
+// OPENCV4; PINHOLE when every coefficient is 0; BROWN_K4 with k4 = 0, whose k4 is not
+// OPENCV8's, is OPENCV5 or simpler). The lens itself when there is none.
 // Writers use it to hold a lens in a format that lacks its model, dropping nothing.
 Lens simplest_equal_lens(const Lens& lens);
 

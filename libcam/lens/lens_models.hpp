@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "libcam/error.hpp"
+#include "libcam/lens/brown_k4.hpp"
 #include "libcam/lens/cahvor.hpp"
 #include "libcam/lens/cahvore.hpp"
 #include "libcam/lens/cylindrical.hpp"

@@ -87,7 +87,8 @@ Lens lens_turned(const Lens& lens) {
             break;  // the affine turned is not of the form [c d; e 1] with the same polynomial
         case LensType::OpenCv4:
         case LensType::OpenCv5:
-        case LensType::OpenCv8: tangential(2, 3); return out;
+        case LensType::OpenCv8:
+        case LensType::BrownK4: tangential(2, 3); return out;
         case LensType::OpenCv12:
             tangential(2, 3);
             prism(8, 4);

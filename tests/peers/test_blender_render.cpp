@@ -116,6 +116,10 @@ std::vector<RenderCase> render_cases() {
         // a second each).
         {"equisolid, fx != fy, principal point off centre",
          posed({320, 240}, {150, 210, 171.3, 108.8, 0}, {LensType::Equisolid, {}}), 0.1, 16},
+        // An equidistant fisheye whose fields of view across and down differ (W / fx != H / fy):
+        // written as the polynomial fisheye theta = r.
+        {"equidistant fisheye, W / fx != H / fy, principal point off centre",
+         posed({320, 240}, {70, 85, 171.3, 108.8, 0}, equidistant), 0.1, 16},
         {"FISHEYE_LENS_POLYNOMIAL, fx != fy, principal point off centre",
          posed({320, 240}, {320 / 36.0, 0.8 * 320 / 36.0, 150.3, 128.6, 0},
                {LensType::LensPolynomial, {0.0, -0.06, 1e-4, -3e-5, 2e-7}}),

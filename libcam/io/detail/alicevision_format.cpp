@@ -447,6 +447,7 @@ std::pair<std::string, std::vector<double>> alicevision_type(const Lens& lens) {
         case LensType::ThetaPolynomial:
         case LensType::FTheta:
         case LensType::FThetaForward:
+        case LensType::BrownK4:
             detail::refuse_lens(CameraFormat::AliceVision, lens.type);
     }
     detail::refuse_lens(CameraFormat::AliceVision, lens.type);

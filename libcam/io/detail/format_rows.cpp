@@ -112,7 +112,7 @@ constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 // Metashape's spherical sensor is LONLAT with fx = fy only: not every LONLAT camera.
-constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye};
+constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::BrownK4, L::Fisheye};
 // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
 constexpr L kAliceVision[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Fov};
 constexpr L kBundler[] = {L::Pinhole, L::OpenCv4};
@@ -124,7 +124,7 @@ constexpr L kHuginPto[] = {L::Pinhole,   L::OpenCv4,       L::Ptlens, L::Fisheye
                            L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
 constexpr L kOcamCalib[] = {L::OcamCalib};
 constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
-constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5};  // RealityCapture's XMP and CSV
+constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::BrownK4};  // RealityCapture's XMP and CSV
 constexpr L kWoodscape[] = {L::ThetaPolynomial};  // WoodScape's calibration JSON
 constexpr L kDriveworksRig[] = {L::FTheta, L::FThetaForward};  // DriveWorks' ftheta cameras
 
@@ -309,10 +309,11 @@ constexpr FormatRow kRows[] = {
      .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_metashape,
      .telling_keys = {"document", "calibration", "collection"}, .read = read_metashape, .write = one_file<format_metashape>,
      .largest_file = kReconstructionLimit.max_bytes, .lenses = kMetashape,
-     .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's), fisheye, spherical "
+     .lens_names = "frame (f cx cy b1 b2 k1..k4 p1 p2, P1 and P2 swapped against OpenCV's; BROWN_K4 when k4 is not "
+                   "0), fisheye, spherical "
                    "(LONLAT with fx = fy); PhotoScan 0.9's fx fy cx cy skew k1..k3 p1 p2 (cx, cy absolute, P1 and "
                    "P2 in OpenCV's order); written as cameras.xml, or with --no-pose as Export Calibration's file",
-     .refuses = "k4 on a frame camera, tangential terms on a fisheye, cylindrical and RPC sensors",
+     .refuses = "tangential terms on a fisheye, cylindrical and RPC sensors",
      .camera_names = "each camera's label, aligned or not; a sensor's label (its first camera)"},
     // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
     {.format = CameraFormat::AliceVision, .name = "alicevision", .title = "AliceVision SfMData",
@@ -395,16 +396,18 @@ constexpr FormatRow kRows[] = {
                     "size given with --image-size)",
      .extensions = {".xmp"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_realitycapture_xmp,
      .read = read_realitycapture_xmp, .read_only = true, .lenses = kRealityCapture,
-     .lens_names = "perspective, brown3, brown4 and brown3t2, brown4t2 (t1 t2 swapped against OpenCV's p1 p2)",
-     .refuses = "k4, skew, division with a coefficient other than 0",
+     .lens_names = "perspective, brown3, brown4 and brown3t2, brown4t2 (t1 t2 swapped against OpenCV's p1 p2; "
+                   "BROWN_K4 when k4 is not 0)",
+     .refuses = "skew, division with a coefficient other than 0",
      .camera_names = "one camera"},
     {.format = CameraFormat::RealityCaptureCsv, .name = "realitycapture-csv", .title = "RealityCapture CSV",
      .description = "RealityCapture's (RealityScan's) CSV of internal/external camera parameters: per image x, y, "
                     "alt, heading, pitch, roll, f, px, py, k1..k4, t1, t2 (the image size given with --image-size)",
      .extensions = {".csv"}, .content = static_cast<unsigned>(C::Table), .read = read_realitycapture_csv,
      .read_only = true, .lenses = kRealityCapture,
-     .lens_names = "Brown's k1 k2 k3 t1 t2 (t1 t2 swapped against OpenCV's p1 p2), as the XMP's",
-     .refuses = "k4; py other than 0 (its sign is not documented); longitude and latitude (a geographic export)",
+     .lens_names = "Brown's k1 k2 k3 k4 t1 t2 (t1 t2 swapped against OpenCV's p1 p2; BROWN_K4 when k4 is not 0), "
+                   "as the XMP's",
+     .refuses = "py other than 0 (its sign is not documented); longitude and latitude (a geographic export)",
      .camera_names = "each row's name, or its file name alone"},
     // ---- WoodScape's calibration JSON
     {.format = CameraFormat::Woodscape, .name = "woodscape", .title = "WoodScape calibration JSON",

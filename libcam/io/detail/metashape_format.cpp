@@ -113,11 +113,7 @@ Camera camera_from(const Source& source, const pugi::xml_node& node, const Calib
         throw NotRepresentable(source.name() + ": " + where + ": " + what);
     };
     if (c.type == "frame") {
-        if (c.k4 != 0.0) {
-            refuse("k4 = " + format_number(c.k4) + ": libcam has no model with Metashape's r^8 radial term (OpenCV's "
-                   "models stop at r^6)");
-        }
-        camera.lens = simplest_equal_lens({LensType::OpenCv5, {c.k1, c.k2, c.p2, c.p1, c.k3}});
+        camera.lens = simplest_equal_lens({LensType::BrownK4, {c.k1, c.k2, c.p2, c.p1, c.k3, c.k4}});
     } else if (c.type == "fisheye") {
         if (c.p1 != 0.0 || c.p2 != 0.0) {
             refuse("a fisheye sensor's tangential terms (p1 = " + format_number(c.p1) + ", p2 = " + format_number(c.p2) +
@@ -443,11 +439,13 @@ Calibration metashape_terms(const Camera& camera) {
         case LensType::Pinhole: return c;
         case LensType::OpenCv4:
         case LensType::OpenCv5:
+        case LensType::BrownK4:
             c.k1 = k[0];
             c.k2 = k[1];
             c.p2 = k[2];  // OpenCV's p1 is Metashape's P2
             c.p1 = k[3];
-            c.k3 = camera.lens.type == LensType::OpenCv5 ? k[4] : 0.0;
+            c.k3 = k.size() > 4 ? k[4] : 0.0;
+            c.k4 = k.size() > 5 ? k[5] : 0.0;
             return c;
         case LensType::Fisheye:
             c.type = "fisheye";

@@ -16,9 +16,8 @@
 // y' B2, v = h/2 + cy + y' f, where pixel (0, 0) is the image's top-left corner (the
 // top-left pixel's centre is (0.5, 0.5)). So, in OpenCV's terms: fx = f + B1, fy = f,
 // skew = B2, cx = w/2 + cx - 0.5, cy = h/2 + cy - 0.5, and OpenCV's p1 is Metashape's P2,
-// its p2 Metashape's P1 (the tangential terms are swapped). Read as OPENCV5, or the
-// simplest OpenCV model that is the same lens; K4 (r^8) has no OpenCV model and is refused
-// unless 0. A fisheye sensor first maps x by atan(r)/r, which with P1 = P2 = 0 is
+// its p2 Metashape's P1 (the tangential terms are swapped). Read as BROWN_K4 (brown_k4.hpp),
+// or when K4 is 0 as OPENCV5 or the simplest OpenCV model that is the same lens. A fisheye sensor first maps x by atan(r)/r, which with P1 = P2 = 0 is
 // Kannala-Brandt (FISHEYE, k1..k4 = K1..K4); a spherical one is LONLAT (u = w/2 + f lon,
 // v = h/2 + f lat). Any other type, and tangential terms on a fisheye, are refused.
 //
@@ -45,7 +44,7 @@
 // with one chunk, one sensor and its adjusted calibration (f = fy, b1 = fx - fy, b2 = skew,
 // cx and cy from the centre as above, p1 and p2 swapped back) and one camera whose
 // <transform> is camera to world; with WriteOptions::drop_pose, Export Calibration's
-// <calibration> file instead. OPENCV4, OPENCV5 and PINHOLE are frame sensors, FISHEYE a
+// <calibration> file instead. OPENCV4, OPENCV5, BROWN_K4 and PINHOLE are frame sensors, FISHEYE a
 // fisheye one, LONLAT with fx = fy and no skew a spherical one; any other lens is refused.
 
 #include <string>

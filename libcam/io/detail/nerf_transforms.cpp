@@ -489,6 +489,7 @@ nlohmann::ordered_json intrinsics_json(const Camera& camera) {
         case LensType::ThetaPolynomial:
         case LensType::FTheta:
         case LensType::FThetaForward:
+        case LensType::BrownK4:
             detail::refuse_lens(CameraFormat::Nerf, lens.type);
     }
     out["camera_model"] = model;

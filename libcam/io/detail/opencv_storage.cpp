@@ -521,6 +521,7 @@ std::pair<std::string, std::vector<double>> ros_distortion(const Lens& lens) {
         case LensType::ThetaPolynomial:
         case LensType::FTheta:
         case LensType::FThetaForward:
+        case LensType::BrownK4:
             detail::refuse_lens(CameraFormat::Ros, lens.type);
     }
     detail::refuse_lens(CameraFormat::Ros, lens.type);

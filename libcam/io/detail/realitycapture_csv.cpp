@@ -141,10 +141,6 @@ void refuse_geographic(const std::vector<Row>& rows, const std::string& source) 
 
 Camera camera_of(const Row& row, ImageSize size, const std::string& source) {
     const std::string where = where_of(source, row.line);
-    if (row["k4"] != 0.0) {
-        throw NotRepresentable(where + ": k4 = " + format_number(row["k4"]) +
-                               ": libcam has no model with an r^8 radial term (OpenCV's stop at r^6)");
-    }
     if (row["py"] != 0.0) {
         throw NotRepresentable(where + ": py = " + format_number(row["py"]) +
                                ": the sign of RealityCapture's CSV py is not documented and its readers disagree; "
@@ -154,7 +150,7 @@ Camera camera_of(const Row& row, ImageSize size, const std::string& source) {
     Camera camera;
     camera.size = size;
     camera.intrinsics = realitycapture_intrinsics(row["f"], 1.0, row["px"], 0.0, size);
-    camera.lens = realitycapture_brown_lens(row["k1"], row["k2"], row["k3"], row["t1"], row["t2"]);
+    camera.lens = realitycapture_brown_lens(row["k1"], row["k2"], row["k3"], row["k4"], row["t1"], row["t2"]);
     camera.pose = Pose::from_centre(realitycapture_rotation(row["heading"], row["pitch"], row["roll"]),
                                     Vec3(row["x"], row["y"], row["alt"]));
     return validated_camera(camera, where);

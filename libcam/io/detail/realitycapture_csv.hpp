@@ -14,8 +14,8 @@
 // The intrinsics are the XMP sidecar's (realitycapture_format.hpp, one implementation):
 // f is the 35 mm-equivalent focal length over the image's longer side S (fx = fy =
 // f S / 36), px the principal point's offset from the image's centre over S (cx = W / 2 -
-// 0.5 + px S), k1 k2 k3 Brown's radial and t1 t2 its tangential terms with OpenCV's p1 =
-// t2, p2 = t1; k4 (r^8) is refused unless 0. The CSV names no distortion model: its
+// 0.5 + px S), k1 k2 k3 k4 Brown's radial and t1 t2 its tangential terms with OpenCV's p1 =
+// t2, p2 = t1 (BROWN_K4, or OPENCV5 or simpler when k4 is 0). The CSV names no distortion model: its
 // coefficients are read as Brown's (RealityCapture's default, brown3).
 //
 // py is refused unless 0: the open readers of this file disagree on its sign (the

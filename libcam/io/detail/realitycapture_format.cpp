@@ -129,10 +129,6 @@ Lens lens_of(const Description& file) {
                                                    model);
         }
     };
-    if (k4 != 0.0 && (model == "brown4" || model == "brown4t2")) {
-        file.refuse("DistortionCoeficients", "k4 = " + format_number(k4) +
-                                                 ": libcam has no model with an r^8 radial term (OpenCV's stop at r^6)");
-    }
     if (model == "division") {
         for (std::size_t i = 1; i < 6; ++i) unused(i, "a coefficient past k1");
         if (k1 != 0.0) {
@@ -151,7 +147,7 @@ Lens lens_of(const Description& file) {
         unused(4, "t1");
         unused(5, "t2");
     }
-    return realitycapture_brown_lens(k1, k2, k3, t1, t2);
+    return realitycapture_brown_lens(k1, k2, k3, k4, t1, t2);
 }
 
 Intrinsics intrinsics_of(const Description& file, ImageSize size) {
@@ -179,8 +175,8 @@ Intrinsics realitycapture_intrinsics(double focal_35mm, double aspect, double u,
             0.5 * static_cast<double>(size.height) - 0.5 + v * longer, 0.0};
 }
 
-Lens realitycapture_brown_lens(double k1, double k2, double k3, double t1, double t2) {
-    return simplest_equal_lens({LensType::OpenCv5, {k1, k2, t2, t1, k3}});
+Lens realitycapture_brown_lens(double k1, double k2, double k3, double k4, double t1, double t2) {
+    return simplest_equal_lens({LensType::BrownK4, {k1, k2, t2, t1, k3, k4}});
 }
 
 bool claims_realitycapture_xmp(const DocumentNode& outline) {

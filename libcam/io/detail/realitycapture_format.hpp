@@ -24,7 +24,7 @@
 // corner: libcam's cx = W / 2 - 0.5 + U S, cy = H / 2 - 0.5 + V S. The camera looks
 // along +z with y down (OpenCV's axes). Brown's terms act on (X/Z, Y/Z) as OpenCV's, with
 // the tangential pair the other way round: OpenCV's p1 is RealityCapture's t2, p2 its t1
-// (as Metashape's P1 P2); k4 (r^8) has no OpenCV model and is refused unless 0.
+// (as Metashape's P1 P2); k4 (r^8) makes the lens BROWN_K4 (OPENCV5 or simpler without it).
 //
 // The image size is not in the file: the reader takes it from ReadOptions::size (the
 // command line's --image-size WxH) and refuses the file without it. A skew other than 0
@@ -44,10 +44,10 @@ std::vector<NamedCamera> read_realitycapture_xmp(std::string_view text, const Re
 
 // What RealityCapture's XMP and its CSV (realitycapture_csv.hpp) share, as the header above
 // says: the intrinsics from the 35 mm focal length, the aspect ratio (fy / fx) and the
-// principal point's offset (u, v) over the longer side; Brown's k1 k2 k3 and t1 t2 as
-// OpenCV's lens (p1 = t2, p2 = t1). k4 has no libcam model: the callers refuse it.
+// principal point's offset (u, v) over the longer side; Brown's k1 k2 k3 k4 and t1 t2 as
+// BROWN_K4 (p1 = t2, p2 = t1), or the simplest OpenCV model that is the same lens.
 Intrinsics realitycapture_intrinsics(double focal_35mm, double aspect, double u, double v, ImageSize size);
-Lens realitycapture_brown_lens(double k1, double k2, double k3, double t1, double t2);
+Lens realitycapture_brown_lens(double k1, double k2, double k3, double k4, double t1, double t2);
 
 // Whether an XML file's outline (parse_xml_outline) is an XMP packet: <x:xmpmeta> or
 // <rdf:RDF> at the root.
