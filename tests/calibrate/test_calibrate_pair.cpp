@@ -62,7 +62,7 @@ std::vector<cv::Point2f> cv_pixels(const BoardDetection& found) {
 
 TEST_CASE("Calibrate a pair rendered through two known lenses: R and T recovered, as near the truth as "
           "cv::stereoCalibrate",
-          "[calibrate][pair]") {
+          "[sweep][calibrate][pair]") {
     const BoardSpec board = parse_board_spec("chessboard:9x6:0.03");
     const RenderedPair rendered = render_pair(board);
     CalibrationOptions options;
