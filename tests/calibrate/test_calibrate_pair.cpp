@@ -131,11 +131,11 @@ TEST_CASE("A pair's image list as OpenCV's stereo_calib reads it: left and right
     // stereo_calib.xml's form, as OpenCV's sample ships it.
     const std::string xml = "<?xml version=\"1.0\"?>\n<opencv_storage>\n<imagelist>\n\"left01.jpg\"\n\"right01.jpg\"\n"
                             "\"left02.jpg\"\n\"/data/right02.jpg\"\n</imagelist>\n</opencv_storage>\n";
-    const PairList list = parse_pair_list(xml, "/work/pairs/stereo_calib.xml");
+    const PairList list = parse_pair_list(xml, "/data/pairs/stereo_calib.xml");
     REQUIRE(list.left.size() == 2);
     REQUIRE(list.right.size() == 2);
-    CHECK(list.left[0] == std::filesystem::path("/work/pairs/left01.jpg"));
-    CHECK(list.right[0] == std::filesystem::path("/work/pairs/right01.jpg"));
+    CHECK(list.left[0] == std::filesystem::path("/data/pairs/left01.jpg"));
+    CHECK(list.right[0] == std::filesystem::path("/data/pairs/right01.jpg"));
     CHECK(list.right[1] == std::filesystem::path("/data/right02.jpg"));
     const PairList yaml = parse_pair_list("%YAML:1.0\nimagelist:\n  - a.png\n  - b.png\n", "list.yml");
     CHECK(yaml.left == std::vector<std::filesystem::path>{"a.png"});
