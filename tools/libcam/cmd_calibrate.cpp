@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <limits>
@@ -196,6 +197,12 @@ std::string outlier_places(const Calibration& c) {
     return places;
 }
 
+// The worst sigma inside the region the corners covered, in pixels; a model that has no ray
+// for some pixel there (a fitted lens folding over inside it) has no bound to give.
+std::string worst_observed_text(double sigma_px, int digits) {
+    return std::isnan(sigma_px) ? std::string("none (a pixel there has no ray)") : format_short(sigma_px, digits) + " px";
+}
+
 // Each candidate's projection uncertainty beside its held-out RMS.
 std::string uncertainty_table(const Calibration& c) {
     std::ostringstream out;
@@ -217,7 +224,8 @@ std::string uncertainty_table(const Calibration& c) {
             return text;
         };
         out << name << cell(candidate.heldout_rms_px, 17) << cell(u.noise_px, 10) << cell(u.centre_px, 17)
-            << format_short(u.worst_observed_px, 4) << "\n";
+            << (std::isnan(u.worst_observed_px) ? std::string("no ray at some pixel") : format_short(u.worst_observed_px, 4))
+            << "\n";
     }
     return out.str();
 }
@@ -262,7 +270,7 @@ std::string format_text(const Calibration& c, const ChosenUncertainty& at) {
     if (u.computed) {
         out << "  projection uncertainty (worst direction, points at infinity): worst inside the region the corners "
                "covered "
-            << format_short(u.worst_observed_px, 4) << " px\n"
+            << worst_observed_text(u.worst_observed_px, 4) << "\n"
             << at_lines(at.pixels, at.sigma_px);
     } else {
         out << "  projection uncertainty: not computed: " << u.failure << "\n";
@@ -313,7 +321,7 @@ void write_heatmap(const std::string& path, const Calibration& c) {
     const UncertaintySummary summary = summarize(map, observed_region(solved));
     write_uncertainty_heatmap(path, map, solved,
                               std::string(c.chosen().candidate.name) + ", points at infinity: worst observed " +
-                                  format_short(summary.worst_observed_px, 3) + " px");
+                                  worst_observed_text(summary.worst_observed_px, 3));
 }
 
 // Files first, so that a failure to write one leaves stdout empty.
