@@ -55,13 +55,6 @@ CameraFile parse_camera(std::string_view text, CameraFormat format, const std::s
 CameraSet parse_camera_set(std::string_view text, CameraFormat format, const std::string& source,
                            const ReadOptions& options = {});
 
-// Cameras of one rig as one Kalibr camchain (cam0, cam1, ...): each but the first placed
-// from the one before it (T_cn_cnm1, from their poses), the first's pose not written (the
-// rig's frame). Throws NotRepresentable, naming the model, for a camera Kalibr has no model
-// for (it holds pinhole cameras with radtan (OPENCV4), equidistant (FISHEYE) or no
-// distortion, and omni, ds and eucm).
-std::string format_kalibr_rig(const std::vector<Camera>& cameras);
-
 // OpenCV's stereo_calib sample writes a calibrated pair in two files: intrinsics.yml (M1 D1
 // M2 D2, and the image size where it was given one) and extrinsics.yml (R T, and its
 // rectification). Whether `text` is the second kind (R and T, no camera matrix).

@@ -10,6 +10,7 @@
 #include "libcam/camera/camera.hpp"
 #include "libcam/error.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/io/kalibr_rig.hpp"
 
 using namespace libcam;
 

@@ -26,6 +26,7 @@
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/io/kalibr_rig.hpp"
 #include "libcam/text/number_format.hpp"
 #include "libcam/text/shown_value.hpp"
 #include "libcam/uncertainty/uncertainty_map.hpp"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "libcam/error.hpp"
-#include "libcam/io/camera_file.hpp"
+#include "libcam/io/kalibr_rig.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
 #include "libcam/io/detail/ocamcalib_format.hpp"
