@@ -210,7 +210,8 @@ def blobs_land_where_the_truth_says(np, cv2, libcam, work):
     shutil.rmtree(folder, ignore_errors=True)
     run(libcam, ["rectify", intrinsics, extrinsics, "--images", os.path.join(work, "blobs0.png"),
                  os.path.join(work, "blobs1.png"), "-o", folder, "--interpolation", "cubic"])
-    for name in ("left.png", "right.png", "left.json", "right.json", "extrinsics.yml"):
+    for name in ("left.png", "right.png", "left.json", "right.json", "left.cameramodel", "right.cameramodel",
+                 "extrinsics.yml"):
         check(os.path.isfile(os.path.join(folder, name)), f"blobs: wrote {name}")
     worst, worst_row = 0.0, 0.0
     for k, name in enumerate(("left.png", "right.png")):
@@ -350,6 +351,12 @@ def libcam_calibrated_sample_pairs(np, cv2, libcam, real_data, work):
                  ["--board", "chessboard:9x6:0.025", "--corners", "opencv-sample", "--model", "OPENCV5",
                   "--keep-outliers", "--json", "-o", out_folder, "--progress", "never"])
     pair = json.loads(result.stdout)
+    # OPENCV5, which a Kalibr camchain cannot hold: the other forms written, that one said.
+    for name in ("intrinsics.yml", "extrinsics.yml", "left.cameramodel", "right.cameramodel"):
+        check(os.path.isfile(os.path.join(out_folder, name)), f"OpenCV's sample pairs: calibrate -o wrote {name}")
+    check(not os.path.exists(os.path.join(out_folder, "camchain.yaml")) and
+          "camchain.yaml not written: Kalibr has no model for a OPENCV5 lens" in result.stderr,
+          f"OpenCV's sample pairs: no camchain.yaml for OPENCV5, and said so ({result.stderr.strip()!r})")
     # cv2 on the same corners of the same views: each camera, then the pair (intrinsics free).
     left, right = sample_corners(cv2, np, folder, "left"), sample_corners(cv2, np, folder, "right")
     used = [k for k in range(len(SAMPLE_VIEWS)) if left[k] is not None and right[k] is not None]

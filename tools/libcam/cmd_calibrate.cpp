@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <memory>
@@ -25,6 +26,7 @@
 #include "libcam/error.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
+#include "libcam/io/kalibr_rig.hpp"
 #include "libcam/text/number_format.hpp"
 #include "libcam/text/shown_value.hpp"
 #include "libcam/uncertainty/uncertainty_map.hpp"
@@ -366,28 +368,36 @@ std::string format_pair_text(const PairCalibration& pair) {
     return out.str();
 }
 
-// -o DIR for a pair: OpenCV's stereo_calib files (intrinsics.yml, extrinsics.yml) and the
-// two cameras as mrcal .cameramodel files, the right one posed from the left. Every text
-// is made before any file is written.
+// -o DIR for a pair: OpenCV's stereo_calib files (intrinsics.yml, extrinsics.yml), the two
+// cameras as mrcal .cameramodel files (the right one posed from the left) and as a Kalibr
+// camchain (camchain.yaml), each where its format holds the pair's models (else one line
+// says why). Every text is made before any file is written.
 void write_pair_outputs(const std::string& folder, const PairCalibration& pair) {
     std::vector<std::pair<std::filesystem::path, std::string>> files;
     const std::filesystem::path dir(folder);
-    try {
-        const OpenCvStereoFiles opencv = format_opencv_stereo(pair);
-        files.emplace_back(dir / "intrinsics.yml", opencv.intrinsics);
-        files.emplace_back(dir / "extrinsics.yml", opencv.extrinsics);
-    } catch (const NotRepresentable& error) {
-        std::cerr << "libcam calibrate: " << folder << ": intrinsics.yml and extrinsics.yml not written: " << error.what()
-                  << "\n";
+    // One form's files, all or none.
+    using Named = std::vector<std::pair<std::string, std::string>>;  // file names and texts
+    const auto add = [&](const std::string& what, const std::function<Named()>& make) {
+        try {
+            for (auto& [name, text] : make()) files.emplace_back(dir / name, std::move(text));
+        } catch (const NotRepresentable& error) {
+            std::cerr << "libcam calibrate: " << folder << ": " << what << " not written: " << error.what() << "\n";
+        }
+    };
+    add("intrinsics.yml and extrinsics.yml", [&] {
+        OpenCvStereoFiles opencv = format_opencv_stereo(pair);
+        return Named{{"intrinsics.yml", std::move(opencv.intrinsics)}, {"extrinsics.yml", std::move(opencv.extrinsics)}};
+    });
+    add("the .cameramodel files", [&] {
+        return Named{{"left.cameramodel", format_camera(pair.first_camera, CameraFormat::Cameramodel)},
+                     {"right.cameramodel", format_camera(pair.second_camera, CameraFormat::Cameramodel)}};
+    });
+    add("camchain.yaml", [&] {
+        return Named{{"camchain.yaml", format_kalibr_rig({pair.first_camera, pair.second_camera})}};
+    });
+    if (files.empty()) {
+        throw Error(folder + ": neither OpenCV's stereo files, mrcal's models nor Kalibr's camchain can hold this pair");
     }
-    try {
-        files.emplace_back(dir / "left.cameramodel", format_camera(pair.first_camera, CameraFormat::Cameramodel));
-        files.emplace_back(dir / "right.cameramodel", format_camera(pair.second_camera, CameraFormat::Cameramodel));
-    } catch (const NotRepresentable& error) {
-        files.resize(std::min<std::size_t>(files.size(), 2));
-        std::cerr << "libcam calibrate: " << folder << ": the .cameramodel files not written: " << error.what() << "\n";
-    }
-    if (files.empty()) throw Error(folder + ": neither OpenCV's stereo files nor mrcal's models can hold this pair");
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     if (error) throw FileError(folder + ": cannot create the folder: " + error.message());

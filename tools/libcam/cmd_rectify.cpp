@@ -248,10 +248,8 @@ int run_rectify(const RectifyFlags& flags) {
     }
     for (std::size_t k = 0; k < 2; ++k) {
         files.push_back({std::string(side[k]) + ".json", format_camera(pair.cameras[k].camera, CameraFormat::Json)});
-        if (pair.model == LensType::Latlon) {
-            files.push_back({std::string(side[k]) + ".cameramodel",
-                             format_camera(pair.cameras[k].camera, CameraFormat::Cameramodel)});
-        }
+        files.push_back({std::string(side[k]) + ".cameramodel",
+                         format_camera(pair.cameras[k].camera, CameraFormat::Cameramodel)});
     }
     if (pair.model == LensType::Pinhole) files.push_back({"extrinsics.yml", opencv_extrinsics(pair, pair_sources)});
     fs::create_directories(flags.output);
@@ -281,8 +279,9 @@ Runner add_rectify(CLI::App& app) {
         ->capture_default_str();
     command->add_flag("--json", flags->json, "Print the rectified pair as JSON");
     command->add_option("-o,--output", flags->output,
-                        "Folder for left.json and right.json (the rectified cameras), extrinsics.yml (OpenCV's R1 R2 "
-                        "P1 P2 Q) or the .cameramodel files (LATLON), and with --images left.png and right.png");
+                        "Folder for the rectified cameras (left.json and right.json, and left.cameramodel and "
+                        "right.cameramodel for mrcal), extrinsics.yml (OpenCV's R1 R2 P1 P2 Q; PINHOLE), and with "
+                        "--images left.png and right.png");
     command->add_option("--images", flags->images, "The two images to rectify, LEFT RIGHT")->expected(2);
     command->add_option("--maps", flags->maps,
                         "With -o: also write each rectified camera's map, left-map and right-map: for each rectified "

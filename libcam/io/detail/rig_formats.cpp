@@ -5,8 +5,11 @@
 #include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <vector>
 
 #include "libcam/error.hpp"
+#include "libcam/io/kalibr_rig.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/format_table.hpp"
 #include "libcam/io/detail/ocamcalib_format.hpp"
@@ -411,7 +414,12 @@ std::string format_basalt_calibration(const Camera& camera, const WriteOptions&)
     return out.dump(4) + "\n";
 }
 
-std::string format_kalibr_camchain(const Camera& camera, const WriteOptions&) {
+namespace {
+
+// One camera of a camchain, `name` ("cam0"), with `transform` under `transform_key`
+// (T_cam_imu, T_cn_cnm1) where it has one.
+std::string kalibr_camera(const Camera& camera, const std::string& name, const char* transform_key,
+                          const std::optional<Pose>& transform) {
     if (camera.intrinsics.skew != 0.0) {
         throw NotRepresentable("Kalibr's cameras have no skew; this camera's is " + yaml_number(camera.intrinsics.skew));
     }
@@ -431,18 +439,38 @@ std::string format_kalibr_camchain(const Camera& camera, const WriteOptions&) {
     const Intrinsics& k = camera.intrinsics;
     intrinsics.insert(intrinsics.end(), {k.fx, k.fy, k.cx, k.cy});
     const std::vector<double> distortion_coeffs(c.begin() + static_cast<long>(leading), c.end());
-    std::string out = "cam0:\n  T_cam_imu:\n";
-    for (int r = 0; r < 4; ++r) {
-        const std::vector<double> row = r < 3 ? std::vector<double>{camera.pose.R(r, 0), camera.pose.R(r, 1),
-                                                                     camera.pose.R(r, 2), camera.pose.t(r)}
-                                              : std::vector<double>{0.0, 0.0, 0.0, 1.0};
-        out += "  - " + yaml_list(row) + "\n";
+    std::string out = name + ":\n";
+    if (transform) {
+        out += "  " + std::string(transform_key) + ":\n";
+        for (int r = 0; r < 4; ++r) {
+            const std::vector<double> row = r < 3 ? std::vector<double>{transform->R(r, 0), transform->R(r, 1),
+                                                                         transform->R(r, 2), transform->t(r)}
+                                                  : std::vector<double>{0.0, 0.0, 0.0, 1.0};
+            out += "  - " + yaml_list(row) + "\n";
+        }
     }
     out += "  camera_model: " + projection + "\n";
     out += "  distortion_coeffs: " + yaml_list(distortion_coeffs) + "\n";
     out += "  distortion_model: " + distortion + "\n";
     out += "  intrinsics: " + yaml_list(intrinsics) + "\n";
     out += "  resolution: [" + std::to_string(camera.size.width) + ", " + std::to_string(camera.size.height) + "]\n";
+    return out;
+}
+
+}  // namespace
+
+std::string format_kalibr_camchain(const Camera& camera, const WriteOptions&) {
+    return kalibr_camera(camera, "cam0", "T_cam_imu", camera.pose);
+}
+
+std::string format_kalibr_rig(const std::vector<Camera>& cameras) {
+    std::string out;
+    for (std::size_t i = 0; i < cameras.size(); ++i) {
+        // Each camera from the one before it: X_cn = T_cn_cnm1 X_cnm1.
+        const std::optional<Pose> from_previous =
+            i == 0 ? std::nullopt : std::optional<Pose>(cameras[i].pose.after(cameras[i - 1].pose.inverse()));
+        out += kalibr_camera(cameras[i], "cam" + std::to_string(i), "T_cn_cnm1", from_previous);
+    }
     return out;
 }
 
