@@ -460,13 +460,15 @@ DocumentNode parse_xml_outline(std::string_view text, const std::string& source)
                         ": not valid XML: " + result.description());
     }
     const pugi::xml_node root = document.document_element();
-    DocumentNode children{.kind = DocumentNode::Kind::Map};
+    DocumentNode children;
+    children.kind = DocumentNode::Kind::Map;
     for (const pugi::xml_node child : root.children()) {
         if (child.type() != pugi::node_element || children.find(child.name()) != nullptr) continue;
         children.keys.emplace_back(child.name());
         children.items.emplace_back();
     }
-    DocumentNode outline{.kind = DocumentNode::Kind::Map};
+    DocumentNode outline;
+    outline.kind = DocumentNode::Kind::Map;
     outline.keys.emplace_back(root.name());
     outline.items.push_back(std::move(children));
     return outline;
