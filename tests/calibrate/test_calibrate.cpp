@@ -299,6 +299,14 @@ std::vector<std::filesystem::path> opencv_left_images() {
     return images;
 }
 
+// calibrateCamera's problem: OPENCV5, every corner kept (no outlier dropped).
+CalibrationOptions as_calibrate_camera() {
+    CalibrationOptions options;
+    options.candidates = {candidate_named("OPENCV5")};
+    options.outlier_sigmas = std::numeric_limits<double>::infinity();
+    return options;
+}
+
 // A calibration's corners as calibrateCamera takes them.
 struct OpenCvPoints {
     std::vector<std::vector<cv::Point3f>> object;
@@ -328,9 +336,7 @@ TEST_CASE("Calibrate OpenCV's sample images: OpenCV's model, against calibrateCa
     }
     const BoardSpec board = parse_board_spec("chessboard:9x6:0.025");
     const std::vector<BoardDetection> found = detect_boards(images, board, 0);
-    CalibrationOptions options;
-    options.candidates = {candidate_named("OPENCV5")};
-    options.outlier_sigmas = std::numeric_limits<double>::infinity();  // every corner, as calibrateCamera takes them
+    CalibrationOptions options = as_calibrate_camera();
     const Calibration c = calibrate(found, board, options);
     REQUIRE(c.views.size() == 13);
     REQUIRE(c.corners() == 13 * 54);
@@ -418,9 +424,7 @@ TEST_CASE("Calibrate OpenCV's sample images with OpenCV's flags: its stored cali
     REQUIRE(stored.flags == cv::CALIB_FIX_ASPECT_RATIO);
     const BoardSpec board = parse_board_spec("chessboard:9x6:0.025");
     const std::vector<BoardDetection> found = detect_boards(images, board, 0, {}, CornerMethod::OpenCvSample);
-    CalibrationOptions options;
-    options.candidates = {candidate_named("OPENCV5")};
-    options.outlier_sigmas = std::numeric_limits<double>::infinity();  // every corner, as calibrateCamera takes them
+    CalibrationOptions options = as_calibrate_camera();
     options.held = held_by_opencv_flags(std::to_string(stored.flags));
     const Calibration c = calibrate(found, board, options);
     REQUIRE(c.views.size() == 13);
@@ -486,9 +490,7 @@ TEST_CASE("Calibrate with OpenCV's flags: p1 p2 and k3 held at 0 as calibrateCam
     }
     const BoardSpec board = parse_board_spec("chessboard:9x6:0.025");
     const std::vector<BoardDetection> found = detect_boards(images, board, 0);
-    CalibrationOptions options;
-    options.candidates = {candidate_named("OPENCV5")};
-    options.outlier_sigmas = std::numeric_limits<double>::infinity();
+    CalibrationOptions options = as_calibrate_camera();
     options.held = held_by_opencv_flags("CALIB_FIX_ASPECT_RATIO, zero_tangent_dist,FIX_K3");
     const Calibration c = calibrate(found, board, options);
     const OpenCvPoints points = opencv_points(c);
