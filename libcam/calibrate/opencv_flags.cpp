@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "libcam/error.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -82,7 +83,7 @@ void hold_number(std::string_view item, unsigned long value, HeldParameters& hel
         value &= ~flag.bit;
     }
     if (value != 0) {
-        throw InvalidArgument("--opencv-flags: " + std::string(item) + " holds bits that are none of calibrateCamera's "
+        throw InvalidArgument("--opencv-flags: " + printable_text(item, 40) + " holds bits that are none of calibrateCamera's "
                               "flags (" + std::to_string(value) + ")");
     }
 }
@@ -109,7 +110,7 @@ HeldParameters held_by_opencv_flags(std::string_view text) {
                 for (const OpenCvFlag& f : kFlags) {
                     if (f.refused.empty()) taken += (taken.empty() ? "" : ", ") + std::string(f.name);
                 }
-                throw InvalidArgument("--opencv-flags: " + std::string(item) + " is none of calibrateCamera's flags; taken: " +
+                throw InvalidArgument("--opencv-flags: " + printable_text(item, 40) + " is none of calibrateCamera's flags; taken: " +
                                       taken + ", or their sum as a number");
             }
             hold(*flag, held);
