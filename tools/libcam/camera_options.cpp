@@ -64,9 +64,7 @@ std::optional<CameraFormat> FileSelection::chosen_format() const {
     }
 }
 
-CameraFile FileSelection::read(const std::string& path) const {
-    return read_camera_file(path, camera, chosen_format(), read_options());
-}
+CameraFile FileSelection::read(const std::string& path) const { return read_named(path).file; }
 
 NamedCamera FileSelection::read_named(const std::string& path) const {
     return select_camera(read_set(path), camera, path);
