@@ -26,7 +26,21 @@ namespace libcam::test {
 inline bool on_equidistant_point(LensType type) {
     return type == LensType::Fisheye || type == LensType::ThinPrismFisheye || type == LensType::RadTanThinPrismFisheye ||
            type == LensType::ThetaPolynomial ||  // WoodScape's, built on the same point
-           type == LensType::FThetaForward;      // NVIDIA's F-theta with its forward polynomial
+           type == LensType::FThetaForward ||    // NVIDIA's F-theta with its forward polynomial
+           type == LensType::EquidistantRadial;  // PanoTools' polynomial on it
+}
+
+// The radius PanoTools' polynomial takes on a fisheye projection (EQUIDISTANT_RADIAL,
+// EQUISOLID_RADIAL, STEREOGRAPHIC_RADIAL: P(theta), their valid radius's unit); nullopt for
+// the other models.
+template <class Real>
+std::optional<Real> fisheye_radial_radius(LensType type, Real rho, Real z) {
+    using std::atan2, std::sin, std::tan;
+    const Real theta = atan2(rho, z);
+    if (type == LensType::EquidistantRadial) return theta;
+    if (type == LensType::EquisolidRadial) return Real(2) * sin(theta / Real(2));
+    if (type == LensType::StereographicRadial) return Real(2) * tan(theta / Real(2));
+    return std::nullopt;
 }
 
 
@@ -107,6 +121,7 @@ inline Quad radial_slope(const Lens& lens, const Vec3Q& ray) {
             const Quad rho = hypot(ray.x(), ray.y());
             Quad r = rho / ray.z();
             if (on_equidistant_point(Model::type)) r = atan2(rho, ray.z());
+            if (const auto radius = fisheye_radial_radius(Model::type, rho, ray.z())) r = *radius;
             if (Model::type == LensType::Mei) r = rho / (ray.z() + parameters.coefficients(0) * ray.norm());
             Quad slope;
             Model::radial_distortion(parameters, r, slope);
@@ -312,8 +327,9 @@ template <class Scalar>
 std::optional<Expect> backward_axis_band(const Lens& lens, const Vec3Q& point) {
     const LensType type = lens.type;
     // DIVISION forms m = (x, y) / D with D = 2 k rho^2 / (z - root) behind the camera.
-    const bool behind_only =
-        type == LensType::Stereographic || type == LensType::Equisolid || type == LensType::Division;
+    const bool behind_only = type == LensType::Stereographic || type == LensType::Equisolid ||
+                             type == LensType::StereographicRadial || type == LensType::EquisolidRadial ||
+                             type == LensType::Division;
     if (!behind_only && !on_equidistant_point(type) && type != LensType::Fov) return std::nullopt;
     Quad rho2 = point.x() * point.x() + point.y() * point.y();
     if (type == LensType::Fov) {
@@ -338,6 +354,7 @@ std::optional<Expect> backward_axis_band(const Lens& lens, const Vec3Q& point) {
 inline Quad undistorted_radius(LensType type, const Vec3Q& point) {
     const Quad rho = hypot(point.x(), point.y());
     if (on_equidistant_point(type)) return atan2(rho, point.z());
+    if (const auto radius = fisheye_radial_radius(type, rho, point.z())) return *radius;
     const bool opencv = type != LensType::Pinhole && lens_info(type).num_coefficients > 0;
     return opencv && point.z() > 0 ? rho / point.z() : Quad(0);
 }

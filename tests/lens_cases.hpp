@@ -297,6 +297,31 @@ inline std::vector<LensCase> lens_cases() {
         // folds r R(r) over at r = 1.08, inside the image's corners (r = 1.1 there).
         {"BROWN_K4 mild", lens_camera(LensType::BrownK4, {-0.08, 0.02, 1.5e-4, -2e-4, -0.003, 4e-4})},
         {"BROWN_K4 strong", lens_camera(LensType::BrownK4, {-0.3, 0.09, 9e-4, -7e-4, -0.02, -0.02})},
+        // ---- fisheye projections with PanoTools' polynomial: lensfun's calibrations
+        // (lensfun's data/db, the snapshot of real-data's SOURCES.md) rescaled as lensfun
+        // does (rescale_polynomial_coefficients), at a calibrated focal length, each on its
+        // crop factor's sensor: the Samyang 7.5mm UMC Fish-eye MFT (mil-samyang.xml, 4000x3000)
+        // and the Sigma 4.5mm circular fisheye (slr-sigma.xml, real focal 4.53319 mm,
+        // 3000x2000); the Olympus M.Zuiko 8mm Fisheye Pro (poly3, mil-olympus.xml, 4000x3000)
+        // and the Pentax-DA Fish-Eye 10-17mm at 10 mm (slr-pentax.xml, 3000x2000); the Olympus
+        // 9mm Body Cap Lens (poly3, mil-olympus.xml, 4000x3000) and the Samyang 8mm f/2.8 UMC
+        // Fish-eye (mil-samyang.xml, real focal 8.405 mm, 6000x4000).
+        {"EQUIDISTANT_RADIAL mild",
+         real_camera(LensType::EquidistantRadial, {-0.020079011891564337, 0.010734186087350687, -0.020400525146287707, 0.0},
+                     {4000, 3000}, {1773.5666334899324, 1773.5666334899324, 1999.5, 1499.5})},
+        {"EQUIDISTANT_RADIAL strong",
+         real_camera(LensType::EquidistantRadial, {-0.002046058244986695, -0.015289347349700973, -0.060417027183450156, 0.0},
+                     {3000, 2000}, {579.49279089, 579.49279089, 1499.5, 999.5})},
+        {"EQUISOLID_RADIAL mild", real_camera(LensType::EquisolidRadial, {0.0, -0.008025759286564408, 0.0, 0.0}, {4000, 3000},
+                                              {1858.818847557283, 1858.818847557283, 1999.5, 1499.5})},
+        {"EQUISOLID_RADIAL strong",
+         real_camera(LensType::EquisolidRadial, {-0.07397021605533176, 0.20647795493636048, -0.11773464496154998, 0.0},
+                     {3000, 2000}, {1283.3328333333334, 1283.3328333333334, 1499.5, 999.5})},
+        {"STEREOGRAPHIC_RADIAL mild", real_camera(LensType::StereographicRadial, {0.0, -0.058021862921437156, 0.0, 0.0},
+                                                  {4000, 3000}, {2144.838447486735, 2144.838447486735, 1999.5, 1499.5})},
+        {"STEREOGRAPHIC_RADIAL strong",
+         real_camera(LensType::StereographicRadial, {0.02113944511397237, -0.08110521189647818, 0.014214620915856051, 0.0},
+                     {6000, 4000}, {2148.878333333333, 2148.878333333333, 2999.5, 1999.5})},
     };
     return cases;
 }
@@ -420,6 +445,12 @@ inline double domain_edge_of(const Lens& lens) {
 // table's mrcal names against libmrcal's own list, and its OpenCV rows against OpenCV).
 inline bool in_opencv(LensType type) { return lens_info(type).opencv != OpenCvFunction::None; }
 inline bool in_mrcal(LensType type) { return !lens_info(type).mrcal.empty(); }
+// PanoTools' radial polynomial on a projection (PTLENS and the fisheye *_RADIAL models):
+// its reference is the formula itself in long double (reference_project); no library has it.
+constexpr bool panotools_polynomial(LensType type) {
+    return type == LensType::Ptlens || type == LensType::EquidistantRadial || type == LensType::EquisolidRadial ||
+           type == LensType::StereographicRadial;
+}
 // A model only COLMAP has (THIN_PRISM_FISHEYE, RAD_TAN_THIN_PRISM_FISHEYE): its reference
 // is COLMAP's formula (colmap_reference.hpp), in front of the camera.
 inline bool colmap_only(LensType type) {
@@ -460,19 +491,31 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
         }
         return pixels;
     }
-    if (camera.lens.type == LensType::Ptlens) {
-        // PanoTools' polynomial, the formula in long double: m = u (1 + c r + b r^2
-        // + a r^3), u = (x/z, y/z), r = |u|; nothing behind the camera or past the fold.
+    if (panotools_polynomial(camera.lens.type)) {
+        // PanoTools' polynomial on the lens's own projection, the formula in long double:
+        // m = P(theta) (1 + c r + b r^2 + a r^3 + k2 r^4) (X, Y) / |(X, Y)|, r = P(theta),
+        // P = tan (PTLENS), theta (EQUIDISTANT_RADIAL), 2 sin(theta / 2) (EQUISOLID_RADIAL),
+        // 2 tan(theta / 2) (STEREOGRAPHIC_RADIAL); nothing past the fold or the projection's edge.
         const PreparedCamera prepared(camera);
-        const long double a = camera.lens.coefficients[0], b = camera.lens.coefficients[1],
-                          c = camera.lens.coefficients[2];
+        const std::vector<double>& k = camera.lens.coefficients;
+        const long double a = k[0], b = k[1], c = k[2], k2 = k.size() > 3 ? k[3] : 0.0;
         std::vector<Vec2> pixels;
         for (const Vec3& ray : rays) {
-            const long double x = static_cast<long double>(ray.x()) / ray.z(), y = static_cast<long double>(ray.y()) / ray.z();
-            const long double r = std::hypot(x, y), factor = 1 + r * (c + r * (b + r * a));
-            const bool inside = ray.z() > 0 && r < prepared.valid_radius();
-            pixels.push_back(inside ? Vec2(static_cast<double>(camera.intrinsics.fx * x * factor + camera.intrinsics.cx),
-                                           static_cast<double>(camera.intrinsics.fy * y * factor + camera.intrinsics.cy))
+            const long double x = ray.x(), y = ray.y(), z = ray.z(), rho = std::hypot(x, y);
+            const long double theta = std::atan2(rho, z);
+            long double r = 0;
+            switch (camera.lens.type) {
+                case LensType::Ptlens: r = rho / z; break;
+                case LensType::EquidistantRadial: r = theta; break;
+                case LensType::EquisolidRadial: r = 2 * std::sin(theta / 2); break;
+                default: r = 2 * std::tan(theta / 2); break;
+            }
+            const long double factor = 1 + r * (c + r * (b + r * (a + r * k2)));
+            const bool inside = (camera.lens.type != LensType::Ptlens || z > 0) && r < prepared.valid_radius() &&
+                                (rho > 0 || z > 0);
+            const long double scale = rho > 0 ? r * factor / rho : 0;
+            pixels.push_back(inside ? Vec2(static_cast<double>(camera.intrinsics.fx * x * scale + camera.intrinsics.cx),
+                                           static_cast<double>(camera.intrinsics.fy * y * scale + camera.intrinsics.cy))
                                     : Vec2::Constant(kInfinity));
         }
         return pixels;
@@ -576,7 +619,7 @@ inline std::vector<Vec2> reference_project(const Camera& camera, const std::vect
 inline std::string reference_library(LensType type) {
     if (colmap_only(type)) return "COLMAP's formulas";
     if (has_paper_formulas(type)) return "its paper's formulas";
-    if (type == LensType::Ptlens) return "PanoTools' polynomial";
+    if (panotools_polynomial(type)) return "PanoTools' polynomial";
     if (type == LensType::BrownK4) return "Metashape's formula";
     if (type == LensType::OcamCalib) return "Scaramuzza's world2cam";
     if (!in_opencv(type)) return "mrcal_project";

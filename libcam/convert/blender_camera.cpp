@@ -254,6 +254,9 @@ BlenderCamera blender_from_camera(const Camera& camera) {
         case LensType::FTheta: break;
         case LensType::FThetaForward: break;
         case LensType::BrownK4: break;
+        case LensType::EquidistantRadial: break;
+        case LensType::EquisolidRadial: break;
+        case LensType::StereographicRadial: break;
     }
     throw InvalidArgument("lens: Blender has no camera for " + std::string(lens_info(camera.lens.type).name) +
                           " (it draws PINHOLE, FISHEYE with zero coefficients, EQUISOLID, "

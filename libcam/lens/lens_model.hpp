@@ -52,7 +52,11 @@
     _(FTheta, FThetaLens) \
     _(FThetaForward, FThetaForwardLens) \
     /* Brown's radial-tangential lens to r^8 (Metashape's, RealityCapture's brown4) */ \
-    _(BrownK4, BrownK4Lens)
+    _(BrownK4, BrownK4Lens) \
+    /* fisheye projections with PanoTools' radial polynomial (lensfun's, Hugin's) */ \
+    _(EquidistantRadial, EquidistantRadialLens) \
+    _(EquisolidRadial, EquisolidRadialLens) \
+    _(StereographicRadial, StereographicRadialLens)
 
 namespace libcam {
 
@@ -110,6 +114,7 @@ enum class LensFamily {
     FTheta,  // NVIDIA's: not FISHEYE_LENS_POLYNOMIAL's, whose angle has the other sign and no affine
     FThetaForward,  // NVIDIA's with the forward polynomial the reference: not THETA_POLYNOMIAL's (no affine, degree 4)
     BrownK4,  // not PINHOLE's: its k4 multiplies r^8 where OPENCV8's divides (simplest_equal_lens gives OPENCV5 for k4 = 0)
+    EquidistantRadial,  // not FISHEYE's: its polynomial has odd powers of the angle, and another order
 };
 
 // Whether `libcam fit` tries the model as a candidate.
@@ -341,9 +346,27 @@ inline constexpr LensInfo kLensTable[] = {
     {.type = LensType::BrownK4, .name = "BROWN_K4", .coefficients = {"k1", "k2", "p1", "p2", "k3", "k4"},
      .num_coefficients = 6, .sees_behind_camera = false, .inverse = Inverse::Solved,
      .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
-     .also_named = "Metashape's frame camera with k4; RealityCapture's brown4 and brown4t2 (1 + k1 r^2 + k2 r^4 + "
-                   "k3 r^6 + k4 r^8)",
+     .also_named = "Metashape's frame camera with k4; RealityCapture's brown4 and brown4t2; nerfstudio's perspective "
+                   "camera with k4 (1 + k1 r^2 + k2 r^4 + k3 r^6 + k4 r^8)",
      .family = LensFamily::BrownK4, .family_rank = 0, .fit = FitCandidate::No},
+    // Fisheye projections followed by PanoTools' radial polynomial of the projected radius,
+    // r (1 + c r + b r^2 + a r^3 + k2 r^4) (fisheye_radial.hpp): lensfun's fisheye lenses
+    // with their ptlens, poly3 or poly5 distortion, and Hugin's fisheye projections with a b c.
+    {.type = LensType::EquidistantRadial, .name = "EQUIDISTANT_RADIAL", .coefficients = {"a", "b", "c", "k2"},
+     .num_coefficients = 4, .sees_behind_camera = true, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "lensfun's fisheye lenses with distortion; Hugin's fisheye (f2, f3) with a b c",
+     .family = LensFamily::EquidistantRadial, .family_rank = 0, .fit = FitCandidate::No},
+    {.type = LensType::EquisolidRadial, .name = "EQUISOLID_RADIAL", .coefficients = {"a", "b", "c", "k2"},
+     .num_coefficients = 4, .sees_behind_camera = true, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "lensfun's equisolid lenses with distortion; Hugin's equisolid (f21) with a b c",
+     .family = LensFamily::Equisolid, .family_rank = 1, .fit = FitCandidate::No},
+    {.type = LensType::StereographicRadial, .name = "STEREOGRAPHIC_RADIAL", .coefficients = {"a", "b", "c", "k2"},
+     .num_coefficients = 4, .sees_behind_camera = true, .inverse = Inverse::Solved,
+     .opencv = OpenCvFunction::None, .mrcal = "", .colmap = "", .kalibr = "", .basalt = "",
+     .also_named = "lensfun's stereographic lenses with distortion; Hugin's stereographic (f10) with a b c",
+     .family = LensFamily::Stereographic, .family_rank = 1, .fit = FitCandidate::No},
 };
 
 namespace detail {

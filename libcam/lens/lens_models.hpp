@@ -55,6 +55,7 @@
 #include "libcam/lens/equisolid.hpp"
 #include "libcam/lens/eucm.hpp"
 #include "libcam/lens/fisheye.hpp"
+#include "libcam/lens/fisheye_radial.hpp"
 #include "libcam/lens/fov.hpp"
 #include "libcam/lens/lane.hpp"
 #include "libcam/lens/latlon.hpp"

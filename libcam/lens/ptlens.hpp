@@ -36,6 +36,38 @@
 
 namespace libcam {
 
+// PanoTools' radial polynomial of a point u, r = |u|: m = u (1 + c r + b r^2 + a r^3 + k2 r^4),
+// and d m / d u when asked; returns r^2, for the caller's domain check. PTLENS's (k2 = 0, u
+// the pinhole point) and the fisheye *_RADIAL models' (u their projection's point,
+// fisheye_radial.hpp). The derivative of the factor is (c + 2 b r + 3 a r^2 + 4 k2 r^3) u / r.
+template <class Scalar, class UJacobianPtr>
+Scalar panotools_distort(const Eigen::Matrix<Scalar, 2, 1>& u, const Scalar& a, const Scalar& b, const Scalar& c,
+                         const Scalar& k2, Eigen::Matrix<Scalar, 2, 1>& m, UJacobianPtr d_m_d_u, Scalar& r) {
+    using std::sqrt;
+    const Scalar r2 = u.x() * u.x() + u.y() * u.y();
+    r = sqrt(r2 + Scalar(FLT_MIN));
+    const Scalar factor = Scalar(1) + r * (c + r * (b + r * (a + r * k2)));
+    m = u * factor;
+    if constexpr (is_requested<UJacobianPtr>) {
+        const Scalar along = c / r + Scalar(2) * b + r * (Scalar(3) * a + Scalar(4) * k2 * r);
+        const Scalar xy = along * u.x() * u.y();
+        Eigen::Matrix<Scalar, 2, 2> jacobian;
+        jacobian << factor + along * u.x() * u.x(), xy,  //
+            xy, factor + along * u.y() * u.y();
+        *d_m_d_u = jacobian;
+    }
+    return r2;
+}
+
+// The radial map g(r) = r (1 + c r + b r^2 + a r^3 + k2 r^4) and its slope: the solver's 1-D start.
+template <class Scalar>
+Scalar panotools_radial(const Scalar& r, const Scalar& a, const Scalar& b, const Scalar& c, const Scalar& k2,
+                        Scalar& slope) {
+    const Scalar one(1);
+    slope = one + r * (Scalar(2) * c + r * (Scalar(3) * b + r * (Scalar(4) * a + r * Scalar(5) * k2)));
+    return r * (one + r * (c + r * (b + r * (a + r * k2))));
+}
+
 template <class Scalar>
 struct PtlensLens : OnPinholePoint<PtlensLens<Scalar>, Scalar> {
     static constexpr LensType type = LensType::Ptlens;
@@ -62,23 +94,10 @@ struct PtlensLens : OnPinholePoint<PtlensLens<Scalar>, Scalar> {
     template <class UJacobianPtr = std::nullptr_t, class CoefficientJacobianPtr = std::nullptr_t>
     static bool distort(const Parameters& lens, const Vec2T& u, Vec2T& m, UJacobianPtr d_m_d_u = nullptr,
                         CoefficientJacobianPtr d_m_d_coefficients = nullptr) {
-        using std::sqrt;
         const auto& k = lens.coefficients;
-        const Scalar a = k(0), b = k(1), c = k(2), one(1);
-        const Scalar r2 = u.x() * u.x() + u.y() * u.y();
-        const Scalar r = sqrt(r2 + Scalar(FLT_MIN));
-        const Scalar factor = one + r * (c + r * (b + r * a));
-        m = u * factor;
+        Scalar r;
+        const Scalar r2 = panotools_distort(u, Scalar(k(0)), Scalar(k(1)), Scalar(k(2)), Scalar(0), m, d_m_d_u, r);
         const bool in_domain = (r2 < lens.valid_radius * lens.valid_radius) & all_finite(m);  // &: no branch
-        if constexpr (is_requested<UJacobianPtr>) {
-            // d factor / du = (c + 2 b r + 3 a r^2) u / r.
-            const Scalar along = c / r + Scalar(2) * b + Scalar(3) * a * r;
-            const Scalar xy = along * u.x() * u.y();
-            Jacobian22 jacobian;
-            jacobian << factor + along * u.x() * u.x(), xy,  //
-                xy, factor + along * u.y() * u.y();
-            *d_m_d_u = jacobian;
-        }
         if constexpr (is_requested<CoefficientJacobianPtr>) {
             d_m_d_coefficients->col(2) = u * r;
             d_m_d_coefficients->col(1) = u * r2;
@@ -90,9 +109,7 @@ struct PtlensLens : OnPinholePoint<PtlensLens<Scalar>, Scalar> {
     // The radial map g(r) and its slope g'(r): the solver's 1-D start.
     static Scalar radial_distortion(const Parameters& lens, const Scalar& r, Scalar& slope) {
         const auto& k = lens.coefficients;
-        const Scalar a = k(0), b = k(1), c = k(2), one(1);
-        slope = one + r * (Scalar(2) * c + r * (Scalar(3) * b + r * Scalar(4) * a));
-        return r * (one + r * (c + r * (b + r * a)));
+        return panotools_radial(r, Scalar(k(0)), Scalar(k(1)), Scalar(k(2)), Scalar(0), slope);
     }
 };
 

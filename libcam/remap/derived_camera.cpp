@@ -76,7 +76,10 @@ Lens lens_turned(const Lens& lens) {
         case LensType::Division:  // radial only
         case LensType::Equisolid:
         case LensType::LensPolynomial:
-        case LensType::Ptlens: return out;
+        case LensType::Ptlens:
+        case LensType::EquidistantRadial:
+        case LensType::EquisolidRadial:
+        case LensType::StereographicRadial: return out;
         case LensType::OcamCalib:  // radial about the axis when its affine is the identity
             if (c[0] == 1.0 && c[1] == 0.0 && c[2] == 0.0) return out;
             break;  // the affine turned puts its 1 on the other diagonal: another scale, not yet turned

@@ -85,11 +85,16 @@ std::vector<Case> cases() {
                       {0.02, -3e-3, 4e-4, -5e-5, 6e-6, -7e-7, 1.1e-3, -9e-4, 7e-4, -3e-4, -5e-4, 2e-4}}),
          {F::Json, F::Colmap, F::Nerf}},
         {"CYLINDRICAL", camera_with({LensType::Cylindrical, {}}), {F::Json}},
-        // PanoTools' a b c: libcam's JSON alone writes it (lensfun, Hugin and
-        // Gyroflow are read only).
+        // PanoTools' a b c, on a pinhole or a fisheye projection: libcam's JSON alone writes
+        // them (lensfun, Hugin and Gyroflow are read only).
         {"PTLENS", camera_with({LensType::Ptlens, {-0.25, 0.2, -0.13}}), {F::Json}},
-        // Brown's lens to r^8: Metashape's frame sensor holds it (RealityCapture's files are read only).
-        {"BROWN_K4", camera_with({LensType::BrownK4, {-0.2, 0.05, 1e-3, -2e-3, 0.01, -0.002}}), {F::Json, F::Metashape}},
+        {"EQUIDISTANT_RADIAL", camera_with({LensType::EquidistantRadial, {-0.002, -0.015, -0.06, 0.0}}), {F::Json}},
+        {"EQUISOLID_RADIAL", camera_with({LensType::EquisolidRadial, {-0.074, 0.21, -0.12, 0.0}}), {F::Json}},
+        {"STEREOGRAPHIC_RADIAL", camera_with({LensType::StereographicRadial, {0.021, -0.081, 0.014, 0.003}}), {F::Json}},
+        // Brown's lens to r^8: Metashape's frame sensor and nerfstudio's k4 hold it (RealityCapture's
+        // files are read only).
+        {"BROWN_K4", camera_with({LensType::BrownK4, {-0.2, 0.05, 1e-3, -2e-3, 0.01, -0.002}}),
+         {F::Json, F::Metashape, F::Nerf}},
         {"MEI", camera_with({LensType::Mei, {1.1, -0.1, 0.01, 1e-3, -1e-3}}), {F::Json, F::Kalibr}},
         {"DOUBLE_SPHERE", camera_with({LensType::DoubleSphere, {-0.24, 0.57}}), {F::Json, F::Kalibr, F::Basalt}},
         {"EUCM", camera_with({LensType::Eucm, {0.59, 1.1}}), {F::Json, F::Colmap, F::Kalibr, F::Basalt}},
@@ -172,7 +177,8 @@ TEST_CASE("Round trips between every pair of formats that can hold a camera", "[
         }
     }
     CHECK(trips == 13 * 13 + 6 * 6 + 10 * 10 + 9 * 9 + 6 * 6 + 9 * 9 + 4 * 4 + 3 * 3 + 1 * 1 + 2 * 2 + 3 * 3 + 4 * 4 + 5 * 5 +
-                   1 * 1 /* PTLENS, held by libcam's JSON alone */ + 2 * 2 /* BROWN_K4: JSON, Metashape */ +
+                   1 * 1 /* PTLENS, held by libcam's JSON alone */ + 3 * 3 /* BROWN_K4: JSON, Metashape, NeRF */ +
+                   3 * 1 * 1 /* EQUIDISTANT_RADIAL, EQUISOLID_RADIAL, STEREOGRAPHIC_RADIAL: JSON alone */ +
                    1 * 1 /* OCAMCALIB: JSON alone */ +
                    2 * 2 /* DIVISION: JSON, COLMAP */ + 2 * 2 /* THETA_POLYNOMIAL: JSON, woodscape */ +
                    1 * 1 /* FTHETA: JSON (the rig's round trips are its own) */ + 1 * 1 /* FTHETA_FORWARD, likewise */);

@@ -12,6 +12,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "libcam/camera/camera.hpp"
@@ -87,6 +88,22 @@ TEST_CASE("Hugin: a fisheye image's b against pano_trafo", "[io][hugin]") {
     if (!pano_trafo_present()) return;
     check_against_pano_trafo("i w1600 h1200 f3 v150 a0 b0.02 c0 d3 e-4 g0 t0 r0 p0 y0 n\"fisheye.jpg\"", 1e-3);
     check_against_pano_trafo("i w1200 h1200 f21 v170 a0 b0 c0 d0 e0 g0 t0 r0 p0 y0 n\"equisolid.jpg\"", 1e-3);
+}
+
+// PanoTools distorts a fisheye's own projection: a b c on the equidistant, equisolid and
+// stereographic radius (EQUIDISTANT_RADIAL, EQUISOLID_RADIAL, STEREOGRAPHIC_RADIAL).
+TEST_CASE("Hugin: fisheye images' a b c against pano_trafo", "[io][hugin]") {
+    if (!pano_trafo_present()) return;
+    const std::pair<const char*, LensType> lines[] = {
+        {"i w1600 h1200 f3 v150 a0.01 b-0.03 c0.02 d3 e-4 g0 t0 r0 p0 y0 n\"equidistant.jpg\"", LensType::EquidistantRadial},
+        {"i w1200 h1200 f21 v170 a-0.02 b0.01 c0.015 d-5 e2 g0 t0 r0 p0 y0 n\"equisolid.jpg\"", LensType::EquisolidRadial},
+        {"i w1500 h1000 f10 v160 a0.005 b0.02 c-0.01 d0 e0 g0 t0 r0 p0 y0 n\"stereographic.jpg\"",
+         LensType::StereographicRadial}};
+    for (const auto& [line, type] : lines) {
+        const test::TempDir dir;
+        CHECK(read_camera_file(write_file(dir, "project.pto", project_file(line))).camera.lens.type == type);
+        check_against_pano_trafo(line, 1e-3);
+    }
 }
 
 TEST_CASE("Hugin: image lines' models, links and refusals", "[io][hugin]") {

@@ -365,8 +365,9 @@ TEST_CASE("transforms.json: instant-ngp's and nerfstudio's intrinsics, per frame
     const auto error_of = [](const std::string& json) {
         return file_error_of([&] { (void)parse_camera_set(json, CameraFormat::Nerf, "t.json"); });
     };
-    CHECK(error_of(R"({"fl_x": 500, "w": 640, "h": 480, "k4": 0.1})") ==
-          "t.json: \"k4\": nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
+    CHECK(parse_camera_set(R"({"fl_x": 500, "w": 640, "h": 480, "k4": 0.1})", CameraFormat::Nerf, "t.json")
+              .cameras[0]
+              .file.camera.lens == Lens{LensType::BrownK4, {0, 0, 0, 0, 0, 0.1}});
     CHECK(error_of(R"({"fl_x": 500, "w": 640})") == "t.json: \"w\": given without \"h\"");
     CHECK(error_of(R"({"fl_x": 500, "w": 640.5, "h": 480})") ==
           "t.json: \"w\": expected a whole number in [1, 1000000], got 640.5");
@@ -439,7 +440,7 @@ TEST_CASE("transforms.json is written with COLMAP's pixel corner, OpenGL's camer
     Camera mei = camera;
     mei.lens = {LensType::Mei, {1.2, 0, 0, 0, 0}};
     CHECK_THROWS_WITH(format_camera(mei, CameraFormat::Nerf),
-                      "NeRF transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, FISHEYE, LONLAT "
+                      "NeRF transforms.json has no model for a MEI lens (it holds PINHOLE, OPENCV4, OPENCV5, BROWN_K4, FISHEYE, LONLAT "
                       "and RAD_TAN_THIN_PRISM_FISHEYE)");
     Camera rational = camera;
     rational.lens = {LensType::OpenCv8, {0, 0, 0, 0, 0, 0.1, 0, 0}};

@@ -5,10 +5,15 @@
 // here for the reader's choices and refusals.
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "libcam/camera/camera.hpp"
 #include "libcam/error.hpp"
@@ -214,4 +219,191 @@ TEST_CASE("PTLENS: its formula and its Jacobian on the axis, worked by hand", "[
     CHECK(jacobian(1, 1) == 0.5);
     CHECK(jacobian(0, 1) == 0.0);
     CHECK(jacobian(0, 2) == 0.0);
+}
+
+namespace {
+
+// One lens entry as lensfun's database holds it: its projection, the crop factor and
+// aspect ratio it was calibrated on, and one distortion calibration at `focal`.
+struct LensfunEntry {
+    std::string type;  // fisheye, equisolid, stereographic
+    double crop = 1.0;
+    double aspect = 1.5;
+    std::string model;  // poly3, poly5, ptlens
+    std::vector<double> terms;
+    double focal = 0.0;
+};
+
+// lensfun's own steps for one pixel (x, y) of the corrected image, projected rectilinear
+// (EnableDistortionCorrection and EnableProjectionTransform(LF_RECTILINEAR), for a
+// camera of crop factor `crop`), transcribed from its sources at the snapshot SOURCES.md
+// names, in double where lensfun computes in float: the source pixel it reads.
+//   modifier.cpp, lfModifier::lfModifier: NormScale, CenterX, CenterY;
+//   database.cpp: the real focal length of a calibration without one;
+//   mod-coord.cpp, rescale_polynomial_coefficients and ApplyGeometryDistortion; the
+//   callbacks in their order (geometry at priority 500, then distortion at 750):
+//   Rect_ERect, ERect_<lens type>, Dist_<model>.
+Vec2 lensfun_source(const LensfunEntry& lens, double crop, int width, int height, double x, double y) {
+    const std::vector<double>& t = lens.terms;
+    const double real_focal = lens.model == "ptlens" ? lens.focal * (1 - t[0] - t[1] - t[2])
+                              : lens.model == "poly3" ? lens.focal * (1 - t[0])
+                                                      : lens.focal;
+    const double w = width - 1.0, h = height - 1.0;
+    const double norm_scale = std::hypot(36.0, 24.0) / crop / std::hypot(w + 1.0, h + 1.0) / real_focal;
+    const double centre_x = w / 2.0 * norm_scale, centre_y = h / 2.0 * norm_scale;
+    double px = x * norm_scale - centre_x, py = y * norm_scale - centre_y;
+    // Rect_ERect.
+    const double lon = std::atan2(px, 1.0), lat = std::atan2(py, std::sqrt(1 + px * px));
+    // ERect_<lens type>.
+    if (lens.type == "equisolid") {
+        const double k1 = std::sqrt(2.0 / (1 + std::cos(lat) * std::cos(lon)));
+        px = k1 * std::cos(lat) * std::sin(lon);
+        py = k1 * std::sin(lat);
+    } else if (lens.type == "stereographic") {
+        const double ksp = 2.0 / (1.0 + std::cos(lat) * std::cos(lon));
+        px = ksp * std::cos(lat) * std::sin(lon);
+        py = ksp * std::sin(lat);
+    } else {  // fisheye
+        double theta = -lat + std::numbers::pi / 2, xx = lon;
+        const double s = std::sin(theta);
+        const double vx = s * std::sin(xx), vy = std::cos(theta);
+        const double r = std::sqrt(vx * vx + vy * vy);
+        theta = std::atan2(r, s * std::cos(xx));
+        px = theta * vx / r;
+        py = theta * vy / r;
+    }
+    // rescale_polynomial_coefficients, then Dist_<model>.
+    const double hugin_scale_mm = std::hypot(36.0, 24.0) / lens.crop / std::hypot(lens.aspect, 1.0) / 2.0;
+    const double s = real_focal / hugin_scale_mm;
+    const double r2 = px * px + py * py, r = std::sqrt(r2);
+    double factor = 1.0;
+    if (lens.model == "ptlens") {
+        const double d = 1 - t[0] - t[1] - t[2];
+        const double a = t[0] * std::pow(s, 3) / std::pow(d, 4), b = t[1] * s * s / std::pow(d, 3), c = t[2] * s / (d * d);
+        factor = a * r2 * r + b * r2 + c * r + 1;
+    } else if (lens.model == "poly3") {
+        const double k1 = t[0] * s * s / std::pow(1 - t[0], 3);
+        factor = k1 * r2 + 1;
+    } else {  // poly5
+        factor = 1 + t[0] * s * s * r2 + t[1] * std::pow(s, 4) * r2 * r2;
+    }
+    return {(px * factor + centre_x) / norm_scale, (py * factor + centre_y) / norm_scale};
+}
+
+// The entry's camera read by libcam, against lensfun's steps over a grid of the corrected
+// rectilinear image: the largest miss in pixels.
+double worst_against_lensfun(const std::filesystem::path& database, const std::string& name, const LensfunEntry& lens,
+                             double crop, int width, int height, LensType expected_model) {
+    ReadOptions options;
+    options.lens = name;
+    options.focal_mm = lens.focal;
+    options.crop_factor = crop;
+    options.size = ImageSize{width, height};
+    const Camera camera = read_camera_file(database, {}, std::nullopt, options).camera;
+    CHECK(camera.lens.type == expected_model);
+    const PreparedCamera prepared(camera);
+    double worst = 0.0;
+    for (int i = 0; i <= 10; ++i) {
+        for (int j = 0; j <= 10; ++j) {
+            const double x = (width - 1.0) * i / 10.0, y = (height - 1.0) * j / 10.0;
+            const Vec2 libcam = test::lensfun_source_pixel(prepared, x, y);
+            const Vec2 expected = lensfun_source(lens, crop, width, height, x, y);
+            INFO(name << " at (" << x << ", " << y << "): libcam " << libcam.transpose() << ", lensfun " << expected.transpose());
+            REQUIRE(std::isfinite(libcam.x()));
+            worst = std::max(worst, (libcam - expected).norm());
+        }
+    }
+    return worst;
+}
+
+}  // namespace
+
+// lensfun distorts a fisheye's own projection: its geometry step first, then the distortion
+// polynomial on the projected radius (EQUIDISTANT_RADIAL, EQUISOLID_RADIAL,
+// STEREOGRAPHIC_RADIAL). Its regression vectors hold no fisheye with distortion, so the
+// expected pixels are lensfun's steps transcribed above, on the real lenses of
+// slr-pentax.xml and mil-olympus.xml at a calibrated focal length.
+TEST_CASE("lensfun: real fisheyes with distortion against lensfun's own steps, to 1e-6 px", "[io][lensfun]") {
+    const auto pentax = test::real_data_path("lensfun/data/db/slr-pentax.xml");
+    const auto olympus = test::real_data_path("lensfun/data/db/mil-olympus.xml");
+    if (!test::real_data_present(pentax) || !test::real_data_present(olympus)) return;
+    const LensfunEntry fish_10_17{"equisolid", 1.538, 1.5, "ptlens", {-0.03518, 0.12586, -0.09198}, 10.0};
+    CHECK(worst_against_lensfun(pentax, "smc Pentax-DA Fish-Eye 10-17mm f/3.5-4.5 ED IF", fish_10_17, 1.538, 3000, 2000,
+                                LensType::EquisolidRadial) < 1e-6);
+    const LensfunEntry zuiko_8{"equisolid", 2.0, 4.0 / 3.0, "poly3", {-0.00531}, 8.0};
+    CHECK(worst_against_lensfun(olympus, "Olympus M.Zuiko Digital ED 8mm f/1.8 Fisheye Pro", zuiko_8, 2.0, 4000, 3000,
+                                LensType::EquisolidRadial) < 1e-6);
+    const LensfunEntry body_cap_9{"stereographic", 2.0, 4.0 / 3.0, "poly3", {-0.03111}, 9.0};
+    CHECK(worst_against_lensfun(olympus, "Olympus 9mm Body Cap Lens Fisheye", body_cap_9, 2.0, 4000, 3000,
+                                LensType::StereographicRadial) < 1e-6);
+}
+
+// The equidistant fisheye with odd terms (as lensfun's Nikon 10.5 mm and Sigma 10 mm
+// entries are) and poly5 on an equisolid lens, in a database written here.
+TEST_CASE("lensfun: an equidistant fisheye with ptlens and an equisolid one with poly5 against lensfun's steps",
+          "[io][lensfun]") {
+    const test::TempDir dir;
+    const auto path = write_file(dir, "fisheyes.xml", R"(<lensdatabase version="2">
+    <lens>
+        <maker>Maker</maker>
+        <model>Fisheye 10.5mm</model>
+        <mount>M</mount>
+        <type>fisheye</type>
+        <cropfactor>1.5</cropfactor>
+        <calibration>
+            <distortion model="ptlens" focal="10.5" a="0.012" b="-0.035" c="0.02"/>
+        </calibration>
+    </lens>
+    <lens>
+        <maker>Maker</maker>
+        <model>Equisolid 8mm</model>
+        <mount>M</mount>
+        <type>equisolid</type>
+        <cropfactor>2</cropfactor>
+        <aspect-ratio>4:3</aspect-ratio>
+        <calibration>
+            <distortion model="poly5" focal="8" k1="-0.01" k2="0.002"/>
+        </calibration>
+    </lens>
+</lensdatabase>
+)");
+    const LensfunEntry equidistant{"fisheye", 1.5, 1.5, "ptlens", {0.012, -0.035, 0.02}, 10.5};
+    CHECK(worst_against_lensfun(path, "Fisheye 10.5mm", equidistant, 1.5, 1500, 1000, LensType::EquidistantRadial) < 1e-6);
+    const LensfunEntry equisolid{"equisolid", 2.0, 4.0 / 3.0, "poly5", {-0.01, 0.002}, 8.0};
+    CHECK(worst_against_lensfun(path, "Equisolid 8mm", equisolid, 2.0, 1200, 900, LensType::EquisolidRadial) < 1e-6);
+}
+
+TEST_CASE("EQUIDISTANT_RADIAL, EQUISOLID_RADIAL, STEREOGRAPHIC_RADIAL: the formula and the Jacobian on the axis, by hand",
+          "[io][lensfun]") {
+    // At (0.3, 0.4, 1): theta = atan(0.5), the projected radius r = P(theta), and
+    // m = r (1 + c r + b r^2 + a r^3 + k2 r^4) (0.6, 0.8).
+    const double theta = std::atan(0.5);
+    const std::pair<LensType, double> projections[] = {{LensType::EquidistantRadial, theta},
+                                                       {LensType::EquisolidRadial, 2 * std::sin(theta / 2)},
+                                                       {LensType::StereographicRadial, 2 * std::tan(theta / 2)}};
+    for (const auto& [type, r] : projections) {
+        INFO(lens_info(type).name);
+        Camera camera;
+        camera.size = {100, 100};
+        camera.intrinsics = {1.0, 1.0, 0.0, 0.0, 0.0};
+        camera.lens = {type, {0.2, -0.1, 0.05, 0.03}};
+        const double factor = 1.0 + 0.05 * r - 0.1 * r * r + 0.2 * r * r * r + 0.03 * r * r * r * r;
+        const Projection p = PreparedCamera(camera).project_camera_point(Vec3(0.3, 0.4, 1.0));
+        REQUIRE(p.valid);
+        CHECK(p.pixel.x() == Approx(0.6 * r * factor).epsilon(1e-14));
+        CHECK(p.pixel.y() == Approx(0.8 * r * factor).epsilon(1e-14));
+        // On the axis every projection is theta to first order and c |u| u has derivative 0:
+        // d m / d point = diag(1 / z, 1 / z), 0 along z.
+        Eigen::Matrix<double, 2, 3> jacobian;
+        Vec2 m;
+        const bool valid = visit_lens_model<double>(type, [&]<class Model>() {
+            return Model::project(Model::parameters(camera.lens.coefficients), Vec3(0.0, 0.0, 2.0), m, &jacobian);
+        });
+        REQUIRE(valid);
+        CHECK(m.norm() == 0.0);
+        CHECK(jacobian(0, 0) == Approx(0.5).epsilon(1e-15));
+        CHECK(jacobian(1, 1) == Approx(0.5).epsilon(1e-15));
+        CHECK(jacobian(0, 1) == 0.0);
+        CHECK(jacobian(0, 2) == 0.0);
+    }
 }

@@ -150,8 +150,11 @@ TEST_CASE("transforms.json: nerfstudio's camera_model names, distortion_params a
     const Camera listed = only_camera("{\"distortion_params\": [0.1, 0.2, 0.3, 0, 0.01, 0.02], " + size + "}");
     CHECK(listed.lens.type == LensType::OpenCv5);
     CHECK(listed.lens.coefficients == std::vector<double>{0.1, 0.2, 0.01, 0.02, 0.3});
-    CHECK(error_of("{\"distortion_params\": [0.1, 0.2, 0.3, 0.4, 0.01, 0.02], " + size + "}") ==
-          "t.json: \"distortion_params\": nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
+    // nerfstudio's k4 multiplies r^8 (camera_utils.py: d = 1 + r (k1 + r (k2 + r (k3 + r k4)))
+    // with r = x^2 + y^2): BROWN_K4, in OpenCV's order with k4 last.
+    const Camera with_k4 = only_camera("{\"distortion_params\": [0.1, 0.2, 0.3, 0.4, 0.01, 0.02], " + size + "}");
+    CHECK(with_k4.lens.type == LensType::BrownK4);
+    CHECK(with_k4.lens.coefficients == std::vector<double>{0.1, 0.2, 0.01, 0.02, 0.3, 0.4});
     CHECK(error_of("{\"distortion_params\": [0.1, 0.2], " + size + "}") ==
           "t.json: \"distortion_params\": expected 6 numbers (k1, k2, k3, k4, p1, p2), got 2");
 

@@ -351,16 +351,18 @@ std::vector<Row> fisheye_wide_rows() {
 }
 
 std::vector<Row> camera_plane_rows() {
-    ProjectionWorst perspective, behind, distorted_unified, distorted_fisheye;
+    ProjectionWorst perspective, behind, distorted_unified, distorted_fisheye, panotools_fisheye;
     std::size_t perspective_behind_valid = 0;
     for (const LensCase& c : lens_cases()) {
         const std::vector<Vec3> points = points_towards_the_camera_plane();
         const bool sees_behind = lens_info(c.camera.lens.type).sees_behind_camera;
         const LensType type = c.camera.lens.type;
         const bool two_step_fisheye = type == LensType::ThinPrismFisheye || type == LensType::RadTanThinPrismFisheye;
+        const bool panotools = panotools_polynomial(type) && sees_behind;
         project_both(c.camera.lens, points,
                      type == LensType::Mei    ? distorted_unified
                      : two_step_fisheye       ? distorted_fisheye
+                     : panotools              ? panotools_fisheye
                      : sees_behind            ? behind
                                               : perspective,
                      c.name);
@@ -396,6 +398,13 @@ std::vector<Row> camera_plane_rows() {
         projection_rows("points at z = +-1e-320 to +-1, THIN_PRISM_FISHEYE, RAD_TAN_THIN_PRISM_FISHEYE",
                         distorted_fisheye, 16, 16, "FISHEYE's theta, then the radial, decentering and prism terms");
     rows.insert(rows.end(), thin_prism.begin(), thin_prism.end());
+    // The fisheye projections with PanoTools' polynomial are two steps too: the projected
+    // radius P(theta) (up to 11 at 160 degrees for the stereographic one), then
+    // 1 + c r + b r^2 + a r^3, whose terms of the strong Samyang cancel there by ~2x.
+    const std::vector<Row> panotools = projection_rows(
+        "points at z = +-1e-320 to +-1, EQUIDISTANT_RADIAL, EQUISOLID_RADIAL, STEREOGRAPHIC_RADIAL", panotools_fisheye, 16,
+        16, "the projection's point, then PanoTools' polynomial of its radius");
+    rows.insert(rows.end(), panotools.begin(), panotools.end());
     return rows;
 }
 

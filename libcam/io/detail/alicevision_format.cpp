@@ -448,6 +448,9 @@ std::pair<std::string, std::vector<double>> alicevision_type(const Lens& lens) {
         case LensType::FTheta:
         case LensType::FThetaForward:
         case LensType::BrownK4:
+        case LensType::EquidistantRadial:
+        case LensType::EquisolidRadial:
+        case LensType::StereographicRadial:
             detail::refuse_lens(CameraFormat::AliceVision, lens.type);
     }
     detail::refuse_lens(CameraFormat::AliceVision, lens.type);

@@ -102,7 +102,7 @@ constexpr L kCamodocal[] = {L::OpenCv4, L::Mei, L::Fisheye, L::OcamCalib};
 constexpr L kColmap[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye, L::Fov,
                          L::ThinPrismFisheye, L::RadTanThinPrismFisheye, L::Eucm,
                          L::Division};  // SIMPLE_DIVISION, DIVISION
-constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat, L::RadTanThinPrismFisheye};
+constexpr L kNerf[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::BrownK4, L::Fisheye, L::Lonlat, L::RadTanThinPrismFisheye};
 constexpr L kCahvor[] = {L::Pinhole, L::Cahvor, L::Cahvore, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12};
 constexpr L kRos[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::OpenCv8, L::Fisheye};
 constexpr L kEuroc[] = {L::OpenCv4, L::Fisheye};
@@ -118,10 +118,12 @@ constexpr L kAliceVision[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L:
 constexpr L kBundler[] = {L::Pinhole, L::OpenCv4};
 // Lens databases.
 constexpr L kLensfun[] = {L::Pinhole,       L::OpenCv4, L::Ptlens,      L::Fisheye,
-                          L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
+                          L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical,
+                          L::EquidistantRadial, L::EquisolidRadial, L::StereographicRadial};
 constexpr L kGyroflow[] = {L::OpenCv4, L::OpenCv5, L::OpenCv8, L::OpenCv12, L::Fisheye, L::Ptlens};
 constexpr L kHuginPto[] = {L::Pinhole,   L::OpenCv4,       L::Ptlens, L::Fisheye,
-                           L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical};
+                           L::Equisolid, L::Stereographic, L::Lonlat, L::Cylindrical,
+                           L::EquidistantRadial, L::EquisolidRadial, L::StereographicRadial};
 constexpr L kOcamCalib[] = {L::OcamCalib};
 constexpr L kOcamCalibWritten[] = {L::OcamCalib, L::Pinhole};  // a pinhole: zero polynomial, identity affine
 constexpr L kRealityCapture[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::BrownK4};  // RealityCapture's XMP and CSV
@@ -351,19 +353,20 @@ constexpr FormatRow kRows[] = {
                     "size (--lens, --focal, --crop-factor, --image-size)",
      .extensions = {".xml"}, .content = static_cast<unsigned>(C::Xml), .claims = claims_lensfun,
      .telling_keys = {"lensdatabase"}, .read = read_lensfun, .read_only = true, .lenses = kLensfun,
-     .lens_names = "poly3 and poly5 (OpenCV's k1 k2 once rescaled), ptlens (PTLENS); rectilinear, fisheye, "
-                   "and without distortion equisolid, stereographic, equirectangular, panoramic",
-     .refuses = "acm, orthographic and fisheye_thoby lenses, ptlens on a fisheye, distortion on the other "
-                "fisheye types",
+     .lens_names = "poly3 and poly5 (OpenCV's k1 k2 once rescaled), ptlens (PTLENS); fisheye, equisolid and "
+                   "stereographic with any of them (EQUIDISTANT_RADIAL or FISHEYE, EQUISOLID_RADIAL, "
+                   "STEREOGRAPHIC_RADIAL); equirectangular and panoramic without distortion",
+     .refuses = "acm, orthographic and fisheye_thoby lenses, distortion on equirectangular and panoramic ones",
      .camera_names = "one lens (chosen by --lens)"},
     {.format = CameraFormat::HuginPto, .name = "hugin", .title = "Hugin project",
      .description = "Hugin's (PanoTools') .pto project: one camera per image line (w h f v a b c d e), posed in the "
                     "panorama by its y p r and TrX TrY TrZ",
      .extensions = {".pto"}, .content = static_cast<unsigned>(C::Table), .read = read_hugin_pto, .read_only = true,
      .lenses = kHuginPto,
-     .lens_names = "f0 with a b c (PTLENS; OPENCV4 when a = c = 0), f2/f3 fisheye with b (FISHEYE), f1, f4, f10, "
-                   "f21 without distortion",
-     .refuses = "shear (g t), other projections, a b c on the undistorted ones",
+     .lens_names = "f0 with a b c (PTLENS; OPENCV4 when a = c = 0), f2/f3 fisheye with a b c (EQUIDISTANT_RADIAL; "
+                   "FISHEYE when a = c = 0), f21 and f10 with a b c (EQUISOLID_RADIAL, STEREOGRAPHIC_RADIAL), f1 "
+                   "and f4 without distortion",
+     .refuses = "shear (g t), other projections, a b c on f1 and f4",
      .camera_names = "each image line's n\"name\", or its file name alone"},
     {.format = CameraFormat::Gyroflow, .name = "gyroflow", .title = "Gyroflow lens profile",
      .description = "Gyroflow's lens profile JSON (calib_dimension, fisheye_params, distortion_model)",

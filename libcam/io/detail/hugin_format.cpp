@@ -148,8 +148,8 @@ Projection projection(int f, double width, double v_deg, const std::string& wher
         case 2:
         case 3: need(360.0); return {LensType::Fisheye, width / v, true};
         case 4: need(360.0); return {LensType::Lonlat, width / v, false};
-        case 10: need(360.0); return {LensType::Stereographic, width / 2.0 / (2.0 * std::tan(v / 4.0)), false};
-        case 21: need(360.0); return {LensType::Equisolid, width / 2.0 / (2.0 * std::sin(v / 4.0)), false};
+        case 10: need(360.0); return {LensType::Stereographic, width / 2.0 / (2.0 * std::tan(v / 4.0)), true};
+        case 21: need(360.0); return {LensType::Equisolid, width / 2.0 / (2.0 * std::sin(v / 4.0)), true};
         default:
             throw NotRepresentable(where + ": f" + std::to_string(f) + ": projection has no libcam model (libcam reads "
                                    "f0 rectilinear, f1 cylindrical, f2 and f3 fisheye, f4 equirectangular, f10 "
@@ -193,14 +193,17 @@ NamedCamera image_camera(const std::vector<ImageLine>& images, std::size_t index
         throw NotRepresentable(where + ": a b c on a " + std::string(lens_info(chosen.type).name) +
                                " projection have no libcam model (it has no coefficients)");
     }
-    if (chosen.type == LensType::Fisheye && odd) {
-        throw NotRepresentable(where + ": a and c on a fisheye have no libcam model (FISHEYE's polynomial has no odd "
-                               "powers)");
-    }
+    // PanoTools distorts the source image's own projection: a fisheye's a b c act on its
+    // projected radius (lens/fisheye_radial.hpp), as a rectilinear lens's on r = |(x/z, y/z)|.
     if (chosen.type == LensType::OpenCv4) {
         camera.lens = odd ? Lens{LensType::Ptlens, {a_, b_, c_}} : simplest_equal_lens({LensType::OpenCv4, {b_, 0.0, 0.0, 0.0}});
     } else if (chosen.type == LensType::Fisheye) {
-        camera.lens = {LensType::Fisheye, {b_, 0.0, 0.0, 0.0}};
+        // FISHEYE (even powers of theta, the name OpenCV's users know) where it is the lens.
+        camera.lens = odd ? Lens{LensType::EquidistantRadial, {a_, b_, c_, 0.0}} : Lens{LensType::Fisheye, {b_, 0.0, 0.0, 0.0}};
+    } else if (chosen.type == LensType::Equisolid) {
+        camera.lens = simplest_equal_lens({LensType::EquisolidRadial, {a_, b_, c_, 0.0}});
+    } else if (chosen.type == LensType::Stereographic) {
+        camera.lens = simplest_equal_lens({LensType::StereographicRadial, {a_, b_, c_, 0.0}});
     } else {
         camera.lens = {chosen.type, {}};
     }

@@ -21,9 +21,12 @@
 //
 // As a libcam camera: with s = F / R, fx = fy = F d_ and, in the projection's own
 // coordinate (x/z for a rectilinear lens, theta for a fisheye), m = u (1 + c' |u| + b' |u|^2
-// + a' |u|^3), a' = a s^3 / d_, b' = b s^2 / d_, c' = c s / d_: PTLENS, OPENCV4 (k1 = b')
-// when a = c = 0, FISHEYE (k1 = b') for a fisheye when a = c = 0. The other projections
-// have no coefficients in libcam: they are read when a = b = c = 0, else refused.
+// + a' |u|^3), a' = a s^3 / d_, b' = b s^2 / d_, c' = c s / d_, u the projection's own
+// point (x/z for a rectilinear lens, rho / F for a fisheye): PTLENS, or OPENCV4 (k1 = b')
+// when a = c = 0; for a fisheye EQUIDISTANT_RADIAL, or FISHEYE (k1 = b') when a = c = 0;
+// EQUISOLID_RADIAL and STEREOGRAPHIC_RADIAL (EQUISOLID and STEREOGRAPHIC when a = b = c =
+// 0). Equirectangular and cylindrical images have no coefficients in libcam: they are
+// read when a = b = c = 0, else refused.
 //
 // The image's pose in the panorama. The world is the panorama's: origin its centre, z
 // towards yaw 0 pitch 0, x towards yaw 90 (the right), y towards the nadir (the axes of an

@@ -325,6 +325,8 @@ struct Radial {
 };
 
 // The lens model of a lensfun lens type with that distortion, or a refusal saying why.
+// lensfun distorts a fisheye's own projection (mod-coord.cpp: its geometry step, then its
+// distortion), which is what the *_RADIAL models are (lens/fisheye_radial.hpp).
 Lens lens_of_type(const std::string& where, const std::string& type, Radial radial, bool projection_only) {
     if (projection_only) radial = {};
     const bool odd = radial.a != 0.0 || radial.c != 0.0;
@@ -332,21 +334,25 @@ Lens lens_of_type(const std::string& where, const std::string& type, Radial radi
         if (odd) return {LensType::Ptlens, {radial.a, radial.k1, radial.c}};
         return simplest_equal_lens({LensType::OpenCv4, {radial.k1, radial.k2, 0.0, 0.0}});
     }
+    // FISHEYE is the equidistant lens with even powers of theta: the name OpenCV's users know.
     if (type == "fisheye" && !odd) return {LensType::Fisheye, {radial.k1, radial.k2, 0.0, 0.0}};
-    static const std::map<std::string, LensType> kUndistorted = {{"equisolid", LensType::Equisolid},
-                                                                  {"stereographic", LensType::Stereographic},
-                                                                  {"equirectangular", LensType::Lonlat},
-                                                                  {"panoramic", LensType::Cylindrical}};
-    const auto found = kUndistorted.find(type);
-    if (type != "fisheye" && found == kUndistorted.end()) {
+    static const std::map<std::string, LensType> kFisheyes = {{"fisheye", LensType::EquidistantRadial},
+                                                              {"equisolid", LensType::EquisolidRadial},
+                                                              {"stereographic", LensType::StereographicRadial}};
+    if (const auto fisheye = kFisheyes.find(type); fisheye != kFisheyes.end()) {
+        return simplest_equal_lens({fisheye->second, {radial.a, radial.k1, radial.c, radial.k2}});
+    }
+    static const std::map<std::string, LensType> kPanoramas = {{"equirectangular", LensType::Lonlat},
+                                                               {"panoramic", LensType::Cylindrical}};
+    const auto found = kPanoramas.find(type);
+    if (found == kPanoramas.end()) {
         throw NotRepresentable(where + ": lens type '" + type + "' has no libcam model (libcam reads rectilinear, "
                                "fisheye, equisolid, stereographic, equirectangular and panoramic lenses)");
     }
     if (odd || radial.k1 != 0.0 || radial.k2 != 0.0) {
-        throw NotRepresentable(where + ": a lens of type " + type + " with this distortion has no libcam model (" +
-                               (type == "fisheye" ? std::string("FISHEYE's polynomial has no odd powers")
-                                                  : std::string(lens_info(found->second).name) + " has no coefficients") +
-                               "); read its projection alone (--projection-only) or not at all");
+        throw NotRepresentable(where + ": a lens of type " + type + " with distortion has no libcam model (" +
+                               std::string(lens_info(found->second).name) +
+                               " has no coefficients); read its projection alone (--projection-only) or not at all");
     }
     return {found->second, {}};
 }

@@ -476,6 +476,9 @@ Calibration metashape_terms(const Camera& camera) {
         case LensType::ThinPrismFisheye:
         case LensType::RadTanThinPrismFisheye:
         case LensType::Equisolid:
+        case LensType::EquidistantRadial:
+        case LensType::EquisolidRadial:
+        case LensType::StereographicRadial:
         case LensType::Cahvor:
         case LensType::Cahvore:
         case LensType::LensPolynomial:

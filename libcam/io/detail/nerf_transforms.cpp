@@ -161,15 +161,12 @@ Field coefficient_field(const Keys& keys, std::string_view name) {
     return *keys.find(name);
 }
 
+// nerfstudio's radial factor is 1 + k1 r^2 + k2 r^4 + k3 r^6 + k4 r^8 with OpenCV's
+// tangential terms (camera_utils.py, _compute_residual_and_jacobian): BROWN_K4, or the
+// simplest OpenCV model that is the lens when k4 = 0.
 Lens perspective_lens(const Keys& keys) {
     const std::map<std::string, double> c = perspective_coefficients(keys);
-    if (c.at("k4") != 0.0) {
-        coefficient_field(keys, "k4").fail("nerfstudio's k4 multiplies r^8, which no OpenCV model has; libcam cannot hold it");
-    }
-    const std::vector<double> opencv5 = {c.at("k1"), c.at("k2"), c.at("p1"), c.at("p2"), c.at("k3")};
-    if (std::all_of(opencv5.begin(), opencv5.end(), [](double v) { return v == 0.0; })) return {LensType::Pinhole, {}};
-    if (opencv5[4] == 0.0) return {LensType::OpenCv4, {opencv5.begin(), opencv5.begin() + 4}};
-    return {LensType::OpenCv5, opencv5};
+    return simplest_equal_lens({LensType::BrownK4, {c.at("k1"), c.at("k2"), c.at("p1"), c.at("p2"), c.at("k3"), c.at("k4")}});
 }
 
 Lens fisheye_lens(const Keys& keys) {
@@ -455,6 +452,11 @@ nlohmann::ordered_json intrinsics_json(const Camera& camera) {
             }
             break;
         }
+        case LensType::BrownK4: {
+            const char* names[] = {"k1", "k2", "p1", "p2", "k3", "k4"};
+            for (std::size_t i = 0; i < 6; ++i) coefficients.emplace_back(names[i], lens.coefficients[i]);
+            break;
+        }
         case LensType::Fisheye:
             model = "OPENCV_FISHEYE";
             for (std::size_t i = 0; i < 4; ++i) coefficients.emplace_back("k" + std::to_string(i + 1), lens.coefficients[i]);
@@ -489,7 +491,9 @@ nlohmann::ordered_json intrinsics_json(const Camera& camera) {
         case LensType::ThetaPolynomial:
         case LensType::FTheta:
         case LensType::FThetaForward:
-        case LensType::BrownK4:
+        case LensType::EquidistantRadial:
+        case LensType::EquisolidRadial:
+        case LensType::StereographicRadial:
             detail::refuse_lens(CameraFormat::Nerf, lens.type);
     }
     out["camera_model"] = model;

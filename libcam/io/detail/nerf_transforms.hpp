@@ -16,9 +16,9 @@
 //                        OPENCV (the default), PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL and
 //                        RADIAL (nerfstudio's perspective camera under COLMAP's names, all
 //                        read alike): k1 k2 p1 p2 and k3, or nerfstudio's distortion_params
-//                        [k1, k2, k3, k4, p1, p2]; OPENCV4 or OPENCV5, PINHOLE when they are
-//                        all 0; nerfstudio's k4 multiplies r^8, which OpenCV's models do not
-//                        have, so a k4 that is not 0 is refused.
+//                        [k1, k2, k3, k4, p1, p2]; nerfstudio's k4 multiplies r^8 (its
+//                        radial factor 1 + k1 r^2 + ... + k4 r^8): BROWN_K4, or OPENCV5,
+//                        OPENCV4, PINHOLE when k4, then k3, then all are 0.
 //                        OPENCV_FISHEYE (k1..k4: FISHEYE, as COLMAP's; instant-ngp's
 //                        "is_fisheye": true says the same).
 //                        EQUIRECTANGULAR (nerfstudio's: LONLAT with libcam's fx = fl_x / pi).

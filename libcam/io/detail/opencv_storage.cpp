@@ -522,6 +522,9 @@ std::pair<std::string, std::vector<double>> ros_distortion(const Lens& lens) {
         case LensType::FTheta:
         case LensType::FThetaForward:
         case LensType::BrownK4:
+        case LensType::EquidistantRadial:
+        case LensType::EquisolidRadial:
+        case LensType::StereographicRadial:
             detail::refuse_lens(CameraFormat::Ros, lens.type);
     }
     detail::refuse_lens(CameraFormat::Ros, lens.type);
