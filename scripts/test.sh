@@ -6,7 +6,9 @@
 #      extremes and the long sweeps named below;
 #   3. every libFuzzer target for a bounded time (LIBCAM_FUZZ_SECONDS each, default 6)
 #      in build-fuzz/, built with clang.
-# LIBCAM_QUICK=1 runs step 1 only.
+# LIBCAM_QUICK=1 runs step 1 only. LIBCAM_FREE_DISK=1 (.ci/run sets it) removes each step's
+# build folder once its tests pass: the three trees take about 7 GB together, more than a
+# small machine has free, and only one is needed at a time (compiled files stay in ccache).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 jobs="$(nproc)"
@@ -22,6 +24,8 @@ echo "== 1/3: build and test"
 bash "$root/scripts/build.sh" "$root/build" "${line_tables[@]}" -DLIBCAM_DISPATCH_KERNELS=ON
 (cd "$root/build" && ctest --output-on-failure --parallel "$jobs" --timeout 900)
 [ "${LIBCAM_QUICK:-0}" = 1 ] && exit 0
+free_disk() { if [ "${LIBCAM_FREE_DISK:-0}" = 1 ]; then rm -rf "$1"; fi; }
+free_disk "$root/build"
 
 echo "== 2/3: the tests again under AddressSanitizer + UndefinedBehaviorSanitizer"
 # -O1, as the sanitizers' own documentation advises: the same code paths, and the build
@@ -43,6 +47,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # comparison of whole maps with mrcal's are not registered in this build: they run in
 # step 1 (tests/CMakeLists.txt says why).
 (cd "$root/build-asan" && ctest --output-on-failure --parallel "$jobs" --timeout 1800)
+free_disk "$root/build-asan"
 
 echo "== 3/3: fuzzing every reader and the number parser"
 CXX=clang++ LIBCAM_BUILD_TARGET=fuzzers bash "$root/scripts/build.sh" "$root/build-fuzz" "${line_tables[@]}" -DLIBCAM_FUZZ=ON -DLIBCAM_BUILD_TESTS=OFF \
