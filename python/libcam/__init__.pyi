@@ -197,6 +197,23 @@ def calibrate(
     numpy arrays for chosen['K'], chosen['dist'], each view's rvec and tvec, and rvecs, tvecs (n, 3)."""
     ...
 
+def calibrate_pair(
+    left: Sequence[Union[str, "os.PathLike[str]", npt.ArrayLike, Tuple[Sequence[int], npt.ArrayLike]]],
+    right: Sequence[Union[str, "os.PathLike[str]", npt.ArrayLike, Tuple[Sequence[int], npt.ArrayLike]]],
+    board: str,
+    image_size: Optional[Tuple[int, int]] = None,
+    model: str = "auto",
+    folds: int = 5,
+    margin: float = 0.05,
+    opencv_flags: Optional[str] = None,
+    corners: str = "libcam",
+    keep_outliers: bool = False,
+    threads: int = 0,
+) -> Dict[str, Any]:
+    """A stereo pair from both cameras' views of the same boards: calibrate --left --right --json's
+    dict, numpy arrays for R, T and each camera's K and dist, and left_camera, right_camera (Camera)."""
+    ...
+
 def projection_uncertainty(
     observations: Observations, pixels: Any, distance: float = ..., camera: int = 0
 ) -> dict[str, Any]: ...

@@ -11,9 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "camera_binding.hpp"
 #include "libcam/calibrate/calibrate.hpp"
+#include "libcam/calibrate/calibrate_pair.hpp"
 #include "libcam/calibrate/calibration_json.hpp"
 #include "libcam/calibrate/opencv_flags.hpp"
+#include "libcam/calibrate/pair_output.hpp"
 #include "libcam/error.hpp"
 
 namespace py = pybind11;
@@ -24,9 +27,9 @@ namespace {
 
 // One view's corners given as arrays: (N, 2) pixels of every corner in the board's order,
 // or (ids, pixels) for the corners seen.
-BoardDetection detection_of(const py::handle& view, std::size_t index, const ImageSize& size) {
+BoardDetection detection_of(const py::handle& view, const std::string& name, const ImageSize& size) {
     BoardDetection out;
-    out.image = "view " + std::to_string(index);
+    out.image = name;
     out.size = size;
     py::object pixels_object = py::reinterpret_borrow<py::object>(view);
     std::optional<std::vector<int>> ids;
@@ -37,11 +40,11 @@ BoardDetection detection_of(const py::handle& view, std::size_t index, const Ima
     }
     const auto pixels = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(pixels_object);
     if (!pixels || pixels.ndim() != 2 || pixels.shape(1) != 2) {
-        throw InvalidArgument("calibrate: view " + std::to_string(index) + ": corners must be an (N, 2) array of pixels");
+        throw InvalidArgument("calibrate: " + name + ": corners must be an (N, 2) array of pixels");
     }
     const auto count = static_cast<std::size_t>(pixels.shape(0));
     if (ids && ids->size() != count) {
-        throw InvalidArgument("calibrate: view " + std::to_string(index) + ": " + std::to_string(ids->size()) +
+        throw InvalidArgument("calibrate: " + name + ": " + std::to_string(ids->size()) +
                               " ids for " + std::to_string(count) + " pixels");
     }
     for (std::size_t k = 0; k < count; ++k) {
@@ -65,9 +68,10 @@ void check_ids(const BoardDetection& view, const BoardSpec& board) {
     }
 }
 
+// `side` names a pair's camera in the views' names ("left view 3"), empty for one camera.
 std::vector<BoardDetection> detections_of(const py::sequence& views, const BoardSpec& board,
                                           const std::optional<std::array<int, 2>>& image_size, CornerMethod method,
-                                          int threads) {
+                                          int threads, const std::string& side = "") {
     std::vector<std::filesystem::path> images;
     std::vector<BoardDetection> given;
     for (std::size_t i = 0; i < py::len(views); ++i) {
@@ -77,7 +81,8 @@ std::vector<BoardDetection> detections_of(const py::sequence& views, const Board
             continue;
         }
         if (!image_size) throw InvalidArgument("calibrate: corners given as arrays need image_size=(width, height)");
-        given.push_back(detection_of(view, i, ImageSize{(*image_size)[0], (*image_size)[1]}));
+        const std::string name = (side.empty() ? "" : side + " ") + "view " + std::to_string(i);
+        given.push_back(detection_of(view, name, ImageSize{(*image_size)[0], (*image_size)[1]}));
         check_ids(given.back(), board);
     }
     if (!images.empty() && !given.empty()) {
@@ -90,35 +95,41 @@ std::vector<BoardDetection> detections_of(const py::sequence& views, const Board
     return given;
 }
 
-// calibrate's JSON as a dict, with numpy arrays for K, dist and each view's rvec and
-// tvec, and every view's rvec and tvec stacked (rvecs, tvecs: (n, 3)).
-py::dict as_python(const std::string& json) {
-    const py::module_ numpy = py::module_::import("numpy");
-    py::dict out = py::module_::import("json").attr("loads")(json).cast<py::dict>();
+py::object as_array(const py::handle& value) {
+    return py::module_::import("numpy").attr("asarray")(value, "float64");
+}
+
+// calibrate's JSON, parsed, with numpy arrays for K, dist and each view's rvec and tvec,
+// and every view's rvec and tvec stacked (rvecs, tvecs: (n, 3)).
+py::dict with_arrays(py::dict out) {
     py::dict chosen = out["chosen"].cast<py::dict>();
-    chosen["K"] = numpy.attr("asarray")(chosen["K"], "float64");
-    chosen["dist"] = numpy.attr("asarray")(chosen["dist"], "float64");
+    chosen["K"] = as_array(chosen["K"]);
+    chosen["dist"] = as_array(chosen["dist"]);
     py::list rvecs, tvecs;
     for (const py::handle view : out["views"].cast<py::list>()) {
         py::dict entry = py::reinterpret_borrow<py::dict>(view);
-        entry["rvec"] = numpy.attr("asarray")(entry["rvec"], "float64");
-        entry["tvec"] = numpy.attr("asarray")(entry["tvec"], "float64");
+        entry["rvec"] = as_array(entry["rvec"]);
+        entry["tvec"] = as_array(entry["tvec"]);
         rvecs.append(entry["rvec"]);
         tvecs.append(entry["tvec"]);
     }
-    out["rvecs"] = numpy.attr("asarray")(rvecs, "float64").attr("reshape")(-1, 3);
-    out["tvecs"] = numpy.attr("asarray")(tvecs, "float64").attr("reshape")(-1, 3);
+    out["rvecs"] = as_array(rvecs).attr("reshape")(-1, 3);
+    out["tvecs"] = as_array(tvecs).attr("reshape")(-1, 3);
     return out;
 }
 
-py::dict calibrate_views(const py::sequence& views, const std::string& board_text,
-                         const std::optional<std::array<int, 2>>& image_size, const std::string& model, int folds,
-                         double margin, const std::optional<std::string>& opencv_flags, const std::string& corners,
-                         bool keep_outliers, const std::vector<std::array<double, 2>>& at, int threads) {
-    const BoardSpec board = parse_board_spec(board_text);
-    if (corners != "libcam" && corners != "opencv-sample") {
-        throw InvalidArgument("calibrate: corners '" + corners + "': libcam or opencv-sample");
-    }
+py::dict parsed(const std::string& json) {
+    return py::module_::import("json").attr("loads")(json).cast<py::dict>();
+}
+
+CornerMethod corner_method(const std::string& corners) {
+    if (corners == "libcam") return CornerMethod::Libcam;
+    if (corners == "opencv-sample") return CornerMethod::OpenCvSample;
+    throw InvalidArgument("calibrate: corners '" + corners + "': libcam or opencv-sample");
+}
+
+CalibrationOptions options_of(const std::string& model, int folds, double margin,
+                              const std::optional<std::string>& opencv_flags, bool keep_outliers) {
     CalibrationOptions options;
     if (model != "auto") {
         for (std::size_t begin = 0; begin <= model.size();) {
@@ -131,8 +142,17 @@ py::dict calibrate_views(const py::sequence& views, const std::string& board_tex
     options.margin = margin;
     if (opencv_flags) options.held = held_by_opencv_flags(*opencv_flags);
     if (keep_outliers) options.outlier_sigmas = std::numeric_limits<double>::infinity();
-    const std::vector<BoardDetection> detections = detections_of(
-        views, board, image_size, corners == "opencv-sample" ? CornerMethod::OpenCvSample : CornerMethod::Libcam, threads);
+    return options;
+}
+
+py::dict calibrate_views(const py::sequence& views, const std::string& board_text,
+                         const std::optional<std::array<int, 2>>& image_size, const std::string& model, int folds,
+                         double margin, const std::optional<std::string>& opencv_flags, const std::string& corners,
+                         bool keep_outliers, const std::vector<std::array<double, 2>>& at, int threads) {
+    const BoardSpec board = parse_board_spec(board_text);
+    const CornerMethod method = corner_method(corners);
+    const CalibrationOptions options = options_of(model, folds, margin, opencv_flags, keep_outliers);
+    const std::vector<BoardDetection> detections = detections_of(views, board, image_size, method, threads);
     std::string json;
     {
         const py::gil_scoped_release release;
@@ -142,7 +162,41 @@ py::dict calibrate_views(const py::sequence& views, const std::string& board_tex
         if (pixels.empty()) pixels.emplace_back(c.size.centre_x(), c.size.centre_y());
         json = calibration_json(c, pixels, chosen_sigma_px(c, pixels));
     }
-    return as_python(json);
+    return with_arrays(parsed(json));
+}
+
+// The pair as `libcam calibrate --left --right --json` reports it, with numpy arrays, and
+// the two jointly refined cameras as libcam.Camera (posed: the left at the origin, the
+// right at X_right = R X_left + T), ready for libcam.rectify.
+py::dict calibrate_two(const py::sequence& left, const py::sequence& right, const std::string& board_text,
+                       const std::optional<std::array<int, 2>>& image_size, const std::string& model, int folds,
+                       double margin, const std::optional<std::string>& opencv_flags, const std::string& corners,
+                       bool keep_outliers, int threads) {
+    const BoardSpec board = parse_board_spec(board_text);
+    const CornerMethod method = corner_method(corners);
+    const CalibrationOptions options = options_of(model, folds, margin, opencv_flags, keep_outliers);
+    const std::vector<BoardDetection> first = detections_of(left, board, image_size, method, threads, "left");
+    const std::vector<BoardDetection> second = detections_of(right, board, image_size, method, threads, "right");
+    std::optional<PairCalibration> pair;
+    std::string json;
+    {
+        const py::gil_scoped_release release;
+        pair = calibrate_pair(first, second, board, options);
+        json = pair_calibration_json(*pair);
+    }
+    py::dict out = parsed(json);
+    out["R"] = as_array(out["R"]);
+    out["T"] = as_array(out["T"]);
+    for (const py::handle camera : out["cameras"].cast<py::list>()) {
+        py::dict entry = py::reinterpret_borrow<py::dict>(camera);
+        entry["K"] = as_array(entry["K"]);
+        entry["dist"] = as_array(entry["dist"]);
+    }
+    out["left"] = with_arrays(out["left"].cast<py::dict>());
+    out["right"] = with_arrays(out["right"].cast<py::dict>());
+    out["left_camera"] = py::cast(PythonCamera(pair->first_camera));
+    out["right_camera"] = py::cast(PythonCamera(pair->second_camera));
+    return out;
 }
 
 }  // namespace
@@ -162,6 +216,20 @@ models, comma-separated; opencv_flags: OpenCV's calibrateCamera flags to hold ('
 uncertainty (default: the image centre). Returns calibrate --json's dict, with numpy
 arrays for chosen['K'] (3, 3), chosen['dist'] and each view's 'rvec' and 'tvec', and
 'rvecs', 'tvecs' (n, 3) stacked: X_cam = R(rvec) X_board + tvec, in the board's unit.)doc");
+    m.def("calibrate_pair", &calibrate_two, py::arg("left"), py::arg("right"), py::arg("board"),
+          py::arg("image_size") = py::none(), py::arg("model") = "auto", py::arg("folds") = 5, py::arg("margin") = 0.05,
+          py::arg("opencv_flags") = py::none(), py::arg("corners") = "libcam", py::arg("keep_outliers") = false,
+          py::arg("threads") = 0, R"doc(
+A stereo pair calibrated from the two cameras' views of the same boards, as the libcam
+program's calibrate --left --right makes it: left[i] and right[i] are one board pose seen by
+each camera, given as calibrate() takes views (image files, or corner arrays with
+image_size). Each camera is calibrated alone (its model chosen), then both are refined with
+the pair's pose on the views both used. Returns calibrate --left --right --json's dict:
+'pairs' (the views both used), 'rms_px', 'R' (3, 3) and 'T' (3,) (X_right = R X_left + T,
+cv2.stereoCalibrate's convention, in the board's unit), 'cameras' (each refined camera's
+'K' and 'dist' as numpy arrays), 'left' and 'right' (each camera alone, as calibrate()
+returns it), and 'left_camera', 'right_camera': the refined cameras as libcam.Camera,
+posed, for libcam.rectify.)doc");
 }
 
 }  // namespace libcam::python

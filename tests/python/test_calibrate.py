@@ -111,3 +111,99 @@ def test_calibrate_images_as_the_program_does():
         got.pop(key)
     as_lists = json.loads(json.dumps(got, default=lambda a: a.tolist()))
     assert as_lists == expected
+
+
+K_RIGHT = np.array([[515.0, 0.0, 318.0], [0.0, 514.0, 244.0], [0.0, 0.0, 1.0]])
+DIST_RIGHT = np.array([-0.25, 0.07, -0.0005, 0.001, 0.0])
+RVEC_PAIR = np.array([0.01, -0.02, 0.005])  # X_right = R X_left + T
+T_PAIR = np.array([-0.06, 0.002, 0.001])
+
+
+def synthetic_pair(views=10, noise_px=0.1, seed=7):
+    """Each view's corners in both cameras (the board posed in the left camera as in
+    synthetic_corners, carried into the right one by the pair's pose), plus noise."""
+    rng = np.random.default_rng(seed)
+    points = board_points()
+    centre = points.mean(axis=0)
+    R_pair, _ = cv2.Rodrigues(RVEC_PAIR)
+    left, right = [], []
+    for v in range(views):
+        rvec = np.array([0.5 * np.sin(v), 0.45 * np.cos(1.7 * v), 0.2 * np.sin(0.7 * v)])
+        R, _ = cv2.Rodrigues(rvec)
+        tvec = -R @ centre + np.array([0.03 + 0.05 * np.sin(2.1 * v), 0.05 * np.cos(1.3 * v), 0.45 + 0.03 * v])
+        rvec_right, _ = cv2.Rodrigues(R_pair @ R)
+        tvec_right = R_pair @ tvec + T_PAIR
+        for out, rv, tv, K, dist in ((left, rvec, tvec, K_TRUE, DIST_TRUE),
+                                     (right, rvec_right, tvec_right, K_RIGHT, DIST_RIGHT)):
+            pixels, _ = cv2.projectPoints(points, rv, tv, K, dist)
+            pixels = pixels.reshape(-1, 2)
+            assert (pixels > 0).all() and (pixels < SIZE).all(), "every corner in both images"
+            out.append(pixels + rng.normal(0.0, noise_px, (len(points), 2)))
+    return left, right
+
+
+def test_calibrate_pair_corner_arrays_as_cv2_stereoCalibrate():
+    left, right = synthetic_pair()
+    got = libcam.calibrate_pair(left, right, "chessboard:9x6:0.03", image_size=SIZE, model="OPENCV5",
+                                keep_outliers=True)
+    # cv2 on the same corners, as OpenCV's stereo_calib refines a pair: each camera alone,
+    # then both with the pair's pose (intrinsics free, from each camera's own calibration).
+    objects = [board_points()] * len(left)
+    L = [c.astype(np.float32).reshape(-1, 1, 2) for c in left]
+    R_ = [c.astype(np.float32).reshape(-1, 1, 2) for c in right]
+    _, K1, D1, _, _ = cv2.calibrateCamera(objects, L, SIZE, None, None)
+    _, K2, D2, _, _ = cv2.calibrateCamera(objects, R_, SIZE, None, None)
+    tight = (cv2.TERM_CRITERIA_COUNT | cv2.TERM_CRITERIA_EPS, 200, 1e-12)
+    rms, K1, D1, K2, D2, R, T, _, _ = cv2.stereoCalibrate(objects, L, R_, K1, D1, K2, D2, SIZE,
+                                                          flags=cv2.CALIB_USE_INTRINSIC_GUESS, criteria=tight)
+    assert got["pairs"] == list(range(len(left)))
+    assert got["R"].shape == (3, 3) and got["T"].shape == (3,)
+    assert got["rms_px"] == pytest.approx(rms, rel=1e-4)
+    turn = np.linalg.norm(cv2.Rodrigues(got["R"] @ R.T)[0])
+    assert turn < 1e-6
+    np.testing.assert_allclose(got["T"], T.ravel(), atol=1e-6)
+    np.testing.assert_allclose(got["cameras"][0]["K"], K1, atol=1e-3)
+    np.testing.assert_allclose(got["cameras"][1]["K"], K2, atol=1e-3)
+    np.testing.assert_allclose(got["cameras"][1]["dist"], D2.ravel(), atol=2e-4)
+    # And the truth the corners were made from, within what 0.1 px of noise allows.
+    truth_turn = np.linalg.norm(cv2.Rodrigues(got["R"] @ cv2.Rodrigues(RVEC_PAIR)[0].T)[0])
+    assert truth_turn < 2e-3
+    np.testing.assert_allclose(got["T"], T_PAIR, atol=2e-3)
+    # Each camera alone, as calibrate() reports it; the refined cameras, posed, rectify.
+    assert got["left"]["chosen"]["model"] == "OPENCV5" and got["right"]["rvecs"].shape == (10, 3)
+    rectified = libcam.rectify(got["left_camera"], got["right_camera"])
+    assert rectified.model == "PINHOLE"
+    assert rectified.baseline == pytest.approx(np.linalg.norm(got["T"]), rel=1e-12)
+
+
+def test_calibrate_pair_refuses_in_one_line():
+    left, right = synthetic_pair(views=3)
+    with pytest.raises(libcam.Error, match="image_size"):
+        libcam.calibrate_pair(left, right, "chessboard:9x6:0.03")
+    with pytest.raises(libcam.Error, match="right view 1: corners must be an"):
+        libcam.calibrate_pair(left, [right[0], right[1][:, :1], right[2]], "chessboard:9x6:0.03", image_size=SIZE)
+    with pytest.raises(libcam.Error) as refused:
+        libcam.calibrate_pair(left, right[:2], "chessboard:9x6:0.03", image_size=SIZE)
+    assert "\n" not in str(refused.value)
+
+
+def test_calibrate_pair_images_as_the_program_does():
+    folder = REAL_DATA / "opencv-stereo-samples"
+    if not folder.is_dir():
+        pytest.skip(f"skipped: OpenCV's sample images are absent ({folder} not found)")
+    sides = {side: [str(folder / f"{side}{n:02d}.jpg") for n in (1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14)]
+             for side in ("left", "right")}
+    args = ["--board", "chessboard:9x6:0.025", "--model", "OPENCV5", "--corners", "opencv-sample"]
+    program = subprocess.run([os.environ["LIBCAM_EXE"], "calibrate", "--left", *sides["left"], "--right",
+                              *sides["right"], *args, "--json", "--progress", "never"],
+                             check=True, capture_output=True, text=True)
+    expected = json.loads(program.stdout)
+    got = libcam.calibrate_pair(sides["left"], sides["right"], "chessboard:9x6:0.025", model="OPENCV5",
+                                corners="opencv-sample")
+    for key in ("left_camera", "right_camera"):
+        assert isinstance(got.pop(key), libcam.Camera)
+    for side in ("left", "right"):
+        for key in ("rvecs", "tvecs"):
+            got[side].pop(key)
+    as_lists = json.loads(json.dumps(got, default=lambda a: a.tolist()))
+    assert as_lists == expected
