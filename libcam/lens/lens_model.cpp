@@ -83,6 +83,12 @@ Lens simplest_equal_lens(const Lens& lens) {
         return simplest_equal_lens({LensType::OpenCv5, std::vector<double>(lens.coefficients.begin(),
                                                                            lens.coefficients.begin() + 5)});
     }
+    // EQUIDISTANT_RADIAL without its odd terms is FISHEYE: theta (1 + b theta^2 + k2 theta^4),
+    // the equidistant lens under the name OpenCV's users know (its family is PanoTools').
+    if (lens.type == LensType::EquidistantRadial && lens.coefficients.size() == 4 && lens.coefficients[0] == 0.0 &&
+        lens.coefficients[2] == 0.0) {
+        return {LensType::Fisheye, {lens.coefficients[1], lens.coefficients[3], 0.0, 0.0}};
+    }
     for (const LensInfo& smaller : kLensTable) {
         if (smaller.family != info.family || smaller.family_rank >= info.family_rank) continue;
         const std::span<const std::string_view> names = smaller.coefficients.view();

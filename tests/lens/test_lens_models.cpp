@@ -573,4 +573,34 @@ TEST_CASE("The simplest equal lens drops only coefficients that are exactly 0, w
     CHECK(simplest_equal_lens({L::Fisheye, {0, 0, 0, 0}}).type == L::Fisheye);
     CHECK(simplest_equal_lens({L::RadTanThinPrismFisheye, std::vector<double>(12, 0.0)}).type ==
           L::RadTanThinPrismFisheye);
+    // PanoTools' polynomial on the equidistant projection without its odd terms a and c,
+    // theta (1 + b theta^2 + k2 theta^4), is FISHEYE's theta (1 + k1 theta^2 + k2 theta^4).
+    CHECK(simplest_equal_lens({L::EquidistantRadial, {0, 0.1, 0, -0.02}}) == Lens{L::Fisheye, {0.1, -0.02, 0, 0}});
+    CHECK(simplest_equal_lens({L::EquidistantRadial, {0, 0, 0, 0}}) == Lens{L::Fisheye, {0, 0, 0, 0}});
+    CHECK(simplest_equal_lens({L::EquidistantRadial, {0, 0.1, 1e-300, 0}}).type == L::EquidistantRadial);
+    CHECK(simplest_equal_lens({L::EquidistantRadial, {-0.01, 0.1, 0, 0}}).type == L::EquidistantRadial);
+}
+
+TEST_CASE("EQUIDISTANT_RADIAL without odd terms projects as the FISHEYE it is given as, worked by hand") {
+    // A ray 0.7 rad off the axis, in direction (0.6, 0.8): theta 0.7, so the distorted
+    // angle is 0.7 (1 + 0.1 * 0.49 - 0.02 * 0.2401) = 0.7309386 and the pixel
+    // (cx + f 0.7309386 * 0.6, cy + f 0.7309386 * 0.8).
+    Camera camera;
+    camera.size = {1000, 1000};
+    camera.intrinsics = {400.0, 400.0, 499.5, 499.5, 0.0};
+    camera.lens = {LensType::EquidistantRadial, {0, 0.1, 0, -0.02}};
+    const Camera fisheye = [&] {
+        Camera c = camera;
+        c.lens = simplest_equal_lens(camera.lens);
+        return c;
+    }();
+    const double theta = 0.7;
+    const Vec3 ray(std::sin(theta) * 0.6, std::sin(theta) * 0.8, std::cos(theta));
+    const double distorted = 0.7 * (1 + 0.1 * 0.49 - 0.02 * 0.2401);
+    const Vec2 expected(499.5 + 400.0 * distorted * 0.6, 499.5 + 400.0 * distorted * 0.8);
+    for (const Camera& c : {camera, fisheye}) {
+        const Projection p = PreparedCamera(c).project_camera_points(std::vector<Vec3>{ray}).at(0);
+        CHECK(p.valid);
+        CHECK((p.pixel - expected).norm() < 1e-9);
+    }
 }

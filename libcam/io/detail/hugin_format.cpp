@@ -198,8 +198,7 @@ NamedCamera image_camera(const std::vector<ImageLine>& images, std::size_t index
     if (chosen.type == LensType::OpenCv4) {
         camera.lens = odd ? Lens{LensType::Ptlens, {a_, b_, c_}} : simplest_equal_lens({LensType::OpenCv4, {b_, 0.0, 0.0, 0.0}});
     } else if (chosen.type == LensType::Fisheye) {
-        // FISHEYE (even powers of theta, the name OpenCV's users know) where it is the lens.
-        camera.lens = odd ? Lens{LensType::EquidistantRadial, {a_, b_, c_, 0.0}} : Lens{LensType::Fisheye, {b_, 0.0, 0.0, 0.0}};
+        camera.lens = simplest_equal_lens({LensType::EquidistantRadial, {a_, b_, c_, 0.0}});
     } else if (chosen.type == LensType::Equisolid) {
         camera.lens = simplest_equal_lens({LensType::EquisolidRadial, {a_, b_, c_, 0.0}});
     } else if (chosen.type == LensType::Stereographic) {

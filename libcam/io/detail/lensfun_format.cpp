@@ -334,8 +334,7 @@ Lens lens_of_type(const std::string& where, const std::string& type, Radial radi
         if (odd) return {LensType::Ptlens, {radial.a, radial.k1, radial.c}};
         return simplest_equal_lens({LensType::OpenCv4, {radial.k1, radial.k2, 0.0, 0.0}});
     }
-    // FISHEYE is the equidistant lens with even powers of theta: the name OpenCV's users know.
-    if (type == "fisheye" && !odd) return {LensType::Fisheye, {radial.k1, radial.k2, 0.0, 0.0}};
+    // An equidistant lens without odd terms comes back as FISHEYE (simplest_equal_lens).
     static const std::map<std::string, LensType> kFisheyes = {{"fisheye", LensType::EquidistantRadial},
                                                               {"equisolid", LensType::EquisolidRadial},
                                                               {"stereographic", LensType::StereographicRadial}};
