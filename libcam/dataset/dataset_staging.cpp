@@ -211,7 +211,16 @@ void finish_staging(const DatasetStaging& staging) {
         if (earlier.staged(file)) move_into_place(file, staging);
     }
     for (const fs::path& file : staging.model_files) move_into_place(file, staging);
-    if (!staging.images.empty()) move_into_place(kStampName, staging);
+    // The moves flushed before the stamp says the run is finished, and the stamp after: a
+    // power cut then leaves either every file or no stamp vouching for them.
+    std::set<fs::path> folders;
+    for (const fs::path& file : files) folders.insert(staging.output / file.parent_path());
+    for (const fs::path& file : staging.model_files) folders.insert(staging.output / file.parent_path());
+    for (const fs::path& folder : folders) sync_folder(folder);
+    if (!staging.images.empty()) {
+        move_into_place(kStampName, staging);
+        sync_folder(staging.output);
+    }
     fs::remove_all(staging.folder, error);
     if (error) {
         throw FileError(staging.folder.string() + ": the dataset is finished, but this folder of its unfinished work "

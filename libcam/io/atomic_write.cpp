@@ -77,6 +77,20 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
         ::unlink(temporary.c_str());
         throw FileError(path.string() + ": cannot replace the file: " + why);
     }
+    sync_folder(path.has_parent_path() ? path.parent_path() : ".");
+}
+
+void sync_folder(const std::filesystem::path& folder) {
+    const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) throw FileError(folder.string() + ": cannot open the folder to flush it: " + reason());
+    // Some file systems (and /proc-like ones) cannot flush a folder: the file is in place
+    // all the same, only its survival of a power cut is not promised there.
+    if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) {
+        const std::string why = reason();
+        ::close(fd);
+        throw FileError(folder.string() + ": cannot flush the folder to disk: " + why);
+    }
+    ::close(fd);
 }
 
 std::string byte_size_text(std::uint64_t bytes) {

@@ -12,8 +12,14 @@
 
 namespace libcam {
 
-// Throws FileError naming the path and the reason.
+// Throws FileError naming the path and the reason. The folder is flushed too, so that the
+// rename itself survives a power cut (sync_folder).
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
+
+// Flushes a folder's entries to disk (fsync on the folder): a file renamed or moved into it
+// is then there after a power cut, not only its contents. Best effort: a file system that
+// cannot flush a folder (EINVAL, EROFS) is left as it is; other failures throw FileError.
+void sync_folder(const std::filesystem::path& folder);
 
 // A process killed while writing leaves its temporary file (".<name>.tmp-<number>" beside
 // the target). Removes every such file under `folder`, at any depth, and returns how many:

@@ -196,7 +196,7 @@ CameraFormat camera_format_from_string(std::string_view text) {
     for (const FormatRow& row : format_rows()) {
         if (row.name == text) return row.format;
     }
-    throw InvalidArgument("format: must be one of " + camera_format_names() + "; got '" + std::string(text) + "'");
+    throw InvalidArgument("format: must be one of " + camera_format_names() + "; got " + shown_value(text));
 }
 
 namespace {

@@ -1112,6 +1112,18 @@ TEST_CASE("write_file_atomically replaces a file and keeps its permissions", "[f
     CHECK_THROWS_AS(read_text_file(dir.path()), FileError);
 }
 
+TEST_CASE("sync_folder flushes a folder, and names what is no folder", "[files][atomic]") {
+    TempDir dir;
+    CHECK_NOTHROW(sync_folder(dir.path()));
+    const fs::path file = dir.path() / "camera.json";
+    write_file_atomically(file, "{}\n");
+    CHECK_THAT(error_of([&] { sync_folder(file); }),
+               StartsWith("FileError: " + file.string() + ": cannot open the folder to flush it: "));
+    const fs::path absent = dir.path() / "absent";
+    CHECK_THAT(error_of([&] { sync_folder(absent); }), StartsWith("FileError: " + absent.string() + ": "));
+    CHECK_THAT(error_of([&] { write_file_atomically(absent / "camera.json", "{}"); }), Contains(absent.string()));
+}
+
 TEST_CASE("write_file_atomically fails cleanly: FileError, old file intact, no temporary left", "[files][atomic]") {
     TempDir dir;
     const fs::path folder = dir.path() / "target";

@@ -80,7 +80,7 @@ public:
         double value = 0.0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-            fail(field, "expected a finite number, got '" + std::string(text) + "'");
+            fail(field, "expected a finite number, got " + shown_value(text));
         }
         return value;
     }
@@ -90,8 +90,8 @@ public:
         std::uint64_t value = 0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (error != std::errc() || end != text.data() + text.size() || value < min || value > max) {
-            fail(field, "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got '" +
-                            std::string(text) + "'");
+            fail(field, "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                            "], got " + shown_value(text));
         }
         return value;
     }
@@ -158,7 +158,7 @@ bool parse_double(std::string_view word, double& value) {
 const ColmapModel& model_named(const TextLine& line) {
     const std::string_view name = line.word(1);
     if (const ColmapModel* model = colmap_model(name)) return *model;
-    line.fail("MODEL", "must be one of " + colmap_model_names() + ", got '" + std::string(name) + "'");
+    line.fail("MODEL", "must be one of " + colmap_model_names() + ", got " + shown_value(name));
 }
 
 std::vector<ColmapCameraRecord> read_cameras_text(std::string_view text, const std::string& source) {
@@ -196,16 +196,16 @@ std::vector<ColmapPoint2D> points2d_from_text(std::string_view line, int number,
     while (words.next(word)) {
         const std::size_t index = points.size();
         ColmapPoint2D point{};
-        if (!parse_double(word, point.x)) fail(index, "X", "expected a finite number, got '" + std::string(word) + "'");
+        if (!parse_double(word, point.x)) fail(index, "X", "expected a finite number, got " + shown_value(word));
         if (!words.next(word)) fail(index, "Y", "the line ends before it");
-        if (!parse_double(word, point.y)) fail(index, "Y", "expected a finite number, got '" + std::string(word) + "'");
+        if (!parse_double(word, point.y)) fail(index, "Y", "expected a finite number, got " + shown_value(word));
         if (!words.next(word)) fail(index, "POINT3D_ID", "the line ends before it");
         if (word == "-1") {
             point.point3d_id = kColmapNoPoint3D;
         } else {
             const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), point.point3d_id);
             if (error != std::errc() || end != word.data() + word.size() || point.point3d_id == kColmapNoPoint3D) {
-                fail(index, "POINT3D_ID", "expected -1 or a point's id, got '" + std::string(word) + "'");
+                fail(index, "POINT3D_ID", "expected -1 or a point's id, got " + shown_value(word));
             }
         }
         points.push_back(point);
@@ -570,7 +570,7 @@ std::vector<CameraFileText> write_colmap_model(const Camera& camera, const Write
     const ColmapCamera colmap = colmap_from_camera(camera);
     // COLMAP 3.8 reads a name up to its first space.
     if (options.image_name.empty() || options.image_name.find_first_of(" \t\r\n") != std::string::npos) {
-        throw InvalidArgument("image name: must be one word without spaces, got '" + options.image_name + "'");
+        throw InvalidArgument("image name: must be one word without spaces, got " + shown_value(options.image_name));
     }
     std::string cameras = "# Camera list with one line of data per camera:\n"
                           "#   CAMERA_ID, MODEL, WIDTH, HEIGHT, PARAMS[]\n"

@@ -15,6 +15,7 @@
 #include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -60,7 +61,7 @@ public:
         double value = 0.0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (text.empty() || error != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
-            fail(node, field + ": must be a finite number, got '" + std::string(text) + "'");
+            fail(node, field + ": must be a finite number, got " + shown_value(text));
         }
         return value;
     }
@@ -78,7 +79,7 @@ double aspect_ratio(const Source& source, const pugi::xml_node& node, std::strin
                              ? source.number(node, text, field)
                              : source.number(node, text.substr(0, colon), field) / source.number(node, text.substr(colon + 1), field);
     if (!(ratio >= 1.0) || !std::isfinite(ratio)) {
-        source.fail(node, field + ": must be at least 1 (the longer side over the shorter), got '" + std::string(text) + "'");
+        source.fail(node, field + ": must be at least 1 (the longer side over the shorter), got " + shown_value(text));
     }
     return ratio;
 }

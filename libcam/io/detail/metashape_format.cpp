@@ -19,6 +19,7 @@
 #include "libcam/io/detail/format_row.hpp"
 #include "libcam/io/detail/xml_source.hpp"
 #include "libcam/lens/lens_model.hpp"
+#include "libcam/text/shown_value.hpp"
 
 // Every switch over LensType here names every model, with no default: a new model stops
 // the build until someone decides what this file does with it.
@@ -45,7 +46,7 @@ public:
             double value = 0.0;
             const auto [end, error] = std::from_chars(word.data(), word.data() + word.size(), value);
             if (error != std::errc() || end != word.data() + word.size() || !std::isfinite(value)) {
-                fail(element, where + " <" + element.name() + ">: must be a finite number, got '" + std::string(word) + "'");
+                fail(element, where + " <" + element.name() + ">: must be a finite number, got " + shown_value(word));
             }
             if (values.size() == count) {
                 fail(element, where + " <" + element.name() + ">: expected " + std::to_string(count) + " numbers, got more");
@@ -71,8 +72,8 @@ public:
         long value = 0;
         const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
         if (error != std::errc() || end != text.data() + text.size() || value < 1 || value > kMaxImageSide) {
-            fail(node, field + ": must be a whole number of pixels in [1, " + std::to_string(kMaxImageSide) + "], got '" +
-                           std::string(text) + "'");
+            fail(node, field + ": must be a whole number of pixels in [1, " + std::to_string(kMaxImageSide) +
+                           "], got " + shown_value(text));
         }
         return value;
     }
