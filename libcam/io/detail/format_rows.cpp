@@ -112,7 +112,7 @@ constexpr L kBlender[] = {L::Pinhole, L::Equisolid, L::LensPolynomial, L::Lonlat
 constexpr L kOpenSfm[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 constexpr L kOpenMvg[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Lonlat};
 // Metashape's spherical sensor is LONLAT with fx = fy only: not every LONLAT camera.
-constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::BrownK4, L::Fisheye};
+constexpr L kMetashape[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::BrownK4, L::Fisheye, L::Lonlat};
 // ---- photogrammetry files (AliceVision, VisualSfM, Bundler) ----
 constexpr L kAliceVision[] = {L::Pinhole, L::OpenCv4, L::OpenCv5, L::Fisheye, L::Fov};
 constexpr L kBundler[] = {L::Pinhole, L::OpenCv4};

@@ -456,6 +456,9 @@ Calibration metashape_terms(const Camera& camera) {
             c.k4 = k[3];
             return c;
         case LensType::Lonlat:
+            // fx and fy a few ulps apart are one focal length rounded twice (a file that
+            // holds it as a sensor width and a focal length, as Blender's does).
+            if (std::abs(c.b1) <= 1e-12 * std::abs(K.fy)) c.b1 = 0.0;
             if (c.b1 != 0.0 || c.b2 != 0.0) {
                 throw NotRepresentable("a Metashape spherical sensor has one focal length and no skew; this camera's "
                                        "fx = " + format_number(K.fx) + ", fy = " + format_number(K.fy) +
