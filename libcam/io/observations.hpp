@@ -88,6 +88,9 @@ struct ObservedBoard {
     // mrcal's calobject_warp (the board's bow, in its unit), zero where the tool has none;
     // ObservationSet::points already hold the corners it moves.
     Vec2 warp = Vec2::Zero();
+    // Whether the tool's solve freed the warp (mrcal's do_optimize_calobject_warp): its
+    // uncertainty then counts the warp's freedom too.
+    bool warp_solved = false;
 };
 
 struct ObservationSet {

@@ -34,6 +34,23 @@ Eigen::MatrixXd inverse_of_information(const Eigen::MatrixXd& information, const
     return scale.asDiagonal() * inverse * scale.asDiagonal();
 }
 
+// d(residuals)/d(the bow's two parameters), from d(residuals)/d(the pose's shift), which is
+// d/d(the board point in the camera's frame): the bow lifts a corner along the board's z,
+// R's third column in the camera's frame.
+Eigen::MatrixXd by_bow(const ResidualDerivatives& d, const Pose& pose, const std::vector<FitSample>& observations,
+                       const SolvedCalibration::BoardBow& bow) {
+    Eigen::MatrixXd out(d.by_pose.rows(), 2);
+    const Vec3 lift = pose.R.col(2);
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+        const auto row = static_cast<Eigen::Index>(2 * i);
+        const Eigen::Vector2d by_lift = d.by_pose.block(row, 3, 2, 3) * lift;
+        const double xr = observations[i].point.x() / bow.width, yr = observations[i].point.y() / bow.height;
+        out.block(row, 0, 2, 1) = by_lift * (4.0 * xr * (1.0 - xr));
+        out.block(row, 1, 2, 1) = by_lift * (4.0 * yr * (1.0 - yr));
+    }
+    return out;
+}
+
 // Each observation's weight on both of its rows.
 void weigh_rows(ResidualDerivatives& d, const std::vector<double>& weights) {
     for (std::size_t i = 0; i < weights.size(); ++i) {
@@ -61,7 +78,11 @@ ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
         throw InvalidArgument("uncertainty: weights for " + std::to_string(solved.weights.size()) + " views of " +
                               std::to_string(solved.views.size()));
     }
-    const Eigen::Index count = directions_.cols();
+    if (solved.bow && !(solved.bow->width > 0.0 && solved.bow->height > 0.0)) {
+        throw InvalidArgument("uncertainty: the board's bow over an extent of " + format_short(solved.bow->width) +
+                              " x " + format_short(solved.bow->height) + ": both must be above 0");
+    }
+    const Eigen::Index count = directions_.cols() + (solved.bow ? 2 : 0);
     Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(count, count);
     std::vector<double> residuals;
     for (std::size_t v = 0; v < solved.views.size(); ++v) {
@@ -76,7 +97,15 @@ ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
             }
             weigh_rows(d, solved.weights[v]);
         }
-        d.by_intrinsics = d.by_intrinsics * directions_;
+        // The columns of the free parameters: the intrinsics' free directions, then the bow's.
+        if (solved.bow) {
+            const Eigen::MatrixXd bow = by_bow(d, view.pose, view.observations, *solved.bow);
+            Eigen::MatrixXd free(d.by_intrinsics.rows(), count);
+            free << d.by_intrinsics * directions_, bow;
+            d.by_intrinsics = std::move(free);
+        } else {
+            d.by_intrinsics = d.by_intrinsics * directions_;
+        }
         residuals.insert(residuals.end(), d.residuals.data(), d.residuals.data() + d.residuals.size());
         observations_ += view.observations.size();
         // J^T J's blocks: U (intrinsics), W (intrinsics by this pose), V (this pose). The
@@ -105,7 +134,9 @@ ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
 
 std::vector<ParameterSpread> ProjectionUncertainty::parameters() const {
     const std::vector<std::string> names = parameter_names(parameters_.candidate);
-    const Eigen::MatrixXd covariance = directions_ * intrinsics_inverse_ * directions_.transpose();
+    const Eigen::Index free = directions_.cols();
+    const Eigen::MatrixXd covariance =
+        directions_ * intrinsics_inverse_.topLeftCorner(free, free) * directions_.transpose();
     std::vector<ParameterSpread> out;
     for (std::size_t i = 0; i < parameters_.params.size(); ++i) {
         const auto k = static_cast<Eigen::Index>(i);
@@ -135,7 +166,10 @@ std::vector<Mat2> ProjectionUncertainty::covariances(const std::vector<Vec2>& pi
     // the views of each one's board point carried back by its pose.
     const ResidualDerivatives at_camera =
         residual_derivatives(parameters_.candidate, camera_.size, parameters_.params, Pose{}, points);
-    Eigen::MatrixXd reduced = at_camera.by_intrinsics * directions_;  // 2n x count: dq/di - sum_v dq/dpose_v V^-1 W^T
+    // 2n x count: dq/d(free) - sum_v dq/dpose_v V^-1 W^T; the bow does not move the point (it
+    // is carried by the boards' poses, not lifted with their corners): its columns start at 0.
+    Eigen::MatrixXd reduced = Eigen::MatrixXd::Zero(2 * n, intrinsics_inverse_.cols());
+    reduced.leftCols(directions_.cols()) = at_camera.by_intrinsics * directions_;
     std::vector<Mat2> from_poses(points.size(), Mat2::Zero());  // sum_v dq/dpose_v V^-1 dq/dpose_v^T
     const double share = 1.0 / static_cast<double>(poses_.size());
     std::vector<FitSample> on_board(points.size());

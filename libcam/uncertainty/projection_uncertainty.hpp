@@ -21,14 +21,15 @@
 // J^T J is inverted once, through the Schur complement over the poses (each board's pose
 // touches only its own residuals), and every pixel reuses it.
 //
-// Differences from mrcal: mrcal also frees the board's bow (calobject_warp) where its
-// solve did, and adds its small regularization terms to J; libcam holds the board flat as
-// the file gives it and has no regularization (on mrcal's real OPENCV8 solve of a bowed board: sigma
-// 4% under mrcal's; on a flat board without regularization: the same to 1e-9).
+// The board's bow (mrcal's calobject_warp) is free beside the intrinsics where the solve
+// freed it (SolvedCalibration::bow). The difference from mrcal: it adds its small
+// regularization terms to J, libcam has none (on mrcal's real OPENCV8 solve of a bowed
+// board, sigma within 1e-4 of mrcal's; on a flat board without regularization, 1e-9).
 
 #include <cstddef>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,15 @@ struct SolvedCalibration {
     // What the fit held (fx = fy, coefficients at 0): the solution moves only along the
     // rest, and so does its uncertainty.
     HeldParameters held;
+    // The board's bow, where the solve freed it (mrcal's calobject_warp): two parabolas
+    // lifting the board out of its plane, z += w_x 4 x_r (1 - x_r) + w_y 4 y_r (1 - y_r),
+    // x_r = x / width and y_r = y / height over the corners' extent (mrcal's
+    // ref_calibration_object). Free beside the intrinsics: the data fix it as they do them.
+    struct BoardBow {
+        double width = 0.0;   // the corners' extent along x, in the board's unit
+        double height = 0.0;  // and along y
+    };
+    std::optional<BoardBow> bow;
 };
 
 // One intrinsic parameter: its value and its standard deviation.
@@ -101,8 +111,9 @@ private:
     std::vector<Pose> poses_;
     double noise_px_ = 0.0;
     std::size_t observations_ = 0;
-    // The Schur complement's inverse (the free directions' covariance / sigma^2); per view: V^-1
-    // (its pose block's inverse) and V^-1 W^T (W: the intrinsics-by-pose block).
+    // The Schur complement's inverse (the covariance / sigma^2 of the free directions, then
+    // the bow's two parameters where it is free); per view: V^-1 (its pose block's
+    // inverse) and V^-1 W^T (W: the block of those parameters by the pose).
     Eigen::MatrixXd intrinsics_inverse_;
     std::vector<Eigen::Matrix<double, 6, 6>> pose_inverse_;
     std::vector<Eigen::MatrixXd> pose_coupling_;

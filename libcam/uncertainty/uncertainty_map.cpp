@@ -48,6 +48,10 @@ SolvedCalibration solved_calibration(const ObservationSet& set, int camera) {
     SolvedCalibration solved;
     solved.camera = set.cameras.at(static_cast<std::size_t>(camera)).camera;
     solved.camera.pose = Pose{};
+    if (set.board->warp_solved) {
+        solved.bow = SolvedCalibration::BoardBow{(set.board->width - 1) * set.board->spacing,
+                                                 (set.board->height - 1) * set.board->spacing};
+    }
     std::vector<int> view_of(set.views.size(), -1);
     for (std::size_t v = 0; v < set.views.size(); ++v) {
         if (set.views[v].camera != camera) continue;

@@ -11,6 +11,9 @@
 #       in 14 poses (mrcal.synthesize_board_observations), 0.3 px of noise on the corners,
 #       solved by mrcal.optimize from a start off the truth. The board is held flat and
 #       there is no regularization or outlier rejection, so the problem is libcam's.
+#   mrcal_uncertainty.py write-bowed MODEL
+#       the same with a bowed board (calobject_warp 2 mm and -1.5 mm), whose bow mrcal
+#       solves for beside the rest (do_optimize_calobject_warp).
 
 import json
 import sys
@@ -32,7 +35,7 @@ def sigma(path, distance, pixels):
     print(json.dumps({"sigma_px": np.atleast_1d(s).tolist(), "noise_px": float(noise)}))
 
 
-def write(path):
+def write(path, bowed=False):
     rng = np.random.default_rng(5)
     lensmodel = "LENSMODEL_OPENCV4"
     truth = np.array([600.0, 605.0, 319.5, 239.5, -0.25, 0.08, 0.001, -0.0005])
@@ -41,7 +44,8 @@ def write(path):
     columns, rows, spacing = 10, 8, 0.03
     np.random.seed(5)  # synthesize_board_observations draws from numpy's global generator
     q, Rt_ref_board = mrcal.synthesize_board_observations(
-        [model], object_width_n=columns, object_height_n=rows, object_spacing=spacing, calobject_warp=None,
+        [model], object_width_n=columns, object_height_n=rows, object_spacing=spacing,
+        calobject_warp=np.array([0.002, -0.0015]) if bowed else None,
         rt_ref_boardcenter=np.array([0.0, 0.0, 0.0, 0.0, 0.0, 0.45]),
         rt_ref_boardcenter__noiseradius=np.array([np.pi / 180.0 * 35.0] * 3 + [0.12, 0.08, 0.1]),
         Nframes=14)
@@ -55,9 +59,9 @@ def write(path):
         observations_board=observations,
         indices_frame_camintrinsics_camextrinsics=np.array([[i, 0, -1] for i in range(len(frames))], dtype=np.int32),
         observations_point=None, indices_point_camintrinsics_camextrinsics=None, lensmodel=lensmodel,
-        imagersizes=np.array([[width, height]], dtype=np.int32), calobject_warp=None,
+        imagersizes=np.array([[width, height]], dtype=np.int32), calobject_warp=np.zeros(2) if bowed else None,
         do_optimize_intrinsics_core=True, do_optimize_intrinsics_distortions=True, do_optimize_extrinsics=True,
-        do_optimize_frames=True, do_optimize_calobject_warp=False, calibration_object_spacing=spacing,
+        do_optimize_frames=True, do_optimize_calobject_warp=bowed, calibration_object_spacing=spacing,
         do_apply_outlier_rejection=False, do_apply_regularization=False, verbose=False)
     mrcal.optimize(**inputs)
     mrcal.cameramodel(optimization_inputs=inputs, icam_intrinsics=0).write(path)
@@ -68,5 +72,7 @@ if __name__ == "__main__":
         sigma(sys.argv[2], sys.argv[3], sys.argv[4:])
     elif sys.argv[1] == "write":
         write(sys.argv[2])
+    elif sys.argv[1] == "write-bowed":
+        write(sys.argv[2], bowed=True)
     else:
-        sys.exit("usage: mrcal_uncertainty.py sigma MODEL DISTANCE X,Y ... | write MODEL")
+        sys.exit("usage: mrcal_uncertainty.py sigma MODEL DISTANCE X,Y ... | write MODEL | write-bowed MODEL")

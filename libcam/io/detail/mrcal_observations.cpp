@@ -377,6 +377,8 @@ void add_board(const Inputs& inputs, const NpyArray& observed, ObservationSet& s
             fail(inputs.at("calobject_warp"), "a warp on a board of " + std::to_string(board.width) + " x " +
                                                   std::to_string(board.height) + " corners (mrcal needs 2 x 2)");
         }
+        const NpyArray* solved = inputs.numeric("do_optimize_calobject_warp", {}, false);
+        board.warp_solved = solved != nullptr && solved->numbers[0] != 0.0;
     }
     for (int i = 0; i < board.height; ++i) {
         for (int j = 0; j < board.width; ++j) {
