@@ -49,6 +49,12 @@ struct ObservedView {
     std::string name;  // the image's name, or "view 3" where the file names none
     int camera = 0;    // index into ObservationSet::cameras
     Pose pose;         // world (for a board: the board's frame) to camera
+    // A board view of a solve of several cameras (mrcal's): the board pose (index into
+    // ObservationSet::frames) it shares with the other cameras' views of it, and whether
+    // its camera's pose from the reference camera was solved (the reference's is not).
+    // -1 and false elsewhere.
+    int frame = -1;
+    bool camera_pose_solved = false;
 };
 
 // One observed pixel of one point in one view.
@@ -111,6 +117,11 @@ struct ObservationSet {
     std::vector<std::int64_t> point_ids;
     std::vector<Observation> observations;
     std::optional<ObservedBoard> board;
+    // mrcal's frames: each board pose, board to the reference camera (views' `frame`).
+    std::vector<Pose> frames;
+    // The camera the file is, where it holds a solve of several (mrcal's icam_intrinsics:
+    // each camera's .cameramodel carries the whole solve); -1 where it names none.
+    int own_camera = -1;
     // What the tool stored about its fit: whole-file numbers; one per view, the RMS over
     // the view's observations (OpenCV's per_view_reprojection_errors), empty where the file
     // stores none; one per point, the mean |d| over its track (COLMAP's ERROR column, NaN

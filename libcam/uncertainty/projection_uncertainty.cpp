@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "libcam/error.hpp"
 #include "libcam/text/number_format.hpp"
@@ -34,22 +35,22 @@ Eigen::MatrixXd inverse_of_information(const Eigen::MatrixXd& information, const
     return scale.asDiagonal() * inverse * scale.asDiagonal();
 }
 
-// d(residuals)/d(the bow's two parameters), from d(residuals)/d(the pose's shift), which is
-// d/d(the board point in the camera's frame): the bow lifts a corner along the board's z,
-// R's third column in the camera's frame.
-Eigen::MatrixXd by_bow(const ResidualDerivatives& d, const Pose& pose, const std::vector<FitSample>& observations,
-                       const SolvedCalibration::BoardBow& bow) {
-    Eigen::MatrixXd out(d.by_pose.rows(), 2);
-    const Vec3 lift = pose.R.col(2);
-    for (std::size_t i = 0; i < observations.size(); ++i) {
-        const auto row = static_cast<Eigen::Index>(2 * i);
-        const Eigen::Vector2d by_lift = d.by_pose.block(row, 3, 2, 3) * lift;
-        const double xr = observations[i].point.x() / bow.width, yr = observations[i].point.y() / bow.height;
-        out.block(row, 0, 2, 1) = by_lift * (4.0 * xr * (1.0 - xr));
-        out.block(row, 1, 2, 1) = by_lift * (4.0 * yr * (1.0 - yr));
-    }
-    return out;
+// [v]x: the cross product's matrix, v x w = [v]x w. A turn by a small rotation vector w
+// moves a point p by w x p = -[p]x w.
+Mat3 cross_matrix(const Vec3& v) {
+    Mat3 m;
+    m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+    return m;
 }
+
+// One camera of the solve: its parameters and where its columns are among the free ones.
+struct Member {
+    const SolvedCalibration* solved = nullptr;
+    CameraParameters parameters;
+    Eigen::MatrixXd directions;
+    Eigen::Index intrinsics_at = 0;
+    Eigen::Index pose_at = -1;  // -1: its pose from the reference is not solved
+};
 
 // Each observation's weight on both of its rows.
 void weigh_rows(ResidualDerivatives& d, const std::vector<double>& weights) {
@@ -70,55 +71,123 @@ double worst_direction_stdev(const Mat2& c) {
 
 ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
     : camera_(solved.camera), parameters_(parameters_of(solved.camera)) {
+    const bool rig = !solved.frames.empty();
+    from_reference_ = rig ? solved.camera.pose : Pose{};
     camera_.pose = Pose{};
     parameters_.candidate.held = solved.held;
     directions_ = free_directions(parameters_.candidate);
     unprojector_ = std::make_shared<const Unprojector<double>>(camera_, UnprojectorOptions{.table_nodes = 4, .threads = 1});
-    if (!solved.weights.empty() && solved.weights.size() != solved.views.size()) {
-        throw InvalidArgument("uncertainty: weights for " + std::to_string(solved.weights.size()) + " views of " +
-                              std::to_string(solved.views.size()));
-    }
     if (solved.bow && !(solved.bow->width > 0.0 && solved.bow->height > 0.0)) {
         throw InvalidArgument("uncertainty: the board's bow over an extent of " + format_short(solved.bow->width) +
                               " x " + format_short(solved.bow->height) + ": both must be above 0");
     }
-    const Eigen::Index count = directions_.cols() + (solved.bow ? 2 : 0);
-    Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(count, count);
-    std::vector<double> residuals;
-    for (std::size_t v = 0; v < solved.views.size(); ++v) {
-        const FitView& view = solved.views[v];
-        if (view.observations.empty()) continue;
-        ResidualDerivatives d = residual_derivatives(parameters_.candidate, camera_.size, parameters_.params, view.pose,
-                                                     view.observations);
-        if (!solved.weights.empty()) {
-            if (solved.weights[v].size() != view.observations.size()) {
-                throw InvalidArgument("uncertainty: view " + view.name + ": " + std::to_string(solved.weights[v].size()) +
-                                      " weights for " + std::to_string(view.observations.size()) + " observations");
+    if (!rig && !solved.others.empty()) throw InvalidArgument("uncertainty: other cameras without the boards' poses");
+
+    // The free parameters' columns: every camera's intrinsics, the solved poses, the bow.
+    std::vector<Member> members{{&solved, parameters_, directions_, 0, -1}};
+    for (const SolvedCalibration& other : solved.others) {
+        Member member{&other, parameters_of(other.camera), {}, 0, -1};
+        member.parameters.candidate.held = other.held;
+        member.directions = free_directions(member.parameters.candidate);
+        members.push_back(std::move(member));
+    }
+    Eigen::Index count = 0;
+    for (Member& member : members) {
+        member.intrinsics_at = count;
+        count += member.directions.cols();
+    }
+    for (Member& member : members) {
+        if (rig && member.solved->pose_solved) member.pose_at = std::exchange(count, count + 6);
+    }
+    pose_at_ = members[0].pose_at;
+    const Eigen::Index bow_at = count;
+    if (solved.bow) count += 2;
+
+    // Each board pose's views (camera, view): a board alone per view, or mrcal's frames.
+    const std::size_t frame_count = rig ? solved.frames.size() : solved.views.size();
+    std::vector<std::vector<std::pair<const Member*, std::size_t>>> seen_in(frame_count);
+    for (const Member& member : members) {
+        const SolvedCalibration& camera = *member.solved;
+        if (!camera.weights.empty() && camera.weights.size() != camera.views.size()) {
+            throw InvalidArgument("uncertainty: weights for " + std::to_string(camera.weights.size()) + " views of " +
+                                  std::to_string(camera.views.size()));
+        }
+        if (rig && camera.frame_of_view.size() != camera.views.size()) {
+            throw InvalidArgument("uncertainty: frames for " + std::to_string(camera.frame_of_view.size()) +
+                                  " views of " + std::to_string(camera.views.size()));
+        }
+        for (std::size_t v = 0; v < camera.views.size(); ++v) {
+            const int frame = rig ? camera.frame_of_view[v] : static_cast<int>(v);
+            if (frame < 0 || static_cast<std::size_t>(frame) >= frame_count) {
+                throw InvalidArgument("uncertainty: view " + camera.views[v].name + ": frame " + std::to_string(frame) +
+                                      " is not one of the " + std::to_string(frame_count));
             }
-            weigh_rows(d, solved.weights[v]);
+            if (!camera.views[v].observations.empty()) seen_in[static_cast<std::size_t>(frame)].emplace_back(&member, v);
         }
-        // The columns of the free parameters: the intrinsics' free directions, then the bow's.
-        if (solved.bow) {
-            const Eigen::MatrixXd bow = by_bow(d, view.pose, view.observations, *solved.bow);
-            Eigen::MatrixXd free(d.by_intrinsics.rows(), count);
-            free << d.by_intrinsics * directions_, bow;
-            d.by_intrinsics = std::move(free);
-        } else {
-            d.by_intrinsics = d.by_intrinsics * directions_;
+    }
+
+    Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(count, count);
+    frame_coupling_sum_ = Eigen::MatrixXd::Zero(6, count);
+    std::vector<double> residuals;
+    for (std::size_t f = 0; f < frame_count; ++f) {
+        if (seen_in[f].empty()) continue;
+        // J's rows of this board pose's views: U (the free parameters), W (them by the
+        // pose), V (the pose). The Schur complement U - sum W V^-1 W^T is the information
+        // of the free parameters alone.
+        Eigen::Matrix<double, 6, 6> pose_information = Eigen::Matrix<double, 6, 6>::Zero();
+        Eigen::MatrixXd coupling = Eigen::MatrixXd::Zero(count, 6);
+        std::string named;
+        for (const auto& [member, v] : seen_in[f]) {
+            const SolvedCalibration& camera = *member->solved;
+            const FitView& view = camera.views[v];
+            named = rig ? "frame " + std::to_string(f) : "view " + view.name;
+            ResidualDerivatives d = residual_derivatives(member->parameters.candidate, camera.camera.size,
+                                                         member->parameters.params, view.pose, view.observations);
+            if (!camera.weights.empty()) {
+                if (camera.weights[v].size() != view.observations.size()) {
+                    throw InvalidArgument("uncertainty: view " + view.name + ": " +
+                                          std::to_string(camera.weights[v].size()) + " weights for " +
+                                          std::to_string(view.observations.size()) + " observations");
+                }
+                weigh_rows(d, camera.weights[v]);
+            }
+            // d.by_pose's shift columns are d(residuals)/d(the corner in the camera's frame).
+            const Pose to_camera = rig ? camera.camera.pose : Pose{};
+            const Pose to_reference = rig ? solved.frames[f] : view.pose;
+            const Eigen::Index rows = d.residuals.size();
+            Eigen::MatrixXd by_free = Eigen::MatrixXd::Zero(rows, count);
+            Eigen::MatrixXd by_frame(rows, 6);
+            by_free.middleCols(member->intrinsics_at, member->directions.cols()) = d.by_intrinsics * member->directions;
+            for (std::size_t k = 0; k < view.observations.size(); ++k) {
+                const auto row = static_cast<Eigen::Index>(2 * k);
+                const Eigen::Matrix<double, 2, 3> by_corner = d.by_pose.block(row, 3, 2, 3);
+                const Vec3& corner = view.observations[k].point;
+                const Eigen::Matrix<double, 2, 3> by_reference = by_corner * to_camera.R;
+                by_frame.block(row, 0, 2, 3) = -by_reference * cross_matrix(to_reference.R * corner + to_reference.t);
+                by_frame.block(row, 3, 2, 3) = by_reference;
+                if (member->pose_at >= 0) {
+                    by_free.block(row, member->pose_at, 2, 3) = -by_corner * cross_matrix(view.pose.R * corner + view.pose.t);
+                    by_free.block(row, member->pose_at + 3, 2, 3) = by_corner;
+                }
+                if (solved.bow) {
+                    // The bow lifts a corner along the board's z, R's third column in the camera's frame.
+                    const Eigen::Vector2d by_lift = by_corner * view.pose.R.col(2);
+                    const double xr = corner.x() / solved.bow->width, yr = corner.y() / solved.bow->height;
+                    by_free.block(row, bow_at, 2, 1) = by_lift * (4.0 * xr * (1.0 - xr));
+                    by_free.block(row, bow_at + 1, 2, 1) = by_lift * (4.0 * yr * (1.0 - yr));
+                }
+            }
+            residuals.insert(residuals.end(), d.residuals.data(), d.residuals.data() + d.residuals.size());
+            observations_ += view.observations.size();
+            schur += by_free.transpose() * by_free;
+            coupling += by_free.transpose() * by_frame;
+            pose_information += by_frame.transpose() * by_frame;
         }
-        residuals.insert(residuals.end(), d.residuals.data(), d.residuals.data() + d.residuals.size());
-        observations_ += view.observations.size();
-        // J^T J's blocks: U (intrinsics), W (intrinsics by this pose), V (this pose). The
-        // Schur complement U - sum W V^-1 W^T is the information of the intrinsics alone.
-        const Eigen::MatrixXd pose_information = d.by_pose.transpose() * d.by_pose;
-        const Eigen::MatrixXd coupling = d.by_intrinsics.transpose() * d.by_pose;
-        const Eigen::Matrix<double, 6, 6> pose_inverse =
-            inverse_of_information(pose_information, "the pose of view " + view.name);
-        schur += d.by_intrinsics.transpose() * d.by_intrinsics;
+        const Eigen::Matrix<double, 6, 6> pose_inverse = inverse_of_information(pose_information, "the pose of " + named);
         schur -= coupling * pose_inverse * coupling.transpose();
-        poses_.push_back(view.pose);
-        pose_inverse_.push_back(pose_inverse);
-        pose_coupling_.push_back(pose_inverse * coupling.transpose());
+        frame_inverse_sum_ += pose_inverse;
+        frame_coupling_sum_ += pose_inverse * coupling.transpose();
+        ++frames_;
     }
     if (residuals.empty()) throw InvalidArgument("uncertainty: no observations");
     // As mrcal: the standard deviation (about their mean) of every residual coordinate.
@@ -162,32 +231,32 @@ std::vector<Mat2> ProjectionUncertainty::covariances(const std::vector<Vec2>& pi
         points.push_back({point, pixels[k]});
     }
     const auto n = static_cast<Eigen::Index>(points.size());
-    // dq/d(intrinsics), then each view's share of dq/d(its pose): the point is the mean over
-    // the views of each one's board point carried back by its pose.
+    // dq/d(the free parameters) - dq/d(the board poses) V^-1 W^T, and dq/d(the board
+    // poses) V^-1 dq/d(the board poses)^T. The point is the mean over the boards of each
+    // one's board point carried back by its pose: each board pose's turn w and shift s (in
+    // the reference frame) move that mean by (w x p + s) / (the number of boards), p the
+    // point in the reference frame, then the camera's pose carries it into the camera.
     const ResidualDerivatives at_camera =
         residual_derivatives(parameters_.candidate, camera_.size, parameters_.params, Pose{}, points);
-    // 2n x count: dq/d(free) - sum_v dq/dpose_v V^-1 W^T; the bow does not move the point (it
-    // is carried by the boards' poses, not lifted with their corners): its columns start at 0.
     Eigen::MatrixXd reduced = Eigen::MatrixXd::Zero(2 * n, intrinsics_inverse_.cols());
     reduced.leftCols(directions_.cols()) = at_camera.by_intrinsics * directions_;
-    std::vector<Mat2> from_poses(points.size(), Mat2::Zero());  // sum_v dq/dpose_v V^-1 dq/dpose_v^T
-    const double share = 1.0 / static_cast<double>(poses_.size());
-    std::vector<FitSample> on_board(points.size());
-    for (std::size_t v = 0; v < poses_.size(); ++v) {
-        // At infinity only the boards' rotations carry a direction: the pose without its
-        // translation carries the board's direction back to the camera's.
-        const Pose pose = at_infinity ? Pose{poses_[v].R, Vec3::Zero()} : poses_[v];
-        for (std::size_t k = 0; k < points.size(); ++k) {
-            on_board[k] = {pose.R.transpose() * (points[k].point - pose.t), points[k].pixel};
+    std::vector<Mat2> from_poses(points.size(), Mat2::Zero());
+    const double share = 1.0 / static_cast<double>(frames_);
+    for (Eigen::Index k = 0; k < n; ++k) {
+        const Eigen::Matrix<double, 2, 3> by_point = at_camera.by_pose.block(2 * k, 3, 2, 3);
+        const Vec3& point = points[static_cast<std::size_t>(k)].point;
+        // At infinity only rotations carry a direction: the shifts move nothing.
+        const Vec3 in_reference = from_reference_.R.transpose() * (at_infinity ? point : Vec3(point - from_reference_.t));
+        if (pose_at_ >= 0) {
+            reduced.block(2 * k, pose_at_, 2, 3) = -by_point * cross_matrix(point);
+            if (!at_infinity) reduced.block(2 * k, pose_at_ + 3, 2, 3) = by_point;
         }
-        ResidualDerivatives d = residual_derivatives(parameters_.candidate, camera_.size, parameters_.params, pose, on_board);
-        d.by_pose *= share;
-        if (at_infinity) d.by_pose.rightCols(3).setZero();
-        reduced.noalias() -= d.by_pose * pose_coupling_[v];
-        for (Eigen::Index k = 0; k < n; ++k) {
-            const Eigen::Matrix<double, 2, 6> g = d.by_pose.middleRows(2 * k, 2);
-            from_poses[static_cast<std::size_t>(k)] += g * pose_inverse_[v] * g.transpose();
-        }
+        Eigen::Matrix<double, 2, 6> by_board = Eigen::Matrix<double, 2, 6>::Zero();
+        const Eigen::Matrix<double, 2, 3> by_reference = share * by_point * from_reference_.R;
+        by_board.leftCols(3) = -by_reference * cross_matrix(in_reference);
+        if (!at_infinity) by_board.rightCols(3) = by_reference;
+        reduced.middleRows(2 * k, 2).noalias() -= by_board * frame_coupling_sum_;
+        from_poses[static_cast<std::size_t>(k)] = by_board * frame_inverse_sum_ * by_board.transpose();
     }
     const double noise2 = noise_px_ * noise_px_;
     const Mat2 unknown = Mat2::Constant(std::numeric_limits<double>::quiet_NaN());

@@ -63,6 +63,18 @@ struct SolvedCalibration {
         double height = 0.0;  // and along y
     };
     std::optional<BoardBow> bow;
+    // A camera solved together with others (mrcal's solves of several cameras), the boards'
+    // poses shared between them. Empty for a camera solved alone, each of its views then a
+    // board pose of its own. Otherwise: every board pose in the reference camera's frame
+    // (mrcal's frames), the frame of each of `views`, camera.pose the camera's pose from
+    // the reference (solved unless the camera is the reference), and the other cameras,
+    // each as this struct (its camera.pose, views, frame_of_view, weights, held, pose_solved
+    // used; its `frames` and `others` empty). The uncertainty is then the camera's in the
+    // whole solve, as mrcal's: every camera's intrinsics, poses and observations count.
+    std::vector<Pose> frames;
+    std::vector<int> frame_of_view;
+    bool pose_solved = false;
+    std::vector<SolvedCalibration> others;
 };
 
 // One intrinsic parameter: its value and its standard deviation.
@@ -108,15 +120,23 @@ private:
     // The directions the intrinsics may move in (free_directions): J's intrinsics columns
     // are taken along them, and the covariance below is over them.
     Eigen::MatrixXd directions_;
-    std::vector<Pose> poses_;
+    // The camera's pose from the rig's reference (the identity for a camera alone) and,
+    // where it was solved, where its 6 columns start among the free parameters (else -1).
+    Pose from_reference_;
+    Eigen::Index pose_at_ = -1;
     double noise_px_ = 0.0;
     std::size_t observations_ = 0;
-    // The Schur complement's inverse (the covariance / sigma^2 of the free directions, then
-    // the bow's two parameters where it is free); per view: V^-1 (its pose block's
-    // inverse) and V^-1 W^T (W: the block of those parameters by the pose).
+    std::size_t frames_ = 0;
+    // The free parameters: the camera's intrinsics along their free directions first, then
+    // the other cameras' intrinsics, the solved camera poses and the bow. The Schur
+    // complement's inverse over them (their covariance / sigma^2); summed over the board
+    // poses: V^-1 (each pose block's inverse) and V^-1 W^T (W: the free parameters by the
+    // pose). Each board pose moves by a turn and a shift in the reference frame, which
+    // moves the point every board carries back by the same amount: the sums are all the
+    // projection needs.
     Eigen::MatrixXd intrinsics_inverse_;
-    std::vector<Eigen::Matrix<double, 6, 6>> pose_inverse_;
-    std::vector<Eigen::MatrixXd> pose_coupling_;
+    Eigen::Matrix<double, 6, 6> frame_inverse_sum_ = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::MatrixXd frame_coupling_sum_;
 };
 
 }  // namespace libcam

@@ -39,7 +39,11 @@ std::vector<Vec2> convex_hull(std::vector<Vec2> points) {
 
 }  // namespace
 
-SolvedCalibration solved_calibration(const ObservationSet& set, int camera) {
+namespace {
+
+// The camera's part of the set: its board views with their inlier observations and
+// weights, each view's frame where the set's cameras share board poses.
+SolvedCalibration camera_part(const ObservationSet& set, int camera) {
     if (!set.board) {
         throw FileError(set.source + ": holds no calibration board (" + std::string(to_string(set.tool)) +
                         "): the projection uncertainty needs a board's corners, known points seen from solved poses");
@@ -58,6 +62,16 @@ SolvedCalibration solved_calibration(const ObservationSet& set, int camera) {
         view_of[v] = static_cast<int>(solved.views.size());
         solved.views.push_back({set.views[v].name, set.views[v].pose, {}});
         solved.weights.emplace_back();
+        const int frame = set.views[v].frame;
+        if (set.frames.empty()) continue;
+        if (frame < 0 || static_cast<std::size_t>(frame) >= set.frames.size()) {
+            throw FileError(set.source + ": view " + set.views[v].name + " has no board pose of the solve's " +
+                            std::to_string(set.frames.size()));
+        }
+        solved.frame_of_view.push_back(frame);
+        // The camera's pose from the reference: the view's pose after its board's, undone.
+        solved.camera.pose = set.views[v].pose.after(set.frames[static_cast<std::size_t>(frame)].inverse());
+        solved.pose_solved = set.views[v].camera_pose_solved;
     }
     std::size_t counted = 0;
     for (const Observation& o : set.observations) {
@@ -77,6 +91,20 @@ SolvedCalibration solved_calibration(const ObservationSet& set, int camera) {
         if (!solved.views[v].observations.empty()) continue;
         solved.views.erase(solved.views.begin() + static_cast<long>(v));
         solved.weights.erase(solved.weights.begin() + static_cast<long>(v));
+        if (!solved.frame_of_view.empty()) solved.frame_of_view.erase(solved.frame_of_view.begin() + static_cast<long>(v));
+    }
+    return solved;
+}
+
+}  // namespace
+
+SolvedCalibration solved_calibration(const ObservationSet& set, int camera) {
+    SolvedCalibration solved = camera_part(set, camera);
+    if (set.frames.empty()) return solved;
+    // A solve of several cameras sharing the boards' poses: the others count too.
+    solved.frames = set.frames;
+    for (std::size_t other = 0; other < set.cameras.size(); ++other) {
+        if (static_cast<int>(other) != camera) solved.others.push_back(camera_part(set, static_cast<int>(other)));
     }
     return solved;
 }

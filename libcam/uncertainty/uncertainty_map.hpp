@@ -19,8 +19,9 @@ namespace libcam {
 // each of its views' solved pose, and the observations the tool counted (its inliers,
 // with their weights). A board's corners only: a reconstruction's points are solved with
 // the cameras, which this uncertainty (the boards' corners known) does not describe.
-// Throws FileError naming the file when it holds no board, or no counted observation of
-// the camera.
+// Where the file holds a solve of several cameras sharing the boards' poses (mrcal's), the
+// others and the shared poses come too (SolvedCalibration::others, frames). Throws
+// FileError naming the file when it holds no board, or no counted observation of a camera.
 SolvedCalibration solved_calibration(const ObservationSet& set, int camera);
 
 // sigma_px at the centres of columns x rows equal tiles of the image, row by row

@@ -215,7 +215,7 @@ def calibrate_pair(
     ...
 
 def projection_uncertainty(
-    observations: Observations, pixels: Any, distance: float = ..., camera: int = 0
+    observations: Observations, pixels: Any, distance: float = ..., camera: Optional[int] = None
 ) -> dict[str, Any]: ...
 def reproject(observations: Observations, threads: int = 0) -> dict[str, Any]:
     """Every residual (projected - observed) as arrays, the statistics, and the file's own numbers recomputed."""

@@ -3,8 +3,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "camera_binding.hpp"
 #include "libcam/reproject/reproject.hpp"
@@ -136,7 +138,10 @@ py::dict reproject_set(const ObservationSet& set, int threads) {
 }
 
 py::dict projection_uncertainty_of(const ObservationSet& set, const std::vector<std::array<double, 2>>& pixels,
-                                   double distance, int camera) {
+                                   double distance, std::optional<int> chosen) {
+    // By default the camera the file is (each camera's .cameramodel of an mrcal solve of
+    // several holds the whole solve), else the first.
+    const int camera = chosen ? *chosen : std::max(set.own_camera, 0);
     if (camera < 0 || static_cast<std::size_t>(camera) >= set.cameras.size()) {
         throw InvalidArgument("camera: " + std::to_string(camera) + ": the observations hold " +
                               std::to_string(set.cameras.size()) + " cameras");
@@ -245,12 +250,14 @@ OpenMVG's sfm_data.json, AliceVision's cameras.sfm, VisualSfM's .nvm or Bundler'
 bundle.out (size=(width, height): their files store none), or a .csv/.json table with
 camera_file. Returns libcam.Observations.)doc");
     m.def("projection_uncertainty", &projection_uncertainty_of, py::arg("observations"), py::arg("pixels"),
-          py::arg("distance") = kAtInfinity, py::arg("camera") = 0, R"doc(
+          py::arg("distance") = kAtInfinity, py::arg("camera") = py::none(), R"doc(
 mrcal's projection uncertainty (mrcal 2.2's projection_uncertainty, what =
 'worstdirection-stdev') of a calibration's observations (libcam.read_observations of a
 .cameramodel with optimization_inputs, OpenCV's calibration output, ...): the point at
 `distance` (the board's unit; infinity: the direction) along each pixel's ray (OpenCV's
-pixels, (n, 2)). Returns {'observed_pixel_uncertainty_px' (the noise the residuals
+pixels, (n, 2)); camera: its index (default: the camera the file is, for a solve of
+several cameras, else the first; the whole solve counts). Returns
+{'observed_pixel_uncertainty_px' (the noise the residuals
 imply), 'sigma_px' (n,) (NaN where a pixel has no ray), 'covariance' (n, 2, 2),
 'parameters': [{'name', 'value', 'stdev'}]}, as the libcam program's uncertainty command.)doc");
     m.def("reproject", &reproject_set, py::arg("observations"), py::arg("threads") = 0, R"doc(

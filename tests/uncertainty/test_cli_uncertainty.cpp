@@ -77,3 +77,28 @@ TEST_CASE("libcam uncertainty refuses in one line: no observations, a pixel off 
     check_refusal(run_libcam({"uncertainty", model.string(), "--at", "700,20"}), 2, "--at: pixel (700, 20) is off");
     check_refusal(run_libcam({"uncertainty", model.string(), "--at", "7;20"}), 2, "--at");
 }
+
+TEST_CASE("libcam uncertainty on each camera's model of an mrcal solve of two: the file's camera, the whole solve",
+          "[uncertainty][cli]") {
+    TempDir dir;
+    const fs::path first = dir / "rig-0.cameramodel", second = dir / "rig-1.cameramodel";
+    python("write-rig '" + first.string() + "' '" + second.string() + "'");
+    // Without --camera: the camera the model is (its icam_intrinsics), not a refusal.
+    const CliResult run = run_libcam({"uncertainty", second.string(), "--at", "319.5,239.5", "--at", "20,30", "--json"});
+    INFO(run.describe());
+    REQUIRE(run.exit_code == 0);
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    const nlohmann::json mrcal = nlohmann::json::parse(python("sigma '" + second.string() + "' inf 319.5,239.5 20,30"));
+    for (int i = 0; i < 2; ++i) {
+        CHECK(report["at"][i]["sigma_px"].get<double>() == Approx(mrcal["sigma_px"][i].get<double>()).epsilon(1e-6));
+    }
+    // --camera picks the other one out of the same file.
+    const CliResult other = run_libcam({"uncertainty", second.string(), "--camera", "0", "--at", "20,30", "--json"});
+    REQUIRE(other.exit_code == 0);
+    const nlohmann::json theirs = nlohmann::json::parse(python("sigma '" + first.string() + "' inf 20,30"));
+    CHECK(nlohmann::json::parse(other.out)["at"][0]["sigma_px"].get<double>() ==
+          Approx(theirs["sigma_px"][0].get<double>()).epsilon(1e-6));
+    const CliResult text = run_libcam({"uncertainty", first.string()});
+    REQUIRE(text.exit_code == 0);
+    CHECK(text.out.find("in a solve of 2 cameras sharing 12 board poses") != std::string::npos);
+}

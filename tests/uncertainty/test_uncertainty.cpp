@@ -48,7 +48,7 @@ std::vector<Vec2> centre_corners_edges(const ImageSize& size) {
 // ratio's distance from 1.
 double compare_with_mrcal(const fs::path& model, const std::string& distance_text, double distance) {
     const ObservationSet set = read_observations(model);
-    const SolvedCalibration solved = solved_calibration(set, 0);
+    const SolvedCalibration solved = solved_calibration(set, std::max(set.own_camera, 0));
     const ProjectionUncertainty uncertainty(solved);
     const std::vector<Vec2> pixels = centre_corners_edges(solved.camera.size);
     const nlohmann::json mrcal = mrcal_sigma(model, distance_text, pixels);
@@ -131,6 +131,39 @@ TEST_CASE("uncertainty against mrcal: a solve of a bowed board, its bow solved f
     WARN("a bowed board's solve: libcam's sigma within " << 100.0 * at_infinity << "% of mrcal's at infinity, "
                                                         << 100.0 * near << "% at 0.5 m; with the bow held, up to "
                                                         << 100.0 * largest_gap << "% under");
+}
+
+TEST_CASE("uncertainty against mrcal: a solve of two cameras sharing the boards' poses, each camera's model",
+          "[uncertainty][mrcal]") {
+    const test::TempDir folder;
+    const fs::path models[2] = {folder.path() / "rig-0.cameramodel", folder.path() / "rig-1.cameramodel"};
+    shell_output("/usr/bin/python3 '" + kScript.string() + "' write-rig '" + models[0].string() + "' '" +
+                 models[1].string() + "'");
+    for (int camera = 0; camera < 2; ++camera) {
+        const fs::path& model = models[camera];
+        const ObservationSet set = read_observations(model);
+        REQUIRE(set.cameras.size() == 2);
+        CHECK(set.own_camera == camera);
+        // The whole solve: both cameras' intrinsics, camera 1's pose and the shared boards.
+        const double at_infinity = compare_with_mrcal(model, "inf", kAtInfinity);
+        const double near = compare_with_mrcal(model, "0.5", 0.5);
+        CHECK(at_infinity < 1e-6);
+        CHECK(near < 1e-6);
+        // The camera taken alone (each of its boards posed on its own, the other camera's
+        // corners left out) is not mrcal's number: far over it here.
+        SolvedCalibration alone = solved_calibration(set, camera);
+        const std::vector<Vec2> pixels = centre_corners_edges(alone.camera.size);
+        const std::vector<double> whole = ProjectionUncertainty(alone).sigma_px(pixels);
+        alone.others.clear();
+        alone.frames.clear();
+        alone.frame_of_view.clear();
+        alone.camera.pose = Pose{};
+        const std::vector<double> by_itself = ProjectionUncertainty(alone).sigma_px(pixels);
+        CHECK(by_itself[0] > 1.2 * whole[0]);
+        WARN("a two-camera solve, camera " << camera << ": libcam's sigma within " << 100.0 * at_infinity
+                                           << "% of mrcal's at infinity, " << 100.0 * near << "% at 0.5 m; alone, "
+                                           << by_itself[0] / whole[0] << " times it at the centre");
+    }
 }
 
 namespace {

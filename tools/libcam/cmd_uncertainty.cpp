@@ -58,8 +58,14 @@ std::string text_report(const ObservationSet& set, int camera, const ProjectionU
     std::ostringstream out;
     out << set.source << ": camera " << set.cameras[static_cast<std::size_t>(camera)].name << ", "
         << lens_text(uncertainty.camera()) << "\n";
-    out << solved.views.size() << " views, " << uncertainty.observations() << " observations; the noise the fit's "
-        << "residuals imply: " << format_short(uncertainty.observed_pixel_uncertainty_px(), 4) << " px\n";
+    out << solved.views.size() << " views, ";
+    if (!solved.others.empty()) {
+        // A solve of several cameras: its uncertainty is the whole solve's.
+        out << "in a solve of " << solved.others.size() + 1 << " cameras sharing " << solved.frames.size()
+            << " board poses, ";
+    }
+    out << uncertainty.observations() << " observations; the noise the fit's residuals imply: "
+        << format_short(uncertainty.observed_pixel_uncertainty_px(), 4) << " px\n";
     out << "projection uncertainty (worst direction, " << distance_words(distance) << "):\n";
     out << summary_lines(summary) << at_lines(at, at_sigma);
     out << "intrinsics (value +- standard deviation):\n" << parameter_lines(uncertainty.parameters());
@@ -99,6 +105,8 @@ std::string json_report(const ObservationSet& set, int camera, const ProjectionU
 
 int camera_of(const ObservationSet& set, const std::string& selector) {
     if (selector.empty()) {
+        // Each camera's .cameramodel of an mrcal solve of several holds the whole solve and says which it is.
+        if (set.own_camera >= 0) return set.own_camera;
         if (set.cameras.size() > 1) {
             throw UsageError("--camera: " + set.source + " holds " + std::to_string(set.cameras.size()) +
                              " cameras: say which one");

@@ -15,6 +15,7 @@
 #include "libcam/io/detail/npz_archive.hpp"
 #include "libcam/lens/lens_model.hpp"
 #include "libcam/text/number_format.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam::detail {
 
@@ -162,8 +163,9 @@ std::string decode_bytes_literal(const PyToken& token, const std::string& where)
 
 // The value of the dict's 'optimization_inputs': its bytes literal, decoded (adjacent
 // literals joined, as Python joins them).
-std::string optimization_inputs_literal(std::string_view text, const std::string& source) {
-    PyScanner scanner(text, source);
+// Moves the scanner past the ':' of the model's top-level key `key`; false where the model
+// has no such key.
+bool skip_to_top_level_value(PyScanner& scanner, std::string_view text, std::string_view key, const std::string& where) {
     int depth = 0;
     char before = 0;  // the punctuation before the current token
     for (PyToken token = scanner.next(); token.kind != PyToken::End; token = scanner.next()) {
@@ -173,27 +175,55 @@ std::string optimization_inputs_literal(std::string_view text, const std::string
             before = token.punct;
             continue;
         }
-        const bool is_key = token.kind == PyToken::String && depth == 1 && (before == '{' || before == ',') &&
-                            token.body == "optimization_inputs";
+        const bool is_key =
+            token.kind == PyToken::String && depth == 1 && (before == '{' || before == ',') && token.body == key;
         before = 0;
         if (!is_key) continue;
-        const std::string where = source + ": optimization_inputs";
         const PyToken colon = scanner.next();
         if (colon.kind != PyToken::Punct || colon.punct != ':') fail(where, line_of(text, colon.offset) + ": no ':'");
-        std::string bytes;
-        PyToken value = scanner.next();
-        for (; value.kind == PyToken::String; value = scanner.next()) {
-            if (value.prefix.find_first_of("bB") == std::string_view::npos) {
-                fail(where, line_of(text, value.offset) + ": not a bytes literal (b'...')");
-            }
-            bytes += decode_bytes_literal(value, where);
-        }
-        if (value.kind != PyToken::Punct || (value.punct != ',' && value.punct != '}')) {
-            fail(where, line_of(text, value.offset) + ": not a bytes literal (b'...') followed by ',' or '}'");
-        }
-        return bytes;
+        return true;
     }
-    fail(source, "no 'optimization_inputs' (the solve's observations), so no observations to read");
+    return false;
+}
+
+std::string optimization_inputs_literal(std::string_view text, const std::string& source) {
+    PyScanner scanner(text, source);
+    const std::string where = source + ": optimization_inputs";
+    if (!skip_to_top_level_value(scanner, text, "optimization_inputs", where)) {
+        fail(source, "no 'optimization_inputs' (the solve's observations), so no observations to read");
+    }
+    std::string bytes;
+    PyToken value = scanner.next();
+    for (; value.kind == PyToken::String; value = scanner.next()) {
+        if (value.prefix.find_first_of("bB") == std::string_view::npos) {
+            fail(where, line_of(text, value.offset) + ": not a bytes literal (b'...')");
+        }
+        bytes += decode_bytes_literal(value, where);
+    }
+    if (value.kind != PyToken::Punct || (value.punct != ',' && value.punct != '}')) {
+        fail(where, line_of(text, value.offset) + ": not a bytes literal (b'...') followed by ',' or '}'");
+    }
+    return bytes;
+}
+
+// The camera of the solve the model is (its 'icam_intrinsics'), -1 where it names none.
+int own_camera_of(std::string_view text, const std::string& source, std::size_t cameras) {
+    PyScanner scanner(text, source);
+    const std::string where = source + ": icam_intrinsics";
+    if (!skip_to_top_level_value(scanner, text, "icam_intrinsics", where)) return -1;
+    // The scanner has no numbers: the value's text up to the next ',' or '}'.
+    const PyToken value = scanner.next();
+    const std::size_t stop = std::min(text.find_first_of(",}", value.offset), text.size());
+    std::string_view digits = text.substr(value.offset, stop - value.offset);
+    while (!digits.empty() && std::isspace(static_cast<unsigned char>(digits.back()))) digits.remove_suffix(1);
+    int camera = -1;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), camera);
+    if (error != std::errc() || end != digits.data() + digits.size() || camera < 0 ||
+        static_cast<std::size_t>(camera) >= cameras) {
+        fail(where, line_of(text, value.offset) + ": expected the index of one of the solve's " +
+                        std::to_string(cameras) + " cameras, got " + shown_value(digits));
+    }
+    return camera;
 }
 
 // Python's base64.b85decode (the RFC 1924 alphabet): each 5 characters are 4 bytes, big
@@ -419,7 +449,7 @@ void add_board_observations(const Inputs& inputs, const std::vector<Pose>& frame
         // Named as mrcal indexes board observations: by frame, and camera where there are several.
         std::string name = "frame " + std::to_string(frame);
         if (set.cameras.size() > 1) name += " camera " + std::to_string(camera);
-        set.views.push_back({std::move(name), camera, pose});
+        set.views.push_back({std::move(name), camera, pose, frame, extrinsic >= 0});
         for (std::size_t corner = 0; corner < corners; ++corner) {
             const double* xyw = observed->numbers.data() + 3 * (n * corners + corner);
             set.observations.push_back(observation_of(xyw, static_cast<int>(set.views.size() - 1), int(corner)));
@@ -472,6 +502,10 @@ ObservationSet parse_mrcal_observations(std::string_view text, const std::string
     const std::vector<Pose> frames = poses_of(inputs.numeric("frames_rt_toref", {kAny, 6}, false));
     const std::vector<Pose> extrinsics = poses_of(inputs.numeric("extrinsics_rt_fromref", {kAny, 6}, false));
     add_board_observations(inputs, frames, extrinsics, set);
+    if (set.cameras.size() > 1) {
+        set.frames = frames;
+        set.own_camera = own_camera_of(text, source, set.cameras.size());
+    }
     add_point_observations(inputs, extrinsics, set);
     if (set.observations.empty()) {
         fail(inputs.where, "observations_board and observations_point hold no observation (the solve's inputs "
