@@ -62,6 +62,55 @@ void weigh_rows(ResidualDerivatives& d, const std::vector<double>& weights) {
     }
 }
 
+// One view's rows of J (each observation's weight applied): by the free parameters (its
+// camera's intrinsics, its camera's pose where solved, the bow) and by its board pose, a
+// turn and a shift in the reference frame (`to_reference`: the board to that frame).
+struct ViewRows {
+    Eigen::VectorXd residuals;
+    Eigen::MatrixXd by_free;
+    Eigen::MatrixXd by_frame;
+};
+
+ViewRows view_rows(const Member& member, std::size_t v, const Pose& to_reference, bool rig,
+                   const std::optional<SolvedCalibration::BoardBow>& bow, Eigen::Index bow_at, Eigen::Index count) {
+    const SolvedCalibration& camera = *member.solved;
+    const FitView& view = camera.views[v];
+    ResidualDerivatives d = residual_derivatives(member.parameters.candidate, camera.camera.size, member.parameters.params,
+                                                 view.pose, view.observations);
+    if (!camera.weights.empty()) {
+        if (camera.weights[v].size() != view.observations.size()) {
+            throw InvalidArgument("uncertainty: view " + view.name + ": " + std::to_string(camera.weights[v].size()) +
+                                  " weights for " + std::to_string(view.observations.size()) + " observations");
+        }
+        weigh_rows(d, camera.weights[v]);
+    }
+    // d.by_pose's shift columns are d(residuals)/d(the corner in the camera's frame).
+    const Pose to_camera = rig ? camera.camera.pose : Pose{};
+    const Eigen::Index rows = d.residuals.size();
+    ViewRows out{d.residuals, Eigen::MatrixXd::Zero(rows, count), Eigen::MatrixXd(rows, 6)};
+    out.by_free.middleCols(member.intrinsics_at, member.directions.cols()) = d.by_intrinsics * member.directions;
+    for (std::size_t k = 0; k < view.observations.size(); ++k) {
+        const auto row = static_cast<Eigen::Index>(2 * k);
+        const Eigen::Matrix<double, 2, 3> by_corner = d.by_pose.block(row, 3, 2, 3);
+        const Vec3& corner = view.observations[k].point;
+        const Eigen::Matrix<double, 2, 3> by_reference = by_corner * to_camera.R;
+        out.by_frame.block(row, 0, 2, 3) = -by_reference * cross_matrix(to_reference.R * corner + to_reference.t);
+        out.by_frame.block(row, 3, 2, 3) = by_reference;
+        if (member.pose_at >= 0) {
+            out.by_free.block(row, member.pose_at, 2, 3) = -by_corner * cross_matrix(view.pose.R * corner + view.pose.t);
+            out.by_free.block(row, member.pose_at + 3, 2, 3) = by_corner;
+        }
+        if (bow) {
+            // The bow lifts a corner along the board's z, R's third column in the camera's frame.
+            const Eigen::Vector2d by_lift = by_corner * view.pose.R.col(2);
+            const double xr = corner.x() / bow->width, yr = corner.y() / bow->height;
+            out.by_free.block(row, bow_at, 2, 1) = by_lift * (4.0 * xr * (1.0 - xr));
+            out.by_free.block(row, bow_at + 1, 2, 1) = by_lift * (4.0 * yr * (1.0 - yr));
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 double worst_direction_stdev(const Mat2& c) {
@@ -138,50 +187,15 @@ ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
         Eigen::MatrixXd coupling = Eigen::MatrixXd::Zero(count, 6);
         std::string named;
         for (const auto& [member, v] : seen_in[f]) {
-            const SolvedCalibration& camera = *member->solved;
-            const FitView& view = camera.views[v];
+            const FitView& view = member->solved->views[v];
             named = rig ? "frame " + std::to_string(f) : "view " + view.name;
-            ResidualDerivatives d = residual_derivatives(member->parameters.candidate, camera.camera.size,
-                                                         member->parameters.params, view.pose, view.observations);
-            if (!camera.weights.empty()) {
-                if (camera.weights[v].size() != view.observations.size()) {
-                    throw InvalidArgument("uncertainty: view " + view.name + ": " +
-                                          std::to_string(camera.weights[v].size()) + " weights for " +
-                                          std::to_string(view.observations.size()) + " observations");
-                }
-                weigh_rows(d, camera.weights[v]);
-            }
-            // d.by_pose's shift columns are d(residuals)/d(the corner in the camera's frame).
-            const Pose to_camera = rig ? camera.camera.pose : Pose{};
-            const Pose to_reference = rig ? solved.frames[f] : view.pose;
-            const Eigen::Index rows = d.residuals.size();
-            Eigen::MatrixXd by_free = Eigen::MatrixXd::Zero(rows, count);
-            Eigen::MatrixXd by_frame(rows, 6);
-            by_free.middleCols(member->intrinsics_at, member->directions.cols()) = d.by_intrinsics * member->directions;
-            for (std::size_t k = 0; k < view.observations.size(); ++k) {
-                const auto row = static_cast<Eigen::Index>(2 * k);
-                const Eigen::Matrix<double, 2, 3> by_corner = d.by_pose.block(row, 3, 2, 3);
-                const Vec3& corner = view.observations[k].point;
-                const Eigen::Matrix<double, 2, 3> by_reference = by_corner * to_camera.R;
-                by_frame.block(row, 0, 2, 3) = -by_reference * cross_matrix(to_reference.R * corner + to_reference.t);
-                by_frame.block(row, 3, 2, 3) = by_reference;
-                if (member->pose_at >= 0) {
-                    by_free.block(row, member->pose_at, 2, 3) = -by_corner * cross_matrix(view.pose.R * corner + view.pose.t);
-                    by_free.block(row, member->pose_at + 3, 2, 3) = by_corner;
-                }
-                if (solved.bow) {
-                    // The bow lifts a corner along the board's z, R's third column in the camera's frame.
-                    const Eigen::Vector2d by_lift = by_corner * view.pose.R.col(2);
-                    const double xr = corner.x() / solved.bow->width, yr = corner.y() / solved.bow->height;
-                    by_free.block(row, bow_at, 2, 1) = by_lift * (4.0 * xr * (1.0 - xr));
-                    by_free.block(row, bow_at + 1, 2, 1) = by_lift * (4.0 * yr * (1.0 - yr));
-                }
-            }
-            residuals.insert(residuals.end(), d.residuals.data(), d.residuals.data() + d.residuals.size());
+            const ViewRows rows = view_rows(*member, v, rig ? solved.frames[f] : view.pose, rig, solved.bow,
+                                            bow_at, count);
+            residuals.insert(residuals.end(), rows.residuals.data(), rows.residuals.data() + rows.residuals.size());
             observations_ += view.observations.size();
-            schur += by_free.transpose() * by_free;
-            coupling += by_free.transpose() * by_frame;
-            pose_information += by_frame.transpose() * by_frame;
+            schur += rows.by_free.transpose() * rows.by_free;
+            coupling += rows.by_free.transpose() * rows.by_frame;
+            pose_information += rows.by_frame.transpose() * rows.by_frame;
         }
         const Eigen::Matrix<double, 6, 6> pose_inverse = inverse_of_information(pose_information, "the pose of " + named);
         schur -= coupling * pose_inverse * coupling.transpose();
