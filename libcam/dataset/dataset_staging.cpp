@@ -79,11 +79,12 @@ void move_into_place(const fs::path& relative, const DatasetStaging& staging) {
     }
 }
 
-// Each folder the files go to in OUT, checked as the plan checked it (it may have changed since).
-void check_destinations(const std::vector<fs::path>& files, const DatasetStaging& staging) {
+// Each folder the run's files go to, relative to OUT: the images' and the model's.
+std::set<fs::path> destination_folders(const std::vector<fs::path>& files, const DatasetStaging& staging) {
     std::set<fs::path> folders;
     for (const fs::path& file : files) folders.insert(file.parent_path());
-    for (const fs::path& folder : folders) check_folder_inside(staging.output, folder, staging.folder);
+    for (const fs::path& file : staging.model_files) folders.insert(file.parent_path());
+    return folders;
 }
 
 void discard(const fs::path& folder) {
@@ -200,8 +201,9 @@ void finish_staging(const DatasetStaging& staging) {
                         (staging.folder / *first).string() + "): nothing was moved into " + staging.output.string() +
                         "; run the rest of the tasks, or the same run again");
     }
-    check_destinations(files, staging);
-    check_destinations(staging.model_files, staging);
+    // Each folder checked as the plan checked it (it may have changed since).
+    const std::set<fs::path> folders = destination_folders(files, staging);
+    for (const fs::path& folder : folders) check_folder_inside(staging.output, folder, staging.folder);
     if (!staging.images.empty()) {
         write_file_atomically(staging.folder / kFinishingName, finishing_list(staging.images));
         remove_file(staging.output / kStampName, staging);
@@ -213,10 +215,7 @@ void finish_staging(const DatasetStaging& staging) {
     for (const fs::path& file : staging.model_files) move_into_place(file, staging);
     // The moves flushed before the stamp says the run is finished, and the stamp after: a
     // power cut then leaves either every file or no stamp vouching for them.
-    std::set<fs::path> folders;
-    for (const fs::path& file : files) folders.insert(staging.output / file.parent_path());
-    for (const fs::path& file : staging.model_files) folders.insert(staging.output / file.parent_path());
-    for (const fs::path& folder : folders) sync_folder(folder);
+    for (const fs::path& folder : folders) sync_folder(staging.output / folder);
     if (!staging.images.empty()) {
         move_into_place(kStampName, staging);
         sync_folder(staging.output);

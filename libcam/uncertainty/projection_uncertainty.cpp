@@ -185,10 +185,8 @@ ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
         // of the free parameters alone.
         Eigen::Matrix<double, 6, 6> pose_information = Eigen::Matrix<double, 6, 6>::Zero();
         Eigen::MatrixXd coupling = Eigen::MatrixXd::Zero(count, 6);
-        std::string named;
         for (const auto& [member, v] : seen_in[f]) {
             const FitView& view = member->solved->views[v];
-            named = rig ? "frame " + std::to_string(f) : "view " + view.name;
             const ViewRows rows = view_rows(*member, v, rig ? solved.frames[f] : view.pose, rig, solved.bow,
                                             bow_at, count);
             residuals.insert(residuals.end(), rows.residuals.data(), rows.residuals.data() + rows.residuals.size());
@@ -197,6 +195,8 @@ ProjectionUncertainty::ProjectionUncertainty(const SolvedCalibration& solved)
             coupling += rows.by_free.transpose() * rows.by_frame;
             pose_information += rows.by_frame.transpose() * rows.by_frame;
         }
+        const auto& [first, first_view] = seen_in[f].front();
+        const std::string named = rig ? "frame " + std::to_string(f) : "view " + first->solved->views[first_view].name;
         const Eigen::Matrix<double, 6, 6> pose_inverse = inverse_of_information(pose_information, "the pose of " + named);
         schur -= coupling * pose_inverse * coupling.transpose();
         frame_inverse_sum_ += pose_inverse;
