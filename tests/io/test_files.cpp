@@ -373,6 +373,55 @@ TEST_CASE("Stereo files written by cv::FileStorage: stereo_calib's pair and ORB-
     }
 }
 
+TEST_CASE("OpenCV's stereo files read as a pair: an error names the file it is in, the line in that file, on one line",
+          "[files][errors]") {
+    // stereo_calib's two files, written by hand: the intrinsics (M1 D1 M2 D2, 21 lines) and
+    // the extrinsics (R T), read as `libcam rectify intrinsics.yml extrinsics.yml` reads them.
+    const std::string matrix_3x3 = "   rows: 3\n   cols: 3\n   dt: d\n   data: [ 530., 0., 340., 0., 530., 230., 0., 0., 1. ]\n";
+    const std::string distortion = "   rows: 1\n   cols: 5\n   dt: d\n   data: [ -0.28, 0.1, 0.001, -0.0003, 0. ]\n";
+    const std::string intrinsics = "%YAML:1.0\nM1: !!opencv-matrix\n" + matrix_3x3 + "D1: !!opencv-matrix\n" + distortion +
+                                   "M2: !!opencv-matrix\n" + matrix_3x3 + "D2: !!opencv-matrix\n" + distortion;
+    const std::string rotation = "R: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n   data: [ 1., 0., 0., 0., 1., 0., 0., 0., 1. ]\n";
+    const auto extrinsics_with_t = [&](const std::string& t_data) {
+        return "%YAML:1.0\n" + rotation + "T: !!opencv-matrix\n   rows: 3\n   cols: 1\n   dt: d\n   data: [ " + t_data + " ]\n";
+    };
+    ReadOptions sized;
+    sized.size = ImageSize{640, 480};
+    const auto error_reading = [&](const std::string& intrinsics_text, const std::string& extrinsics_text) {
+        return error_of([&] {
+            parse_opencv_stereo_files(intrinsics_text, "intrinsics.yml", extrinsics_text, "extrinsics.yml", sized);
+        });
+    };
+
+    const CameraSet pair = parse_opencv_stereo_files(intrinsics, "intrinsics.yml", extrinsics_with_t("-3.3, 0.04, -0.01"),
+                                                     "extrinsics.yml", sized);
+    REQUIRE(pair.cameras.size() == 2);
+    CHECK(pair.cameras[1].file.camera.pose.t.x() == -3.3);
+
+    // A word in T's data: line 11 of the extrinsics file (its header, R's 5 lines, T's 5).
+    CHECK_THAT(error_reading(intrinsics, extrinsics_with_t("-3.3, x, -0.01")),
+               StartsWith("FileError: extrinsics.yml: line 11: \"T.data\"[1]"));
+    // A 3x3 whose data holds 8 numbers, in M2 of the intrinsics: its data on line 16 of that file.
+    std::string short_m2 = intrinsics;
+    const std::size_t m2 = short_m2.find("M2:");
+    short_m2.replace(short_m2.find(" 1. ]", m2), 5, " ]");
+    CHECK_THAT(error_reading(short_m2, extrinsics_with_t("-3.3, 0.04, -0.01")), StartsWith("FileError: intrinsics.yml: line 16: "));
+
+    // A file that ends in a key of several lines with no value (found by fuzzing: the key's
+    // lines reached the message). The message names the line the key starts on (6: the
+    // header, M2, rows and two blank lines before it) and stays one line: YAML folds the key
+    // to "A", a line end, "2, 1.0e", and the line end is shown escaped.
+    const std::string cut = "%YAML:1.0\nM2: !!opencv-matrix\n   rows:\n\n\nA\n\n 2, 1.0e\n";
+    const std::string message = error_reading(cut, "");
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK_THAT(message, StartsWith("FileError: intrinsics.yml: line 6: the file ends with the key \"A\\n2, 1.0e\" and no value"));
+    // The same key twice.
+    const std::string twice = "%YAML:1.0\n? \"a\\nb\"\n: 1\n? \"a\\nb\"\n: 2\n";
+    const std::string repeated = error_reading(twice, "");
+    CHECK(repeated.find('\n') == std::string::npos);
+    CHECK_THAT(repeated, StartsWith("FileError: intrinsics.yml: line 4: the key \"a\\nb\" appears twice (first on line 2)"));
+}
+
 TEST_CASE("A file written by libcam's opencv-yaml/xml reads back through cv::FileStorage", "[files][opencv]") {
     TempDir dir;
     for (int i = 0; i < 8; ++i) {

@@ -211,7 +211,7 @@ private:
             // sees depends on the reader, so the file is refused.
             const auto [first, is_new] = parent.keys_seen.emplace(node.text, node.line);
             if (!is_new) {
-                budget_.refuse(node.line, "the key \"" + node.text + "\" appears twice (first on line " +
+                budget_.refuse(node.line, "the key " + shown_value(node.text, '"') + " appears twice (first on line " +
                                               std::to_string(first->second) + ")");
             }
             parent.key = std::move(node.text);
@@ -345,7 +345,7 @@ DocumentNode from_xml(const pugi::xml_node& element, int depth, TreeBudget& budg
                 const int line = lines.line_of(child.offset_debug());
                 const auto [first, is_new] = keys_seen.emplace(key, line);
                 if (!is_new) {
-                    budget.refuse(line, "the element <" + key + "> appears twice (first on line " +
+                    budget.refuse(line, "the element <" + printable_text(key, kShownValueLength) + "> appears twice (first on line " +
                                             std::to_string(first->second) + ")");
                 }
                 out.keys.push_back(key);
@@ -426,8 +426,10 @@ DocumentNode parse_yaml_document(std::string_view text, const std::string& sourc
     // its last key ("distortion_coeffici") reads as that key with no value. Refused, so
     // that a cut file never reads as a camera without its last field.
     if (tree.kind == DocumentNode::Kind::Map && !tree.items.empty() && tree.items.back().kind == DocumentNode::Kind::Null) {
-        throw FileError(source + ": the file ends with the key \"" + tree.keys.back() +
-                        "\" and no value (is it cut short?)");
+        const int line = tree.items.back().line;
+        throw FileError(source + (line > 0 ? ": line " + std::to_string(line) : "") + ": the file ends with the key " +
+                        shown_value(tree.keys.back(), '"') +
+                        " and no value (is it cut short?)");
     }
     return tree;
 }
@@ -443,7 +445,7 @@ DocumentNode parse_opencv_xml_document(std::string_view text, const std::string&
     const pugi::xml_node root = document.document_element();
     if (std::string_view(root.name()) != "opencv_storage") {
         throw FileError(source + ": expected the root element <opencv_storage> of OpenCV's XML, got <" +
-                        std::string(root.name()) + ">");
+                        printable_text(root.name(), kShownValueLength) + ">");
     }
     TreeBudget budget(source);
     DocumentNode tree = from_xml(root, 0, budget, lines);
