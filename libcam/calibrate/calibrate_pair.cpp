@@ -113,8 +113,30 @@ PairCalibration calibrate_pair(const std::vector<BoardDetection>& first, const s
         for (const double e : reprojection_errors(in_first, first_views[v])) sum += e * e;
         for (const double e : reprojection_errors(in_second, second_views[v])) sum += e * e;
         count += first_views[v].size() + second_views[v].size();
+        const std::string& first_image = first[out.pairs[v]].image;
+        const std::string& second_image = second[out.pairs[v]].image;
+        out.first_views.push_back({first_image, in_first.pose, std::move(first_views[v])});
+        out.second_views.push_back({second_image, in_second.pose, std::move(second_views[v])});
     }
     out.rms_px = std::sqrt(sum / static_cast<double>(count));
+    return out;
+}
+
+SolvedCalibration solved_pair(const PairCalibration& pair, int side) {
+    if (side != 0 && side != 1) throw InvalidArgument("solved_pair: side " + std::to_string(side) + " is not 0 or 1");
+    const auto camera_alone = [&](int which) {
+        SolvedCalibration out;
+        out.camera = which == 0 ? pair.first_camera : pair.second_camera;
+        out.views = which == 0 ? pair.first_views : pair.second_views;
+        out.held = (which == 0 ? pair.first : pair.second).chosen().candidate.held;
+        out.frame_of_view.resize(out.views.size());
+        for (std::size_t v = 0; v < out.views.size(); ++v) out.frame_of_view[v] = static_cast<int>(v);
+        out.pose_solved = which == 1;  // the first camera is the reference: its pose is the identity
+        return out;
+    };
+    SolvedCalibration out = camera_alone(side);
+    out.frames = pair.board_poses;
+    out.others.push_back(camera_alone(1 - side));
     return out;
 }
 

@@ -26,6 +26,9 @@ struct PairCalibration {
     Camera first_camera;   // jointly refined, pose identity
     Camera second_camera;  // jointly refined, pose = the pair's: X_second = R X_first + T
     double rms_px = 0.0;   // over both cameras' corners in the pairs
+    // The corners each camera saw in the pairs (board points, pixels), as the joint fit
+    // took them; views in the order of `pairs`, each with its board pose in that camera.
+    std::vector<FitView> first_views, second_views;
 };
 
 // `first[i]` and `second[i]` are the same board view seen by each camera. Throws Error, in
@@ -33,5 +36,11 @@ struct PairCalibration {
 // both.
 PairCalibration calibrate_pair(const std::vector<BoardDetection>& first, const std::vector<BoardDetection>& second,
                                const BoardSpec& board, const CalibrationOptions& options);
+
+// The joint fit as projection uncertainty takes it (uncertainty/projection_uncertainty.hpp):
+// camera `side` (0 the first, 1 the second) in the solve of both, as mrcal takes a camera of
+// a solve of several cameras. Both cameras' intrinsics, the second camera's pose and the
+// board poses the two share are free; every corner of both counts.
+SolvedCalibration solved_pair(const PairCalibration& pair, int side);
 
 }  // namespace libcam

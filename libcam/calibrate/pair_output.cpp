@@ -1,5 +1,8 @@
 #include "libcam/calibrate/pair_output.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include <nlohmann/json.hpp>
 #include <opencv2/core/persistence.hpp>
 
@@ -30,14 +33,26 @@ cv::Mat distortion(const Camera& camera, const char* name) {
     return cv::Mat(coefficients, true).reshape(1, 1);
 }
 
-Json camera_json(const char* name, const Camera& camera) {
+// JSON has no infinity or NaN: a value without a finite number is null.
+Json finite_or_null(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
+
+Json camera_json(const char* name, const Camera& camera, const PairUncertainty& uncertainty) {
     const Intrinsics& k = camera.intrinsics;
-    return {{"name", name},
-            {"model", std::string(lens_info(camera.lens.type).name)},
-            {"image_size", {camera.size.width, camera.size.height}},
-            {"K", {{k.fx, k.skew, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}}},
-            {"dist", camera.lens.coefficients}};
+    Json out = {{"name", name},
+                {"model", std::string(lens_info(camera.lens.type).name)},
+                {"image_size", {camera.size.width, camera.size.height}},
+                {"K", {{k.fx, k.skew, k.cx}, {0.0, k.fy, k.cy}, {0.0, 0.0, 1.0}}},
+                {"dist", camera.lens.coefficients},
+                {"uncertainty", Json::array()}};
+    for (std::size_t i = 0; i < uncertainty.pixels.size(); ++i) {
+        const Vec2& pixel = uncertainty.pixels[i];
+        out["uncertainty"].push_back({{"pixel", {pixel.x(), pixel.y()}}, {"sigma_px", finite_or_null(uncertainty.sigma_px[i])}});
+    }
+    if (!uncertainty.failure.empty()) out["uncertainty_failure"] = uncertainty.failure;
+    return out;
 }
+
+Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
 
 Json alone_json(const Calibration& c) {
     const std::vector<Vec2> centre = {Vec2(c.size.centre_x(), c.size.centre_y())};
@@ -71,16 +86,42 @@ OpenCvStereoFiles format_opencv_stereo(const PairCalibration& pair) {
     return out;
 }
 
-std::string pair_calibration_json(const PairCalibration& pair) {
+PairUncertainty pair_uncertainty(const PairCalibration& pair, int side, const std::vector<Vec2>& pixels) {
+    const Camera& camera = side == 0 ? pair.first_camera : pair.second_camera;
+    PairUncertainty out;
+    out.pixels = pixels.empty() ? std::vector<Vec2>{Vec2(camera.size.centre_x(), camera.size.centre_y())} : pixels;
+    try {
+        const ProjectionUncertainty uncertainty(solved_pair(pair, side));
+        out.sigma_px = uncertainty.sigma_px(out.pixels);
+        out.noise_px = uncertainty.observed_pixel_uncertainty_px();
+    } catch (const InvalidArgument& error) {
+        out.failure = error.what();
+        out.sigma_px.assign(out.pixels.size(), std::numeric_limits<double>::quiet_NaN());
+        out.noise_px = std::numeric_limits<double>::quiet_NaN();
+    }
+    return out;
+}
+
+std::string pair_calibration_json(const PairCalibration& pair, const std::vector<Vec2>& at) {
+    const PairUncertainty left = pair_uncertainty(pair, 0, at), right = pair_uncertainty(pair, 1, at);
     Json out;
     out["pairs"] = pair.pairs;  // the views both cameras used: their places in the image lists, from 0
     out["rms_px"] = pair.rms_px;
+    out["noise_px"] = finite_or_null(std::isfinite(left.noise_px) ? left.noise_px : right.noise_px);
     const Pose& pose = pair.second_camera.pose;
     out["R"] = {{pose.R(0, 0), pose.R(0, 1), pose.R(0, 2)},
                 {pose.R(1, 0), pose.R(1, 1), pose.R(1, 2)},
                 {pose.R(2, 0), pose.R(2, 1), pose.R(2, 2)}};
     out["T"] = {pose.t.x(), pose.t.y(), pose.t.z()};
-    out["cameras"] = {camera_json("left", pair.first_camera), camera_json("right", pair.second_camera)};
+    out["cameras"] = {camera_json("left", pair.first_camera, left), camera_json("right", pair.second_camera, right)};
+    out["views"] = Json::array();
+    for (std::size_t v = 0; v < pair.board_poses.size(); ++v) {
+        const Pose& board = pair.board_poses[v];
+        out["views"].push_back({{"left", pair.first_views[v].name},
+                                {"right", pair.second_views[v].name},
+                                {"rvec", vec_json(board.rvec())},
+                                {"tvec", vec_json(board.t)}});
+    }
     out["left"] = alone_json(pair.first);
     out["right"] = alone_json(pair.second);
     return out.dump(2) + "\n";

@@ -208,10 +208,12 @@ def calibrate_pair(
     opencv_flags: Optional[str] = None,
     corners: str = "libcam",
     keep_outliers: bool = False,
+    at: Sequence[Tuple[float, float]] = (),
     threads: int = 0,
 ) -> Dict[str, Any]:
     """A stereo pair from both cameras' views of the same boards: calibrate --left --right --json's
-    dict, numpy arrays for R, T and each camera's K and dist, and left_camera, right_camera (Camera)."""
+    dict, numpy arrays for R, T, each camera's K and dist and each view's board pose, each camera's
+    projection uncertainty in the pair's solve at `at`, and left_camera, right_camera (Camera)."""
     ...
 
 def projection_uncertainty(

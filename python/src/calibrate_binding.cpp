@@ -171,10 +171,12 @@ py::dict calibrate_views(const py::sequence& views, const std::string& board_tex
 py::dict calibrate_two(const py::sequence& left, const py::sequence& right, const std::string& board_text,
                        const std::optional<std::array<int, 2>>& image_size, const std::string& model, int folds,
                        double margin, const std::optional<std::string>& opencv_flags, const std::string& corners,
-                       bool keep_outliers, int threads) {
+                       bool keep_outliers, const std::vector<std::array<double, 2>>& at, int threads) {
     const BoardSpec board = parse_board_spec(board_text);
     const CornerMethod method = corner_method(corners);
     const CalibrationOptions options = options_of(model, folds, margin, opencv_flags, keep_outliers);
+    std::vector<Vec2> pixels;
+    for (const auto& p : at) pixels.emplace_back(p[0], p[1]);
     const std::vector<BoardDetection> first = detections_of(left, board, image_size, method, threads, "left");
     const std::vector<BoardDetection> second = detections_of(right, board, image_size, method, threads, "right");
     std::optional<PairCalibration> pair;
@@ -182,7 +184,7 @@ py::dict calibrate_two(const py::sequence& left, const py::sequence& right, cons
     {
         const py::gil_scoped_release release;
         pair = calibrate_pair(first, second, board, options);
-        json = pair_calibration_json(*pair);
+        json = pair_calibration_json(*pair, pixels);
     }
     py::dict out = parsed(json);
     out["R"] = as_array(out["R"]);
@@ -191,6 +193,11 @@ py::dict calibrate_two(const py::sequence& left, const py::sequence& right, cons
         py::dict entry = py::reinterpret_borrow<py::dict>(camera);
         entry["K"] = as_array(entry["K"]);
         entry["dist"] = as_array(entry["dist"]);
+    }
+    for (const py::handle view : out["views"].cast<py::list>()) {
+        py::dict entry = py::reinterpret_borrow<py::dict>(view);
+        entry["rvec"] = as_array(entry["rvec"]);
+        entry["tvec"] = as_array(entry["tvec"]);
     }
     out["left"] = with_arrays(out["left"].cast<py::dict>());
     out["right"] = with_arrays(out["right"].cast<py::dict>());
@@ -219,17 +226,20 @@ arrays for chosen['K'] (3, 3), chosen['dist'] and each view's 'rvec' and 'tvec',
     m.def("calibrate_pair", &calibrate_two, py::arg("left"), py::arg("right"), py::arg("board"),
           py::arg("image_size") = py::none(), py::arg("model") = "auto", py::arg("folds") = 5, py::arg("margin") = 0.05,
           py::arg("opencv_flags") = py::none(), py::arg("corners") = "libcam", py::arg("keep_outliers") = false,
-          py::arg("threads") = 0, R"doc(
+          py::arg("at") = std::vector<std::array<double, 2>>{}, py::arg("threads") = 0, R"doc(
 A stereo pair calibrated from the two cameras' views of the same boards, as the libcam
 program's calibrate --left --right makes it: left[i] and right[i] are one board pose seen by
 each camera, given as calibrate() takes views (image files, or corner arrays with
 image_size). Each camera is calibrated alone (its model chosen), then both are refined with
-the pair's pose on the views both used. Returns calibrate --left --right --json's dict:
-'pairs' (the views both used), 'rms_px', 'R' (3, 3) and 'T' (3,) (X_right = R X_left + T,
-cv2.stereoCalibrate's convention, in the board's unit), 'cameras' (each refined camera's
-'K' and 'dist' as numpy arrays), 'left' and 'right' (each camera alone, as calibrate()
-returns it), and 'left_camera', 'right_camera': the refined cameras as libcam.Camera,
-posed, for libcam.rectify.)doc");
+the pair's pose on the views both used. at: pixels for each camera's projection
+uncertainty in the pair's solve (default: each image's centre). Returns calibrate --left
+--right --json's dict: 'pairs' (the views both used), 'rms_px', 'noise_px', 'R' (3, 3) and
+'T' (3,) (X_right = R X_left + T, cv2.stereoCalibrate's convention, in the board's unit),
+'cameras' (each refined camera's 'K' and 'dist' as numpy arrays, and its 'uncertainty':
+[{'pixel', 'sigma_px'}]), 'views' (each pair's images and its board pose in the left
+camera, 'rvec' and 'tvec' as numpy arrays), 'left' and 'right' (each camera alone, as
+calibrate() returns it), and 'left_camera', 'right_camera': the refined cameras as
+libcam.Camera, posed, for libcam.rectify.)doc");
 }
 
 }  // namespace libcam::python

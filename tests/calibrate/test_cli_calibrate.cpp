@@ -189,6 +189,18 @@ TEST_CASE("libcam calibrate refuses a pair without both sides or with lists of d
     CHECK(lengths.err == "libcam: error: calibrate: 2 images of the first camera and 1 of the second: a pair needs one "
                          "of each per view\n");
     CHECK(!std::filesystem::exists(dir / "out"));
+    // What is for one camera, and a pixel that is none, before any image is read.
+    const CliResult heatmap = run_libcam({"calibrate", "--left", image, "--right", image, "--board",
+                                          "chessboard:9x6:0.03", "--heatmap", (dir / "h.png").string()});
+    CHECK(heatmap.exit_code == 2);
+    CHECK(heatmap.err ==
+          "libcam: usage error: --heatmap, --observations-out and --to are for one camera, not a pair (see --help)\n");
+    const CliResult at = run_libcam({"calibrate", "--left", image, "--right", image, "--board", "chessboard:9x6:0.03",
+                                     "--at", "twenty,30"});
+    CHECK(at.exit_code == 2);
+    CHECK(std::count(at.err.begin(), at.err.end(), '\n') == 1);
+    CHECK(at.err.find("--at") != std::string::npos);
+    CHECK(at.err.find("twenty") != std::string::npos);
 }
 
 TEST_CASE("libcam calibrate --pairs refuses a list with an odd count in one line", "[calibrate][cli][pair]") {

@@ -9,6 +9,7 @@ import subprocess
 
 import cv2
 import numpy as np
+import mrcal
 import pytest
 
 import libcam
@@ -193,13 +194,14 @@ def test_calibrate_pair_images_as_the_program_does():
         pytest.skip(f"skipped: OpenCV's sample images are absent ({folder} not found)")
     sides = {side: [str(folder / f"{side}{n:02d}.jpg") for n in (1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14)]
              for side in ("left", "right")}
-    args = ["--board", "chessboard:9x6:0.025", "--model", "OPENCV5", "--corners", "opencv-sample"]
+    args = ["--board", "chessboard:9x6:0.025", "--model", "OPENCV5", "--corners", "opencv-sample", "--at", "20,30"]
     program = subprocess.run([os.environ["LIBCAM_EXE"], "calibrate", "--left", *sides["left"], "--right",
                               *sides["right"], *args, "--json", "--progress", "never"],
                              check=True, capture_output=True, text=True)
     expected = json.loads(program.stdout)
     got = libcam.calibrate_pair(sides["left"], sides["right"], "chessboard:9x6:0.025", model="OPENCV5",
-                                corners="opencv-sample")
+                                corners="opencv-sample", at=[(20, 30)])
+    assert [u["pixel"] for u in expected["cameras"][1]["uncertainty"]] == [[20, 30]]
     for key in ("left_camera", "right_camera"):
         assert isinstance(got.pop(key), libcam.Camera)
     for side in ("left", "right"):
@@ -207,3 +209,46 @@ def test_calibrate_pair_images_as_the_program_does():
             got[side].pop(key)
     as_lists = json.loads(json.dumps(got, default=lambda a: a.tolist()))
     assert as_lists == expected
+
+
+def test_calibrate_pair_uncertainty_is_mrcals_of_the_same_solve():
+    """Each camera's projection uncertainty in the pair's solve, against mrcal's of the same
+    solve: the pair's cameras, pose and board poses as libcam returns them, with the same
+    corners, written as mrcal's optimization_inputs (no regularization, as libcam)."""
+    left, right = synthetic_pair(views=8, noise_px=0.3)
+    # Inside the corners' reach: 8 noisy views fit a k3 that folds the lens back near the
+    # image's corners, where libcam gives no ray (and so no sigma).
+    pixels = np.array([[319.5, 239.5], [160.0, 120.0], [500.0, 380.0], [100.0, 60.0]])
+    got = libcam.calibrate_pair(left, right, "chessboard:9x6:0.03", image_size=SIZE, model="OPENCV5",
+                                keep_outliers=True, at=pixels)
+    assert got["pairs"] == list(range(8))
+    assert len(got["views"]) == 8
+    corners = np.stack([np.stack([left[i], right[i]]) for i in got["pairs"]])  # (frame, camera, corner, 2)
+    observations = np.concatenate([corners, np.ones(corners.shape[:-1] + (1,))], axis=-1)
+    observations = observations.reshape(len(got["pairs"]) * 2, 6, 9, 3)  # the board's rows, columns
+    intrinsics = np.array([[c["K"][0, 0], c["K"][1, 1], c["K"][0, 2], c["K"][1, 2], *c["dist"]]
+                           for c in got["cameras"]])
+    inputs = dict(
+        intrinsics=intrinsics,
+        extrinsics_rt_fromref=np.concatenate([cv2.Rodrigues(got["R"])[0].ravel(), got["T"]])[None, :],
+        frames_rt_toref=np.array([np.concatenate([v["rvec"], v["tvec"]]) for v in got["views"]]),
+        points=None, observations_board=observations,
+        indices_frame_camintrinsics_camextrinsics=np.array(
+            [[f, c, c - 1] for f in range(len(got["pairs"])) for c in range(2)], dtype=np.int32),
+        observations_point=None, indices_point_camintrinsics_camextrinsics=None, lensmodel="LENSMODEL_OPENCV5",
+        imagersizes=np.array([SIZE, SIZE], dtype=np.int32), calobject_warp=None,
+        do_optimize_intrinsics_core=True, do_optimize_intrinsics_distortions=True, do_optimize_extrinsics=True,
+        do_optimize_frames=True, do_optimize_calobject_warp=False, calibration_object_spacing=0.03,
+        do_apply_outlier_rejection=False, do_apply_regularization=False, verbose=False)
+    # mrcal's residuals at libcam's solve are libcam's: its RMS over both cameras.
+    x = mrcal.optimizer_callback(**inputs, no_jacobian=True, no_factorization=True)[1]
+    residuals = mrcal.residuals_chessboard(inputs, residuals=x).ravel()
+    assert np.sqrt(np.mean(residuals ** 2) * 2) == pytest.approx(got["rms_px"], rel=1e-9)
+    assert got["noise_px"] == pytest.approx(np.std(residuals), rel=1e-9)
+    for camera in range(2):
+        model = mrcal.cameramodel(optimization_inputs=inputs, icam_intrinsics=camera)
+        v = mrcal.unproject(pixels, *model.intrinsics(), normalize=True)
+        expected = mrcal.projection_uncertainty(v, model, atinfinity=True, what="worstdirection-stdev")
+        sigma = [entry["sigma_px"] for entry in got["cameras"][camera]["uncertainty"]]
+        assert [entry["pixel"] for entry in got["cameras"][camera]["uncertainty"]] == pixels.tolist()
+        np.testing.assert_allclose(sigma, expected, rtol=1e-6)

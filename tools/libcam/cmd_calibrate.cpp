@@ -110,7 +110,7 @@ void add_flags(CLI::App& command, CalibrateFlags& flags) {
                        "libcam reproject and libcam fit --observations");
     command.add_option("--at", flags.at,
                        "Pixels x,y (OpenCV's) where the chosen model's projection uncertainty is reported (points at "
-                       "infinity); repeat for more");
+                       "infinity; for a pair, each camera's in the pair's solve); repeat for more");
     command.add_option("--heatmap", flags.heatmap,
                        "Write a PNG of the chosen model's projection uncertainty over the image, with the corners");
     command.add_option("--threads", flags.threads, "Images searched at once (default: one per processor)")
@@ -345,20 +345,34 @@ void write_outputs(const CalibrateFlags& flags, const Calibration& c) {
 }
 
 // The pair's text report: each camera's model and K after the joint fit, R and T.
-std::string format_pair_text(const PairCalibration& pair) {
+// "  sigma 0.031 px at the centre (319.5, 239.5), 0.12 px at (10, 10): ..." of one camera.
+std::string pair_uncertainty_text(const PairUncertainty& u, const ImageSize& size) {
+    if (!u.failure.empty()) return "  no projection uncertainty: " + u.failure + "\n";
+    std::string out = "  projection uncertainty in the pair's solve (points at infinity):";
+    for (std::size_t i = 0; i < u.pixels.size(); ++i) {
+        const Vec2& p = u.pixels[i];
+        const bool centre = p.x() == size.centre_x() && p.y() == size.centre_y();
+        out += std::string(i == 0 ? " " : ", ") + "sigma " + format_short(u.sigma_px[i], 3) + " px at " +
+               (centre ? "the centre " : "") + "(" + format_short(p.x(), 8) + ", " + format_short(p.y(), 8) + ")";
+    }
+    return out + "\n";
+}
+
+std::string format_pair_text(const PairCalibration& pair, const std::vector<Vec2>& at) {
     std::ostringstream out;
     out << pair.pairs.size() << " views used by both cameras (left: " << pair.first.views.size() << " of "
         << pair.first.images << ", right: " << pair.second.views.size() << " of " << pair.second.images << ")\n";
     for (const RejectedImage& r : pair.first.rejected) out << "  rejected " << r.image << ": " << r.why << "\n";
     for (const RejectedImage& r : pair.second.rejected) out << "  rejected " << r.image << ": " << r.why << "\n";
-    const auto camera_line = [&](const char* name, const Calibration& alone, const Camera& camera) {
+    const auto camera_line = [&](const char* name, const Calibration& alone, const Camera& camera, int side) {
         const Intrinsics& k = camera.intrinsics;
         out << name << ": " << alone.fit.reason << "\n  after the joint fit: fx " << format_short(k.fx, 8) << ", fy "
             << format_short(k.fy, 8) << ", cx " << format_short(k.cx, 8) << ", cy " << format_short(k.cy, 8) << "; "
             << lens_text(camera) << "\n";
+        out << pair_uncertainty_text(pair_uncertainty(pair, side, at), camera.size);
     };
-    camera_line("left", pair.first, pair.first_camera);
-    camera_line("right", pair.second, pair.second_camera);
+    camera_line("left", pair.first, pair.first_camera, 0);
+    camera_line("right", pair.second, pair.second_camera, 1);
     const Pose& pose = pair.second_camera.pose;
     out << "right from left (X_right = R X_left + T): rvec " << format_short(pose.rvec().x(), 6) << " "
         << format_short(pose.rvec().y(), 6) << " " << format_short(pose.rvec().z(), 6) << " rad, T "
@@ -413,9 +427,10 @@ int run_pair(const CalibrateFlags& flags, const BoardSpec& board, const Calibrat
     if (flags.pairs.empty() && (flags.left.empty() || flags.right.empty())) {
         throw UsageError("a pair needs both --left and --right images");
     }
-    if (!flags.at.empty() || !flags.heatmap.empty() || !flags.observations_out.empty() || !flags.to.empty()) {
-        throw UsageError("--at, --heatmap, --observations-out and --to are for one camera, not a pair");
+    if (!flags.heatmap.empty() || !flags.observations_out.empty() || !flags.to.empty()) {
+        throw UsageError("--heatmap, --observations-out and --to are for one camera, not a pair");
     }
+    for (const std::string& pixel : flags.at) parse_vec2("--at", pixel);  // on the images: checked once their sizes are known
     const CornerMethod method = flags.corners == "opencv-sample" ? CornerMethod::OpenCvSample : CornerMethod::Libcam;
     std::vector<std::filesystem::path> lists[2];
     if (!flags.pairs.empty()) {
@@ -434,8 +449,13 @@ int run_pair(const CalibrateFlags& flags, const BoardSpec& board, const Calibrat
             images, board, flags.threads, [&](std::size_t done) { printer.found(done, images.size()); }, method);
     }
     const PairCalibration pair = calibrate_pair(found[0], found[1], board, options);
+    std::vector<Vec2> at;
+    if (!flags.at.empty()) {
+        at = at_pixels(flags.at, pair.first_camera.size);
+        at_pixels(flags.at, pair.second_camera.size);  // on both images
+    }
     if (!flags.output.empty()) write_pair_outputs(flags.output, pair);
-    emit(flags.json ? pair_calibration_json(pair) : format_pair_text(pair), "");
+    emit(flags.json ? pair_calibration_json(pair, at) : format_pair_text(pair, at), "");
     return 0;
 }
 
