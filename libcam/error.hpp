@@ -12,10 +12,16 @@
 
 namespace libcam {
 
-// Base of every libcam exception.
+// Base of every libcam exception. Its message is kept as one printable line however it was
+// built (printable_text, at most four times kShownMessageLength characters, a bound well
+// past any message libcam writes: the readers cut theirs at kShownMessageLength before
+// saying what the file was read as): a name or a key from a file that reached it without
+// shown_value cannot break the line, hide text from the terminal, or make it grow without
+// bound.
 class Error : public std::runtime_error {
 public:
-    using std::runtime_error::runtime_error;
+    explicit Error(const std::string& message);
+    explicit Error(const char* message);
 };
 
 // A value that is out of range, not finite, or inconsistent with another value.

@@ -72,6 +72,8 @@ PairCalibration calibrate_pair(const std::vector<BoardDetection>& first, const s
         const std::optional<std::size_t> b = view_of(out.second, second[i].image);
         if (!a || !b) continue;
         out.pairs.push_back(i);
+        out.first_view_of_pair.push_back(*a);
+        out.second_view_of_pair.push_back(*b);
         first_views.push_back(samples_of(out.first, *a));
         second_views.push_back(samples_of(out.second, *b));
         first_poses.push_back(out.first.chosen().poses[*a]);

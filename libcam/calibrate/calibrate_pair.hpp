@@ -29,6 +29,9 @@ struct PairCalibration {
     // The corners each camera saw in the pairs (board points, pixels), as the joint fit
     // took them; views in the order of `pairs`, each with its board pose in that camera.
     std::vector<FitView> first_views, second_views;
+    // Where each of `pairs` is in each camera's own calibration (indices into first.views
+    // and second.views): its corners' ids and outliers.
+    std::vector<std::size_t> first_view_of_pair, second_view_of_pair;
 };
 
 // `first[i]` and `second[i]` are the same board view seen by each camera. Throws Error, in

@@ -144,7 +144,9 @@ std::string mrcal_lensmodel_name(const Lens& lens) {
     return mrcal_model_name(lens.type, lens.coefficients);
 }
 
-std::string format_cameramodel(const Camera& camera) {
+std::string format_cameramodel(const Camera& camera) { return format_cameramodel(camera, "", -1); }
+
+std::string format_cameramodel(const Camera& camera, const std::string& optimization_inputs, int icam_intrinsics) {
     camera.validate();
     mrcal_lensmodel(camera.lens);  // throws for a lens mrcal lacks
     const std::vector<double> intrinsics = mrcal_intrinsics(camera);
@@ -158,7 +160,11 @@ std::string format_cameramodel(const Camera& camera) {
         << "    'intrinsics': " << number_list(intrinsics.data(), static_cast<int>(intrinsics.size())) << ",\n"
         << "    'imagersize': [ " << camera.size.width << ", " << camera.size.height << " ],\n"
         << "    # extrinsics are rt_cam_ref: Rodrigues rotation, then translation (world to camera)\n"
-        << "    'extrinsics': " << number_list(extrinsics, 6) << "\n}\n";
+        << "    'extrinsics': " << number_list(extrinsics, 6);
+    if (!optimization_inputs.empty()) {
+        out << ",\n    'optimization_inputs': " << optimization_inputs << ",\n    'icam_intrinsics': " << icam_intrinsics;
+    }
+    out << "\n}\n";
     const std::string text = out.str();
 
     // The text must read back through libmrcal exactly.

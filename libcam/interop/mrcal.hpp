@@ -22,6 +22,10 @@ std::string mrcal_lensmodel_name(const Lens& lens);
 // libmrcal's parser and checks it reads back bit for bit. Throws NotRepresentable for
 // what .cameramodel cannot hold (skew, a lens mrcal lacks).
 std::string format_cameramodel(const Camera& camera);
+// The same with the solve the camera came from, as mrcal-calibrate-cameras writes it:
+// 'optimization_inputs' (io/observations.hpp's mrcal_optimization_inputs, the bytes
+// literal) and 'icam_intrinsics', the camera of the solve this model is.
+std::string format_cameramodel(const Camera& camera, const std::string& optimization_inputs, int icam_intrinsics);
 
 // Parses .cameramodel text with libmrcal's parser; the parser's own diagnostic (it
 // prints to stderr) is captured into the FileError message.

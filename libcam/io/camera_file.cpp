@@ -362,7 +362,7 @@ std::string listed(const CameraSet& set, const std::vector<std::size_t>& positio
     std::string names;
     for (const std::size_t i : positions) {
         const std::string& name = set.cameras[i].name;
-        names += (names.empty() ? "" : ", ") + std::to_string(i) + (name.empty() ? "" : " (" + name + ")");
+        names += (names.empty() ? "" : ", ") + std::to_string(i) + (name.empty() ? "" : " (" + printable_text(name, kShownValueLength) + ")");
     }
     return names;
 }

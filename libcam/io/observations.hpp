@@ -154,6 +154,19 @@ ObservationSet read_observations(const std::filesystem::path& path, const Observ
 // from 0. Throws InvalidArgument naming the file and listing its cameras.
 int observed_camera_index(const ObservationSet& set, std::string_view selector);
 
+// A board calibration's observations as mrcal keeps its solve in a .cameramodel: the value
+// of its 'optimization_inputs' (a Python bytes literal, b'...', of base85 text of an .npz
+// archive, as mrcal's cameramodel.py writes it), which mrcal's tools (mrcal.cameramodel(),
+// mrcal-show-projection-uncertainty, mrcal-show-residuals) and read_observations read
+// back. The solve as libcam's: intrinsics, camera poses and board poses free, a flat
+// board unless set.board holds a bow, no regularization, the outliers weighed -1 (every
+// corner a view did not see too). One camera's views each have their board pose; several
+// cameras share set.frames (each view's `frame`), the first camera the reference.
+// `observed_pixel_uncertainty` is stored as mrcal stores its own (the noise, in pixels).
+// Throws NotRepresentable, saying why, for what mrcal cannot hold: no board, cameras of
+// different lens models, a lens mrcal lacks, skew.
+std::string mrcal_optimization_inputs(const ObservationSet& set, double observed_pixel_uncertainty);
+
 // The name of the tool ("OpenCV's calibration sample", "COLMAP") for messages and reports.
 std::string_view to_string(ObservationTool tool);
 

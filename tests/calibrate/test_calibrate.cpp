@@ -9,13 +9,20 @@
 #include <sstream>
 #include <limits>
 #include <numeric>
+#include <random>
 
 #include <opencv2/aruco/charuco.hpp>
 #include <opencv2/calib3d.hpp>
 
 #include "libcam/calibrate/calibrate.hpp"
+#include "libcam/calibrate/mrcal_solve.hpp"
 #include "libcam/calibrate/opencv_flags.hpp"
 #include "libcam/error.hpp"
+#include "libcam/interop/mrcal.hpp"
+#include "libcam/io/atomic_write.hpp"
+#include "libcam/io/observations.hpp"
+#include "libcam/uncertainty/uncertainty_map.hpp"
+#include "temp_dir.hpp"
 #include "synthetic_sets.hpp"
 #include "truth_distance.hpp"
 
@@ -511,4 +518,64 @@ TEST_CASE("Calibrate with OpenCV's flags: p1 p2 and k3 held at 0 as calibrateCam
     CHECK(std::abs(ours.intrinsics.cx - K.at<double>(0, 2)) < 0.01);
     CHECK(std::abs(ours.intrinsics.cy - K.at<double>(1, 2)) < 0.01);
     for (int i = 0; i < 2; ++i) CHECK(std::abs(ours.lens.coefficients[static_cast<std::size_t>(i)] - dist.at<double>(i)) < 1e-4);
+}
+
+TEST_CASE("Calibrate: a ChArUco solve kept as mrcal's reads back whole, its board one square in, views partial",
+          "[calibrate][mrcal]") {
+    // Corners projected through the OPENCV5 truth (no images: the solve's form is under
+    // test), 0.1 px of noise, some corners of each view unseen as on a partial ChArUco view.
+    const BoardSpec board = parse_board_spec("charuco:10x8:0.03:0.022:DICT_4X4_50");
+    Camera truth = opencv5_truth();
+    std::mt19937 random(11);
+    std::normal_distribution<double> noise(0.0, 0.1);
+    std::vector<BoardDetection> detections;
+    const std::vector<PoseSpec> poses = opencv5_poses();
+    for (std::size_t v = 0; v < poses.size(); ++v) {
+        truth.pose = board_pose(board, poses[v].centre, poses[v].tilt);
+        const std::vector<Vec2> corners = true_corners(truth, board);
+        BoardDetection detection{"view" + std::to_string(v) + ".png", truth.size, {}, {}, ""};
+        for (std::size_t k = 0; k < corners.size(); ++k) {
+            if ((k + v) % 9 == 0) continue;
+            detection.ids.push_back(static_cast<int>(k));
+            detection.pixels.push_back(corners[k] + Vec2(noise(random), noise(random)));
+        }
+        detections.push_back(std::move(detection));
+    }
+    CalibrationOptions options;
+    options.candidates = {candidate_named("OPENCV5")};
+    options.folds = 2;
+    const Calibration c = calibrate(detections, board, options);
+
+    const TempDir dir;
+    const std::filesystem::path model = dir.path() / "charuco.cameramodel";
+    write_file_atomically(model, format_cameramodel(c.chosen().camera, mrcal_solve_inputs(c), 0));
+    const ObservationSet set = read_observations(model);
+    // mrcal's board: 9 x 7 inner corners from its first, which libcam's board puts one square in.
+    REQUIRE(set.board.has_value());
+    CHECK(set.board->width == 9);
+    CHECK(set.board->height == 7);
+    REQUIRE(set.views.size() == c.views.size());
+    std::size_t inliers = 0;
+    for (const Observation& o : set.observations) inliers += o.inlier ? 1 : 0;
+    CHECK(inliers == c.corners());
+    // Each view's corners land where the calibration put them: the board poses moved by
+    // the square, the residuals the same.
+    for (std::size_t v = 0; v < set.views.size(); ++v) {
+        Camera camera = set.cameras[0].camera;
+        camera.pose = set.views[v].pose;
+        const PreparedCamera prepared(camera);
+        const std::vector<double> errors = c.view_errors(v);
+        std::size_t k = 0;
+        for (const Observation& o : set.observations) {
+            if (o.view != static_cast<int>(v) || !o.inlier) continue;
+            const Vec2 projected = prepared.project(set.points[static_cast<std::size_t>(o.point)]).pixel;
+            CHECK((projected - o.pixel).norm() == Approx(errors[k++]).margin(1e-9));
+        }
+        CHECK(k == errors.size());
+    }
+    // And its projection uncertainty is the calibration's own.
+    const std::vector<Vec2> pixels{Vec2(319.5, 239.5), Vec2(100.0, 80.0)};
+    const std::vector<double> expected = ProjectionUncertainty(c.solved(*c.fit.chosen)).sigma_px(pixels);
+    const std::vector<double> got = ProjectionUncertainty(solved_calibration(set, 0)).sigma_px(pixels);
+    for (std::size_t i = 0; i < pixels.size(); ++i) CHECK(got[i] == Approx(expected[i]).epsilon(1e-9));
 }

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
+#include "libcam/error.hpp"
 #include "libcam/text/shown_value.hpp"
 #include "libcam/text/utf8.hpp"
 
@@ -44,6 +45,20 @@ TEST_CASE("printable_text: a whole message made printable, cut only when asked")
     CHECK(printable_text("file.json: line 3: \"K\": got 'a\x01'") == "file.json: line 3: \"K\": got 'a\\x01'");
     CHECK(printable_text(std::string(1000, 'z')) == std::string(1000, 'z'));
     CHECK(printable_text("abcdef", 3) == "abc...");
+}
+
+TEST_CASE("Every libcam error's message is one printable line, however it was built") {
+    // A name from a file put into a message without shown_value: its line end, escape
+    // character and the U+2028 line separator (E2 80 A8) are shown escaped.
+    const FileError error("a.json: camera 'x\ny\x1b[2J\xE2\x80\xA8z' not found"s);
+    CHECK(std::string(error.what()) == "a.json: camera 'x\\ny\\x1B[2J\\u2028z' not found");
+    CHECK(std::string(InvalidArgument("tab\there").what()) == "tab\\there");
+    // What is printable already stays as it was, escapes shown_value wrote among it.
+    const std::string clean = "b.yml: line 4: the key " + shown_value("k\nl", '"') + " appears twice";
+    CHECK(std::string(Error(clean).what()) == clean);
+    // At most four times kShownMessageLength characters, then "...".
+    const std::string huge(4 * kShownMessageLength + 500, 'w');
+    CHECK(std::string(NotRepresentable(huge).what()) == std::string(4 * kShownMessageLength, 'w') + "...");
 }
 
 TEST_CASE("utf8_character_at: each character's code point and length, 0 where the bytes are not UTF-8") {

@@ -736,7 +736,7 @@ Stereo.T_c1_c2: !!opencv-matrix
                                           "Camera.width: 640\nCamera.height: 480\nCamera.bf: -40.0\n",
                                           CameraFormat::OpenCvYaml, "bad.yaml");
                }),
-               Catch::Contains("bad.yaml: line 8: \"Camera.bf\": must be > 0 (the baseline times fx), got -40.0"));
+               Catch::Contains("bad.yaml: line 8: \"Camera.bf\": must be > 0 (the baseline times fx), got '-40.0'"));
     // OpenCV's stereo_calib sample: M1 D1 M2 D2 and R T (camera 2 from camera 1).
     const std::string stereo = R"(%YAML:1.0
 M1: !!opencv-matrix

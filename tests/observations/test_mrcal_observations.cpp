@@ -15,7 +15,10 @@
 #include <vector>
 
 #include "libcam/reproject/reproject.hpp"
+#include "libcam/camera/example_cameras.hpp"
 #include "libcam/error.hpp"
+#include "libcam/lens/lens_model.hpp"
+#include "libcam/text/number_format.hpp"
 #include "temp_dir.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/detail/cameramodel_text.hpp"
@@ -231,4 +234,72 @@ TEST_CASE("mrcal observations: info's reader and reproject's refuse a damaged .c
     CHECK_NOTHROW(detail::check_cameramodel_size(std::uintmax_t{256} << 20, "big.cameramodel"));
     CHECK(message_of([] { detail::check_cameramodel_size((std::uintmax_t{256} << 20) + 1, "big.cameramodel"); }) ==
           "big.cameramodel: 268435457 bytes: larger than the 256 MiB libcam reads as a .cameramodel");
+}
+
+namespace {
+
+// A .cameramodel holding the camera of `set` and `inputs` (mrcal_optimization_inputs'
+// literal), written by hand as mrcal lays one out.
+std::string model_text(const ObservationSet& set, const std::string& inputs) {
+    const Camera& camera = set.cameras.front().camera;
+    std::string intrinsics = libcam::format_number(camera.intrinsics.fx) + ", " + libcam::format_number(camera.intrinsics.fy) +
+                             ", " + libcam::format_number(camera.intrinsics.cx) + ", " +
+                             libcam::format_number(camera.intrinsics.cy);
+    for (const double c : camera.lens.coefficients) intrinsics += ", " + libcam::format_number(c);
+    return "{\n    'lensmodel': '" + mrcal_model_name(camera.lens.type, camera.lens.coefficients) + "',\n    'intrinsics': [ " +
+           intrinsics + " ],\n    'imagersize': [ " + std::to_string(camera.size.width) + ", " +
+           std::to_string(camera.size.height) + " ],\n    'extrinsics': [ 0, 0, 0, 0, 0, 0 ],\n    'optimization_inputs': " +
+           inputs + ",\n    'icam_intrinsics': 0\n}\n";
+}
+
+}  // namespace
+
+TEST_CASE("mrcal observations written by libcam: mrcal reads mrcal's real solve back with its own residuals") {
+    const fs::path folder = test::real_cameras_folder("mrcal");
+    if (!test::real_cameras_present(folder)) return;
+    // mrcal's real OPENCV8 solve (a bowed board, 3 outliers) read, and its inputs written
+    // again by libcam: mrcal's residuals of the copy are those of mrcal's own file.
+    const fs::path original = folder / "opencv8-0.cameramodel";
+    const ObservationSet set = read_observations(original);
+    const fs::path copy = scratch_folder() / "opencv8-0-written.cameramodel";
+    {
+        std::ofstream out(copy);
+        out << model_text(set, mrcal_optimization_inputs(set, 2.0));
+    }
+    const nlohmann::json expected = mrcal_summary(original), got = mrcal_summary(copy);
+    for (const char* key : {"views", "height", "width", "corners", "outliers"}) CHECK(got[key] == expected[key]);
+    CHECK(got["rms_weighted_inliers"].get<double>() == Approx(expected["rms_weighted_inliers"].get<double>()).epsilon(1e-12));
+    const std::vector<double> x = got["board_x"].get<std::vector<double>>();
+    const std::vector<double> x_expected = expected["board_x"].get<std::vector<double>>();
+    REQUIRE(x.size() == x_expected.size());
+    double largest = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) largest = std::max(largest, std::abs(x[i] - x_expected[i]));
+    CHECK(largest < 1e-9);
+    // And libcam reads its own writing back as it read mrcal's.
+    const ObservationSet again = read_observations(copy);
+    REQUIRE(again.observations.size() == set.observations.size());
+    for (std::size_t i = 0; i < set.observations.size(); ++i) {
+        CHECK(again.observations[i].pixel == set.observations[i].pixel);
+        CHECK(again.observations[i].inlier == set.observations[i].inlier);
+    }
+    CHECK(again.board->warp == set.board->warp);
+    CHECK(again.board->warp_solved == set.board->warp_solved);
+}
+
+TEST_CASE("mrcal observations written by libcam: what mrcal's inputs cannot hold is refused, saying why") {
+    ObservationSet set;
+    set.cameras.push_back({"0", libcam::example_camera("fisheye")});
+    set.views.push_back({"v", 0, Pose{}});
+    CHECK_THROWS_WITH(mrcal_optimization_inputs(set, 1.0), Catch::Contains("not of a board"));
+    set.board = ObservedBoard{2, 2, 0.1};
+    set.points = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), Vec3(0.1, 0.1, 0)};
+    CHECK_THROWS_WITH(mrcal_optimization_inputs(set, 1.0), Catch::Contains("mrcal has no FISHEYE model"));
+    // An OPENCV8 camera beside an OPENCV4 one: mrcal solves one model for every camera.
+    set.cameras.front().camera = libcam::example_camera("mild");
+    Camera second = libcam::example_camera("mild");
+    second.lens = {LensType::OpenCv4, {0.0, 0.0, 0.0, 0.0}};
+    set.cameras.push_back({"1", second});
+    set.frames = {Pose{}};
+    set.views.front().frame = 0;
+    CHECK_THROWS_WITH(mrcal_optimization_inputs(set, 1.0), Catch::Contains("one lens model"));
 }

@@ -252,3 +252,73 @@ def test_calibrate_pair_uncertainty_is_mrcals_of_the_same_solve():
         sigma = [entry["sigma_px"] for entry in got["cameras"][camera]["uncertainty"]]
         assert [entry["pixel"] for entry in got["cameras"][camera]["uncertainty"]] == pixels.tolist()
         np.testing.assert_allclose(sigma, expected, rtol=1e-6)
+
+
+def mrcal_sigma_at(model, pixels):
+    v = mrcal.unproject(np.asarray(pixels, dtype=float), *model.intrinsics(), normalize=True)
+    return mrcal.projection_uncertainty(v, model, atinfinity=True, what="worstdirection-stdev")
+
+
+def test_calibrate_writes_its_solve_for_mrcal(tmp_path):
+    """`libcam calibrate -o x.cameramodel` keeps the solve in the model as mrcal keeps its own
+    (optimization_inputs): mrcal reads it, its residuals give libcam's RMS and its projection
+    uncertainty is the one libcam reported, for one camera and for each camera of a pair."""
+    folder = REAL_DATA / "opencv-stereo-samples"
+    if not folder.is_dir():
+        pytest.skip(f"skipped: OpenCV's sample images are absent ({folder} not found)")
+    numbers = (1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14)
+    sides = {side: [str(folder / f"{side}{n:02d}.jpg") for n in numbers] for side in ("left", "right")}
+    board = ["--board", "chessboard:9x6:0.025", "--model", "OPENCV5", "--progress", "never", "--json"]
+    pixels = [[319.5, 239.5], [100.0, 80.0]]
+    at = [arg for p in pixels for arg in ("--at", f"{p[0]},{p[1]}")]
+
+    one = tmp_path / "left.cameramodel"
+    run = subprocess.run([os.environ["LIBCAM_EXE"], "calibrate", *sides["left"], *board, *at, "-o", str(one)],
+                         check=True, capture_output=True, text=True)
+    report = json.loads(run.stdout)
+    model = mrcal.cameramodel(str(one))
+    inputs = model.optimization_inputs()
+    assert inputs is not None and model.icam_intrinsics() == 0
+    assert inputs["observations_board"].shape == (report["used"], 6, 9, 3)
+    x = mrcal.optimizer_callback(**inputs, no_jacobian=True, no_factorization=True)[1]
+    residuals = mrcal.residuals_chessboard(inputs, residuals=x).ravel()
+    assert np.sqrt(np.mean(residuals ** 2) * 2) == pytest.approx(report["chosen"]["rms_px"], rel=1e-9)
+    np.testing.assert_allclose(mrcal_sigma_at(model, pixels), [u["sigma_px"] for u in report["uncertainty"]],
+                               rtol=1e-6)
+
+    pair = tmp_path / "pair"
+    run = subprocess.run([os.environ["LIBCAM_EXE"], "calibrate", "--left", *sides["left"], "--right",
+                          *sides["right"], *board, *at, "-o", str(pair)],
+                         check=True, capture_output=True, text=True)
+    report = json.loads(run.stdout)
+    for camera, name in enumerate(("left", "right")):
+        model = mrcal.cameramodel(str(pair / f"{name}.cameramodel"))
+        assert model.icam_intrinsics() == camera
+        inputs = model.optimization_inputs()
+        assert inputs["intrinsics"].shape == (2, 9) and inputs["extrinsics_rt_fromref"].shape == (1, 6)
+        np.testing.assert_allclose(mrcal_sigma_at(model, pixels),
+                                   [u["sigma_px"] for u in report["cameras"][camera]["uncertainty"]], rtol=1e-6)
+        # And libcam's own reader of mrcal's solves takes it back whole.
+        got = libcam.projection_uncertainty(libcam.read_observations(str(pair / f"{name}.cameramodel")),
+                                            np.array(pixels))
+        np.testing.assert_allclose(got["sigma_px"], [u["sigma_px"] for u in report["cameras"][camera]["uncertainty"]],
+                                   rtol=1e-9)
+    x = mrcal.optimizer_callback(**inputs, no_jacobian=True, no_factorization=True)[1]
+    residuals = mrcal.residuals_chessboard(inputs, residuals=x).ravel()
+    assert np.sqrt(np.mean(residuals ** 2) * 2) == pytest.approx(report["rms_px"], rel=1e-9)
+
+
+def test_calibrate_says_when_mrcal_cannot_hold_its_solve(tmp_path):
+    """A fit that held fx = fy is not mrcal's problem (mrcal frees every intrinsic or none):
+    the model is written without the solve, and stderr says why in one line."""
+    folder = REAL_DATA / "opencv-stereo-samples"
+    if not folder.is_dir():
+        pytest.skip(f"skipped: OpenCV's sample images are absent ({folder} not found)")
+    images = [str(folder / f"left{n:02d}.jpg") for n in (1, 2, 3, 4, 5, 6)]
+    out = tmp_path / "held.cameramodel"
+    run = subprocess.run([os.environ["LIBCAM_EXE"], "calibrate", *images, "--board", "chessboard:9x6:0.025",
+                          "--model", "OPENCV5", "--opencv-flags", "FIX_ASPECT_RATIO", "--progress", "never",
+                          "-o", str(out)], check=True, capture_output=True, text=True)
+    assert mrcal.cameramodel(str(out)).optimization_inputs() is None
+    lines = run.stderr.splitlines()
+    assert len(lines) == 1 and "written without the solve" in lines[0] and "fx = fy" in lines[0]

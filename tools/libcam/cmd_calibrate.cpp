@@ -19,11 +19,13 @@
 #include "json_output.hpp"
 #include "libcam/calibrate/calibrate.hpp"
 #include "libcam/calibrate/calibration_json.hpp"
+#include "libcam/calibrate/mrcal_solve.hpp"
 #include "libcam/calibrate/pair_list.hpp"
 #include "libcam/calibrate/pair_output.hpp"
 #include "libcam/calibrate/observations_output.hpp"
 #include "libcam/calibrate/opencv_flags.hpp"
 #include "libcam/error.hpp"
+#include "libcam/interop/mrcal.hpp"
 #include "libcam/io/atomic_write.hpp"
 #include "libcam/io/camera_file.hpp"
 #include "libcam/io/kalibr_rig.hpp"
@@ -327,8 +329,30 @@ void write_heatmap(const std::string& path, const Calibration& c) {
 }
 
 // Files first, so that a failure to write one leaves stdout empty.
+// The solve's optimization_inputs for a .cameramodel, or nothing where mrcal cannot hold it
+// (said on stderr: the model is still written, without them).
+std::string solve_or_nothing(const std::string& file, const std::function<std::string()>& solve) {
+    try {
+        return solve();
+    } catch (const NotRepresentable& error) {
+        std::cerr << "libcam calibrate: " << file << ": written without the solve (mrcal's optimization_inputs), so "
+                  << "neither libcam uncertainty nor mrcal's tools can take it: " << error.what() << "\n";
+        return "";
+    }
+}
+
 void write_outputs(const CalibrateFlags& flags, const Calibration& c) {
-    if (!flags.output.empty()) write_camera_file(flags.output, c.chosen().camera, output_format(flags));
+    if (!flags.output.empty()) {
+        const CameraFormat format = output_format(flags);
+        if (format == CameraFormat::Cameramodel) {
+            // Camera first: a lens mrcal lacks is refused before the solve is written out.
+            const std::string camera_only = format_cameramodel(c.chosen().camera);
+            const std::string solve = solve_or_nothing(flags.output, [&] { return mrcal_solve_inputs(c); });
+            write_file_atomically(flags.output, solve.empty() ? camera_only : format_cameramodel(c.chosen().camera, solve, 0));
+        } else {
+            write_camera_file(flags.output, c.chosen().camera, format);
+        }
+    }
     if (!flags.heatmap.empty()) write_heatmap(flags.heatmap, c);
     if (flags.observations_out.empty()) return;
     ObservationsText text;
@@ -403,8 +427,16 @@ void write_pair_outputs(const std::string& folder, const PairCalibration& pair) 
         return Named{{"intrinsics.yml", std::move(opencv.intrinsics)}, {"extrinsics.yml", std::move(opencv.extrinsics)}};
     });
     add("the .cameramodel files", [&] {
-        return Named{{"left.cameramodel", format_camera(pair.first_camera, CameraFormat::Cameramodel)},
-                     {"right.cameramodel", format_camera(pair.second_camera, CameraFormat::Cameramodel)}};
+        // Each camera's model holds the whole solve, as mrcal-calibrate-cameras writes a pair.
+        Named models{{"left.cameramodel", format_cameramodel(pair.first_camera)},
+                     {"right.cameramodel", format_cameramodel(pair.second_camera)}};
+        const std::string solve =
+            solve_or_nothing(folder + ": left.cameramodel and right.cameramodel", [&] { return mrcal_solve_inputs(pair); });
+        if (!solve.empty()) {
+            models[0].second = format_cameramodel(pair.first_camera, solve, 0);
+            models[1].second = format_cameramodel(pair.second_camera, solve, 1);
+        }
+        return models;
     });
     add("camchain.yaml", [&] {
         return Named{{"camchain.yaml", format_kalibr_rig({pair.first_camera, pair.second_camera})}};

@@ -577,7 +577,7 @@ private:
                 path += (path.empty() ? "" : ".") + frame.key;
             }
         }
-        return path.empty() ? "" : ": \"" + path + "\"";
+        return path.empty() ? "" : ": \"" + printable_text(path) + "\"";
     }
 
     const std::string& source_;

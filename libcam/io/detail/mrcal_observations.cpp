@@ -352,7 +352,7 @@ long side_of(double value, const Inputs& inputs, std::size_t camera) {
 std::vector<ObservedCamera> cameras_of(const Inputs& inputs) {
     const std::string lensmodel = inputs.text("lensmodel");
     const auto lens = lens_of_mrcal_name(lensmodel);
-    if (!lens) fail(inputs.at("lensmodel"), "\"" + lensmodel + "\" is not an mrcal model libcam reads");
+    if (!lens) fail(inputs.at("lensmodel"), shown_value(lensmodel, '"') + " is not an mrcal model libcam reads");
     const NpyArray& intrinsics = *inputs.numeric("intrinsics", {kAny, kAny}, true);
     const std::size_t count = intrinsics.shape[0], per_camera = intrinsics.shape[1];
     const NpyArray& sizes = *inputs.numeric("imagersizes", {count, 2}, true);

@@ -2,13 +2,16 @@
 
 #include <zip.h>
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
 
 #include "libcam/error.hpp"
+#include "libcam/text/number_format.hpp"
 #include "libcam/text/shown_value.hpp"
 
 namespace libcam::detail {
@@ -47,14 +50,14 @@ struct HeaderReader {
     }
     void expect(char c) {
         if (!take(c)) fail(where, "npy header: expected '" + std::string(1, c) + "' at " + std::to_string(at) +
-                                      " in " + std::string(text));
+                                      " in " + shown_value(text));
     }
     std::string quoted() {
         skip_spaces();
         if (at >= text.size() || (text[at] != '\'' && text[at] != '"')) expect('\'');
         const char quote = text[at++];
         const std::size_t end = text.find(quote, at);
-        if (end == std::string_view::npos) fail(where, "npy header: unterminated string in " + std::string(text));
+        if (end == std::string_view::npos) fail(where, "npy header: unterminated string in " + shown_value(text));
         std::string value(text.substr(at, end - at));
         at = end + 1;
         return value;
@@ -266,13 +269,130 @@ std::map<std::string, NpyArray> read_npz(std::string_view bytes, const std::stri
         const auto index = static_cast<zip_uint64_t>(i);
         const char* name = zip_get_name(archive.get(), index, 0);
         const std::string member = name != nullptr ? name : "";
-        if (!member.ends_with(".npy") || member.size() == 4) fail(where, "member \"" + member + "\" is not an .npy");
+        if (!member.ends_with(".npy") || member.size() == 4) fail(where, "member " + shown_value(member, '"') + " is not an .npy");
         const std::string key = member.substr(0, member.size() - 4);
-        const std::string array_where = where + ": " + key;
+        const std::string array_where = where + ": " + printable_text(key, kShownValueLength);
         if (arrays.contains(key)) fail(array_where, "stored twice");
         arrays.emplace(key, parse_npy(read_member(archive.get(), index, array_where), array_where));
     }
     return arrays;
+}
+
+namespace {
+
+void append_little_endian(std::string& out, std::uint64_t value, int bytes) {
+    for (int i = 0; i < bytes; ++i) out += static_cast<char>((value >> (8 * i)) & 0xFF);
+}
+
+// The header's shape as Python writes a tuple: "()", "(3,)", "(2, 6)".
+std::string python_shape(const std::vector<std::size_t>& shape) {
+    std::string text = "(";
+    for (std::size_t i = 0; i < shape.size(); ++i) text += (i ? ", " : "") + std::to_string(shape[i]);
+    return text + (shape.size() == 1 ? ",)" : ")");
+}
+
+// UTF-8 text as numpy's UTF-32LE code points.
+std::string utf32_of_utf8(const std::string& text) {
+    std::string out;
+    for (std::size_t at = 0; at < text.size();) {
+        const auto lead = static_cast<unsigned char>(text[at]);
+        const int length = lead < 0x80 ? 1 : lead < 0xE0 ? 2 : lead < 0xF0 ? 3 : 4;
+        if (at + static_cast<std::size_t>(length) > text.size()) throw InvalidArgument("npy: text that is not UTF-8");
+        std::uint32_t code = length == 1 ? lead : lead & (0xFF >> (length + 1));
+        for (int i = 1; i < length; ++i) code = (code << 6) | (static_cast<unsigned char>(text[at + i]) & 0x3F);
+        append_little_endian(out, code, 4);
+        at += static_cast<std::size_t>(length);
+    }
+    return out;
+}
+
+struct ZipWriteCloser {
+    void operator()(zip_t* archive) const { zip_discard(archive); }
+};
+struct SourceFreer {
+    void operator()(zip_source_t* source) const { zip_source_free(source); }
+};
+
+[[noreturn]] void zip_failed(const std::string& what, zip_error_t* error) {
+    throw Error("npz: " + what + ": " + zip_message(error));
+}
+
+}  // namespace
+
+std::string format_npy(const NpyArray& array) {
+    std::string data;
+    std::string descr = array.descr;
+    if (array.is_text()) {
+        if (!array.shape.empty()) throw InvalidArgument("npy: a string array of shape " + python_shape(array.shape));
+        data = utf32_of_utf8(array.text);
+        descr = "<U" + std::to_string(std::max<std::size_t>(data.size() / 4, 1));
+        if (data.empty()) data.assign(4, '\0');  // numpy's '' is one NUL code point
+    } else {
+        if (array.numbers.size() != array.size()) {
+            throw InvalidArgument("npy: " + std::to_string(array.numbers.size()) + " numbers for shape " +
+                                  python_shape(array.shape));
+        }
+        for (const double value : array.numbers) {
+            if (descr == "<f8") {
+                append_little_endian(data, std::bit_cast<std::uint64_t>(value), 8);
+            } else if (descr == "<i4") {
+                if (!(value >= std::numeric_limits<std::int32_t>::min() && value <= std::numeric_limits<std::int32_t>::max()) ||
+                    value != std::floor(value)) {
+                    throw InvalidArgument("npy: " + format_number(value) + " is no 32-bit integer");
+                }
+                append_little_endian(data, static_cast<std::uint32_t>(static_cast<std::int32_t>(value)), 4);
+            } else if (descr == "|b1") {
+                data += static_cast<char>(value != 0.0 ? 1 : 0);
+            } else {
+                throw InvalidArgument("npy: dtype " + shown_value(descr) + " (libcam writes <f8, <i4, |b1 and <U)");
+            }
+        }
+    }
+    std::string header = "{'descr': '" + descr + "', 'fortran_order': False, 'shape': " + python_shape(array.shape) + ", }";
+    // numpy pads with spaces so that the data starts on a 64-byte boundary, then a line end.
+    const std::size_t unpadded = 10 + header.size() + 1;
+    header.append((64 - unpadded % 64) % 64, ' ');
+    header += '\n';
+    std::string out("\x93NUMPY\x01\x00", 8);
+    append_little_endian(out, header.size(), 2);
+    return out + header + data;
+}
+
+std::string write_npz(const std::vector<std::pair<std::string, NpyArray>>& arrays) {
+    std::vector<std::string> members;  // alive until the archive is closed: libzip reads them then
+    members.reserve(arrays.size());
+    for (const auto& [name, array] : arrays) members.push_back(format_npy(array));
+    zip_error_t error;
+    zip_error_init(&error);
+    const std::unique_ptr<zip_source_t, SourceFreer> buffer(zip_source_buffer_create(nullptr, 0, 0, &error));
+    if (!buffer) zip_failed("no buffer", &error);
+    zip_t* opened = zip_open_from_source(buffer.get(), ZIP_TRUNCATE, &error);
+    if (opened == nullptr) zip_failed("cannot open an archive in memory", &error);
+    zip_source_keep(buffer.get());  // the archive's close would free it; its bytes are read after
+    std::unique_ptr<zip_t, ZipWriteCloser> archive(opened);
+    for (std::size_t i = 0; i < arrays.size(); ++i) {
+        zip_source_t* member = zip_source_buffer(archive.get(), members[i].data(), members[i].size(), 0);
+        const zip_int64_t index =
+            member == nullptr ? -1 : zip_file_add(archive.get(), (arrays[i].first + ".npy").c_str(), member, ZIP_FL_ENC_UTF_8);
+        if (index < 0) {
+            if (member != nullptr) zip_source_free(member);
+            throw Error("npz: cannot add " + arrays[i].first + ": " + zip_strerror(archive.get()));
+        }
+        zip_set_file_compression(archive.get(), static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, 0);
+    }
+    if (zip_close(archive.get()) != 0) throw Error(std::string("npz: cannot write the archive: ") + zip_strerror(archive.get()));
+    (void)archive.release();  // closed
+    zip_stat_t stat;
+    zip_stat_init(&stat);
+    if (zip_source_stat(buffer.get(), &stat) != 0 || (stat.valid & ZIP_STAT_SIZE) == 0) {
+        throw Error("npz: the archive's size is unknown");
+    }
+    std::string bytes(stat.size, '\0');
+    if (zip_source_open(buffer.get()) != 0) throw Error("npz: cannot read the archive back");
+    const zip_int64_t read = zip_source_read(buffer.get(), bytes.data(), stat.size);
+    zip_source_close(buffer.get());
+    if (read < 0 || static_cast<zip_uint64_t>(read) != stat.size) throw Error("npz: the archive read back short");
+    return bytes;
 }
 
 }  // namespace libcam::detail

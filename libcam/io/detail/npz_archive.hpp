@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace libcam::detail {
@@ -29,5 +30,15 @@ NpyArray parse_npy(std::string_view bytes, const std::string& where);
 // Every array of an .npz archive by name (the zip's member name without ".npy"). Throws
 // FileError "<where>: <what>" for a corrupt archive or array.
 std::map<std::string, NpyArray> read_npz(std::string_view bytes, const std::string& where);
+
+// The .npy bytes of an array as numpy's np.save writes them (format 1.0, C order, the
+// header padded to a multiple of 64 bytes and ending in a line end): its numbers as
+// "<f8", "<i4" (whole numbers that fit) or "|b1", or its text as a scalar "<U" string.
+// Throws InvalidArgument for a dtype it does not write or a number its dtype cannot hold.
+std::string format_npy(const NpyArray& array);
+
+// An .npz archive as np.savez_compressed writes one: each array a deflated member
+// "<name>.npy", in the order given.
+std::string write_npz(const std::vector<std::pair<std::string, NpyArray>>& arrays);
 
 }  // namespace libcam::detail

@@ -8,6 +8,7 @@
 #include "libcam/error.hpp"
 #include "libcam/io/detail/document.hpp"
 #include "libcam/io/detail/opencv_storage.hpp"
+#include "libcam/text/shown_value.hpp"
 
 namespace libcam {
 
@@ -59,7 +60,7 @@ Board read_board(const Field& file) {
     board.shape.height = static_cast<int>(file.at({"board_height", "board_Height"}).integer(1, kMaxBoardSide));
     const Field square = file.at({"square_size", "square_Size"});
     board.shape.spacing = square.number();
-    if (!(board.shape.spacing > 0)) square.fail("must be > 0, got " + square.text());
+    if (!(board.shape.spacing > 0)) square.fail("must be > 0, got " + shown_value(square.text()));
     const std::size_t count = static_cast<std::size_t>(board.shape.width) * static_cast<std::size_t>(board.shape.height);
     if (const std::optional<Field> grid = file.find({"grid_points"})) {
         board.corners = grid_points(*grid, count);

@@ -395,7 +395,7 @@ std::vector<NamedCamera> read_orb_slam(const Field& file, const ReadOptions& opt
         // DepthMapFactor, is the depth sensor's baseline: no second image.)
         Camera second = cameras.front().file.camera;
         const Field bf = file.at({"Camera.bf"});
-        if (!(bf.number() > 0)) bf.fail("must be > 0 (the baseline times fx), got " + bf.text());
+        if (!(bf.number() > 0)) bf.fail("must be > 0 (the baseline times fx), got " + shown_value(bf.text()));
         second.pose.t = Vec3(-bf.number() / second.intrinsics.fx, 0.0, 0.0);
         cameras.push_back({"Camera2", {validated_camera(second, source), std::nullopt}});
     }
