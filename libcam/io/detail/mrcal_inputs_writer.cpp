@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "libcam/error.hpp"
+#include "libcam/io/detail/mrcal_observations.hpp"
 #include "libcam/io/detail/npz_archive.hpp"
 #include "libcam/io/observations.hpp"
 #include "libcam/lens/lens_model.hpp"
@@ -33,26 +34,6 @@ NpyArray none() { return text(""); }  // mrcal stores None as ''
 void append_rt(std::vector<double>& out, const Pose& pose) {
     const Vec3 r = pose.rvec();
     out.insert(out.end(), {r.x(), r.y(), r.z(), pose.t.x(), pose.t.y(), pose.t.z()});
-}
-
-// Python's base64.b85encode (RFC 1924's alphabet): each 4 bytes, big endian, as 5
-// characters; the last group padded with zero bytes and cut to its length plus one.
-std::string base85_encode(std::string_view bytes) {
-    static constexpr std::string_view kAlphabet =
-        "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz!#$%&()*+-;<=>?@^_`{|}~";
-    std::string out;
-    out.reserve((bytes.size() + 3) / 4 * 5);
-    for (std::size_t group = 0; group < bytes.size(); group += 4) {
-        std::uint32_t value = 0;
-        for (std::size_t i = group; i < group + 4; ++i) {
-            value = (value << 8) | (i < bytes.size() ? static_cast<unsigned char>(bytes[i]) : 0u);
-        }
-        char digits[5];
-        for (int d = 4; d >= 0; --d, value /= 85) digits[d] = kAlphabet[value % 85];
-        const std::size_t kept = std::min<std::size_t>(bytes.size() - group, 4) + 1;
-        out.append(digits, kept);
-    }
-    return out;
 }
 
 [[noreturn]] void cannot(const std::string& why) {
@@ -169,7 +150,7 @@ std::string mrcal_optimization_inputs(const ObservationSet& set, double observed
         {"do_apply_regularization", flag(false)},
         {"verbose", flag(false)},
     };
-    return "b'" + base85_encode(detail::write_npz(arrays)) + "'";
+    return "b'" + detail::base85_encode(detail::write_npz(arrays)) + "'";
 }
 
 }  // namespace libcam

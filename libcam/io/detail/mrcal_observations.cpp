@@ -19,6 +19,10 @@
 
 namespace libcam::detail {
 
+// Python's base64 b85 alphabet (RFC 1924's), for mrcal's optimization_inputs both ways.
+constexpr std::string_view kBase85Alphabet =
+    "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz!#$%&()*+-;<=>?@^_`{|}~";
+
 namespace {
 
 [[noreturn]] void fail(const std::string& where, const std::string& what) { throw FileError(where + ": " + what); }
@@ -229,8 +233,7 @@ int own_camera_of(std::string_view text, const std::string& source, std::size_t 
 // Python's base64.b85decode (the RFC 1924 alphabet): each 5 characters are 4 bytes, big
 // endian; a short last group is padded with '~' and its padding bytes dropped.
 std::string base85_decode(std::string_view text, const std::string& where) {
-    static constexpr std::string_view kAlphabet =
-        "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz!#$%&()*+-;<=>?@^_`{|}~";
+    constexpr std::string_view kAlphabet = kBase85Alphabet;
     const std::size_t padding = (5 - text.size() % 5) % 5;
     std::string bytes;
     bytes.reserve((text.size() + padding) / 5 * 4);
@@ -520,6 +523,25 @@ ObservationSet read_mrcal_observations(const std::filesystem::path& file, std::s
     // parser, libcam::interop): a file that reader refuses is refused here with its line.
     (void)parse_camera_set(text, CameraFormat::Cameramodel, file.string());
     return parse_mrcal_observations(text, file.string());
+}
+
+// Python's base64.b85encode (RFC 1924's alphabet): each 4 bytes, big endian, as 5
+// characters; the last group padded with zero bytes and cut to its length plus one.
+std::string base85_encode(std::string_view bytes) {
+    constexpr std::string_view kAlphabet = kBase85Alphabet;
+    std::string out;
+    out.reserve((bytes.size() + 3) / 4 * 5);
+    for (std::size_t group = 0; group < bytes.size(); group += 4) {
+        std::uint32_t value = 0;
+        for (std::size_t i = group; i < group + 4; ++i) {
+            value = (value << 8) | (i < bytes.size() ? static_cast<unsigned char>(bytes[i]) : 0u);
+        }
+        char digits[5];
+        for (int d = 4; d >= 0; --d, value /= 85) digits[d] = kAlphabet[value % 85];
+        const std::size_t kept = std::min<std::size_t>(bytes.size() - group, 4) + 1;
+        out.append(digits, kept);
+    }
+    return out;
 }
 
 }  // namespace libcam::detail

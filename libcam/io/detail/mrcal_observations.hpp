@@ -24,4 +24,8 @@ ObservationSet read_mrcal_observations(const std::filesystem::path& file, std::s
 // The observations of a .cameramodel's text; `source` names it in messages.
 ObservationSet parse_mrcal_observations(std::string_view text, const std::string& source);
 
+// Bytes as Python's base64.b85encode writes them, as mrcal stores its optimization_inputs
+// (mrcal_optimization_inputs, mrcal_inputs_writer.cpp).
+std::string base85_encode(std::string_view bytes);
+
 }  // namespace libcam::detail
