@@ -423,7 +423,15 @@ CameraFile read_camera_file(const std::filesystem::path& path, std::string_view 
 
 void write_camera_file(const std::filesystem::path& path, const Camera& camera, CameraFormat format,
                        const WriteOptions& options) {
-    const std::vector<CameraFileText> files = format_files(camera, format, options, path.string());
+    std::vector<CameraFileText> files;
+    try {
+        files = format_files(camera, format, options, path.string());
+    } catch (const NotRepresentable& error) {
+        // A refusal names the file it was for, whether or not the format's writer did.
+        const std::string what = error.what();
+        if (what.starts_with(path.string() + ": ")) throw;
+        throw NotRepresentable(path.string() + ": " + what);
+    }
     if (!camera_format_writes_folder(format)) {
         write_file_atomically(path, files.front().text);
         return;

@@ -605,9 +605,11 @@ TEST_CASE("metashape: --no-pose writes Export Calibration's file, and what Metas
     CHECK(back.pose.R == Mat3::Identity());
 
     camera.lens = {LensType::OpenCv8, {0.4, 0.05, 1e-3, -2e-3, 0.01, 0.7, 0.1, 0.02}};
+    // The refusal names the file it was for.
     CHECK_THROWS_WITH(write_camera_file(dir.path() / "rational.xml", camera, CameraFormat::Metashape),
-                      "Agisoft Metashape XML has no model for a OPENCV8 lens (it holds PINHOLE, OPENCV4, OPENCV5, "
-                      "BROWN_K4, FISHEYE and LONLAT)");
+                      (dir.path() / "rational.xml").string() +
+                          ": Agisoft Metashape XML has no model for a OPENCV8 lens (it holds PINHOLE, OPENCV4, OPENCV5, "
+                          "BROWN_K4, FISHEYE and LONLAT)");
     CHECK_FALSE(std::filesystem::exists(dir.path() / "rational.xml"));
     camera.lens = {LensType::Lonlat, {}};
     CHECK_THROWS_AS(write_camera_file(dir.path() / "sphere.xml", camera, CameraFormat::Metashape), NotRepresentable);

@@ -343,14 +343,13 @@ std::string solve_or_nothing(const std::string& file, const std::function<std::s
 
 void write_outputs(const CalibrateFlags& flags, const Calibration& c) {
     if (!flags.output.empty()) {
+        // The camera as -o writes it in any format (refused there, naming the file, where the
+        // format cannot hold it); a .cameramodel then again with its solve, where mrcal can hold it.
         const CameraFormat format = output_format(flags);
+        write_camera_file(flags.output, c.chosen().camera, format);
         if (format == CameraFormat::Cameramodel) {
-            // Camera first: a lens mrcal lacks is refused before the solve is written out.
-            const std::string camera_only = format_cameramodel(c.chosen().camera);
             const std::string solve = solve_or_nothing(flags.output, [&] { return mrcal_solve_inputs(c); });
-            write_file_atomically(flags.output, solve.empty() ? camera_only : format_cameramodel(c.chosen().camera, solve, 0));
-        } else {
-            write_camera_file(flags.output, c.chosen().camera, format);
+            if (!solve.empty()) write_file_atomically(flags.output, format_cameramodel(c.chosen().camera, solve, 0));
         }
     }
     if (!flags.heatmap.empty()) write_heatmap(flags.heatmap, c);
@@ -428,8 +427,8 @@ void write_pair_outputs(const std::string& folder, const PairCalibration& pair) 
     });
     add("the .cameramodel files", [&] {
         // Each camera's model holds the whole solve, as mrcal-calibrate-cameras writes a pair.
-        Named models{{"left.cameramodel", format_cameramodel(pair.first_camera)},
-                     {"right.cameramodel", format_cameramodel(pair.second_camera)}};
+        Named models{{"left.cameramodel", format_camera(pair.first_camera, CameraFormat::Cameramodel)},
+                     {"right.cameramodel", format_camera(pair.second_camera, CameraFormat::Cameramodel)}};
         const std::string solve =
             solve_or_nothing(folder + ": left.cameramodel and right.cameramodel", [&] { return mrcal_solve_inputs(pair); });
         if (!solve.empty()) {
