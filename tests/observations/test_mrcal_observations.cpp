@@ -294,8 +294,14 @@ TEST_CASE("mrcal observations written by libcam: what mrcal's inputs cannot hold
     set.board = ObservedBoard{2, 2, 0.1};
     set.points = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0, 0.1, 0), Vec3(0.1, 0.1, 0)};
     CHECK_THROWS_WITH(mrcal_optimization_inputs(set, 1.0), Catch::Contains("mrcal has no FISHEYE model"));
-    // An OPENCV8 camera beside an OPENCV4 one: mrcal solves one model for every camera.
+    set.points[3] = Vec3(0.1, 0.2, 0.0);
+    CHECK_THROWS_WITH(mrcal_optimization_inputs(set, 1.0), Catch::Contains("point 3 is not where mrcal places"));
+    set.points[3] = Vec3(0.1, 0.1, 0.0);
     set.cameras.front().camera = libcam::example_camera("mild");
+    set.observations.push_back({.view = 0, .point = 4});
+    CHECK_THROWS_WITH(mrcal_optimization_inputs(set, 1.0), Catch::Contains("point 4, which the set does not hold"));
+    set.observations.clear();
+    // An OPENCV8 camera beside an OPENCV4 one: mrcal solves one model for every camera.
     Camera second = libcam::example_camera("mild");
     second.lens = {LensType::OpenCv4, {0.0, 0.0, 0.0, 0.0}};
     set.cameras.push_back({"1", second});

@@ -75,6 +75,14 @@ std::string mrcal_optimization_inputs(const ObservationSet& set, double observed
         cannot(std::to_string(set.points.size()) + " points for a board of " + std::to_string(board.width) + " x " +
                std::to_string(board.height) + " corners");
     }
+    // mrcal places corner (row i, column j) at (j, i) * spacing; points elsewhere would be
+    // another board than the one mrcal would read.
+    for (std::size_t k = 0; k < corners; ++k) {
+        const Vec2 grid(double(k % std::size_t(board.width)) * board.spacing, double(k / std::size_t(board.width)) * board.spacing);
+        if ((set.points[k].head<2>() - grid).norm() > 1e-9 * board.spacing * double(board.width + board.height)) {
+            cannot("point " + std::to_string(k) + " is not where mrcal places that corner of the board");
+        }
+    }
     const auto [lensmodel, intrinsics] = mrcal_intrinsics(set);
     const std::size_t cameras = set.cameras.size();
     const bool shared_frames = !set.frames.empty();
@@ -115,6 +123,10 @@ std::string mrcal_optimization_inputs(const ObservationSet& set, double observed
     std::vector<double> observed(order.size() * corners * 3, 0.0);
     for (std::size_t i = 2; i < observed.size(); i += 3) observed[i] = -1.0;
     for (const Observation& o : set.observations) {
+        if (o.view < 0 || std::size_t(o.view) >= set.views.size() || o.point < 0 || std::size_t(o.point) >= corners) {
+            cannot("an observation of view " + std::to_string(o.view) + ", point " + std::to_string(o.point) +
+                   ", which the set does not hold");
+        }
         double* xyw = observed.data() + 3 * (row_of_view[static_cast<std::size_t>(o.view)] * corners +
                                              static_cast<std::size_t>(o.point));
         xyw[0] = o.pixel.x(), xyw[1] = o.pixel.y(), xyw[2] = o.inlier ? o.weight : -1.0;
