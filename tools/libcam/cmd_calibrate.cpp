@@ -328,28 +328,39 @@ void write_heatmap(const std::string& path, const Calibration& c) {
                                   worst_observed_text(summary.worst_observed_px, 3));
 }
 
-// Files first, so that a failure to write one leaves stdout empty.
-// The solve's optimization_inputs for a .cameramodel, or nothing where mrcal cannot hold it
-// (said on stderr: the model is still written, without them).
-std::string solve_or_nothing(const std::string& file, const std::function<std::string()>& solve) {
+// The solve's optimization_inputs for a .cameramodel, or why mrcal cannot hold it.
+struct SolveText {
+    std::string inputs;
+    std::string why_not;
+};
+SolveText solve_text(const std::function<std::string()>& solve) {
     try {
-        return solve();
+        return {solve(), ""};
     } catch (const NotRepresentable& error) {
-        std::cerr << "libcam calibrate: " << file << ": written without the solve (mrcal's optimization_inputs), so "
-                  << "neither libcam uncertainty nor mrcal's tools can take it: " << error.what() << "\n";
-        return "";
+        return {"", error.what()};
     }
 }
 
+// Said on stderr once the model is written without its solve.
+void say_without_solve(const std::string& file, const std::string& why_not) {
+    std::cerr << "libcam calibrate: " << file << ": written without the solve (mrcal's optimization_inputs), so "
+              << "neither libcam uncertainty nor mrcal's tools can take it: " << why_not << "\n";
+}
+
+// Files first, so that a failure to write one leaves stdout empty.
 void write_outputs(const CalibrateFlags& flags, const Calibration& c) {
     if (!flags.output.empty()) {
-        // The camera as -o writes it in any format (refused there, naming the file, where the
-        // format cannot hold it); a .cameramodel then again with its solve, where mrcal can hold it.
+        // A .cameramodel with its solve where mrcal can hold it (then mrcal has the lens);
+        // otherwise the camera as -o writes it in any format, refused there, naming the file,
+        // where the format cannot hold it.
         const CameraFormat format = output_format(flags);
-        write_camera_file(flags.output, c.chosen().camera, format);
-        if (format == CameraFormat::Cameramodel) {
-            const std::string solve = solve_or_nothing(flags.output, [&] { return mrcal_solve_inputs(c); });
-            if (!solve.empty()) write_file_atomically(flags.output, format_cameramodel(c.chosen().camera, solve, 0));
+        const SolveText solve = format == CameraFormat::Cameramodel ? solve_text([&] { return mrcal_solve_inputs(c); })
+                                                                    : SolveText{};
+        if (!solve.inputs.empty()) {
+            write_file_atomically(flags.output, format_cameramodel(c.chosen().camera, solve.inputs, 0));
+        } else {
+            write_camera_file(flags.output, c.chosen().camera, format);
+            if (!solve.why_not.empty()) say_without_solve(flags.output, solve.why_not);
         }
     }
     if (!flags.heatmap.empty()) write_heatmap(flags.heatmap, c);
@@ -429,11 +440,12 @@ void write_pair_outputs(const std::string& folder, const PairCalibration& pair) 
         // Each camera's model holds the whole solve, as mrcal-calibrate-cameras writes a pair.
         Named models{{"left.cameramodel", format_camera(pair.first_camera, CameraFormat::Cameramodel)},
                      {"right.cameramodel", format_camera(pair.second_camera, CameraFormat::Cameramodel)}};
-        const std::string solve =
-            solve_or_nothing(folder + ": left.cameramodel and right.cameramodel", [&] { return mrcal_solve_inputs(pair); });
-        if (!solve.empty()) {
-            models[0].second = format_cameramodel(pair.first_camera, solve, 0);
-            models[1].second = format_cameramodel(pair.second_camera, solve, 1);
+        const SolveText solve = solve_text([&] { return mrcal_solve_inputs(pair); });
+        if (solve.inputs.empty()) {
+            say_without_solve(folder + ": left.cameramodel and right.cameramodel", solve.why_not);
+        } else {
+            models[0].second = format_cameramodel(pair.first_camera, solve.inputs, 0);
+            models[1].second = format_cameramodel(pair.second_camera, solve.inputs, 1);
         }
         return models;
     });
